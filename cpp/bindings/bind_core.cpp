@@ -1,0 +1,43 @@
+#include <pybind11/pybind11.h>
+
+#include "bindings.hpp"
+#include "leadscrew/core/errors.hpp"
+
+namespace py = pybind11;
+
+namespace leadscrew::bindings {
+
+namespace {
+// Exception types live as long as the interpreter; they are deliberately never
+// released (no static destructor runs after Python has finalized).
+PyObject* simulation_error_type = nullptr;
+PyObject* jamming_error_type = nullptr;
+
+void raise_with_attributes(PyObject* type, const SimulationError& e) {
+  py::object error = py::handle(type)(e.what());
+  error.attr("time") = e.time();
+  error.attr("reason") = e.reason();
+  PyErr_SetObject(type, error.ptr());
+}
+}  // namespace
+
+void bind_core(py::module_& m) {
+  // SimulationError derives from RuntimeError; JammingError from SimulationError.
+  simulation_error_type = PyErr_NewException("leadscrew._core.SimulationError",
+                                             PyExc_RuntimeError, nullptr);
+  jamming_error_type =
+      PyErr_NewException("leadscrew._core.JammingError", simulation_error_type, nullptr);
+  m.add_object("SimulationError", py::handle(simulation_error_type));
+  m.add_object("JammingError", py::handle(jamming_error_type));
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const JammingError& e) {
+      raise_with_attributes(jamming_error_type, e);
+    } catch (const SimulationError& e) {
+      raise_with_attributes(simulation_error_type, e);
+    }
+  });
+}
+
+}  // namespace leadscrew::bindings

@@ -1,0 +1,9 @@
+#include "bindings.hpp"
+
+namespace py = pybind11;
+
+namespace leadscrew::bindings {
+
+void bind_simulate(py::module_& m) { (void)m; }
+
+}  // namespace leadscrew::bindings

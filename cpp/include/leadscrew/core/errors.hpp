@@ -1,0 +1,42 @@
+// Error types of the numerical core.
+//
+// The bindings translate them into Python exceptions:
+//   std::invalid_argument (and InvalidArgument) -> ValueError
+//   SimulationError                           -> leadscrew.SimulationError
+//   JammingError                              -> leadscrew.JammingError (a SimulationError)
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace leadscrew {
+
+// Bad input: the message names the parameter (or key path), the value and the
+// valid range.
+class InvalidArgument : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+// A solver failed during a simulation: the time it got to and the reason.
+class SimulationError : public std::runtime_error {
+ public:
+  SimulationError(double time, const std::string& reason, const std::string& hint = "")
+      : std::runtime_error(compose(time, reason, hint)), time_(time), reason_(reason) {}
+  double time() const noexcept { return time_; }
+  const std::string& reason() const noexcept { return reason_; }
+
+ private:
+  static std::string compose(double time, const std::string& reason, const std::string& hint);
+  double time_;
+  std::string reason_;
+};
+
+// A self-locking drive that jams dynamically: no consistent flank-contact mode
+// exists (Painleve paradox). Never continued with a trajectory.
+class JammingError : public SimulationError {
+ public:
+  using SimulationError::SimulationError;
+};
+
+}  // namespace leadscrew

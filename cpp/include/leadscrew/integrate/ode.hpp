@@ -1,0 +1,85 @@
+// One interface for every ODE integrator of the core (one file per method,
+// behind make_integrator): the smooth phases of the event-driven scheme and the
+// regularized and compliant models all run through it.
+//
+// An integrator is set up once for a system (initialize: allocates), restarted
+// after an event without allocating (reinitialize), and advanced to an output
+// time or to the first root of the system's root functions (advance).
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace leadscrew::integrate {
+
+// A smooth ODE y' = f(t, y) with optional root (event) functions g(t, y).
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+  virtual int size() const = 0;
+  // ydot = f(t, y). Must not allocate.
+  virtual void rhs(double t, const double* y, double* ydot) = 0;
+  // Number of root functions (0: no root finding).
+  virtual int root_count() const { return 0; }
+  // g = g(t, y), root_count() values. Must not allocate.
+  virtual void roots(double /*t*/, const double* /*y*/, double* /*g*/) {}
+};
+
+struct IntegratorOptions {
+  double rtol = 1e-8;
+  double atol = 1e-10;
+  double max_step = 0.0;     // 0: unbounded
+  double first_step = 0.0;   // 0: chosen by the integrator
+  long max_steps = 1000000;  // total internal steps before SimulationError
+  int max_order = 0;         // 0: the method's default (CVODE BDF 5, Adams 12)
+  double fixed_step = 0.0;   // > 0: fixed step size where the method supports it
+};
+
+struct IntegratorStats {
+  long steps = 0;
+  long rhs_evaluations = 0;
+  long jacobian_evaluations = 0;
+  long root_evaluations = 0;
+  long error_test_failures = 0;
+  long nonlinear_failures = 0;
+  long restarts = 0;  // reinitialize calls
+};
+
+enum class AdvanceStatus { reached, root_found };
+
+struct AdvanceResult {
+  double t = 0.0;
+  AdvanceStatus status = AdvanceStatus::reached;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  virtual std::string name() const = 0;
+  // Allocates the workspace for `system` (kept by reference) and sets the
+  // initial state.
+  virtual void initialize(OdeSystem& system, double t0,
+                          const Eigen::Ref<const Eigen::VectorXd>& y0) = 0;
+  // Restart from (t0, y0) after a discontinuity (event); no allocation.
+  virtual void reinitialize(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) = 0;
+  // Integrate towards t_out, never past it. Stops early at the first root of
+  // the system's root functions (then root_info() tells which, with direction
+  // +1 rising / -1 falling, 0 not triggered). y receives the state at the
+  // returned time. one_step = true returns after one internal step (for
+  // output at every step). Throws SimulationError (time, flag name, hint).
+  virtual AdvanceResult advance(double t_out, Eigen::Ref<Eigen::VectorXd> y,
+                                bool one_step = false) = 0;
+  virtual const std::vector<int>& root_info() const = 0;
+  virtual IntegratorStats stats() const = 0;
+};
+
+// Names: "cvode_bdf", "cvode_adams", "dopri5" (ARKODE explicit
+// Dormand-Prince 5(4)), and further methods as they are added. Throws
+// InvalidArgument naming the allowed values for an unknown name.
+std::unique_ptr<Integrator> make_integrator(const std::string& name,
+                                            const IntegratorOptions& options);
+std::vector<std::string> integrator_names();
+
+}  // namespace leadscrew::integrate

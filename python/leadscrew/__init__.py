@@ -1,0 +1,28 @@
+"""leadscrew: multibody simulation of lead-screw drives.
+
+SI units throughout (m, kg, s, N, N*m, Pa, rad).
+"""
+
+from .errors import JammingError, SimulationError
+from .thread import (
+    Thread,
+    efficiency,
+    is_drivable,
+    is_self_locking,
+    lower_torque,
+    raise_torque,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Thread",
+    "raise_torque",
+    "lower_torque",
+    "efficiency",
+    "is_self_locking",
+    "is_drivable",
+    "SimulationError",
+    "JammingError",
+    "__version__",
+]

@@ -1,0 +1,1 @@
+"""Shared test helpers: closed-form references written independently of the package."""

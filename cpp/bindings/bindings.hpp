@@ -4,12 +4,22 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
+#include "leadscrew/excitation/excitation.hpp"
+
 namespace leadscrew::bindings {
+
 
 void bind_core(pybind11::module_& m);    // error types
 void bind_thread(pybind11::module_& m);  // Thread and closed-form mechanics
 void bind_lcp(pybind11::module_& m);     // LCP solvers (submodule "lcp")
 void bind_excitation(pybind11::module_& m);
-void bind_simulate(pybind11::module_& m);
+void bind_model(pybind11::module_& m);     // friction block, simulate, results
+void bind_drive(pybind11::module_& m);     // lead-screw drive models
+
+// Converts a Python load description (an Excitation, a number, or a callable
+// of t) into an Excitation; `name` goes into the error message.
+Excitation to_excitation(pybind11::handle value, const std::string& name);
 
 }  // namespace leadscrew::bindings

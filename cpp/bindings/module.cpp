@@ -6,5 +6,6 @@ PYBIND11_MODULE(_core, m) {
   leadscrew::bindings::bind_thread(m);
   leadscrew::bindings::bind_lcp(m);
   leadscrew::bindings::bind_excitation(m);
-  leadscrew::bindings::bind_simulate(m);
+  leadscrew::bindings::bind_model(m);
+  leadscrew::bindings::bind_drive(m);
 }

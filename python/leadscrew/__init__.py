@@ -4,6 +4,10 @@ SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
 from .errors import JammingError, SimulationError
+from .excitation import Constant, Excitation, Sine, Table
+from .models import FrictionBlock
+from .scene import Scene
+from .simulation import Event, Result, simulate
 from .thread import (
     Thread,
     efficiency,
@@ -22,6 +26,15 @@ __all__ = [
     "efficiency",
     "is_self_locking",
     "is_drivable",
+    "Excitation",
+    "Constant",
+    "Sine",
+    "Table",
+    "FrictionBlock",
+    "Scene",
+    "simulate",
+    "Result",
+    "Event",
     "SimulationError",
     "JammingError",
     "__version__",

@@ -1,0 +1,146 @@
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/drive_simulation.hpp"
+
+namespace py = pybind11;
+
+namespace leadscrew::bindings {
+
+void bind_drive(py::module_& m) {
+  using model::DriveParameters;
+  py::class_<DriveParameters> parameters(m, "DriveParameters",
+                                         "Resolved drive parameters (SI); built by leadscrew.Scene.");
+  parameters.def(py::init<>())
+      .def_property(
+          "concept", [](const DriveParameters& p) { return model::concept_name(p.concept); },
+          [](DriveParameters& p, const std::string& v) { p.concept = model::parse_concept(v); })
+      .def_property(
+          "drive",
+          [](const DriveParameters& p) {
+            return std::string(p.drive == model::DrivenPart::screw ? "screw" : "nut");
+          },
+          [](DriveParameters& p, const std::string& v) { p.drive = model::parse_drive(v); })
+      .def_property(
+          "support",
+          [](const DriveParameters& p) {
+            return std::string(p.support == model::ScrewSupport::both_ends ? "both_ends"
+                                                                          : "drive_end");
+          },
+          [](DriveParameters& p, const std::string& v) { p.support = model::parse_support(v); })
+      .def_property(
+          "backlash",
+          [](const DriveParameters& p) {
+            static const char* names[] = {"none", "exact", "bistop", "cubic"};
+            return std::string(names[static_cast<int>(p.backlash)]);
+          },
+          [](DriveParameters& p, const std::string& v) {
+            p.backlash = model::parse_backlash_contact(v);
+          })
+      .def_property(
+          "friction", [](const DriveParameters& p) { return friction_law_name(p.friction); },
+          [](DriveParameters& p, const std::string& v) { p.friction = parse_friction_law(v); })
+      .def_readwrite("thread", &DriveParameters::thread)
+      .def_property(
+          "drive_torque", [](const DriveParameters& p) { return p.drive_torque; },
+          [](DriveParameters& p, py::handle v) { p.drive_torque = to_excitation(v, "loads.drive_torque"); })
+      .def_property(
+          "drive_speed", [](const DriveParameters& p) { return p.drive_speed; },
+          [](DriveParameters& p, py::handle v) { p.drive_speed = to_excitation(v, "loads.drive_speed"); })
+      .def_property(
+          "axial_force", [](const DriveParameters& p) { return p.axial_force; },
+          [](DriveParameters& p, py::handle v) { p.axial_force = to_excitation(v, "loads.axial_force"); });
+#define LEADSCREW_FIELD(name) parameters.def_readwrite(#name, &DriveParameters::name)
+  LEADSCREW_FIELD(mu);
+  LEADSCREW_FIELD(k_v);
+  LEADSCREW_FIELD(clearance);
+  LEADSCREW_FIELD(restitution);
+  LEADSCREW_FIELD(contact_stiffness);
+  LEADSCREW_FIELD(contact_exponent);
+  LEADSCREW_FIELD(contact_damping);
+  LEADSCREW_FIELD(contact_penetration);
+  LEADSCREW_FIELD(rotor_inertia);
+  LEADSCREW_FIELD(load_mass);
+  LEADSCREW_FIELD(screw_mass);
+  LEADSCREW_FIELD(screw_inertia);
+  LEADSCREW_FIELD(nut_mass);
+  LEADSCREW_FIELD(nut_inertia);
+  LEADSCREW_FIELD(screw_axial_rigidity);
+  LEADSCREW_FIELD(screw_torsional_rigidity);
+  LEADSCREW_FIELD(screw_length);
+  LEADSCREW_FIELD(nut_position);
+  LEADSCREW_FIELD(screw_axial_stiffness);
+  LEADSCREW_FIELD(screw_torsional_stiffness);
+  LEADSCREW_FIELD(nut_axial_stiffness);
+  LEADSCREW_FIELD(nut_torsional_stiffness);
+  LEADSCREW_FIELD(damping_ratio);
+  LEADSCREW_FIELD(screw_axial_damping);
+  LEADSCREW_FIELD(screw_torsional_damping);
+  LEADSCREW_FIELD(nut_axial_damping);
+  LEADSCREW_FIELD(nut_torsional_damping);
+  LEADSCREW_FIELD(speed_controlled);
+  LEADSCREW_FIELD(rotor_angle);
+  LEADSCREW_FIELD(rotor_speed);
+  LEADSCREW_FIELD(play_position);
+#undef LEADSCREW_FIELD
+
+  py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")
+      .def(py::init<DriveParameters>(), py::arg("parameters"))
+      .def_property_readonly("coordinate_names", &model::DriveModel::coordinate_names)
+      .def_property_readonly("mass", [](const model::DriveModel& d) { return d.mass(); })
+      .def_property_readonly("degrees_of_freedom",
+                             [](const model::DriveModel& d) {
+                               return static_cast<int>(d.independent().size()) -
+                                      (d.parameters().speed_controlled ? 1 : 0);
+                             })
+      .def_property_readonly("springs",
+                             [](const model::DriveModel& d) {
+                               py::list out;
+                               for (const auto& s : d.springs()) {
+                                 double derivative = 0.0;
+                                 py::dict entry;
+                                 entry["name"] = s.name;
+                                 entry["stiffness"] = d.spring_stiffness(
+                                     s, d.parameters().nut_position, &derivative);
+                                 entry["damping"] = s.damping;
+                                 out.append(entry);
+                               }
+                               return out;
+                             })
+      .def_property_readonly("effective_mu", &model::DriveModel::effective_mu)
+      .def_property_readonly("parameters", &model::DriveModel::parameters);
+
+  m.def("drive_integrators", &model::drive_integrators, py::arg("parameters"));
+  m.def(
+      "simulate_drive",
+      [](const model::DriveModel& drive, double t_end, const std::string& integrator,
+         const std::string& smooth_integrator, double rtol, double atol, double dt, double theta,
+         std::vector<double> t_eval, long max_steps, long max_events, double max_step,
+         double first_step, double bounce_threshold) {
+        model::DriveSimulationOptions options;
+        options.integrator = integrator;
+        options.smooth_integrator = smooth_integrator;
+        options.integrator_options.rtol = rtol;
+        options.integrator_options.atol = atol;
+        options.integrator_options.max_steps = max_steps;
+        options.integrator_options.max_step = max_step;
+        options.integrator_options.first_step = first_step;
+        options.dt = dt;
+        options.theta = theta;
+        options.max_events = max_events;
+        options.bounce_threshold = bounce_threshold;
+        options.output.t_end = t_end;
+        options.output.t_eval = std::move(t_eval);
+        py::gil_scoped_release release;
+        return model::simulate(drive, options);
+      },
+      py::arg("drive"), py::arg("t_end"), py::arg("integrator"), py::arg("smooth_integrator"),
+      py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
+      py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"), py::arg("first_step"),
+      py::arg("bounce_threshold"));
+}
+
+}  // namespace leadscrew::bindings

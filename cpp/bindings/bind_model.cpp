@@ -1,0 +1,111 @@
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "bindings.hpp"
+#include "leadscrew/integrate/simulation_result.hpp"
+#include "leadscrew/model/friction_block.hpp"
+
+namespace py = pybind11;
+
+namespace leadscrew::bindings {
+
+namespace {
+
+py::dict stats_dict(const integrate::SimulationStats& s) {
+  py::dict d;
+  d["steps"] = s.steps;
+  d["rhs_evaluations"] = s.rhs_evaluations;
+  d["events"] = s.events;
+  d["lcp_solves"] = s.lcp_solves;
+  d["restarts"] = s.restarts;
+  d["nonlinear_iterations"] = s.nonlinear_iterations;
+  d["wall_time"] = s.wall_time;
+  return d;
+}
+
+// channels as one (n_channels, n_points) array
+py::array_t<double> channel_matrix(const integrate::SimulationResult& r) {
+  const py::ssize_t rows = static_cast<py::ssize_t>(r.channels.size());
+  const py::ssize_t cols = static_cast<py::ssize_t>(r.time.size());
+  py::array_t<double> out({rows, cols});
+  double* data = out.mutable_data();
+  for (py::ssize_t k = 0; k < rows; ++k)
+    std::copy(r.channels[k].begin(), r.channels[k].end(), data + k * cols);
+  return out;
+}
+
+}  // namespace
+
+void bind_model(py::module_& m) {
+  py::class_<integrate::SimulationResult>(m, "SimulationResult")
+      .def_property_readonly("time",
+                             [](const integrate::SimulationResult& r) {
+                               return py::array_t<double>(r.time.size(), r.time.data());
+                             })
+      .def_property_readonly("channel_names",
+                             [](const integrate::SimulationResult& r) { return r.channel_names; })
+      .def_property_readonly("channels", &channel_matrix)
+      .def_property_readonly("events",
+                             [](const integrate::SimulationResult& r) {
+                               py::list events;
+                               for (const auto& e : r.events)
+                                 events.append(py::make_tuple(e.time, e.kind));
+                               return events;
+                             })
+      .def_property_readonly("stats", [](const integrate::SimulationResult& r) {
+        return stats_dict(r.stats);
+      })
+      .def_readonly("integrator", &integrate::SimulationResult::integrator)
+      .def_readonly("friction", &integrate::SimulationResult::friction);
+
+  py::class_<model::FrictionBlock>(m, "FrictionBlock")
+      .def(py::init([](double mass, double mu, double g, py::handle force, double u0, double v0) {
+             return model::FrictionBlock(mass, mu, g, to_excitation(force, "force"), u0, v0);
+           }),
+           py::arg("mass"), py::arg("mu"), py::arg("g") = 9.81, py::arg("force") = 0.0,
+           py::arg("initial_position") = 0.0, py::arg("initial_velocity") = 0.0)
+      .def_readonly("mass", &model::FrictionBlock::mass)
+      .def_readonly("mu", &model::FrictionBlock::mu)
+      .def_readonly("g", &model::FrictionBlock::g)
+      .def_readonly("force", &model::FrictionBlock::force)
+      .def_readonly("initial_position", &model::FrictionBlock::initial_position)
+      .def_readonly("initial_velocity", &model::FrictionBlock::initial_velocity)
+      .def_property_readonly("normal_force", &model::FrictionBlock::normal_force);
+
+  m.def("block_integrators", [](const std::string& friction) {
+    return model::integrators_for(parse_friction_law(friction));
+  });
+  m.def("friction_laws", &friction_law_names);
+
+  m.def(
+      "simulate_block",
+      [](const model::FrictionBlock& block, double t_end, const std::string& friction,
+         const std::string& integrator, double k_v, double rtol, double atol, double dt,
+         double theta, std::vector<double> t_eval, long max_steps, long max_events,
+         double max_step, double first_step) {
+        model::BlockSimulationOptions options;
+        options.friction = parse_friction_law(friction);
+        options.integrator = integrator;
+        options.k_v = k_v;
+        options.integrator_options.rtol = rtol;
+        options.integrator_options.atol = atol;
+        options.integrator_options.max_steps = max_steps;
+        options.integrator_options.max_step = max_step;
+        options.integrator_options.first_step = first_step;
+        options.dt = dt;
+        options.theta = theta;
+        options.max_events = max_events;
+        options.output.t_end = t_end;
+        options.output.t_eval = std::move(t_eval);
+        // A Python callable load re-acquires the GIL itself.
+        py::gil_scoped_release release;
+        return model::simulate(block, options);
+      },
+      py::arg("block"), py::arg("t_end"), py::arg("friction"), py::arg("integrator"),
+      py::arg("k_v"), py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"),
+      py::arg("t_eval"), py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
+      py::arg("first_step"));
+}
+
+}  // namespace leadscrew::bindings

@@ -1,9 +1,0 @@
-#include "bindings.hpp"
-
-namespace py = pybind11;
-
-namespace leadscrew::bindings {
-
-void bind_simulate(py::module_& m) { (void)m; }
-
-}  // namespace leadscrew::bindings

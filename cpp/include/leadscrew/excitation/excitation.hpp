@@ -1,0 +1,81 @@
+// Time functions for loads (drive torque, axial force, excitation force),
+// shared by every model: constant, sine, piecewise-linear table, and a general
+// callable (the slow fallback: the Python bindings wrap a Python function).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace leadscrew {
+
+struct ConstantExcitation {
+  double value = 0.0;
+};
+
+// amplitude * sin(omega t + phase) + offset
+struct SineExcitation {
+  double amplitude = 0.0;
+  double omega = 0.0;   // [rad/s]
+  double phase = 0.0;   // [rad]
+  double offset = 0.0;
+};
+
+// Piecewise-linear through (times[i], values[i]); held constant outside.
+struct TableExcitation {
+  std::vector<double> times;
+  std::vector<double> values;
+};
+
+// f(t); may throw (the exception propagates out of the simulation).
+struct CallableExcitation {
+  std::function<double(double)> function;
+  std::string description = "callable";
+};
+
+class Excitation {
+ public:
+  Excitation() : definition_(ConstantExcitation{0.0}) {}
+  Excitation(ConstantExcitation c);
+  Excitation(SineExcitation s);
+  Excitation(TableExcitation table);  // validates: sizes, strictly increasing finite times
+  Excitation(CallableExcitation f);
+
+  double operator()(double t) const {
+    switch (definition_.index()) {
+      case 0:
+        return std::get<0>(definition_).value;
+      case 1:
+        return sine_value(std::get<1>(definition_), t);
+      default:
+        return general_value(t);
+    }
+  }
+
+  // d/dt of the function: exact for constant, sine and table (the slope to
+  // the right of a knot); a central difference for a callable.
+  double derivative(double t) const;
+
+  // Times at which the function or its first derivative jumps (table knots):
+  // integrators restart there to keep their order.
+  const std::vector<double>& breakpoints() const noexcept { return breakpoints_; }
+  bool is_constant() const noexcept { return definition_.index() == 0; }
+  bool is_callable() const noexcept { return definition_.index() == 3; }
+  const std::variant<ConstantExcitation, SineExcitation, TableExcitation, CallableExcitation>&
+  definition() const noexcept {
+    return definition_;
+  }
+  std::string describe() const;
+
+ private:
+  static double sine_value(const SineExcitation& s, double t);
+  double general_value(double t) const;
+
+  std::variant<ConstantExcitation, SineExcitation, TableExcitation, CallableExcitation>
+      definition_;
+  std::vector<double> breakpoints_;
+};
+
+}  // namespace leadscrew

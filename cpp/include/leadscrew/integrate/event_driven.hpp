@@ -1,0 +1,52 @@
+// Event-driven integration of piecewise-smooth (hybrid) systems, the scheme of
+// exact Coulomb friction (Pfeiffer & Glocker): in each discrete mode (stick,
+// slip+, slip-, contact open/closed, ...) a smooth ODE is integrated to the
+// requested tolerance by one of the ODE integrators; root functions signal
+// that the mode must change; at the root the system chooses the new mode (by
+// an LCP) and may project or jump the state (impacts); the integrator
+// restarts there, so no step straddles a discontinuity and no order is lost.
+//
+// A system with a single mode and no roots is simply integrated: the
+// regularized and compliant models use the same driver.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/integrate/simulation_result.hpp"
+
+namespace leadscrew::integrate {
+
+class HybridSystem : public OdeSystem {
+ public:
+  // Chooses the mode consistent with (t, y) from scratch, at the start.
+  virtual void select_initial_mode(double t, double* y) = 0;
+  // Called at a root (root_info as Integrator::root_info). Chooses the new
+  // mode, may change y (projection, impact). Returns the event's kind, or ""
+  // if nothing changed (a spurious root: the integrator just continues).
+  virtual std::string handle_event(double t, double* y, const std::vector<int>& root_info) = 0;
+  // Output channels.
+  virtual const std::vector<std::string>& channel_names() const = 0;
+  virtual void channels(double t, const double* y, double* out) = 0;
+  // Times at which the right-hand side is not smooth (load table knots): the
+  // integrator restarts there.
+  virtual std::vector<double> breakpoints() const { return {}; }
+  virtual long lcp_solves() const { return 0; }
+  virtual long nonlinear_iterations() const { return 0; }
+};
+
+struct EventDrivenOptions {
+  std::string integrator = "cvode_adams";
+  IntegratorOptions integrator_options;
+  // Bound on the number of events: a Zeno-like accumulation of events raises
+  // SimulationError instead of hanging.
+  long max_events = 100000;
+};
+
+SimulationResult simulate_event_driven(HybridSystem& system, double t0,
+                                       const Eigen::Ref<const Eigen::VectorXd>& y0,
+                                       const OutputRequest& output,
+                                       const EventDrivenOptions& options);
+
+}  // namespace leadscrew::integrate

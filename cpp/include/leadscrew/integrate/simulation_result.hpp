@@ -1,0 +1,49 @@
+// What every simulation returns: time, named output channels, events, stats.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace leadscrew::integrate {
+
+struct Event {
+  double time = 0.0;
+  std::string kind;  // e.g. "stick->slip+", "slip+->stick", "slip+->slip-"
+};
+
+struct SimulationStats {
+  long steps = 0;
+  long rhs_evaluations = 0;
+  long events = 0;
+  long lcp_solves = 0;
+  long restarts = 0;
+  long nonlinear_iterations = 0;  // scalar solves inside the rhs (arctan_acceleration)
+  double wall_time = 0.0;         // [s], measured inside C++
+};
+
+struct SimulationResult {
+  std::vector<double> time;
+  std::vector<std::string> channel_names;
+  // channels[k][i]: channel k at time[i]
+  std::vector<std::vector<double>> channels;
+  std::vector<Event> events;
+  SimulationStats stats;
+  std::string integrator;
+  std::string friction;
+
+  void reserve(std::size_t points);
+  // Appends one output point; `values` holds one value per channel.
+  void append(double t, const double* values);
+};
+
+// When to record output: at the given times, or (empty) at every step and
+// event of the integrator.
+struct OutputRequest {
+  double t_end = 0.0;
+  std::vector<double> t_eval;
+};
+
+// Validates t_end > t0 and t_eval (finite, non-decreasing, within [t0, t_end]).
+void validate_output_request(const OutputRequest& request, double t0);
+
+}  // namespace leadscrew::integrate

@@ -1,0 +1,162 @@
+// Lead-screw drive models of thesis chapter 4, assembled from elements.
+//
+// Bodies and coordinates (displacements from the initial configuration):
+//   rotor          phi_rotor (always; prescribed when the motor is speed-controlled)
+//   rotating part  the part the motor turns (screw for drive = screw, nut for
+//                  drive = nut): rigid -> turns with the rotor, axially fixed;
+//                  flexible -> own contact body (u, phi) tied to the rotor by
+//                  a torsion spring and to the ground by an axial spring
+//   translating part  the other part: rigid -> moves with the load, does not
+//                  turn; flexible -> own contact body (u, phi) tied to the load
+//                  by an axial spring and to the ground by a torsion spring
+//   load           u_load
+// concept rigid: both parts rigid (thesis 4.1.1); flexible_nut: the nut
+// flexible (4.1.2); flexible: screw and nut flexible (4.1.3).
+//
+// Thread pair (unrolled at the mean radius, thesis Fig. 4.2): with
+// du = u_screw - u_nut and dphi = phi_screw - phi_nut the axial play
+// coordinate is e = du - h p dphi (h = +1 right hand, p = lead / 2 pi,
+// eq. 4.1). The flank normal n = (-h sin a, cos a) and tangent
+// t = (h cos a, sin a) in (arc, axial) coordinates give
+//   normal velocity   g_N' = cos(a) e'                      (W_N = cos a grad e)
+//   slip velocity     gamma_T = sin(a) du' + h r_m cos(a) dphi'
+// A force lambda_N n + lambda_T t acts on the screw, its opposite on the nut.
+// Without backlash e = 0 is a kinematic constraint (one coordinate is
+// eliminated); with backlash |e| <= c_a / 2 (unilateral flanks or a penalty).
+// Friction: |lambda_T| <= mu' |lambda_N|, mu' = mu / cos(beta / 2).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "leadscrew/excitation/excitation.hpp"
+#include "leadscrew/friction/laws.hpp"
+#include "leadscrew/thread/thread.hpp"
+
+namespace leadscrew::model {
+
+enum class Concept { rigid, flexible_nut, flexible };
+enum class DrivenPart { screw, nut };
+enum class ScrewSupport { both_ends, drive_end };
+enum class BacklashContact { none, exact, bistop, cubic };
+
+// Every number resolved (the Python Scene derives masses, inertias,
+// stiffnesses and damping from geometry and material, or takes overrides).
+struct DriveParameters {
+  Concept concept = Concept::rigid;
+  DrivenPart drive = DrivenPart::screw;
+  Thread thread{1e-3, 20e-3};
+  FrictionLaw friction = FrictionLaw::coulomb;
+  double mu = 0.3;
+  double k_v = 1e4;
+
+  BacklashContact backlash = BacklashContact::none;
+  double clearance = 0.0;  // total axial play c_a [m]
+  double restitution = 0.0;
+  double contact_stiffness = 0.0;
+  double contact_exponent = 1.5;
+  double contact_damping = 0.0;
+  double contact_penetration = 1e-7;
+
+  double rotor_inertia = 1e-5;
+  double load_mass = 1.0;
+  double screw_mass = 0.0;
+  double screw_inertia = 0.0;
+  double nut_mass = 0.0;
+  double nut_inertia = 0.0;
+
+  // Screw stiffness from the segment between its supports and the nut
+  // (eq. 4.24): axial rigidity E A, torsional rigidity G I_p, length, and the
+  // nut's initial distance from the drive (or load) end.
+  double screw_axial_rigidity = 0.0;
+  double screw_torsional_rigidity = 0.0;
+  double screw_length = 0.5;
+  double nut_position = 0.1;
+  ScrewSupport support = ScrewSupport::both_ends;
+  double screw_axial_stiffness = 0.0;      // > 0: constant override
+  double screw_torsional_stiffness = 0.0;  // > 0: constant override
+  double nut_axial_stiffness = 0.0;
+  double nut_torsional_stiffness = 0.0;
+  // Damping of each spring; < 0: c = 2 zeta sqrt(k m) with zeta =
+  // damping_ratio, k at the initial nut position and m the (reduced) mass or
+  // inertia the spring connects.
+  double damping_ratio = 0.05;
+  double screw_axial_damping = -1.0;
+  double screw_torsional_damping = -1.0;
+  double nut_axial_damping = -1.0;
+  double nut_torsional_damping = -1.0;
+
+  Excitation drive_torque;
+  bool speed_controlled = false;
+  Excitation drive_speed;
+  Excitation axial_force;
+
+  double rotor_angle = 0.0;
+  double rotor_speed = 0.0;
+  double play_position = 0.0;
+};
+
+// A linear spring-damper between two coordinates (or one and the ground),
+// optionally with the screw's position-dependent stiffness.
+struct Spring {
+  enum class Law { constant, screw_axial, screw_torsional };
+  std::string name;
+  int first = -1;   // coordinate index
+  int second = -1;  // coordinate index or -1 (ground)
+  Law law = Law::constant;
+  double stiffness = 0.0;  // constant law
+  double damping = 0.0;
+};
+
+// The assembled model: immutable after construction (Pinocchio's Model).
+class DriveModel {
+ public:
+  explicit DriveModel(DriveParameters parameters);
+
+  const DriveParameters& parameters() const noexcept { return p_; }
+  int coordinate_count() const noexcept { return static_cast<int>(mass_.size()); }
+  const std::vector<std::string>& coordinate_names() const noexcept { return names_; }
+  const Eigen::VectorXd& mass() const noexcept { return mass_; }
+  const std::vector<Spring>& springs() const noexcept { return springs_; }
+  int rotor() const noexcept { return 0; }
+  int load() const noexcept { return coordinate_count() - 1; }
+  // Thread kinematics as gradients over the coordinates.
+  const Eigen::VectorXd& play_gradient() const noexcept { return play_gradient_; }  // grad e
+  const Eigen::VectorXd& normal_direction() const noexcept { return normal_; }      // W_N
+  const Eigen::VectorXd& tangent_direction() const noexcept { return tangent_; }    // W_T
+  const Eigen::VectorXd& nut_position_gradient() const noexcept { return position_gradient_; }
+  double effective_mu() const noexcept { return mu_eff_; }
+  bool bilateral_thread() const noexcept { return p_.backlash == BacklashContact::none; }
+  // Coordinate eliminated by the bilateral thread constraint (-1 with backlash).
+  int eliminated() const noexcept { return eliminated_; }
+  // Independent coordinates integrated by the ODE solvers.
+  const std::vector<int>& independent() const noexcept { return independent_; }
+
+  // Velocities of every coordinate when the rotor turns at rotor_speed and
+  // the thread play does not change (springs relaxed, rigid-body motion).
+  Eigen::VectorXd consistent_velocity(double rotor_speed) const;
+
+  // Stiffness of a spring at nut position a, and its derivative d k / d a.
+  double spring_stiffness(const Spring& s, double nut_position, double* derivative) const;
+  double nut_position(const double* q) const;
+
+ private:
+  DriveParameters p_;
+  std::vector<std::string> names_;
+  Eigen::VectorXd mass_;
+  std::vector<Spring> springs_;
+  Eigen::VectorXd play_gradient_, normal_, tangent_, position_gradient_;
+  double mu_eff_ = 0.0;
+  int eliminated_ = -1;
+  std::vector<int> independent_;
+  std::vector<int> rotating_group_, translating_group_;
+};
+
+std::string concept_name(Concept c);
+Concept parse_concept(const std::string& name);
+DrivenPart parse_drive(const std::string& name);
+ScrewSupport parse_support(const std::string& name);
+BacklashContact parse_backlash_contact(const std::string& name);  // "none" allowed
+
+}  // namespace leadscrew::model

@@ -1,0 +1,102 @@
+// Forces and mode-wise accelerations of a DriveModel (Pinocchio's Data: the
+// preallocated workspace of the algorithms on an immutable model).
+//
+// In every mode the accelerations follow from
+//   M a = f + B lambda,    C a = r
+// with f the spring, damper and load forces, and the multipliers lambda of
+// the active constraints: the thread normal force (bilateral thread or a
+// closed flank: row W_N, column W_N - sigma kappa W_T, where the friction
+// force lambda_T = -kappa |lambda_N| = -kappa sigma lambda_N rides on the
+// normal force), stick (row and column W_T), and a speed-controlled rotor
+// (row and column e_rotor). M is diagonal, so a Schur complement of at most
+// 3 x 3 gives lambda: no allocation, exact up to round-off.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include "leadscrew/model/drive.hpp"
+
+namespace leadscrew::model {
+
+constexpr int kMaxCoordinates = 6;
+constexpr int kMaxConstraints = 3;
+using CoordinateVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCoordinates, 1>;
+
+enum class ThreadContact { bilateral, open, closed, penalty };
+enum class FrictionMode { none, stick, slip, regularized_velocity, regularized_acceleration };
+
+struct ModeSpec {
+  ThreadContact contact = ThreadContact::bilateral;
+  int sigma = 1;  // sign of the normal force: assumed (bilateral) or the flank's (closed)
+  FrictionMode friction = FrictionMode::none;
+  int slip_sign = 0;              // FrictionMode::slip: sign of the slip velocity
+  double given_tangential = 0.0;  // an extra tangential force (builds the friction LCP)
+};
+
+struct ModeSolution {
+  bool regular = false;  // false: the constraint system is singular
+  double normal_force = 0.0;
+  double friction_force = 0.0;
+  double motor_torque = 0.0;
+  double slip_acceleration = 0.0;
+  CoordinateVector acceleration;
+};
+
+class DriveDynamics {
+ public:
+  explicit DriveDynamics(const DriveModel& model);
+
+  const DriveModel& model() const noexcept { return model_; }
+
+  // Full coordinates and velocities at time t. Throws SimulationError when
+  // the nut leaves the screw.
+  void set_state(double t, const CoordinateVector& q, const CoordinateVector& v);
+
+  // Accelerations and forces in a mode at the state last set.
+  ModeSolution solve(const ModeSpec& spec);
+
+  // Smallest change of v (in the kinetic metric) that makes the slip velocity
+  // zero while keeping the other active velocity constraints.
+  void project_zero_slip(const ModeSpec& spec, CoordinateVector& v);
+
+  // Velocity jump of an impact on a flank (sign sigma) with restitution:
+  // rows W_N (normal velocity -> -restitution * before), the rotor if
+  // speed-controlled, and tangentially stick or slip decided consistently.
+  // Returns false if no consistent frictional impact exists.
+  bool impact(int sigma, double restitution, CoordinateVector& v, double& normal_impulse,
+              double& tangential_impulse);
+
+  double time() const noexcept { return t_; }
+  const CoordinateVector& q() const noexcept { return q_; }
+  const CoordinateVector& v() const noexcept { return v_; }
+  double play() const noexcept { return play_; }             // e [m]
+  double play_rate() const noexcept { return play_rate_; }   // e' [m/s]
+  double slip_velocity() const noexcept { return slip_; }    // gamma_T [m/s]
+  double penalty_normal_force() const noexcept { return penalty_normal_; }
+  double elastic_energy() const noexcept { return elastic_; }
+  double contact_energy() const noexcept { return contact_energy_; }
+  double damping_power() const noexcept { return damping_power_; }
+  double contact_loss_power() const noexcept { return contact_loss_power_; }
+  double applied_torque() const noexcept { return applied_torque_; }
+  double axial_force() const noexcept { return axial_force_; }
+  double kinetic_energy() const;
+  double friction_factor(const ModeSpec& spec, double slip_acceleration) const;
+
+  // Painleve (dynamic jamming) report of a slip mode: the effective Delassus
+  // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN.
+  std::string jamming_report() const;
+
+ private:
+  void penalty_force();
+
+  const DriveModel& model_;
+  double t_ = 0.0;
+  CoordinateVector q_, v_, forces_, inverse_mass_;
+  double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0;
+  double penalty_normal_ = 0.0, elastic_ = 0.0, contact_energy_ = 0.0;
+  double damping_power_ = 0.0, contact_loss_power_ = 0.0;
+  double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
+};
+
+}  // namespace leadscrew::model

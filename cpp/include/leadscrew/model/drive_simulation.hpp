@@ -1,0 +1,36 @@
+// Simulation of a DriveModel: the event-driven scheme for exact Coulomb
+// friction and exact flank contacts, smooth integration for the regularized
+// and compliant formulations, Moreau-Jean time stepping.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/integrate/simulation_result.hpp"
+#include "leadscrew/model/drive.hpp"
+
+namespace leadscrew::model {
+
+struct DriveSimulationOptions {
+  std::string integrator = "event_driven";
+  // The smooth integrator inside "event_driven" ("" : cvode_adams for the
+  // rigid concept, cvode_bdf for the flexible ones).
+  std::string smooth_integrator;
+  integrate::IntegratorOptions integrator_options;
+  double dt = 1e-4;    // moreau
+  double theta = 0.5;  // moreau
+  long max_events = 100000;
+  // An impact slower than this (normal velocity, m/s) is plastic: the flank
+  // stays closed (ends an infinite sequence of ever smaller bounces).
+  double bounce_threshold = 1e-6;
+  integrate::OutputRequest output;
+};
+
+// Integrators that fit a model (the first is the default).
+std::vector<std::string> drive_integrators(const DriveParameters& parameters);
+
+integrate::SimulationResult simulate(const DriveModel& model,
+                                     const DriveSimulationOptions& options);
+
+}  // namespace leadscrew::model

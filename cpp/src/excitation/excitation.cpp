@@ -1,0 +1,116 @@
+#include "leadscrew/excitation/excitation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+
+namespace leadscrew {
+
+Excitation::Excitation(ConstantExcitation c) : definition_(c) {
+  require_finite("value", c.value);
+}
+
+Excitation::Excitation(SineExcitation s) : definition_(s) {
+  require_finite("amplitude", s.amplitude);
+  require_finite("omega", s.omega);
+  require_finite("phase", s.phase);
+  require_finite("offset", s.offset);
+}
+
+Excitation::Excitation(TableExcitation table) {
+  if (table.times.size() != table.values.size())
+    throw InvalidArgument("times and values must have the same length (got " +
+                          std::to_string(table.times.size()) + " and " +
+                          std::to_string(table.values.size()) + ")");
+  if (table.times.empty())
+    throw InvalidArgument("times = [] is invalid: must hold at least one point");
+  for (std::size_t i = 0; i < table.times.size(); ++i) {
+    require_finite("times[" + std::to_string(i) + "]", table.times[i]);
+    require_finite("values[" + std::to_string(i) + "]", table.values[i]);
+    if (i > 0 && !(table.times[i] > table.times[i - 1]))
+      throw InvalidArgument("times[" + std::to_string(i) + "] = " +
+                            format_value(table.times[i]) +
+                            " is invalid: times must be strictly increasing");
+  }
+  breakpoints_ = table.times;
+  definition_ = std::move(table);
+}
+
+Excitation::Excitation(CallableExcitation f) : definition_(std::move(f)) {
+  if (!std::get<3>(definition_).function)
+    throw InvalidArgument("function is invalid: must be callable");
+}
+
+double Excitation::sine_value(const SineExcitation& s, double t) {
+  return s.amplitude * std::sin(s.omega * t + s.phase) + s.offset;
+}
+
+double Excitation::general_value(double t) const {
+  if (definition_.index() == 2) {
+    const auto& table = std::get<2>(definition_);
+    const auto& times = table.times;
+    if (t <= times.front()) return table.values.front();
+    if (t >= times.back()) return table.values.back();
+    const auto upper = std::upper_bound(times.begin(), times.end(), t);
+    const std::size_t i = static_cast<std::size_t>(upper - times.begin());
+    const double fraction = (t - times[i - 1]) / (times[i] - times[i - 1]);
+    return table.values[i - 1] + fraction * (table.values[i] - table.values[i - 1]);
+  }
+  const auto& callable = std::get<3>(definition_);
+  const double value = callable.function(t);
+  if (!std::isfinite(value))
+    throw SimulationError(t, "the excitation " + callable.description + " returned " +
+                                 format_value(value),
+                          "a load function must return finite numbers");
+  return value;
+}
+
+double Excitation::derivative(double t) const {
+  switch (definition_.index()) {
+    case 0:
+      return 0.0;
+    case 1: {
+      const auto& s = std::get<1>(definition_);
+      return s.amplitude * s.omega * std::cos(s.omega * t + s.phase);
+    }
+    case 2: {
+      const auto& table = std::get<2>(definition_);
+      const auto& times = table.times;
+      if (t < times.front() || t >= times.back() || times.size() < 2) return 0.0;
+      const auto upper = std::upper_bound(times.begin(), times.end(), t);
+      const std::size_t i = static_cast<std::size_t>(upper - times.begin());
+      return (table.values[i] - table.values[i - 1]) / (times[i] - times[i - 1]);
+    }
+    default: {
+      const double h = 1e-6 * std::max(1.0, std::abs(t));
+      return (general_value(t + h) - general_value(t - h)) / (2.0 * h);
+    }
+  }
+}
+
+std::string Excitation::describe() const {
+  std::ostringstream out;
+  out.precision(12);
+  switch (definition_.index()) {
+    case 0:
+      out << "Constant(" << std::get<0>(definition_).value << ")";
+      break;
+    case 1: {
+      const auto& s = std::get<1>(definition_);
+      out << "Sine(amplitude=" << s.amplitude << ", omega=" << s.omega << ", phase=" << s.phase
+          << ", offset=" << s.offset << ")";
+      break;
+    }
+    case 2:
+      out << "Table(" << std::get<2>(definition_).times.size() << " points)";
+      break;
+    default:
+      out << std::get<3>(definition_).description;
+  }
+  return out.str();
+}
+
+}  // namespace leadscrew

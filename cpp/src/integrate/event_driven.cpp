@@ -1,0 +1,121 @@
+#include "leadscrew/integrate/event_driven.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "leadscrew/core/errors.hpp"
+
+namespace leadscrew::integrate {
+
+namespace {
+
+std::vector<double> breakpoints_inside(const HybridSystem& system, double t0, double t_end) {
+  std::vector<double> times = system.breakpoints();
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  times.erase(std::remove_if(times.begin(), times.end(),
+                             [&](double t) { return !(t > t0 && t < t_end); }),
+              times.end());
+  return times;
+}
+
+}  // namespace
+
+SimulationResult simulate_event_driven(HybridSystem& system, double t0,
+                                       const Eigen::Ref<const Eigen::VectorXd>& y0,
+                                       const OutputRequest& output,
+                                       const EventDrivenOptions& options) {
+  validate_output_request(output, t0);
+  const auto wall_start = std::chrono::steady_clock::now();
+
+  Eigen::VectorXd y = y0;
+  system.select_initial_mode(t0, y.data());
+
+  SimulationResult result;
+  result.integrator = options.integrator;
+  result.channel_names = system.channel_names();
+  result.channels.resize(result.channel_names.size());
+  std::vector<double> values(result.channel_names.size());
+  const bool every_step = output.t_eval.empty();
+  result.reserve(every_step ? 1024 : output.t_eval.size());
+  auto record = [&](double t) {
+    system.channels(t, y.data(), values.data());
+    result.append(t, values.data());
+  };
+
+  std::unique_ptr<Integrator> integrator =
+      make_integrator(options.integrator, options.integrator_options);
+  integrator->initialize(system, t0, y);
+
+  const std::vector<double> breaks = breakpoints_inside(system, t0, output.t_end);
+  std::size_t next_break = 0;
+  std::size_t next_eval = 0;
+  const std::size_t eval_count = output.t_eval.size();
+  auto record_due_eval_points = [&](double t) {
+    while (next_eval < eval_count && output.t_eval[next_eval] <= t) {
+      record(t);
+      ++next_eval;
+    }
+  };
+  if (every_step)
+    record(t0);
+  else
+    record_due_eval_points(t0);
+
+  // Every pass either consumes integrator steps (bounded by its max_steps),
+  // an event (bounded by max_events), an output time or a breakpoint.
+  const long max_passes = options.integrator_options.max_steps + options.max_events +
+                          static_cast<long>(eval_count + breaks.size()) + 16;
+  double t = t0;
+  long events = 0;
+  for (long pass = 0; t < output.t_end; ++pass) {
+    if (pass > max_passes)
+      throw SimulationError(t, "the event-driven scheme made no progress",
+                            "the system may chatter; try integrator=\"moreau\"");
+    double target = output.t_end;
+    if (next_break < breaks.size()) target = std::min(target, breaks[next_break]);
+    if (!every_step && next_eval < eval_count) target = std::min(target, output.t_eval[next_eval]);
+
+    const AdvanceResult step = integrator->advance(target, y, every_step);
+    t = step.t;
+    if (step.status == AdvanceStatus::root_found) {
+      if (every_step) record(t);  // the value just before the event
+      else
+        record_due_eval_points(t);
+      const std::string kind = system.handle_event(t, y.data(), integrator->root_info());
+      if (!kind.empty()) {
+        result.events.push_back({t, kind});
+        if (++events > options.max_events)
+          throw SimulationError(t,
+                                "more than max_events = " + std::to_string(options.max_events) +
+                                    " events",
+                                "events accumulate (Zeno behaviour or chattering); use "
+                                "integrator=\"moreau\" or raise max_events");
+      }
+      integrator->reinitialize(t, y);
+      if (every_step) record(t);  // and just after it
+      continue;
+    }
+    if (every_step)
+      record(t);
+    else
+      record_due_eval_points(t);
+    if (next_break < breaks.size() && t >= breaks[next_break]) {
+      integrator->reinitialize(t, y);
+      ++next_break;
+    }
+  }
+
+  const IntegratorStats integrator_stats = integrator->stats();
+  result.stats.steps = integrator_stats.steps;
+  result.stats.rhs_evaluations = integrator_stats.rhs_evaluations;
+  result.stats.restarts = integrator_stats.restarts;
+  result.stats.events = events;
+  result.stats.lcp_solves = system.lcp_solves();
+  result.stats.nonlinear_iterations = system.nonlinear_iterations();
+  result.stats.wall_time =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  return result;
+}
+
+}  // namespace leadscrew::integrate

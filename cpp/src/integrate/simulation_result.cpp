@@ -1,0 +1,33 @@
+#include "leadscrew/integrate/simulation_result.hpp"
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+
+namespace leadscrew::integrate {
+
+void SimulationResult::reserve(std::size_t points) {
+  time.reserve(points);
+  for (auto& channel : channels) channel.reserve(points);
+}
+
+void SimulationResult::append(double t, const double* values) {
+  time.push_back(t);
+  for (std::size_t k = 0; k < channels.size(); ++k) channels[k].push_back(values[k]);
+}
+
+void validate_output_request(const OutputRequest& request, double t0) {
+  require_finite("t_end", request.t_end);
+  if (!(request.t_end > t0))
+    throw InvalidArgument("t_end = " + format_value(request.t_end) +
+                          " is invalid: must be a finite number > " + format_value(t0));
+  for (std::size_t i = 0; i < request.t_eval.size(); ++i) {
+    const double t = request.t_eval[i];
+    const std::string name = "t_eval[" + std::to_string(i) + "]";
+    require_in_range(name, t, t0, request.t_end);
+    if (i > 0 && t < request.t_eval[i - 1])
+      throw InvalidArgument(name + " = " + format_value(t) +
+                            " is invalid: t_eval must be non-decreasing");
+  }
+}
+
+}  // namespace leadscrew::integrate

@@ -1,0 +1,386 @@
+#include "leadscrew/model/drive_dynamics.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+
+namespace leadscrew::model {
+
+namespace {
+
+constexpr double kTwoOverPi = 0.63661977236758134308;
+
+using ConstraintMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraints, kMaxCoordinates>;
+using ColumnMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, kMaxConstraints>;
+using SmallMatrix =
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraints, kMaxConstraints>;
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxConstraints, 1>;
+
+// Solves M x = f + B lambda, C x = r for x and lambda (M diagonal, given as
+// its inverse). Returns false if C M^-1 B is singular.
+bool solve_constrained(const CoordinateVector& inverse_mass, const CoordinateVector& f,
+                       const ColumnMatrix& B, const ConstraintMatrix& C, const SmallVector& r,
+                       CoordinateVector& x, SmallVector& lambda) {
+  const int nc = static_cast<int>(r.size());
+  if (nc == 0) {
+    x = inverse_mass.cwiseProduct(f);
+    lambda.resize(0);
+    return true;
+  }
+  ColumnMatrix weighted = inverse_mass.asDiagonal() * B;
+  SmallMatrix schur = C * weighted;
+  SmallVector rhs = r - C * inverse_mass.cwiseProduct(f);
+  Eigen::FullPivLU<SmallMatrix> lu(schur);
+  if (!lu.isInvertible()) return false;
+  lambda = lu.solve(rhs);
+  x = inverse_mass.cwiseProduct(f) + weighted * lambda;
+  return x.allFinite() && lambda.allFinite();
+}
+
+// Adams' cubic STEP from 0 at x <= 0 to 1 at x >= 1.
+double smooth_step(double x) {
+  if (x <= 0.0) return 0.0;
+  if (x >= 1.0) return 1.0;
+  return x * x * (3.0 - 2.0 * x);
+}
+
+}  // namespace
+
+DriveDynamics::DriveDynamics(const DriveModel& model) : model_(model) {
+  const int n = model.coordinate_count();
+  if (n > kMaxCoordinates) throw InvalidArgument("a drive model has at most 6 coordinates");
+  q_ = CoordinateVector::Zero(n);
+  v_ = CoordinateVector::Zero(n);
+  forces_ = CoordinateVector::Zero(n);
+  inverse_mass_ = model.mass().cwiseInverse();
+}
+
+void DriveDynamics::set_state(double t, const CoordinateVector& q, const CoordinateVector& v) {
+  const DriveParameters& p = model_.parameters();
+  t_ = t;
+  q_ = q;
+  v_ = v;
+  forces_.setZero();
+  elastic_ = 0.0;
+  damping_power_ = 0.0;
+
+  const double a = model_.nut_position(q.data());
+  const bool screw_springs = p.concept == Concept::flexible;
+  if (screw_springs && (!(a > 0.0) || (p.drive == DrivenPart::screw && !(a < p.screw_length)))) {
+    throw SimulationError(t,
+                          "the nut reached the end of the screw (nut position " +
+                              format_value(a) + " m on a screw of length " +
+                              format_value(p.screw_length) + " m)",
+                          "shorten t_end, change the loads or place the nut elsewhere");
+  }
+  for (const Spring& s : model_.springs()) {
+    const double x = q[s.first] - (s.second >= 0 ? q[s.second] : 0.0);
+    const double rate = v[s.first] - (s.second >= 0 ? v[s.second] : 0.0);
+    double dk_da = 0.0;
+    const double k = model_.spring_stiffness(s, a, &dk_da);
+    const double force = -k * x - s.damping * rate;
+    forces_[s.first] += force;
+    if (s.second >= 0) forces_[s.second] -= force;
+    if (dk_da != 0.0) {
+      // The stiffness follows the nut (eq. 4.24): the force of the potential
+      // k(a) x^2 / 2 on the nut position keeps the energy account exact.
+      forces_ -= 0.5 * dk_da * x * x * model_.nut_position_gradient();
+    }
+    elastic_ += 0.5 * k * x * x;
+    damping_power_ += s.damping * rate * rate;
+  }
+  applied_torque_ = p.speed_controlled ? 0.0 : p.drive_torque(t);
+  axial_force_ = p.axial_force(t);
+  forces_[model_.rotor()] += applied_torque_;
+  forces_[model_.load()] += axial_force_;
+  rotor_acceleration_ = p.speed_controlled ? p.drive_speed.derivative(t) : 0.0;
+
+  play_ = p.play_position + model_.play_gradient().dot(q);
+  play_rate_ = model_.play_gradient().dot(v);
+  slip_ = model_.tangent_direction().dot(v);
+  penalty_force();
+}
+
+void DriveDynamics::penalty_force() {
+  const DriveParameters& p = model_.parameters();
+  penalty_normal_ = 0.0;
+  contact_energy_ = 0.0;
+  contact_loss_power_ = 0.0;
+  if (p.backlash != BacklashContact::bistop && p.backlash != BacklashContact::cubic) return;
+  const double half = 0.5 * p.clearance;
+  const double k = p.contact_stiffness;
+  const double depth = p.contact_penetration;
+  double axial = 0.0;  // generalized force along grad e
+  for (int flank = 0; flank < 2; ++flank) {
+    const double sign = flank == 0 ? 1.0 : -1.0;  // upper flank e = +c/2, lower e = -c/2
+    const double penetration = sign * play_ - half;
+    if (penetration <= 0.0) continue;
+    const double rate = sign * play_rate_;
+    double elastic_force, potential;
+    if (p.backlash == BacklashContact::bistop) {
+      // Adams BISTOP: k d^e, damping ramped in over the penetration depth.
+      elastic_force = k * std::pow(penetration, p.contact_exponent);
+      potential = k * std::pow(penetration, p.contact_exponent + 1.0) / (p.contact_exponent + 1.0);
+    } else if (penetration < depth) {
+      // Cubic onset joining the linear spring k with matching slope at the
+      // depth: a C1 approximation of the dead zone with walls (thesis Fig. 2.6).
+      elastic_force = k * penetration * penetration * penetration / (3.0 * depth * depth);
+      potential = k * std::pow(penetration, 4) / (12.0 * depth * depth);
+    } else {
+      const double beyond = penetration - depth;
+      elastic_force = k * beyond + k * depth / 3.0;
+      potential = k * depth * depth / 12.0 + k * depth * beyond / 3.0 + 0.5 * k * beyond * beyond;
+    }
+    double force = elastic_force + p.contact_damping * smooth_step(penetration / depth) * rate;
+    if (force < 0.0) force = 0.0;  // flanks push, they do not pull
+    axial -= sign * force;
+    contact_energy_ += potential;
+    contact_loss_power_ += (force - elastic_force) * rate;
+  }
+  penalty_normal_ = axial / std::cos(p.thread.lead_angle());
+}
+
+double DriveDynamics::kinetic_energy() const {
+  return 0.5 * v_.dot(model_.mass().cwiseProduct(v_));
+}
+
+double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_acceleration) const {
+  const double mu = model_.effective_mu();
+  switch (spec.friction) {
+    case FrictionMode::slip:
+      return spec.slip_sign * mu;
+    case FrictionMode::regularized_velocity:
+      return kTwoOverPi * mu * std::atan(model_.parameters().k_v * slip_);
+    case FrictionMode::regularized_acceleration:
+      return kTwoOverPi * mu * std::atan(model_.parameters().k_v * slip_acceleration);
+    default:
+      return 0.0;
+  }
+}
+
+ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
+  const DriveParameters& p = model_.parameters();
+  const int n = model_.coordinate_count();
+  const Eigen::VectorXd& normal = model_.normal_direction();
+  const Eigen::VectorXd& tangent = model_.tangent_direction();
+  const bool normal_multiplier =
+      spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
+  const bool stick = spec.friction == FrictionMode::stick;
+
+  auto evaluate = [&](double kappa, ModeSolution& out) {
+    CoordinateVector f = forces_;
+    f += spec.given_tangential * tangent;
+    double normal_force = 0.0;
+    if (spec.contact == ThreadContact::penalty) {
+      normal_force = penalty_normal_;
+      f += normal_force * normal;
+      if (!stick) f -= kappa * std::abs(normal_force) * tangent;
+    }
+    const int nc = (normal_multiplier ? 1 : 0) + (stick ? 1 : 0) + (p.speed_controlled ? 1 : 0);
+    ColumnMatrix B = ColumnMatrix::Zero(n, nc);
+    ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
+    SmallVector r = SmallVector::Zero(nc);
+    int row = 0, normal_row = -1, stick_row = -1, rotor_row = -1;
+    if (normal_multiplier) {
+      normal_row = row++;
+      B.col(normal_row) = normal - spec.sigma * kappa * tangent;
+      C.row(normal_row) = normal.transpose();
+    }
+    if (stick) {
+      stick_row = row++;
+      B.col(stick_row) = tangent;
+      C.row(stick_row) = tangent.transpose();
+    }
+    if (p.speed_controlled) {
+      rotor_row = row++;
+      B(model_.rotor(), rotor_row) = 1.0;
+      C(rotor_row, model_.rotor()) = 1.0;
+      r[rotor_row] = rotor_acceleration_;
+    }
+    SmallVector lambda;
+    out.regular = solve_constrained(inverse_mass_, f, B, C, r, out.acceleration, lambda);
+    if (!out.regular) return;
+    if (normal_multiplier) normal_force = lambda[normal_row];
+    out.normal_force = normal_force;
+    if (stick)
+      out.friction_force = lambda[stick_row];
+    else if (normal_multiplier)
+      out.friction_force = -kappa * spec.sigma * normal_force;
+    else if (spec.contact == ThreadContact::penalty)
+      out.friction_force = -kappa * std::abs(normal_force);
+    else
+      out.friction_force = 0.0;
+    out.friction_force += spec.given_tangential;
+    out.motor_torque = p.speed_controlled ? lambda[rotor_row] : applied_torque_;
+    out.slip_acceleration = tangent.dot(out.acceleration);
+  };
+
+  ModeSolution solution;
+  if (spec.friction != FrictionMode::regularized_acceleration ||
+      spec.contact == ThreadContact::open) {
+    evaluate(friction_factor(spec, 0.0), solution);
+    return solution;
+  }
+  // Eq. (3.15) on the flank: kappa depends on the slip acceleration it
+  // produces. h(x) = slip acceleration(kappa(x)) - x falls in x; its root lies
+  // between the slip accelerations at kappa = +mu' and -mu'.
+  const double mu = model_.effective_mu();
+  ModeSolution low, high;
+  evaluate(mu, low);
+  evaluate(-mu, high);
+  if (!low.regular || !high.regular) {
+    solution.regular = false;
+    return solution;
+  }
+  double x_low = std::min(low.slip_acceleration, high.slip_acceleration);
+  double x_high = std::max(low.slip_acceleration, high.slip_acceleration);
+  auto h = [&](double x) {
+    evaluate(friction_factor(spec, x), solution);
+    return solution.slip_acceleration - x;
+  };
+  double h_low = h(x_low), h_high = h(x_high);
+  const double scale = std::max({std::abs(x_low), std::abs(x_high), 1e-300});
+  int side = 0;
+  for (int iteration = 0; iteration < 300 && solution.regular; ++iteration) {
+    if (h_low == 0.0) return (void)h(x_low), solution;
+    if (h_high == 0.0) return (void)h(x_high), solution;
+    // Illinois (regula falsi with halving of the stale end).
+    double x = (x_low * h_high - x_high * h_low) / (h_high - h_low);
+    if (!(x > x_low && x < x_high)) x = 0.5 * (x_low + x_high);
+    const double hx = h(x);
+    if (x_high - x_low <= 4e-16 * scale || hx == 0.0) return solution;
+    if ((hx > 0.0) == (h_low > 0.0)) {
+      x_low = x;
+      h_low = hx;
+      if (side == -1) h_high *= 0.5;
+      side = -1;
+    } else {
+      x_high = x;
+      h_high = hx;
+      if (side == 1) h_low *= 0.5;
+      side = 1;
+    }
+  }
+  if (solution.regular)
+    throw SimulationError(t_, "the slip acceleration of eq. (3.15) did not converge",
+                          "lower friction.k_v or use arctan_velocity");
+  return solution;
+}
+
+void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v) {
+  const DriveParameters& p = model_.parameters();
+  const int n = model_.coordinate_count();
+  const bool normal_row =
+      spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
+  const int nc = 1 + (normal_row ? 1 : 0) + (p.speed_controlled ? 1 : 0);
+  ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
+  SmallVector r = SmallVector::Zero(nc);
+  int row = 0;
+  C.row(row) = model_.tangent_direction().transpose();
+  r[row++] = -model_.tangent_direction().dot(v);
+  if (normal_row) C.row(row++) = model_.normal_direction().transpose();
+  if (p.speed_controlled) C(row++, model_.rotor()) = 1.0;
+  ColumnMatrix B = C.transpose();
+  CoordinateVector zero = CoordinateVector::Zero(n), change;
+  SmallVector lambda;
+  if (solve_constrained(inverse_mass_, zero, B, C, r, change, lambda)) v += change;
+}
+
+bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
+                           double& normal_impulse, double& tangential_impulse) {
+  const DriveParameters& p = model_.parameters();
+  const int n = model_.coordinate_count();
+  const Eigen::VectorXd& normal = model_.normal_direction();
+  const Eigen::VectorXd& tangent = model_.tangent_direction();
+  const double mu = model_.effective_mu();
+  const double normal_before = normal.dot(v);
+  // Candidates: stick, then slip in either direction (Newton's impact law
+  // with Coulomb friction on the impulses).
+  for (int candidate = 0; candidate < 3; ++candidate) {
+    const bool stick = candidate == 0;
+    const int slip_sign = candidate == 1 ? 1 : -1;
+    const int nc = 1 + (stick ? 1 : 0) + (p.speed_controlled ? 1 : 0);
+    ColumnMatrix B = ColumnMatrix::Zero(n, nc);
+    ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
+    SmallVector r = SmallVector::Zero(nc);
+    int row = 0;
+    const double kappa = stick ? 0.0 : slip_sign * mu;
+    B.col(row) = normal - sigma * kappa * tangent;
+    C.row(row) = normal.transpose();
+    r[row++] = -(1.0 + restitution) * normal_before;
+    int stick_row = -1;
+    if (stick) {
+      stick_row = row;
+      B.col(row) = tangent;
+      C.row(row) = tangent.transpose();
+      r[row++] = -tangent.dot(v);
+    }
+    if (p.speed_controlled) {
+      B(model_.rotor(), row) = 1.0;
+      C(row++, model_.rotor()) = 1.0;
+    }
+    CoordinateVector zero = CoordinateVector::Zero(n), change;
+    SmallVector lambda;
+    if (!solve_constrained(inverse_mass_, zero, B, C, r, change, lambda)) continue;
+    const double impulse_normal = lambda[0];
+    if (sigma * impulse_normal < 0.0) continue;
+    double impulse_tangential;
+    if (stick) {
+      impulse_tangential = lambda[stick_row];
+      if (std::abs(impulse_tangential) > mu * std::abs(impulse_normal) * (1.0 + 1e-12)) continue;
+    } else {
+      impulse_tangential = -kappa * sigma * impulse_normal;
+      if (slip_sign * tangent.dot(v + change) <= 0.0) continue;
+    }
+    v += change;
+    normal_impulse = impulse_normal;
+    tangential_impulse = impulse_tangential;
+    return true;
+  }
+  return false;
+}
+
+std::string DriveDynamics::jamming_report() const {
+  const DriveParameters& p = model_.parameters();
+  const Eigen::VectorXd& normal = model_.normal_direction();
+  const Eigen::VectorXd& tangent = model_.tangent_direction();
+  // Effective inverse mass with the speed-controlled rotor held.
+  Eigen::VectorXd w_n = inverse_mass_.cwiseProduct(normal);
+  Eigen::VectorXd w_t = inverse_mass_.cwiseProduct(tangent);
+  double g_nn = normal.dot(w_n), g_nt = normal.dot(w_t);
+  if (p.speed_controlled) {
+    const int r = model_.rotor();
+    g_nn -= w_n[r] * w_n[r] / inverse_mass_[r];
+    g_nt -= w_n[r] * w_t[r] / inverse_mass_[r];
+  }
+  const double mu = model_.effective_mu();
+  std::ostringstream out;
+  out.precision(10);
+  out << "Painleve condition mu' |G_NT| >= G_NN with mu' = " << mu << ", G_NN = " << g_nn
+      << ", G_NT = " << g_nt << " (" << (mu * std::abs(g_nt) >= g_nn ? "holds" : "does not hold")
+      << ")";
+  if (p.concept == Concept::rigid && !p.speed_controlled) {
+    const double inertia = model_.mass()[model_.rotor()];
+    const double mass = model_.mass()[model_.load()];
+    const double r_m = p.thread.mean_radius();
+    const double tan_a = std::tan(p.thread.lead_angle());
+    const double cot_a = 1.0 / tan_a;
+    out << "; rigid drive: m r^2 tan(a) (mu' - tan a) = " << mass * r_m * r_m * tan_a * (mu - tan_a)
+        << " vs J (1 + mu' tan a) = " << inertia * (1.0 + mu * tan_a)
+        << ", J cot(a) (mu' - cot a) = " << inertia * cot_a * (mu - cot_a)
+        << " vs m r^2 (1 + mu' cot a) = " << mass * r_m * r_m * (1.0 + mu * cot_a)
+        << " (J = " << inertia << " kg m^2, m = " << mass << " kg)";
+  }
+  out << "; state q = [";
+  for (int i = 0; i < q_.size(); ++i) out << (i ? ", " : "") << q_[i];
+  out << "], v = [";
+  for (int i = 0; i < v_.size(); ++i) out << (i ? ", " : "") << v_[i];
+  out << "]";
+  return out.str();
+}
+
+}  // namespace leadscrew::model

@@ -1,0 +1,506 @@
+"""Scenes: a lead-screw drive described section by section.
+
+``Scene.from_dict(d)`` validates a nested dict against :data:`SCHEMA` (unknown
+keys, missing required keys and out-of-range values raise ``ValueError``
+naming the key path, e.g. ``backlash.axial``), fills the documented defaults,
+and keeps only the sections the scene needs. ``Scene.to_dict()`` returns the
+complete dict, which ``from_dict`` accepts again unchanged.
+
+Every value is SI (m, kg, s, N, N*m, Pa, rad). :func:`describe_schema` prints
+the documentation of every field with its unit and default.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import numbers
+from dataclasses import dataclass
+from typing import Any, Callable, Dict, Optional, Tuple
+
+from . import _core
+from .excitation import Constant, Sine, Table
+
+__all__ = ["Scene", "SCHEMA", "describe_schema"]
+
+
+@dataclass(frozen=True)
+class Field:
+    """One scene field: its unit, default (None: required; ``OPTIONAL``: may be
+    absent) and valid range."""
+
+    doc: str
+    unit: str = ""
+    default: Any = None
+    kind: str = "float"  # float, int, choice, load
+    low: float = -math.inf
+    high: float = math.inf
+    low_open: bool = False
+    high_open: bool = False
+    choices: Tuple[str, ...] = ()
+
+
+OPTIONAL = object()  # the field may be absent (derived or unused)
+POSITIVE = dict(low=0.0, low_open=True)
+NONNEGATIVE = dict(low=0.0)
+
+SCHEMA: Dict[str, Any] = {
+    "concept": Field("model concept of thesis section 4.1: 'rigid' (4.1.1, one degree of "
+                     "freedom without backlash), 'flexible_nut' (4.1.2), 'flexible' (4.1.3, "
+                     "flexible screw and nut)", default="rigid", kind="choice",
+                     choices=("rigid", "flexible_nut", "flexible")),
+    "drive": Field("which part the motor turns: 'screw' (axially fixed screw, the nut and "
+                   "load translate, Fig. 3.2) or 'nut' (axially fixed nut, the screw and "
+                   "load translate, Fig. 3.1)", default="screw", kind="choice",
+                   choices=("screw", "nut")),
+    "thread": {
+        "pitch": Field("axial distance between neighbouring flanks", "m", None, **POSITIVE),
+        "mean_diameter": Field("mean (pitch) diameter d_m = 2 r_m", "m", None, **POSITIVE),
+        "starts": Field("number of thread starts (lead = starts * pitch)", "", 1, kind="int",
+                        low=1),
+        "flank_angle": Field("included thread angle beta: 0 square, 29 deg Acme, 30 deg ISO "
+                             "trapezoidal", "rad", 0.0, low=0.0, high=math.pi, high_open=True),
+        "hand": Field("thread hand", "", "right", kind="choice", choices=("right", "left")),
+    },
+    "friction": {
+        "law": Field("flank friction law: 'coulomb' (exact, LCP), 'arctan_velocity' "
+                     "(eq. 3.16), 'arctan_acceleration' (eq. 3.15)", "", "coulomb",
+                     kind="choice", choices=("coulomb", "arctan_velocity",
+                                             "arctan_acceleration")),
+        "mu": Field("flank friction coefficient", "", None, **NONNEGATIVE),
+        "k_v": Field("gain k_V of the arctan laws (slip velocity in m/s, or slip "
+                     "acceleration in m/s^2, times k_V)", "s/m", 1.0e4, **POSITIVE),
+    },
+    "backlash": {
+        "axial": Field("total axial clearance c_a of the thread (the nut starts centred)", "m",
+                       None, **NONNEGATIVE),
+        "contact": Field("flank contact across the play: 'exact' (unilateral contacts, Newton "
+                         "impacts), 'bistop' (Adams BISTOP penalty), 'cubic' (smooth cubic "
+                         "penalty, cf. thesis Fig. 2.6)", "", "exact", kind="choice",
+                         choices=("exact", "bistop", "cubic")),
+        "restitution": Field("Newton restitution coefficient of flank impacts ('exact')", "",
+                             0.0, low=0.0, high=1.0),
+        "stiffness": Field("contact stiffness of 'bistop' and 'cubic' (default: 100 times the "
+                           "series axial stiffness of the thread pair)", "N/m", OPTIONAL,
+                           **POSITIVE),
+        "exponent": Field("force exponent of 'bistop': F = k d^e", "", 1.5, low=1.0),
+        "damping": Field("maximum contact damping of 'bistop' and 'cubic' (default: "
+                         "critical damping of the contact stiffness with the translating mass)",
+                         "N*s/m", OPTIONAL, **NONNEGATIVE),
+        "penetration": Field("penetration at which 'bistop' reaches full damping (default: "
+                             "c_a / 100, at least 1e-7 m)", "m", OPTIONAL, **POSITIVE),
+    },
+    "screw": {
+        "radius": Field("screw radius (solid cylinder)", "m", 10e-3, **POSITIVE),
+        "length": Field("screw length between its supports", "m", 0.5, **POSITIVE),
+        "youngs_modulus": Field("Young's modulus E_S", "Pa", 210e9, **POSITIVE),
+        "poisson": Field("Poisson's ratio nu_S (G = E / (2 (1 + nu)))", "", 0.3, low=-1.0,
+                         high=0.5, low_open=True),
+        "density": Field("density", "kg/m^3", 7850.0, **POSITIVE),
+        "support": Field("axial support of a screw-driven screw: 'both_ends' (k = EA/a + "
+                         "EA/(L - a), eq. 4.24) or 'drive_end' (k = EA/a); a is the nut's "
+                         "distance from the drive end", "", "both_ends", kind="choice",
+                         choices=("both_ends", "drive_end")),
+    },
+    "nut": {
+        "outer_radius": Field("outer radius of the nut (hollow cylinder; inner radius = screw "
+                              "radius)", "m", 12e-3, **POSITIVE),
+        "length": Field("nut length l_nM", "m", 20e-3, **POSITIVE),
+        "youngs_modulus": Field("Young's modulus E_M", "Pa", 2e9, **POSITIVE),
+        "poisson": Field("Poisson's ratio nu_M", "", 0.3, low=-1.0, high=0.5, low_open=True),
+        "density": Field("density", "kg/m^3", 1400.0, **POSITIVE),
+        "position": Field("initial distance a_0 of the nut from the screw's drive end "
+                          "(drive='screw') or load end (drive='nut')", "m", 0.1, **POSITIVE),
+    },
+    "rotor": {
+        "inertia": Field("rotor inertia about the screw axis", "kg*m^2", 1e-5, **POSITIVE),
+    },
+    "load": {
+        "mass": Field("load mass carried by the translating part", "kg", 1.0, **NONNEGATIVE),
+    },
+    "overrides": {
+        "screw_mass": Field("screw mass (default: density * volume)", "kg", OPTIONAL,
+                            **POSITIVE),
+        "screw_inertia": Field("screw polar inertia (default m r^2 / 2)", "kg*m^2", OPTIONAL,
+                               **POSITIVE),
+        "nut_mass": Field("nut mass (default: density * volume)", "kg", OPTIONAL, **POSITIVE),
+        "nut_inertia": Field("nut polar inertia (default m (r_o^2 + r_i^2) / 2)", "kg*m^2",
+                             OPTIONAL, **POSITIVE),
+        "screw_axial_stiffness": Field("screw axial stiffness (replaces eq. 4.24; then "
+                                       "constant)", "N/m", OPTIONAL, **POSITIVE),
+        "screw_torsional_stiffness": Field("screw torsional stiffness (replaces G I_p / a; "
+                                           "then constant)", "N*m/rad", OPTIONAL, **POSITIVE),
+        "nut_axial_stiffness": Field("nut axial stiffness (replaces E A / l, eq. 4.17)", "N/m",
+                                     OPTIONAL, **POSITIVE),
+        "nut_torsional_stiffness": Field("nut torsional stiffness (replaces G I_p / l)",
+                                         "N*m/rad", OPTIONAL, **POSITIVE),
+        "damping_ratio": Field("damping ratio zeta of every spring, c = 2 zeta sqrt(k m) with "
+                               "the mass or inertia the spring carries", "", 0.05,
+                               **NONNEGATIVE),
+        "screw_axial_damping": Field("screw axial damping", "N*s/m", OPTIONAL, **NONNEGATIVE),
+        "screw_torsional_damping": Field("screw torsional damping", "N*m*s/rad", OPTIONAL,
+                                         **NONNEGATIVE),
+        "nut_axial_damping": Field("nut axial damping", "N*s/m", OPTIONAL, **NONNEGATIVE),
+        "nut_torsional_damping": Field("nut torsional damping", "N*m*s/rad", OPTIONAL,
+                                       **NONNEGATIVE),
+    },
+    "loads": {
+        "drive_torque": Field("motor torque on the rotor about +x: a number, "
+                              "{'type': 'sine'|'constant'|'table', ...} or an Excitation or "
+                              "callable (default 0 unless drive_speed is given)", "N*m",
+                              OPTIONAL, kind="load"),
+        "drive_speed": Field("instead of drive_torque: a speed-controlled motor prescribing "
+                             "the rotor's angular velocity; the torque it takes is reported",
+                             "rad/s", OPTIONAL, kind="load"),
+        "axial_force": Field("axial force on the load along +x", "N", 0.0, kind="load"),
+    },
+    "initial": {
+        "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),
+        "rotor_speed": Field("rotor angular velocity at t = 0; every body moves consistently "
+                             "with the thread, springs relaxed", "rad/s", 0.0),
+        "play_position": Field("axial position of the nut within the backlash, from its "
+                               "centre (|value| <= axial / 2)", "m", 0.0),
+    },
+}
+
+# Sections that may be absent: then they take their defaults, except backlash
+# (absent: a thread without play) and overrides.
+_REQUIRED_SECTIONS = ("thread", "friction")
+_OPTIONAL_SECTIONS = ("backlash",)
+
+
+def _fail(path: str, value: Any, allowed: str) -> None:
+    raise ValueError(f"{path} = {value!r} is invalid: must be {allowed}")
+
+
+def _range_text(f: Field) -> str:
+    lo = "(" if f.low_open else "["
+    hi = ")" if f.high_open else "]"
+    if f.low == -math.inf and f.high == math.inf:
+        return "a finite number"
+    if f.high == math.inf:
+        return f"a finite number {'>' if f.low_open else '>='} {f.low:g}"
+    return f"a finite number in {lo}{f.low:g}, {f.high:g}{hi}"
+
+
+_LOAD_TYPES = {"constant": ("value",), "sine": ("amplitude", "omega", "phase", "offset"),
+               "table": ("times", "values")}
+
+
+def _check_load(path: str, value: Any):
+    if isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
+        return value
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        if not math.isfinite(value):
+            _fail(path, value, "finite")
+        return float(value)
+    if isinstance(value, dict):
+        kind = value.get("type")
+        if kind not in _LOAD_TYPES:
+            _fail(f"{path}.type", kind, "one of " + ", ".join(repr(k) for k in _LOAD_TYPES))
+        allowed = _LOAD_TYPES[kind]
+        for key in value:
+            if key != "type" and key not in allowed:
+                _fail(f"{path}.{key}", value[key],
+                      f"absent: {kind!r} loads take {', '.join(allowed)}")
+        out = {"type": kind}
+        for key in allowed:
+            if key in value:
+                out[key] = value[key]
+            elif kind == "sine" and key in ("phase", "offset"):
+                out[key] = 0.0
+            else:
+                raise ValueError(f"{path}.{key} is missing: a {kind!r} load needs "
+                                 f"{', '.join(allowed)}")
+        try:
+            _make_excitation(out)
+        except ValueError as error:
+            raise ValueError(f"{path}: {error}") from None
+        return out
+    _fail(path, value, "a number, a dict with 'type' in constant/sine/table, an Excitation "
+          "or a callable f(t)")
+
+
+def _make_excitation(spec):
+    """An Excitation (or callable or number) from a validated load value."""
+    if isinstance(spec, dict):
+        kind = spec["type"]
+        if kind == "constant":
+            return Constant(spec["value"])
+        if kind == "sine":
+            return Sine(spec["amplitude"], spec["omega"], spec["phase"], spec["offset"])
+        return Table(spec["times"], spec["values"])
+    return spec
+
+
+def _check_field(path: str, f: Field, value: Any):
+    if f.kind == "choice":
+        if value not in f.choices:
+            _fail(path, value, "one of " + ", ".join(repr(c) for c in f.choices))
+        return value
+    if f.kind == "load":
+        return _check_load(path, value)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        _fail(path, value, "a number" if f.kind == "float" else "an integer")
+    if f.kind == "int":
+        if int(value) != value:
+            _fail(path, value, f"an integer >= {f.low:g}")
+        value = int(value)
+    else:
+        value = float(value)
+    above = value > f.low if f.low_open else value >= f.low
+    below = value < f.high if f.high_open else value <= f.high
+    if not (math.isfinite(value) and above and below):
+        _fail(path, value, _range_text(f))
+    return value
+
+
+def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]) -> Dict[str, Any]:
+    if not isinstance(given, dict):
+        _fail(path, given, "a table (dict) of fields")
+    for key in given:
+        if key not in schema:
+            raise ValueError(f"{path}.{key} is not a known key; {path} takes "
+                             f"{', '.join(schema)}")
+    out = {}
+    for key, f in schema.items():
+        sub = f"{path}.{key}"
+        if key in given and given[key] is not None:
+            out[key] = _check_field(sub, f, given[key])
+        elif f.default is None:
+            raise ValueError(f"{sub} is missing: {f.doc}" + (f" [{f.unit}]" if f.unit else ""))
+        elif f.default is not OPTIONAL:
+            out[key] = f.default
+    return out
+
+
+class Scene:
+    """A validated lead-screw drive description (immutable).
+
+    Build it with :meth:`from_dict`; read it back with :meth:`to_dict` or
+    item access (``scene["thread"]["pitch"]``).
+    """
+
+    def __init__(self, data: Dict[str, Any]):
+        self._data = data
+
+    @classmethod
+    def from_dict(cls, d: Dict[str, Any]) -> "Scene":
+        """Validate a scene dict and fill its defaults.
+
+        Args:
+            d: nested dict with the sections of :data:`SCHEMA`.
+
+        Returns:
+            The scene.
+
+        Raises:
+            ValueError: unknown key, missing required key, or value out of
+                range; the message names the key path, the value and what is
+                allowed.
+        """
+        if not isinstance(d, dict):
+            _fail("scene", d, "a dict of sections")
+        for key in d:
+            if key not in SCHEMA:
+                raise ValueError(f"{key} is not a known section; a scene has "
+                                 f"{', '.join(SCHEMA)}")
+        data: Dict[str, Any] = {}
+        for key, entry in SCHEMA.items():
+            if isinstance(entry, Field):
+                data[key] = _check_field(key, entry, d[key]) if key in d else entry.default
+                continue
+            if key not in d:
+                if key in _REQUIRED_SECTIONS:
+                    raise ValueError(f"{key} is missing: a scene needs the sections "
+                                     f"{', '.join(_REQUIRED_SECTIONS)}")
+                if key in _OPTIONAL_SECTIONS:
+                    continue
+            data[key] = _validate_section(key, entry, d.get(key, {}))
+        _check_consistency(data)
+        return cls(data)
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The complete scene as a nested dict (a deep copy)."""
+        return copy.deepcopy(self._data)
+
+    def __getitem__(self, key: str):
+        return copy.deepcopy(self._data[key])
+
+    def __contains__(self, key: str) -> bool:
+        return key in self._data
+
+    def replace(self, **sections) -> "Scene":
+        """A new scene with some fields changed: ``scene.replace(friction={"mu": 0.1})``
+        merges into the named sections (``backlash=None`` removes the backlash).
+
+        Raises:
+            ValueError: as :meth:`from_dict`.
+        """
+        d = self.to_dict()
+        for key, value in sections.items():
+            if value is None:
+                d.pop(key, None)
+            elif isinstance(value, dict) and isinstance(d.get(key), dict):
+                d[key].update(value)
+            else:
+                d[key] = value
+        return Scene.from_dict(d)
+
+    def derived(self) -> Dict[str, Any]:
+        """Derived parameters with every override applied.
+
+        Returns:
+            dict with masses [kg], inertias [kg*m^2], rigidities E A [N] and
+            G I_p [N*m^2], stiffnesses [N/m, N*m/rad] (0 for a screw stiffness
+            that follows the nut position) and, with backlash, the contact
+            stiffness, damping and penetration defaults.
+        """
+        return _derived(self._data)
+
+    def model(self) -> "_core.DriveModel":
+        """The assembled C++ model: coordinates, masses, springs, degrees of freedom.
+
+        Raises:
+            ValueError: a derived value is out of range (e.g. zero load mass on
+                a flexible part).
+        """
+        return _core.DriveModel(_core_parameters(self._data))
+
+    @property
+    def thread(self) -> "_core.Thread":
+        t = self._data["thread"]
+        return _core.Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
+                            t["hand"])
+
+    def __repr__(self) -> str:
+        b = self._data.get("backlash")
+        play = f", backlash {b['axial']:g} m {b['contact']}" if b else ""
+        return (f"<Scene {self._data['concept']}, drive={self._data['drive']}, "
+                f"{self._data['friction']['law']} mu={self._data['friction']['mu']:g}{play}>")
+
+    def __eq__(self, other) -> bool:
+        return isinstance(other, Scene) and self._data == other._data
+
+
+def _check_consistency(data: Dict[str, Any]) -> None:
+    loads = data["loads"]
+    if "drive_torque" in loads and "drive_speed" in loads:
+        raise ValueError("loads.drive_speed = {!r} is invalid: give either loads.drive_torque "
+                         "or loads.drive_speed, not both".format(loads["drive_speed"]))
+    if "drive_torque" not in loads and "drive_speed" not in loads:
+        loads["drive_torque"] = 0.0
+    if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
+        _fail("nut.outer_radius", data["nut"]["outer_radius"],
+              f"> screw.radius = {data['screw']['radius']:g}")
+    if data["drive"] == "screw" and data["nut"]["position"] >= data["screw"]["length"]:
+        _fail("nut.position", data["nut"]["position"],
+              f"< screw.length = {data['screw']['length']:g}")
+    play = data["initial"]["play_position"]
+    backlash = data.get("backlash")
+    half = backlash["axial"] / 2 if backlash else 0.0
+    if abs(play) > half:
+        _fail("initial.play_position", play, f"within +-backlash.axial / 2 = +-{half:g}")
+
+
+def describe_schema() -> str:
+    """The documentation of every scene field: key path, unit, default, meaning."""
+    lines = []
+    for key, entry in SCHEMA.items():
+        items = [(key, entry)] if isinstance(entry, Field) else [
+            (f"{key}.{k}", f) for k, f in entry.items()]
+        for path, f in items:
+            if f.default is None:
+                default = "required"
+            elif f.default is OPTIONAL:
+                default = "optional"
+            else:
+                default = repr(f.default)
+            unit = f" [{f.unit}]" if f.unit else ""
+            lines.append(f"{path}{unit} (default {default}): {f.doc}")
+    return "\n".join(lines)
+
+
+def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
+    """Masses, inertias, rigidities and stiffnesses from geometry and material
+    (thesis eq. 4.17, 4.18, 4.24; polar moments for torsion), overrides applied."""
+    screw, nut, over = data["screw"], data["nut"], data["overrides"]
+    r_s, r_o = screw["radius"], nut["outer_radius"]
+    g_s = screw["youngs_modulus"] / (2.0 * (1.0 + screw["poisson"]))
+    g_n = nut["youngs_modulus"] / (2.0 * (1.0 + nut["poisson"]))
+    area_s = math.pi * r_s ** 2
+    polar_s = math.pi * r_s ** 4 / 2.0
+    area_n = math.pi * (r_o ** 2 - r_s ** 2)
+    polar_n = math.pi * (r_o ** 4 - r_s ** 4) / 2.0
+    screw_mass = over.get("screw_mass", screw["density"] * area_s * screw["length"])
+    nut_mass = over.get("nut_mass", nut["density"] * area_n * nut["length"])
+    d = {
+        "screw_mass": screw_mass,
+        "screw_inertia": over.get("screw_inertia", 0.5 * screw_mass * r_s ** 2),
+        "nut_mass": nut_mass,
+        "nut_inertia": over.get("nut_inertia", 0.5 * nut_mass * (r_o ** 2 + r_s ** 2)),
+        "screw_axial_rigidity": screw["youngs_modulus"] * area_s,
+        "screw_torsional_rigidity": g_s * polar_s,
+        "nut_axial_stiffness": over.get("nut_axial_stiffness",
+                                        nut["youngs_modulus"] * area_n / nut["length"]),
+        "nut_torsional_stiffness": over.get("nut_torsional_stiffness",
+                                            g_n * polar_n / nut["length"]),
+        "screw_axial_stiffness": over.get("screw_axial_stiffness", 0.0),
+        "screw_torsional_stiffness": over.get("screw_torsional_stiffness", 0.0),
+    }
+    backlash = data.get("backlash")
+    if backlash is not None:
+        translating = data["load"]["mass"] + (nut_mass if data["drive"] == "screw" else screw_mass)
+        k = backlash.get("stiffness", d["nut_axial_stiffness"])
+        d["contact_stiffness"] = k
+        d["contact_damping"] = backlash.get("damping", 2.0 * math.sqrt(k * translating))
+        d["contact_penetration"] = backlash.get("penetration", max(backlash["axial"] / 100.0,
+                                                                   1e-7))
+    return d
+
+
+def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
+    p = _core.DriveParameters()
+    t = data["thread"]
+    p.concept = data["concept"]
+    p.drive = data["drive"]
+    p.thread = _core.Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
+                            t["hand"])
+    f = data["friction"]
+    p.friction, p.mu, p.k_v = f["law"], f["mu"], f["k_v"]
+    d = _derived(data)
+    for key in ("screw_mass", "screw_inertia", "nut_mass", "nut_inertia",
+                "screw_axial_rigidity", "screw_torsional_rigidity", "nut_axial_stiffness",
+                "nut_torsional_stiffness", "screw_axial_stiffness", "screw_torsional_stiffness"):
+        setattr(p, key, d[key])
+    backlash = data.get("backlash")
+    if backlash is not None:
+        p.backlash = backlash["contact"]
+        p.clearance = backlash["axial"]
+        p.restitution = backlash["restitution"]
+        p.contact_exponent = backlash["exponent"]
+        p.contact_stiffness = d["contact_stiffness"]
+        p.contact_damping = d["contact_damping"]
+        p.contact_penetration = d["contact_penetration"]
+    p.rotor_inertia = data["rotor"]["inertia"]
+    p.load_mass = data["load"]["mass"]
+    p.screw_length = data["screw"]["length"]
+    p.nut_position = data["nut"]["position"]
+    p.support = data["screw"]["support"]
+    over = data["overrides"]
+    p.damping_ratio = over["damping_ratio"]
+    for key in ("screw_axial_damping", "screw_torsional_damping", "nut_axial_damping",
+                "nut_torsional_damping"):
+        setattr(p, key, over.get(key, -1.0))
+    loads = data["loads"]
+    if "drive_speed" in loads:
+        p.speed_controlled = True
+        p.drive_speed = _make_excitation(loads["drive_speed"])
+    else:
+        p.drive_torque = _make_excitation(loads["drive_torque"])
+    p.axial_force = _make_excitation(loads["axial_force"])
+    init = data["initial"]
+    p.rotor_angle, p.rotor_speed, p.play_position = (init["rotor_angle"], init["rotor_speed"],
+                                                     init["play_position"])
+    return p
+

@@ -1,0 +1,154 @@
+"""``simulate``: run a model and get its time series, events and statistics."""
+
+from __future__ import annotations
+
+from typing import NamedTuple, Optional, Sequence
+
+import numpy as np
+
+from . import _core
+from .models import FrictionBlock
+from .scene import Scene
+
+__all__ = ["simulate", "Result", "Event"]
+
+
+class Event(NamedTuple):
+    """A mode change: time [s] and kind, e.g. ``"slip+->stick"``."""
+
+    time: float
+    kind: str
+
+
+class Result:
+    """Time series of a simulation.
+
+    Attributes:
+        t: output times [s] (at an event the time appears twice: the values
+            just before and just after it, unless ``t_eval`` was given).
+        events: list of :class:`Event`.
+        stats: dict with ``steps``, ``rhs_evaluations``, ``events``,
+            ``lcp_solves``, ``restarts``, ``nonlinear_iterations`` and
+            ``wall_time`` [s, measured inside C++].
+        integrator, friction: what ran.
+
+    ``result[name]`` gives a channel as a numpy array; ``result.channels``
+    lists the names; :meth:`to_frame` gives a pandas DataFrame.
+    """
+
+    def __init__(self, core_result):
+        self.t = core_result.time
+        self.channels = list(core_result.channel_names)
+        self._index = {name: i for i, name in enumerate(self.channels)}
+        self._data = core_result.channels
+        self.events = [Event(time, kind) for time, kind in core_result.events]
+        self.stats = core_result.stats
+        self.integrator = core_result.integrator
+        self.friction = core_result.friction
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        try:
+            return self._data[self._index[name]]
+        except KeyError:
+            raise KeyError(f"no channel {name!r}; channels are {self.channels}") from None
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._index
+
+    def keys(self):
+        return list(self.channels)
+
+    def to_frame(self):
+        """The time series as a pandas DataFrame with a column ``t``."""
+        import pandas as pd
+
+        frame = pd.DataFrame(self._data.T, columns=self.channels)
+        frame.insert(0, "t", self.t)
+        return frame
+
+    def __repr__(self) -> str:
+        return (f"<Result {self.friction}/{self.integrator}: {len(self.t)} points, "
+                f"{len(self.events)} events, {self.stats['wall_time'] * 1e6:.0f} us>")
+
+
+def simulate(
+    model,
+    t_end: float,
+    friction: Optional[str] = None,
+    integrator: Optional[str] = None,
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    dt: Optional[float] = None,
+    t_eval: Optional[Sequence[float]] = None,
+    k_v: float = 100.0,
+    theta: float = 0.5,
+    max_steps: int = 1_000_000,
+    max_events: int = 100_000,
+    max_step: Optional[float] = None,
+    first_step: Optional[float] = None,
+    smooth_integrator: Optional[str] = None,
+    bounce_threshold: float = 1e-6,
+) -> Result:
+    """Simulate a model from t = 0 to ``t_end``.
+
+    Args:
+        model: a :class:`~leadscrew.FrictionBlock` or a :class:`~leadscrew.Scene`.
+        t_end: end time [s], > 0.
+        friction: for a FrictionBlock: ``"coulomb"`` (exact, default),
+            ``"arctan_velocity"`` (eq. 3.16) or ``"arctan_acceleration"``
+            (eq. 3.15). A Scene carries its friction law (``friction.law``).
+        integrator: for ``"coulomb"``: ``"event_driven"`` (default) or
+            ``"moreau"``; for the regularized laws an ODE integrator:
+            ``"cvode_bdf"`` (default), ``"cvode_adams"``, ``"dopri5"``, ...
+            (a Scene with exact backlash and a regularized law: ``"event_driven"``).
+        rtol, atol: integration tolerances (ODE and event-driven integrators).
+        dt: fixed step [s] of ``"moreau"`` (default 1e-3).
+        t_eval: output times [s]; default: every step and event.
+        k_v: regularization gain k_V of the arctan laws [s/m or s^2/m].
+        theta: theta of the Moreau-Jean scheme, in [0, 1].
+        max_steps: bound on integrator steps.
+        max_events: bound on events (Zeno or chattering raise instead of hanging).
+        max_step, first_step: optional step-size controls [s].
+        smooth_integrator: the ODE integrator inside ``"event_driven"`` for a
+            Scene (default ``"cvode_adams"`` for the rigid concept,
+            ``"cvode_bdf"`` for the flexible ones).
+        bounce_threshold: a flank impact slower than this [m/s] is plastic
+            (exact backlash).
+
+    Returns:
+        A :class:`Result`.
+
+    Raises:
+        ValueError: bad input or an integrator that does not fit the friction law
+            (the message lists those that do).
+        SimulationError: the integrator or the LCP failed (time and reason).
+    """
+    t_eval_list = [] if t_eval is None else np.asarray(t_eval, dtype=float).ravel().tolist()
+    if isinstance(model, Scene):
+        if friction is not None and friction != model["friction"]["law"]:
+            raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
+                             f"scene's friction.law (it is {model['friction']['law']!r})")
+        drive = model.model()
+        allowed = _core.drive_integrators(drive.parameters)
+        if integrator is None:
+            integrator = allowed[0] if model["friction"]["law"] == "coulomb" or \
+                model.to_dict().get("backlash", {}).get("contact") == "exact" else "cvode_bdf"
+        core_result = _core.simulate_drive(
+            drive, float(t_end), integrator, smooth_integrator or "", float(rtol), float(atol),
+            1e-4 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
+            int(max_events), 0.0 if max_step is None else float(max_step),
+            0.0 if first_step is None else float(first_step), float(bounce_threshold))
+        return Result(core_result)
+    if not isinstance(model, _core.FrictionBlock):
+        raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
+    friction = "coulomb" if friction is None else friction
+    allowed = _core.block_integrators(friction)  # validates the friction name
+    if integrator is None:
+        integrator = allowed[0] if friction == "coulomb" else "cvode_bdf"
+    core_result = _core.simulate_block(
+        model, float(t_end), friction, integrator, float(k_v), float(rtol), float(atol),
+        1e-3 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
+        int(max_events), 0.0 if max_step is None else float(max_step),
+        0.0 if first_step is None else float(first_step),
+    )
+    return Result(core_result)

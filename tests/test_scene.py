@@ -1,0 +1,102 @@
+"""Scene validation: key paths, defaults, round trip, derived parameters."""
+
+import math
+
+import pytest
+
+import leadscrew as ls
+from helpers.scenes import thesis_scene
+
+
+def test_round_trip_and_defaults():
+    scene = ls.Scene.from_dict(thesis_scene())
+    d = scene.to_dict()
+    assert ls.Scene.from_dict(d) == scene
+    assert d["thread"]["starts"] == 1 and d["thread"]["hand"] == "right"
+    assert d["friction"]["k_v"] == 1.0e4
+    assert "backlash" not in d  # a thread without play unless asked for
+    assert d["overrides"]["damping_ratio"] == 0.05
+
+
+def test_backlash_section_fills_defaults():
+    scene = ls.Scene.from_dict(thesis_scene(backlash={"axial": 0.2e-3}))
+    b = scene["backlash"]
+    assert b["contact"] == "exact" and b["restitution"] == 0.0
+    derived = scene.derived()
+    assert derived["contact_penetration"] == pytest.approx(2e-6)
+    assert derived["contact_stiffness"] == pytest.approx(derived["nut_axial_stiffness"])
+
+
+@pytest.mark.parametrize(
+    "changes, path",
+    [
+        (dict(backlash={"axial": -1e-3}), "backlash.axial"),
+        (dict(backlash={"axial": 1e-3, "contact": "soft"}), "backlash.contact"),
+        (dict(backlash={"axial": 1e-3, "stiffnes": 1.0}), "backlash.stiffnes"),
+        (dict(thread={"pitch": 0.0, "mean_diameter": 0.02}), "thread.pitch"),
+        (dict(friction={"law": "coulomb", "mu": float("nan")}), "friction.mu"),
+        (dict(friction={"law": "viscous", "mu": 0.1}), "friction.law"),
+        (dict(concept="elastic"), "concept"),
+        (dict(drive="belt"), "drive"),
+        (dict(screw={"support": "floating"}), "screw.support"),
+        (dict(nut={"outer_radius": 5e-3}), "nut.outer_radius"),
+        (dict(nut={"position": 0.6}), "nut.position"),
+        (dict(loads={"drive_torque": {"type": "sine", "amplitude": 1.0}}), "loads.drive_torque.omega"),
+        (dict(loads={"drive_torque": {"type": "square"}}), "loads.drive_torque.type"),
+        (dict(loads={"drive_torque": 1.0, "drive_speed": 2.0}), "loads.drive_speed"),
+        (dict(initial={"play_position": 1e-3}), "initial.play_position"),
+        (dict(rotor={"inertia": 0}), "rotor.inertia"),
+        (dict(gearbox={}), "gearbox"),
+    ],
+)
+def test_bad_scene_names_key_path(changes, path):
+    with pytest.raises(ValueError, match=path.replace(".", r"\.")):
+        ls.Scene.from_dict(thesis_scene(**changes))
+
+
+def test_missing_required():
+    d = thesis_scene()
+    del d["thread"]["pitch"]
+    with pytest.raises(ValueError, match=r"thread\.pitch is missing"):
+        ls.Scene.from_dict(d)
+    d = thesis_scene()
+    del d["friction"]
+    with pytest.raises(ValueError, match="friction is missing"):
+        ls.Scene.from_dict(d)
+
+
+def test_derived_values_from_geometry():
+    scene = ls.Scene.from_dict(thesis_scene())
+    d = scene.derived()
+    r_s, r_o, length = 10e-3, 12e-3, 0.5
+    assert d["screw_mass"] == pytest.approx(7850 * math.pi * r_s**2 * length)
+    assert d["screw_inertia"] == pytest.approx(0.5 * d["screw_mass"] * r_s**2)
+    area_n = math.pi * (r_o**2 - r_s**2)
+    assert d["nut_mass"] == pytest.approx(1400 * area_n * 20e-3)
+    assert d["nut_inertia"] == pytest.approx(0.5 * d["nut_mass"] * (r_o**2 + r_s**2))
+    # eq. (4.17) with the polar moment for torsion, G = E / (2 (1 + nu))
+    assert d["nut_axial_stiffness"] == pytest.approx(2e9 * area_n / 20e-3)
+    g = 2e9 / (2 * 1.3)
+    assert d["nut_torsional_stiffness"] == pytest.approx(g * math.pi * (r_o**4 - r_s**4) / 2 / 20e-3)
+    assert d["screw_axial_rigidity"] == pytest.approx(210e9 * math.pi * r_s**2)
+
+
+def test_overrides_replace_derived_values():
+    scene = ls.Scene.from_dict(thesis_scene(overrides={"nut_mass": 0.5, "nut_axial_stiffness": 1e6}))
+    d = scene.derived()
+    assert d["nut_mass"] == 0.5 and d["nut_axial_stiffness"] == 1e6
+
+
+def test_replace_merges_sections():
+    scene = ls.Scene.from_dict(thesis_scene())
+    other = scene.replace(friction={"mu": 0.1}, backlash={"axial": 1e-4})
+    assert other["friction"]["mu"] == 0.1 and other["friction"]["law"] == "coulomb"
+    assert other["backlash"]["axial"] == 1e-4
+    assert "backlash" not in other.replace(backlash=None)
+
+
+def test_schema_documents_every_field():
+    text = ls.scene.describe_schema()
+    for path in ("thread.pitch [m]", "backlash.axial [m]", "loads.drive_torque [N*m]",
+                 "screw.support", "overrides.damping_ratio"):
+        assert path in text

@@ -1,6 +1,8 @@
 // Linear complementarity problems: find z with
 //   w = M z + q,  z >= 0,  w >= 0,  z^T w = 0      (thesis eq. 2.13)
-// Common types and the dispatcher; one header per method beside this one.
+// Common types and the dispatcher; one header per method beside this one
+// (lemke.hpp, pgs.hpp, newton_fb.hpp, enumerate.hpp), all with the signature
+// of solve().
 //
 // Solving never allocates once a Workspace has the capacity for the problem
 // size (the integrators keep one per model).
@@ -11,7 +13,20 @@
 
 namespace leadscrew::lcp {
 
-enum class Status { solved, ray_termination, max_iterations, singular };
+// solved:          z, w satisfy the LCP within options.tol (verified on w = M z + q).
+// ray_termination: Lemke left the problem on a secondary ray: for a copositive-plus M
+//                  (e.g. positive semidefinite) the LCP has no solution.
+// max_iterations:  the iteration budget ran out (or PGS diverged: residual above
+//                  1e50 times the problem's scale; the previous iterate is returned).
+// singular:        the method met linear algebra it cannot continue with (PGS: a
+//                  diagonal entry <= 0; Newton: a stationary point of the merit
+//                  function that is no solution; Lemke/enumerate: a complementary
+//                  basis too ill-conditioned to meet tol; enumerate: no solution
+//                  among the bases whose principal submatrix is regular).
+// no_solution:     enumerate proved that no solution exists (every principal
+//                  submatrix regular, no complementary basis feasible).
+// Every status but solved leaves in z the method's last iterate, with w = M z + q.
+enum class Status { solved, ray_termination, max_iterations, singular, no_solution };
 enum class Method { lemke, pgs, newton_fb, enumerate };
 
 std::string status_name(Status status);
@@ -20,8 +35,8 @@ Method parse_method(const std::string& name);  // InvalidArgument listing the al
 
 struct Options {
   Method method = Method::lemke;
-  double tol = 1e-12;
-  int max_iter = 0;          // 0: the method's default
+  double tol = 1e-12;        // absolute bound on complementarity_residual(z, w), > 0
+  int max_iter = 0;          // 0: the method's default (default_max_iterations)
   double relaxation = 1.0;   // PGS/SOR relaxation in (0, 2)
   bool warm_start = false;   // start from the z passed in (pgs, newton_fb)
 };
@@ -29,7 +44,7 @@ struct Options {
 struct Result {
   Status status = Status::singular;
   int iterations = 0;    // pivots (lemke), sweeps (pgs), Newton steps, bases tried
-  double residual = 0.0; // max_i |min(z_i, w_i)| plus any negativity
+  double residual = 0.0; // complementarity_residual(z, w) of the returned z
 };
 
 class Workspace;  // defined in workspace.hpp; preallocated scratch for every method
@@ -37,7 +52,8 @@ class Workspace;  // defined in workspace.hpp; preallocated scratch for every me
 // Solve the LCP (M, q). z (size n) receives the solution (and carries the warm
 // start when options.warm_start); w (size n) receives M z + q.
 // Never reports Status::solved for a z whose residual exceeds options.tol.
-// Throws InvalidArgument for non-square M, size mismatch, NaN or inf.
+// Throws InvalidArgument for non-square M, size mismatch, NaN or inf, options
+// out of range.
 Result solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
              const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
              Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace);
@@ -45,5 +61,12 @@ Result solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
 // max_i |min(z_i, w_i)| + max(0, -min z) + max(0, -min w)
 double complementarity_residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                                 const Eigen::Ref<const Eigen::VectorXd>& w);
+
+// The iteration budget options.max_iter = 0 stands for:
+//   lemke      1000 + 2^(min(n, 20) + 1) pivots (Murty's problems need 2^n)
+//   pgs        10000 sweeps
+//   newton_fb  100 Newton steps
+//   enumerate  2^n bases (all of them)
+int default_max_iterations(Method method, int n);
 
 }  // namespace leadscrew::lcp

@@ -1,0 +1,27 @@
+// Lemke's complementary pivoting method (Lemke 1965; Cottle, Pang & Stone,
+// "The Linear Complementarity Problem", sec. 4.4) with the covering vector
+// d = (1, ..., 1) and the lexicographic minimum-ratio test, so that degenerate
+// problems cannot cycle.
+//
+// The tableau B^-1 [I, -M, -d, q] is pivoted in place; its first n columns are
+// B^-1, whose rows (after the right-hand side) break ties in the ratio test.
+// When the artificial variable z0 is among the tied candidates it leaves first
+// (that ends the method with a solution). After termination the basic solution
+// is refined twice against the original data (x_B += B^-1 (q - B x_B)) and
+// then verified: w = M z + q is recomputed and the residual checked.
+//
+// Finds a solution for every P-matrix and for every feasible LCP with a
+// copositive-plus M (e.g. positive semidefinite); ray_termination on such an M
+// proves that the LCP has no solution. Warm start is ignored.
+#pragma once
+
+#include "leadscrew/lcp/lcp.hpp"
+
+namespace leadscrew::lcp {
+
+Result solve_lemke(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                   const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
+                   Eigen::Ref<Eigen::VectorXd> w, const Options& options,
+                   Workspace& workspace);
+
+}  // namespace leadscrew::lcp

@@ -1,0 +1,179 @@
+#include "leadscrew/lcp/newton_fb.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "detail.hpp"
+#include "leadscrew/lcp/workspace.hpp"
+
+namespace leadscrew::lcp {
+
+namespace {
+
+constexpr double kArmijo = 1e-4;         // sufficient decrease of Psi
+constexpr int kMaxBacktracks = 60;       // step lengths 1, 1/2, ..., 2^-60
+constexpr double kDescentRho = 1e-10;    // Newton direction accepted if grad.d <= -rho |d|^2.1
+constexpr double kDescentPower = 2.1;
+
+// Fischer-Burmeister function sqrt(a^2 + b^2) - a - b, without the cancellation
+// of the direct formula when a, b > 0.
+double fischer_burmeister(double a, double b) {
+  const double s = std::hypot(a, b);
+  if (a + b > 0.0) return -2.0 * a * b / (s + a + b);
+  return s - a - b;
+}
+
+double merit(const double* z, const double* w, int n) {
+  double psi = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double phi = fischer_burmeister(z[i], w[i]);
+    psi += phi * phi;
+  }
+  return 0.5 * psi;
+}
+
+// Solve M_aa z_a = -q_a on the active set a = {i : z_i > w_i}, z = 0 off it,
+// with one step of iterative refinement. Writes the candidate into z_out and
+// M z_out + q into w_out; returns false if M_aa is singular or z_a < 0.
+bool polish(const Eigen::Ref<const Eigen::MatrixXd>& M,
+            const Eigen::Ref<const Eigen::VectorXd>& q, const double* z, const double* w,
+            int n, Workspace& ws, Eigen::Ref<Eigen::VectorXd> z_out,
+            Eigen::Ref<Eigen::VectorXd> w_out) {
+  int* active = ws.basis.data();
+  int k = 0;
+  for (int i = 0; i < n; ++i)
+    if (z[i] > w[i]) active[k++] = i;
+  auto A = ws.square.topLeftCorner(k, k);
+  for (int c = 0; c < k; ++c)
+    for (int r = 0; r < k; ++r) A(r, c) = M(active[r], active[c]);
+  if (!detail::lu_factor(A, ws.permutation.data())) return false;
+  auto x = ws.vectors.col(5).head(k);
+  auto correction = ws.vectors.col(6).head(k);
+  for (int r = 0; r < k; ++r) x[r] = -q[active[r]];
+  detail::lu_solve(A, ws.permutation.data(), x);
+  for (int r = 0; r < k; ++r) {  // correction = -q_a - M_aa x
+    double sum = -q[active[r]];
+    for (int c = 0; c < k; ++c) sum -= M(active[r], active[c]) * x[c];
+    correction[r] = sum;
+  }
+  detail::lu_solve(A, ws.permutation.data(), correction);
+  z_out.setZero();
+  for (int r = 0; r < k; ++r) {
+    const double value = x[r] + correction[r];
+    if (value < 0.0) return false;
+    z_out[active[r]] = value;
+  }
+  detail::multiply_add(M, z_out, q, w_out);
+  return true;
+}
+
+}  // namespace
+
+Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                       const Eigen::Ref<const Eigen::VectorXd>& q,
+                       Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
+                       const Options& options, Workspace& workspace) {
+  const int n = detail::validate(M, q, z, w, options, Method::newton_fb);
+  workspace.reserve(n);
+  if (!options.warm_start) z.setZero();
+  const int max_steps =
+      options.max_iter > 0 ? options.max_iter : default_max_iterations(Method::newton_fb, n);
+
+  Workspace& ws = workspace;
+  double* phi = ws.vectors.col(0).data();
+  double* direction = ws.vectors.col(1).data();
+  double* gradient = ws.vectors.col(2).data();
+  auto z_trial = ws.vectors.col(3).head(n);
+  auto w_trial = ws.vectors.col(4).head(n);
+  double* m_direction = ws.vectors.col(5).data();
+  double* da = ws.vectors.col(6).data();  // diagonal of D_a
+  double* db = ws.vectors.col(7).data();  // diagonal of D_b
+  auto H = ws.square.topLeftCorner(n, n);
+  const double inverse_sqrt2 = 1.0 / std::sqrt(2.0);
+
+  Status status = Status::max_iterations;
+  int steps = 0;
+  while (true) {
+    detail::multiply_add(M, z, q, w);
+    if (complementarity_residual(z, w) <= options.tol) {
+      status = Status::solved;
+      break;
+    }
+    // Polishing reuses columns 5 and 6 and the square; done before they hold
+    // this step's data.
+    if (polish(M, q, z.data(), w.data(), n, ws, z_trial, w_trial) &&
+        complementarity_residual(z_trial, w_trial) <= options.tol) {
+      z = z_trial;
+      status = Status::solved;
+      break;
+    }
+    if (steps >= max_steps) break;
+
+    // Phi, the generalized Jacobian H = D_a + D_b M and grad Psi = H^T Phi.
+    for (int i = 0; i < n; ++i) {
+      phi[i] = fischer_burmeister(z[i], w[i]);
+      const double s = std::hypot(z[i], w[i]);
+      if (s > 0.0) {
+        da[i] = z[i] / s - 1.0;
+        db[i] = w[i] / s - 1.0;
+      } else {  // the kink: any (xi - 1, rho - 1) with xi^2 + rho^2 <= 1
+        da[i] = db[i] = inverse_sqrt2 - 1.0;
+      }
+    }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) H(i, j) = db[i] * M(i, j) + (i == j ? da[i] : 0.0);
+    double gradient_norm2 = 0.0;
+    for (int j = 0; j < n; ++j) {
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i) sum += H(i, j) * phi[i];
+      gradient[j] = sum;
+      gradient_norm2 += sum * sum;
+    }
+    const double psi = merit(z.data(), w.data(), n);
+
+    // Newton direction H d = -Phi if regular and a descent direction.
+    bool newton = detail::lu_factor(H, ws.permutation.data());
+    if (newton) {
+      Eigen::Map<Eigen::VectorXd> d(direction, n);
+      for (int i = 0; i < n; ++i) d[i] = -phi[i];
+      detail::lu_solve(H, ws.permutation.data(), d);
+      double slope = 0.0, norm2 = 0.0;
+      for (int i = 0; i < n; ++i) slope += gradient[i] * d[i], norm2 += d[i] * d[i];
+      newton = std::isfinite(slope) &&
+               slope <= -kDescentRho * std::pow(std::sqrt(norm2), kDescentPower);
+    }
+
+    // Armijo backtracking on Psi; the gradient direction if Newton's fails.
+    bool stepped = false;
+    for (int attempt = newton ? 0 : 1; attempt < 2 && !stepped; ++attempt) {
+      if (attempt == 1)
+        for (int i = 0; i < n; ++i) direction[i] = -gradient[i];
+      double slope = 0.0;
+      for (int i = 0; i < n; ++i) slope += gradient[i] * direction[i];
+      if (!(slope < 0.0)) continue;
+      for (int i = 0; i < n; ++i) m_direction[i] = 0.0;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) m_direction[i] += M(i, j) * direction[j];
+      double t = 1.0;
+      for (int backtrack = 0; backtrack <= kMaxBacktracks; ++backtrack, t *= 0.5) {
+        for (int i = 0; i < n; ++i) {
+          z_trial[i] = z[i] + t * direction[i];
+          w_trial[i] = w[i] + t * m_direction[i];
+        }
+        if (merit(z_trial.data(), w_trial.data(), n) <= psi + kArmijo * t * slope) {
+          stepped = true;
+          break;
+        }
+      }
+    }
+    if (!stepped || gradient_norm2 == 0.0) {  // a stationary point of Psi, no solution
+      status = Status::singular;
+      break;
+    }
+    z = z_trial;
+    ++steps;
+  }
+  return detail::finish(M, q, z, w, status, steps, options.tol);
+}
+
+}  // namespace leadscrew::lcp

@@ -1,0 +1,30 @@
+#include "leadscrew/lcp/workspace.hpp"
+
+#include <string>
+
+#include "leadscrew/core/errors.hpp"
+
+namespace leadscrew::lcp {
+
+Workspace::Workspace(int capacity) {
+  if (capacity < 0)
+    throw InvalidArgument("capacity = " + std::to_string(capacity) +
+                          " is invalid: must be an integer >= 0");
+  allocate(capacity);
+}
+
+void Workspace::reserve(int n) {
+  if (n > capacity_) allocate(n);
+}
+
+void Workspace::allocate(int capacity) {
+  // Eigen's resize keeps no contents; nothing of a previous solve is needed.
+  tableau.resize(capacity, 2 * capacity + 2);
+  square.resize(capacity, capacity);
+  vectors.resize(capacity, kVectorCount);
+  basis.resize(capacity);
+  permutation.resize(capacity);
+  capacity_ = capacity;
+}
+
+}  // namespace leadscrew::lcp

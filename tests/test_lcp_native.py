@@ -1,0 +1,70 @@
+"""Native checks of the LCP core that Python cannot make: no heap allocation
+while solving (tests/cpp/test_lcp_alloc.cpp, which interposes malloc & co.).
+
+Builds the small CMake project tests/cpp once per session into a temporary
+directory (or into $LEADSCREW_NATIVE_BUILD_DIR, reused across sessions)."""
+
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+
+import pytest
+
+SOURCE = pathlib.Path(__file__).resolve().parent / "cpp"
+
+
+@pytest.fixture(scope="session")
+def native_build(tmp_path_factory):
+    cmake = shutil.which("cmake")
+    assert cmake, "cmake is needed to build tests/cpp (pip install cmake)"
+    build = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR") or str(tmp_path_factory.mktemp("native"))
+    configure = [cmake, "-S", str(SOURCE), "-B", build, "-DCMAKE_BUILD_TYPE=Release"]
+    if shutil.which("ninja"):
+        configure += ["-G", "Ninja"]
+    if not (pathlib.Path(build) / "CMakeCache.txt").exists():
+        subprocess.run(configure, check=True, capture_output=True, text=True)
+    done = subprocess.run(
+        [cmake, "--build", build, "--parallel", "2"], capture_output=True, text=True
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    return pathlib.Path(build)
+
+
+@pytest.fixture(scope="session")
+def alloc_report(native_build):
+    run = subprocess.run(
+        [str(native_build / "test_lcp_alloc")], capture_output=True, text=True, timeout=60
+    )
+    return run
+
+
+def test_native_program_passes(alloc_report):
+    assert alloc_report.returncode == 0, alloc_report.stdout + alloc_report.stderr
+    assert alloc_report.stdout.strip().endswith("RESULT: PASS")
+    assert "FAIL" not in alloc_report.stdout
+
+
+@pytest.mark.parametrize("method", ["lemke", "pgs", "newton_fb", "enumerate"])
+def test_solves_do_not_allocate(alloc_report, method):
+    line = re.search(rf"^(PASS|FAIL) no allocation in {method} solves, n <= 16 \((\d+)\)$",
+                     alloc_report.stdout, re.MULTILINE)
+    assert line, alloc_report.stdout
+    assert line.group(1) == "PASS" and line.group(2) == "0"
+    solves = re.search(rf"^INFO {method}: (\d+) solves", alloc_report.stdout, re.MULTILINE)
+    assert int(solves.group(1)) == (48 if method == "enumerate" else 64)
+
+
+def test_counter_is_not_blind(alloc_report):
+    """Positive controls: the interposed counter sees std::vector, Eigen's
+    malloc and a workspace growing for a problem above its capacity."""
+    for label in ("counter sees std::vector", "counter sees Eigen's malloc",
+                  "a workspace grows for n > capacity"):
+        line = re.search(rf"^PASS {re.escape(label)} \((\d+)\)$", alloc_report.stdout, re.MULTILINE)
+        assert line and int(line.group(1)) > 0, alloc_report.stdout
+
+
+def test_friction_builders_do_not_allocate(alloc_report):
+    assert re.search(r"^PASS no allocation in the friction builders and their solves \(0\)$",
+                     alloc_report.stdout, re.MULTILINE), alloc_report.stdout

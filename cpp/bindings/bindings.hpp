@@ -11,5 +11,6 @@ void bind_thread(pybind11::module_& m);  // Thread and closed-form mechanics
 void bind_lcp(pybind11::module_& m);     // LCP solvers (submodule "lcp")
 void bind_excitation(pybind11::module_& m);
 void bind_simulate(pybind11::module_& m);
+void bind_integrate(pybind11::module_& m);  // ODE integrators (submodule "integrate")
 
 }  // namespace leadscrew::bindings

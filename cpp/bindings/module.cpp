@@ -7,4 +7,5 @@ PYBIND11_MODULE(_core, m) {
   leadscrew::bindings::bind_lcp(m);
   leadscrew::bindings::bind_excitation(m);
   leadscrew::bindings::bind_simulate(m);
+  leadscrew::bindings::bind_integrate(m);
 }

@@ -191,8 +191,9 @@ def test_reinitialize_after_events_bouncing_ball(method):
     np.testing.assert_allclose(impacts, expected, atol=1e-9)
     stats = integrator.stats
     assert stats["restarts"] == len(impacts)
-    # Counters accumulate over restarts (SUNDIALS resets its own on restart).
-    assert stats["steps"] >= 2 * len(impacts)
+    # Counters accumulate over restarts (SUNDIALS resets its own on restart):
+    # at least one step per flight.
+    assert stats["steps"] >= len(impacts) + 1
 
 
 @pytest.mark.parametrize("method", METHODS)
@@ -213,7 +214,7 @@ def test_no_root_reported_at_restart_on_the_surface(method):
 # --- failures -----------------------------------------------------------------------------
 
 
-FLAG = r"(CV|ARK)_[A-Z_]+: "
+FLAG = r"(CV|ARK|RK)_[A-Z_]+: "
 
 
 @pytest.mark.parametrize("method", METHODS)

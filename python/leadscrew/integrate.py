@@ -91,7 +91,7 @@ def solve_ode(
         y0: initial state, n values.
         method: one of :data:`METHODS`: "cvode_bdf" (stiff), "cvode_adams"
             (non-stiff multistep), "dopri5" (Dormand-Prince 5(4), as ode45),
-            "verner6", "fehlberg8" (high-order explicit pairs), ...
+            "verner6" (Verner 6(5)), ...
         rtol: relative tolerance, in (0, 1).
         atol: absolute tolerance, > 0.
         t_eval: increasing output times within t_span; None: every internal

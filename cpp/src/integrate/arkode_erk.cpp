@@ -17,8 +17,6 @@ const char* method_name(ArkodeErkIntegrator::Method method) {
       return "dopri5";
     case ArkodeErkIntegrator::Method::verner6:
       return "verner6";
-    case ArkodeErkIntegrator::Method::fehlberg8:
-      return "fehlberg8";
   }
   return "";
 }
@@ -29,8 +27,6 @@ ARKODE_ERKTableID table(ArkodeErkIntegrator::Method method) {
       return ARKODE_DORMAND_PRINCE_7_4_5;
     case ArkodeErkIntegrator::Method::verner6:
       return ARKODE_VERNER_8_5_6;
-    case ArkodeErkIntegrator::Method::fehlberg8:
-      return ARKODE_FEHLBERG_13_7_8;
   }
   return ARKODE_ERK_NONE;
 }
@@ -43,8 +39,8 @@ using ButcherTable =
 // SUNDIALS <= 6.5 ERKStep treats every table whose last node is c_s = 1 as
 // "first same as last" and reuses the last stage as f(t_n+1, y_n+1) even when
 // the last row of A is not b (llnl/sundials issue #311, fixed in 6.6). That
-// silently drops Verner 6(5) to order 3 and Fehlberg 8(7) to order 7, as the
-// fixed-step order tests show. Appending a stage with node 0 and zero
+// silently drops Verner 6(5) to order 3 (and Fehlberg 8(7) to order 7), as
+// the fixed-step order tests show. Appending a stage with node 0 and zero
 // weights (it evaluates f(t_n, y_n) once more) keeps the method unchanged and
 // makes c_s != 1, so the end-of-step derivative is evaluated afresh. Tables
 // that are FSAL (Dormand-Prince) are used as they are.
@@ -80,8 +76,6 @@ int ArkodeErkIntegrator::order(Method method) {
       return 5;
     case Method::verner6:
       return 6;
-    case Method::fehlberg8:
-      return 8;
   }
   return 0;
 }

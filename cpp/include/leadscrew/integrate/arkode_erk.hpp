@@ -4,8 +4,9 @@
 //   "dopri5":    Dormand-Prince 5(4), 7 stages (FSAL), the method of MATLAB's
 //                ode45 and scipy's RK45.
 //   "verner6":   Verner 6(5), 8 stages.
-//   "fehlberg8": Fehlberg 8(7), 13 stages: high order for tight tolerances on
-//                smooth problems.
+// ARKODE's Fehlberg 8(7) is left out on purpose: its error estimate is zero
+// whenever f depends on t only, so it is unreliable on forced systems (see
+// integrator_names()).
 // Explicit: for non-stiff problems (a stiff one exhausts max_steps; the hint
 // then says to use cvode_bdf).
 #pragma once
@@ -18,7 +19,7 @@ namespace leadscrew::integrate {
 
 class ArkodeErkIntegrator final : public sundials::SundialsIntegrator {
  public:
-  enum class Method { dopri5, verner6, fehlberg8 };
+  enum class Method { dopri5, verner6 };
   // Throws InvalidArgument for options the method cannot honour (max_order).
   ArkodeErkIntegrator(Method method, const IntegratorOptions& options);
   // Classical order of the propagated solution.

@@ -21,5 +21,6 @@ void bind_drive(pybind11::module_& m);     // lead-screw drive models
 // Converts a Python load description (an Excitation, a number, or a callable
 // of t) into an Excitation; `name` goes into the error message.
 Excitation to_excitation(pybind11::handle value, const std::string& name);
+void bind_integrate(pybind11::module_& m);  // ODE integrators (submodule "integrate")
 
 }  // namespace leadscrew::bindings

@@ -8,4 +8,5 @@ PYBIND11_MODULE(_core, m) {
   leadscrew::bindings::bind_excitation(m);
   leadscrew::bindings::bind_model(m);
   leadscrew::bindings::bind_drive(m);
+  leadscrew::bindings::bind_integrate(m);
 }

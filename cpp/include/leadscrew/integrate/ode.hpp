@@ -82,4 +82,9 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name,
                                             const IntegratorOptions& options);
 std::vector<std::string> integrator_names();
 
+// Throws InvalidArgument naming the first invalid option, its value and the
+// allowed range (make_integrator calls it; method-specific limits such as
+// max_order are checked by the method).
+void validate_options(const IntegratorOptions& options);
+
 }  // namespace leadscrew::integrate

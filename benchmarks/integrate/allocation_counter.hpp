@@ -1,0 +1,3 @@
+#pragma once
+// Number of malloc/calloc/realloc calls in the process so far.
+unsigned long allocation_count();

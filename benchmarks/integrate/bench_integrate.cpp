@@ -1,0 +1,271 @@
+// Overhead of the ODE integrators on a 2-state problem, and the event-driven
+// friction block that the target (< 50 us for 2 s at 1e-9) refers to.
+//
+//   per step:    a harmonic oscillator integrated without events; the time per
+//                step minus the rhs calls is the integrator's own cost.
+//   per restart: reinitialize + advance over 1 ms (a few steps), repeated;
+//                also counts heap allocations in that loop (must be 0).
+//   block:       a mass on a rough surface with a spring and sine forcing
+//                (Coulomb friction, stick-slip): an event-driven simulation of
+//                2 s, each event a restart; for each method the loosest
+//                tolerance whose event times and final state are within 1e-9
+//                of a reference, and the time the whole simulation takes.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "allocation_counter.hpp"
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/integrate/ode.hpp"
+
+using leadscrew::integrate::AdvanceStatus;
+using leadscrew::integrate::Integrator;
+using leadscrew::integrate::IntegratorOptions;
+using leadscrew::integrate::OdeSystem;
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+struct Oscillator final : OdeSystem {
+  double omega2 = 4.0 * pi * pi;
+  int size() const override { return 2; }
+  void rhs(double, const double* y, double* ydot) override {
+    ydot[0] = y[1];
+    ydot[1] = -omega2 * y[0];
+  }
+};
+
+// m x'' = F0 sin(W t) - k x - Fc sign(v) while slipping; at rest (stick)
+// while |F0 sin(W t) - k x| <= Fc (equal static and kinetic friction).
+struct FrictionBlock final : OdeSystem {
+  double m = 1.0, k = 40.0, Fc = 0.3 * 9.81, F0 = 2.0 * 0.3 * 9.81, W = 2.0 * pi * 2.5;
+  int mode = 0;  // 0 stick, +1 slipping forward, -1 backward
+  int size() const override { return 2; }
+  int root_count() const override { return 2; }
+  double force(double t, double x) const { return F0 * std::sin(W * t) - k * x; }
+  void rhs(double t, const double* y, double* ydot) override {
+    if (mode == 0) {
+      ydot[0] = 0.0;
+      ydot[1] = 0.0;
+    } else {
+      ydot[0] = y[1];
+      ydot[1] = (force(t, y[0]) - Fc * mode) / m;
+    }
+  }
+  void roots(double t, const double* y, double* g) override {
+    if (mode == 0) {
+      const double f = force(t, y[0]);
+      g[0] = f - Fc;  // breaks away forward
+      g[1] = f + Fc;  // breaks away backward
+    } else {
+      g[0] = y[1];  // comes to rest (or reverses)
+      g[1] = 1.0;
+    }
+  }
+};
+
+struct BlockRun {
+  std::vector<double> events;
+  double x_end = 0.0, v_end = 0.0;
+};
+
+constexpr int max_events = 1000;
+
+// The event-driven simulation; the integrator is initialized already.
+void simulate_block(Integrator& integrator, FrictionBlock& block, double t_end, BlockRun& run) {
+  Eigen::Vector2d y(0.0, 0.0);
+  block.mode = 0;
+  integrator.reinitialize(0.0, y);
+  run.events.clear();
+  for (int i = 0; i < max_events; ++i) {
+    const auto r = integrator.advance(t_end, y);
+    if (r.status == AdvanceStatus::reached) break;
+    run.events.push_back(r.t);
+    if (block.mode == 0) {
+      block.mode = integrator.root_info()[0] != 0 ? 1 : -1;
+    } else {
+      const double f = block.force(r.t, y[0]);
+      block.mode = std::fabs(f) <= block.Fc ? 0 : (f > 0 ? 1 : -1);
+    }
+    y[1] = 0.0;
+    integrator.reinitialize(r.t, y);
+  }
+  run.x_end = y[0];
+  run.v_end = y[1];
+}
+
+template <class F>
+double median_seconds(F&& f, int repeats) {
+  std::vector<double> times;
+  for (int i = 0; i < repeats; ++i) {
+    const auto a = std::chrono::steady_clock::now();
+    f();
+    const auto b = std::chrono::steady_clock::now();
+    times.push_back(std::chrono::duration<double>(b - a).count());
+  }
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
+double rhs_cost(OdeSystem& system) {
+  double y[2] = {0.3, 0.1}, f[2];
+  const int n = 1000000;
+  volatile double sink = 0.0;
+  const double s = median_seconds(
+      [&] {
+        for (int i = 0; i < n; ++i) {
+          y[0] += 1e-12;
+          system.rhs(1e-6 * i, y, f);
+          sink = sink + f[1];
+        }
+      },
+      5);
+  return s / n;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool verbose = argc > 1 && std::string(argv[1]) == "-v";
+  const std::vector<std::string> methods = leadscrew::integrate::integrator_names();
+
+  Oscillator oscillator;
+  const double oscillator_rhs = rhs_cost(oscillator);
+  std::printf("oscillator rhs call: %.1f ns\n", oscillator_rhs * 1e9);
+  {
+    FrictionBlock b;
+    b.mode = 1;
+    std::printf("friction block rhs call (slipping): %.1f ns\n\n", rhs_cost(b) * 1e9);
+  }
+
+  std::printf("per step (oscillator, 10 periods, rtol 1e-9, atol 1e-12):\n");
+  std::printf("%-14s %8s %8s %12s %14s\n", "method", "steps", "rhs", "ns/step", "ns/step-rhs");
+  for (const auto& name : methods) {
+    IntegratorOptions options;
+    options.rtol = 1e-9;
+    options.atol = 1e-12;
+    auto integrator = leadscrew::integrate::make_integrator(name, options);
+    Eigen::Vector2d y0(1.0, 0.0), y;
+    integrator->initialize(oscillator, 0.0, y0);
+    long steps = 0, rhs = 0;
+    const double s = median_seconds(
+        [&] {
+          integrator->reinitialize(0.0, y0);
+          const auto before = integrator->stats();
+          integrator->advance(10.0, y);
+          const auto after = integrator->stats();
+          steps = after.steps - before.steps;
+          rhs = after.rhs_evaluations - before.rhs_evaluations;
+        },
+        21);
+    std::printf("%-14s %8ld %8ld %12.1f %14.1f\n", name.c_str(), steps, rhs, s / steps * 1e9,
+                (s - rhs * oscillator_rhs) / steps * 1e9);
+  }
+
+  std::printf("\nper restart (reinitialize + advance 1 ms, oscillator, rtol 1e-9):\n");
+  std::printf("%-14s %12s %12s %12s\n", "method", "us/restart", "steps/rst", "allocs/rst");
+  for (const auto& name : methods) {
+    IntegratorOptions options;
+    options.rtol = 1e-9;
+    options.atol = 1e-12;
+    auto integrator = leadscrew::integrate::make_integrator(name, options);
+    Eigen::Vector2d y0(1.0, 0.0), y;
+    integrator->initialize(oscillator, 0.0, y0);
+    const int restarts = 2000;
+    long steps = 0;
+    unsigned long allocations = 0;
+    const double s = median_seconds(
+        [&] {
+          const long before = integrator->stats().steps;
+          const unsigned long a0 = allocation_count();
+          double t = 0.0;
+          for (int i = 0; i < restarts; ++i) {
+            integrator->reinitialize(t, y0);
+            integrator->advance(t + 1e-3, y);
+            t += 1e-3;
+          }
+          allocations = allocation_count() - a0;
+          steps = integrator->stats().steps - before;
+        },
+        7);
+    std::printf("%-14s %12.2f %12.1f %12.2f\n", name.c_str(), s / restarts * 1e6,
+                double(steps) / restarts, double(allocations) / restarts);
+  }
+
+  // Reference: the tightest tolerance of every method must agree; the best
+  // agreement pair is taken as the reference.
+  FrictionBlock block;
+  const double t_end = 2.0;
+  // Roots are detected by sign changes between step ends: while the block
+  // sticks, f = 0 and steps would grow without bound, stepping over both
+  // crossings of a break-away root. An eighth of the forcing period resolves them.
+  const double block_max_step = 2.0 * pi / block.W / 8.0;
+  BlockRun reference;
+  {
+    IntegratorOptions options;
+    options.rtol = 1e-13;
+    options.atol = 1e-15;
+    options.max_step = block_max_step;
+    auto integrator = leadscrew::integrate::make_integrator("verner6", options);
+    integrator->initialize(block, 0.0, Eigen::Vector2d(0.0, 0.0));
+    simulate_block(*integrator, block, t_end, reference);
+  }
+  std::printf("\nfriction block (2 s, %zu events; reference verner6 rtol 1e-13), x(2) = %.15f\n",
+              reference.events.size(), reference.x_end);
+  if (verbose)
+    for (double t : reference.events) std::printf("  event %.15f\n", t);
+  std::printf("%-14s %10s %14s %12s %10s %12s\n", "method", "rtol", "max error", "steps",
+              "us total", "us + init");
+  for (const auto& name : methods) {
+    bool done = false;
+    for (double rtol = 1e-6; rtol >= 1e-14 && !done; rtol /= std::sqrt(10.0)) {
+      IntegratorOptions options;
+      options.rtol = rtol;
+      options.atol = rtol * 1e-2;
+      options.max_step = block_max_step;
+      auto integrator = leadscrew::integrate::make_integrator(name, options);
+      integrator->initialize(block, 0.0, Eigen::Vector2d(0.0, 0.0));
+      BlockRun run;
+      run.events.reserve(max_events);
+      try {
+        simulate_block(*integrator, block, t_end, run);
+      } catch (const leadscrew::SimulationError& e) {
+        std::printf("%-14s %10.1e failed: %s\n", name.c_str(), rtol, e.what());
+        continue;
+      }
+      double error = std::fabs(run.x_end - reference.x_end) + std::fabs(run.v_end - reference.v_end);
+      if (run.events.size() != reference.events.size()) {
+        if (verbose) std::printf("  %s rtol %.1e: %zu events\n", name.c_str(), rtol, run.events.size());
+        continue;
+      }
+      for (std::size_t i = 0; i < run.events.size(); ++i)
+        error = std::max(error, std::fabs(run.events[i] - reference.events[i]));
+      if (verbose) std::printf("  %s rtol %.1e: error %.2e\n", name.c_str(), rtol, error);
+      if (error > 1e-9) continue;
+      done = true;
+      const auto s0 = integrator->stats();
+      simulate_block(*integrator, block, t_end, run);
+      const auto s1 = integrator->stats();
+      const long steps = s1.steps - s0.steps;
+      const long rhs = s1.rhs_evaluations - s0.rhs_evaluations;
+      const long roots = s1.root_evaluations - s0.root_evaluations;
+      const long rejected = s1.error_test_failures - s0.error_test_failures;
+      const double s = median_seconds([&] { simulate_block(*integrator, block, t_end, run); }, 51);
+      const double s_init = median_seconds(
+          [&] {
+            auto fresh = leadscrew::integrate::make_integrator(name, options);
+            fresh->initialize(block, 0.0, Eigen::Vector2d(0.0, 0.0));
+            simulate_block(*fresh, block, t_end, run);
+          },
+          51);
+      std::printf("%-14s %10.1e %14.2e %12ld %10.1f %12.1f   (rhs %ld, roots %ld, rejected %ld)\n",
+                  name.c_str(), rtol, error, steps, s * 1e6, s_init * 1e6, rhs, roots, rejected);
+    }
+    if (!done) std::printf("%-14s did not reach 1e-9\n", name.c_str());
+  }
+  return 0;
+}

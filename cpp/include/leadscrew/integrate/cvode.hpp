@@ -1,0 +1,42 @@
+// CVODE (SUNDIALS) variable-order, variable-step multistep methods.
+//
+//   "cvode_bdf":   BDF orders 1..5, Newton iteration with a dense direct linear
+//                  solver and a finite-difference Jacobian: for stiff problems
+//                  (regularized friction with a steep slope, stiff contacts).
+//   "cvode_adams": Adams-Moulton orders 1..12, also with Newton iteration (see
+//                  cvode.cpp for why not fixed-point): for non-stiff problems
+//                  (its small stability regions make it slow on stiff ones).
+#pragma once
+
+#include <cvode/cvode.h>
+
+#include "leadscrew/integrate/sundials_integrator.hpp"
+
+namespace leadscrew::integrate {
+
+class CvodeIntegrator final : public sundials::SundialsIntegrator {
+ public:
+  enum class Method { bdf, adams };
+  // Throws InvalidArgument for options the method cannot honour (fixed_step,
+  // max_order above 5 for BDF / 12 for Adams).
+  CvodeIntegrator(Method method, const IntegratorOptions& options);
+
+ private:
+  void create_solver(double t0) override;
+  int restart_solver(double t0) override;
+  int limit_solver(double t_out, long max_steps) override;
+  int evolve_solver(double t_out, bool one_step, double* t_reached) override;
+  int solver_root_info(int* info) override;
+  double solver_time() const override;
+  IntegratorStats solver_stats() const override;
+  std::string flag_name(int flag) const override;
+
+  const Method method_;
+  // Declared before the memory that uses them: CVODE's memory is freed first
+  // (members are destroyed in reverse order, the base's context last).
+  sundials::Matrix matrix_;
+  sundials::LinearSolver linear_solver_;
+  sundials::SolverMemory<CVodeFree> memory_;
+};
+
+}  // namespace leadscrew::integrate

@@ -1,0 +1,62 @@
+// What the SUNDIALS-based integrators (CVODE, ARKODE ERKStep) share: the
+// state vector and callback bridge, restarts without allocation, the total
+// step budget, statistics across restarts, and the translation of failure
+// flags into SimulationError. Each method supplies the solver calls.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/integrate/sundials_context.hpp"
+
+namespace leadscrew::integrate::sundials {
+
+class SundialsIntegrator : public Integrator {
+ public:
+  std::string name() const final { return name_; }
+  void initialize(OdeSystem& system, double t0,
+                  const Eigen::Ref<const Eigen::VectorXd>& y0) final;
+  void reinitialize(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) final;
+  AdvanceResult advance(double t_out, Eigen::Ref<Eigen::VectorXd> y, bool one_step = false) final;
+  const std::vector<int>& root_info() const final { return root_info_; }
+  IntegratorStats stats() const final;
+
+ protected:
+  SundialsIntegrator(std::string name, const IntegratorOptions& options, bool implicit);
+
+  // Creates the solver memory for the state in y_ at t0 and applies the options.
+  virtual void create_solver(double t0) = 0;
+  // Restarts the solver from the state in y_ at t0 without allocating.
+  virtual int restart_solver(double t0) = 0;
+  // Never step past t_out; at most max_steps internal steps in this call.
+  virtual int limit_solver(double t_out, long max_steps) = 0;
+  // One CVode / ERKStepEvolve call; the state goes to y_.
+  virtual int evolve_solver(double t_out, bool one_step, double* t_reached) = 0;
+  virtual int solver_root_info(int* info) = 0;
+  virtual double solver_time() const = 0;
+  // Counters since the last create/restart (SUNDIALS resets them on ReInit).
+  virtual IntegratorStats solver_stats() const = 0;
+  // The solver's name for a return flag, e.g. "CV_TOO_MUCH_WORK".
+  virtual std::string flag_name(int flag) const = 0;
+  // Throws SimulationError for a failed setup call (flag < 0).
+  void check_setup(int flag, const char* call) const;
+
+  const IntegratorOptions options_;
+  Context context_;
+  NVector y_;
+  CallbackBridge bridge_;
+
+ private:
+  void load_state(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0);
+
+  const std::string name_;
+  const bool implicit_;
+  bool initialized_ = false;
+  double t_ = 0.0;
+  std::vector<int> root_info_;
+  IntegratorStats before_restart_;  // counters of the solver runs before the last restart
+  long restarts_ = 0;
+};
+
+}  // namespace leadscrew::integrate::sundials

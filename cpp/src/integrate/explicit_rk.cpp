@@ -1,0 +1,554 @@
+#include "leadscrew/integrate/explicit_rk.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+
+namespace leadscrew::integrate {
+
+namespace {
+constexpr double eps = std::numeric_limits<double>::epsilon();
+// Step size control (Hairer, Norsett & Wanner, Solving ODE I, II.4 and the
+// PI stabilization of IV.2): safety factor, bounds of the step ratio and
+// the PI weight of the previous error.
+constexpr double safety = 0.9;
+constexpr double shrink_limit = 0.2;
+constexpr double growth_limit = 10.0;
+constexpr double pi_beta = 0.04;
+constexpr int rejection_limit = 100;  // consecutive error-test failures
+constexpr int nonfinite_limit = 64;   // non-finite stage values since the last (re)start
+constexpr int root_iterations = 60;
+
+bool all_finite(const double* v, int n) {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+// Sign change of a root function from g0 (start of the interval) to g1: g0
+// exactly 0 means inactive (a restart on the switching surface).
+bool crosses(double g0, double g1) { return (g0 < 0.0 && g1 >= 0.0) || (g0 > 0.0 && g1 <= 0.0); }
+}  // namespace
+
+void hermite_dense_weights(double theta, const ButcherTableau& tableau, double* w,
+                           double* w_end) {
+  // y(theta) = h00 y_n + h10 h f_n + h01 y_n+1 + h11 h f_n+1 with
+  // y_n+1 = y_n + h sum b_j k_j and f_n = k_1; h00 + h01 = 1.
+  const double t2 = theta * theta, t3 = t2 * theta;
+  const double h10 = t3 - 2.0 * t2 + theta;
+  const double h01 = -2.0 * t3 + 3.0 * t2;
+  const double h11 = t3 - t2;
+  for (int j = 0; j < tableau.stages; ++j) w[j] = h01 * tableau.b[j];
+  w[0] += h10;
+  *w_end = h11;
+}
+
+void check_tableau(const ButcherTableau& t) {
+  const int s = t.stages;
+  const std::string where = "Butcher tableau " + t.name + ": ";
+  if (s < 1 || static_cast<int>(t.a.size()) != s * s || static_cast<int>(t.b.size()) != s ||
+      static_cast<int>(t.e.size()) != s || static_cast<int>(t.c.size()) != s || !t.dense_weights ||
+      t.order < 1 || t.embedded_order < 1)
+    throw InvalidArgument(where + "sizes are invalid: must be stages x stages, stages, ...");
+  double sum_b = 0.0, sum_e = 0.0;
+  for (int i = 0; i < s; ++i) {
+    double row = 0.0;
+    for (int j = 0; j < s; ++j) {
+      if (j >= i && t.a[i * s + j] != 0.0)
+        throw InvalidArgument(where + "a is invalid: must be strictly lower triangular");
+      row += t.a[i * s + j];
+    }
+    if (std::fabs(row - t.c[i]) > 1e-14)
+      throw InvalidArgument(where + "row " + std::to_string(i) + " is invalid: must sum to c_i");
+    sum_b += t.b[i];
+    sum_e += t.e[i];
+  }
+  if (std::fabs(sum_b - 1.0) > 1e-14 || std::fabs(sum_e) > 1e-14)
+    throw InvalidArgument(where + "weights are invalid: sum b must be 1, sum e 0");
+  if (t.fsal) {
+    for (int j = 0; j < s; ++j)
+      if (t.a[(s - 1) * s + j] != t.b[j] || t.c[s - 1] != 1.0)
+        throw InvalidArgument(where + "FSAL is invalid: last row of a must equal b, c_s = 1");
+  }
+}
+
+ExplicitRungeKutta::ExplicitRungeKutta(const ButcherTableau& tableau,
+                                       const IntegratorOptions& options)
+    : tableau_(tableau), options_(options), s_(tableau.stages) {
+  check_tableau(tableau_);
+  if (options.max_order != 0)
+    throw InvalidArgument("max_order = " + std::to_string(options.max_order) +
+                          " is invalid: must be 0 for " + tableau_.name +
+                          " (a one-step method of fixed order " + std::to_string(tableau_.order) +
+                          ")");
+}
+
+void ExplicitRungeKutta::fail(const std::string& flag, const std::string& meaning,
+                              const std::string& hint) const {
+  throw SimulationError(t_, flag + ": " + meaning + " (" + tableau_.name + ")", hint);
+}
+
+void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
+                                    const Eigen::Ref<const Eigen::VectorXd>& y0) {
+  const int n = system.size();
+  if (n < 1)
+    throw InvalidArgument("system size = " + std::to_string(n) + " is invalid: must be >= 1");
+  const int m = system.root_count();
+  if (m < 0)
+    throw InvalidArgument("system root_count = " + std::to_string(m) +
+                          " is invalid: must be >= 0");
+  system_ = nullptr;
+  n_ = n;
+  m_ = m;
+  for (auto* v : {&y_, &y_start_, &y_new_, &y_stage_, &y_trial_, &f_end_, &f_current_})
+    v->assign(n, 0.0);
+  k_.assign(static_cast<std::size_t>(s_) * n, 0.0);
+  k_trial_.assign(static_cast<std::size_t>(s_) * n, 0.0);
+  for (auto* v : {&g_start_, &g_end_, &g_lo_, &g_hi_, &g_trial_}) v->assign(m, 0.0);
+  weights_.assign(s_, 0.0);
+  root_info_.assign(m, 0);
+  stats_ = IntegratorStats{};
+  h_ = 0.0;
+  system_ = &system;
+  start(t0, y0);
+}
+
+void ExplicitRungeKutta::reinitialize(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) {
+  if (!system_)
+    throw InvalidArgument("reinitialize called before initialize is invalid: initialize first");
+  start(t0, y0);
+  ++stats_.restarts;
+}
+
+void ExplicitRungeKutta::start(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) {
+  require_finite("t0", t0);
+  if (y0.size() != n_)
+    throw InvalidArgument("y0 has " + std::to_string(y0.size()) +
+                          " components, invalid: must have the system size " + std::to_string(n_));
+  for (int i = 0; i < n_; ++i) {
+    if (!std::isfinite(y0[i])) require_finite("y0[" + std::to_string(i) + "]", y0[i]);
+    y_[i] = y0[i];
+  }
+  t_ = t0;
+  first_stage_valid_ = false;
+  step_available_ = false;
+  log_error_old_ = std::log(1e-4);
+  nonfinite_count_ = 0;
+  std::fill(root_info_.begin(), root_info_.end(), 0);
+  // h_ is kept: after an event the previous step size is a better first
+  // guess than a fresh estimate (the error test corrects it if not).
+  if (m_ > 0) {
+    roots_at(t_, y_.data(), g_start_.data());
+    activate_zero_roots();
+  }
+}
+
+void ExplicitRungeKutta::activate_zero_roots() {
+  // A root function exactly 0 here (a restart on its switching surface) gets
+  // the sign it takes just after t along the solution, as in CVODE: from an
+  // Euler step of 100 ulp. Otherwise it would stay inactive for the whole
+  // next step, and a step that leaves and re-crosses the surface (a ball
+  // bouncing off the ground) would miss the crossing.
+  bool any_zero = false;
+  for (int i = 0; i < m_ && !any_zero; ++i) any_zero = g_start_[i] == 0.0;
+  if (!any_zero) return;
+  if (!first_stage_valid_) {
+    system_->rhs(t_, y_.data(), f_current_.data());
+    ++stats_.rhs_evaluations;
+    if (!all_finite(f_current_.data(), n_)) return;  // the next step reports it
+    first_stage_valid_ = true;
+  }
+  const double delta = 100.0 * eps * std::max(std::fabs(t_), h_ > 0.0 ? h_ : 1.0);
+  for (int i = 0; i < n_; ++i) y_trial_[i] = y_[i] + delta * f_current_[i];
+  roots_at(t_ + delta, y_trial_.data(), g_trial_.data());
+  for (int i = 0; i < m_; ++i)
+    if (g_start_[i] == 0.0) g_start_[i] = g_trial_[i];
+}
+
+void ExplicitRungeKutta::roots_at(double t, const double* y, double* g) {
+  system_->roots(t, y, g);
+  ++stats_.root_evaluations;
+  if (!all_finite(g, m_))
+    fail("RK_RTFUNC_FAIL", "a root (event) function returned a non-finite value (NaN or inf)",
+         "check the root functions at this state");
+}
+
+double ExplicitRungeKutta::weighted_rms(const double* v, const double* y_a,
+                                        const double* y_b) const {
+  double sum = 0.0;
+  for (int i = 0; i < n_; ++i) {
+    const double scale =
+        options_.atol + options_.rtol * std::max(std::fabs(y_a[i]), std::fabs(y_b[i]));
+    const double r = v[i] / scale;
+    sum += r * r;
+  }
+  return std::sqrt(sum / n_);
+}
+
+double ExplicitRungeKutta::initial_step() {
+  // Hairer, Norsett & Wanner, Solving ODE I, II.4: h0 from ||y0|| / ||f0||,
+  // then from the second derivative estimated with one Euler step.
+  const double* f0 = k_.data();
+  const double d0 = weighted_rms(y_.data(), y_.data(), y_.data());
+  const double d1 = weighted_rms(f0, y_.data(), y_.data());
+  double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+  if (options_.max_step > 0.0) h0 = std::min(h0, options_.max_step);
+  for (int i = 0; i < n_; ++i) y_trial_[i] = y_[i] + h0 * f0[i];
+  double* f1 = k_trial_.data();
+  system_->rhs(t_ + h0, y_trial_.data(), f1);
+  ++stats_.rhs_evaluations;
+  if (!all_finite(f1, n_)) return h0;
+  for (int i = 0; i < n_; ++i) y_stage_[i] = f1[i] - f0[i];
+  const double d2 = weighted_rms(y_stage_.data(), y_.data(), y_.data()) / h0;
+  const double dmax = std::max(d1, d2);
+  const double h1 = dmax <= 1e-15 ? std::max(1e-6, h0 * 1e-3)
+                                  : std::pow(0.01 / dmax, 1.0 / (tableau_.order + 1));
+  double h = std::min(100.0 * h0, h1);
+  if (options_.max_step > 0.0) h = std::min(h, options_.max_step);
+  return h;
+}
+
+bool ExplicitRungeKutta::stages(double t, const double* y, double h, double* k, double* y_out) {
+  const double* a = tableau_.a.data();
+  const double* c = tableau_.c.data();
+  double* y_stage = y_stage_.data();
+  for (int i = 1; i < s_; ++i) {
+    const double* ai = a + i * s_;
+    for (int r = 0; r < n_; ++r) {
+      double sum = 0.0;
+      for (int j = 0; j < i; ++j) sum += ai[j] * k[j * n_ + r];
+      y_stage[r] = y[r] + h * sum;
+    }
+    system_->rhs(t + c[i] * h, y_stage, k + i * n_);
+  }
+  stats_.rhs_evaluations += s_ - 1;
+  const double* b = tableau_.b.data();
+  for (int r = 0; r < n_; ++r) {
+    double sum = 0.0;
+    for (int j = 0; j < s_; ++j) sum += b[j] * k[j * n_ + r];
+    y_out[r] = y[r] + h * sum;
+  }
+  // A NaN or inf in any stage reaches y_out (b_j = 0 or not: 0 * inf is NaN)
+  // or, for the last stage of an FSAL pair, the error estimate.
+  return all_finite(y_out, n_) && (!tableau_.fsal || all_finite(k + (s_ - 1) * n_, n_));
+}
+
+ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* error_norm) {
+  if (!stages(t_, y_.data(), h, k_.data(), y_new_.data())) return StepOutcome::nonfinite;
+  *error_norm = 0.0;
+  if (options_.fixed_step <= 0.0) {
+    const double* e = tableau_.e.data();
+    for (int r = 0; r < n_; ++r) {
+      double sum = 0.0;
+      for (int j = 0; j < s_; ++j) sum += e[j] * k_[j * n_ + r];
+      y_trial_[r] = h * sum;
+    }
+    *error_norm = weighted_rms(y_trial_.data(), y_.data(), y_new_.data());
+    if (!(*error_norm <= 1.0)) return StepOutcome::rejected;
+  }
+  if (tableau_.fsal) {
+    std::copy_n(k_.data() + (s_ - 1) * n_, n_, f_end_.data());
+  } else {
+    // Not wasted: it is the first stage of the next step.
+    system_->rhs(t_ + h, y_new_.data(), f_end_.data());
+    ++stats_.rhs_evaluations;
+  }
+  return all_finite(f_end_.data(), n_) ? StepOutcome::accepted : StepOutcome::nonfinite;
+}
+
+void ExplicitRungeKutta::interpolate(double theta, double* y_out) const {
+  double w_end = 0.0;
+  double* w = const_cast<double*>(weights_.data());  // scratch, no observable state
+  tableau_.dense_weights(theta, tableau_, w, &w_end);
+  for (int r = 0; r < n_; ++r) {
+    double sum = w_end * f_end_[r];
+    for (int j = 0; j < s_; ++j) sum += w[j] * k_[j * n_ + r];
+    y_out[r] = y_start_[r] + h_step_ * sum;
+  }
+}
+
+void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) const {
+  if (!step_available_ || !(t >= t_step_ && t <= t_step_ + h_step_))
+    throw InvalidArgument("t = " + format_value(t) +
+                          " is invalid: must lie in the last accepted step [" +
+                          format_value(t_step_) + ", " + format_value(t_step_ + h_step_) + "]");
+  if (y.size() != n_)
+    throw InvalidArgument("y has " + std::to_string(y.size()) +
+                          " components, invalid: must have the system size " + std::to_string(n_));
+  Eigen::VectorXd out(n_);
+  interpolate((t - t_step_) / h_step_, out.data());
+  y = out;
+}
+
+AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::VectorXd> y,
+                                          bool one_step) {
+  if (!system_)
+    throw InvalidArgument("advance called before initialize is invalid: initialize first");
+  require_finite("t_out", t_out);
+  if (t_out < t_)
+    throw InvalidArgument("t_out = " + format_value(t_out) +
+                          " is invalid: must be >= the current time " + format_value(t_));
+  if (y.size() != n_)
+    throw InvalidArgument("y has " + std::to_string(y.size()) +
+                          " components, invalid: must have the system size " + std::to_string(n_));
+  std::fill(root_info_.begin(), root_info_.end(), 0);
+  const double time_resolution = 8.0 * eps * std::max(std::fabs(t_), std::fabs(t_out));
+  if (t_out - t_ <= time_resolution) {
+    // Nothing to integrate within the resolution of t (see sundials_integrator.cpp).
+    for (int i = 0; i < n_; ++i) y[i] = y_[i];
+    t_ = t_out;
+    return {t_, AdvanceStatus::reached};
+  }
+
+  const bool fixed = options_.fixed_step > 0.0;
+  const int q = std::min(tableau_.order, tableau_.embedded_order);
+  const double exponent = 1.0 / (q + 1);
+  int rejections = 0;  // consecutive
+  // Bounded: every pass either accepts a step (at most max_steps in total) or
+  // rejects one (at most rejection_limit in a row, nonfinite_limit in all).
+  for (;;) {
+    if (stats_.steps >= options_.max_steps)
+      fail("RK_TOO_MUCH_WORK",
+           "the total number of internal steps reached max_steps = " +
+               std::to_string(options_.max_steps),
+           "increase max_steps or check whether the solution blows up; if the step size "
+           "collapsed the problem may be stiff: use cvode_bdf");
+    if (!first_stage_valid_) {
+      system_->rhs(t_, y_.data(), f_current_.data());
+      ++stats_.rhs_evaluations;
+      if (!all_finite(f_current_.data(), n_))
+        fail("RK_RHSFUNC_FAIL", "the right-hand side returned a non-finite value (NaN or inf) "
+                                "at the current state",
+             "check the model at this state");
+      first_stage_valid_ = true;
+    }
+    std::copy_n(f_current_.data(), n_, k_.data());
+    step_available_ = false;  // k_ is about to be overwritten
+    if (h_ <= 0.0) h_ = fixed ? options_.fixed_step : initial_step();
+    double h = fixed ? options_.fixed_step : h_;
+    if (options_.max_step > 0.0) h = std::min(h, options_.max_step);
+    const double wanted = h;
+    // Land exactly on t_out; stretch by up to 1 % rather than leave a sliver.
+    const bool to_end = t_ + 1.01 * h >= t_out;
+    if (to_end) h = t_out - t_;
+    if (h <= 4.0 * eps * std::fabs(t_))
+      fail("RK_ERR_FAILURE", "the step size fell to the roundoff level of t",
+           "the solution is probably singular or discontinuous here (a blow-up, or a switch "
+           "that should be an event with a root function)");
+
+    double error = 0.0;
+    const StepOutcome outcome = attempt(h, &error);
+    if (outcome != StepOutcome::accepted) {
+      ++stats_.error_test_failures;
+      if (outcome == StepOutcome::nonfinite) {
+        if (fixed || ++nonfinite_count_ >= nonfinite_limit)
+          fail("RK_RHSFUNC_FAIL",
+               "the right-hand side returned a non-finite value (NaN or inf) " +
+                   std::to_string(nonfinite_count_ + (fixed ? 1 : 0)) +
+                   " times, also with reduced step sizes",
+               "check the model: it is undefined (NaN/inf) near this state");
+        h_ = 0.25 * h;
+      } else {
+        if (++rejections > rejection_limit)
+          fail("RK_ERR_FAILURE",
+               "the local error test failed " + std::to_string(rejection_limit) + " times in a row",
+               "the solution is probably singular or discontinuous here");
+        h_ = h * std::max(shrink_limit, safety * std::pow(error, -exponent));
+      }
+      continue;
+    }
+
+    // Accepted.
+    ++stats_.steps;
+    if (!fixed) {
+      // PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.
+      const double log_error = std::log(std::max(error, 1e-10));
+      double factor = safety * std::exp(-(exponent - 0.75 * pi_beta) * log_error +
+                                        pi_beta * log_error_old_);
+      factor = std::min(growth_limit, std::max(shrink_limit, factor));
+      if (rejections > 0) factor = std::min(factor, 1.0);
+      log_error_old_ = std::max(log_error, std::log(1e-4));
+      h_ = h * factor;
+      // A step shortened to land on t_out says little about the next one.
+      if (to_end) h_ = std::max(h_, wanted);
+    }
+    rejections = 0;
+    std::copy_n(y_.data(), n_, y_start_.data());
+    t_step_ = t_;
+    h_step_ = h;
+    step_available_ = true;
+    const double t_new = to_end ? t_out : t_ + h;
+    t_end_ = t_new;
+
+    if (m_ > 0) {
+      roots_at(t_new, y_new_.data(), g_end_.data());
+      bool any = false;
+      for (int i = 0; i < m_ && !any; ++i) any = crosses(g_start_[i], g_end_[i]);
+      if (any) {
+        locate_root();
+        for (int i = 0; i < n_; ++i) y[i] = y_[i];
+        return {t_, AdvanceStatus::root_found};
+      }
+      std::swap(g_start_, g_end_);
+    }
+    t_ = t_new;
+    std::swap(y_, y_new_);
+    std::copy_n(f_end_.data(), n_, f_current_.data());
+    if (t_ == t_out || one_step) {
+      for (int i = 0; i < n_; ++i) y[i] = y_[i];
+      return {t_, AdvanceStatus::reached};
+    }
+  }
+}
+
+void ExplicitRungeKutta::locate_root() {
+  const double t_n = t_step_;
+  const double h = h_step_;
+  const double tolerance = 4.0 * eps * std::max(std::fabs(t_n + h), h);
+
+  // The bracket [lo, hi] (offsets from t_n) with all root functions at its
+  // ends; a function counts if it was active at t_n and changes sign in it.
+  double lo = 0.0, hi = h;
+  // Illinois: the value kept at an end is halved when that end is kept twice.
+  double scale_lo = 1.0, scale_hi = 1.0;
+  int last_side = 0;
+  auto crossing = [&](int i, const std::vector<double>& g_a, const std::vector<double>& g_b) {
+    return g_start_[i] != 0.0 && crosses(g_a[i], g_b[i]);
+  };
+  auto reset_bracket = [&] {
+    std::copy(g_start_.begin(), g_start_.end(), g_lo_.begin());
+    std::copy(g_end_.begin(), g_end_.end(), g_hi_.begin());
+    lo = 0.0;
+    hi = h;
+    scale_lo = scale_hi = 1.0;
+    last_side = 0;
+  };
+  // The earliest secant root among the bracketed functions, and which one.
+  auto earliest_secant = [&](int* which) {
+    double best = hi;
+    *which = -1;
+    for (int i = 0; i < m_; ++i) {
+      if (!crossing(i, g_lo_, g_hi_)) continue;
+      const double a = scale_lo * g_lo_[i], b = scale_hi * g_hi_[i];
+      const double estimate = (b == a) ? 0.5 * (lo + hi) : lo - a * (hi - lo) / (b - a);
+      if (*which < 0 || estimate < best) {
+        best = estimate;
+        *which = i;
+      }
+    }
+    return best;
+  };
+  // Moves one end of the bracket to tau (values in g_trial_); true if hi moved.
+  auto update_bracket = [&](double tau) {
+    bool left = false;
+    for (int i = 0; i < m_ && !left; ++i) left = crossing(i, g_lo_, g_trial_);
+    if (left) {
+      hi = tau;
+      std::swap(g_hi_, g_trial_);
+      scale_hi = 1.0;
+      scale_lo = last_side == 1 ? 0.5 * scale_lo : 1.0;
+      last_side = 1;
+    } else {
+      lo = tau;
+      std::swap(g_lo_, g_trial_);
+      scale_lo = 1.0;
+      scale_hi = last_side == -1 ? 0.5 * scale_hi : 1.0;
+      last_side = -1;
+    }
+    return left;
+  };
+  auto clamp = [&](double tau) {
+    return std::min(hi - 0.5 * tolerance, std::max(lo + 0.5 * tolerance, tau));
+  };
+
+  // 1. On the dense output (no rhs calls): Illinois until the bracket is
+  // below the interpolation error's scale (the exact stage takes over).
+  reset_bracket();
+  int active = -1;
+  const double dense_tolerance = std::max(tolerance, 1e-10 * h);
+  for (int iteration = 0; iteration < root_iterations && hi - lo > dense_tolerance;
+       ++iteration) {
+    const double tau = clamp(earliest_secant(&active));
+    interpolate(tau / h, y_trial_.data());
+    roots_at(t_n + tau, y_trial_.data(), g_trial_.data());
+    update_bracket(tau);
+  }
+  const double tau_dense = earliest_secant(&active);
+  // Its slope there, by central differences on the dense output.
+  double slope = 0.0;
+  {
+    const double delta = std::max(1e-7 * h, 16.0 * tolerance);
+    const double a = std::max(0.0, tau_dense - delta), b = std::min(h, tau_dense + delta);
+    interpolate(a / h, y_trial_.data());
+    roots_at(t_n + a, y_trial_.data(), g_trial_.data());
+    const double g_a = g_trial_[active];
+    interpolate(b / h, y_trial_.data());
+    roots_at(t_n + b, y_trial_.data(), g_trial_.data());
+    slope = (g_trial_[active] - g_a) / (b - a);
+  }
+
+  // 2. On the exact continuation phi(tau) = g(t_n + tau, Phi_tau(y_n)):
+  // Newton from the dense root (slope from the dense output, then secants
+  // through the last two exact values), aimed a tolerance past the root so
+  // that it lands where g has changed sign; done when such a point is within
+  // two tolerances of Newton's root. Kept inside the bracket, Illinois when
+  // Newton leaves it, is for another function, or takes too long. Usually
+  // two evaluations of phi.
+  reset_bracket();
+  std::copy_n(y_new_.data(), n_, y_.data());    // the state at hi
+  std::copy_n(k_.data(), n_, k_trial_.data());  // stage 1: f(t_n, y_n)
+  double tau = tau_dense;
+  double previous_tau = -1.0, previous_g = 0.0;
+  constexpr int newton_iterations = 8;
+  for (int iteration = 0; iteration < root_iterations && hi - lo > tolerance; ++iteration) {
+    tau = clamp(tau);
+    if (!stages(t_n, y_start_.data(), tau, k_trial_.data(), y_trial_.data()))
+      fail("RK_RHSFUNC_FAIL",
+           "the right-hand side returned a non-finite value (NaN or inf) while locating a root",
+           "check the model near the event");
+    roots_at(t_n + tau, y_trial_.data(), g_trial_.data());
+    const double g_tau = g_trial_[active];
+    const bool hi_moved = update_bracket(tau);
+    if (hi_moved) std::copy_n(y_trial_.data(), n_, y_.data());
+    int earliest = -1;
+    double next = earliest_secant(&earliest);
+    if (earliest < 0) break;  // not reached: the bracket always holds a crossing
+    if (earliest == active && iteration < newton_iterations) {
+      const double local_slope = previous_tau >= 0.0 && tau != previous_tau
+                                     ? (g_tau - previous_g) / (tau - previous_tau)
+                                     : slope;
+      if (local_slope != 0.0 && std::isfinite(local_slope)) {
+        const double correction = -g_tau / local_slope;
+        if (hi_moved && std::fabs(correction) <= 2.0 * tolerance) break;  // converged
+        const double newton = tau + correction + tolerance;
+        if (newton > lo && newton < hi) next = newton;
+      }
+    }
+    previous_tau = tau;
+    previous_g = g_tau;
+    if (earliest != active) previous_tau = -1.0;  // that secant would mix two functions
+    active = earliest;
+    tau = next;
+  }
+
+  // The root: the bracket end where g has changed sign (or is 0).
+  for (int i = 0; i < m_; ++i)
+    root_info_[i] = crossing(i, g_lo_, g_hi_) ? (g_start_[i] < 0.0 ? 1 : -1) : 0;
+  if (hi == h) {
+    t_ = t_end_;  // exactly t_out when the step landed on it
+    std::copy_n(f_end_.data(), n_, f_current_.data());
+    first_stage_valid_ = true;
+  } else {
+    t_ = t_n + hi;
+    first_stage_valid_ = false;
+  }
+  std::copy(g_hi_.begin(), g_hi_.end(), g_start_.begin());
+  // A function that landed exactly on 0 at the root must not stay inactive
+  // if the integration continues without a restart.
+  activate_zero_roots();
+}
+
+}  // namespace leadscrew::integrate

@@ -50,7 +50,8 @@ class Multibody:
                 v[["uS", "pS", "uN", "pN", "uR", "pR", "uL", "pL"].index(k)] = val
             rows.append(v)
 
-        if d.drive == "screw":  # screw axially fixed, nut does not turn, rotor on screw, load on nut
+        # screw drive: screw axially fixed, nut does not turn, rotor on screw, load on nut
+        if d.drive == "screw":
             row(uS=1), row(pN=1), row(uR=1), row(pR=1, pS=-1), row(uL=1, uN=-1), row(pL=1, pN=-1)
         else:  # nut axially fixed, screw does not turn, rotor on nut, load on screw
             row(uN=1), row(pS=1), row(uR=1), row(pR=1, pN=-1), row(uL=1, uS=-1), row(pL=1, pS=-1)
@@ -269,7 +270,7 @@ def _compare(drive, torque, force, t_end, n=401):
     assert np.max(np.abs(sol.u_load(ts) - ul)) <= 1e-9 * np.max(np.abs(ul))
     # forces away from the event instants (they jump there)
     ev = np.array([e.time for e in sol.events])
-    far = np.array([np.all(np.abs(ev - t) > 1e-6) for t in ts]) if ev.size else np.ones(ts.size, bool)
+    far = np.array([np.all(np.abs(ev - t) > 1e-6) for t in ts])
     lam, T = cmp_.forces(ts[far])
     scale = np.max(np.abs(lam))
     assert np.max(np.abs(sol.normal_force(ts[far]) - lam)) <= 1e-9 * scale
@@ -342,7 +343,8 @@ def test_phase_coefficients_equal_multibody_accelerations(drv, hand, beta):
         a, b = (acc[1] - acc[0]) / dM, (acc[2] - acc[0]) / dF
         assert ph.a == pytest.approx(a, rel=1e-8)
         assert ph.b == pytest.approx(b, rel=1e-8)
-        assert ph.a * M + ph.b * F == pytest.approx(acc[0], abs=1e-12 * (abs(ph.a * M) + abs(ph.b * F)))
+        terms = abs(ph.a * M) + abs(ph.b * F)
+        assert ph.a * M + ph.b * F == pytest.approx(acc[0], abs=1e-12 * terms)
 
 
 # ---------------------------------------------------------------------------
@@ -420,8 +422,8 @@ def test_friction_never_does_positive_work(drv, hand, beta):
     v = sol.body_velocities(ts)
     alpha = math.atan(drive.lead / (2 * math.pi * drive.mean_radius))
     hs = 1.0 if hand == "right" else -1.0
-    v_rel = hs * math.sin(alpha) * (v["nut"][0] - v["screw"][0]) + math.cos(alpha) * drive.mean_radius * (
-        v["nut"][1] - v["screw"][1])
+    v_rel = (hs * math.sin(alpha) * (v["nut"][0] - v["screw"][0])
+             + math.cos(alpha) * drive.mean_radius * (v["nut"][1] - v["screw"][1]))
     np.testing.assert_allclose(v_rel, sol.slip_velocity(ts), rtol=1e-12, atol=1e-15)
     power = sol.friction_force(ts) * v_rel
     scale = np.max(np.abs(sol.friction_force(ts))) * np.max(np.abs(v_rel))
@@ -432,6 +434,31 @@ def test_friction_never_does_positive_work(drv, hand, beta):
     assert np.all(np.abs(T) <= drive.mu_eff * np.abs(N) * (1 + 1e-12) + 1e-12 * scale)
     slip = ~sol.stick(ts)
     np.testing.assert_allclose(np.abs(T[slip]), drive.mu_eff * np.abs(N[slip]), rtol=1e-12)
+
+
+# ---------------------------------------------------------------------------
+# The issue's jamming inequalities, written from its text (used by several tests)
+# ---------------------------------------------------------------------------
+
+
+def _first_inequality(d):  # m r^2 tan a (mu' - tan a) >= J (1 + mu' tan a)
+    t = d.lead / (2 * math.pi * d.mean_radius)
+    return d.m * d.mean_radius**2 * t * (d.mu_eff - t) - d.J * (1 + d.mu_eff * t)
+
+
+def _second_inequality(d):  # J cot a (mu' - cot a) >= m r^2 (1 + mu' cot a)
+    ct = 2 * math.pi * d.mean_radius / d.lead
+    return d.J * ct * (d.mu_eff - ct) - d.m * d.mean_radius**2 * (1 + d.mu_eff * ct)
+
+
+def _first_scale(d):  # size of the terms of the first inequality
+    t = d.lead / (2 * math.pi * d.mean_radius)
+    return d.m * d.mean_radius**2 * t * (d.mu_eff + t) + d.J * (1 + d.mu_eff * t)
+
+
+def _second_scale(d):
+    ct = 2 * math.pi * d.mean_radius / d.lead
+    return d.J * ct * (d.mu_eff + ct) + d.m * d.mean_radius**2 * (1 + d.mu_eff * ct)
 
 
 # ---------------------------------------------------------------------------
@@ -455,8 +482,8 @@ def drives_near_bound(draw, bound):
         mu_eff = draw(st.floats(0.0, 3.0))
     masses = [draw(st.floats(1e-7, 1e-3)), draw(st.floats(1e-7, 1e-3)), draw(st.floats(1e-3, 10)),
               draw(st.floats(1e-8, 1e-4)), draw(st.floats(1e-3, 1)), draw(st.floats(0.01, 100))]
-    return ref.RigidDrive(lead, diameter / 2, mu_eff * math.cos(beta / 2), *masses, flank_angle=beta,
-                          hand=draw(st.sampled_from(["right", "left"])),
+    return ref.RigidDrive(lead, diameter / 2, mu_eff * math.cos(beta / 2), *masses,
+                          flank_angle=beta, hand=draw(st.sampled_from(["right", "left"])),
                           drive=draw(st.sampled_from(["screw", "nut"])))
 
 
@@ -485,9 +512,8 @@ def test_pure_axial_load_holds_iff_tan_alpha_below_mu(drive, magnitude, sign):
         assert moved is False
         assert mb.start_direction(0.0, F) == [] or drive.jam_prone
     elif moved == "jam":
-        # only where the issue's second inequality holds (J cot a (mu' - cot a) >= m r^2 (1 + mu' cot a))
-        cot = 1 / tan_a
-        assert drive.J * cot * (mu_eff - cot) >= drive.m * drive.mean_radius**2 * (1 + mu_eff * cot) * (1 - 1e-9)
+        # only where the issue's second inequality holds
+        assert _second_inequality(drive) >= -1e-9 * _second_scale(drive)
     else:
         assert moved is True
         assert np.sign(sol.v_load(0.01)) == np.sign(F)  # the load moves with the force
@@ -515,7 +541,7 @@ def test_pure_torque_moves_iff_mu_below_cot_alpha(drive, magnitude, sign):
     if mu_eff * tan_a > 1:
         assert moved is False
     elif moved == "jam":
-        assert drive.m * drive.mean_radius**2 * tan_a * (mu_eff - tan_a) >= drive.J * (1 + mu_eff * tan_a) * (1 - 1e-9)
+        assert _first_inequality(drive) >= -1e-9 * _first_scale(drive)
     else:
         assert moved is True
         assert np.sign(sol.omega(0.01)) == np.sign(M)  # the rotor turns with the torque
@@ -556,16 +582,6 @@ def test_zero_loads():
 # ---------------------------------------------------------------------------
 
 
-def _first_inequality(d):  # m r^2 tan a (mu' - tan a) >= J (1 + mu' tan a)
-    t = d.lead / (2 * math.pi * d.mean_radius)
-    return d.m * d.mean_radius**2 * t * (d.mu_eff - t) - d.J * (1 + d.mu_eff * t)
-
-
-def _second_inequality(d):  # J cot a (mu' - cot a) >= m r^2 (1 + mu' cot a)
-    ct = 2 * math.pi * d.mean_radius / d.lead
-    return d.J * ct * (d.mu_eff - ct) - d.m * d.mean_radius**2 * (1 + d.mu_eff * ct)
-
-
 def _with(d, **kw):
     fields = {k: getattr(d, k) for k in d.__dataclass_fields__}
     fields.update(kw)
@@ -582,7 +598,8 @@ def test_first_jamming_inequality_separates_jam_from_trajectory(hand, rel):
     load_crit = m_crit - base.screw_mass
     assert 2.0 < load_crit < 2.1
     torque, force = ref.thesis_loads()
-    heavy, light = _with(base, load_mass=load_crit * (1 + rel)), _with(base, load_mass=load_crit * (1 - rel))
+    heavy = _with(base, load_mass=load_crit * (1 + rel))
+    light = _with(base, load_mass=load_crit * (1 - rel))
     assert _first_inequality(heavy) > 0 > _first_inequality(light)
     with pytest.raises(ref.ReferenceJamming) as info:
         ref.simulate(heavy, torque, force, 2.0)
@@ -625,11 +642,10 @@ def test_paradox_in_slip_iff_an_inequality_holds(alpha, mu, j, mass, m_dir, f_di
     """The multibody y+/y- procedure finds 0 or 2 consistent normal-force signs in slip
     exactly where one of the issue's inequalities holds (for loads with K != 0)."""
     r = 0.01
-    d = ref.RigidDrive(2 * math.pi * r * math.tan(alpha), r, mu, j, j, mass, j, mass, mass, hand=hand, drive=drv)
+    d = ref.RigidDrive(2 * math.pi * r * math.tan(alpha), r, mu, j, j, mass, j, mass, mass,
+                       hand=hand, drive=drv)
     first, second = _first_inequality(d), _second_inequality(d)
-    scale1 = d.m * r**2 * math.tan(alpha) * (d.mu_eff + math.tan(alpha)) + d.J * (1 + d.mu_eff * math.tan(alpha))
-    scale2 = d.J / math.tan(alpha) * (d.mu_eff + 1 / math.tan(alpha)) + d.m * r**2 * (1 + d.mu_eff / math.tan(alpha))
-    assume(abs(first) > 1e-9 * scale1 and abs(second) > 1e-9 * scale2)
+    assume(abs(first) > 1e-9 * _first_scale(d) and abs(second) > 1e-9 * _second_scale(d))
     M, F = 0.1 * m_dir, 100.0 * f_dir
     K = -(d.h * d.m * d.p * M + d.J * F)
     assume(abs(K) > 1e-6 * (abs(d.m * d.p * M) + abs(d.J * F)))

@@ -121,7 +121,7 @@ for h in SIGNS:
     assert zero((n3.T * tau3)[0])
     # cos(alpha_n) -> cos(beta/2) for a vanishing lead angle (both positive for beta < pi).
     assert sp.simplify(cos_alpha_n.subs(t, 0) ** 2 - sp.cos(hb) ** 2) == 0
-print("1b flank angle: friction bound mu|N_flank| = mu/cos(alpha_n) |lambda|, alpha_n -> beta/2: ok")
+print("1b flank angle: bound mu|N_flank| = mu/cos(alpha_n) |lambda|, alpha_n -> beta/2: ok")
 
 # ---------------------------------------------------------------------------
 # 2. Dynamics of the 8-coordinate multibody system (rotor, screw, nut, load)
@@ -167,8 +167,18 @@ for h, drive in itertools.product(SIGNS, ("screw", "nut")):
         acc = sol[qdd[5]]  # rotor angle
         assert zero(acc - (a_coef(eps, h) * M + b_coef(eps, h) * F).subs(sub)), (h, drive, s, sig)
         assert zero(sol[lam] - (d * K_of(h) / (c * Delta(eps * mu))).subs(sub))
-        # Reduced equation J_eff phi_dd = M - h p F - rho mu |lam| s (with |lam| = sig lam).
-        assert zero((J_eff * acc - (M - h * p * F) + rho * mu * s * sig * sol[lam]).subs(sub))
+        # Reduced equations (R1), (R2) with N~ = d lam, T~ = d T (rotating on translating):
+        lam_t, T_t = d * sol[lam], d * mu * d * s * sig * sol[lam]
+        assert zero((J_eff * acc - (M - h * p * F - rho * T_t)).subs(sub))  # (R1)
+        assert zero((lam_t * c + (h * m * p * acc + F) + h * T_t * sn).subs(sub))  # (R2)
+        # T~ = mu |N~| s for a normal force of sign sig (|N~| = |lam|):
+        labs = sp.Symbol("labs", positive=True)
+        assert zero((d * mu * d * s * sig * lam - mu * s * sp.Abs(d * lam)).subs(lam, sig * labs))
+        # Power transmitted from the rotating to the translating member:
+        # A v_load = -p |w| |N~| cos(alpha) (eps + mu t), A = N~ c + h T~ sn.
+        wabs, nabs = sp.symbols("wabs nabs", positive=True)
+        A_ax = (d * sig) * nabs * c + h * (mu * nabs * s) * sn  # N~ = d sig |N~|, T~ = mu |N~| s
+        assert zero(A_ax * (-h * p * s * wabs) + p * wabs * nabs * c * (eps + mu * t))
         # Energy: d/dt(1/2 J_eff w^2) = M w + F v_load + P_friction, P_friction <= 0.
         w = sp.symbols("w", real=True)
         P_fric = (mu * d * s * sig * sol[lam]) * (-d * rho * w)  # T * d(gT)/dt
@@ -203,6 +213,26 @@ for h in SIGNS:
     for eps in SIGNS:
         acc_eps = (a_coef(eps, h) * M + b_coef(eps, h) * F).subs(F, F_K0)
         assert zero(acc_eps - ((M - h * p * F) / J_eff).subs(F, F_K0))
+# Delta_eps = J_eff + eps mu t (J - m r^2): the mode's effective inertia.
+for eps in SIGNS:
+    assert zero(Delta(eps * mu) - (J_eff + eps * mu * t * (J - m * r**2)))
+# Theorem 1 (sign table): for given s, candidate sig~ is consistent iff
+# sign(K / Delta_eps) = sig~ with eps = h s sig~.
+for h, s, sK, sDp, sDm in itertools.product(SIGNS, SIGNS, SIGNS, (1, 0, -1), (1, 0, -1)):
+    if sDp <= 0 and sDm <= 0:
+        continue  # Delta_+ + Delta_- > 0
+    sD = {1: sDp, -1: sDm}
+    ok = [cand for cand in SIGNS if sD[h * s * cand] != 0 and sK * sD[h * s * cand] == cand]
+    if sDp > 0 and sDm > 0:
+        assert ok == [sK]
+    elif sDp < 0:
+        assert len(ok) == (2 if h * s * sK < 0 else 0)
+    elif sDm < 0:
+        assert len(ok) == (2 if h * s * sK > 0 else 0)
+    elif sDp == 0:
+        assert ok == ([-h * s] if h * s * sK < 0 else [])  # the eps = -1 mode
+    else:  # sDm == 0
+        assert ok == ([h * s] if h * s * sK > 0 else [])  # the eps = +1 mode
 # Frictionless limit.
 for h in SIGNS:
     assert zero((a_coef(1, h) * M + b_coef(1, h) * F).subs(mu, 0) - (M - h * p * F) / J_eff)
@@ -292,7 +322,7 @@ for sgn in SIGNS:  # sign of F_CN
     power = sp.Abs(FCN) * z_printed * uCdot
     assert sp.simplify(power.subs(uCdot, 1)) .is_nonnegative
     assert sp.simplify(power.subs(uCdot, -1)).is_nonnegative
-print("5 thesis (4.10)/(4.11) re-derived (C_a -> c_a); printed z sign makes friction do positive work: ok")
+print("5 thesis (4.10)/(4.11) re-derived (C_a -> c_a); printed z sign: friction does positive work")
 
 # ---------------------------------------------------------------------------
 # 6. The thesis's (4.32)/(4.34): flank forces in terms of the axial force F_CA.
@@ -313,4 +343,35 @@ for sgn in SIGNS:
         assert zero(fct + A * z / (ca - z * sa))  # (4.32), third case needs c - z s
         assert not zero(fct + A * z / (ca + z * sa))
 print("6 thesis (4.32) third case and (4.34) second term are misprinted: ok")
+
+# ---------------------------------------------------------------------------
+# 7. Sampled: solutions at rest = {stick if admissible} + consistent slip starts.
+#    Regular (Delta_+/- > 0): always exactly one (Theorem 2). Jamming regime:
+#    1 or 3 with stick admissible, 1 without.
+# ---------------------------------------------------------------------------
+import numpy as np  # noqa: E402
+
+rng = np.random.default_rng(2013)
+n = 200_000
+Jn, mr2 = 10 ** rng.uniform(-3, 3, n), 10 ** rng.uniform(-3, 3, n)
+tn, mun = np.tan(rng.uniform(0.01, 1.55, n)), 10 ** rng.uniform(-2, 1.5, n)
+Mn, Fn, hn = rng.normal(size=n), rng.normal(size=n), rng.choice([-1.0, 1.0], n)
+rn = 1.0
+cn = 1 / np.sqrt(1 + tn**2)
+Dn = {e: Jn * (1 + e * mun * tn) + mr2 * tn * (tn - e * mun) for e in SIGNS}
+Kn = -(hn * mr2 * tn * Mn + Jn * Fn)
+Tst = cn * (Mn - hn * rn * tn * Fn) / rn
+Nst = -cn * (rn * Fn + hn * tn * Mn) / rn
+stick_ok = np.abs(Tst) <= mun * np.abs(Nst)
+count = stick_ok.astype(int)
+for s_, sg in itertools.product(SIGNS, SIGNS):
+    e = hn * s_ * sg
+    D = np.where(e > 0, Dn[1], Dn[-1])
+    acc_n = (Mn * (1 + e * mun * tn) - hn * rn * Fn * (tn - e * mun)) / D
+    count += (np.sign(Kn / (cn * D)) == sg) & (np.sign(acc_n) == s_)
+regular = (Dn[1] > 0) & (Dn[-1] > 0)
+assert np.all(count[regular] == 1)
+assert set(np.unique(count[~regular & stick_ok])) == {1, 3}
+assert np.all(count[~regular & ~stick_ok] == 1)
+print("7 sampled uniqueness at rest (regular: 1; jamming: 1 or 3 with stick admissible): ok")
 print("all checks passed")

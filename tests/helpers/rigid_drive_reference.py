@@ -38,7 +38,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import List, Optional, Sequence
+from typing import List, Sequence
 
 import numpy as np
 from scipy.optimize import brentq
@@ -149,7 +149,8 @@ class Harmonic:
             return 0.5 * (self.mean + self.amplitude * math.sin(self.phase)) * tau**2
         th0 = self.omega * t0 + self.phase
         x = self.omega * tau
-        osc = (math.cos(th0) * _x_minus_sin(x) + math.sin(th0) * 2.0 * np.sin(0.5 * x) ** 2) / self.omega**2
+        one_minus_cos = 2.0 * np.sin(0.5 * x) ** 2
+        osc = (math.cos(th0) * _x_minus_sin(x) + math.sin(th0) * one_minus_cos) / self.omega**2
         return 0.5 * self.mean * tau**2 + self.amplitude * osc
 
 
@@ -187,7 +188,8 @@ class RigidDrive:
         _check("lead", self.lead, pos, "a finite number > 0")
         _check("mean_radius", self.mean_radius, pos, "a finite number > 0")
         _check("mu", self.mu, nonneg, "a finite number >= 0")
-        for name in ("rotor_inertia", "screw_inertia", "screw_mass", "nut_inertia", "nut_mass", "load_mass"):
+        for name in ("rotor_inertia", "screw_inertia", "screw_mass",
+                     "nut_inertia", "nut_mass", "load_mass"):
             _check(name, getattr(self, name), nonneg, "a finite number >= 0")
         _check("flank_angle", self.flank_angle, lambda v: 0 <= v < math.pi, "in [0, pi)")
         if self.hand not in ("right", "left"):
@@ -195,7 +197,8 @@ class RigidDrive:
         if self.drive not in ("screw", "nut"):
             raise ValueError(f"drive = {self.drive!r} is invalid: must be 'screw' or 'nut'")
         if self.J <= 0 and self.m <= 0:
-            raise ValueError("rotating inertia and translating mass are both zero: must have J + m p^2 > 0")
+            raise ValueError(
+                "rotating inertia and translating mass are both zero: must have J + m p^2 > 0")
 
     # geometry
     @property
@@ -282,7 +285,8 @@ class RigidDrive:
 
 
 def _brent(f, x0, x1):
-    return brentq(lambda x: float(f(x)), x0, x1, xtol=1e-300, rtol=4.0 * np.finfo(float).eps, maxiter=500)
+    return brentq(lambda x: float(f(x)), x0, x1, xtol=1e-300, rtol=4.0 * np.finfo(float).eps,
+                  maxiter=500)
 
 
 def _roots(fs: Sequence, ta: float, tb: float, step: float) -> List[float]:
@@ -377,7 +381,8 @@ class Solution:
     def _omega(self, ph, t):
         if ph.kind == "stick":
             return np.zeros_like(t)
-        return ph.omega0 + ph.a * self.torque.integral(ph.t0, t) + ph.b * self.force.integral(ph.t0, t)
+        return (ph.omega0 + ph.a * self.torque.integral(ph.t0, t)
+                + ph.b * self.force.integral(ph.t0, t))
 
     def _phi(self, ph, t):
         if ph.kind == "stick":
@@ -449,22 +454,20 @@ class Solution:
         t = np.asarray(t, dtype=float)
         return self._eval(t, lambda ph, tt: np.full_like(tt, ph.kind == "stick")).astype(bool)
 
+    def _layout(self, rot):
+        """(axial, angular) of rotor, screw, nut, load from the rotor's angular quantity."""
+        ax = -self.drive.h * self.drive.p * rot
+        z = np.zeros_like(rot)
+        turning, sliding = ("screw", "nut") if self.drive.drive == "screw" else ("nut", "screw")
+        return {"rotor": (z, rot), turning: (z, rot), sliding: (ax, z), "load": (ax, z)}
+
     def bodies(self, t):
         """Axial positions u [m] and angles phi [rad] of rotor, screw, nut, load."""
-        ph = self.phi(t)
-        ul = -self.drive.h * self.drive.p * ph
-        z = np.zeros_like(ph)
-        if self.drive.drive == "screw":
-            return dict(rotor=(z, ph), screw=(z, ph), nut=(ul, z), load=(ul, z))
-        return dict(rotor=(z, ph), nut=(z, ph), screw=(ul, z), load=(ul, z))
+        return self._layout(self.phi(t))
 
     def body_velocities(self, t):
-        w = self.omega(t)
-        vl = -self.drive.h * self.drive.p * w
-        z = np.zeros_like(w)
-        if self.drive.drive == "screw":
-            return dict(rotor=(z, w), screw=(z, w), nut=(vl, z), load=(vl, z))
-        return dict(rotor=(z, w), nut=(z, w), screw=(vl, z), load=(vl, z))
+        """Axial velocities [m/s] and angular velocities [rad/s] of rotor, screw, nut, load."""
+        return self._layout(self.omega(t))
 
     # -- energy -------------------------------------------------------------
     def energy(self):
@@ -552,7 +555,8 @@ class _Integrator:
         """First time >= t0 at which the stick limit is exceeded, and the slip direction."""
         A, B = self.A[0], self.B[0]
         for wa, wb in self.windows(t0):
-            pts = sorted(set([wa, wb] + _roots(self.A, wa, wb, self.step) + _roots(self.B, wa, wb, self.step)))
+            roots = _roots(self.A, wa, wb, self.step) + _roots(self.B, wa, wb, self.step)
+            pts = sorted(set([wa, wb] + roots))
             for x0, x1 in zip(pts[:-1], pts[1:]):
                 if x1 <= x0:
                     continue
@@ -579,24 +583,28 @@ class _Integrator:
         return abs(const) <= tol and all(abs(v) <= tol for v in waves.values())
 
     def K_sign_after(self, t0):
-        """Sign of K just after t0 and the first later time where it changes sign."""
+        """Sign of K just after t0 (0 if K vanishes identically)."""
         if self.K_identically_zero():
-            return 0, None
+            return 0
         Kf = self.Kf[0]
-        first = 0
         for wa, wb in self.windows(t0):
             pts = sorted(set([wa, wb] + _roots(self.Kf, wa, wb, self.step)))
             for x0, x1 in zip(pts[:-1], pts[1:]):
-                if x1 <= x0:
-                    continue
-                sg = _sign(float(Kf(0.5 * (x0 + x1))))
-                if sg == 0:
-                    continue
-                if first == 0:
-                    first = sg
-                elif sg != first:
-                    return first, x0
-        return first, None
+                sg = _sign(float(Kf(0.5 * (x0 + x1)))) if x1 > x0 else 0
+                if sg != 0:
+                    return sg
+        return 0
+
+    def K_sign_change(self, wa, wb, sig_t):
+        """First time in [wa, wb] after which K no longer has the sign sig_t."""
+        if sig_t == 0:
+            return None
+        Kf = self.Kf[0]
+        pts = sorted(set([wa, wb] + _roots(self.Kf, wa, wb, self.step)))
+        for x0, x1 in zip(pts[:-1], pts[1:]):
+            if x1 > x0 and _sign(float(Kf(0.5 * (x0 + x1)))) == -sig_t:
+                return x0
+        return None
 
     def velocity_funcs(self, t0, w0, a, b):
         tq, fc = self.tq, self.fc
@@ -607,14 +615,18 @@ class _Integrator:
             lambda t: a * tq(t, 2) + b * fc(t, 2),
         ]
 
-    def velocity_zero(self, t0, w0, a, b, from_rest):
+    def slip_end(self, t0, w0, a, b, sig_t, from_rest):
+        """First event of a slip phase: ("zero", t) velocity zero, ("flank", t) K changes
+        sign, or ("end", t_end); searched window by window."""
         fs = self.velocity_funcs(t0, w0, a, b)
         lo = t0 + (self.excl if from_rest else 0.0)
         for wa, wb in self.windows(t0):
-            for x in _roots(fs, wa, wb, self.step):
-                if x > lo:
-                    return x
-        return None
+            t_zero = next((x for x in _roots(fs, wa, wb, self.step) if x > lo), None)
+            t_flank = self.K_sign_change(wa, wb, sig_t)
+            found = [(x, why) for x, why in ((t_zero, "zero"), (t_flank, "flank")) if x is not None]
+            if found:
+                return min(found)[::-1]
+        return "end", self.t_end
 
     def select_mode(self, t, s, sig_t):
         """The unique consistent eps for slip direction s, given sign(K) just after t."""
@@ -659,16 +671,10 @@ class _Integrator:
                 s, state, from_rest, w = s_new, "slip", True, 0.0
                 continue
             # slip phase from t with velocity w (sign s)
-            sig_t, t_flank = self.K_sign_after(t)
+            sig_t = self.K_sign_after(t)
             eps, _ = self.select_mode(t, s, sig_t)
             a, b = dr.a(eps), dr.b(eps)
-            t_zero = self.velocity_zero(t, w, a, b, from_rest)
-            candidates = [(self.t_end, "end")]
-            if t_zero is not None:
-                candidates.append((t_zero, "zero"))
-            if t_flank is not None:
-                candidates.append((t_flank, "flank"))
-            t1, why = min(candidates, key=lambda c: c[0])
+            why, t1 = self.slip_end(t, w, a, b, sig_t, from_rest)
             sigma = int(dr.d) * sig_t
             sol.phases.append(Phase(t, t1, "slip", s, sigma, eps if sig_t else 0, a, b, phi, w))
             ph = sol.phases[-1]
@@ -700,7 +706,8 @@ class _Integrator:
         return sol
 
 
-def simulate(drive: RigidDrive, torque: Harmonic, force: Harmonic, t_end: float, omega0: float = 0.0) -> Solution:
+def simulate(drive: RigidDrive, torque: Harmonic, force: Harmonic, t_end: float,
+             omega0: float = 0.0) -> Solution:
     """Exact-Coulomb trajectory of the rigid drive on [0, t_end], phi(0) = 0.
 
     Args:

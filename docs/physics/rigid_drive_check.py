@@ -216,6 +216,18 @@ for h in SIGNS:
 # Delta_eps = J_eff + eps mu t (J - m r^2): the mode's effective inertia.
 for eps in SIGNS:
     assert zero(Delta(eps * mu) - (J_eff + eps * mu * t * (J - m * r**2)))
+# Delassus form: two free bodies (rotating phi with J, translating u with m), the flank
+# constraint g_N = c u + h sn r phi, slip g_T = h sn u - c r phi (translating relative
+# to rotating): Delta_eps = (m J / c^2) (G_NN + eps h mu G_NT), so
+# min(Delta_+, Delta_-) <= 0  <=>  mu |G_NT| >= G_NN.
+for h in SIGNS:
+    WNv = sp.Matrix([h * sn * r, c])  # d g_N / d(phi, u)
+    WTv = sp.Matrix([-c * r, h * sn])
+    Minv = sp.diag(1 / J, 1 / m)
+    G_NN = (WNv.T * Minv * WNv)[0]
+    G_NT = (WNv.T * Minv * WTv)[0]
+    for eps in SIGNS:
+        assert zero(Delta(eps * mu) - m * J / c**2 * (G_NN + eps * h * mu * G_NT))
 # Theorem 1 (sign table): for given s, candidate sig~ is consistent iff
 # sign(K / Delta_eps) = sig~ with eps = h s sig~.
 for h, s, sK, sDp, sDm in itertools.product(SIGNS, SIGNS, SIGNS, (1, 0, -1), (1, 0, -1)):

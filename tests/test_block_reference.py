@@ -32,6 +32,7 @@ CASES = {
     "const_above": (0.0, 0.0, 5.0, 0.0),
     "const_brake_reverse": (0.0, 0.0, 5.0, -2.0),
     "const_brake_stick": (0.0, 0.0, 2.0, -2.0),
+    "const_brake_stick_near_cone": (0.0, 0.0, 2.99, -2.0),
 }
 
 
@@ -45,6 +46,14 @@ def _solve(case, t_end=2.0, **over):
 # ---------------------------------------------------------------------------
 # Independent implementation 1: event-driven numerical integration.
 # ---------------------------------------------------------------------------
+def after_velocity_zero(force_value, limit):
+    """Coulomb at u' = 0 (non-degenerate): stick inside the cone, else slip
+    along the force.  Returns (event kind, new mode +1/-1/0)."""
+    if abs(force_value) <= limit:
+        return "slip->stick", 0
+    return "reversal", (1 if force_value > 0 else -1)
+
+
 def integrate_events(mass, mu, g, amplitude, omega, phase, offset, v0, t_end):
     """Event-driven DOP853 integration of eq. (3.9).  Non-degenerate mode logic only.
 
@@ -98,13 +107,8 @@ def integrate_events(mass, mu, g, amplitude, omega, phase, offset, v0, t_end):
                 return events, float(sol.y[0, -1]), dense
             t = float(sol.t_events[0][0])
             u = float(sol.y_events[0][0][0])
-            f = force(t)
-            if abs(f) <= n:
-                events.append((t, "slip->stick", u))
-                mode = 0
-            else:
-                events.append((t, "reversal", u))
-                mode = int(np.sign(f))
+            kind, mode = after_velocity_zero(force(t), n)
+            events.append((t, kind, u))
             v = 0.0
     raise AssertionError("numerical integration did not reach t_end")
 
@@ -190,13 +194,8 @@ def mp_phase_chain(mass, mu, g, amplitude, omega, phase, offset, t_end, dps=40):
             return out
         u = pos(t_new, t, u, s)
         t = t_new
-        f = F(t)
-        if abs(f) <= n:
-            out.append((t, "slip->stick", u))
-            mode = 0
-        else:
-            out.append((t, "reversal", u))
-            mode = int(mp.sign(f))
+        kind, mode = after_velocity_zero(F(t), n)
+        out.append((t, kind, u))
     raise AssertionError("mp chain did not reach t_end")
 
 
@@ -216,12 +215,17 @@ def test_event_times_to_machine_precision_against_mpmath(case):
 # ---------------------------------------------------------------------------
 # Thesis figures-level facts (section 3.2.6, Fig. 3.8-3.11).
 # ---------------------------------------------------------------------------
-def test_thesis_case_v6_event_table():
-    ref = _solve("V6")
-    print("\nthesis V = 6 N: events over [0, 2] s")
+def print_event_table(ref, title):
+    """Shown with pytest -s: the numbers to compare an integrator against."""
+    print(f"\n{title}: events over [0, {ref.t_end}] s")
     for e in ref.events:
         print(f"  t = {e.time:.15f} s  {e.kind:12s} u = {e.position:.15f} m  F = {e.force:+.12f} N")
-    print(f"  u(2) = {ref.position(2.0):.15f} m")
+    print(f"  u({ref.t_end}) = {ref.position(ref.t_end):.15f} m")
+
+
+def test_thesis_case_v6_event_table():
+    ref = _solve("V6")
+    print_event_table(ref, "thesis V = 6 N")
     kinds = [e.kind for e in ref.events]
     # 6 sin(4 pi t) = 3  =>  4 pi t = pi/6  =>  t = 1/24 s, from rest, slipping forward.
     assert ref.phases[0].kind == "stick" and ref.phases[1].kind == "slip+"
@@ -238,10 +242,7 @@ def test_thesis_case_v6_event_table():
 
 def test_thesis_case_v4_stick_phases():
     ref = _solve("V4")
-    print("\nthesis V = 4 N: events over [0, 2] s")
-    for e in ref.events:
-        print(f"  t = {e.time:.15f} s  {e.kind:12s} u = {e.position:.15f} m  F = {e.force:+.12f} N")
-    print(f"  u(2) = {ref.position(2.0):.15f} m")
+    print_event_table(ref, "thesis V = 4 N")
     starts = ref.event_times("stick->slip")
     stops = ref.event_times("slip->stick")
     assert len(starts) == 8 and len(stops) == 8 and len(ref.events) == 16
@@ -282,6 +283,10 @@ def test_constant_forcing_closed_forms():
     assert stk.events[0].time == pytest.approx(0.4, rel=2 * EPS)
     expect = np.where(t < 0.4, -2 * t + 2.5 * t**2, -0.4)
     assert np.allclose(stk.position(t), expect, rtol=0, atol=8 * EPS)
+    # c = 2.99 N, just inside the cone: after u' = 0 at t = 2/5.99 it must stick.
+    near = _solve("const_brake_stick_near_cone")
+    assert [p.kind for p in near.phases] == ["slip-", "stick"]
+    assert near.events[0].time == pytest.approx(2.0 / 5.99, rel=2 * EPS)
 
 
 def test_free_motion_formula_solves_the_ode():

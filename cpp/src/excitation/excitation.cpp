@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "leadscrew/core/errors.hpp"
@@ -66,6 +67,26 @@ double Excitation::general_value(double t) const {
                                  format_value(value),
                           "a load function must return finite numbers");
   return value;
+}
+
+double Excitation::time_scale() const {
+  switch (definition_.index()) {
+    case 0:
+      return std::numeric_limits<double>::infinity();
+    case 1: {
+      const auto& s = std::get<1>(definition_);
+      if (s.omega == 0.0 || s.amplitude == 0.0) return std::numeric_limits<double>::infinity();
+      return 2.0 * 3.14159265358979323846 / std::abs(s.omega);
+    }
+    case 2: {
+      const auto& times = std::get<2>(definition_).times;
+      double shortest = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 1; i < times.size(); ++i) shortest = std::min(shortest, times[i] - times[i - 1]);
+      return shortest;
+    }
+    default:
+      return 0.0;
+  }
 }
 
 double Excitation::derivative(double t) const {

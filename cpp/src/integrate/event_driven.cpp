@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 #include "leadscrew/core/errors.hpp"
 
@@ -20,6 +22,13 @@ std::vector<double> breakpoints_inside(const HybridSystem& system, double t0, do
 }
 
 }  // namespace
+
+double max_step_from_time_scales(std::initializer_list<double> time_scales) {
+  double shortest = std::numeric_limits<double>::infinity();
+  for (double scale : time_scales)
+    if (scale > 0.0) shortest = std::min(shortest, scale);
+  return std::isfinite(shortest) ? shortest / kStepsPerLoadPeriod : 0.0;
+}
 
 SimulationResult simulate_event_driven(HybridSystem& system, double t0,
                                        const Eigen::Ref<const Eigen::VectorXd>& y0,
@@ -43,9 +52,20 @@ SimulationResult simulate_event_driven(HybridSystem& system, double t0,
     result.append(t, values.data());
   };
 
-  std::unique_ptr<Integrator> integrator =
-      make_integrator(options.integrator, options.integrator_options);
+  IntegratorOptions integrator_options = options.integrator_options;
+  const double hint = system.max_step_hint();
+  if (hint > 0.0 && (integrator_options.max_step <= 0.0 || hint < integrator_options.max_step))
+    integrator_options.max_step = hint;
+  std::unique_ptr<Integrator> integrator = make_integrator(options.integrator, integrator_options);
   integrator->initialize(system, t0, y);
+
+  std::vector<int> directions(static_cast<std::size_t>(std::max(system.root_count(), 0)), 0);
+  auto counts_as_event = [&](const std::vector<int>& info) {
+    system.root_directions(directions.data());
+    for (std::size_t i = 0; i < info.size() && i < directions.size(); ++i)
+      if (info[i] != 0 && (directions[i] == 0 || directions[i] == info[i])) return true;
+    return false;
+  };
 
   const std::vector<double> breaks = breakpoints_inside(system, t0, output.t_end);
   std::size_t next_break = 0;
@@ -78,6 +98,10 @@ SimulationResult simulate_event_driven(HybridSystem& system, double t0,
 
     const AdvanceResult step = integrator->advance(target, y, every_step);
     t = step.t;
+    if (step.status == AdvanceStatus::root_found && !counts_as_event(integrator->root_info())) {
+      if (every_step) record(t);
+      continue;
+    }
     if (step.status == AdvanceStatus::root_found) {
       if (every_step) record(t);  // the value just before the event
       else

@@ -166,6 +166,19 @@ class DriveHybrid final : public integrate::HybridSystem {
     }
   }
 
+  void root_directions(int* directions) const override {
+    // g0: slip s ends when s gamma falls through 0; stick when the cone margin falls.
+    directions[0] = mode_.friction == FrictionMode::slip ? -mode_.slip_sign : -1;
+    // g1: a closed flank opens when its normal force falls; the bilateral
+    // thread changes flank in either direction.
+    directions[1] = mode_.contact == ThreadContact::closed ? -1 : 0;
+    // g2, g3: an open thread hits the upper flank rising, the lower falling;
+    // a penalty contact restarts at both crossings.
+    const bool open = mode_.contact == ThreadContact::open;
+    directions[2] = open ? 1 : 0;
+    directions[3] = open ? -1 : 0;
+  }
+
   void select_initial_mode(double t, double* y) override {
     set(t, y);
     kinetic0_ = dynamics_.kinetic_energy();
@@ -285,6 +298,11 @@ class DriveHybrid final : public integrate::HybridSystem {
   }
 
   long lcp_solves() const override { return lcp_solves_; }
+  double max_step_hint() const override {
+    const Excitation& drive = p_.speed_controlled ? p_.drive_speed : p_.drive_torque;
+    return integrate::max_step_from_time_scales(
+        {drive.time_scale(), p_.axial_force.time_scale()});
+  }
 
  private:
   void set(double t, const double* y) {

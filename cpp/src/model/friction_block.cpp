@@ -76,6 +76,22 @@ class CoulombBlock final : public integrate::HybridSystem {
     }
   }
 
+  void root_directions(int* directions) const override {
+    switch (mode_) {
+      case Mode::stick:  // leaving the friction cone outward
+        directions[0] = 1;
+        directions[1] = -1;
+        break;
+      case Mode::slip_positive:  // the velocity falls through zero
+        directions[0] = -1;
+        directions[1] = 0;
+        break;
+      default:
+        directions[0] = 1;
+        directions[1] = 0;
+    }
+  }
+
   void select_initial_mode(double t, double* y) override {
     if (y[kVelocity] > 0.0)
       mode_ = Mode::slip_positive;
@@ -118,6 +134,9 @@ class CoulombBlock final : public integrate::HybridSystem {
 
   std::vector<double> breakpoints() const override { return block_.force.breakpoints(); }
   long lcp_solves() const override { return lcp_solves_; }
+  double max_step_hint() const override {
+    return integrate::max_step_from_time_scales({block_.force.time_scale()});
+  }
 
  private:
   enum class Mode { stick, slip_positive, slip_negative };

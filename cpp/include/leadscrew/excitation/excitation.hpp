@@ -58,6 +58,12 @@ class Excitation {
   // the right of a knot); a central difference for a callable.
   double derivative(double t) const;
 
+  // Shortest time over which the function changes shape (a sine's period,
+  // the shortest table interval; +inf for a constant, 0 for a callable, which
+  // gives no hint). Integrators cap their steps by a fraction of it so that
+  // root functions driven by a load cannot change sign twice within a step.
+  double time_scale() const;
+
   // Times at which the function or its first derivative jumps (table knots):
   // integrators restart there to keep their order.
   const std::vector<double>& breakpoints() const noexcept { return breakpoints_; }

@@ -10,6 +10,7 @@
 // regularized and compliant models use the same driver.
 #pragma once
 
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,14 @@ class HybridSystem : public OdeSystem {
   // mode, may change y (projection, impact). Returns the event's kind, or ""
   // if nothing changed (a spurious root: the integrator just continues).
   virtual std::string handle_event(double t, double* y, const std::vector<int>& root_info) = 0;
+  // Which crossings of each root function end the current mode: +1 rising
+  // only, -1 falling only, 0 both. A root found in the other direction is no
+  // event and integration simply continues. (A slip that starts from rest has
+  // zero slip acceleration at its start, so its slip velocity leaves zero
+  // quadratically and round-off can show a crossing back: direction decides.)
+  virtual void root_directions(int* directions) const {
+    for (int i = 0; i < root_count(); ++i) directions[i] = 0;
+  }
   // Output channels.
   virtual const std::vector<std::string>& channel_names() const = 0;
   virtual void channels(double t, const double* y, double* out) = 0;
@@ -34,7 +43,16 @@ class HybridSystem : public OdeSystem {
   virtual std::vector<double> breakpoints() const { return {}; }
   virtual long lcp_solves() const { return 0; }
   virtual long nonlinear_iterations() const { return 0; }
+  // Largest step that resolves the root functions (0: no limit). In a stick
+  // phase the state does not change, so nothing but this keeps an
+  // integrator from stepping over two sign changes of a load-driven root.
+  virtual double max_step_hint() const { return 0.0; }
 };
+
+// A step bound from the time scales of the loads driving a system:
+// 1/kStepsPerLoadPeriod of the shortest one (0: no bound).
+double max_step_from_time_scales(std::initializer_list<double> time_scales);
+constexpr double kStepsPerLoadPeriod = 16.0;
 
 struct EventDrivenOptions {
   std::string integrator = "cvode_adams";

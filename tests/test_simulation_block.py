@@ -1,0 +1,179 @@
+"""The friction benchmark of thesis section 3.2.6 through leadscrew.simulate:
+exact Coulomb (event-driven, Moreau-Jean) and the arctan regularizations,
+against the independent closed form in tests/helpers/block_reference.py."""
+
+import math
+
+import numpy as np
+import pytest
+
+import leadscrew as ls
+from helpers.block_reference import solve_block
+
+MASS, MU, G, OMEGA = 1.0, 0.3, 10.0, 4 * math.pi
+REGULARIZED_INTEGRATORS = ["cvode_bdf", "cvode_adams", "dopri5"]
+
+
+def block(amplitude, **kwargs):
+    return ls.FrictionBlock(MASS, MU, g=G, force=ls.Sine(amplitude, OMEGA), **kwargs)
+
+
+@pytest.fixture(scope="module", params=[6.0, 4.0], ids=["V=6", "V=4"])
+def case(request):
+    amplitude = request.param
+    reference = solve_block(MASS, MU, G, amplitude, OMEGA, t_end=2.0)
+    result = ls.simulate(block(amplitude), 2.0, rtol=1e-12, atol=1e-14)
+    return amplitude, reference, result
+
+
+def test_event_driven_matches_closed_form(case):
+    _, reference, result = case
+    assert np.max(np.abs(result["u"] - reference.position(result.t))) <= 1e-9
+    assert np.max(np.abs(result["v"] - reference.velocity(result.t))) <= 1e-8
+
+
+def test_event_times_match_closed_form(case):
+    _, reference, result = case
+    assert len(result.events) == len(reference.events)
+    for ours, theirs in zip(result.events, reference.events):
+        assert abs(ours.time - theirs.time) <= 1e-10
+        expected = {"stick->slip": "stick->slip", "slip->stick": "->stick",
+                    "reversal": "slip"}[theirs.kind]
+        assert expected in ours.kind
+
+
+def test_invariants(case):
+    _, _, result = case
+    friction, normal = result["friction_force"], result["normal_force"]
+    assert np.all(np.abs(friction) <= MU * normal * (1 + 1e-14))
+    # Friction never does positive work: the dissipated energy never falls.
+    assert np.all(np.diff(result["friction_loss"]) >= -1e-15)
+    assert np.all(friction * result["v"] >= -1e-12)
+    stick = result["stick"] == 1.0
+    assert np.all(result["v"][stick] == 0.0)  # exactly, not approximately
+    assert np.max(np.abs(result["energy_residual"])) <= 1e-9
+
+
+def test_v4_has_stick_phases_and_v6_one():
+    r4 = ls.simulate(block(4.0), 2.0)
+    r6 = ls.simulate(block(6.0), 2.0)
+    assert sum(e.kind.endswith("->stick") for e in r4.events) == 8
+    assert sum(e.kind.endswith("->stick") for e in r6.events) == 0
+
+
+def test_t_eval_output_and_frame():
+    t = np.linspace(0, 2, 41)
+    result = ls.simulate(block(6.0), 2.0, t_eval=t, rtol=1e-10, atol=1e-12)
+    np.testing.assert_array_equal(result.t, t)
+    reference = solve_block(MASS, MU, G, 6.0, OMEGA, t_end=2.0)
+    np.testing.assert_allclose(result["u"], reference.position(t), atol=1e-8)
+    frame = result.to_frame()
+    assert list(frame.columns[:3]) == ["t", "u", "v"] and len(frame) == 41
+
+
+def fitted_order(steps, errors):
+    return np.polyfit(np.log(steps), np.log(errors), 1)[0]
+
+
+@pytest.mark.parametrize("amplitude", [6.0, 4.0])
+def test_moreau_converges_at_first_order(amplitude):
+    reference = solve_block(MASS, MU, G, amplitude, OMEGA, t_end=2.0)
+    dts = [2e-3, 1e-3, 5e-4, 2.5e-4]
+    errors = []
+    for dt in dts:
+        r = ls.simulate(block(amplitude), 2.0, integrator="moreau", dt=dt)
+        errors.append(np.max(np.abs(r["u"] - reference.position(r.t))))
+    slope = fitted_order(dts, errors)
+    assert 0.8 <= slope <= 1.3, (slope, errors)
+    r = ls.simulate(block(amplitude), 2.0, integrator="moreau", dt=1e-3)
+    assert np.all(np.abs(r["friction_force"]) <= MU * MASS * G * (1 + 1e-12))
+    assert np.all(np.diff(r["friction_loss"]) >= 0.0)
+
+
+@pytest.mark.parametrize("friction", ["arctan_velocity", "arctan_acceleration"])
+def test_regularization_error_falls_with_gain(friction):
+    reference = solve_block(MASS, MU, G, 6.0, OMEGA, t_end=2.0)
+    errors = []
+    for k_v in (1.0, 10.0, 100.0, 1000.0):
+        r = ls.simulate(block(6.0), 2.0, friction=friction, k_v=k_v, rtol=1e-10, atol=1e-12)
+        errors.append(np.max(np.abs(r["u"] - reference.position(r.t))))
+    assert all(b < a for a, b in zip(errors, errors[1:])), errors
+    assert errors[-1] < 0.05 * errors[0]
+
+
+@pytest.mark.parametrize("integrator", REGULARIZED_INTEGRATORS)
+def test_regularized_error_falls_with_tolerance(integrator):
+    # Reference: the same regularized model at a tight tolerance.
+    fine = ls.simulate(block(6.0), 2.0, friction="arctan_velocity", k_v=10.0,
+                       integrator="cvode_bdf", rtol=1e-12, atol=1e-14,
+                       t_eval=np.linspace(0, 2, 21))
+    errors = []
+    for rtol in (1e-4, 1e-6, 1e-8):
+        r = ls.simulate(block(6.0), 2.0, friction="arctan_velocity", k_v=10.0,
+                        integrator=integrator, rtol=rtol, atol=rtol * 1e-2,
+                        t_eval=np.linspace(0, 2, 21))
+        errors.append(np.max(np.abs(r["u"] - fine["u"])))
+    assert errors[1] < errors[0] and errors[2] < errors[1], errors
+
+
+@pytest.mark.parametrize("integrator", REGULARIZED_INTEGRATORS)
+def test_regularized_invariants(integrator):
+    r = ls.simulate(block(6.0), 2.0, friction="arctan_velocity", k_v=100.0,
+                    integrator=integrator, rtol=1e-9, atol=1e-11)
+    assert np.all(np.abs(r["friction_force"]) <= MU * MASS * G)
+    assert np.all(r["friction_force"] * r["v"] >= 0.0)
+    assert np.max(np.abs(r["energy_residual"])) < 1e-6
+
+
+def test_callable_and_table_loads_agree_with_sine():
+    t = np.linspace(0, 2, 4001)
+    sine = ls.simulate(block(4.0), 2.0, t_eval=t)
+    callable_force = ls.FrictionBlock(MASS, MU, g=G, force=lambda s: 4.0 * math.sin(OMEGA * s))
+    r = ls.simulate(callable_force, 2.0, t_eval=t)
+    np.testing.assert_allclose(r["u"], sine["u"], atol=1e-8)
+    table = ls.FrictionBlock(MASS, MU, g=G, force=ls.Table([0, 1, 2], [0, 6, 0]))
+    r = ls.simulate(table, 2.0)
+    # |F| <= 3 N until t = 0.5 s: stuck; then slip; the table knot restarts the integrator.
+    assert r.events[0].kind == "stick->slip+" and abs(r.events[0].time - 0.5) < 1e-10
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda: ls.FrictionBlock(-1.0, 0.3), "mass"),
+        (lambda: ls.FrictionBlock(1.0, -0.3), "mu"),
+        (lambda: ls.FrictionBlock(1.0, 0.3, g=float("nan")), "g"),
+        (lambda: ls.FrictionBlock(1.0, 0.3, force="strong"), "force"),
+        (lambda: ls.simulate(block(6.0), 0.0), "t_end"),
+        (lambda: ls.simulate(block(6.0), -1.0), "t_end"),
+        (lambda: ls.simulate(block(6.0), 1.0, friction="viscous"), "friction"),
+        (lambda: ls.simulate(block(6.0), 1.0, integrator="dopri5"), "integrator"),
+        (lambda: ls.simulate(block(6.0), 1.0, friction="arctan_velocity", integrator="moreau"), "integrator"),
+        (lambda: ls.simulate(block(6.0), 1.0, integrator="moreau", dt=-1e-3), "dt"),
+        (lambda: ls.simulate(block(6.0), 1.0, friction="arctan_velocity", k_v=0.0), "k_v"),
+        (lambda: ls.simulate(block(6.0), 1.0, t_eval=[0.5, 0.2]), "t_eval"),
+        (lambda: ls.Sine(float("inf"), 1.0), "amplitude"),
+        (lambda: ls.Table([0, 0], [1, 2]), "times"),
+    ],
+)
+def test_bad_input_raises_value_error(call, name):
+    with pytest.raises(ValueError, match=name):
+        call()
+
+
+def test_unknown_names_list_the_allowed_values():
+    with pytest.raises(ValueError, match='"coulomb", "arctan_velocity", "arctan_acceleration"'):
+        ls.simulate(block(6.0), 1.0, friction="viscous")
+    with pytest.raises(ValueError, match='"event_driven", "moreau"'):
+        ls.simulate(block(6.0), 1.0, integrator="dopri5")
+
+
+def test_callable_errors_propagate():
+    def broken(t):
+        raise RuntimeError("sensor failure")
+
+    with pytest.raises(RuntimeError, match="sensor failure"):
+        ls.simulate(ls.FrictionBlock(1.0, 0.3, force=broken), 1.0)
+    with pytest.raises(ls.SimulationError, match="nan"):
+        ls.simulate(ls.FrictionBlock(1.0, 0.3, force=lambda t: float("nan")), 1.0,
+                    friction="arctan_velocity")

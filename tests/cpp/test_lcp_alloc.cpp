@@ -6,7 +6,7 @@
 //
 // Prints one line per check and "RESULT: PASS" or "RESULT: FAIL"; exit code 0
 // on success.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -36,6 +36,22 @@ struct Problem {
   Eigen::VectorXd q;
 };
 
+// Plain loops instead of Eigen's matrix products: this file then compiles in a
+// fraction of the time (the products are set-up, not what is tested).
+Eigen::MatrixXd gram(const Eigen::MatrixXd& A) {  // A A^T
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(A.rows(), A.rows());
+  for (Eigen::Index i = 0; i < A.rows(); ++i)
+    for (Eigen::Index j = 0; j < A.rows(); ++j)
+      for (Eigen::Index k = 0; k < A.cols(); ++k) G(i, j) += A(i, k) * A(j, k);
+  return G;
+}
+
+Eigen::VectorXd times(const Eigen::MatrixXd& M, const Eigen::VectorXd& z) {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(M.rows());
+  for (Eigen::Index j = 0; j < M.cols(); ++j) y += z[j] * M.col(j);
+  return y;
+}
+
 Eigen::MatrixXd gaussian(std::mt19937& rng, int rows, int cols) {
   std::normal_distribution<double> normal;
   Eigen::MatrixXd m(rows, cols);
@@ -55,7 +71,7 @@ Eigen::VectorXd q_from_solution(const Eigen::MatrixXd& M, std::mt19937& rng) {
     if (kind == 0) z[i] = value(rng);
     if (kind == 1) w[i] = value(rng);
   }
-  return w - M * z;
+  return w - times(M, z);
 }
 
 std::vector<Problem> make_problems() {
@@ -64,7 +80,7 @@ std::vector<Problem> make_problems() {
   for (int n = 1; n <= 16; ++n) {
     const Eigen::MatrixXd A = gaussian(rng, n, n);
     const Eigen::MatrixXd K = gaussian(rng, n, n);
-    const Eigen::MatrixXd spd = A * A.transpose() / n + 0.1 * Eigen::MatrixXd::Identity(n, n);
+    const Eigen::MatrixXd spd = gram(A) / n + 0.1 * Eigen::MatrixXd::Identity(n, n);
     problems.push_back({"spd", spd, gaussian(rng, n, 1)});
     problems.push_back({"pd_nonsym", Eigen::MatrixXd(spd + K - K.transpose()), gaussian(rng, n, 1)});
     Eigen::MatrixXd murty = Eigen::MatrixXd::Identity(n, n);
@@ -78,7 +94,7 @@ std::vector<Problem> make_problems() {
     Eigen::MatrixXd B(n, std::max(1, n / 2));
     for (int j = 0; j < B.cols(); ++j)
       for (int i = 0; i < n; ++i) B(i, j) = entry(rng);
-    const Eigen::MatrixXd psd = B * B.transpose();
+    const Eigen::MatrixXd psd = gram(B);
     problems.push_back({"degenerate_psd", psd, q_from_solution(psd, rng)});
   }
   return problems;
@@ -169,7 +185,7 @@ void friction_checks() {
   constexpr int kContacts = 4;
   std::mt19937 rng(7);
   const Eigen::MatrixXd B = gaussian(rng, 2 * kContacts, 2 * kContacts);
-  const Eigen::MatrixXd G = B * B.transpose() / (2 * kContacts) +
+  const Eigen::MatrixXd G = gram(B) / (2 * kContacts) +
                             0.05 * Eigen::MatrixXd::Identity(2 * kContacts, 2 * kContacts);
   const Eigen::VectorXd c = 3.0 * gaussian(rng, 2 * kContacts, 1);
   const Eigen::VectorXd mu = Eigen::VectorXd::Constant(kContacts, 0.3);

@@ -122,16 +122,29 @@ class Tableau {
     double column_max = 0.0;
     for (int i = 0; i < n_; ++i) column_max = std::max(column_max, std::abs(at(i, c)));
     const double pivot_floor = kPivotRelTol * column_max;
-    int best = -1, artificial_row = -1;
+    // Minimum ratio first (one division per candidate); the lexicographic
+    // comparison only among the rows tied with it.
+    int best = -1, ties = 0, artificial_row = -1;
+    double best_ratio = 0.0;
     for (int i = 0; i < n_; ++i) {
       if (!(at(i, c) > pivot_floor)) continue;
-      if (basic_[i] == artificial()) artificial_row = i;
-      if (best < 0 || lexicographically_smaller(i, best, c)) best = i;
+      const double ratio = rhs(i) / at(i, c);
+      if (best < 0 || ratio < best_ratio) best = i, best_ratio = ratio;
     }
-    if (best >= 0 && artificial_row >= 0 && artificial_row != best &&
-        nearly_equal(rhs(artificial_row) / at(artificial_row, c), rhs(best) / at(best, c)))
-      best = artificial_row;
-    return best;
+    if (best < 0) return -1;
+    for (int i = 0; i < n_; ++i) {
+      if (!(at(i, c) > pivot_floor) || !nearly_equal(rhs(i) / at(i, c), best_ratio)) continue;
+      ++ties;
+      if (basic_[i] == artificial()) artificial_row = i;
+    }
+    if (artificial_row >= 0) return artificial_row;
+    if (ties == 1) return best;
+    int lexico_best = -1;
+    for (int i = 0; i < n_; ++i) {
+      if (!(at(i, c) > pivot_floor) || !nearly_equal(rhs(i) / at(i, c), best_ratio)) continue;
+      if (lexico_best < 0 || lexicographically_smaller(i, lexico_best, c)) lexico_best = i;
+    }
+    return lexico_best;
   }
 
   // z from the basic values `value` (one per row).

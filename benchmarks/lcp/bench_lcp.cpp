@@ -23,6 +23,7 @@
 #include "leadscrew/lcp/enumerate.hpp"
 #include "leadscrew/lcp/lcp.hpp"
 #include "leadscrew/lcp/workspace.hpp"
+#include "random_problems.hpp"  // tests/cpp
 
 #ifdef LEADSCREW_BENCH_WITH_SICONOS
 #include "siconos_lemke.hpp"
@@ -42,23 +43,16 @@ struct Problem {
   Eigen::VectorXd q;
 };
 
-Eigen::MatrixXd gaussian(std::mt19937& rng, int rows, int cols) {
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd m(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) m(i, j) = normal(rng);
-  return m;
-}
+using lcp_problems::gaussian;
 
 Problem spd_problem(std::mt19937& rng, int n) {
-  const Eigen::MatrixXd A = gaussian(rng, n, n);
-  return {A * A.transpose() / n + 0.1 * Eigen::MatrixXd::Identity(n, n), gaussian(rng, n, 1)};
+  Eigen::MatrixXd M = lcp_problems::spd(rng, n, 0.1);
+  return {M, gaussian(rng, n, 1)};
 }
 
 Problem friction_problem(std::mt19937& rng, int n) {
   const int k = n / 2;
-  const Eigen::MatrixXd B = gaussian(rng, k, k);
-  const Eigen::MatrixXd G = B * B.transpose() / k + 0.05 * Eigen::MatrixXd::Identity(k, k);
+  const Eigen::MatrixXd G = lcp_problems::spd(rng, k, 0.05);
   const Eigen::VectorXd c = 3.0 * gaussian(rng, k, 1);
   std::uniform_real_distribution<double> mu_draw(0.1, 0.8), normal_draw(1.0, 5.0);
   Eigen::VectorXd mu(k), normal(k);

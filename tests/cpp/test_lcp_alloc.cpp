@@ -17,6 +17,7 @@
 #include "leadscrew/lcp/enumerate.hpp"
 #include "leadscrew/lcp/lcp.hpp"
 #include "leadscrew/lcp/workspace.hpp"
+#include "random_problems.hpp"
 
 namespace lcp = leadscrew::lcp;
 namespace friction = leadscrew::friction;
@@ -36,28 +37,13 @@ struct Problem {
   Eigen::VectorXd q;
 };
 
-// Plain loops instead of Eigen's matrix products: this file then compiles in a
-// fraction of the time (the products are set-up, not what is tested).
-Eigen::MatrixXd gram(const Eigen::MatrixXd& A) {  // A A^T
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(A.rows(), A.rows());
-  for (Eigen::Index i = 0; i < A.rows(); ++i)
-    for (Eigen::Index j = 0; j < A.rows(); ++j)
-      for (Eigen::Index k = 0; k < A.cols(); ++k) G(i, j) += A(i, k) * A(j, k);
-  return G;
-}
+using lcp_problems::gaussian;
+using lcp_problems::gram;
 
 Eigen::VectorXd times(const Eigen::MatrixXd& M, const Eigen::VectorXd& z) {
   Eigen::VectorXd y = Eigen::VectorXd::Zero(M.rows());
   for (Eigen::Index j = 0; j < M.cols(); ++j) y += z[j] * M.col(j);
   return y;
-}
-
-Eigen::MatrixXd gaussian(std::mt19937& rng, int rows, int cols) {
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd m(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) m(i, j) = normal(rng);
-  return m;
 }
 
 // q = w* - M z* for a complementary pair with random support, some indices
@@ -78,9 +64,8 @@ std::vector<Problem> make_problems() {
   std::mt19937 rng(20130101);
   std::vector<Problem> problems;
   for (int n = 1; n <= 16; ++n) {
-    const Eigen::MatrixXd A = gaussian(rng, n, n);
+    const Eigen::MatrixXd spd = lcp_problems::spd(rng, n, 0.1);
     const Eigen::MatrixXd K = gaussian(rng, n, n);
-    const Eigen::MatrixXd spd = gram(A) / n + 0.1 * Eigen::MatrixXd::Identity(n, n);
     problems.push_back({"spd", spd, gaussian(rng, n, 1)});
     problems.push_back({"pd_nonsym", Eigen::MatrixXd(spd + K - K.transpose()), gaussian(rng, n, 1)});
     Eigen::MatrixXd murty = Eigen::MatrixXd::Identity(n, n);

@@ -37,7 +37,8 @@ class Tableau {
         basic_(ws.indices.data()),
         nonbasic_(ws.indices.data() + n),
         location_(ws.indices.data() + 2 * n + 1),
-        factor_(ws.vectors.col(0).data()) {}
+        factor_(ws.vectors.col(0).data()),
+        ratio_(ws.vectors.col(3).data()) {}
 
   int n() const { return n_; }
   int artificial() const { return 2 * n_; }
@@ -118,22 +119,23 @@ class Tableau {
   // Leaving row for the entering column c, or -1 if the column has no
   // positive entry (a secondary ray). z0 leaves when it is among the rows
   // tied at the minimum ratio (that ends the method with a solution).
-  int ratio_test(int c) const {
+  int ratio_test(int c) {
     double column_max = 0.0;
     for (int i = 0; i < n_; ++i) column_max = std::max(column_max, std::abs(at(i, c)));
     const double pivot_floor = kPivotRelTol * column_max;
-    // Minimum ratio first (one division per candidate); the lexicographic
-    // comparison only among the rows tied with it.
-    int best = -1, ties = 0, artificial_row = -1;
+    // Minimum ratio first (one division per candidate, ratios kept); the
+    // lexicographic comparison only among the rows tied with it.
+    int best = -1;
     double best_ratio = 0.0;
     for (int i = 0; i < n_; ++i) {
       if (!(at(i, c) > pivot_floor)) continue;
-      const double ratio = rhs(i) / at(i, c);
-      if (best < 0 || ratio < best_ratio) best = i, best_ratio = ratio;
+      ratio_[i] = rhs(i) / at(i, c);
+      if (best < 0 || ratio_[i] < best_ratio) best = i, best_ratio = ratio_[i];
     }
     if (best < 0) return -1;
+    int ties = 0, artificial_row = -1;
     for (int i = 0; i < n_; ++i) {
-      if (!(at(i, c) > pivot_floor) || !nearly_equal(rhs(i) / at(i, c), best_ratio)) continue;
+      if (!(at(i, c) > pivot_floor) || !nearly_equal(ratio_[i], best_ratio)) continue;
       ++ties;
       if (basic_[i] == artificial()) artificial_row = i;
     }
@@ -141,7 +143,7 @@ class Tableau {
     if (ties == 1) return best;
     int lexico_best = -1;
     for (int i = 0; i < n_; ++i) {
-      if (!(at(i, c) > pivot_floor) || !nearly_equal(rhs(i) / at(i, c), best_ratio)) continue;
+      if (!(at(i, c) > pivot_floor) || !nearly_equal(ratio_[i], best_ratio)) continue;
       if (lexico_best < 0 || lexicographically_smaller(i, lexico_best, c)) lexico_best = i;
     }
     return lexico_best;
@@ -191,6 +193,7 @@ class Tableau {
   int* nonbasic_;
   int* location_;
   double* factor_;
+  double* ratio_;
 };
 
 }  // namespace

@@ -6,7 +6,7 @@
 //
 // Prints one line per check and "RESULT: PASS" or "RESULT: FAIL"; exit code 0
 // on success.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -17,6 +17,7 @@
 #include "leadscrew/lcp/enumerate.hpp"
 #include "leadscrew/lcp/lcp.hpp"
 #include "leadscrew/lcp/workspace.hpp"
+#include "random_problems.hpp"
 
 namespace lcp = leadscrew::lcp;
 namespace friction = leadscrew::friction;
@@ -36,12 +37,13 @@ struct Problem {
   Eigen::VectorXd q;
 };
 
-Eigen::MatrixXd gaussian(std::mt19937& rng, int rows, int cols) {
-  std::normal_distribution<double> normal;
-  Eigen::MatrixXd m(rows, cols);
-  for (int j = 0; j < cols; ++j)
-    for (int i = 0; i < rows; ++i) m(i, j) = normal(rng);
-  return m;
+using lcp_problems::gaussian;
+using lcp_problems::gram;
+
+Eigen::VectorXd times(const Eigen::MatrixXd& M, const Eigen::VectorXd& z) {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(M.rows());
+  for (Eigen::Index j = 0; j < M.cols(); ++j) y += z[j] * M.col(j);
+  return y;
 }
 
 // q = w* - M z* for a complementary pair with random support, some indices
@@ -55,16 +57,15 @@ Eigen::VectorXd q_from_solution(const Eigen::MatrixXd& M, std::mt19937& rng) {
     if (kind == 0) z[i] = value(rng);
     if (kind == 1) w[i] = value(rng);
   }
-  return w - M * z;
+  return w - times(M, z);
 }
 
 std::vector<Problem> make_problems() {
   std::mt19937 rng(20130101);
   std::vector<Problem> problems;
   for (int n = 1; n <= 16; ++n) {
-    const Eigen::MatrixXd A = gaussian(rng, n, n);
+    const Eigen::MatrixXd spd = lcp_problems::spd(rng, n, 0.1);
     const Eigen::MatrixXd K = gaussian(rng, n, n);
-    const Eigen::MatrixXd spd = A * A.transpose() / n + 0.1 * Eigen::MatrixXd::Identity(n, n);
     problems.push_back({"spd", spd, gaussian(rng, n, 1)});
     problems.push_back({"pd_nonsym", Eigen::MatrixXd(spd + K - K.transpose()), gaussian(rng, n, 1)});
     Eigen::MatrixXd murty = Eigen::MatrixXd::Identity(n, n);
@@ -78,7 +79,7 @@ std::vector<Problem> make_problems() {
     Eigen::MatrixXd B(n, std::max(1, n / 2));
     for (int j = 0; j < B.cols(); ++j)
       for (int i = 0; i < n; ++i) B(i, j) = entry(rng);
-    const Eigen::MatrixXd psd = B * B.transpose();
+    const Eigen::MatrixXd psd = gram(B);
     problems.push_back({"degenerate_psd", psd, q_from_solution(psd, rng)});
   }
   return problems;
@@ -169,7 +170,7 @@ void friction_checks() {
   constexpr int kContacts = 4;
   std::mt19937 rng(7);
   const Eigen::MatrixXd B = gaussian(rng, 2 * kContacts, 2 * kContacts);
-  const Eigen::MatrixXd G = B * B.transpose() / (2 * kContacts) +
+  const Eigen::MatrixXd G = gram(B) / (2 * kContacts) +
                             0.05 * Eigen::MatrixXd::Identity(2 * kContacts, 2 * kContacts);
   const Eigen::VectorXd c = 3.0 * gaussian(rng, 2 * kContacts, 1);
   const Eigen::VectorXd mu = Eigen::VectorXd::Constant(kContacts, 0.3);

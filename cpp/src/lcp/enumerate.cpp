@@ -30,7 +30,7 @@ Result solve_enumerate(const Eigen::Ref<const Eigen::MatrixXd>& M,
   const int max_bases = options.max_iter > 0 ? std::min(options.max_iter, bases) : bases;
   const double feasibility_floor = -kFeasibilityRelTol * detail::problem_scale(M, q);
 
-  int* active = workspace.basis.data();
+  int* active = workspace.indices.data();
   auto best_z = workspace.vectors.col(0).head(n);
   auto x = workspace.vectors.col(1).head(n);
   auto correction = workspace.vectors.col(2).head(n);

@@ -93,12 +93,22 @@ int validate(const Eigen::Ref<const Eigen::MatrixXd>& M,
   if (q.size() != n) fail_size("q", q.size(), n);
   if (z.size() != n) fail_size("z", z.size(), n);
   if (w.size() != n) fail_size("w", w.size(), n);
-  for (Eigen::Index j = 0; j < n; ++j)
+  // One vectorizable pass: x * 0 is NaN exactly for x = NaN or +-inf. Only if
+  // the sum is NaN are the entries searched for the one to name.
+  double poison = 0.0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const double* column = M.data() + M.outerStride() * j;
+    for (Eigen::Index i = 0; i < n; ++i) poison += column[i] * 0.0;
+  }
+  for (Eigen::Index i = 0; i < n; ++i) poison += q[i] * 0.0;
+  if (poison != poison) {
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (!std::isfinite(M(i, j)))
+          require_finite("M[" + std::to_string(i) + ", " + std::to_string(j) + "]", M(i, j));
     for (Eigen::Index i = 0; i < n; ++i)
-      if (!std::isfinite(M(i, j)))
-        require_finite("M[" + std::to_string(i) + ", " + std::to_string(j) + "]", M(i, j));
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (!std::isfinite(q[i])) require_finite("q[" + std::to_string(i) + "]", q[i]);
+      if (!std::isfinite(q[i])) require_finite("q[" + std::to_string(i) + "]", q[i]);
+  }
   if (!(std::isfinite(options.tol) && options.tol > 0.0)) require_positive("tol", options.tol);
   if (options.max_iter < 0)
     throw InvalidArgument("max_iter = " + std::to_string(options.max_iter) +

@@ -39,7 +39,7 @@ bool polish(const Eigen::Ref<const Eigen::MatrixXd>& M,
             const Eigen::Ref<const Eigen::VectorXd>& q, const double* z, const double* w,
             int n, Workspace& ws, Eigen::Ref<Eigen::VectorXd> z_out,
             Eigen::Ref<Eigen::VectorXd> w_out) {
-  int* active = ws.basis.data();
+  int* active = ws.indices.data();
   int k = 0;
   for (int i = 0; i < n; ++i)
     if (z[i] > w[i]) active[k++] = i;

@@ -19,10 +19,10 @@ void Workspace::reserve(int n) {
 
 void Workspace::allocate(int capacity) {
   // Eigen's resize keeps no contents; nothing of a previous solve is needed.
-  tableau.resize(capacity, 2 * capacity + 2);
+  tableau.resize(capacity, capacity + 2);
   square.resize(capacity, capacity);
   vectors.resize(capacity, kVectorCount);
-  basis.resize(capacity);
+  indices.resize(4 * capacity + 2);
   permutation.resize(capacity);
   capacity_ = capacity;
 }

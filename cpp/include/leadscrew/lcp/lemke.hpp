@@ -3,12 +3,15 @@
 // d = (1, ..., 1) and the lexicographic minimum-ratio test, so that degenerate
 // problems cannot cycle.
 //
-// The tableau B^-1 [I, -M, -d, q] is pivoted in place; its first n columns are
-// B^-1, whose rows (after the right-hand side) break ties in the ratio test.
-// When the artificial variable z0 is among the tied candidates it leaves first
-// (that ends the method with a solution). After termination the basic solution
-// is refined twice against the original data (x_B += B^-1 (q - B x_B)) and
-// then verified: w = M z + q is recomputed and the residual checked.
+// A condensed tableau holds the n + 1 nonbasic columns of B^-1 [I, -M, -d | q]
+// (basic columns are unit vectors and are not stored: n (n + 2) entries
+// updated per pivot instead of n (2n + 2)). The rows of [rhs, B^-1] break ties
+// in the ratio test; B^-1's column j is the stored column of w_j, or a unit
+// vector while w_j is basic. When the artificial variable z0 is among the tied
+// candidates it leaves first (that ends the method with a solution).
+// The answer is verified: w = M z + q is recomputed and the residual checked;
+// if it misses tol, the basic values are refined twice against the original
+// data (x_B += B^-1 (q - B x_B)) and verified again.
 //
 // Finds a solution for every P-matrix and for every feasible LCP with a
 // copositive-plus M (e.g. positive semidefinite); ray_termination on such an M

@@ -24,10 +24,10 @@ class Workspace {
 
   // Scratch, contents unspecified between calls (public so that the one
   // source file per method can use it without accessors):
-  Eigen::MatrixXd tableau;      // capacity x (2 capacity + 2): Lemke's tableau
+  Eigen::MatrixXd tableau;      // capacity x (capacity + 2): Lemke's condensed tableau
   Eigen::MatrixXd square;       // capacity x capacity: Jacobians, principal submatrices, LU
   Eigen::MatrixXd vectors;      // capacity x kVectorCount scratch vectors
-  Eigen::VectorXi basis;        // capacity: Lemke's basic variables, enumerate's index set
+  Eigen::VectorXi indices;      // 4 capacity + 2: Lemke's basis bookkeeping, index sets
   Eigen::VectorXi permutation;  // capacity: LU row interchanges
 
  private:

@@ -11,9 +11,13 @@ namespace leadscrew::lcp {
 namespace {
 
 // Entries of the entering column below kPivotRelTol * max|column| are not
-// pivoted on; ratios within kTieRelTol (relative) count as tied.
+// pivoted on; ratios within kTieRelTol (relative) count as tied. Ties are a
+// round-off matter: degenerate problems produce ratios equal to a few ulps.
+// A coarser tolerance lets the lexicographic rule pick a row whose ratio is
+// measurably larger, which leaves the next basis infeasible (a friction LCP at
+// a stick-slip boundary, q = (-6 - 7e-13, 6), showed it).
 constexpr double kPivotRelTol = 1e-11;
-constexpr double kTieRelTol = 1e-11;
+constexpr double kTieRelTol = 64.0 * 2.220446049250313e-16;
 
 bool nearly_equal(double a, double b) {
   return std::abs(a - b) <= kTieRelTol * std::max({1.0, std::abs(a), std::abs(b)});

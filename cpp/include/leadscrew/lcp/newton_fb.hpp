@@ -5,9 +5,10 @@
 // an element H = D_a + D_b M of the generalized Jacobian, falls back to the
 // steepest descent d = -H^T Phi of the merit function Psi = |Phi|^2 / 2 when
 // the Newton direction is unavailable or not a descent direction, and takes an
-// Armijo backtracking step on Psi. Once the iterate is close, the active set
-// {i : z_i > w_i} is polished by solving M_aa z_a = -q_a (the Newton step of
-// the piece the solution lies on); the polished z is kept only if it meets tol.
+// Armijo backtracking step on Psi. Before each step the active set
+// {i : z_i > w_i} of the iterate is tried: M_aa z_a = -q_a, z = 0 elsewhere
+// (the Newton step of the piece the solution lies on, which ends the method
+// as soon as the active set is right); that z is kept only if it meets tol.
 // Starts from z = 0, or from the z passed in with options.warm_start.
 // A stationary point of Psi that is not a solution gives status singular.
 #pragma once

@@ -3,7 +3,8 @@
 //   z_i <- max(0, z_i - relaxation (M z + q)_i / M_ii),   i = 1..n, per sweep,
 // using the already updated z_j (j < i). Converges for symmetric positive
 // definite M and relaxation in (0, 2), and for H-matrices with a positive
-// diagonal; on other matrices it may not (status max_iterations).
+// diagonal at suitable relaxation; on other matrices it may not (status
+// max_iterations).
 // Starts from z = 0, or from max(z, 0) with options.warm_start. Stops when the
 // residual of (z, M z + q), computed after every sweep, is <= options.tol.
 // A diagonal entry M_ii <= 0 gives status singular without iterating.

@@ -3,6 +3,7 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
+from . import lcp
 from .errors import JammingError, SimulationError
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock

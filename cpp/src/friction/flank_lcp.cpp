@@ -1,6 +1,7 @@
 #include "leadscrew/friction/flank_lcp.hpp"
 
 #include <Eigen/Core>
+#include <algorithm>
 
 namespace leadscrew::friction {
 
@@ -16,14 +17,22 @@ FlankLcpResult solve_flank_lcp(double c, double d, double alpha, double beta, do
   const Eigen::Vector2d offset(c - d * mu * sigma * beta / coupling,
                                2.0 * mu * sigma * beta / coupling);
   Eigen::Vector2d z = Eigen::Vector2d::Zero(), w;
-  const lcp::Result solved = lcp::solve(matrix, offset, z, w, options, workspace);
+  // The tolerance is relative to the problem: accelerations of 1e4 m/s^2 or
+  // forces of 1e3 N carry round-off far above an absolute 1e-12.
+  lcp::Options scaled = options;
+  scaled.tol = options.tol * std::max(1e-300, offset.cwiseAbs().maxCoeff());
+  const lcp::Result solved = lcp::solve(matrix, offset, z, w, scaled, workspace);
   result.status = solved.status;
   result.lcp_iterations = solved.iterations;
   if (solved.status != lcp::Status::solved) return result;
   result.friction_force = (z[0] - mu * sigma * beta) / coupling;
   result.normal_force = beta + alpha * result.friction_force;
-  // y+ and y- are exactly zero when stuck (non-basic): no round-off slip.
-  result.slip_acceleration = w[0] - z[1];
+  // Complementarity decides from the basis: a positive friction reserve x+
+  // (z[0] basic) forces y+ = 0, and a non-basic y- (z[1]) is exactly 0. Only
+  // w is recomputed as M z + q and carries round-off, so it is used only
+  // where x+ = 0.
+  const double positive_part = z[0] > 0.0 ? 0.0 : std::max(w[0], 0.0);
+  result.slip_acceleration = positive_part - z[1];
   result.consistent = sigma * result.normal_force >= 0.0;
   return result;
 }

@@ -270,7 +270,7 @@ void ExplicitRungeKutta::interpolate(double theta, double* y_out) const {
   }
 }
 
-void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) const {
+void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) {
   if (!step_available_ || !(t >= t_step_ && t <= t_step_ + h_step_))
     throw InvalidArgument("t = " + format_value(t) +
                           " is invalid: must lie in the last accepted step [" +
@@ -278,9 +278,8 @@ void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) c
   if (y.size() != n_)
     throw InvalidArgument("y has " + std::to_string(y.size()) +
                           " components, invalid: must have the system size " + std::to_string(n_));
-  Eigen::VectorXd out(n_);
-  interpolate((t - t_step_) / h_step_, out.data());
-  y = out;
+  interpolate((t - t_step_) / h_step_, y_trial_.data());
+  for (int i = 0; i < n_; ++i) y[i] = y_trial_[i];
 }
 
 AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::VectorXd> y,

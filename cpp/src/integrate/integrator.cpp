@@ -11,6 +11,10 @@
 
 namespace leadscrew::integrate {
 
+void Integrator::dense_output(double /*t*/, Eigen::Ref<Eigen::VectorXd> /*y*/) {
+  throw InvalidArgument("dense_output is invalid for " + name() + ": it has no dense output");
+}
+
 std::vector<std::string> integrator_names() {
   // ARKODE's Fehlberg 8(7) (table ARKODE_FEHLBERG_13_7_8) is not offered: its error estimate vanishes identically when f depends on t only
   // (the estimating stages pair up at c = 0 and c = 1), so on y' = cos(t) it

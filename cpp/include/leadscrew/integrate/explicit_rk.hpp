@@ -79,9 +79,8 @@ class ExplicitRungeKutta final : public Integrator {
   const std::vector<int>& root_info() const override { return root_info_; }
   IntegratorStats stats() const override { return stats_; }
 
-  // The dense output of the last accepted step (t in [t_n, t_n+1]); for tests
-  // of the continuous extension. Throws InvalidArgument outside that step.
-  void dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) const;
+  // The continuous extension of the last accepted step.
+  void dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) override;
 
  private:
   enum class StepOutcome { accepted, rejected, nonfinite };

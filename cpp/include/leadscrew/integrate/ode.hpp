@@ -73,6 +73,10 @@ class Integrator {
                                 bool one_step = false) = 0;
   virtual const std::vector<int>& root_info() const = 0;
   virtual IntegratorStats stats() const = 0;
+  // The state at t within the last internal step, from the method's dense
+  // output (interpolant), without moving the integrator. Throws
+  // InvalidArgument if t is outside that step or the method has none.
+  virtual void dense_output(double t, Eigen::Ref<Eigen::VectorXd> y);
 };
 
 // Names: "cvode_bdf", "cvode_adams", "dopri5" (ARKODE explicit

@@ -28,6 +28,7 @@ FIXED_STEP = [
     ("dopri5", 5, [32, 64, 128, 256]),
     ("rk_dopri5", 5, [32, 64, 128, 256]),
     ("verner6", 6, [16, 32, 64, 128]),
+    ("rk_verner6", 6, [16, 32, 64, 128]),
 ]
 
 
@@ -107,11 +108,13 @@ def test_rk_dopri5_dense_output_order(problem):
     assert slope(sizes, np.array(errors)) == pytest.approx(5.0, abs=0.2), errors
 
 
-def test_rk_dopri5_matches_arkode_dopri5():
-    # The same Butcher tableau in two independent implementations: fixed steps
-    # must agree to roundoff.
+@pytest.mark.parametrize("pair", [("dopri5", "rk_dopri5"), ("verner6", "rk_verner6")])
+def test_own_engine_matches_arkode(pair):
+    # The same Butcher tableau in two independent implementations (rk_dopri5's
+    # coefficients are typed in from the paper, ARKODE's are its own): fixed
+    # steps must agree to roundoff.
     results = []
-    for method in ("dopri5", "rk_dopri5"):
+    for method in pair:
         sol = li.solve_ode(PROBLEM.rhs, (0.0, T_END), PROBLEM.y0, method=method,
                            fixed_step=T_END / 40, t_eval=np.linspace(0.0, T_END, 41))
         results.append(sol.y[0])

@@ -384,3 +384,35 @@ def test_own_engine_event_times_as_accurate_as_the_solution(method):
         np.testing.assert_allclose(y, problem.exact(t), rtol=0, atol=2 * solution_error + 1e-14)
         # On the switching surface to roundoff: x / |x'| within 16 ulp of t.
         assert abs(y[0]) / speed < 16 * np.finfo(float).eps * t
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_step_options(method):
+    problem = ref.HarmonicOscillator()
+    sol = li.solve_ode(problem.rhs, (0.0, 3.0), problem.y0, method=method, rtol=1e-6,
+                       atol=1e-8, max_step=0.05, first_step=1e-3)
+    steps = np.diff(sol.t)
+    # The first step is first_step unless its error test fails (CVODE starts
+    # at order 1, whose error at h = 1e-3 is above rtol: it shrinks the step).
+    if method.startswith("cvode"):
+        assert steps[0] <= 1e-3 * (1 + 1e-12)
+    else:
+        assert steps[0] == pytest.approx(1e-3, rel=1e-12)
+    assert np.all(steps <= 0.05 * (1 + 1e-12))
+    if method in EXPLICIT:
+        sol = li.solve_ode(problem.rhs, (0.0, 3.0), problem.y0, method=method, fixed_step=0.1)
+        np.testing.assert_allclose(np.diff(sol.t), 0.1, rtol=1e-9)
+
+
+@pytest.mark.parametrize("method", EXPLICIT)
+def test_stiff_problem_on_an_explicit_method_says_use_bdf(method):
+    # y' = -1e6 (y - cos t): the explicit stability limit forces h ~ 3e-6.
+    def fun(t, y):
+        return -1e6 * (y - math.cos(t))
+
+    with pytest.raises(leadscrew.SimulationError, match=r"TOO_MUCH_WORK.*cvode_bdf"):
+        li.solve_ode(fun, (0.0, 1.0), [1.0], method=method, max_steps=2000, t_eval=[1.0])
+    sol = li.solve_ode(fun, (0.0, 1.0), [1.0], method="cvode_bdf", max_steps=2000, t_eval=[1.0])
+    assert sol.stats["steps"] < 500
+    # y = cos t + 1e-6 sin t + O(1e-12) after the initial layer
+    assert sol.y[0, -1] == pytest.approx(math.cos(1.0) + 1e-6 * math.sin(1.0), abs=1e-9)

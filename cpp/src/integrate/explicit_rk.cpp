@@ -111,7 +111,7 @@ void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
   weights_.assign(s_, 0.0);
   root_info_.assign(m, 0);
   stats_ = IntegratorStats{};
-  h_ = 0.0;
+  h_ = options_.first_step;  // 0: estimated at the first step
   system_ = &system;
   start(t0, y0);
 }

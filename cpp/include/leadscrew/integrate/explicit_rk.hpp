@@ -25,7 +25,16 @@
 //      whenever Newton leaves the bracket or stalls. Phi_h(y_n) is y_n+1
 //      exactly, so the bracket from the step ends stays consistent.
 // The returned time is the bracket end where g has already changed sign (or
-// is 0), within 4 ulp of t.
+// is 0), within a few ulp of t of the root of the computed solution.
+//
+// Failures raise SimulationError with flag names in SUNDIALS' style:
+//   RK_TOO_MUCH_WORK  max_steps steps since initialize
+//   RK_ERR_FAILURE    the step fell to the roundoff level of t, or 100 error
+//                     test failures in a row
+//   RK_RHSFUNC_FAIL   f not finite at the current state, or in 64 trial steps
+//                     since the last (re)start despite step reduction, or with
+//                     a fixed step
+//   RK_RTFUNC_FAIL    a root function not finite
 #pragma once
 
 #include <Eigen/Core>
@@ -109,7 +118,9 @@ class ExplicitRungeKutta final : public Integrator {
   int s_ = 0;
 
   double t_ = 0.0;
-  double h_ = 0.0;          // proposal for the next step (kept across restarts)
+  // Proposal for the next step: options.first_step (or an estimate) at
+  // initialize, then the controller's; kept across reinitialize.
+  double h_ = 0.0;
   double t_step_ = 0.0;     // start of the last accepted step (dense output)
   double h_step_ = 0.0;     // its size
   double t_end_ = 0.0;      // its end (t_out exactly when it landed there)

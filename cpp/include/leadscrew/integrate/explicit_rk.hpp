@@ -96,11 +96,12 @@ class ExplicitRungeKutta final : public Integrator {
 
   void start(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0);
   double initial_step();
-  double weighted_rms(const double* v, const double* y_a, const double* y_b) const;
+  // mean of (v_i / (atol + rtol max(|y_a,i|, |y_b,i|)))^2
+  double weighted_mean_square(const double* v, const double* y_a, const double* y_b) const;
   // Stages 2..s of a step of size h from (t, y) with stage 1 in k[0..n);
   // y_out = y + h sum b_j k_j. Returns false if a value is not finite.
   bool stages(double t, const double* y, double h, double* k, double* y_out);
-  StepOutcome attempt(double h, double* error_norm);
+  StepOutcome attempt(double h, double* error_square);
   void interpolate(double theta, double* y_out) const;
   void roots_at(double t, const double* y, double* g);
   void activate_zero_roots();
@@ -126,7 +127,7 @@ class ExplicitRungeKutta final : public Integrator {
   double t_end_ = 0.0;      // its end (t_out exactly when it landed there)
   bool first_stage_valid_ = false;  // f_current_ = f(t_, y_)
   bool step_available_ = false;     // a step for dense_output exists
-  double log_error_old_ = 0.0;      // log of the previous error norm (PI controller)
+  float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
 
   // y_start_, k_ (stages), y_new_ and f_end_ = f(t_n+1, y_n+1) describe the

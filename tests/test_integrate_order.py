@@ -54,13 +54,17 @@ def test_fixed_step_order(method, order, counts):
 
 # CVODE has no fixed steps. With the order pinned by max_order, the global
 # error of a variable-step method of order q falls like N^-q in the number
-# of steps N (h ~ 1/N, error ~ h^q). The tolerance is swept, (N, error) is
-# recorded, and the slope is fitted over the runs with N >= 50 (CVODE starts
-# at order 1 and needs some steps to reach order q) and error > 1e-12
-# (roundoff). Higher orders (BDF 4-5, Adams >= 5) reach the roundoff level in
-# too few steps for a clean fit and are not tested this way.
+# of steps N (the controller keeps the local error ~ tol ~ h^(q+1), so
+# N ~ tol^(-1/(q+1)) and the global error ~ N tol ~ N^-q). The tolerance is
+# swept, (N, error) recorded, and the slope fitted over the runs with N >= 50
+# (CVODE starts at order 1 and needs steps to reach order q) and error > 1e-12
+# (roundoff). From order 4 on the error reaches roundoff within ~300 steps,
+# while the start-up still weighs: the fitted slope then lies anywhere between
+# q and q + 1 depending on the interval (measured: Adams 4 gives 4.3 on [0, 2]
+# with 10 tolerances, 5.4 with 21, 4.5 on [0, 5]), so orders >= 4 are checked
+# by their step counts instead (test_higher_pinned_orders_take_fewer_steps).
 PINNED = [("cvode_bdf", 1), ("cvode_bdf", 2), ("cvode_bdf", 3), ("cvode_adams", 2),
-          ("cvode_adams", 3), ("cvode_adams", 4)]
+          ("cvode_adams", 3)]
 
 
 @pytest.mark.parametrize("method, order", PINNED)
@@ -79,14 +83,17 @@ def test_pinned_order(method, order):
     assert -slope(steps[used], errors[used]) == pytest.approx(order, abs=0.4), (steps, errors)
 
 
-def test_pinned_order_is_really_lower():
-    # The same tolerance costs BDF1 many more steps than BDF5.
-    counts = {}
-    for order in (1, 5):
-        sol = li.solve_ode(PROBLEM.rhs, (0.0, T_END), PROBLEM.y0, method="cvode_bdf",
-                           max_order=order, rtol=1e-7, atol=1e-10, t_eval=[T_END])
-        counts[order] = sol.stats["steps"]
-    assert counts[1] > 10 * counts[5], counts
+@pytest.mark.parametrize("method, highest", [("cvode_bdf", 5), ("cvode_adams", 6)])
+def test_higher_pinned_orders_take_fewer_steps(method, highest):
+    # At a tight tolerance each higher order needs fewer steps (measured at
+    # rtol 1e-9, BDF 1..5: 71922, 2142, 444, 230, 158 steps).
+    counts = []
+    for order in range(1, highest + 1):
+        sol = li.solve_ode(PROBLEM.rhs, (0.0, T_END), PROBLEM.y0, method=method, max_order=order,
+                           rtol=1e-9, atol=1e-12, t_eval=[T_END], max_steps=10**6)
+        counts.append(sol.stats["steps"])
+    assert all(a > b for a, b in zip(counts, counts[1:])), counts
+    assert counts[0] > 100 * counts[-1], counts
 
 
 @pytest.mark.parametrize("problem", [ref.HarmonicOscillator(), ref.ForcedDecay()],

@@ -262,9 +262,9 @@ ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* er
   return all_finite(f_end_.data(), n_) ? StepOutcome::accepted : StepOutcome::nonfinite;
 }
 
-void ExplicitRungeKutta::interpolate(double theta, double* y_out) const {
+void ExplicitRungeKutta::interpolate(double theta, double* y_out) {
   double w_end = 0.0;
-  double* w = const_cast<double*>(weights_.data());  // scratch, no observable state
+  double* w = weights_.data();
   tableau_.dense_weights(theta, tableau_, w, &w_end);
   for (int r = 0; r < n_; ++r) {
     double sum = w_end * f_end_[r];

@@ -102,7 +102,7 @@ class ExplicitRungeKutta final : public Integrator {
   // y_out = y + h sum b_j k_j. Returns false if a value is not finite.
   bool stages(double t, const double* y, double h, double* k, double* y_out);
   StepOutcome attempt(double h, double* error_square);
-  void interpolate(double theta, double* y_out) const;
+  void interpolate(double theta, double* y_out);
   void roots_at(double t, const double* y, double* g);
   void activate_zero_roots();
   // After an accepted step with a sign change of some root function between

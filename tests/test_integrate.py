@@ -340,3 +340,79 @@ def test_advance_backwards_is_rejected():
         integrator.advance(0.5)
     with pytest.raises(ValueError, match=r"y0 has 2 components"):
         integrator.reinitialize(1.0, np.array([1.0, 2.0]))
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_close_and_simultaneous_roots(method):
+    # x = t: g0 = x - 0.5 and g1 = x - (0.5 + 1e-7) cross 1e-7 apart; g2 = g0
+    # crosses with g0. The earliest comes first, each exactly once.
+    def events(t, y):
+        return np.array([y[0] - 0.5, y[0] - 0.5 - 1e-7, y[0] - 0.5])
+
+    integrator = leadscrew._core.integrate.make_integrator(method, rtol=1e-10, atol=1e-12)
+    integrator.initialize(
+        leadscrew._core.integrate.PythonOdeSystem(lambda t, y: np.array([1.0]), 1, events, 3),
+        0.0, np.array([0.0]))
+    t, root, y = integrator.advance(1.0)
+    assert root and integrator.root_info == [1, 0, 1]
+    assert t == pytest.approx(0.5, abs=1e-13)
+    t, root, y = integrator.advance(1.0)
+    assert root and integrator.root_info == [0, 1, 0]
+    assert t == pytest.approx(0.5 + 1e-7, abs=1e-13)
+    t, root, y = integrator.advance(1.0)
+    assert not root and t == 1.0
+
+
+@pytest.mark.parametrize("method", ["rk_dopri5", "rk_verner6"])
+def test_own_engine_event_times_as_accurate_as_the_solution(method):
+    # The roots come from the exact continuation of the step, not from the
+    # (lower-order) interpolant: the event states of x = cos(2t) + 0.25 sin(2t)
+    # are as accurate as the solution at output times, and the event times
+    # accordingly (error in x / |x'|).
+    problem = ref.HarmonicOscillator(omega=2.0, x0=1.0, v0=0.5)
+    t_eval = np.linspace(0.0, 6.0, 61)
+    sol = li.solve_ode(problem.rhs, (0.0, 6.0), problem.y0, method=method, rtol=1e-11,
+                       atol=1e-13, events=height, t_eval=t_eval)
+    solution_error = np.max(np.abs(sol.y - problem.exact(t_eval)))
+    assert solution_error < 1e-9
+    first = (math.atan2(0.25, 1.0) + math.pi / 2) / 2.0
+    expected = first + np.arange(0, 4) * math.pi / 2.0
+    speed = math.hypot(2.0 * 1.0, 0.5)  # |x'| at the zeros of x
+    np.testing.assert_allclose(sol.t_events[0], expected, rtol=0,
+                               atol=2 * solution_error / speed + 1e-14)
+    for t, y in zip(sol.t_events[0], sol.y_events[0]):
+        np.testing.assert_allclose(y, problem.exact(t), rtol=0, atol=2 * solution_error + 1e-14)
+        # On the switching surface to roundoff: x / |x'| within 16 ulp of t.
+        assert abs(y[0]) / speed < 16 * np.finfo(float).eps * t
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_step_options(method):
+    problem = ref.HarmonicOscillator()
+    sol = li.solve_ode(problem.rhs, (0.0, 3.0), problem.y0, method=method, rtol=1e-6,
+                       atol=1e-8, max_step=0.05, first_step=1e-3)
+    steps = np.diff(sol.t)
+    # The first step is first_step unless its error test fails (CVODE starts
+    # at order 1, whose error at h = 1e-3 is above rtol: it shrinks the step).
+    if method.startswith("cvode"):
+        assert steps[0] <= 1e-3 * (1 + 1e-12)
+    else:
+        assert steps[0] == pytest.approx(1e-3, rel=1e-12)
+    assert np.all(steps <= 0.05 * (1 + 1e-12))
+    if method in EXPLICIT:
+        sol = li.solve_ode(problem.rhs, (0.0, 3.0), problem.y0, method=method, fixed_step=0.1)
+        np.testing.assert_allclose(np.diff(sol.t), 0.1, rtol=1e-9)
+
+
+@pytest.mark.parametrize("method", EXPLICIT)
+def test_stiff_problem_on_an_explicit_method_says_use_bdf(method):
+    # y' = -1e6 (y - cos t): the explicit stability limit forces h ~ 3e-6.
+    def fun(t, y):
+        return -1e6 * (y - math.cos(t))
+
+    with pytest.raises(leadscrew.SimulationError, match=r"TOO_MUCH_WORK.*cvode_bdf"):
+        li.solve_ode(fun, (0.0, 1.0), [1.0], method=method, max_steps=2000, t_eval=[1.0])
+    sol = li.solve_ode(fun, (0.0, 1.0), [1.0], method="cvode_bdf", max_steps=2000, t_eval=[1.0])
+    assert sol.stats["steps"] < 500
+    # y = cos t + 1e-6 sin t + O(1e-12) after the initial layer
+    assert sol.y[0, -1] == pytest.approx(math.cos(1.0) + 1e-6 * math.sin(1.0), abs=1e-9)

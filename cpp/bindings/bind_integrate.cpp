@@ -133,6 +133,13 @@ returns (t, root_found, y).
                                   Eigen::VectorXd(self.state));
           },
           py::arg("t_out"), py::arg("one_step") = false)
+      .def(
+          "dense_output",
+          [](BoundIntegrator& self, double t) {
+            self.integrator->dense_output(t, self.state);
+            return Eigen::VectorXd(self.state);
+          },
+          py::arg("t"), "The state at t within the last internal step (dense output).")
       .def_property_readonly(
           "root_info", [](const BoundIntegrator& self) { return self.integrator->root_info(); },
           "per root function: +1 rising, -1 falling, 0 not triggered")

@@ -89,9 +89,12 @@ def solve_ode(
         fun: right-hand side f(t, y) -> array of n values (y is an array of n).
         t_span: (t0, t_end) with t_end > t0 [s].
         y0: initial state, n values.
-        method: one of :data:`METHODS`: "cvode_bdf" (stiff), "cvode_adams"
-            (non-stiff multistep), "dopri5" (Dormand-Prince 5(4), as ode45),
-            "verner6" (Verner 6(5)), ...
+        method: one of :data:`METHODS`: "cvode_bdf" (SUNDIALS CVODE BDF,
+            stiff problems), "cvode_adams" (CVODE Adams, non-stiff), "dopri5"
+            and "verner6" (SUNDIALS ARKODE Dormand-Prince 5(4), as ode45, and
+            Verner 6(5)), "rk_dopri5" and "rk_verner6" (the same pairs in the
+            core's own allocation-free engine: far less overhead per step and
+            restart, event times from the exact step continuation).
         rtol: relative tolerance, in (0, 1).
         atol: absolute tolerance, > 0.
         t_eval: increasing output times within t_span; None: every internal
@@ -101,7 +104,11 @@ def solve_ode(
             ``terminal = True`` stops the integration at its first root, one
             with ``direction = +1`` (-1) records only rising (falling)
             crossings (as scipy's solve_ivp).
-        max_step: largest internal step [s], None: unbounded.
+        max_step: largest internal step [s], None: unbounded. Roots are
+            found from sign changes between step ends: when an event function
+            depends on t (forcing) while f is (nearly) zero, limit the step
+            to a fraction of the forcing period or a double crossing within
+            one step goes unseen.
         fixed_step: fixed step size [s] for the explicit Runge-Kutta methods.
         max_order: highest order of cvode_bdf (1..5) or cvode_adams (1..12).
         first_step: initial step size [s], None: chosen by the integrator.

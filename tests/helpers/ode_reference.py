@@ -93,3 +93,16 @@ class BouncingBall(FreeFall):
             v *= e
             times.append(times[-1] + 2.0 * v / g)
         return np.array(times)
+
+
+class Riccati:
+    """y' = -2 t y^2, y(0) = 1: y = 1 / (1 + t^2) (nonlinear, non-autonomous)."""
+
+    def __init__(self):
+        self.y0 = np.array([1.0])
+
+    def rhs(self, t, y):
+        return np.array([-2.0 * t * y[0] * y[0]])
+
+    def exact(self, t):
+        return np.array([1.0 / (1.0 + np.asarray(t, dtype=float) ** 2)])

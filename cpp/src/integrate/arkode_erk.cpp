@@ -142,6 +142,10 @@ int ArkodeErkIntegrator::solver_root_info(int* info) {
   return ERKStepGetRootInfo(memory_.get(), info);
 }
 
+int ArkodeErkIntegrator::solver_dense_output(double t, N_Vector v) {
+  return ERKStepGetDky(memory_.get(), t, 0, v);
+}
+
 // After a failure this is the time of the stage where the step failed (ARKODE
 // keeps no accessible record of the last accepted time; a post-step hook
 // would give it but costs the FSAL reuse, one rhs call per step).

@@ -4,7 +4,10 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -48,7 +51,7 @@ void CvodeIntegrator::create_solver(double t0) {
   check_setup(CVodeSetUserData(mem, &bridge_), "CVodeSetUserData");
   check_setup(CVodeSStolerances(mem, options_.rtol, options_.atol), "CVodeSStolerances");
   // Both methods use Newton iteration with a dense direct linear solver and
-  // CVODE's difference-quotient Jacobian (n extra rhs calls, reused over many
+  // a difference-quotient Jacobian (n extra rhs calls, reused over many
   // steps). For Adams, fixed-point iteration would save the n x n solve, but
   // SUNDIALS 6.4's fixed-point path treats an unrecoverable right-hand-side
   // failure as recoverable (measured: an exception in the rhs was retried
@@ -61,6 +64,9 @@ void CvodeIntegrator::create_solver(double t0) {
   if (!linear_solver_) check_setup(-20, "SUNLinSol_Dense");
   check_setup(CVodeSetLinearSolver(mem, linear_solver_.get(), matrix_.get()),
               "CVodeSetLinearSolver");
+  check_setup(CVodeSetJacFn(mem, &CvodeIntegrator::difference_jacobian), "CVodeSetJacFn");
+  bridge_.owner = this;
+  jacobian_rhs_ = 0;
   if (options_.max_order > 0)
     check_setup(CVodeSetMaxOrd(mem, options_.max_order), "CVodeSetMaxOrd");
   if (options_.max_step > 0.0)
@@ -77,7 +83,48 @@ void CvodeIntegrator::create_solver(double t0) {
   }
 }
 
-int CvodeIntegrator::restart_solver(double t0) { return CVodeReInit(memory_.get(), t0, y_.get()); }
+int CvodeIntegrator::restart_solver(double t0) {
+  jacobian_rhs_ = 0;
+  return CVodeReInit(memory_.get(), t0, y_.get());
+}
+
+int CvodeIntegrator::difference_jacobian(sunrealtype t, N_Vector y, N_Vector fy,
+                                         SUNMatrix jacobian, void* user_data, N_Vector tmp1,
+                                         N_Vector tmp2, N_Vector tmp3) {
+  // Column j: (f(t, y + sigma_j e_j) - f(t, y)) / sigma_j with CVODE's
+  // increment sigma_j = max(sqrt(U) |y_j|, sigma_0 / w_j),
+  // sigma_0 = 1000 |h| U n ||f||_WRMS (1 if f = 0), U the unit roundoff and
+  // w the error weights (CVODE user guide, dense difference-quotient Jacobian).
+  auto* bridge = static_cast<sundials::CallbackBridge*>(user_data);
+  auto* self = static_cast<CvodeIntegrator*>(bridge->owner);
+  void* mem = self->memory_.get();
+  const int n = bridge->size;
+  sunrealtype h = 0.0;
+  CVodeGetCurrentStep(mem, &h);
+  CVodeGetErrWeights(mem, tmp3);
+  const double* y0 = N_VGetArrayPointer(y);
+  const double* f0 = N_VGetArrayPointer(fy);
+  double* y1 = N_VGetArrayPointer(tmp1);
+  const double* f1 = N_VGetArrayPointer(tmp2);
+  const double* w = N_VGetArrayPointer(tmp3);
+  constexpr double roundoff = std::numeric_limits<double>::epsilon();
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) sum += (f0[i] * w[i]) * (f0[i] * w[i]);
+  const double f_norm = std::sqrt(sum / n);
+  const double sigma0 = f_norm != 0.0 ? 1000.0 * std::fabs(h) * roundoff * n * f_norm : 1.0;
+  for (int i = 0; i < n; ++i) y1[i] = y0[i];
+  for (int j = 0; j < n; ++j) {
+    y1[j] = y0[j] + std::max(std::sqrt(roundoff) * std::fabs(y0[j]), sigma0 / w[j]);
+    const double sigma = y1[j] - y0[j];  // the increment actually represented
+    const int flag = sundials::CallbackBridge::rhs(t, tmp1, tmp2, bridge);
+    ++self->jacobian_rhs_;
+    if (flag != 0) return flag;
+    double* column = SUNDenseMatrix_Column(jacobian, j);
+    for (int i = 0; i < n; ++i) column[i] = (f1[i] - f0[i]) / sigma;
+    y1[j] = y0[j];
+  }
+  return 0;
+}
 
 int CvodeIntegrator::limit_solver(double t_out, long max_steps) {
   // CVODE disables the stop time once it returns there: set it on every call.
@@ -95,6 +142,10 @@ int CvodeIntegrator::evolve_solver(double t_out, bool one_step, double* t_reache
 
 int CvodeIntegrator::solver_root_info(int* info) { return CVodeGetRootInfo(memory_.get(), info); }
 
+int CvodeIntegrator::solver_dense_output(double t, N_Vector v) {
+  return CVodeGetDky(memory_.get(), t, 0, v);
+}
+
 double CvodeIntegrator::solver_time() const {
   sunrealtype t = 0.0;
   CVodeGetCurrentTime(memory_.get(), &t);
@@ -105,16 +156,15 @@ IntegratorStats CvodeIntegrator::solver_stats() const {
   void* mem = memory_.get();
   IntegratorStats s;
   if (!mem) return s;
-  long rhs = 0, fd_rhs = 0, jac = 0, nni_fail = 0, netf = 0, nge = 0, nst = 0;
+  long rhs = 0, jac = 0, nni_fail = 0, netf = 0, nge = 0, nst = 0;
   CVodeGetNumSteps(mem, &nst);
   CVodeGetNumRhsEvals(mem, &rhs);
   CVodeGetNumErrTestFails(mem, &netf);
   CVodeGetNumNonlinSolvConvFails(mem, &nni_fail);
   if (bridge_.root_count > 0) CVodeGetNumGEvals(mem, &nge);
   CVodeGetNumJacEvals(mem, &jac);
-  CVodeGetNumLinRhsEvals(mem, &fd_rhs);  // difference-quotient Jacobian columns
   s.steps = nst;
-  s.rhs_evaluations = rhs + fd_rhs;
+  s.rhs_evaluations = rhs + jacobian_rhs_;
   s.jacobian_evaluations = jac;
   s.root_evaluations = nge;
   s.error_test_failures = netf;

@@ -17,7 +17,7 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 constexpr double safety = 0.9;
 constexpr double shrink_limit = 0.2;
 constexpr double growth_limit = 10.0;
-constexpr double pi_beta = 0.04;
+constexpr float pi_beta = 0.04f;
 constexpr int rejection_limit = 100;  // consecutive error-test failures
 constexpr int nonfinite_limit = 64;   // non-finite stage values since the last (re)start
 constexpr int root_iterations = 60;
@@ -111,7 +111,7 @@ void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
   weights_.assign(s_, 0.0);
   root_info_.assign(m, 0);
   stats_ = IntegratorStats{};
-  h_ = 0.0;
+  h_ = options_.first_step;  // 0: estimated at the first step
   system_ = &system;
   start(t0, y0);
 }
@@ -135,7 +135,7 @@ void ExplicitRungeKutta::start(double t0, const Eigen::Ref<const Eigen::VectorXd
   t_ = t0;
   first_stage_valid_ = false;
   step_available_ = false;
-  log_error_old_ = std::log(1e-4);
+  log_error_old_ = std::log(1e-4f);
   nonfinite_count_ = 0;
   std::fill(root_info_.begin(), root_info_.end(), 0);
   // h_ is kept: after an event the previous step size is a better first
@@ -176,8 +176,8 @@ void ExplicitRungeKutta::roots_at(double t, const double* y, double* g) {
          "check the root functions at this state");
 }
 
-double ExplicitRungeKutta::weighted_rms(const double* v, const double* y_a,
-                                        const double* y_b) const {
+double ExplicitRungeKutta::weighted_mean_square(const double* v, const double* y_a,
+                                                const double* y_b) const {
   double sum = 0.0;
   for (int i = 0; i < n_; ++i) {
     const double scale =
@@ -185,15 +185,15 @@ double ExplicitRungeKutta::weighted_rms(const double* v, const double* y_a,
     const double r = v[i] / scale;
     sum += r * r;
   }
-  return std::sqrt(sum / n_);
+  return sum / n_;
 }
 
 double ExplicitRungeKutta::initial_step() {
   // Hairer, Norsett & Wanner, Solving ODE I, II.4: h0 from ||y0|| / ||f0||,
   // then from the second derivative estimated with one Euler step.
   const double* f0 = k_.data();
-  const double d0 = weighted_rms(y_.data(), y_.data(), y_.data());
-  const double d1 = weighted_rms(f0, y_.data(), y_.data());
+  const double d0 = std::sqrt(weighted_mean_square(y_.data(), y_.data(), y_.data()));
+  const double d1 = std::sqrt(weighted_mean_square(f0, y_.data(), y_.data()));
   double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
   if (options_.max_step > 0.0) h0 = std::min(h0, options_.max_step);
   for (int i = 0; i < n_; ++i) y_trial_[i] = y_[i] + h0 * f0[i];
@@ -202,7 +202,7 @@ double ExplicitRungeKutta::initial_step() {
   ++stats_.rhs_evaluations;
   if (!all_finite(f1, n_)) return h0;
   for (int i = 0; i < n_; ++i) y_stage_[i] = f1[i] - f0[i];
-  const double d2 = weighted_rms(y_stage_.data(), y_.data(), y_.data()) / h0;
+  const double d2 = std::sqrt(weighted_mean_square(y_stage_.data(), y_.data(), y_.data())) / h0;
   const double dmax = std::max(d1, d2);
   const double h1 = dmax <= 1e-15 ? std::max(1e-6, h0 * 1e-3)
                                   : std::pow(0.01 / dmax, 1.0 / (tableau_.order + 1));
@@ -236,9 +236,9 @@ bool ExplicitRungeKutta::stages(double t, const double* y, double h, double* k, 
   return all_finite(y_out, n_) && (!tableau_.fsal || all_finite(k + (s_ - 1) * n_, n_));
 }
 
-ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* error_norm) {
+ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* error_square) {
   if (!stages(t_, y_.data(), h, k_.data(), y_new_.data())) return StepOutcome::nonfinite;
-  *error_norm = 0.0;
+  *error_square = 0.0;
   if (options_.fixed_step <= 0.0) {
     const double* e = tableau_.e.data();
     for (int r = 0; r < n_; ++r) {
@@ -246,8 +246,11 @@ ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* er
       for (int j = 0; j < s_; ++j) sum += e[j] * k_[j * n_ + r];
       y_trial_[r] = h * sum;
     }
-    *error_norm = weighted_rms(y_trial_.data(), y_.data(), y_new_.data());
-    if (!(*error_norm <= 1.0)) return StepOutcome::rejected;
+    // The squared RMS norm (Hairer's error measure, squared: no sqrt needed).
+    *error_square = weighted_mean_square(y_trial_.data(), y_.data(), y_new_.data());
+    // NaN: a non-finite stage that only the error estimate uses.
+    if (std::isnan(*error_square)) return StepOutcome::nonfinite;
+    if (!(*error_square <= 1.0)) return StepOutcome::rejected;
   }
   if (tableau_.fsal) {
     std::copy_n(k_.data() + (s_ - 1) * n_, n_, f_end_.data());
@@ -259,9 +262,9 @@ ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* er
   return all_finite(f_end_.data(), n_) ? StepOutcome::accepted : StepOutcome::nonfinite;
 }
 
-void ExplicitRungeKutta::interpolate(double theta, double* y_out) const {
+void ExplicitRungeKutta::interpolate(double theta, double* y_out) {
   double w_end = 0.0;
-  double* w = const_cast<double*>(weights_.data());  // scratch, no observable state
+  double* w = weights_.data();
   tableau_.dense_weights(theta, tableau_, w, &w_end);
   for (int r = 0; r < n_; ++r) {
     double sum = w_end * f_end_[r];
@@ -270,7 +273,7 @@ void ExplicitRungeKutta::interpolate(double theta, double* y_out) const {
   }
 }
 
-void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) const {
+void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) {
   if (!step_available_ || !(t >= t_step_ && t <= t_step_ + h_step_))
     throw InvalidArgument("t = " + format_value(t) +
                           " is invalid: must lie in the last accepted step [" +
@@ -278,9 +281,8 @@ void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) c
   if (y.size() != n_)
     throw InvalidArgument("y has " + std::to_string(y.size()) +
                           " components, invalid: must have the system size " + std::to_string(n_));
-  Eigen::VectorXd out(n_);
-  interpolate((t - t_step_) / h_step_, out.data());
-  y = out;
+  interpolate((t - t_step_) / h_step_, y_trial_.data());
+  for (int i = 0; i < n_; ++i) y[i] = y_trial_[i];
 }
 
 AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::VectorXd> y,
@@ -305,7 +307,7 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
 
   const bool fixed = options_.fixed_step > 0.0;
   const int q = std::min(tableau_.order, tableau_.embedded_order);
-  const double exponent = 1.0 / (q + 1);
+  const float exponent = 1.0f / (q + 1);
   int rejections = 0;  // consecutive
   // Bounded: every pass either accepts a step (at most max_steps in total) or
   // rejects one (at most rejection_limit in a row, nonfinite_limit in all).
@@ -339,8 +341,11 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
            "the solution is probably singular or discontinuous here (a blow-up, or a switch "
            "that should be an event with a root function)");
 
-    double error = 0.0;
-    const StepOutcome outcome = attempt(h, &error);
+    double error_square = 0.0;
+    const StepOutcome outcome = attempt(h, &error_square);
+    // log of the error norm for the controller; float precision is plenty for
+    // a step-size factor and costs half of double exp/log.
+    const float log_error = 0.5f * std::log(static_cast<float>(std::max(error_square, 1e-20)));
     if (outcome != StepOutcome::accepted) {
       ++stats_.error_test_failures;
       if (outcome == StepOutcome::nonfinite) {
@@ -356,7 +361,8 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
           fail("RK_ERR_FAILURE",
                "the local error test failed " + std::to_string(rejection_limit) + " times in a row",
                "the solution is probably singular or discontinuous here");
-        h_ = h * std::max(shrink_limit, safety * std::pow(error, -exponent));
+        h_ = h * std::max(shrink_limit,
+                          safety * static_cast<double>(std::exp(-exponent * log_error)));
       }
       continue;
     }
@@ -365,12 +371,12 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
     ++stats_.steps;
     if (!fixed) {
       // PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.
-      const double log_error = std::log(std::max(error, 1e-10));
-      double factor = safety * std::exp(-(exponent - 0.75 * pi_beta) * log_error +
-                                        pi_beta * log_error_old_);
+      double factor = safety * static_cast<double>(std::exp(
+                                   -(exponent - 0.75f * pi_beta) * log_error +
+                                   pi_beta * log_error_old_));
       factor = std::min(growth_limit, std::max(shrink_limit, factor));
       if (rejections > 0) factor = std::min(factor, 1.0);
-      log_error_old_ = std::max(log_error, std::log(1e-4));
+      log_error_old_ = std::max(log_error, std::log(1e-4f));
       h_ = h * factor;
       // A step shortened to land on t_out says little about the next one.
       if (to_end) h_ = std::max(h_, wanted);

@@ -7,16 +7,21 @@
 #include "leadscrew/integrate/cvode.hpp"
 #include "leadscrew/integrate/explicit_rk.hpp"
 #include "leadscrew/integrate/rk_dopri5.hpp"
+#include "leadscrew/integrate/rk_verner6.hpp"
 #include "leadscrew/integrate/ode.hpp"
 
 namespace leadscrew::integrate {
+
+void Integrator::dense_output(double /*t*/, Eigen::Ref<Eigen::VectorXd> /*y*/) {
+  throw InvalidArgument("dense_output is invalid for " + name() + ": it has no dense output");
+}
 
 std::vector<std::string> integrator_names() {
   // ARKODE's Fehlberg 8(7) (table ARKODE_FEHLBERG_13_7_8) is not offered: its error estimate vanishes identically when f depends on t only
   // (the estimating stages pair up at c = 0 and c = 1), so on y' = cos(t) it
   // takes huge steps and returns O(1) errors at any tolerance (measured:
   // error 5.8 at rtol 1e-10). Forcing terms of the drive models have that part.
-  return {"cvode_bdf", "cvode_adams", "dopri5", "verner6", "rk_dopri5"};
+  return {"cvode_bdf", "cvode_adams", "dopri5", "verner6", "rk_dopri5", "rk_verner6"};
 }
 
 void validate_options(const IntegratorOptions& options) {
@@ -50,6 +55,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name,
       return std::make_unique<ArkodeErkIntegrator>(ArkodeErkIntegrator::Method::verner6, options);
     case 4:
       return std::make_unique<ExplicitRungeKutta>(dopri5_tableau(), options);
+    case 5:
+      return std::make_unique<ExplicitRungeKutta>(verner6_tableau(), options);
     default:
       break;
   }

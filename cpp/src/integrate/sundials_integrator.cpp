@@ -46,6 +46,7 @@ void SundialsIntegrator::initialize(OdeSystem& system, double t0,
   bridge_.root_count = m;
   bridge_.clear_all();
   y_ = make_vector(n, context_);
+  work_ = make_vector(n, context_);
   load_state(t0, y0);
   root_info_.assign(static_cast<std::size_t>(m), 0);
   before_restart_ = IntegratorStats{};
@@ -117,6 +118,21 @@ AdvanceResult SundialsIntegrator::advance(double t_out, Eigen::Ref<Eigen::Vector
     return {t_reached, AdvanceStatus::root_found};
   }
   return {t_reached, AdvanceStatus::reached};
+}
+
+void SundialsIntegrator::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) {
+  if (!initialized_)
+    throw InvalidArgument("dense_output called before initialize is invalid: initialize first");
+  if (y.size() != bridge_.size)
+    throw InvalidArgument("y has " + std::to_string(y.size()) +
+                          " components, invalid: must have the system size " +
+                          std::to_string(bridge_.size));
+  bridge_.clear_call();
+  if (solver_dense_output(t, work_.get()) < 0)
+    throw InvalidArgument("t = " + format_value(t) +
+                          " is invalid: must lie in the last internal step of " + name_);
+  const double* v = N_VGetArrayPointer(work_.get());
+  for (int i = 0; i < bridge_.size; ++i) y[i] = v[i];
 }
 
 IntegratorStats SundialsIntegrator::stats() const {

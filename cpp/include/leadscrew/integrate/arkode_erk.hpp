@@ -31,6 +31,7 @@ class ArkodeErkIntegrator final : public sundials::SundialsIntegrator {
   int limit_solver(double t_out, long max_steps) override;
   int evolve_solver(double t_out, bool one_step, double* t_reached) override;
   int solver_root_info(int* info) override;
+  int solver_dense_output(double t, N_Vector v) override;
   double solver_time() const override;
   IntegratorStats solver_stats() const override;
   std::string flag_name(int flag) const override;

@@ -27,11 +27,18 @@ class CvodeIntegrator final : public sundials::SundialsIntegrator {
   int limit_solver(double t_out, long max_steps) override;
   int evolve_solver(double t_out, bool one_step, double* t_reached) override;
   int solver_root_info(int* info) override;
+  int solver_dense_output(double t, N_Vector v) override;
   double solver_time() const override;
   IntegratorStats solver_stats() const override;
   std::string flag_name(int flag) const override;
 
+  // Difference-quotient Jacobian (CVODE's formula; its built-in one
+  // allocates a vector header on every evaluation).
+  static int difference_jacobian(sunrealtype t, N_Vector y, N_Vector fy, SUNMatrix jacobian,
+                                 void* user_data, N_Vector tmp1, N_Vector tmp2, N_Vector tmp3);
+
   const Method method_;
+  long jacobian_rhs_ = 0;  // rhs calls of difference_jacobian since the last (re)start
   // Declared before the memory that uses them: CVODE's memory is freed first
   // (members are destroyed in reverse order, the base's context last).
   sundials::Matrix matrix_;

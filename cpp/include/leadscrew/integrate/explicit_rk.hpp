@@ -25,7 +25,16 @@
 //      whenever Newton leaves the bracket or stalls. Phi_h(y_n) is y_n+1
 //      exactly, so the bracket from the step ends stays consistent.
 // The returned time is the bracket end where g has already changed sign (or
-// is 0), within 4 ulp of t.
+// is 0), within a few ulp of t of the root of the computed solution.
+//
+// Failures raise SimulationError with flag names in SUNDIALS' style:
+//   RK_TOO_MUCH_WORK  max_steps steps since initialize
+//   RK_ERR_FAILURE    the step fell to the roundoff level of t, or 100 error
+//                     test failures in a row
+//   RK_RHSFUNC_FAIL   f not finite at the current state, or in 64 trial steps
+//                     since the last (re)start despite step reduction, or with
+//                     a fixed step
+//   RK_RTFUNC_FAIL    a root function not finite
 #pragma once
 
 #include <Eigen/Core>
@@ -79,21 +88,21 @@ class ExplicitRungeKutta final : public Integrator {
   const std::vector<int>& root_info() const override { return root_info_; }
   IntegratorStats stats() const override { return stats_; }
 
-  // The dense output of the last accepted step (t in [t_n, t_n+1]); for tests
-  // of the continuous extension. Throws InvalidArgument outside that step.
-  void dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) const;
+  // The continuous extension of the last accepted step.
+  void dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) override;
 
  private:
   enum class StepOutcome { accepted, rejected, nonfinite };
 
   void start(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0);
   double initial_step();
-  double weighted_rms(const double* v, const double* y_a, const double* y_b) const;
+  // mean of (v_i / (atol + rtol max(|y_a,i|, |y_b,i|)))^2
+  double weighted_mean_square(const double* v, const double* y_a, const double* y_b) const;
   // Stages 2..s of a step of size h from (t, y) with stage 1 in k[0..n);
   // y_out = y + h sum b_j k_j. Returns false if a value is not finite.
   bool stages(double t, const double* y, double h, double* k, double* y_out);
-  StepOutcome attempt(double h, double* error_norm);
-  void interpolate(double theta, double* y_out) const;
+  StepOutcome attempt(double h, double* error_square);
+  void interpolate(double theta, double* y_out);
   void roots_at(double t, const double* y, double* g);
   void activate_zero_roots();
   // After an accepted step with a sign change of some root function between
@@ -110,13 +119,15 @@ class ExplicitRungeKutta final : public Integrator {
   int s_ = 0;
 
   double t_ = 0.0;
-  double h_ = 0.0;          // proposal for the next step (kept across restarts)
+  // Proposal for the next step: options.first_step (or an estimate) at
+  // initialize, then the controller's; kept across reinitialize.
+  double h_ = 0.0;
   double t_step_ = 0.0;     // start of the last accepted step (dense output)
   double h_step_ = 0.0;     // its size
   double t_end_ = 0.0;      // its end (t_out exactly when it landed there)
   bool first_stage_valid_ = false;  // f_current_ = f(t_, y_)
   bool step_available_ = false;     // a step for dense_output exists
-  double log_error_old_ = 0.0;      // log of the previous error norm (PI controller)
+  float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
 
   // y_start_, k_ (stages), y_new_ and f_end_ = f(t_n+1, y_n+1) describe the

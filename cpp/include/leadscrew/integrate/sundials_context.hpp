@@ -103,6 +103,7 @@ class CallbackBridge {
   static constexpr int nonfinite_limit = 64;
 
   OdeSystem* system = nullptr;
+  void* owner = nullptr;  // the integrator (for callbacks that need more than the system)
   int size = 0;
   int root_count = 0;
 

@@ -21,6 +21,8 @@ class SundialsIntegrator : public Integrator {
   AdvanceResult advance(double t_out, Eigen::Ref<Eigen::VectorXd> y, bool one_step = false) final;
   const std::vector<int>& root_info() const final { return root_info_; }
   IntegratorStats stats() const final;
+  // CVodeGetDky / ERKStepGetDky (order 0) within the last internal step.
+  void dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) final;
 
  protected:
   SundialsIntegrator(std::string name, const IntegratorOptions& options, bool implicit);
@@ -34,6 +36,8 @@ class SundialsIntegrator : public Integrator {
   // One CVode / ERKStepEvolve call; the state goes to y_.
   virtual int evolve_solver(double t_out, bool one_step, double* t_reached) = 0;
   virtual int solver_root_info(int* info) = 0;
+  // The interpolated state at t into v (CVodeGetDky / ERKStepGetDky, k = 0).
+  virtual int solver_dense_output(double t, N_Vector v) = 0;
   virtual double solver_time() const = 0;
   // Counters since the last create/restart (SUNDIALS resets them on ReInit).
   virtual IntegratorStats solver_stats() const = 0;
@@ -45,6 +49,7 @@ class SundialsIntegrator : public Integrator {
   const IntegratorOptions options_;
   Context context_;
   NVector y_;
+  NVector work_;  // dense output
   CallbackBridge bridge_;
 
  private:

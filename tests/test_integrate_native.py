@@ -1,0 +1,64 @@
+"""Native check of the ODE integrators that Python cannot make: no heap
+allocation after initialize, in restarts, advances, root location and dense
+output, for every method (benchmarks/integrate/alloc_check.cpp, which
+interposes malloc & co. for the whole process, SUNDIALS included).
+
+Builds the CMake project benchmarks/integrate (target integrate_alloc_check)
+once per session into a temporary directory, or into
+$LEADSCREW_NATIVE_BUILD_DIR/integrate, reused across sessions."""
+
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+
+import pytest
+
+import leadscrew.integrate as li
+
+SOURCE = pathlib.Path(__file__).resolve().parent.parent / "benchmarks" / "integrate"
+
+
+@pytest.fixture(scope="session")
+def alloc_report(tmp_path_factory):
+    cmake = shutil.which("cmake")
+    assert cmake, "cmake is needed to build benchmarks/integrate (pip install cmake)"
+    shared = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR")
+    build = pathlib.Path(shared) / "integrate" if shared else tmp_path_factory.mktemp("integrate")
+    if not (build / "CMakeCache.txt").exists():
+        configure = [cmake, "-S", str(SOURCE), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"]
+        if shutil.which("ninja"):
+            configure += ["-G", "Ninja"]
+        subprocess.run(configure, check=True, capture_output=True, text=True)
+    done = subprocess.run(
+        [cmake, "--build", str(build), "--target", "integrate_alloc_check", "--parallel", "2"],
+        capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    return subprocess.run([str(build / "integrate_alloc_check")], capture_output=True, text=True,
+                          timeout=120)
+
+
+def test_native_program_passes(alloc_report):
+    assert alloc_report.returncode == 0, alloc_report.stdout + alloc_report.stderr
+    assert alloc_report.stdout.strip().endswith("RESULT: PASS")
+
+
+@pytest.mark.parametrize("method", li.METHODS)
+def test_restarts_advances_and_roots_do_not_allocate(alloc_report, method):
+    line = re.search(rf"^(PASS|FAIL) no allocation in {method} restarts, advances, roots \((\d+)\)$",
+                     alloc_report.stdout, re.MULTILINE)
+    assert line, alloc_report.stdout
+    assert line.group(1) == "PASS" and line.group(2) == "0"
+    # The measured run really restarted at events (10 events, 22 restarts
+    # over the two runs: one reinitialize per run and one per event).
+    info = re.search(rf"^INFO {method}: (\d+) events, (\d+) steps, (\d+) restarts",
+                     alloc_report.stdout, re.MULTILINE)
+    assert info and int(info.group(1)) == 10 and int(info.group(3)) == 22, alloc_report.stdout
+
+
+def test_counter_is_not_blind(alloc_report):
+    for label in ("counter sees std::vector", "counter sees SUNDIALS allocating in initialize"):
+        line = re.search(rf"^PASS {re.escape(label)} \((\d+)\)$", alloc_report.stdout,
+                         re.MULTILINE)
+        assert line and int(line.group(1)) > 0, alloc_report.stdout

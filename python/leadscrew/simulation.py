@@ -110,7 +110,7 @@ def simulate(
         max_events: bound on events (Zeno or chattering raise instead of hanging).
         max_step, first_step: optional step-size controls [s].
         smooth_integrator: the ODE integrator inside ``"event_driven"`` for a
-            Scene (default ``"cvode_adams"`` for the rigid concept,
+            Scene (default ``"rk_verner6"`` for the rigid concept,
             ``"cvode_bdf"`` for the flexible ones).
         bounce_threshold: a flank impact slower than this [m/s] is plastic
             (exact backlash).

@@ -527,7 +527,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
   driver.max_events = options.max_events;
   if (options.integrator == "event_driven") {
     driver.integrator = !options.smooth_integrator.empty() ? options.smooth_integrator
-                        : p.concept == Concept::rigid     ? "cvode_adams"
+                        : p.concept == Concept::rigid     ? "rk_verner6"
                                                           : "cvode_bdf";
   } else {
     driver.integrator = options.integrator;

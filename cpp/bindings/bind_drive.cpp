@@ -119,7 +119,7 @@ void bind_drive(py::module_& m) {
       [](const model::DriveModel& drive, double t_end, const std::string& integrator,
          const std::string& smooth_integrator, double rtol, double atol, double dt, double theta,
          std::vector<double> t_eval, long max_steps, long max_events, double max_step,
-         double first_step, double bounce_threshold) {
+         double first_step, double bounce_threshold, int max_order) {
         model::DriveSimulationOptions options;
         options.integrator = integrator;
         options.smooth_integrator = smooth_integrator;
@@ -128,6 +128,7 @@ void bind_drive(py::module_& m) {
         options.integrator_options.max_steps = max_steps;
         options.integrator_options.max_step = max_step;
         options.integrator_options.first_step = first_step;
+        options.integrator_options.max_order = max_order;
         options.dt = dt;
         options.theta = theta;
         options.max_events = max_events;
@@ -140,7 +141,7 @@ void bind_drive(py::module_& m) {
       py::arg("drive"), py::arg("t_end"), py::arg("integrator"), py::arg("smooth_integrator"),
       py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
       py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"), py::arg("first_step"),
-      py::arg("bounce_threshold"));
+      py::arg("bounce_threshold"), py::arg("max_order"));
 }
 
 }  // namespace leadscrew::bindings

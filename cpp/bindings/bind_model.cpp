@@ -20,6 +20,9 @@ py::dict stats_dict(const integrate::SimulationStats& s) {
   d["lcp_solves"] = s.lcp_solves;
   d["restarts"] = s.restarts;
   d["nonlinear_iterations"] = s.nonlinear_iterations;
+  d["jacobian_evaluations"] = s.jacobian_evaluations;
+  d["error_test_failures"] = s.error_test_failures;
+  d["nonlinear_failures"] = s.nonlinear_failures;
   d["wall_time"] = s.wall_time;
   return d;
 }
@@ -83,7 +86,7 @@ void bind_model(py::module_& m) {
       [](const model::FrictionBlock& block, double t_end, const std::string& friction,
          const std::string& integrator, double k_v, double rtol, double atol, double dt,
          double theta, std::vector<double> t_eval, long max_steps, long max_events,
-         double max_step, double first_step) {
+         double max_step, double first_step, int max_order) {
         model::BlockSimulationOptions options;
         options.friction = parse_friction_law(friction);
         options.integrator = integrator;
@@ -93,6 +96,7 @@ void bind_model(py::module_& m) {
         options.integrator_options.max_steps = max_steps;
         options.integrator_options.max_step = max_step;
         options.integrator_options.first_step = first_step;
+        options.integrator_options.max_order = max_order;
         options.dt = dt;
         options.theta = theta;
         options.max_events = max_events;
@@ -105,7 +109,7 @@ void bind_model(py::module_& m) {
       py::arg("block"), py::arg("t_end"), py::arg("friction"), py::arg("integrator"),
       py::arg("k_v"), py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"),
       py::arg("t_eval"), py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
-      py::arg("first_step"));
+      py::arg("first_step"), py::arg("max_order"));
 }
 
 }  // namespace leadscrew::bindings

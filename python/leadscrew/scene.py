@@ -135,7 +135,8 @@ SCHEMA: Dict[str, Any] = {
         "nut_torsional_stiffness": Field("nut torsional stiffness (replaces G I_p / l)",
                                          "N*m/rad", OPTIONAL, **POSITIVE),
         "damping_ratio": Field("damping ratio zeta of every spring, c = 2 zeta sqrt(k m) with "
-                               "the mass or inertia the spring carries", "", 0.05,
+                               "m the larger mass (or inertia) of the two bodies it connects",
+                               "", 0.05,
                                **NONNEGATIVE),
         "screw_axial_damping": Field("screw axial damping", "N*s/m", OPTIONAL, **NONNEGATIVE),
         "screw_torsional_damping": Field("screw torsional damping", "N*m*s/rad", OPTIONAL,

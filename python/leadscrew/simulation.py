@@ -88,6 +88,7 @@ def simulate(
     first_step: Optional[float] = None,
     smooth_integrator: Optional[str] = None,
     bounce_threshold: float = 1e-6,
+    max_order: Optional[int] = None,
 ) -> Result:
     """Simulate a model from t = 0 to ``t_end``.
 
@@ -114,6 +115,9 @@ def simulate(
             ``"cvode_bdf"`` for the flexible ones).
         bounce_threshold: a flank impact slower than this [m/s] is plastic
             (exact backlash).
+        max_order: highest order of the CVODE methods (default: BDF 5,
+            Adams 12; BDF 2 is A-stable, which lightly damped stiff modes
+            need for long steps).
 
     Returns:
         A :class:`Result`.
@@ -137,7 +141,8 @@ def simulate(
             drive, float(t_end), integrator, smooth_integrator or "", float(rtol), float(atol),
             1e-4 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
             int(max_events), 0.0 if max_step is None else float(max_step),
-            0.0 if first_step is None else float(first_step), float(bounce_threshold))
+            0.0 if first_step is None else float(first_step), float(bounce_threshold),
+            0 if max_order is None else int(max_order))
         return Result(core_result)
     if not isinstance(model, _core.FrictionBlock):
         raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
@@ -150,5 +155,6 @@ def simulate(
         1e-3 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
         int(max_events), 0.0 if max_step is None else float(max_step),
         0.0 if first_step is None else float(first_step),
+        0 if max_order is None else int(max_order),
     )
     return Result(core_result)

@@ -69,6 +69,10 @@ void CvodeIntegrator::create_solver(double t0) {
   jacobian_rhs_ = 0;
   if (options_.max_order > 0)
     check_setup(CVodeSetMaxOrd(mem, options_.max_order), "CVodeSetMaxOrd");
+  // BDF of order 3 to 5 is unstable for long steps on eigenvalues near the
+  // imaginary axis (lightly damped stiff modes of the flexible drives);
+  // stability limit detection lowers the order only when it sees that.
+  if (method_ == Method::bdf) check_setup(CVodeSetStabLimDet(mem, SUNTRUE), "CVodeSetStabLimDet");
   if (options_.max_step > 0.0)
     check_setup(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");
   if (options_.first_step > 0.0)

@@ -21,6 +21,34 @@ std::vector<double> breakpoints_inside(const HybridSystem& system, double t0, do
   return times;
 }
 
+// What the integrator sees of a hybrid system: its right-hand side, and its
+// root functions with exact zeros moved to the side not yet crossed in the
+// direction that ends the mode. A mode often starts with a root function at
+// exactly zero (a normal force after a plastic impact, the play on the flank
+// just left); CVODE rejects a root function that stays zero just after a
+// restart, and such a zero is no crossing anyway.
+class RootGuard final : public OdeSystem {
+ public:
+  explicit RootGuard(HybridSystem& system)
+      : system_(system), directions_(static_cast<std::size_t>(std::max(system.root_count(), 0))) {}
+  int size() const override { return system_.size(); }
+  void rhs(double t, const double* y, double* ydot) override { system_.rhs(t, y, ydot); }
+  int root_count() const override { return system_.root_count(); }
+  void roots(double t, const double* y, double* g) override {
+    system_.roots(t, y, g);
+    system_.root_directions(directions_.data());
+    // Far below any physical value, far above underflow: CVODE interpolates
+    // between root values, and DBL_MIN there gives NaN times.
+    constexpr double tiny = 1e-200;
+    for (std::size_t i = 0; i < directions_.size(); ++i)
+      if (g[i] == 0.0) g[i] = directions_[i] > 0 ? -tiny : tiny;
+  }
+
+ private:
+  HybridSystem& system_;
+  std::vector<int> directions_;
+};
+
 }  // namespace
 
 double max_step_from_time_scales(std::initializer_list<double> time_scales) {
@@ -57,7 +85,8 @@ SimulationResult simulate_event_driven(HybridSystem& system, double t0,
   if (hint > 0.0 && (integrator_options.max_step <= 0.0 || hint < integrator_options.max_step))
     integrator_options.max_step = hint;
   std::unique_ptr<Integrator> integrator = make_integrator(options.integrator, integrator_options);
-  integrator->initialize(system, t0, y);
+  RootGuard guarded(system);
+  integrator->initialize(guarded, t0, y);
 
   std::vector<int> directions(static_cast<std::size_t>(std::max(system.root_count(), 0)), 0);
   auto counts_as_event = [&](const std::vector<int>& info) {
@@ -134,6 +163,9 @@ SimulationResult simulate_event_driven(HybridSystem& system, double t0,
   result.stats.steps = integrator_stats.steps;
   result.stats.rhs_evaluations = integrator_stats.rhs_evaluations;
   result.stats.restarts = integrator_stats.restarts;
+  result.stats.jacobian_evaluations = integrator_stats.jacobian_evaluations;
+  result.stats.error_test_failures = integrator_stats.error_test_failures;
+  result.stats.nonlinear_failures = integrator_stats.nonlinear_failures;
   result.stats.events = events;
   result.stats.lcp_solves = system.lcp_solves();
   result.stats.nonlinear_iterations = system.nonlinear_iterations();

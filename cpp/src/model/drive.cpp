@@ -1,5 +1,6 @@
 #include "leadscrew/model/drive.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "leadscrew/core/errors.hpp"
@@ -190,8 +191,11 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
     const double k = spring_stiffness(s, p_.nut_position, &derivative);
     require_positive(s.name + " stiffness", k);
     if (s.damping < 0.0) {
-      const double m1 = mass_[s.first];
-      const double carried = s.second >= 0 ? m1 * mass_[s.second] / (m1 + mass_[s.second]) : m1;
+      // The mode that matters on a spring is the heavier body's (the load
+      // bouncing on the nut, the screw on its support): the reduced mass
+      // would leave it nearly undamped.
+      const double carried = s.second >= 0 ? std::max(mass_[s.first], mass_[s.second])
+                                           : mass_[s.first];
       s.damping = 2.0 * p_.damping_ratio * std::sqrt(k * carried);
     }
     require_finite(s.name + " damping", s.damping);

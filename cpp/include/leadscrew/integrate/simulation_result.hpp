@@ -18,6 +18,9 @@ struct SimulationStats {
   long lcp_solves = 0;
   long restarts = 0;
   long nonlinear_iterations = 0;  // scalar solves inside the rhs (arctan_acceleration)
+  long jacobian_evaluations = 0;
+  long error_test_failures = 0;
+  long nonlinear_failures = 0;
   double wall_time = 0.0;         // [s], measured inside C++
 };
 

@@ -79,8 +79,8 @@ struct DriveParameters {
   double nut_axial_stiffness = 0.0;
   double nut_torsional_stiffness = 0.0;
   // Damping of each spring; < 0: c = 2 zeta sqrt(k m) with zeta =
-  // damping_ratio, k at the initial nut position and m the (reduced) mass or
-  // inertia the spring connects.
+  // damping_ratio, k at the initial nut position and m the larger mass or
+  // inertia of the two bodies the spring connects.
   double damping_ratio = 0.05;
   double screw_axial_damping = -1.0;
   double screw_torsional_damping = -1.0;

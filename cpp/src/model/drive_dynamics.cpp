@@ -26,10 +26,22 @@ bool solve_constrained(const CoordinateVector& inverse_mass, const CoordinateVec
                        const ColumnMatrix& B, const ConstraintMatrix& C, const SmallVector& r,
                        CoordinateVector& x, SmallVector& lambda) {
   const int nc = static_cast<int>(r.size());
+  const int n = static_cast<int>(f.size());
   if (nc == 0) {
     x = inverse_mass.cwiseProduct(f);
     lambda.resize(0);
     return true;
+  }
+  if (nc == n && r.isZero(0.0)) {
+    // The constraints lock every coordinate (the rigid drive in stick): the
+    // motion is exactly zero, and the multipliers balance the forces,
+    // B lambda = -f. Solving the Schur complement instead would leave
+    // round-off accelerations that let a stuck drive creep.
+    Eigen::FullPivLU<SmallMatrix> lu(B);
+    if (!lu.isInvertible()) return false;
+    lambda = lu.solve(SmallVector(-f));
+    x.setZero(n);
+    return lambda.allFinite();
   }
   ColumnMatrix weighted = inverse_mass.asDiagonal() * B;
   SmallMatrix schur = C * weighted;

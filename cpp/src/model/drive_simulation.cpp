@@ -357,8 +357,10 @@ class DriveHybrid final : public integrate::HybridSystem {
   // Stick or slip: from the slip velocity, or at zero slip by the flank LCP.
   void decide_friction(double t, double* y, bool at_zero_slip, int hint) {
     (void)t;
-    if (mode_.contact == ThreadContact::open) {
+    if (mode_.contact == ThreadContact::open || model_.effective_mu() == 0.0) {
+      // No contact, or a frictionless flank: no stick, no slip, no events.
       mode_.friction = FrictionMode::none;
+      mode_.slip_sign = 0;
       return;
     }
     if (p_.friction == FrictionLaw::arctan_velocity) {
@@ -405,6 +407,7 @@ class DriveHybrid final : public integrate::HybridSystem {
         sigmas = {1, -1};
     }
     int found = 0;
+    bool ambiguous = false;
     Mode chosen = mode_;
     for (int sigma : sigmas) {
       const friction::FlankLcpResult r =
@@ -421,11 +424,26 @@ class DriveHybrid final : public integrate::HybridSystem {
         candidate.friction = FrictionMode::slip;
         candidate.slip_sign = direction != 0 ? direction : hint;
       }
-      if (found > 0 && !(candidate == chosen)) jam("two flank-contact modes are consistent");
+      if (found > 0 && !(candidate == chosen)) ambiguous = true;
       chosen = candidate;
       ++found;
     }
-    if (found == 0) jam("no flank-contact mode is consistent");
+    if (found == 0 || ambiguous) {
+      // In the Painleve regime (mu' |G_NT| >= G_NN) the LCP of one normal-force
+      // sign may have no solution or admit a spurious slip start. At zero slip
+      // the drive keeps sticking whenever stick is admissible
+      // (docs/physics/rigid_drive.md, "uniqueness"); otherwise it jams.
+      const double stick_friction = -c / d;
+      const double stick_normal = beta + alpha * stick_friction;
+      if (hint == 0 && std::abs(stick_friction) <= model_.effective_mu() * std::abs(stick_normal)) {
+        chosen = mode_;
+        chosen.friction = FrictionMode::stick;
+        chosen.slip_sign = 0;
+      } else {
+        jam(found == 0 ? "no flank-contact mode is consistent"
+                       : "two flank-contact modes are consistent");
+      }
+    }
     mode_ = chosen;
   }
 

@@ -1,0 +1,303 @@
+"""Lead-screw drive models (thesis chapter 4) through leadscrew.simulate:
+the rigid drive against the independent reference of
+tests/helpers/rigid_drive_reference.py (docs/physics/rigid_drive.md), static
+position holding, dynamic jamming, the energy account, limits between concepts,
+and stiff or extreme cases."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import leadscrew as ls
+from helpers import rigid_drive_reference as reference
+from helpers.scenes import thesis_scene
+
+VARIANTS = [(drive, hand, beta) for drive in ("screw", "nut") for hand in ("right", "left")
+            for beta in (0.0, math.radians(30))]
+
+
+def reference_scene(drive="screw", hand="right", flank_angle=0.0, **changes):
+    """The scene with the reference's inertias (rotor 1e-6 kg m^2, densities 7850 / 1400)."""
+    thread = {"pitch": 1e-3, "mean_diameter": 20e-3, "hand": hand, "flank_angle": flank_angle}
+    return ls.Scene.from_dict(thesis_scene(drive=drive, thread=thread, rotor={"inertia": 1e-6},
+                                           **changes))
+
+
+@pytest.mark.parametrize("drive, hand, beta", VARIANTS)
+def test_rigid_drive_matches_closed_form(drive, hand, beta):
+    ref = reference.simulate(reference.thesis_drive(drive=drive, hand=hand, flank_angle=beta),
+                             *reference.thesis_loads(), 2.0)
+    result = ls.simulate(reference_scene(drive, hand, beta), 2.0, rtol=1e-12, atol=1e-14)
+    assert result.stats["events"] == len(ref.events)
+    assert np.max(np.abs(result["u_load"] - ref.u_load(result.t))) <= 1e-9
+    assert np.max(np.abs(result["omega_drive"] - ref.omega(result.t))) <= 1e-9 * 40.0
+    for ours, theirs in zip(result.events, ref.events):
+        assert abs(ours.time - theirs.time) <= 1e-9
+        assert theirs.kind.replace("slip", "") in ours.kind.replace("slip+", "").replace("slip-", "")
+    # Sign conventions (docs/physics/rigid_drive.md): the reference reports the
+    # force of the screw on the nut; leadscrew the force on the screw along the
+    # flank normal and the helix tangent, the latter with the hand's sign.
+    t = np.linspace(0.0, 2.0, 101)
+    at = ls.simulate(reference_scene(drive, hand, beta), 2.0, rtol=1e-12, atol=1e-14, t_eval=t)
+    h = 1.0 if hand == "right" else -1.0
+    np.testing.assert_allclose(at["normal_force"], -ref.normal_force(t), atol=1e-7)
+    np.testing.assert_allclose(at["friction_force"], -h * ref.friction_force(t), atol=1e-7)
+
+
+def test_speed_controlled_drive_needs_the_closed_form_torques():
+    """At constant speed the motor torque is the power-screw torque: raising
+    against the axial force, lowering with it (self-locking thread: > 0)."""
+    thread = ls.Thread(1e-3, 20e-3)
+    for concept in ("rigid", "flexible_nut", "flexible"):
+        for speed, expected in ((-10.0, -ls.raise_torque(thread, 0.3, 10.0)),
+                                (10.0, ls.lower_torque(thread, 0.3, 10.0))):
+            scene = ls.Scene.from_dict(thesis_scene(
+                concept=concept, loads={"drive_torque": None, "drive_speed": speed,
+                                        "axial_force": -10.0}))
+            r = ls.simulate(scene, 0.2, rtol=1e-10, atol=1e-14)
+            assert r["drive_torque"][-1] == pytest.approx(expected, rel=1e-6)
+            assert r["v_load"][-1] == pytest.approx(-speed * thread.lead_per_radian, rel=1e-6)
+
+
+def holding_scene(pitch, diameter, mu, beta, torque, force):
+    """A rigid drive whose rotating inertia equals m r^2: then
+    Delta = J + m p^2 > 0 for every lead angle and mu' (docs/physics/rigid_drive.md),
+    so the static bounds are not masked by dynamic jamming."""
+    load, nut, screw_inertia = 0.05, 1e-6, 1e-9
+    radius = diameter / 2
+    return ls.Scene.from_dict({
+        "thread": {"pitch": pitch, "mean_diameter": diameter, "flank_angle": beta},
+        "friction": {"law": "coulomb", "mu": mu},
+        "screw": {"radius": radius},
+        "nut": {"outer_radius": diameter},
+        "rotor": {"inertia": (load + nut) * radius**2 - screw_inertia},
+        "load": {"mass": load},
+        "overrides": {"nut_mass": nut, "screw_inertia": screw_inertia},
+        "loads": {"drive_torque": torque, "axial_force": force},
+    })
+
+
+def near_bound(draw, bound):
+    """mu' just below or above a bound, down to relative distances of 1e-9."""
+    distance = draw(st.floats(1e-9, 0.5))
+    side = draw(st.sampled_from([-1.0, 1.0]))
+    return bound * (1.0 + side * distance)
+
+
+@st.composite
+def thread_and_mu(draw, which):
+    pitch = draw(st.floats(2e-4, 0.02))
+    diameter = draw(st.floats(5e-3, 0.05))
+    beta = draw(st.sampled_from([0.0, math.radians(29), math.radians(30)]))
+    tan_a = pitch / (math.pi * diameter)
+    bound = tan_a if which == "holding" else 1.0 / tan_a
+    mu_eff = near_bound(draw, bound) if draw(st.booleans()) else draw(st.floats(0.0, 2.0))
+    return pitch, diameter, beta, mu_eff * math.cos(beta / 2)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(thread_and_mu("holding"))
+def test_static_holding_under_pure_axial_load(case):
+    """Under a pure axial load the drive does not move iff tan(alpha) < mu' (eq. 3.5)."""
+    pitch, diameter, beta, mu = case
+    thread = ls.Thread(pitch, diameter, flank_angle=beta)
+    r = ls.simulate(holding_scene(pitch, diameter, mu, beta, 0.0, -50.0), 0.05)
+    moved = r["stick"][-1] == 0.0
+    assert moved == (not ls.is_self_locking(thread, mu))
+    if not moved:
+        assert np.all(r["u_load"] == 0.0)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(thread_and_mu("driving"))
+def test_pure_torque_drives_iff_below_cot(case):
+    """A pure torque moves the drive iff mu' < cot(alpha) (eq. 3.7)."""
+    pitch, diameter, beta, mu = case
+    thread = ls.Thread(pitch, diameter, flank_angle=beta)
+    r = ls.simulate(holding_scene(pitch, diameter, mu, beta, 0.5, 0.0), 0.05)
+    moved = r["stick"][-1] == 0.0
+    assert moved == ls.is_drivable(thread, mu)
+
+
+def test_jamming_condition_boundary():
+    """The nut-driven thesis drive jams dynamically above a translating mass of
+    2.04 kg (m r^2 tan a (mu' - tan a) >= J (1 + mu' tan a)); just below it, it runs."""
+    critical = None
+    probe = reference.thesis_drive(drive="nut")
+    t = probe.tan_alpha
+    mu = probe.mu_eff
+    r = probe.mean_radius
+    critical = probe.J * (1 + mu * t) / (r * r * t * (mu - t)) - probe.screw_mass
+    for factor, jams in ((1.001, True), (0.999, False)):
+        scene = reference_scene("nut", load={"mass": critical * factor})
+        if jams:
+            with pytest.raises(ls.JammingError) as info:
+                ls.simulate(scene, 2.0)
+            message = str(info.value)
+            assert "Painleve" in message and "m r^2 tan(a)" in message and "q = [" in message
+            assert info.value.time > 0.0
+        else:
+            result = ls.simulate(scene, 2.0)
+            assert np.all(np.isfinite(result["u_load"]))
+
+
+CONCEPTS = ["rigid", "flexible_nut", "flexible"]
+BACKLASH = [None, "exact", "bistop", "cubic"]
+
+
+@pytest.mark.parametrize("concept", CONCEPTS)
+@pytest.mark.parametrize("contact", BACKLASH)
+def test_energy_account_closes(concept, contact):
+    changes = {"concept": concept}
+    if contact:
+        changes["backlash"] = {"axial": 0.1e-3, "contact": contact}
+    if contact in ("bistop", "cubic"):
+        changes["friction"] = {"law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}
+    scene = ls.Scene.from_dict(thesis_scene(**changes))
+    r = ls.simulate(scene, 0.3, rtol=1e-9, atol=1e-12)
+    scale = np.max(np.abs(r["work_drive"])) + np.max(np.abs(r["work_axial"])) + 1e-6
+    assert np.max(np.abs(r["energy_residual"])) <= 1e-5 * scale
+    assert np.all(np.diff(r["friction_loss"]) >= -1e-12 * scale)
+    assert np.all(r["friction_loss"] >= -1e-15)
+    for name in ("damping_loss", "contact_loss", "impact_loss"):
+        assert np.all(np.diff(r[name]) >= -1e-12 * scale), name
+    assert np.all(np.abs(r["friction_force"]) <= scene.model().effective_mu *
+                  np.abs(r["normal_force"]) * (1 + 1e-9) + 1e-9)
+
+
+@pytest.mark.parametrize("concept", CONCEPTS)
+def test_energy_conserved_without_friction_and_damping(concept):
+    scene = ls.Scene.from_dict(thesis_scene(
+        concept=concept, friction={"law": "coulomb", "mu": 0.0},
+        overrides={"damping_ratio": 0.0}))
+    r = ls.simulate(scene, 0.2, rtol=1e-10, atol=1e-14)
+    assert np.all(r["friction_loss"] == 0.0) and np.all(r["damping_loss"] == 0.0)
+    energy = r["kinetic"] + r["elastic"] - r["work_drive"] - r["work_axial"]
+    scale = np.max(np.abs(r["work_drive"])) + np.max(np.abs(r["work_axial"]))
+    assert np.max(np.abs(energy - energy[0])) <= 1e-7 * scale
+
+
+def load_position(scene, t_end=0.5, **options):
+    t = np.linspace(0.0, t_end, 101)
+    return ls.simulate(scene, t_end, t_eval=t, **options)["u_load"]
+
+
+def test_flexible_models_tend_to_rigid_as_stiffness_grows():
+    friction = {"law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}
+    rigid = load_position(ls.Scene.from_dict(thesis_scene(friction=friction)), rtol=1e-9,
+                          atol=1e-13)
+    for concept in ("flexible_nut", "flexible"):
+        errors = []
+        for scale in (0.01, 0.1, 1.0):
+            scene = ls.Scene.from_dict(thesis_scene(
+                concept=concept, friction=friction,
+                screw={"youngs_modulus": 210e9 * scale}, nut={"youngs_modulus": 2e9 * scale}))
+            errors.append(np.max(np.abs(load_position(scene, rtol=1e-9, atol=1e-13) - rigid)))
+        assert errors[2] < errors[1] < errors[0], (concept, errors)
+
+
+def test_regularized_friction_tends_to_exact():
+    """arctan_velocity -> exact Coulomb like k_V^(-2/3), as for the block."""
+    exact = load_position(ls.Scene.from_dict(thesis_scene()), rtol=1e-12, atol=1e-14)
+    gains = (1e2, 1e3, 1e4, 1e5)
+    errors = []
+    for k_v in gains:
+        scene = ls.Scene.from_dict(thesis_scene(friction={"law": "arctan_velocity", "mu": 0.3,
+                                                          "k_v": k_v}))
+        errors.append(np.max(np.abs(load_position(scene, rtol=1e-10, atol=1e-14) - exact)))
+    assert all(b < a for a, b in zip(errors, errors[1:])), errors
+    slope = np.polyfit(np.log(gains), np.log(errors), 1)[0]
+    assert -0.75 <= slope <= -0.55, (slope, errors)
+
+
+@pytest.mark.parametrize("contact", ["bistop", "cubic"])
+def test_compliant_backlash_tends_to_exact(contact):
+    exact = load_position(ls.Scene.from_dict(thesis_scene(backlash={"axial": 0.1e-3})),
+                          rtol=1e-10, atol=1e-14)
+    errors = []
+    for stiffness in (1e6, 1e7, 1e8):
+        scene = ls.Scene.from_dict(thesis_scene(
+            backlash={"axial": 0.1e-3, "contact": contact, "stiffness": stiffness,
+                      "penetration": 1e-7}))
+        errors.append(np.max(np.abs(load_position(scene, rtol=1e-9, atol=1e-13) - exact)))
+    assert errors[2] < errors[1] < errors[0], errors
+
+
+REQUIRED_CHANNELS = ["u_load", "v_load", "phi_drive", "omega_drive", "normal_force",
+                     "friction_force", "slip_velocity", "stick", "work_drive", "work_axial",
+                     "friction_loss", "kinetic", "elastic", "energy_residual"]
+
+
+@pytest.mark.parametrize("concept, bodies", [("rigid", []),
+                                             ("flexible_nut", ["u_nut", "phi_nut"]),
+                                             ("flexible", ["u_screw", "phi_screw", "u_nut",
+                                                           "phi_nut"])])
+def test_results_carry_every_channel(concept, bodies):
+    scene = ls.Scene.from_dict(thesis_scene(concept=concept, backlash={"axial": 1e-4}))
+    r = ls.simulate(scene, 0.05)
+    for name in REQUIRED_CHANNELS + ["gap", "play"] + bodies:
+        assert name in r, name
+        assert np.all(np.isfinite(r[name]))
+    assert np.all(r["gap"] >= -1e-12)
+    assert scene.model().degrees_of_freedom == {"rigid": 2, "flexible_nut": 4, "flexible": 6}[concept]
+
+
+def test_rigid_drive_without_play_is_one_degree_of_freedom():
+    assert ls.Scene.from_dict(thesis_scene()).model().degrees_of_freedom == 1
+    assert ls.Scene.from_dict(thesis_scene(concept="flexible_nut")).model().degrees_of_freedom == 3
+    assert ls.Scene.from_dict(thesis_scene(concept="flexible")).model().degrees_of_freedom == 5
+
+
+EXTREMES = [
+    dict(concept="flexible_nut", nut={"youngs_modulus": 2e6}),
+    dict(concept="flexible_nut", nut={"youngs_modulus": 2e9}),
+    dict(concept="flexible", screw={"youngs_modulus": 2.1e12}),
+    dict(friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e6}),
+    dict(friction={"law": "coulomb", "mu": 0.0}),
+    dict(friction={"law": "coulomb", "mu": math.tan(math.atan(1e-3 / (math.pi * 20e-3)))}),
+    dict(friction={"law": "coulomb", "mu": 1.0 / (1e-3 / (math.pi * 20e-3))}),
+    dict(backlash={"axial": 0.0}),
+    dict(backlash={"axial": 1e-3}),
+    dict(backlash={"axial": 1e-3, "contact": "bistop"},
+         friction={"law": "arctan_velocity", "mu": 0.3}),
+]
+
+
+@pytest.mark.parametrize("changes", EXTREMES, ids=range(len(EXTREMES)))
+def test_extreme_cases_finish_or_raise_clearly(changes):
+    scene = ls.Scene.from_dict(thesis_scene(**changes))
+    try:
+        r = ls.simulate(scene, 0.05, max_steps=200_000)
+    except ls.SimulationError as error:  # includes JammingError
+        assert "at t = " in str(error) and error.time >= 0.0
+        return
+    for name in r.channels:
+        assert np.all(np.isfinite(r[name])), name
+
+
+def test_heavy_load_jams_a_self_locking_drive():
+    scene = reference_scene("nut", load={"mass": 50.0})
+    with pytest.raises(ls.JammingError):
+        ls.simulate(scene, 1.0)
+
+
+@pytest.mark.parametrize(
+    "changes, integrator, match",
+    [
+        ({}, "dopri5", '"event_driven", "moreau"'),
+        ({"backlash": {"axial": 1e-4}, "friction": {"law": "arctan_velocity", "mu": 0.3}},
+         "cvode_bdf", '"event_driven"'),
+        ({}, "rk45", "integrator"),
+    ],
+)
+def test_integrator_must_fit_the_model(changes, integrator, match):
+    with pytest.raises(ValueError, match=match):
+        ls.simulate(ls.Scene.from_dict(thesis_scene(**changes)), 0.1, integrator=integrator)
+
+
+def test_scene_friction_argument_is_rejected():
+    with pytest.raises(ValueError, match="friction.law"):
+        ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.1, friction="arctan_velocity")

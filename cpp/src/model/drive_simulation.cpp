@@ -1,11 +1,13 @@
 #include "leadscrew/model/drive_simulation.hpp"
 
+#include <Eigen/Cholesky>
 #include <cmath>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/friction/flank_lcp.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
+#include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
 
 namespace leadscrew::model {
@@ -94,6 +96,72 @@ std::string describe(const Mode& m, bool backlash) {
 
 int sign_of(double x) { return (x > 0.0) - (x < 0.0); }
 
+std::vector<std::string> drive_channel_names(const DriveModel& model) {
+  std::vector<std::string> names = {"u_load",        "v_load",      "phi_drive",
+                                    "omega_drive",   "drive_torque", "axial_force",
+                                    "normal_force",  "friction_force", "slip_velocity",
+                                    "stick"};
+  if (model.parameters().backlash != BacklashContact::none) {
+    names.push_back("gap");
+    names.push_back("play");
+  }
+  const int n = model.coordinate_count();
+  for (int i = 1; i < n - 1; ++i) {
+    const std::string& name = model.coordinate_names()[i];
+    names.push_back(name);
+    names.push_back((name[0] == 'u' ? "v" : "omega") + name.substr(name.find('_')));
+  }
+  for (const char* name : {"work_drive", "work_axial", "friction_loss", "damping_loss",
+                           "contact_loss", "impact_loss", "kinetic", "elastic",
+                           "energy_residual"})
+    names.push_back(name);
+  return names;
+}
+
+// Thread and motor forces at an output point.
+struct ContactForces {
+  double normal = 0.0, friction = 0.0, motor_torque = 0.0;
+  bool stick = false;
+};
+
+// Writes one output row; dynamics holds the state (set_state called).
+void write_drive_channels(const DriveModel& model, const DriveDynamics& dynamics,
+                          const ContactForces& forces, const double* energy, double impact_loss,
+                          double kinetic0, double elastic0, double* out) {
+  const DriveParameters& p = model.parameters();
+  const CoordinateVector& q = dynamics.q();
+  const CoordinateVector& v = dynamics.v();
+  const int n = model.coordinate_count();
+  int k = 0;
+  out[k++] = q[model.load()];
+  out[k++] = v[model.load()];
+  out[k++] = p.rotor_angle + q[model.rotor()];
+  out[k++] = v[model.rotor()];
+  out[k++] = forces.motor_torque;
+  out[k++] = dynamics.axial_force();
+  out[k++] = forces.normal;
+  out[k++] = forces.friction;
+  out[k++] = dynamics.slip_velocity();
+  out[k++] = forces.stick ? 1.0 : 0.0;
+  if (p.backlash != BacklashContact::none) {
+    out[k++] = 0.5 * p.clearance - std::abs(dynamics.play());
+    out[k++] = dynamics.play();
+  }
+  for (int i = 1; i < n - 1; ++i) {
+    out[k++] = q[i];
+    out[k++] = v[i];
+  }
+  const double kinetic = dynamics.kinetic_energy();
+  const double elastic = dynamics.elastic_energy() + dynamics.contact_energy();
+  for (int e = 0; e < kEnergyCount; ++e) out[k++] = energy[e];
+  out[k++] = impact_loss;
+  out[k++] = kinetic;
+  out[k++] = elastic;
+  out[k++] = energy[kWorkDrive] + energy[kWorkAxial] -
+             (kinetic - kinetic0 + elastic - elastic0 + energy[kFrictionLoss] +
+              energy[kDampingLoss] + energy[kContactLoss] + impact_loss);
+}
+
 class DriveHybrid final : public integrate::HybridSystem {
  public:
   DriveHybrid(const DriveModel& model, double bounce_threshold)
@@ -106,21 +174,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     const int n = model.coordinate_count();
     q_.setZero(n);
     v_.setZero(n);
-    names_ = {"u_load", "v_load", "phi_drive", "omega_drive", "drive_torque", "axial_force",
-              "normal_force", "friction_force", "slip_velocity", "stick"};
-    if (backlash_) {
-      names_.push_back("gap");
-      names_.push_back("play");
-    }
-    for (int i = 1; i < n - 1; ++i) {
-      const std::string& name = model.coordinate_names()[i];
-      names_.push_back(name);
-      names_.push_back((name[0] == 'u' ? "v" : "omega") + name.substr(name.find('_')));
-    }
-    for (const char* name : {"work_drive", "work_axial", "friction_loss", "damping_loss",
-                             "contact_loss", "impact_loss", "kinetic", "elastic",
-                             "energy_residual"})
-      names_.push_back(name);
+    names_ = drive_channel_names(model);
   }
 
   int size() const override { return layout_.size(); }
@@ -254,40 +308,13 @@ class DriveHybrid final : public integrate::HybridSystem {
   void channels(double t, const double* y, double* out) override {
     set(t, y);
     const ModeSolution s = solve_current();
-    const double* energy = y + layout_.energy_offset();
-    const int n = model_.coordinate_count();
-    int k = 0;
-    out[k++] = q_[model_.load()];
-    out[k++] = v_[model_.load()];
-    out[k++] = p_.rotor_angle + q_[model_.rotor()];
-    out[k++] = v_[model_.rotor()];
-    out[k++] = s.motor_torque;
-    out[k++] = dynamics_.axial_force();
-    out[k++] = s.normal_force;
-    out[k++] = s.friction_force;
-    out[k++] = dynamics_.slip_velocity();
-    out[k++] = mode_.friction == FrictionMode::stick ? 1.0 : 0.0;
-    if (backlash_) {
-      out[k++] = 0.5 * p_.clearance - std::abs(dynamics_.play());
-      out[k++] = dynamics_.play();
-    }
-    for (int i = 1; i < n - 1; ++i) {
-      out[k++] = q_[i];
-      out[k++] = v_[i];
-    }
-    const double kinetic = dynamics_.kinetic_energy();
-    const double elastic = dynamics_.elastic_energy() + dynamics_.contact_energy();
-    out[k++] = energy[kWorkDrive];
-    out[k++] = energy[kWorkAxial];
-    out[k++] = energy[kFrictionLoss];
-    out[k++] = energy[kDampingLoss];
-    out[k++] = energy[kContactLoss];
-    out[k++] = impact_loss_;
-    out[k++] = kinetic;
-    out[k++] = elastic;
-    out[k++] = energy[kWorkDrive] + energy[kWorkAxial] -
-               (kinetic - kinetic0_ + elastic - elastic0_ + energy[kFrictionLoss] +
-                energy[kDampingLoss] + energy[kContactLoss] + impact_loss_);
+    ContactForces forces;
+    forces.normal = s.normal_force;
+    forces.friction = s.friction_force;
+    forces.motor_torque = s.motor_torque;
+    forces.stick = mode_.friction == FrictionMode::stick;
+    write_drive_channels(model_, dynamics_, forces, y + layout_.energy_offset(), impact_loss_,
+                         kinetic0_, elastic0_, out);
   }
 
   std::vector<double> breakpoints() const override {
@@ -504,6 +531,229 @@ class DriveHybrid final : public integrate::HybridSystem {
   lcp::Options lcp_options_{};
 };
 
+// ---------------------------------------------------------------------------
+// Moreau-Jean time stepping for the drive. On the velocity level, with the
+// theta method for springs and dampers made implicit through the iteration
+// matrix W = M + theta h C + theta^2 h^2 K (the flexible models are stiff):
+//   W v+ = M v + h f - theta (1 - theta) h^2 K v + theta h C v + impulses,
+//   q+   = q + h ((1 - theta) v + theta v+).
+// Impulses: the thread's normal impulse (a multiplier: bilateral without play,
+// or on a flank the predicted position closes, with Newton's law
+// W_N v+ = -e W_N v), the friction impulse from the flank LCP on the velocity
+// level (maximal dissipation), and the speed-controlled rotor's.
+class DriveMoreau final : public integrate::TimeSteppingSystem {
+ public:
+  explicit DriveMoreau(const DriveModel& model)
+      : model_(model), p_(model.parameters()), dynamics_(model), layout_(model),
+        names_(drive_channel_names(model)) {
+    const int n = model.coordinate_count();
+    q_.setZero(n);
+    v_.setZero(n);
+  }
+
+  int size() const override { return layout_.size(); }
+  const std::vector<std::string>& channel_names() const override { return names_; }
+  long lcp_solves() const override { return lcp_solves_; }
+
+  void initialize(double t, const double* y) {
+    layout_.expand(t, y, q_, v_);
+    dynamics_.set_state(t, q_, v_);
+    kinetic0_ = dynamics_.kinetic_energy();
+    elastic0_ = dynamics_.elastic_energy();
+  }
+
+  void step(double t, double h, double theta, const double* y, double* y_next) override {
+    const int n = model_.coordinate_count();
+    layout_.expand(t, y, q_, v_);
+    const CoordinateVector q0 = q_, v0 = v_;
+    dynamics_.set_state(t + theta * h, q_, v_);
+    const double play0 = dynamics_.play();
+    const double play_rate0 = dynamics_.play_rate();
+
+    // Iteration matrix and free velocity.
+    Square stiffness = Square::Zero(n, n), damping = Square::Zero(n, n);
+    const double a = model_.nut_position(q_.data());
+    for (const Spring& spring : model_.springs()) {
+      double derivative = 0.0;
+      const double k = model_.spring_stiffness(spring, a, &derivative);
+      add_pair(stiffness, spring.first, spring.second, k);
+      add_pair(damping, spring.first, spring.second, spring.damping);
+    }
+    Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
+    iteration.diagonal() += model_.mass();
+    CoordinateVector rhs = model_.mass().cwiseProduct(v0) + h * dynamics_.forces() -
+                           theta * (1.0 - theta) * h * h * (stiffness * v0) +
+                           theta * h * (damping * v0);
+    solver_.compute(iteration);
+    free_ = solver_.solve(rhs);
+
+    // Which thread contact is active in this step.
+    int sigma_fixed = 0;  // 0: bilateral (sign free); +-1: a flank
+    bool contact = true;
+    double normal_target = 0.0;
+    if (p_.backlash == BacklashContact::exact) {
+      const double half = 0.5 * p_.clearance;
+      const double predicted = play0 + h * play_rate0;
+      if (predicted <= -half) {
+        sigma_fixed = 1;
+      } else if (predicted >= half) {
+        sigma_fixed = -1;
+      } else {
+        contact = false;
+      }
+      normal_target = -p_.restitution * model_.normal_direction().dot(v0);
+    }
+    const double rotor_target = p_.speed_controlled ? p_.drive_speed(t + h) : 0.0;
+
+    Impulses impulses;
+    bool stick = false;
+    if (contact) {
+      const std::vector<int> sigmas =
+          sigma_fixed != 0 ? std::vector<int>{sigma_fixed} : std::vector<int>{1, -1};
+      const Impulses without = solve(true, normal_target, rotor_target, 0.0);
+      const Impulses unit = solve(true, normal_target, rotor_target, 1.0);
+      const double c = model_.tangent_direction().dot(without.velocity);
+      const double d = model_.tangent_direction().dot(unit.velocity) - c;
+      const double beta = without.normal;
+      const double alpha = unit.normal - beta;
+      int found = 0;
+      friction::FlankLcpResult chosen;
+      for (int sigma : sigmas) {
+        const friction::FlankLcpResult r = friction::solve_flank_lcp(
+            c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_, lcp_options_);
+        ++lcp_solves_;
+        if (!r.consistent) continue;
+        if (found == 0) chosen = r;
+        ++found;
+      }
+      if (found == 0 && sigma_fixed != 0) {
+        contact = false;  // the flank separates: no impulse on it
+      } else if (found == 0) {
+        throw JammingError(t, "dynamic jamming: no consistent flank impulse in the "
+                              "Moreau-Jean step; " + dynamics_.jamming_report(),
+                           "reduce the friction or change the inertia ratio");
+      } else {
+        impulses = solve(true, normal_target, rotor_target, chosen.friction_force);
+        impulses.friction = chosen.friction_force;
+        stick = chosen.slip_acceleration == 0.0;
+      }
+    }
+    if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
+    v_ = impulses.velocity;
+    if (p_.backlash == BacklashContact::exact && !contact)
+      impulses.normal = 0.0, impulses.friction = 0.0;
+
+    // Positions of the independent coordinates; the layout fills the rest.
+    const CoordinateVector v_theta = (1.0 - theta) * v0 + theta * v_;
+    q_ = q0 + h * v_theta;
+    CoordinateVector q_positions = q_;
+    layout_.compress(q_positions, v_, y_next);
+    const int offset = layout_.energy_offset();
+    for (int e = 0; e < kEnergyCount; ++e) y_next[offset + e] = y[offset + e];
+    layout_.expand(t + h, y_next, q_, v_);
+    double* energy = y_next + offset;
+    const double motor = p_.speed_controlled ? impulses.rotor * v_theta[model_.rotor()]
+                                             : p_.drive_torque(t + theta * h) *
+                                                   (q_[model_.rotor()] - q0[model_.rotor()]);
+    energy[kWorkDrive] += motor;
+    energy[kWorkAxial] +=
+        p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
+    const double slip = model_.tangent_direction().dot(v_);
+    energy[kFrictionLoss] += -impulses.friction * slip;
+    double damping_power = 0.0;
+    for (const Spring& spring : model_.springs()) {
+      const double rate = v_theta[spring.first] - (spring.second >= 0 ? v_theta[spring.second] : 0.0);
+      damping_power += spring.damping * rate * rate;
+    }
+    energy[kDampingLoss] += h * damping_power;
+    last_.normal = impulses.normal / h;
+    last_.friction = impulses.friction / h;
+    last_.motor_torque =
+        p_.speed_controlled ? impulses.rotor / h : p_.drive_torque(t + h);
+    last_.stick = contact && stick;
+  }
+
+  void channels(double t, const double* y, double* out) override {
+    layout_.expand(t, y, q_, v_);
+    dynamics_.set_state(t, q_, v_);
+    const double* energy = y + layout_.energy_offset();
+    // The Moreau-Jean scheme's numerical dissipation (and impacts) closes the
+    // account: what the work and the named losses leave over.
+    write_drive_channels(model_, dynamics_, last_, energy, 0.0, kinetic0_, elastic0_, out);
+  }
+
+ private:
+  using Square =
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, kMaxCoordinates>;
+
+  struct Impulses {
+    CoordinateVector velocity;
+    double normal = 0.0, friction = 0.0, rotor = 0.0;
+  };
+
+  static void add_pair(Square& matrix, int i, int j, double value) {
+    matrix(i, i) += value;
+    if (j >= 0) {
+      matrix(j, j) += value;
+      matrix(i, j) -= value;
+      matrix(j, i) -= value;
+    }
+  }
+
+  // v+ = free + W^-1 (B lambda + tangential W_T) with the active velocity
+  // constraints: W_N v+ = normal_target (thread), e_rotor v+ = rotor_target.
+  Impulses solve(bool thread, double normal_target, double rotor_target, double tangential) {
+    const int n = model_.coordinate_count();
+    const int nc = (thread ? 1 : 0) + (p_.speed_controlled ? 1 : 0);
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, 2> B =
+        Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, 2>::Zero(n, nc);
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1> r(nc);
+    int row = 0;
+    if (thread) {
+      B.col(row) = model_.normal_direction();
+      r[row++] = normal_target;
+    }
+    if (p_.speed_controlled) {
+      B(model_.rotor(), row) = 1.0;
+      r[row++] = rotor_target;
+    }
+    Impulses out;
+    CoordinateVector base = free_;
+    if (tangential != 0.0) {
+      const CoordinateVector shift = solver_.solve(CoordinateVector(model_.tangent_direction()));
+      base += tangential * shift;
+    }
+    if (nc == 0) {
+      out.velocity = base;
+      return out;
+    }
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, 2> weighted =
+        solver_.solve(B);
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2> schur =
+        B.transpose() * weighted;
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1> lambda =
+        schur.fullPivLu().solve(r - B.transpose() * base);
+    out.velocity = base + weighted * lambda;
+    row = 0;
+    if (thread) out.normal = lambda[row++];
+    if (p_.speed_controlled) out.rotor = lambda[row++];
+    return out;
+  }
+
+  const DriveModel& model_;
+  const DriveParameters& p_;
+  DriveDynamics dynamics_;
+  StateLayout layout_;
+  std::vector<std::string> names_;
+  CoordinateVector q_, v_, free_;
+  Eigen::LLT<Square> solver_;
+  ContactForces last_;
+  double kinetic0_ = 0.0, elastic0_ = 0.0;
+  long lcp_solves_ = 0;
+  lcp::Workspace lcp_workspace_{2};
+  lcp::Options lcp_options_{};
+};
+
 }  // namespace
 
 std::vector<std::string> drive_integrators(const DriveParameters& p) {
@@ -528,11 +778,14 @@ integrate::SimulationResult simulate(const DriveModel& model,
     throw InvalidArgument("integrator = \"" + options.integrator + "\" is invalid for " + what +
                           ": must be one of " + list);
   }
-  if (options.integrator == "moreau")
-    throw InvalidArgument("integrator = \"moreau\" is not available for drive models yet");
   require_nonnegative("bounce_threshold", options.bounce_threshold);
+  if (options.integrator == "moreau" &&
+      (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic))
+    throw InvalidArgument("integrator = \"moreau\" is invalid for backlash.contact = \"" +
+                          std::string(p.backlash == BacklashContact::bistop ? "bistop" : "cubic") +
+                          "\": a penalty contact needs an ODE integrator (the stepping scheme "
+                          "handles exact flank contacts)");
 
-  DriveHybrid system(model, options.bounce_threshold);
   StateLayout layout(model);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(layout.size());
   const double speed = p.speed_controlled ? p.drive_speed(0.0) : p.rotor_speed;
@@ -540,6 +793,19 @@ integrate::SimulationResult simulate(const DriveModel& model,
   CoordinateVector q = CoordinateVector::Zero(model.coordinate_count()), v = v0;
   layout.compress(q, v, y0.data());
 
+  if (options.integrator == "moreau") {
+    DriveMoreau system(model);
+    system.initialize(0.0, y0.data());
+    integrate::MoreauOptions moreau;
+    moreau.dt = options.dt;
+    moreau.theta = options.theta;
+    integrate::SimulationResult result =
+        integrate::simulate_moreau(system, 0.0, y0, options.output, moreau);
+    result.friction = friction_law_name(p.friction);
+    return result;
+  }
+
+  DriveHybrid system(model, options.bounce_threshold);
   integrate::EventDrivenOptions driver;
   driver.integrator_options = options.integrator_options;
   driver.max_events = options.max_events;

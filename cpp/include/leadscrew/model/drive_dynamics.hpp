@@ -79,6 +79,8 @@ class DriveDynamics {
   double damping_power() const noexcept { return damping_power_; }
   double contact_loss_power() const noexcept { return contact_loss_power_; }
   double applied_torque() const noexcept { return applied_torque_; }
+  // Spring, damper and load forces at the state last set (no thread forces).
+  const CoordinateVector& forces() const noexcept { return forces_; }
   double axial_force() const noexcept { return axial_force_; }
   double kinetic_energy() const;
   double friction_factor(const ModeSpec& spec, double slip_acceleration) const;

@@ -507,6 +507,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     except KeyboardInterrupt:
         print("leadscrew: interrupted", file=sys.stderr)
         return 130
+    except BrokenPipeError:  # the reader stopped early (leadscrew check | head)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
     except Exception as error:  # one clear line unless --debug
         if debug:
             raise

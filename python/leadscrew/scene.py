@@ -90,8 +90,8 @@ SCHEMA: Dict[str, Any] = {
                          choices=("exact", "bistop", "cubic")),
         "restitution": Field("Newton restitution coefficient of flank impacts ('exact')", "",
                              0.0, low=0.0, high=1.0),
-        "stiffness": Field("contact stiffness of 'bistop' and 'cubic' (default: 100 times the "
-                           "series axial stiffness of the thread pair)", "N/m", OPTIONAL,
+        "stiffness": Field("contact stiffness of 'bistop' (N/m^exponent) and 'cubic' (N/m) "
+                           "(default: the nut's axial stiffness E_M A_M / l_M)", "N/m", OPTIONAL,
                            **POSITIVE),
         "exponent": Field("force exponent of 'bistop': F = k d^e", "", 1.5, low=1.0),
         "damping": Field("maximum contact damping of 'bistop' and 'cubic' (default: "

@@ -19,8 +19,11 @@ namespace {
 constexpr double kPivotRelTol = 1e-11;
 constexpr double kTieRelTol = 64.0 * 2.220446049250313e-16;
 
+// Purely relative: ratios of 1e-4 that differ by 1e-14 are not tied (an
+// absolute floor of 1 made them so, and the lexicographic rule then picked
+// the wrong row).
 bool nearly_equal(double a, double b) {
-  return std::abs(a - b) <= kTieRelTol * std::max({1.0, std::abs(a), std::abs(b)});
+  return std::abs(a - b) <= kTieRelTol * std::max(std::abs(a), std::abs(b));
 }
 
 // The condensed tableau: the basic variables x_B (one per row) satisfy
@@ -256,6 +259,19 @@ Result solve_lemke(const Eigen::Ref<const Eigen::MatrixXd>& M,
     for (int sweep = 0; sweep < 2; ++sweep) tableau.refine(M, q, value, residual);
     tableau.extract(value, z);
     result = detail::finish(M, q, z, w, status, pivots, options.tol);
+  }
+  // Still off by round-off: near a degenerate point (a friction reserve at
+  // zero, a stick-slip boundary) the lexicographic rule can end on the
+  // neighbouring basis, infeasible by ~1e-14. Solve the basis the answer
+  // points to (z_i > w_i) exactly and keep it if it verifies.
+  if (status == Status::solved && result.status != Status::solved) {
+    auto z_trial = workspace.vectors.col(7).head(n);
+    auto w_trial = workspace.vectors.col(4).head(n);
+    if (detail::polish(M, q, z.data(), w.data(), n, workspace, z_trial, w_trial) &&
+        complementarity_residual(z_trial, w_trial) <= options.tol) {
+      z = z_trial;
+      result = detail::finish(M, q, z, w, Status::solved, pivots, options.tol);
+    }
   }
   return result;
 }

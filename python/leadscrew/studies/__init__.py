@@ -5,6 +5,7 @@ pandas DataFrame and draw a diagram.
 notebooks look studies up there).
 """
 
+from . import work_precision as _work_precision_module
 from .work_precision import (
     ATOL_PER_RTOL,
     COLUMNS,
@@ -18,14 +19,4 @@ from .work_precision import (
 
 STUDIES = {"work_precision": work_precision}
 
-__all__ = [
-    "STUDIES",
-    "work_precision",
-    "plot_work_precision",
-    "default_configurations",
-    "exact_reference",
-    "CONFIGURATION_KEYS",
-    "COLUMNS",
-    "REFERENCE_OPTIONS",
-    "ATOL_PER_RTOL",
-]
+__all__ = ["STUDIES", *_work_precision_module.__all__]

@@ -316,11 +316,13 @@ def work_precision(
             :func:`default_configurations` (FrictionBlock only).
         reference: what the errors are measured against:
             ``None`` (default): exact Coulomb friction, event-driven at rtol
-            1e-13 (:func:`exact_reference`; for the thesis block it equals the
-            closed-form solution to ~1e-15 m); a callable ``t -> values`` (e.g.
-            a closed form, vectorised over an array of times [s]); or a
-            :class:`~leadscrew.Result` whose output times contain every
-            compared time (``t_eval`` then defaults to its times).
+            1e-13 (:func:`exact_reference`; for the thesis block it matches
+            the closed-form solution to 1e-13 m, tested); a callable
+            ``t -> values`` (e.g. a closed form, vectorised over an array of
+            times [s]); or a :class:`~leadscrew.Result` whose output times
+            contain every compared time (``t_eval`` then defaults to its
+            times; at a time listed twice, an event, the first value is used,
+            so compare continuous channels such as u).
         t_eval: times [s] (strictly increasing, in [0, t_end]; t_end is
             appended if missing) at which the runs report and the errors are
             taken. Default None: every run reports at its own steps and

@@ -283,7 +283,7 @@ def time_ours(run, rtol, repeats):
         _, _, stats = run(rtol)
         python.append(time.perf_counter() - start)
         core.append(stats["wall_time"])
-    return statistics.median(core), statistics.median(python)
+    return statistics.median(core), statistics.median(python), min(core), min(python)
 
 
 def cases():
@@ -316,11 +316,12 @@ def benchmark(repeats_ours, repeats_theirs, progress=print):
                 case_rows.append(dict(case=title, solver=f"leadscrew {integrator}", failed=True))
                 continue
             rtol, error_max, error_final, stats = found
-            core, python = time_ours(run, rtol, repeats_ours)
+            core, python, core_min, python_min = time_ours(run, rtol, repeats_ours)
             case_rows.append(dict(case=title, solver=f"leadscrew {integrator}", rtol=rtol,
                                   error_max=error_max, error_final=error_final,
                                   steps=stats["steps"], rhs=stats["rhs_evaluations"],
-                                  events=stats["events"], core=core, python=python, ours=True))
+                                  events=stats["events"], core=core, python=python,
+                                  core_min=core_min, python_min=python_min))
             progress(f"  {title:45s} {integrator:12s} rtol {rtol:.2g} err {error_max:.1e} "
                      f"{core * 1e6:9.1f} us C++ {python * 1e6:9.1f} us Python")
         ours_rows = [r for r in case_rows if not r.get("failed")]
@@ -330,7 +331,7 @@ def benchmark(repeats_ours, repeats_theirs, progress=print):
             run = ours(amplitude, friction, "event_driven")
             t, u, stats = run(1e-8)
             error_max, error_final = errors_of(reference, t, u)
-            core, python = time_ours(run, 1e-8, repeats_ours)
+            core, python, _, _ = time_ours(run, 1e-8, repeats_ours)
             case_rows.append(dict(case=title, solver="leadscrew event_driven (fixed rtol)",
                                   rtol=1e-8, error_max=error_max, error_final=error_final,
                                   steps=stats["steps"], rhs=stats["rhs_evaluations"],
@@ -391,9 +392,11 @@ def markdown(rows, notes, repeats_ours, repeats_theirs):
         e = exact[0]
         summary.append(
             f"- Exact event-driven solution, 0 ≤ t ≤ 2 s, V = 6: max error {e['error_max']:.1e} m "
-            f"(target {EXACT_TARGET:g}) in {e['core'] * 1e6:.1f} µs inside C++ (target < 50 µs: "
+            f"(target {EXACT_TARGET:g}) in {e['core'] * 1e6:.1f} µs inside C++ (median; min "
+            f"{e['core_min'] * 1e6:.1f} µs; target < 50 µs: "
             f"{'met' if e['core'] < 50e-6 else 'NOT met'}) and {e['python'] * 1e6:.1f} µs "
-            f"through Python (target < 200 µs: {'met' if e['python'] < 200e-6 else 'NOT met'}).")
+            f"through Python (median; min {e['python_min'] * 1e6:.1f} µs; target < 200 µs: "
+            f"{'met' if e['python'] < 200e-6 else 'NOT met'}).")
     if ratios:
         summary.append(
             f"- solve_ivp / ours at matched error (through Python): min {min(ratios):,.0f}×, "
@@ -409,7 +412,8 @@ def markdown(rows, notes, repeats_ours, repeats_theirs):
         "",
         f"Machine: {platform.machine()}, {platform.system()}, Python "
         f"{platform.python_version()}, numpy {np.__version__}, scipy "
-        f"{__import__('scipy').__version__}, leadscrew {ls.__version__}, {os.cpu_count()} CPUs. "
+        f"{__import__('scipy').__version__}, leadscrew {ls.__version__}, {os.cpu_count()} CPUs, "
+        f"load average {os.getloadavg()[0]:.1f} at the end of the run. "
         f"Medians of {repeats_ours} runs (ours) and {repeats_theirs} runs (solve_ivp) after a "
         "warm-up. Matched error: each solver at the loosest rtol in 10^-2, 10^-2.25, ..., "
         "10^-13 (atol = 1e-2 rtol) whose max error of u over its own output points is <= the "
@@ -436,7 +440,7 @@ def markdown(rows, notes, repeats_ours, repeats_theirs):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeats", type=int, default=50, help="timed runs of ours")
-    parser.add_argument("--repeats-solve-ivp", type=int, default=5,
+    parser.add_argument("--repeats-solve-ivp", type=int, default=11,
                         help="timed runs of solve_ivp")
     parser.add_argument("--output", default=os.path.join(HERE, "results.md"),
                         help="markdown file to write ('' for none)")

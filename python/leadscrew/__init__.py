@@ -3,7 +3,7 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
-from . import lcp, scenes, units
+from . import lcp, scenes, studies, units
 from .errors import JammingError, SimulationError
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
@@ -40,6 +40,7 @@ __all__ = [
     "JammingError",
     "lcp",
     "scenes",
+    "studies",
     "units",
     "__version__",
 ]

@@ -19,11 +19,11 @@ namespace {
 constexpr double kPivotRelTol = 1e-11;
 constexpr double kTieRelTol = 64.0 * 2.220446049250313e-16;
 
-// Purely relative: ratios of 1e-4 that differ by 1e-14 are not tied (an
-// absolute floor of 1 made them so, and the lexicographic rule then picked
-// the wrong row).
+// The floor of 1 makes ratios at zero (degenerate q) tie with their round-off
+// neighbours, which the lexicographic rule needs; a near-tie it resolves the
+// wrong way is caught by the final polish.
 bool nearly_equal(double a, double b) {
-  return std::abs(a - b) <= kTieRelTol * std::max(std::abs(a), std::abs(b));
+  return std::abs(a - b) <= kTieRelTol * std::max({1.0, std::abs(a), std::abs(b)});
 }
 
 // The condensed tableau: the basic variables x_B (one per row) satisfy

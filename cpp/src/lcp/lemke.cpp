@@ -11,13 +11,13 @@ namespace leadscrew::lcp {
 namespace {
 
 // Entries of the entering column below kPivotRelTol * max|column| are not
-// pivoted on; ratios within kTieRelTol (relative) count as tied. Ties are a
-// round-off matter: degenerate problems produce ratios equal to a few ulps.
-// A coarser tolerance lets the lexicographic rule pick a row whose ratio is
-// measurably larger, which leaves the next basis infeasible (a friction LCP at
-// a stick-slip boundary, q = (-6 - 7e-13, 6), showed it).
+// pivoted on; ratios within kTieRelTol (relative) count as tied. Tied ratios
+// carry the cancellation errors of earlier pivots (1 - 213/214 after two), so
+// the tolerance must be well above round-off; a near-tie that the
+// lexicographic rule then resolves the wrong way leaves a basis infeasible by
+// ~1e-13, which the final polish corrects.
 constexpr double kPivotRelTol = 1e-11;
-constexpr double kTieRelTol = 64.0 * 2.220446049250313e-16;
+constexpr double kTieRelTol = 1e-11;
 
 // The floor of 1 makes ratios at zero (degenerate q) tie with their round-off
 // neighbours, which the lexicographic rule needs; a near-tie it resolves the

@@ -784,16 +784,9 @@ integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
   const std::vector<std::string> allowed = drive_integrators(p);
-  bool fits = false;
-  for (const auto& name : allowed) fits = fits || name == options.integrator;
-  if (!fits) {
-    std::string list;
-    for (const auto& name : allowed) list += (list.empty() ? "\"" : ", \"") + name + "\"";
-    std::string what = "friction.law = \"" + friction_law_name(p.friction) + "\"";
-    if (p.backlash == BacklashContact::exact) what += " with exact backlash";
-    throw InvalidArgument("integrator = \"" + options.integrator + "\" is invalid for " + what +
-                          ": must be one of " + list);
-  }
+  require_choice("integrator", options.integrator, allowed,
+                 "friction.law = \"" + friction_law_name(p.friction) + "\"" +
+                     (p.backlash == BacklashContact::exact ? " with exact backlash" : ""));
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   if (options.integrator == "moreau" &&
       (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic))

@@ -363,15 +363,8 @@ std::vector<std::string> integrators_for(FrictionLaw law) {
 integrate::SimulationResult simulate(const FrictionBlock& block,
                                      const BlockSimulationOptions& options) {
   const std::vector<std::string> allowed = integrators_for(options.friction);
-  bool fits = false;
-  for (const auto& name : allowed) fits = fits || name == options.integrator;
-  if (!fits) {
-    std::string list;
-    for (const auto& name : allowed) list += (list.empty() ? "\"" : ", \"") + name + "\"";
-    throw InvalidArgument("integrator = \"" + options.integrator +
-                          "\" is invalid for friction = \"" +
-                          friction_law_name(options.friction) + "\": must be one of " + list);
-  }
+  require_choice("integrator", options.integrator, allowed,
+                 "friction = \"" + friction_law_name(options.friction) + "\"");
   if (options.friction != FrictionLaw::coulomb) require_positive("k_v", options.k_v);
 
   Eigen::VectorXd y0(kStateSize);

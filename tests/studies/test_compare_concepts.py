@@ -10,7 +10,11 @@ import pytest  # noqa: E402
 import leadscrew as ls  # noqa: E402
 from helpers.scenes import thesis_scene  # noqa: E402
 from leadscrew.studies._sweep import SerialExecutor  # noqa: E402
-from leadscrew.studies.concepts import CONCEPTS, compare_concepts, plot_compare_concepts  # noqa: E402
+from leadscrew.studies.concepts import (  # noqa: E402
+    CONCEPTS,
+    compare_concepts,
+    plot_compare_concepts,
+)
 
 T_END = 0.5
 

@@ -127,6 +127,10 @@ def test_cycle_response_and_alternating_scene():
     assert len(out["t"]) == 151 and out["t"][-1] == pytest.approx(0.15)
     with pytest.raises(ValueError, match="cycles"):
         cycle_response(scene, 20.0, cycles=1, settle_cycles=1)
+    with pytest.raises(ValueError, match="frequency"):
+        alternating_scene(holding_scene(), 30.0, 0.0)
+    with pytest.raises(ValueError, match="offset"):
+        alternating_scene(holding_scene(), 30.0, 20.0, offset=float("nan"))
 
 
 def test_columns_units_and_plot(held):

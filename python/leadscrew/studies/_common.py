@@ -12,12 +12,14 @@ from ..scene import Scene
 
 __all__ = [
     "as_scene",
+    "check_finite",
     "check_positive",
     "check_count",
     "check_grid",
     "with_loads",
     "annotate",
     "numeric_or_nan",
+    "axes",
 ]
 
 
@@ -34,17 +36,32 @@ def as_scene(scene: Any) -> Scene:
     raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene or a scene dict")
 
 
+def check_finite(name: str, value: Any) -> float:
+    """``value`` as a float, a finite number.
+
+    Raises:
+        ValueError: naming the parameter and the value.
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number")
+    return float(value)
+
+
 def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
     """``value`` as a float, finite and > 0 (>= 0 with ``allow_zero``).
 
     Raises:
         ValueError: naming the parameter, the value and the valid range.
     """
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value) \
-            or value < 0 or (value == 0 and not allow_zero):
-        bound = ">= 0" if allow_zero else "> 0"
+    bound = ">= 0" if allow_zero else "> 0"
+    try:
+        value = check_finite(name, value)
+    except ValueError:
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number {bound}") \
+            from None
+    if value < 0 or (value == 0 and not allow_zero):
         raise ValueError(f"{name} = {value!r} is invalid: must be a finite number {bound}")
-    return float(value)
+    return value
 
 
 def check_count(name: str, value: Any, low: int) -> int:
@@ -101,3 +118,12 @@ def numeric_or_nan(value: Optional[float]) -> float:
     """A float for a frame cell of a failed case (NaN marks "no value"; the
     row's ``error`` column says why)."""
     return float("nan") if value is None else float(value)
+
+
+def axes(ax: Optional[Any] = None):
+    """``ax``, or the Axes of a new matplotlib figure."""
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt
+
+    return plt.subplots()[1]

@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from ..simulation import simulate
-from ._common import annotate, as_scene, check_count, check_positive, numeric_or_nan
+from ._common import annotate, axes, as_scene, check_count, check_positive, numeric_or_nan
 from ._sweep import run_cases
 
 __all__ = ["CONCEPTS", "compare_concepts", "plot_compare_concepts"]
@@ -128,10 +128,7 @@ def plot_compare_concepts(frame: pd.DataFrame, ax: Optional[Any] = None):
     Returns:
         The Axes.
     """
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        _, ax = plt.subplots()
+    ax = axes(ax)
     for row in frame.itertuples():
         if row.u_load is None:
             continue

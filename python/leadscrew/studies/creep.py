@@ -17,7 +17,8 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
-from ._common import annotate, as_scene, check_count, check_grid, check_positive, numeric_or_nan
+from ._common import (annotate, as_scene, axes, check_count, check_grid, check_positive,
+                      numeric_or_nan)
 from ._sweep import run_cases
 from .holding import _constant_torque, alternating_scene, cycle_response
 
@@ -180,8 +181,6 @@ def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optio
     Raises:
         ValueError: neither or both parameters vary, or an unknown quantity.
     """
-    import matplotlib.pyplot as plt
-
     if quantity not in ("creep_per_cycle", "creep_rate", "max_displacement"):
         raise ValueError(f"quantity = {quantity!r} is invalid: must be creep_per_cycle, "
                          "creep_rate or max_displacement")
@@ -190,8 +189,7 @@ def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optio
         raise ValueError("frame is invalid: exactly one of frequency and backlash must vary "
                          "(use plot_creep_map for a map)")
     x = varying[0]
-    if ax is None:
-        _, ax = plt.subplots()
+    ax = axes(ax)
     scale = 1e3 if x == "backlash" else 1.0
     ax.plot(frame[x] * scale, np.abs(frame[quantity]) * 1e6, "o-")
     ax.set_xlabel("backlash [mm]" if x == "backlash" else "frequency [Hz]")
@@ -215,14 +213,11 @@ def plot_creep_map(frame: pd.DataFrame, quantity: str = "creep_per_cycle",
     Raises:
         ValueError: an unknown quantity.
     """
-    import matplotlib.pyplot as plt
-
     if quantity not in ("creep_per_cycle", "creep_rate", "max_displacement"):
         raise ValueError(f"quantity = {quantity!r} is invalid: must be creep_per_cycle, "
                          "creep_rate or max_displacement")
     grid = frame.pivot(index="backlash", columns="frequency", values=quantity).abs()
-    if ax is None:
-        _, ax = plt.subplots()
+    ax = axes(ax)
     mesh = ax.pcolormesh(grid.columns.to_numpy(), grid.index.to_numpy() * 1e3,
                          grid.to_numpy() * 1e6, shading="nearest")
     unit = "um/s" if quantity == "creep_rate" else "um"

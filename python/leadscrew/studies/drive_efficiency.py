@@ -16,12 +16,11 @@ import functools
 import itertools
 from typing import Any, Dict, Optional, Sequence, Tuple
 
-import numpy as np
 import pandas as pd
 
 from ..simulation import simulate
 from ..thread import efficiency, is_drivable
-from ._common import annotate, as_scene, check_grid, check_positive, numeric_or_nan
+from ._common import annotate, axes, as_scene, check_grid, check_positive, numeric_or_nan
 from ._sweep import run_cases
 
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
@@ -177,10 +176,7 @@ def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):
     Returns:
         The Axes.
     """
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        _, ax = plt.subplots()
+    ax = axes(ax)
     for index, (load, group) in enumerate(frame.groupby("load", sort=True)):
         ax.plot(group["mu"], group["efficiency"], "o", color=f"C{index}",
                 label=f"simulated, load {load:g} N")

@@ -33,7 +33,8 @@ from ..excitation import Sine
 from ..scene import Scene
 from ..simulation import simulate
 from ..thread import is_self_locking, lower_torque, raise_torque
-from ._common import annotate, as_scene, check_count, check_positive, numeric_or_nan
+from ._common import (annotate, as_scene, axes, check_count, check_finite, check_positive,
+                      numeric_or_nan)
 from ._sweep import run_cases
 
 __all__ = [
@@ -100,9 +101,7 @@ def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
         ValueError: invalid scene or a force that is not finite.
     """
     scene = as_scene(scene)
-    if isinstance(axial_force, bool) or not isinstance(axial_force, numbers.Real) or \
-            not math.isfinite(axial_force):
-        raise ValueError(f"axial_force = {axial_force!r} is invalid: must be a finite number")
+    axial_force = check_finite("axial_force", axial_force)
     thread, mu = scene.thread, scene["friction"]["mu"]
     if axial_force == 0.0:
         return 0.0, 0.0
@@ -139,8 +138,13 @@ def alternating_scene(scene: Scene, amplitude: float, frequency: float, offset: 
         The new scene.
 
     Raises:
-        ValueError: invalid values.
+        ValueError: a value is not finite, or the frequency is not > 0 (the
+            scene check names any other invalid field).
     """
+    frequency = check_positive("frequency", frequency)
+    amplitude = check_finite("amplitude", amplitude)
+    offset = check_finite("offset", offset)
+    phase = check_finite("phase", phase)
     changes: Dict[str, Any] = {"loads": {"axial_force": {
         "type": "sine", "amplitude": float(amplitude), "omega": 2.0 * math.pi * frequency,
         "phase": float(phase), "offset": float(offset)}}}
@@ -277,9 +281,8 @@ def position_holding(
     torque = _constant_torque(scene)
     amplitude = check_positive("amplitude", amplitude)
     frequency = check_positive("frequency", frequency)
-    static_force = -amplitude if static_force is None else float(static_force)
-    if not math.isfinite(static_force):
-        raise ValueError(f"static_force = {static_force!r} is invalid: must be finite")
+    static_force = -amplitude if static_force is None else check_finite("static_force",
+                                                                         static_force)
     options = dict(simulate_options, rtol=rtol, atol=atol)
     centred = scene.replace(initial={"play_position": 0.0})
     static = cycle_response(centred.replace(loads={"axial_force": static_force}), frequency,
@@ -328,10 +331,7 @@ def plot_position_holding(frame: pd.DataFrame, ax: Optional[Any] = None):
     Returns:
         The Axes.
     """
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        _, ax = plt.subplots()
+    ax = axes(ax)
     ax.plot(frame["t"], frame["u_load_static"] * 1e3, "-", label="static axial force")
     ax.plot(frame["t"], frame["u_load_dynamic"] * 1e3, "--", label="alternating axial force")
     ax.set_xlabel("time t [s]")
@@ -560,10 +560,7 @@ def plot_min_holding_preload(frame: pd.DataFrame, ax: Optional[Any] = None):
     Returns:
         The Axes.
     """
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        _, ax = plt.subplots()
+    ax = axes(ax)
     ok = frame[frame["error"].isna()]
     holds = ok[ok["holds"]]
     fails = ok[~ok["holds"]]

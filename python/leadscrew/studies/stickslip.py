@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from ..simulation import simulate
-from ._common import annotate, as_scene, check_positive
+from ._common import annotate, axes, as_scene, check_positive
 
 __all__ = ["stick_slip", "stick_slip_phases", "plot_stick_slip"]
 
@@ -155,11 +155,8 @@ def plot_stick_slip(frame: pd.DataFrame, ax: Optional[Any] = None):
     Raises:
         ValueError: the frame is not a stick_slip result.
     """
-    import matplotlib.pyplot as plt
-
     phases = stick_slip_phases(frame)
-    if ax is None:
-        _, ax = plt.subplots()
+    ax = axes(ax)
     ax.plot(frame["t"], frame["u_load"] * 1e3, color="C0", label="load position")
     first = True
     for row in phases.itertuples():

@@ -1,0 +1,144 @@
+"""Benchmark of the parallel study sweeps (not a test).
+
+Two sweeps of leadscrew.studies, each run serially (SerialExecutor) and on the
+default thread pool (os.cpu_count() workers; the C++ core releases the GIL):
+
+- efficiency_vs_mu: 50 friction coefficients x 3 axial loads on the thesis's
+  Table 5.1 drive (rigid concept, speed-controlled at 10 rad/s, 0.2 s);
+- creep_map: 30 frequencies x 30 backlash values of the position-holding case
+  (Table 5.1 drive, exact backlash, 5 N mm held torque, 30 N alternating force,
+  6 cycles each).
+
+For each: wall time serial and threaded (the minimum over --repeats runs),
+the thread pool's speed-up, the time per simulation in the sweep against a
+single simulation of one case run alone (the minimum over many repeats), the
+share of the serial time spent inside the C++ core (its own wall-time
+measurement; the rest holds the GIL and bounds the speed-up, Amdahl), and the
+load average before and after (other work on the machine slows the threaded
+runs first).
+
+Run: python benchmarks/studies/bench_studies.py [--repeats N] [--flexible]
+(--flexible adds the efficiency sweep on the flexible_nut concept).
+"""
+
+from __future__ import annotations
+
+import argparse
+import concurrent.futures
+import os
+import platform
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+import leadscrew as ls
+from leadscrew.studies._sweep import SerialExecutor, default_workers
+from leadscrew.studies.creep import _creep_case, creep_map
+from leadscrew.studies.drive_efficiency import _efficiency_case, efficiency_vs_mu
+
+# The thesis's Table 5.1 drive, shared with the tests.
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
+from helpers.scenes import thesis_scene as thesis_dict  # noqa: E402
+
+TARGETS = {"efficiency_vs_mu": 2.0, "creep_map": 60.0}  # s, threaded, issue 6
+
+
+def thesis_scene(**changes):
+    """Table 5.1 with load case (5.1) (tests/helpers/scenes.py)."""
+    return ls.Scene.from_dict(thesis_dict(**changes))
+
+
+def holding_scene():
+    """The position-holding case: exact backlash 0.2 mm, a 5 N mm torque held."""
+    return thesis_scene(backlash={"axial": 2e-4},
+                        loads={"drive_torque": 5e-3, "axial_force": 0.0})
+
+
+def best_of(function, repeats):
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        value = function()
+        times.append(time.perf_counter() - start)
+    return min(times), value
+
+
+def single_case_time(case_function, case, repeats=200):
+    """Minimum wall time of one case (scene edit, simulation, measures) run alone."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        case_function(case)
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def run(name, sweep, case_function, case, n, repeats):
+    single = single_case_time(case_function, case)
+    serial, frame = best_of(lambda: sweep(SerialExecutor()), repeats)
+    threaded, _ = best_of(lambda: sweep(None), repeats)
+    with concurrent.futures.ThreadPoolExecutor(default_workers()) as pool:
+        pooled, _ = best_of(lambda: sweep(pool), repeats)
+    core = float(np.nansum(frame["wall_time"]))
+    failed = int(frame["error"].notna().sum())
+    return {
+        "name": name, "n": n, "serial": serial, "threaded": threaded, "pooled": pooled,
+        "speedup": serial / threaded, "per_sim": threaded / n, "single": single,
+        "core_share": core / serial, "failed": failed,
+        "target": TARGETS.get(name.split(" ")[0]),
+    }
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--flexible", action="store_true")
+    args = parser.parse_args()
+    load_before = os.getloadavg()
+    rows = []
+
+    mu = np.linspace(0.0, 0.5, 50)
+    loads = [10.0, 50.0, 100.0]
+    for concept in ["rigid"] + (["flexible_nut"] if args.flexible else []):
+        scene = thesis_scene(concept=concept)
+        t_end = 0.2 if concept == "rigid" else 0.1
+        rows.append(run(
+            f"efficiency_vs_mu ({concept})",
+            lambda ex, s=scene, t=t_end: efficiency_vs_mu(s, mu, loads, t_end=t, executor=ex,
+                                                          progress=False),
+            lambda case, s=scene, t=t_end: _efficiency_case(
+                case, s, 10.0, t, (t / 2, t), {"rtol": 1e-8, "atol": 1e-10}),
+            (0.3, 50.0), len(mu) * len(loads), args.repeats))
+
+    frequencies = np.geomspace(5.0, 50.0, 30)
+    backlash = np.linspace(0.05e-3, 0.5e-3, 30)
+    scene = holding_scene()
+    rows.append(run(
+        "creep_map",
+        lambda ex: creep_map(scene, frequencies, backlash, executor=ex, progress=False),
+        lambda case: _creep_case(case, scene, 30.0, 6, 1, 100, {"rtol": 1e-8, "atol": 1e-10}),
+        (20.0, 2e-4), len(frequencies) * len(backlash), args.repeats))
+
+    load_after = os.getloadavg()
+    print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
+          f"thread pool of {default_workers()} workers; Python {platform.python_version()}")
+    print(f"load average (1, 5, 15 min) before: {load_before[0]:.2f} {load_before[1]:.2f} "
+          f"{load_before[2]:.2f}; after: {load_after[0]:.2f} {load_after[1]:.2f} "
+          f"{load_after[2]:.2f}")
+    print(f"minimum of {args.repeats} runs per column\n")
+    print("| sweep | sims | serial [s] | threads [s] | speed-up | target [s] | per sim, threads "
+          "[ms] | single sim [ms] | C++ share of serial | failed |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        target = f"< {r['target']:g}" if r["target"] else ""
+        print(f"| {r['name']} | {r['n']} | {r['serial']:.3f} | {r['threaded']:.3f} | "
+              f"{r['speedup']:.2f}x | {target} | {r['per_sim'] * 1e3:.3f} | "
+              f"{r['single'] * 1e3:.3f} | {r['core_share']:.0%} | {r['failed']} |")
+    print("\n(threads: a new default pool per call; a reused pool gave "
+          + ", ".join(f"{r['pooled']:.3f} s" for r in rows) + ")")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,129 @@
+"""Helpers shared by the studies: argument checks, scene edits, frame metadata."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any, Dict, Iterable, Optional
+
+import numpy as np
+
+from ..scene import Scene
+
+__all__ = [
+    "as_scene",
+    "check_finite",
+    "check_positive",
+    "check_count",
+    "check_grid",
+    "with_loads",
+    "annotate",
+    "numeric_or_nan",
+    "axes",
+]
+
+
+def as_scene(scene: Any) -> Scene:
+    """A :class:`~leadscrew.Scene` from a Scene or a scene dict.
+
+    Raises:
+        ValueError: ``scene`` is neither, or the dict is not a valid scene.
+    """
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, dict):
+        return Scene.from_dict(scene)
+    raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene or a scene dict")
+
+
+def check_finite(name: str, value: Any) -> float:
+    """``value`` as a float, a finite number.
+
+    Raises:
+        ValueError: naming the parameter and the value.
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number")
+    return float(value)
+
+
+def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
+    """``value`` as a float, finite and > 0 (>= 0 with ``allow_zero``).
+
+    Raises:
+        ValueError: naming the parameter, the value and the valid range.
+    """
+    bound = ">= 0" if allow_zero else "> 0"
+    try:
+        value = check_finite(name, value)
+    except ValueError:
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number {bound}") \
+            from None
+    if value < 0 or (value == 0 and not allow_zero):
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number {bound}")
+    return value
+
+
+def check_count(name: str, value: Any, low: int) -> int:
+    """``value`` as an int >= ``low``.
+
+    Raises:
+        ValueError: naming the parameter, the value and the valid range.
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
+        raise ValueError(f"{name} = {value!r} is invalid: must be an integer >= {low}")
+    return int(value)
+
+
+def check_grid(name: str, values: Iterable[float], allow_zero: bool = False) -> np.ndarray:
+    """A non-empty 1-D array of finite values > 0 (>= 0 with ``allow_zero``).
+
+    Raises:
+        ValueError: naming the parameter, the offending value and the valid range.
+    """
+    try:
+        array = np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {values!r} is invalid: must be a sequence of numbers") from None
+    if array.ndim != 1 or array.size == 0:
+        raise ValueError(f"{name} = {values!r} is invalid: must be a non-empty 1-D sequence")
+    for value in array:
+        check_positive(f"{name} entry", float(value), allow_zero)
+    return array
+
+
+def with_loads(scene: Scene, **loads: Any) -> Scene:
+    """The scene with some of its ``loads`` replaced (``None`` removes one:
+    ``drive_torque=None, drive_speed=10.0`` switches to a speed-controlled drive).
+
+    Raises:
+        ValueError: the loads are invalid (as :meth:`Scene.from_dict`).
+    """
+    return scene.replace(loads=loads)
+
+
+def annotate(frame, units: Dict[str, str], **summary: Any):
+    """Attach ``attrs["units"]`` (column -> SI unit, ``"1"`` for ratios and
+    ``""`` for labels) and, if given, ``attrs["summary"]`` (scalars) to a frame.
+    An ``error`` column holds None for every case that succeeded."""
+    if "error" in frame:
+        frame["error"] = frame["error"].astype(object).where(frame["error"].notna(), None)
+    frame.attrs["units"] = {column: units[column] for column in frame.columns if column in units}
+    if summary:
+        frame.attrs["summary"] = dict(summary)
+    return frame
+
+
+def numeric_or_nan(value: Optional[float]) -> float:
+    """A float for a frame cell of a failed case (NaN marks "no value"; the
+    row's ``error`` column says why)."""
+    return float("nan") if value is None else float(value)
+
+
+def axes(ax: Optional[Any] = None):
+    """``ax``, or the Axes of a new matplotlib figure."""
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt
+
+    return plt.subplots()[1]

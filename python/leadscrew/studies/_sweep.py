@@ -1,0 +1,147 @@
+"""Run a study's cases on any :class:`concurrent.futures.Executor`.
+
+A study builds a list of cases (plain, picklable values) and a case function
+(a module-level function, or a :func:`functools.partial` of one, so that
+process-based executors such as a Dask distributed client can ship it).
+:func:`run_cases` maps the function over the cases and returns one
+:class:`Outcome` per case, in input order. A case that raises becomes an
+outcome with its error message instead of ending the sweep.
+
+The default executor is a thread pool over ``os.cpu_count()`` workers: the
+C++ core releases the GIL while it integrates, so threads run simulations in
+parallel. :class:`SerialExecutor` runs every case in the calling thread (the
+reference for the parallel paths, and the fastest choice for a handful of
+cheap cases).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import os
+import threading
+import time
+from dataclasses import dataclass
+from typing import Any, Callable, List, Optional, Sequence
+
+__all__ = ["Outcome", "SerialExecutor", "run_cases", "default_workers"]
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """What one case gave.
+
+    Attributes:
+        value: the case function's return value (None if it failed).
+        error: None, or ``"ExceptionType: message"`` of the failure.
+        elapsed: wall time of the case function in its worker [s].
+    """
+
+    value: Any
+    error: Optional[str]
+    elapsed: float
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+
+class SerialExecutor(concurrent.futures.Executor):
+    """An executor that runs each submitted call at once in the calling thread."""
+
+    def __init__(self):
+        self._shutdown = False
+        self._lock = threading.Lock()
+
+    def submit(self, fn, /, *args, **kwargs):
+        with self._lock:
+            if self._shutdown:
+                raise RuntimeError("cannot schedule new calls after shutdown")
+        future: concurrent.futures.Future = concurrent.futures.Future()
+        try:
+            future.set_result(fn(*args, **kwargs))
+        except BaseException as error:  # the future carries it, as a pool's would
+            future.set_exception(error)
+        return future
+
+    def shutdown(self, wait=True, *, cancel_futures=False):
+        with self._lock:
+            self._shutdown = True
+
+
+def default_workers() -> int:
+    """Number of workers of the default thread pool: ``os.cpu_count()`` (at least 1)."""
+    return max(1, os.cpu_count() or 1)
+
+
+def _describe(error: BaseException) -> str:
+    return f"{type(error).__name__}: {error}"
+
+
+def _guarded(function: Callable[[Any], Any], case: Any) -> Outcome:
+    """Run one case in its worker; a failure becomes the outcome's error.
+
+    Module-level so that process-based executors can pickle it.
+    """
+    start = time.perf_counter()
+    try:
+        value = function(case)
+    except Exception as error:  # a failed case is a row, not a lost sweep
+        return Outcome(None, _describe(error), time.perf_counter() - start)
+    return Outcome(value, None, time.perf_counter() - start)
+
+
+def run_cases(
+    function: Callable[[Any], Any],
+    cases: Sequence[Any],
+    executor: Optional[concurrent.futures.Executor] = None,
+    progress: bool = True,
+    description: Optional[str] = None,
+) -> List[Outcome]:
+    """Map ``function`` over ``cases`` on an executor, in input order.
+
+    Args:
+        function: called as ``function(case)`` in a worker; for process-based
+            executors it and the cases must pickle.
+        cases: the cases.
+        executor: any :class:`concurrent.futures.Executor` (a thread pool,
+            a process pool, :class:`SerialExecutor`, or a Dask client's
+            ``client.get_executor()``). Default: a thread pool over
+            :func:`default_workers` workers, shut down before returning.
+        progress: show a tqdm progress bar over the finished cases.
+        description: the progress bar's label.
+
+    Returns:
+        One :class:`Outcome` per case, in the order of ``cases``. A case that
+        raised (in the function, or while the executor shipped it) has
+        ``error`` set and ``value`` None.
+    """
+    cases = list(cases)
+    if not cases:
+        return []
+    owned = executor is None
+    if owned:
+        executor = concurrent.futures.ThreadPoolExecutor(max_workers=default_workers())
+    from tqdm.auto import tqdm
+
+    outcomes: List[Optional[Outcome]] = [None] * len(cases)
+    try:
+        with tqdm(total=len(cases), desc=description, disable=not progress,
+                  leave=False) as bar:
+            futures = {}
+            for index, case in enumerate(cases):
+                try:
+                    futures[executor.submit(_guarded, function, case)] = index
+                except Exception as error:  # e.g. the case does not pickle
+                    outcomes[index] = Outcome(None, _describe(error), 0.0)
+                    bar.update(1)
+            for future in concurrent.futures.as_completed(futures):
+                index = futures[future]
+                try:
+                    outcomes[index] = future.result()
+                except Exception as error:  # the executor lost the case
+                    outcomes[index] = Outcome(None, _describe(error), 0.0)
+                bar.update(1)
+    finally:
+        if owned:
+            executor.shutdown(wait=True)
+    return outcomes  # type: ignore[return-value]

@@ -1,0 +1,227 @@
+"""Creep under an alternating axial force against frequency and backlash (thesis Fig. 5.5).
+
+Each case runs the scene under ``amplitude sin(2 pi f t)`` (no static
+preload, the nut starting centred in the backlash, the scene's constant drive
+torque acting) for whole cycles and measures the creep per cycle and the
+largest displacement (:func:`leadscrew.studies.holding.cycle_response`). The
+creep comes from the rotating part turning under the drive torque while the
+nut flies across the backlash: the longer the flight (more backlash, lower
+frequency) the more it turns.
+"""
+
+from __future__ import annotations
+
+import functools
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+import pandas as pd
+
+from ._common import (annotate, as_scene, axes, check_count, check_grid, check_positive,
+                      numeric_or_nan)
+from ._sweep import run_cases
+from .holding import _constant_torque, alternating_scene, cycle_response
+
+__all__ = ["creep_vs_frequency", "creep_vs_backlash", "creep_map", "plot_creep",
+           "plot_creep_map"]
+
+UNITS = {"frequency": "Hz", "backlash": "m", "creep_per_cycle": "m", "creep_rate": "m/s",
+         "max_displacement": "m", "separations": "1", "flight_fraction": "1",
+         "wall_time": "s", "steps": "1", "error": ""}
+
+_MEASURES = ("creep_per_cycle", "max_displacement", "separations", "flight_fraction",
+             "wall_time", "steps")
+
+
+def _creep_case(case: Tuple[float, float], scene, amplitude: float, cycles: int,
+                settle_cycles: int, points_per_cycle: int,
+                options: Dict[str, Any]) -> Dict[str, Any]:
+    frequency, backlash = case
+    excited = alternating_scene(scene, amplitude, frequency, backlash=backlash)
+    return cycle_response(excited, frequency, cycles, settle_cycles, points_per_cycle, **options)
+
+
+def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float, cycles: int,
+           settle_cycles: int, points_per_cycle: int, rtol: float, atol: float, executor,
+           progress: bool, description: str, options: Dict[str, Any]) -> pd.DataFrame:
+    amplitude = check_positive("amplitude", amplitude)
+    settle_cycles = check_count("settle_cycles", settle_cycles, 0)
+    cycles = check_count("cycles", cycles, settle_cycles + 1)
+    points_per_cycle = check_count("points_per_cycle", points_per_cycle, 4)
+    _constant_torque(scene)
+    function = functools.partial(_creep_case, scene=scene, amplitude=amplitude, cycles=cycles,
+                                 settle_cycles=settle_cycles, points_per_cycle=points_per_cycle,
+                                 options=dict(options, rtol=rtol, atol=atol))
+    outcomes = run_cases(function, pairs, executor=executor, progress=progress,
+                         description=description)
+    rows = []
+    for (frequency, backlash), outcome in zip(pairs, outcomes):
+        value = outcome.value or {}
+        row = {"frequency": frequency, "backlash": backlash}
+        for name in _MEASURES:
+            row[name] = numeric_or_nan(value.get(name))
+        row["creep_rate"] = row["creep_per_cycle"] * frequency
+        row["error"] = outcome.error
+        rows.append(row)
+    columns = ["frequency", "backlash", "creep_per_cycle", "creep_rate", "max_displacement",
+               "separations", "flight_fraction", "wall_time", "steps", "error"]
+    return annotate(pd.DataFrame(rows, columns=columns), UNITS, amplitude=amplitude,
+                    cycles=cycles, settle_cycles=settle_cycles)
+
+
+def _scene_backlash(scene) -> float:
+    if "backlash" not in scene:
+        raise ValueError("scene.backlash is missing: creep needs a backlash to fly across; "
+                         "add a backlash section or use creep_vs_backlash")
+    return float(scene["backlash"]["axial"])
+
+
+_COMMON_ARGS = """
+        amplitude: amplitude of the alternating axial force [N], > 0.
+        cycles: cycles per run, > settle_cycles.
+        settle_cycles: cycles before the creep fit, >= 0.
+        points_per_cycle: output points per cycle, >= 4.
+        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        executor: a :class:`concurrent.futures.Executor` (default: a thread
+            pool over all cores). Scene and cases pickle, so process pools and
+            ``dask.distributed.Client(...).get_executor()`` work too.
+        progress: show a tqdm progress bar.
+        **simulate_options: passed on to :func:`leadscrew.simulate`.
+
+    Returns:
+        DataFrame with one row per case: ``frequency`` [Hz], ``backlash``
+        [m], ``creep_per_cycle`` [m] (signed along +x), ``creep_rate`` [m/s],
+        ``max_displacement`` [m], ``separations`` [1], ``flight_fraction``
+        [1], ``wall_time`` [s, C++], ``steps`` [1] and ``error`` (None, or
+        the message of a failed case, whose numbers are NaN).
+        ``attrs["units"]`` maps columns to units.
+
+    Raises:
+        ValueError: invalid scene (no constant drive torque) or arguments."""
+
+
+def creep_vs_frequency(scene: Any, frequencies: Sequence[float], amplitude: float = 30.0,
+                       cycles: int = 6, settle_cycles: int = 1, points_per_cycle: int = 100,
+                       rtol: float = 1e-8, atol: float = 1e-10, executor=None,
+                       progress: bool = True, **simulate_options: Any) -> pd.DataFrame:
+    scene = as_scene(scene)
+    backlash = _scene_backlash(scene)
+    pairs = [(float(f), backlash) for f in check_grid("frequencies", frequencies)]
+    return _sweep(scene, pairs, amplitude, cycles, settle_cycles, points_per_cycle, rtol, atol,
+                  executor, progress, "creep_vs_frequency", simulate_options)
+
+
+creep_vs_frequency.__doc__ = """Creep per cycle and largest displacement against the
+    excitation frequency (thesis Fig. 5.5a), at the scene's backlash.
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict) with a backlash
+            section and a constant drive torque.
+        frequencies: excitation frequencies [Hz], > 0.""" + _COMMON_ARGS
+
+
+def creep_vs_backlash(scene: Any, backlash: Sequence[float], frequency: float = 20.0,
+                      amplitude: float = 30.0, cycles: int = 6, settle_cycles: int = 1,
+                      points_per_cycle: int = 100, rtol: float = 1e-8, atol: float = 1e-10,
+                      executor=None, progress: bool = True,
+                      **simulate_options: Any) -> pd.DataFrame:
+    scene = as_scene(scene)
+    frequency = check_positive("frequency", frequency)
+    pairs = [(frequency, float(c)) for c in check_grid("backlash", backlash)]
+    return _sweep(scene, pairs, amplitude, cycles, settle_cycles, points_per_cycle, rtol, atol,
+                  executor, progress, "creep_vs_backlash", simulate_options)
+
+
+creep_vs_backlash.__doc__ = """Creep per cycle and largest displacement against the
+    axial backlash (thesis Fig. 5.5b), at one frequency.
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant
+            drive torque; its backlash section (contact law, restitution,
+            ...) is kept, or an exact one added, with ``axial`` replaced.
+        backlash: total axial clearances [m], > 0.
+        frequency: excitation frequency [Hz], > 0.""" + _COMMON_ARGS
+
+
+def creep_map(scene: Any, frequencies: Sequence[float], backlash: Sequence[float],
+              amplitude: float = 30.0, cycles: int = 6, settle_cycles: int = 1,
+              points_per_cycle: int = 100, rtol: float = 1e-8, atol: float = 1e-10,
+              executor=None, progress: bool = True, **simulate_options: Any) -> pd.DataFrame:
+    scene = as_scene(scene)
+    frequencies = check_grid("frequencies", frequencies)
+    clearances = check_grid("backlash", backlash)
+    pairs = [(float(f), float(c)) for f in frequencies for c in clearances]
+    return _sweep(scene, pairs, amplitude, cycles, settle_cycles, points_per_cycle, rtol, atol,
+                  executor, progress, "creep_map", simulate_options)
+
+
+creep_map.__doc__ = """Creep over every pair of frequency and backlash (Fig. 5.5, both axes).
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant
+            drive torque (its backlash section kept, ``axial`` replaced).
+        frequencies: excitation frequencies [Hz], > 0.
+        backlash: total axial clearances [m], > 0. Rows run over the
+            clearances for the first frequency, then the second, ...""" + _COMMON_ARGS
+
+
+def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optional[Any] = None):
+    """Draw |creep per cycle| (or another measure) against the swept
+    parameter, frequency or backlash (Fig. 5.5a or b).
+
+    Args:
+        frame: the DataFrame of :func:`creep_vs_frequency` or :func:`creep_vs_backlash`.
+        quantity: the column to draw: ``creep_per_cycle`` (drawn in magnitude),
+            ``creep_rate`` or ``max_displacement``.
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes.
+
+    Raises:
+        ValueError: neither or both parameters vary, or an unknown quantity.
+    """
+    if quantity not in ("creep_per_cycle", "creep_rate", "max_displacement"):
+        raise ValueError(f"quantity = {quantity!r} is invalid: must be creep_per_cycle, "
+                         "creep_rate or max_displacement")
+    varying = [c for c in ("frequency", "backlash") if frame[c].nunique() > 1]
+    if len(varying) != 1:
+        raise ValueError("frame is invalid: exactly one of frequency and backlash must vary "
+                         "(use plot_creep_map for a map)")
+    x = varying[0]
+    ax = axes(ax)
+    scale = 1e3 if x == "backlash" else 1.0
+    ax.plot(frame[x] * scale, np.abs(frame[quantity]) * 1e6, "o-")
+    ax.set_xlabel("backlash [mm]" if x == "backlash" else "frequency [Hz]")
+    unit = "um/s" if quantity == "creep_rate" else "um"
+    ax.set_ylabel(f"|{quantity.replace('_', ' ')}| [{unit}]")
+    return ax
+
+
+def plot_creep_map(frame: pd.DataFrame, quantity: str = "creep_per_cycle",
+                   ax: Optional[Any] = None):
+    """Draw |quantity| over frequency and backlash as a colour map.
+
+    Args:
+        frame: the DataFrame :func:`creep_map` returned.
+        quantity: ``creep_per_cycle``, ``creep_rate`` or ``max_displacement``.
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes.
+
+    Raises:
+        ValueError: an unknown quantity.
+    """
+    if quantity not in ("creep_per_cycle", "creep_rate", "max_displacement"):
+        raise ValueError(f"quantity = {quantity!r} is invalid: must be creep_per_cycle, "
+                         "creep_rate or max_displacement")
+    grid = frame.pivot(index="backlash", columns="frequency", values=quantity).abs()
+    ax = axes(ax)
+    mesh = ax.pcolormesh(grid.columns.to_numpy(), grid.index.to_numpy() * 1e3,
+                         grid.to_numpy() * 1e6, shading="nearest")
+    unit = "um/s" if quantity == "creep_rate" else "um"
+    ax.figure.colorbar(mesh, ax=ax, label=f"|{quantity.replace('_', ' ')}| [{unit}]")
+    ax.set_xlabel("frequency [Hz]")
+    ax.set_ylabel("backlash [mm]")
+    return ax

@@ -1,0 +1,579 @@
+"""Position holding under static and alternating axial load (thesis section 5.2, Fig. 5.4).
+
+A self-locking thread (tan(alpha) < mu', eq. 3.5) holds its position under a
+static axial force: the nut moves across the backlash onto a flank and sticks
+there. Under an alternating axial force without static preload the flank
+unloads every half period: the nut leaves the flank and flies across the
+backlash. In flight nothing holds the rotating part, so a torque acting on it
+(the scene's ``loads.drive_torque``: a residual motor torque, or the torque a
+load exerts on the rotating side through a gear) turns it; the small turns
+add up and the load creeps. With exact Coulomb friction, plastic flank
+impacts and no torque the drive cannot creep at all: a self-locking flank
+stops the relative motion at every impact (the impulse that stops an axial
+motion lies inside the friction cone iff tan(alpha) <= mu'), so nothing turns.
+
+:func:`position_holding` runs the static and the alternating case of one
+scene; :func:`min_holding_preload` answers the design question the thesis ends
+section 5.2 with: the smallest static preload that keeps the nut on its flank
+and the creep below a limit. The frequency and backlash sweeps are in
+:mod:`leadscrew.studies.creep`.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import numbers
+from typing import Any, Dict, List, Optional, Tuple
+
+import numpy as np
+import pandas as pd
+
+from ..excitation import Sine
+from ..scene import Scene
+from ..simulation import simulate
+from ..thread import is_self_locking, lower_torque, raise_torque
+from ._common import (annotate, as_scene, axes, check_count, check_finite, check_positive,
+                      numeric_or_nan)
+from ._sweep import run_cases
+
+__all__ = [
+    "cycle_response",
+    "alternating_scene",
+    "static_holding_band",
+    "position_holding",
+    "plot_position_holding",
+    "min_holding_preload",
+    "plot_min_holding_preload",
+]
+
+UNITS = {
+    "t": "s", "axial_force_static": "N", "u_load_static": "m", "axial_force_dynamic": "N",
+    "u_load_dynamic": "m", "phi_drive_dynamic": "rad", "gap_dynamic": "m",
+    "iteration": "1", "preload": "N", "holds": "", "separated": "", "separations": "1",
+    "creep_per_cycle": "m", "max_displacement": "m", "flight_fraction": "1",
+    "wall_time": "s", "error": "",
+}
+
+_OPEN = "->open"
+
+
+def _constant_torque(scene: Scene) -> float:
+    """The scene's drive torque [N*m], which must be constant."""
+    loads = scene["loads"]
+    if "drive_speed" in loads:
+        raise ValueError("loads.drive_speed is invalid for a position-holding study: the "
+                         "drive must be torque-controlled (loads.drive_torque, constant)")
+    torque = loads["drive_torque"]
+    if isinstance(torque, numbers.Real):
+        return float(torque)
+    if isinstance(torque, dict) and torque.get("type") == "constant":
+        return float(torque["value"])
+    if hasattr(torque, "value") and type(torque).__name__ == "Constant":
+        return float(torque.value)
+    raise ValueError(f"loads.drive_torque = {torque!r} is invalid for a position-holding "
+                     "study: must be constant (the torque held by the thread)")
+
+
+def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
+    """Drive torques [N*m] a stuck rigid drive holds under a static axial force
+    (Coulomb friction; thesis eq. 3.5-3.8).
+
+    A positive torque turns the rotor forward, which moves the load along
+    -h x (h = +1 for a right-hand thread). A torque that moves the load
+    against the force must exceed the raising torque
+    R = F r_m (tan a + mu') / (1 - mu' tan a) (``inf`` where no torque can);
+    one that moves it with the force, the lowering torque
+    L = F r_m (mu' - tan a) / (1 + mu' tan a), negative for a thread that is
+    not self-locking (then the force back-drives it unless a torque of at
+    least -L holds it back). The drive holds iff the torque lies strictly
+    inside the band.
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict): thread and mu.
+        axial_force: static axial force on the load along +x [N].
+
+    Returns:
+        (low, high) [N*m] in the sign convention of ``loads.drive_torque``;
+        (0, 0) for a zero force.
+
+    Raises:
+        ValueError: invalid scene or a force that is not finite.
+    """
+    scene = as_scene(scene)
+    axial_force = check_finite("axial_force", axial_force)
+    thread, mu = scene.thread, scene["friction"]["mu"]
+    if axial_force == 0.0:
+        return 0.0, 0.0
+    raising = raise_torque(thread, mu, abs(axial_force))
+    lowering = lower_torque(thread, mu, abs(axial_force))
+    # Positive torque raises the load iff -h points against the force.
+    if thread.hand_sign * axial_force > 0:
+        return -lowering, raising
+    return -raising, lowering
+
+
+def _holds(band: Tuple[float, float], torque: float, axial_force: float) -> bool:
+    if axial_force == 0.0:
+        return torque == 0.0
+    return band[0] < torque < band[1]
+
+
+def alternating_scene(scene: Scene, amplitude: float, frequency: float, offset: float = 0.0,
+                      backlash: Optional[float] = None, on_flank: bool = False,
+                      phase: float = 0.0) -> Scene:
+    """The scene under the axial force ``offset + amplitude sin(2 pi f t + phase)``.
+
+    Args:
+        scene: the scene (its drive torque and everything else are kept).
+        amplitude: force amplitude [N].
+        frequency: excitation frequency f [Hz], > 0.
+        offset: static axial force (preload) along +x [N].
+        backlash: if given, the total axial clearance [m] replacing the scene's.
+        on_flank: start with the nut on the flank the static force presses it
+            against (else centred in the backlash, as in thesis Fig. 5.4).
+        phase: phase of the sine [rad].
+
+    Returns:
+        The new scene.
+
+    Raises:
+        ValueError: a value is not finite, or the frequency is not > 0 (the
+            scene check names any other invalid field).
+    """
+    frequency = check_positive("frequency", frequency)
+    amplitude = check_finite("amplitude", amplitude)
+    offset = check_finite("offset", offset)
+    phase = check_finite("phase", phase)
+    changes: Dict[str, Any] = {"loads": {"axial_force": {
+        "type": "sine", "amplitude": float(amplitude), "omega": 2.0 * math.pi * frequency,
+        "phase": float(phase), "offset": float(offset)}}}
+    if backlash is not None:
+        changes["backlash"] = {"axial": float(backlash)}
+    clearance = backlash if backlash is not None else (
+        scene["backlash"]["axial"] if "backlash" in scene else 0.0)
+    play = 0.0
+    if on_flank and offset != 0.0:
+        # A force along +x moves the translating part along +x: the nut (drive
+        # = "screw") lowers the play coordinate e = u_screw - u_nut - h p dphi,
+        # the screw (drive = "nut") raises it (docs/physics/drive_models.md).
+        side = -1.0 if scene["drive"] == "screw" else 1.0
+        play = side * math.copysign(0.5 * clearance, offset)
+    changes["initial"] = {"play_position": play}
+    return scene.replace(**changes)
+
+
+def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: int = 1,
+                   points_per_cycle: int = 100, series: bool = False,
+                   **simulate_options: Any) -> Dict[str, Any]:
+    """Simulate whole excitation cycles and measure creep and flight.
+
+    Args:
+        scene: the scene, excited at ``frequency``.
+        frequency: excitation frequency f [Hz], > 0; the run lasts cycles / f.
+        cycles: number of cycles, > settle_cycles.
+        settle_cycles: cycles left out of the creep fit, >= 0.
+        points_per_cycle: output points per cycle, >= 4.
+        series: also return the time series (``t``, ``result``).
+        **simulate_options: passed on to :func:`leadscrew.simulate`.
+
+    Returns:
+        dict with ``creep_per_cycle`` [m]: slope of a least-squares line
+        through u_load at the cycle boundaries k = settle_cycles..cycles,
+        signed along +x; ``max_displacement`` [m]: max |u_load(t) - u_load(0)|
+        on the output times; ``separations`` [1]: flank openings (events to
+        'open'); ``flight_fraction`` [1]: share of output times with the nut
+        off both flanks (gap > 1e-9 of the clearance); ``wall_time`` [s, C++];
+        ``steps``, ``events`` [1].
+
+    Raises:
+        ValueError: invalid arguments.
+        SimulationError, JammingError: the simulation failed.
+    """
+    frequency = check_positive("frequency", frequency)
+    settle_cycles = check_count("settle_cycles", settle_cycles, 0)
+    cycles = check_count("cycles", cycles, settle_cycles + 1)
+    points_per_cycle = check_count("points_per_cycle", points_per_cycle, 4)
+    t_end = cycles / frequency
+    t_eval = np.linspace(0.0, t_end, cycles * points_per_cycle + 1)
+    result = simulate(scene, t_end, t_eval=t_eval, **simulate_options)
+    u = result["u_load"]
+    boundaries = u[::points_per_cycle]
+    # Least-squares slope, written out so that equal positions give exactly 0.
+    k = np.arange(settle_cycles, cycles + 1, dtype=float)
+    k -= k.mean()
+    fitted = boundaries[settle_cycles:]
+    creep = float(np.dot(k, fitted - fitted.mean()) / np.dot(k, k))
+    if "gap" in result:
+        clearance = scene["backlash"]["axial"]
+        flight = float(np.mean(result["gap"] > 1e-9 * clearance)) if clearance > 0 else 0.0
+    else:
+        flight = 0.0
+    out = {
+        "creep_per_cycle": creep,
+        "max_displacement": float(np.max(np.abs(u - u[0]))),
+        "separations": sum(1 for event in result.events if event.kind.endswith(_OPEN)),
+        "flight_fraction": flight,
+        "wall_time": float(result.stats["wall_time"]),
+        "steps": int(result.stats["steps"]),
+        "events": len(result.events),
+    }
+    if series:
+        out["t"] = t_eval
+        out["result"] = result
+    return out
+
+
+def position_holding(
+    scene: Any,
+    amplitude: float = 30.0,
+    frequency: float = 20.0,
+    static_force: Optional[float] = None,
+    cycles: int = 8,
+    settle_cycles: int = 1,
+    points_per_cycle: int = 200,
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    **simulate_options: Any,
+) -> pd.DataFrame:
+    """Static against dynamic position holding (thesis Fig. 5.4).
+
+    Two runs of the scene, both with its (constant) drive torque and the nut
+    starting in the middle of the backlash: under the static axial force
+    ``static_force``, and under the alternating axial force
+    ``amplitude sin(2 pi f t)`` without static part. The two simulations run
+    one after the other in the calling thread (each takes milliseconds).
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant
+            ``loads.drive_torque`` and, for flight, a backlash section.
+        amplitude: amplitude of the alternating axial force [N], > 0.
+        frequency: its frequency [Hz], > 0.
+        static_force: static axial force along +x [N] (default ``-amplitude``:
+            the alternating force's peak, held statically).
+        cycles: excitation cycles simulated (both runs last cycles / f).
+        settle_cycles: cycles before the creep fit.
+        points_per_cycle: output points per cycle.
+        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        **simulate_options: passed on to :func:`leadscrew.simulate`.
+
+    Returns:
+        DataFrame with ``t`` [s], ``axial_force_static``, ``u_load_static``,
+        ``axial_force_dynamic`` [N], ``u_load_dynamic`` [m],
+        ``phi_drive_dynamic`` [rad] and ``gap_dynamic`` [m] (with backlash).
+        ``attrs["summary"]``: closed form ``self_locking`` (tan a < mu',
+        eq. 3.5), ``holding_torque`` [N*m], ``static_band_low`` and
+        ``static_band_high`` [N*m] (:func:`static_holding_band` under
+        ``static_force``), ``holds_statically`` (the torque inside the band);
+        from the
+        simulations ``static_creep_per_cycle``, ``static_max_displacement``,
+        ``dynamic_creep_per_cycle``, ``dynamic_max_displacement`` [m],
+        ``dynamic_separations`` [1], ``dynamic_flight_fraction`` [1] (see
+        :func:`cycle_response`), ``amplitude`` [N], ``frequency`` [Hz],
+        ``static_force`` [N].
+
+    Raises:
+        ValueError: invalid scene or arguments (a time-varying or
+            speed-controlled drive).
+        SimulationError, JammingError: a simulation failed.
+    """
+    scene = as_scene(scene)
+    torque = _constant_torque(scene)
+    amplitude = check_positive("amplitude", amplitude)
+    frequency = check_positive("frequency", frequency)
+    static_force = -amplitude if static_force is None else check_finite("static_force",
+                                                                         static_force)
+    options = dict(simulate_options, rtol=rtol, atol=atol)
+    centred = scene.replace(initial={"play_position": 0.0})
+    static = cycle_response(centred.replace(loads={"axial_force": static_force}), frequency,
+                            cycles, settle_cycles, points_per_cycle, series=True, **options)
+    dynamic = cycle_response(alternating_scene(scene, amplitude, frequency), frequency, cycles,
+                             settle_cycles, points_per_cycle, series=True, **options)
+    s, d = static["result"], dynamic["result"]
+    frame = pd.DataFrame({
+        "t": static["t"],
+        "axial_force_static": s["axial_force"],
+        "u_load_static": s["u_load"],
+        "axial_force_dynamic": d["axial_force"],
+        "u_load_dynamic": d["u_load"],
+        "phi_drive_dynamic": d["phi_drive"],
+    })
+    if "gap" in d:
+        frame["gap_dynamic"] = d["gap"]
+    self_locking = bool(is_self_locking(scene.thread, scene["friction"]["mu"]))
+    band = static_holding_band(scene, static_force)
+    return annotate(
+        frame, UNITS,
+        self_locking=self_locking,
+        holding_torque=torque,
+        static_band_low=float(band[0]),
+        static_band_high=float(band[1]),
+        holds_statically=_holds(band, torque, static_force),
+        static_creep_per_cycle=static["creep_per_cycle"],
+        static_max_displacement=static["max_displacement"],
+        dynamic_creep_per_cycle=dynamic["creep_per_cycle"],
+        dynamic_max_displacement=dynamic["max_displacement"],
+        dynamic_separations=dynamic["separations"],
+        dynamic_flight_fraction=dynamic["flight_fraction"],
+        amplitude=amplitude,
+        frequency=frequency,
+        static_force=static_force,
+    )
+
+
+def plot_position_holding(frame: pd.DataFrame, ax: Optional[Any] = None):
+    """Draw the load position [mm] under static and alternating load (Fig. 5.4).
+
+    Args:
+        frame: the DataFrame :func:`position_holding` returned.
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes.
+    """
+    ax = axes(ax)
+    ax.plot(frame["t"], frame["u_load_static"] * 1e3, "-", label="static axial force")
+    ax.plot(frame["t"], frame["u_load_dynamic"] * 1e3, "--", label="alternating axial force")
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("load position u [mm]")
+    ax.legend(loc="best")
+    return ax
+
+
+def _sine_parameters(excitation: Any) -> Dict[str, float]:
+    if isinstance(excitation, Sine):
+        return {"amplitude": excitation.amplitude, "omega": excitation.omega,
+                "phase": excitation.phase, "offset": excitation.offset}
+    if isinstance(excitation, dict) and excitation.get("type") == "sine":
+        keys = {"type", "amplitude", "omega", "phase", "offset"}
+        unknown = set(excitation) - keys
+        if unknown:
+            raise ValueError(f"excitation.{sorted(unknown)[0]} is not a known key; a sine "
+                             "excitation takes amplitude, omega, phase, offset")
+        try:
+            out = {"amplitude": float(excitation["amplitude"]),
+                   "omega": float(excitation["omega"]),
+                   "phase": float(excitation.get("phase", 0.0)),
+                   "offset": float(excitation.get("offset", 0.0))}
+        except KeyError as missing:
+            raise ValueError(f"excitation.{missing.args[0]} is missing: a sine excitation "
+                             "needs amplitude and omega") from None
+        except (TypeError, ValueError):
+            raise ValueError(f"excitation = {excitation!r} is invalid: values must be "
+                             "numbers") from None
+        if not all(math.isfinite(v) for v in out.values()):
+            raise ValueError(f"excitation = {excitation!r} is invalid: values must be finite")
+        return out
+    raise ValueError(f"excitation = {excitation!r} is invalid: must be a leadscrew.Sine or a "
+                     "dict {'type': 'sine', 'amplitude', 'omega', 'phase', 'offset'}")
+
+
+def _preload_case(preload: float, scene: Scene, sine: Dict[str, float], direction: float,
+                  cycles: int, settle_cycles: int, points_per_cycle: int,
+                  options: Dict[str, Any]) -> Dict[str, Any]:
+    loaded = alternating_scene(scene, sine["amplitude"], sine["omega"] / (2.0 * math.pi),
+                               sine["offset"] + direction * preload, on_flank=True,
+                               phase=sine["phase"])
+    return cycle_response(loaded, sine["omega"] / (2.0 * math.pi), cycles, settle_cycles,
+                          points_per_cycle, **options)
+
+
+def min_holding_preload(
+    scene: Any,
+    excitation: Any,
+    creep_limit: float = 1e-9,
+    direction: float = -1.0,
+    upper: Optional[float] = None,
+    tolerance: float = 1e-3,
+    max_iterations: int = 30,
+    points_per_round: int = 1,
+    cycles: int = 4,
+    settle_cycles: int = 1,
+    points_per_cycle: int = 100,
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    executor=None,
+    progress: bool = True,
+    **simulate_options: Any,
+) -> pd.DataFrame:
+    """Smallest static axial preload that holds the position under an alternating force.
+
+    The axial force is ``direction * preload + excitation(t)``; the nut starts
+    on the flank the preload presses it against. A preload *holds* if in the
+    simulated cycles the flank never separates (no event to 'open' and no
+    output time with the nut off its flank) and |creep per cycle| <=
+    ``creep_limit`` (:func:`cycle_response`). Holding is taken to be monotonic
+    in the preload; the search bisects (or, with ``points_per_round`` = n > 1,
+    evaluates n evenly spaced preloads per round on the executor) until the
+    bracket is narrower than ``tolerance`` times its upper end or
+    ``max_iterations`` rounds have run. A simulation that fails counts as not
+    holding (its row carries the message).
+
+    For the rigid concept the answer has a closed form: stuck, the load is at
+    rest, so the flank carries exactly the applied force; it stays loaded iff
+    preload >= amplitude, and the stuck flank holds the torque M iff M stays
+    inside :func:`static_holding_band` of the smallest force,
+    preload - amplitude. ``attrs["summary"]["quasi_static_preload"]`` reports
+    that value.
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict) with a backlash
+            section, a constant drive torque and a self-locking thread.
+        excitation: the alternating axial force: a :class:`~leadscrew.Sine` or
+            a dict ``{"type": "sine", "amplitude", "omega", "phase",
+            "offset"}`` [N, rad/s, rad, N]; its frequency sets the cycles.
+        creep_limit: largest admissible |creep per cycle| [m], >= 0.
+        direction: +1 or -1, the preload's direction along x.
+        upper: a preload [N] expected to hold (default twice the quasi-static
+            preload); doubled up to 10 times until it holds.
+        tolerance: relative width of the final bracket, > 0.
+        max_iterations: bound on the search rounds, >= 1.
+        points_per_round: preloads evaluated per round, >= 1.
+        cycles, settle_cycles, points_per_cycle: as :func:`cycle_response`.
+        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        executor: a :class:`concurrent.futures.Executor` (default: a thread
+            pool over all cores).
+        progress: show a progress bar per round.
+        **simulate_options: passed on to :func:`leadscrew.simulate`.
+
+    Returns:
+        DataFrame with one row per evaluated preload, in evaluation order:
+        ``iteration`` [1], ``preload`` [N], ``holds``, ``separated``,
+        ``separations`` [1], ``creep_per_cycle`` [m], ``max_displacement``
+        [m], ``flight_fraction`` [1], ``wall_time`` [s], ``error``.
+        ``attrs["summary"]``: ``min_preload`` [N] (the bracket's upper end:
+        the smallest preload seen to hold; NaN with ``found`` False if none
+        held), ``bracket_low``, ``bracket_high`` [N], ``iterations``,
+        ``converged``, ``found``, ``quasi_static_preload`` [N], ``amplitude``
+        [N], ``frequency`` [Hz], ``creep_limit`` [m].
+
+    Raises:
+        ValueError: invalid scene or arguments, or a thread that is not
+            self-locking (a preload then drives it back instead of holding it).
+    """
+    scene = as_scene(scene)
+    if not is_self_locking(scene.thread, scene["friction"]["mu"]):
+        raise ValueError(f"friction.mu = {scene['friction']['mu']!r} is invalid for "
+                         "min_holding_preload: the thread is not self-locking (tan a >= mu'), "
+                         "so a static preload back-drives it")
+    if "backlash" not in scene:
+        raise ValueError("scene.backlash is missing: the flank can only separate across a "
+                         "backlash; add a backlash section")
+    torque = _constant_torque(scene)
+    sine = _sine_parameters(excitation)
+    if sine["amplitude"] == 0.0 or sine["omega"] <= 0.0:
+        raise ValueError(f"excitation = {excitation!r} is invalid: needs amplitude != 0 and "
+                         "omega > 0")
+    creep_limit = check_positive("creep_limit", creep_limit, allow_zero=True)
+    if direction not in (1, -1, 1.0, -1.0):
+        raise ValueError(f"direction = {direction!r} is invalid: must be +1 or -1")
+    tolerance = check_positive("tolerance", tolerance)
+    max_iterations = check_count("max_iterations", max_iterations, 1)
+    points_per_round = check_count("points_per_round", points_per_round, 1)
+    amplitude = abs(sine["amplitude"])
+    # Self-locking: the band per newton of force contains 0; the torque needs
+    # the force |M| / (band edge on its side).
+    low_per_newton, high_per_newton = static_holding_band(scene, float(direction))
+    edge = high_per_newton if torque > 0 else -low_per_newton
+    torque_share = abs(torque) / edge if torque != 0.0 else 0.0
+    quasi_static = amplitude + torque_share
+    if upper is None:
+        upper = 2.0 * quasi_static
+    upper = check_positive("upper", upper)
+    options = dict(simulate_options, rtol=rtol, atol=atol)
+    case = functools.partial(_preload_case, scene=scene, sine=sine, direction=float(direction),
+                             cycles=cycles, settle_cycles=settle_cycles,
+                             points_per_cycle=points_per_cycle, options=options)
+    rows: List[Dict[str, Any]] = []
+
+    def evaluate(preloads, iteration):
+        outcomes = run_cases(case, preloads, executor=executor, progress=progress,
+                             description=f"min_holding_preload round {iteration}")
+        verdicts = []
+        for preload, outcome in zip(preloads, outcomes):
+            value = outcome.value or {}
+            separated = None if not outcome.ok else bool(
+                value["separations"] > 0 or value["flight_fraction"] > 0.0)
+            holds = bool(outcome.ok and not separated
+                         and abs(value["creep_per_cycle"]) <= creep_limit)
+            rows.append({
+                "iteration": iteration, "preload": float(preload), "holds": holds,
+                "separated": separated,
+                "separations": numeric_or_nan(value.get("separations")),
+                "creep_per_cycle": numeric_or_nan(value.get("creep_per_cycle")),
+                "max_displacement": numeric_or_nan(value.get("max_displacement")),
+                "flight_fraction": numeric_or_nan(value.get("flight_fraction")),
+                "wall_time": numeric_or_nan(value.get("wall_time")),
+                "error": outcome.error,
+            })
+            verdicts.append(holds)
+        return verdicts
+
+    low_holds, high_holds = evaluate([0.0, upper], 0)
+    low, high = 0.0, upper
+    expansions = 0
+    while not high_holds and expansions < 10:
+        low, high = high, 2.0 * high
+        expansions += 1
+        (high_holds,) = evaluate([high], 0)
+    iterations = 0
+    if low_holds:
+        high = 0.0
+    elif high_holds:
+        while high - low > tolerance * high and iterations < max_iterations:
+            iterations += 1
+            step = (high - low) / (points_per_round + 1)
+            preloads = [low + step * (i + 1) for i in range(points_per_round)]
+            verdicts = evaluate(preloads, iterations)
+            holding = [p for p, ok in zip(preloads, verdicts) if ok]
+            failing = [p for p, ok in zip(preloads, verdicts) if not ok and
+                       (not holding or p < holding[0])]
+            if holding:
+                high = holding[0]
+            if failing:
+                low = max(failing)
+    found = bool(low_holds or high_holds)
+    frame = pd.DataFrame(rows)
+    return annotate(
+        frame, UNITS,
+        min_preload=float(high) if found else float("nan"),
+        bracket_low=float(low) if not low_holds else 0.0,
+        bracket_high=float(high) if found else float("nan"),
+        iterations=iterations,
+        converged=bool(found and (low_holds or high - low <= tolerance * high)),
+        found=found,
+        quasi_static_preload=float(quasi_static),
+        amplitude=amplitude,
+        frequency=sine["omega"] / (2.0 * math.pi),
+        creep_limit=creep_limit,
+    )
+
+
+def plot_min_holding_preload(frame: pd.DataFrame, ax: Optional[Any] = None):
+    """Draw |creep per cycle| [m] over the evaluated preloads [N], holding
+    preloads filled, with the bracket shaded.
+
+    Args:
+        frame: the DataFrame :func:`min_holding_preload` returned.
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes.
+    """
+    ax = axes(ax)
+    ok = frame[frame["error"].isna()]
+    holds = ok[ok["holds"]]
+    fails = ok[~ok["holds"]]
+    floor = 1e-15  # zero creep on a log axis
+    ax.semilogy(holds["preload"], np.maximum(np.abs(holds["creep_per_cycle"]), floor), "o",
+                color="C2", label="holds")
+    ax.semilogy(fails["preload"], np.maximum(np.abs(fails["creep_per_cycle"]), floor), "x",
+                color="C3", label="separates or creeps")
+    summary = frame.attrs.get("summary", {})
+    if summary.get("found"):
+        ax.axvspan(summary["bracket_low"], summary["bracket_high"], color="0.85", zorder=0,
+                   label="bracket")
+    ax.set_xlabel("static preload [N]")
+    ax.set_ylabel("|creep per cycle| [m]")
+    ax.legend(loc="best")
+    return ax

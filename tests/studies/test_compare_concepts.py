@@ -1,0 +1,97 @@
+"""compare_concepts: one load case on the three concepts (thesis Figs. 5.1-5.3)."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import leadscrew as ls  # noqa: E402
+from helpers.scenes import thesis_scene  # noqa: E402
+from leadscrew.studies._sweep import SerialExecutor  # noqa: E402
+from leadscrew.studies.concepts import (  # noqa: E402
+    CONCEPTS,
+    compare_concepts,
+    plot_compare_concepts,
+)
+
+T_END = 0.5
+
+
+@pytest.fixture(scope="module")
+def by_nut_modulus():
+    """Table 5.1 case (5.1) with E_M = 2 GPa, 200 MPa, 20 MPa (Figs. 5.2, 5.3 go softer)."""
+    return {e: compare_concepts(ls.Scene.from_dict(thesis_scene(nut={"youngs_modulus": e})),
+                                t_end=T_END, progress=False)
+            for e in (2e9, 2e8, 2e7)}
+
+
+def test_rows_columns_and_units(by_nut_modulus):
+    frame = by_nut_modulus[2e9]
+    assert list(frame["concept"]) == list(CONCEPTS)
+    assert frame["error"].isna().all()
+    assert set(frame["reference"]) == {"flexible"}
+    assert frame.loc[2, "max_abs_diff"] == 0.0 and frame.loc[2, "rms_diff"] == 0.0
+    assert (frame["wall_time"] > 0).all() and (frame["steps"] > 0).all()
+    units = frame.attrs["units"]
+    assert set(units) == set(frame.columns)
+    assert units["max_abs_diff"] == "m" and units["wall_time"] == "s"
+    assert all(len(t) == 2001 and t[-1] == T_END for t in frame["t"])
+
+
+def test_differences_are_those_of_the_simulations(by_nut_modulus):
+    """The reported difference is recomputed from direct simulations."""
+    scene = ls.Scene.from_dict(thesis_scene(nut={"youngs_modulus": 2e8}))
+    t = np.linspace(0.0, T_END, 2001)
+    u = {c: ls.simulate(scene.replace(concept=c), T_END, t_eval=t)["u_load"]
+         for c in ("rigid", "flexible")}
+    frame = by_nut_modulus[2e8]
+    assert frame.loc[0, "max_abs_diff"] == np.max(np.abs(u["rigid"] - u["flexible"]))
+    np.testing.assert_array_equal(frame.loc[0, "u_load"], u["rigid"])
+
+
+def test_the_rigid_concept_departs_as_the_nut_softens(by_nut_modulus):
+    """The flexible concepts add the nut's elastic deflection, F / k with
+    k = E_M A / l: the rigid drive's departure grows as 1 / E_M. The two
+    flexible concepts differ by the screw's compliance, which does not change."""
+    rigid = [by_nut_modulus[e].loc[0, "max_abs_diff"] for e in (2e9, 2e8, 2e7)]
+    assert rigid[0] < rigid[1] < rigid[2]
+    for stiffer, softer in zip(rigid, rigid[1:]):
+        assert softer / stiffer == pytest.approx(10.0, rel=0.1)
+    nut_only = [by_nut_modulus[e].loc[1, "max_abs_diff"] for e in (2e9, 2e8, 2e7)]
+    assert max(nut_only) < rigid[0]
+
+
+def test_a_failed_concept_is_a_row_and_the_reference_falls_back():
+    frame = compare_concepts(ls.Scene.from_dict(thesis_scene()), t_end=T_END, points=11,
+                             max_steps=2000, executor=SerialExecutor(), progress=False)
+    assert frame.loc[0, "error"] is None
+    assert frame.loc[1, "error"].startswith("SimulationError")
+    assert frame.loc[2, "error"].startswith("SimulationError")
+    assert list(frame["reference"]) == ["rigid"] * 3
+    assert frame.loc[0, "max_abs_diff"] == 0.0
+    assert np.isnan(frame.loc[1, "max_abs_diff"]) and frame.loc[1, "u_load"] is None
+    ax = plot_compare_concepts(frame)
+    assert len(ax.lines) == 1
+
+
+def test_plot(by_nut_modulus):
+    ax = plot_compare_concepts(by_nut_modulus[2e7])
+    assert len(ax.lines) == 3
+    assert ax.get_xlabel() == "time t [s]"
+
+
+@pytest.mark.parametrize("concepts, match", [((), "at least one"), (("stiff",), "stiff"),
+                                             (("rigid", "rigid"), "twice")])
+def test_bad_concepts(concepts, match):
+    with pytest.raises(ValueError, match=match):
+        compare_concepts(ls.Scene.from_dict(thesis_scene()), concepts=concepts)
+
+
+def test_bad_arguments():
+    scene = ls.Scene.from_dict(thesis_scene())
+    with pytest.raises(ValueError, match="points"):
+        compare_concepts(scene, points=1)
+    with pytest.raises(ValueError, match="t_end"):
+        compare_concepts(scene, t_end=-1.0)

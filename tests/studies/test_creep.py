@@ -1,0 +1,123 @@
+"""creep_vs_frequency, creep_vs_backlash, creep_map (thesis Fig. 5.5)."""
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+import pytest  # noqa: E402
+
+import leadscrew as ls  # noqa: E402
+from helpers.scenes import thesis_scene  # noqa: E402
+from leadscrew.studies.creep import (  # noqa: E402
+    creep_map,
+    creep_vs_backlash,
+    creep_vs_frequency,
+    plot_creep,
+    plot_creep_map,
+)
+
+BACKLASH = [5e-5, 1e-4, 2e-4, 3e-4, 5e-4]  # m
+FREQUENCIES = [5.0, 10.0, 20.0, 40.0, 80.0]  # Hz
+
+
+def holding_scene(torque=5e-3):
+    """Table 5.1 drive, exact backlash 0.2 mm, a 5 N mm torque held by the thread."""
+    return ls.Scene.from_dict(thesis_scene(backlash={"axial": 2e-4},
+                                           loads={"drive_torque": torque, "axial_force": 0.0}))
+
+
+@pytest.fixture(scope="module")
+def by_backlash():
+    return creep_vs_backlash(holding_scene(), BACKLASH, frequency=20.0, progress=False)
+
+
+@pytest.fixture(scope="module")
+def by_frequency():
+    return creep_vs_frequency(holding_scene(), FREQUENCIES, progress=False)
+
+
+def test_creep_grows_with_backlash(by_backlash):
+    """More play, longer flights: the torque turns the screw further per cycle."""
+    assert by_backlash["error"].isna().all()
+    creep = -by_backlash["creep_per_cycle"].to_numpy()  # forward torque: along -x
+    assert np.all(creep > 0) and np.all(np.diff(creep) > 0)
+    assert np.all(np.diff(by_backlash["flight_fraction"]) > 0)
+    # The largest displacement is the crossing of half the play plus the creep.
+    np.testing.assert_array_less(np.array(BACKLASH) / 2, by_backlash["max_displacement"])
+
+
+def test_creep_per_cycle_falls_with_frequency(by_frequency):
+    """Shorter half-periods, shorter flights: less turning per cycle (while the
+    nut spends a growing share of the cycle in flight)."""
+    assert by_frequency["error"].isna().all()
+    creep = -by_frequency["creep_per_cycle"].to_numpy()
+    assert np.all(creep > 0) and np.all(np.diff(creep) < 0)
+    assert np.all(np.diff(by_frequency["flight_fraction"]) > 0)
+    np.testing.assert_allclose(by_frequency["creep_rate"],
+                               by_frequency["creep_per_cycle"] * by_frequency["frequency"],
+                               rtol=1e-15)
+    assert (by_frequency["separations"] >= 2 * (6 - 1)).all()
+
+
+def test_creep_follows_the_torque():
+    """Reversed torque, reversed creep; no torque, no creep at all (the
+    self-locking flank sticks at every plastic impact)."""
+    reversed_ = creep_vs_backlash(holding_scene(-5e-3), [1e-4, 3e-4], progress=False)
+    assert np.all(reversed_["creep_per_cycle"] > 0)
+    assert np.diff(reversed_["creep_per_cycle"])[0] > 0
+    none = creep_map(holding_scene(0.0), [10.0, 40.0], [1e-4, 3e-4], cycles=3, progress=False)
+    assert np.all(np.abs(none["creep_per_cycle"]) <= 1e-18)
+    assert np.all(none["separations"] > 0)
+
+
+def test_map_agrees_with_the_line_sweeps(by_backlash, by_frequency):
+    frame = creep_map(holding_scene(), [10.0, 20.0], [1e-4, 2e-4, 5e-4], progress=False)
+    assert len(frame) == 6
+    assert list(frame["frequency"]) == [10.0] * 3 + [20.0] * 3
+    assert list(frame["backlash"]) == [1e-4, 2e-4, 5e-4] * 2
+    at_20 = frame[frame["frequency"] == 20.0].drop(columns="wall_time").reset_index(drop=True)
+    line = by_backlash[by_backlash["backlash"].isin([1e-4, 2e-4, 5e-4])]
+    pd.testing.assert_frame_equal(at_20, line.drop(columns="wall_time").reset_index(drop=True))
+    at_2e4 = frame[frame["backlash"] == 2e-4]
+    line = by_frequency[by_frequency["frequency"].isin([10.0, 20.0])]
+    np.testing.assert_array_equal(at_2e4["creep_per_cycle"], line["creep_per_cycle"])
+
+
+def test_columns_units_and_plots(by_backlash, by_frequency):
+    units = by_backlash.attrs["units"]
+    assert set(units) == set(by_backlash.columns)
+    assert units["creep_per_cycle"] == "m" and units["frequency"] == "Hz"
+    assert by_backlash.attrs["summary"] == {"amplitude": 30.0, "cycles": 6, "settle_cycles": 1}
+    ax = plot_creep(by_backlash)
+    assert ax.get_xlabel() == "backlash [mm]"
+    ax = plot_creep(by_frequency, quantity="max_displacement")
+    assert ax.get_xlabel() == "frequency [Hz]"
+    frame = creep_map(holding_scene(), [10.0, 20.0], [1e-4, 2e-4], cycles=3, progress=False)
+    ax = plot_creep_map(frame)
+    assert ax.get_ylabel() == "backlash [mm]"
+    with pytest.raises(ValueError, match="exactly one"):
+        plot_creep(frame)
+    with pytest.raises(ValueError, match="quantity"):
+        plot_creep(by_backlash, quantity="creep")
+
+
+@pytest.mark.parametrize("grid", [[], [0.0], [-1.0], [float("nan")], [[1.0, 2.0]]])
+def test_bad_grids(grid):
+    with pytest.raises(ValueError, match="frequencies"):
+        creep_vs_frequency(holding_scene(), grid)
+
+
+def test_bad_scenes_and_arguments():
+    no_play = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": 5e-3}))
+    with pytest.raises(ValueError, match="backlash"):
+        creep_vs_frequency(no_play, [10.0])
+    frame = creep_vs_backlash(no_play, [1e-4], cycles=3, progress=False)  # adds exact play
+    assert frame.loc[0, "creep_per_cycle"] < 0
+    with pytest.raises(ValueError, match="drive_torque"):
+        creep_vs_backlash(ls.Scene.from_dict(thesis_scene()), [1e-4])
+    with pytest.raises(ValueError, match="cycles"):
+        creep_vs_backlash(holding_scene(), [1e-4], cycles=1)
+    with pytest.raises(ValueError, match="amplitude"):
+        creep_map(holding_scene(), [10.0], [1e-4], amplitude=-3.0)

@@ -1,0 +1,118 @@
+"""efficiency_vs_mu: eq. (5.2) from simulated steady driving against the
+closed form tan a / tan(a + rho') (thesis section 5.3, Fig. 5.6)."""
+
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import leadscrew as ls  # noqa: E402
+from helpers.scenes import thesis_scene  # noqa: E402
+from leadscrew.studies.drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu  # noqa: E402
+
+MU = [0.0, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5]
+LOADS = [5.0, 20.0, 80.0]  # N
+
+
+def scene(**changes):
+    return ls.Scene.from_dict(thesis_scene(**changes))
+
+
+@pytest.fixture(scope="module")
+def rigid():
+    return efficiency_vs_mu(scene(), MU, LOADS, progress=False)
+
+
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut", "flexible"])
+def test_simulated_efficiency_matches_the_closed_form(concept, rigid):
+    """At steady state the motor needs the raising torque, so eta = tan a /
+    tan(a + rho'); the flexible drives start with relaxed springs and settle
+    (damping ratio 0.05) before the window."""
+    frame = rigid if concept == "rigid" else efficiency_vs_mu(
+        scene(concept=concept), [0.05, 0.3], [20.0], t_end=0.1, progress=False)
+    assert frame["error"].isna().all() and frame["simulated"].all()
+    np.testing.assert_allclose(frame["efficiency"], frame["efficiency_closed_form"], rtol=1e-3)
+    assert (frame["window_change"] < 1e-3).all()
+    thread = ls.Thread(1e-3, 20e-3)
+    for row in frame.itertuples():
+        assert row.efficiency_closed_form == ls.efficiency(thread, row.mu)
+        # The motor's torque is the power-screw raising torque (the rotor turns
+        # backwards to move the load along +x: the torque is negative).
+        assert -row.drive_torque == pytest.approx(ls.raise_torque(thread, row.mu, row.load),
+                                                  rel=1e-3)
+        assert row.load_speed == pytest.approx(10.0 * thread.lead_per_radian, rel=1e-6)
+
+
+def test_rigid_efficiency_is_exact_and_load_independent(rigid):
+    np.testing.assert_allclose(rigid["efficiency"], rigid["efficiency_closed_form"], rtol=1e-12)
+    by_mu = rigid.pivot(index="mu", columns="load", values="efficiency")
+    table = by_mu.to_numpy()
+    np.testing.assert_allclose(table, np.repeat(table[:, :1], len(LOADS), axis=1), rtol=1e-12)
+    # Output work F v dt over the window, against the motor's work.
+    thread = ls.Thread(1e-3, 20e-3)
+    window = 0.1
+    out = rigid["load"] * 10.0 * thread.lead_per_radian * window
+    np.testing.assert_allclose(rigid["work_drive"] - rigid["friction_loss"], out, rtol=1e-12)
+
+
+def test_efficiency_falls_with_mu(rigid):
+    for _, group in rigid.groupby("load"):
+        eta = group.sort_values("mu")["efficiency"].to_numpy()
+        assert eta[0] == pytest.approx(1.0, abs=1e-15)
+        assert np.all(np.diff(eta) < 0)
+
+
+def test_non_drivable_friction_gives_zero_without_nan():
+    """mu' >= cot(alpha) = 62.8: no torque turns the thread (eq. 3.7)."""
+    cot = 1.0 / math.tan(ls.Thread(1e-3, 20e-3).lead_angle)
+    frame = efficiency_vs_mu(scene(), [0.3, 1.01 * cot], [10.0], progress=False)
+    assert list(frame["drivable"]) == [True, False]
+    assert list(frame["simulated"]) == [True, False]
+    row = frame.iloc[1]
+    assert row["efficiency"] == 0.0 and row["efficiency_closed_form"] == 0.0
+    assert row["relative_error"] == 0.0 and row["drive_torque"] == math.inf
+    numeric = frame.select_dtypes("number")
+    assert not numeric.isna().any().any()
+
+
+def test_regularized_friction_loses_less_than_coulomb():
+    """The arctan law gives a friction force below mu' N at finite slip, so
+    the efficiency lies above the closed form (and tends to it as k_V grows)."""
+    frame = efficiency_vs_mu(scene(friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4}),
+                             [0.1, 0.3], [20.0], t_end=0.05, progress=False)
+    assert (frame["efficiency"] > frame["efficiency_closed_form"]).all()
+    assert (frame["relative_error"] < 0.05).all()
+
+
+def test_failed_simulations_are_rows():
+    frame = efficiency_vs_mu(scene(concept="flexible"), [0.1], [20.0], t_end=0.1,
+                             max_steps=50, progress=False)
+    assert frame.loc[0, "error"].startswith("SimulationError")
+    assert np.isnan(frame.loc[0, "efficiency"])
+    assert frame.loc[0, "efficiency_closed_form"] == ls.efficiency(ls.Thread(1e-3, 20e-3), 0.1)
+
+
+def test_columns_units_and_plot(rigid):
+    assert len(rigid) == len(MU) * len(LOADS)
+    assert list(rigid["mu"]) == [m for m in MU for _ in LOADS]
+    units = rigid.attrs["units"]
+    assert set(units) == set(rigid.columns)
+    assert units["efficiency"] == "1" and units["load"] == "N" and units["work_drive"] == "J"
+    assert rigid.attrs["summary"] == {"speed": 10.0, "window": (0.1, 0.2)}
+    ax = plot_efficiency_vs_mu(rigid)
+    assert len(ax.lines) == len(LOADS) + 1
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(mu=[-0.1]), "mu"), (dict(loads=[0.0]), "loads"), (dict(speed=0.0), "speed"),
+    (dict(window=(0.1, 0.05)), "window"), (dict(window=(0.0, 1.0)), "window"),
+    (dict(window="late"), "window"), (dict(t_end=0.0), "t_end")])
+def test_bad_arguments(kwargs, match):
+    arguments = dict(mu=[0.1], loads=[10.0])
+    arguments.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        efficiency_vs_mu(scene(), progress=False, **arguments)

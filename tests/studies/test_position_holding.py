@@ -1,0 +1,158 @@
+"""position_holding and the static holding band (thesis section 5.2, Fig. 5.4)."""
+
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import leadscrew as ls  # noqa: E402
+from helpers.scenes import thesis_scene  # noqa: E402
+from leadscrew.studies.holding import (  # noqa: E402
+    alternating_scene,
+    cycle_response,
+    plot_position_holding,
+    position_holding,
+    static_holding_band,
+)
+
+CLEARANCE = 2e-4  # m
+
+
+def holding_scene(torque=5e-3, **changes):
+    """Table 5.1 drive (tan a = 0.0159 < mu = 0.3: self-locking), exact backlash
+    0.2 mm, a constant torque held by the thread."""
+    changes.setdefault("backlash", {"axial": CLEARANCE})
+    return ls.Scene.from_dict(thesis_scene(loads={"drive_torque": torque, "axial_force": 0.0},
+                                           **changes))
+
+
+@pytest.fixture(scope="module")
+def held():
+    return position_holding(holding_scene(), amplitude=30.0, frequency=20.0)
+
+
+def test_static_load_holds_and_alternating_load_creeps(held):
+    s = held.attrs["summary"]
+    assert s["self_locking"] and s["holds_statically"]
+    # Static: the nut crosses half the backlash onto the flank and sticks
+    # there (the torque turns the screw a little during that flight).
+    assert s["static_creep_per_cycle"] == pytest.approx(0.0, abs=1e-15)
+    assert s["static_max_displacement"] == pytest.approx(CLEARANCE / 2, rel=1e-3)
+    # Alternating: the flank unloads twice per cycle, the nut flies, the
+    # torque turns the screw in flight (forward: the load moves along -x).
+    assert s["dynamic_separations"] >= 2 * 8 - 2
+    assert 0.05 < s["dynamic_flight_fraction"] < 0.95
+    assert s["dynamic_creep_per_cycle"] < -1e-8
+    assert s["dynamic_max_displacement"] > s["static_max_displacement"]
+
+
+def test_creep_is_the_screw_turning(held):
+    """u_load = -h p phi + (play change): over whole cycles, once the nut
+    returns to the same flank, the creep is the lead per radian times the turn."""
+    p = ls.Thread(1e-3, 20e-3).lead_per_radian
+    per_cycle = 200  # points_per_cycle
+    u = held["u_load_dynamic"].to_numpy()[::per_cycle]
+    phi = held["phi_drive_dynamic"].to_numpy()[::per_cycle]
+    np.testing.assert_allclose(np.diff(u[1:]), -p * np.diff(phi[1:]), rtol=1e-6)
+    assert np.mean(np.diff(u[1:])) == pytest.approx(
+        held.attrs["summary"]["dynamic_creep_per_cycle"], rel=1e-6)
+
+
+def test_without_torque_a_self_locking_drive_does_not_creep():
+    """Pure axial load, static or alternating: the nut flies across the play,
+    but every plastic impact on a self-locking flank sticks, so nothing turns."""
+    frame = position_holding(holding_scene(torque=0.0), amplitude=30.0, frequency=20.0,
+                             cycles=4)
+    s = frame.attrs["summary"]
+    assert s["self_locking"] and s["holds_statically"]
+    assert s["dynamic_separations"] > 0
+    assert s["static_creep_per_cycle"] == 0.0
+    assert abs(s["dynamic_creep_per_cycle"]) <= 1e-18  # round-off of the impacts
+    # The impact impulses leave the screw at rest up to round-off (2e-17 rad seen).
+    assert np.max(np.abs(frame["phi_drive_dynamic"])) <= 1e-15
+    assert s["static_max_displacement"] == pytest.approx(CLEARANCE / 2, rel=1e-12)
+
+
+def test_a_thread_that_is_not_self_locking_runs_down_under_pure_axial_load():
+    scene = holding_scene(torque=0.0, friction={"law": "coulomb", "mu": 0.01})  # mu < tan a
+    frame = position_holding(scene, amplitude=30.0, frequency=20.0, cycles=3)
+    s = frame.attrs["summary"]
+    assert not s["self_locking"] and not s["holds_statically"]
+    # The -30 N force back-drives it along -x; the heavy screw (J / p^2 of
+    # some 3000 kg) spins up slowly: tens of micrometres per cycle.
+    assert s["static_creep_per_cycle"] < -1e-6
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+@pytest.mark.parametrize("hand", ["right", "left"])
+@pytest.mark.parametrize("force", [-20.0, 20.0])
+def test_static_band_is_where_the_simulated_drive_holds(drive, hand, force):
+    """Just inside the band the stuck drive stays put; just outside it moves
+    (thread without play, the drive stuck at rest from t = 0)."""
+    scene = ls.Scene.from_dict(thesis_scene(
+        drive=drive, thread={"pitch": 1e-3, "mean_diameter": 20e-3, "hand": hand},
+        load={"mass": 0.5},  # below the nut drive's jamming mass
+        loads={"drive_torque": 0.0, "axial_force": force}))
+    low, high = static_holding_band(scene, force)
+    assert low < 0.0 < high
+    for edge in (low, high):
+        for factor, holds in ((0.98, True), (1.02, False)):
+            loaded = scene.replace(loads={"drive_torque": factor * edge})
+            u = ls.simulate(loaded, 0.02)["u_load"]
+            assert (np.max(np.abs(u)) == 0.0) == holds, (edge, factor)
+
+
+def test_static_band_closed_form():
+    thread = ls.Thread(1e-3, 20e-3)
+    low, high = static_holding_band(holding_scene(), -10.0)
+    # Right hand: a positive torque moves the load along -x, with the force.
+    assert high == pytest.approx(ls.lower_torque(thread, 0.3, 10.0), rel=1e-14)
+    assert low == pytest.approx(-ls.raise_torque(thread, 0.3, 10.0), rel=1e-14)
+    assert static_holding_band(holding_scene(), 0.0) == (0.0, 0.0)
+    with pytest.raises(ValueError, match="axial_force"):
+        static_holding_band(holding_scene(), math.inf)
+
+
+def test_cycle_response_and_alternating_scene():
+    scene = alternating_scene(holding_scene(), 30.0, 20.0, offset=-40.0, on_flank=True)
+    assert scene["initial"]["play_position"] == CLEARANCE / 2  # -x force, nut drive: upper
+    assert scene["loads"]["axial_force"]["offset"] == -40.0
+    out = cycle_response(scene, 20.0, cycles=3, points_per_cycle=50, series=True)
+    assert out["separations"] == 0 and out["flight_fraction"] == 0.0
+    assert out["creep_per_cycle"] == 0.0 and out["max_displacement"] == 0.0
+    assert len(out["t"]) == 151 and out["t"][-1] == pytest.approx(0.15)
+    with pytest.raises(ValueError, match="cycles"):
+        cycle_response(scene, 20.0, cycles=1, settle_cycles=1)
+    with pytest.raises(ValueError, match="frequency"):
+        alternating_scene(holding_scene(), 30.0, 0.0)
+    with pytest.raises(ValueError, match="offset"):
+        alternating_scene(holding_scene(), 30.0, 20.0, offset=float("nan"))
+
+
+def test_columns_units_and_plot(held):
+    assert list(held.columns) == ["t", "axial_force_static", "u_load_static",
+                                  "axial_force_dynamic", "u_load_dynamic", "phi_drive_dynamic",
+                                  "gap_dynamic"]
+    assert held.attrs["units"]["u_load_dynamic"] == "m"
+    assert len(held) == 8 * 200 + 1
+    assert np.all(held["axial_force_static"] == -30.0)
+    np.testing.assert_allclose(held["axial_force_dynamic"],
+                               30.0 * np.sin(2 * np.pi * 20.0 * held["t"]), atol=1e-12)
+    ax = plot_position_holding(held)
+    assert len(ax.lines) == 2
+
+
+def test_bad_scenes_and_arguments():
+    with pytest.raises(ValueError, match="drive_torque"):
+        position_holding(ls.Scene.from_dict(thesis_scene()))  # the sine torque of (5.1)
+    with pytest.raises(ValueError, match="drive_speed"):
+        position_holding(ls.Scene.from_dict(thesis_scene(
+            loads={"drive_torque": None, "drive_speed": 1.0})))
+    with pytest.raises(ValueError, match="amplitude"):
+        position_holding(holding_scene(), amplitude=0.0)
+    with pytest.raises(ValueError, match="frequency"):
+        position_holding(holding_scene(), frequency=-1.0)

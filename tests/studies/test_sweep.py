@@ -1,0 +1,136 @@
+"""The sweep machinery of the studies: input order, failed cases as rows,
+pickling, and the same results serial, threaded and on a Dask cluster."""
+
+import concurrent.futures
+import math
+import pickle
+import time
+import warnings
+
+import distributed
+import numpy as np
+import pandas as pd
+import pytest
+
+import leadscrew as ls
+from helpers.scenes import thesis_scene
+from leadscrew.studies._sweep import SerialExecutor, default_workers, run_cases
+from leadscrew.studies.creep import creep_vs_backlash
+from leadscrew.studies.drive_efficiency import efficiency_vs_mu
+
+
+def holding_scene():
+    """Table 5.1 drive, 0.2 mm exact backlash, a 5 N mm torque held by the thread."""
+    return ls.Scene.from_dict(thesis_scene(backlash={"axial": 2e-4},
+                                           loads={"drive_torque": 5e-3, "axial_force": 0.0}))
+
+
+def sleep_then_square(x):
+    time.sleep(0.02 * (4 - x))  # later cases finish first
+    return x * x
+
+
+def fail_on_odd(x):
+    if x % 2:
+        raise ValueError(f"odd case {x}")
+    return -x
+
+
+def test_results_come_back_in_input_order():
+    with concurrent.futures.ThreadPoolExecutor(4) as pool:
+        outcomes = run_cases(sleep_then_square, range(4), executor=pool, progress=False)
+    assert [o.value for o in outcomes] == [0, 1, 4, 9]
+    assert all(o.ok and o.elapsed > 0 for o in outcomes)
+
+
+@pytest.mark.parametrize("executor", [None, "serial"])
+def test_a_failed_case_is_an_outcome_with_its_message(executor):
+    executor = SerialExecutor() if executor == "serial" else None
+    outcomes = run_cases(fail_on_odd, range(5), executor=executor, progress=False)
+    assert [o.value for o in outcomes] == [0, None, -2, None, -4]
+    assert [o.error for o in outcomes] == [None, "ValueError: odd case 1", None,
+                                           "ValueError: odd case 3", None]
+
+
+def test_cases_an_executor_refuses_become_outcomes():
+    pool = concurrent.futures.ThreadPoolExecutor(1)
+    pool.shutdown()
+    outcomes = run_cases(abs, [-1, -2], executor=pool, progress=False)
+    assert all(not o.ok and o.error.startswith("RuntimeError") for o in outcomes)
+
+
+def test_serial_executor_behaves_like_an_executor():
+    with SerialExecutor() as executor:
+        assert executor.submit(pow, 2, 10).result() == 1024
+        failed = executor.submit(math.sqrt, -1.0)
+        assert isinstance(failed.exception(), ValueError)
+    with pytest.raises(RuntimeError, match="shutdown"):
+        executor.submit(abs, 1)
+
+
+def test_empty_sweep_and_progress_bar(capsys):
+    assert run_cases(abs, [], progress=True) == []
+    outcomes = run_cases(abs, [-1, 2], progress=True, description="demo")
+    assert [o.value for o in outcomes] == [1, 2]
+    assert default_workers() >= 1
+
+
+def test_study_rows_carry_failures():
+    """A case that runs out of steps becomes a row with the solver's message;
+    the other cases of the sweep are intact."""
+    from leadscrew.studies.creep import creep_vs_frequency
+
+    frame = creep_vs_frequency(holding_scene(), [1.0, 50.0], max_step=1e-4, max_steps=10_000,
+                               progress=False)
+    assert frame.loc[0, "error"].startswith("SimulationError")
+    assert np.isnan(frame.loc[0, "creep_per_cycle"])
+    assert frame.loc[1, "error"] is None
+    assert frame.loc[1, "creep_per_cycle"] < 0
+
+
+def test_scenes_with_excitation_objects_and_frames_pickle():
+    scene = ls.Scene.from_dict(thesis_scene(loads={
+        "drive_torque": ls.Sine(-40e-3, 4 * math.pi),
+        "axial_force": ls.Table([0.0, 1.0], [-10.0, -20.0])}))
+    copy = pickle.loads(pickle.dumps(scene))
+    a, b = ls.simulate(scene, 0.5), ls.simulate(copy, 0.5)
+    np.testing.assert_array_equal(a["u_load"], b["u_load"])
+    result = pickle.loads(pickle.dumps(a))
+    np.testing.assert_array_equal(result["u_load"], a["u_load"])
+    frame = efficiency_vs_mu(scene, [0.1], [10.0], progress=False)
+    restored = pickle.loads(pickle.dumps(frame))
+    pd.testing.assert_frame_equal(restored, frame)
+    assert restored.attrs == frame.attrs
+
+
+def sweeps(executor):
+    scene = holding_scene()
+    creep = creep_vs_backlash(scene, [1e-4, 2e-4, 3e-4, 4e-4], cycles=4, executor=executor,
+                              progress=False)
+    efficiency = efficiency_vs_mu(ls.Scene.from_dict(thesis_scene(concept="flexible_nut")),
+                                  [0.05, 0.3], [10.0, 50.0], t_end=0.05, executor=executor,
+                                  progress=False)
+    # Wall times differ between runs; everything else must agree exactly.
+    return creep.drop(columns="wall_time"), efficiency.drop(columns="wall_time")
+
+
+def test_serial_threaded_and_dask_agree():
+    serial = sweeps(SerialExecutor())
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        threaded = sweeps(pool)
+    default = sweeps(None)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with distributed.Client(processes=False, n_workers=1, threads_per_worker=2,
+                                dashboard_address=":0") as client:
+            in_process = sweeps(client.get_executor())
+        # Worker processes: scene, cases and results cross process boundaries.
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                      dashboard_address=":0") as cluster, \
+                distributed.Client(cluster) as client:
+            processes = sweeps(client.get_executor())
+    for other in (threaded, default, in_process, processes):
+        for ours, theirs in zip(serial, other):
+            pd.testing.assert_frame_equal(ours, theirs)
+    assert serial[0]["error"].isna().all() and serial[1]["error"].isna().all()
+

@@ -44,6 +44,14 @@ bool solve_constrained(const CoordinateVector& inverse_mass, const CoordinateVec
     return lambda.allFinite();
   }
   ColumnMatrix weighted = inverse_mass.asDiagonal() * B;
+  if (nc == 1) {  // one constraint: the Schur complement is a number
+    const double schur = C.row(0).dot(weighted.col(0));
+    if (schur == 0.0) return false;
+    lambda.resize(1);
+    lambda[0] = (r[0] - C.row(0).dot(inverse_mass.cwiseProduct(f))) / schur;
+    x = inverse_mass.cwiseProduct(f) + weighted.col(0) * lambda[0];
+    return std::isfinite(lambda[0]) && x.allFinite();
+  }
   SmallMatrix schur = C * weighted;
   SmallVector rhs = r - C * inverse_mass.cwiseProduct(f);
   Eigen::FullPivLU<SmallMatrix> lu(schur);
@@ -69,6 +77,19 @@ DriveDynamics::DriveDynamics(const DriveModel& model) : model_(model) {
   v_ = CoordinateVector::Zero(n);
   forces_ = CoordinateVector::Zero(n);
   inverse_mass_ = model.mass().cwiseInverse();
+  // Effective Delassus terms of the flank, with the speed-controlled rotor held.
+  const Eigen::VectorXd& normal = model.normal_direction();
+  const Eigen::VectorXd& tangent = model.tangent_direction();
+  const Eigen::VectorXd w_n = inverse_mass_.cwiseProduct(normal);
+  const Eigen::VectorXd w_t = inverse_mass_.cwiseProduct(tangent);
+  delassus_nn_ = normal.dot(w_n);
+  delassus_nt_ = normal.dot(w_t);
+  if (model.parameters().speed_controlled) {
+    const int r = model.rotor();
+    delassus_nn_ -= w_n[r] * w_n[r] / inverse_mass_[r];
+    delassus_nt_ -= w_n[r] * w_t[r] / inverse_mass_[r];
+  }
+  painleve_possible_ = model.effective_mu() * std::abs(delassus_nt_) >= delassus_nn_;
 }
 
 void DriveDynamics::set_state(double t, const CoordinateVector& q, const CoordinateVector& v) {
@@ -358,17 +379,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
 
 std::string DriveDynamics::jamming_report() const {
   const DriveParameters& p = model_.parameters();
-  const Eigen::VectorXd& normal = model_.normal_direction();
-  const Eigen::VectorXd& tangent = model_.tangent_direction();
-  // Effective inverse mass with the speed-controlled rotor held.
-  Eigen::VectorXd w_n = inverse_mass_.cwiseProduct(normal);
-  Eigen::VectorXd w_t = inverse_mass_.cwiseProduct(tangent);
-  double g_nn = normal.dot(w_n), g_nt = normal.dot(w_t);
-  if (p.speed_controlled) {
-    const int r = model_.rotor();
-    g_nn -= w_n[r] * w_n[r] / inverse_mass_[r];
-    g_nt -= w_n[r] * w_t[r] / inverse_mass_[r];
-  }
+  const double g_nn = delassus_nn_, g_nt = delassus_nt_;
   const double mu = model_.effective_mu();
   std::ostringstream out;
   out.precision(10);

@@ -365,6 +365,16 @@ class DriveHybrid final : public integrate::HybridSystem {
     const bool friction_on_normal = mode_.friction == FrictionMode::slip ||
                                     mode_.friction == FrictionMode::regularized_velocity ||
                                     mode_.friction == FrictionMode::regularized_acceleration;
+    if (mode_.contact == ThreadContact::bilateral && friction_on_normal &&
+        !dynamics_.painleve_possible()) {
+      // At most one sign can be consistent: try the last one first.
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        const ModeSolution s = dynamics_.solve(spec(sigma_guess_));
+        if (s.regular && sigma_guess_ * s.normal_force >= 0.0) return s;
+        sigma_guess_ = -sigma_guess_;
+      }
+      jam("no sign of the flank normal force is consistent");
+    }
     if (mode_.contact == ThreadContact::bilateral && friction_on_normal) {
       const ModeSolution plus = dynamics_.solve(spec(1));
       const ModeSolution minus = dynamics_.solve(spec(-1));
@@ -538,6 +548,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   double bounce_threshold_;
   bool backlash_;
   bool touching_ = false;  // a penalty flank is penetrated
+  int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;

@@ -88,6 +88,10 @@ class DriveDynamics {
   // Painleve (dynamic jamming) report of a slip mode: the effective Delassus
   // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN.
   std::string jamming_report() const;
+  // mu' |G_NT| >= G_NN: only then can both signs of the flank normal force be
+  // consistent in slip. M and the thread directions are constant, so this is
+  // a property of the model, computed once.
+  bool painleve_possible() const noexcept { return painleve_possible_; }
 
  private:
   void penalty_force();
@@ -99,6 +103,8 @@ class DriveDynamics {
   double penalty_normal_ = 0.0, elastic_ = 0.0, contact_energy_ = 0.0;
   double damping_power_ = 0.0, contact_loss_power_ = 0.0;
   double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
+  double delassus_nn_ = 0.0, delassus_nt_ = 0.0;
+  bool painleve_possible_ = false;
 };
 
 }  // namespace leadscrew::model

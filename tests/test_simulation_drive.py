@@ -241,7 +241,10 @@ def test_results_carry_every_channel(concept, bodies):
     for name in REQUIRED_CHANNELS + ["gap", "play"] + bodies:
         assert name in r, name
         assert np.all(np.isfinite(r[name]))
-    assert np.all(r["gap"] >= -1e-12)
+    # A closed exact flank is held on the acceleration level; BDF keeps that
+    # linear invariant to its Newton tolerance, so the flank drifts by a
+    # fraction of atol (default 1e-10 m), not more.
+    assert np.all(r["gap"] >= -0.1 * 1e-10)
     assert scene.model().degrees_of_freedom == {"rigid": 2, "flexible_nut": 4, "flexible": 6}[concept]
 
 

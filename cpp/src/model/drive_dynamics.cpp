@@ -54,9 +54,18 @@ bool solve_constrained(const CoordinateVector& inverse_mass, const CoordinateVec
   }
   SmallMatrix schur = C * weighted;
   SmallVector rhs = r - C * inverse_mass.cwiseProduct(f);
-  Eigen::FullPivLU<SmallMatrix> lu(schur);
-  if (!lu.isInvertible()) return false;
-  lambda = lu.solve(rhs);
+  if (nc == 2) {  // Cramer's rule, with the same singularity test as the LU
+    const double det = schur(0, 0) * schur(1, 1) - schur(0, 1) * schur(1, 0);
+    const double scale = schur.cwiseAbs().maxCoeff();
+    if (!(std::abs(det) > 1e-14 * scale * scale)) return false;
+    lambda.resize(2);
+    lambda[0] = (rhs[0] * schur(1, 1) - schur(0, 1) * rhs[1]) / det;
+    lambda[1] = (schur(0, 0) * rhs[1] - schur(1, 0) * rhs[0]) / det;
+  } else {
+    Eigen::FullPivLU<SmallMatrix> lu(schur);
+    if (!lu.isInvertible()) return false;
+    lambda = lu.solve(rhs);
+  }
   x = inverse_mass.cwiseProduct(f) + weighted * lambda;
   return x.allFinite() && lambda.allFinite();
 }

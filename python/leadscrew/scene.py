@@ -91,7 +91,9 @@ SCHEMA: Dict[str, Any] = {
         "restitution": Field("Newton restitution coefficient of flank impacts ('exact')", "",
                              0.0, low=0.0, high=1.0),
         "stiffness": Field("contact stiffness of 'bistop' (N/m^exponent) and 'cubic' (N/m) "
-                           "(default: the nut's axial stiffness E_M A_M / l_M)", "N/m", OPTIONAL,
+                           "(default: the nut's axial stiffness E_M A_M / l_M, for 'bistop' "
+                           "scaled to d_0^(1 - exponent) so that both give the same force at "
+                           "the penetration d_0)", "N/m", OPTIONAL,
                            **POSITIVE),
         "exponent": Field("force exponent of 'bistop': F = k d^e", "", 1.5, low=1.0),
         "damping": Field("maximum contact damping of 'bistop' and 'cubic' (default: "
@@ -558,11 +560,17 @@ def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
     backlash = data.get("backlash")
     if backlash is not None:
         translating = data["load"]["mass"] + (nut_mass if data["drive"] == "screw" else screw_mass)
-        k = backlash.get("stiffness", d["nut_axial_stiffness"])
+        depth = backlash.get("penetration", max(backlash["axial"] / 100.0, 1e-7))
+        linear = d["nut_axial_stiffness"]
+        # A 'bistop' stiffness is in N/m^exponent: match the nut's spring force
+        # k_nut d_0 at the reference penetration d_0.
+        exponent = backlash["exponent"] if backlash["contact"] == "bistop" else 1.0
+        k = backlash.get("stiffness", linear * depth ** (1.0 - exponent))
         d["contact_stiffness"] = k
-        d["contact_damping"] = backlash.get("damping", 2.0 * math.sqrt(k * translating))
-        d["contact_penetration"] = backlash.get("penetration", max(backlash["axial"] / 100.0,
-                                                                   1e-7))
+        # Critical damping of the contact's linear-equivalent stiffness at d_0.
+        equivalent = k * depth ** (exponent - 1.0)
+        d["contact_damping"] = backlash.get("damping", 2.0 * math.sqrt(equivalent * translating))
+        d["contact_penetration"] = depth
     return d
 
 

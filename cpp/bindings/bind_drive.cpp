@@ -123,12 +123,8 @@ void bind_drive(py::module_& m) {
         model::DriveSimulationOptions options;
         options.integrator = integrator;
         options.smooth_integrator = smooth_integrator;
-        options.integrator_options.rtol = rtol;
-        options.integrator_options.atol = atol;
-        options.integrator_options.max_steps = max_steps;
-        options.integrator_options.max_step = max_step;
-        options.integrator_options.first_step = first_step;
-        options.integrator_options.max_order = max_order;
+        options.integrator_options =
+            integrator_options(rtol, atol, max_steps, max_step, first_step, max_order);
         options.dt = dt;
         options.theta = theta;
         options.max_events = max_events;

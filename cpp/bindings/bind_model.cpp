@@ -40,6 +40,18 @@ py::array_t<double> channel_matrix(const integrate::SimulationResult& r) {
 
 }  // namespace
 
+integrate::IntegratorOptions integrator_options(double rtol, double atol, long max_steps,
+                                                double max_step, double first_step, int max_order) {
+  integrate::IntegratorOptions options;
+  options.rtol = rtol;
+  options.atol = atol;
+  options.max_steps = max_steps;
+  options.max_step = max_step;
+  options.first_step = first_step;
+  options.max_order = max_order;
+  return options;
+}
+
 void bind_model(py::module_& m) {
   py::class_<integrate::SimulationResult>(m, "SimulationResult")
       .def_property_readonly("time",
@@ -91,12 +103,8 @@ void bind_model(py::module_& m) {
         options.friction = parse_friction_law(friction);
         options.integrator = integrator;
         options.k_v = k_v;
-        options.integrator_options.rtol = rtol;
-        options.integrator_options.atol = atol;
-        options.integrator_options.max_steps = max_steps;
-        options.integrator_options.max_step = max_step;
-        options.integrator_options.first_step = first_step;
-        options.integrator_options.max_order = max_order;
+        options.integrator_options =
+            integrator_options(rtol, atol, max_steps, max_step, first_step, max_order);
         options.dt = dt;
         options.theta = theta;
         options.max_events = max_events;

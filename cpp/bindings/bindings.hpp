@@ -7,6 +7,7 @@
 #include <string>
 
 #include "leadscrew/excitation/excitation.hpp"
+#include "leadscrew/integrate/ode.hpp"
 
 namespace leadscrew::bindings {
 
@@ -17,6 +18,10 @@ void bind_lcp(pybind11::module_& m);     // LCP solvers (submodule "lcp")
 void bind_excitation(pybind11::module_& m);
 void bind_model(pybind11::module_& m);     // friction block, simulate, results
 void bind_drive(pybind11::module_& m);     // lead-screw drive models
+
+// Integrator options from the keyword arguments every simulate binding takes.
+integrate::IntegratorOptions integrator_options(double rtol, double atol, long max_steps,
+                                                double max_step, double first_step, int max_order);
 
 // Converts a Python load description (an Excitation, a number, or a callable
 // of t) into an Excitation; `name` goes into the error message.

@@ -3,7 +3,7 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
-from . import lcp
+from . import lcp, scenes, studies, units
 from .errors import JammingError, SimulationError
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
@@ -38,5 +38,9 @@ __all__ = [
     "Event",
     "SimulationError",
     "JammingError",
+    "lcp",
+    "scenes",
+    "studies",
+    "units",
     "__version__",
 ]

@@ -5,21 +5,30 @@ keys, missing required keys and out-of-range values raise ``ValueError``
 naming the key path, e.g. ``backlash.axial``), fills the documented defaults,
 and keeps only the sections the scene needs. ``Scene.to_dict()`` returns the
 complete dict, which ``from_dict`` accepts again unchanged.
+``Scene.from_toml(path)`` and ``Scene.to_toml(path)`` read and write the same
+structure as a TOML file.
 
-Every value is SI (m, kg, s, N, N*m, Pa, rad). :func:`describe_schema` prints
+Every value is SI (m, kg, s, N, N*m, Pa, rad). A numeric field may instead be
+given as a string with a unit (``"1 mm"``, ``"210 GPa"``, ``"2 Hz"``, ``"30
+deg"``), converted to the field's unit by :func:`leadscrew.units.to_si` (Hz is
+cycles per second: ``"2 Hz"`` is 4 pi rad/s). :func:`describe_schema` prints
 the documentation of every field with its unit and default.
 """
 
 from __future__ import annotations
 
 import copy
+import json
 import math
 import numbers
+import os
+import sys
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Optional, Tuple
 
 from . import _core
 from .excitation import Constant, Sine, Table
+from .units import to_si
 
 __all__ = ["Scene", "SCHEMA", "describe_schema"]
 
@@ -69,7 +78,8 @@ SCHEMA: Dict[str, Any] = {
                                              "arctan_acceleration")),
         "mu": Field("flank friction coefficient", "", None, **NONNEGATIVE),
         "k_v": Field("gain k_V of the arctan laws (slip velocity in m/s, or slip "
-                     "acceleration in m/s^2, times k_V)", "s/m", 1.0e4, **POSITIVE),
+                     "acceleration in m/s^2, times k_V; in s^2/m for "
+                     "'arctan_acceleration')", "s/m", 1.0e4, **POSITIVE),
     },
     "backlash": {
         "axial": Field("total axial clearance c_a of the thread (the nut starts centred)", "m",
@@ -80,8 +90,8 @@ SCHEMA: Dict[str, Any] = {
                          choices=("exact", "bistop", "cubic")),
         "restitution": Field("Newton restitution coefficient of flank impacts ('exact')", "",
                              0.0, low=0.0, high=1.0),
-        "stiffness": Field("contact stiffness of 'bistop' and 'cubic' (default: 100 times the "
-                           "series axial stiffness of the thread pair)", "N/m", OPTIONAL,
+        "stiffness": Field("contact stiffness of 'bistop' (N/m^exponent) and 'cubic' (N/m) "
+                           "(default: the nut's axial stiffness E_M A_M / l_M)", "N/m", OPTIONAL,
                            **POSITIVE),
         "exponent": Field("force exponent of 'bistop': F = k d^e", "", 1.5, low=1.0),
         "damping": Field("maximum contact damping of 'bistop' and 'cubic' (default: "
@@ -186,11 +196,45 @@ def _range_text(f: Field) -> str:
 
 _LOAD_TYPES = {"constant": ("value",), "sine": ("amplitude", "omega", "phase", "offset"),
                "table": ("times", "values")}
+# Units of the entries of a load table; None: the unit of the load itself.
+_LOAD_ENTRY_UNITS = {"value": None, "amplitude": None, "offset": None, "values": None,
+                     "omega": "rad/s", "phase": "rad", "times": "s"}
+
+# A field whose unit depends on another field of its section.
+_UNIT_BY_CHOICE = {("friction", "k_v"): ("law", {"arctan_acceleration": "s^2/m"})}
 
 
-def _check_load(path: str, value: Any):
+def _field_unit(section: str, key: str, f: Field, so_far: Dict[str, Any]) -> str:
+    rule = _UNIT_BY_CHOICE.get((section, key))
+    if rule is None:
+        return f.unit
+    choice, units = rule
+    return units.get(so_far.get(choice), f.unit)
+
+
+def _load_entry_to_si(path: str, key: str, entry: Any, unit: str):
+    """Unit strings in a load table converted: numbers and lists of them."""
+    entry_unit = _LOAD_ENTRY_UNITS[key] or unit
+    if key in ("times", "values"):
+        if isinstance(entry, (str, bytes)) or not hasattr(entry, "__iter__"):
+            _fail(f"{path}.{key}", entry, "a list of numbers" + (f" [{entry_unit}]" if entry_unit
+                                                                  else ""))
+        return [_as_float(to_si(f"{path}.{key}[{i}]", x, entry_unit))
+                for i, x in enumerate(entry)]
+    return _as_float(to_si(f"{path}.{key}", entry, entry_unit))
+
+
+def _as_float(value: Any) -> Any:
+    """Numbers (numpy scalars too) as float; anything else is left for the checks."""
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return float(value)
+    return value
+
+
+def _check_load(path: str, value: Any, unit: str = ""):
     if isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
         return value
+    value = to_si(path, value, unit)
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         if not math.isfinite(value):
             _fail(path, value, "finite")
@@ -207,7 +251,7 @@ def _check_load(path: str, value: Any):
         out = {"type": kind}
         for key in allowed:
             if key in value:
-                out[key] = value[key]
+                out[key] = _load_entry_to_si(path, key, value[key], unit)
             elif kind == "sine" and key in ("phase", "offset"):
                 out[key] = 0.0
             else:
@@ -234,26 +278,40 @@ def _make_excitation(spec):
     return spec
 
 
-def _check_field(path: str, f: Field, value: Any):
+def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None):
+    unit = f.unit if unit is None else unit
     if f.kind == "choice":
         if value not in f.choices:
             _fail(path, value, "one of " + ", ".join(repr(c) for c in f.choices))
         return value
     if f.kind == "load":
-        return _check_load(path, value)
+        return _check_load(path, value, unit)
+    given = value
+    value = to_si(path, value, unit)
+    shown = _Converted(given, value, unit) if isinstance(given, str) else value
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        _fail(path, value, "a number" if f.kind == "float" else "an integer")
+        _fail(path, shown, "a number" if f.kind == "float" else "an integer")
     if f.kind == "int":
         if int(value) != value:
-            _fail(path, value, f"an integer >= {f.low:g}")
+            _fail(path, shown, f"an integer >= {f.low:g}")
         value = int(value)
     else:
         value = float(value)
     above = value > f.low if f.low_open else value >= f.low
     below = value < f.high if f.high_open else value <= f.high
     if not (math.isfinite(value) and above and below):
-        _fail(path, value, _range_text(f))
+        _fail(path, shown, _range_text(f) + (f" [{unit}]" if unit and shown is not value else ""))
     return value
+
+
+class _Converted:
+    """A value given with a unit, shown in messages as given and converted."""
+
+    def __init__(self, given: str, value: Any, unit: str):
+        self.text = json.dumps(given) + (f" (= {value!r} {unit})".rstrip() if unit else "")
+
+    def __repr__(self) -> str:
+        return self.text
 
 
 def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]) -> Dict[str, Any]:
@@ -267,7 +325,7 @@ def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]
     for key, f in schema.items():
         sub = f"{path}.{key}"
         if key in given and given[key] is not None:
-            out[key] = _check_field(sub, f, given[key])
+            out[key] = _check_field(sub, f, given[key], _field_unit(path, key, f, out))
         elif f.default is None:
             raise ValueError(f"{sub} is missing: {f.doc}" + (f" [{f.unit}]" if f.unit else ""))
         elif f.default is not OPTIONAL:
@@ -324,6 +382,54 @@ class Scene:
     def to_dict(self) -> Dict[str, Any]:
         """The complete scene as a nested dict (a deep copy)."""
         return copy.deepcopy(self._data)
+
+    @classmethod
+    def from_toml(cls, path: "str | os.PathLike[str]") -> "Scene":
+        """Read a scene file: TOML with the sections of :meth:`from_dict`.
+
+        Values are SI numbers or strings with units (``pitch = "1 mm"``); see
+        :mod:`leadscrew.units`.
+
+        Args:
+            path: the file.
+
+        Returns:
+            The scene.
+
+        Raises:
+            OSError: the file cannot be read.
+            ValueError: a TOML syntax error (the message gives the file, line
+                and column) or an invalid scene (as :meth:`from_dict`: unknown
+                key, missing section or key, wrong dimension, value out of
+                range; the message gives the file and the key path).
+        """
+        with open(path, "rb") as stream:
+            raw = stream.read()
+        return cls(_from_toml_text(raw, os.fspath(path))._data)
+
+    def to_toml(self, path: "Optional[str | os.PathLike[str]]" = None) -> str:
+        """The scene as TOML text: SI numbers, each commented with its unit.
+
+        :meth:`from_toml` reads the file back to an equal scene (floats are
+        written with ``repr``, which round-trips exactly). Loads given as
+        :class:`~leadscrew.Constant`, :class:`~leadscrew.Sine` or
+        :class:`~leadscrew.Table` are written as their ``{type = ...}`` tables.
+
+        Args:
+            path: the file to write (UTF-8); None only returns the text.
+
+        Returns:
+            The TOML text.
+
+        Raises:
+            ValueError: a load is a Python callable or a bare C++ excitation,
+                which a scene file cannot hold (the message names the key).
+        """
+        text = _to_toml_text(self._data)
+        if path is not None:
+            with open(path, "w", encoding="utf-8", newline="\n") as stream:
+                stream.write(text)
+        return text
 
     def __getitem__(self, key: str):
         return copy.deepcopy(self._data[key])
@@ -505,3 +611,104 @@ def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
                                                      init["play_position"])
     return p
 
+
+
+# --- scene files (TOML) ---------------------------------------------------
+
+_TOML_HEADER = ("# leadscrew scene (read it with leadscrew.Scene.from_toml).\n"
+                "# Numbers are SI, in the unit noted after '#'; strings with units such as\n"
+                "# \"1 mm\", \"210 GPa\" or \"2 Hz\" (= 4 pi rad/s) are accepted as well.\n")
+
+
+def _toml_parser():
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover - exercised on Python < 3.11 only
+        import tomli as tomllib
+    return tomllib
+
+
+def _from_toml_text(raw: bytes, source: str) -> Scene:
+    """A scene from the bytes of a TOML file; ``source`` names it in messages."""
+    tomllib = _toml_parser()
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{source}: not a UTF-8 text file ({error})") from None
+    try:
+        d = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as error:
+        raise ValueError(f"{source}: TOML syntax error: {error}") from None
+    try:
+        return Scene.from_dict(d)
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+
+
+def _toml_value(path: str, value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        number = float(value)
+        if not math.isfinite(number):
+            _fail(path, value, "finite to be written to TOML")
+        return repr(number)
+    if isinstance(value, str):
+        return json.dumps(value)  # JSON's escapes are a subset of TOML's basic strings
+    if isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
+        items = value.tolist() if hasattr(value, "tolist") else value
+        return "[" + ", ".join(_toml_value(f"{path}[{i}]", x) for i, x in enumerate(items)) + "]"
+    raise ValueError(f"{path} = {value!r} cannot be written to TOML: a scene file holds "
+                     "numbers, strings and lists")
+
+
+def _load_table(path: str, value: Any) -> Any:
+    """A load as a TOML value: a number or a {type = ...} table."""
+    if isinstance(value, dict) or (isinstance(value, numbers.Real)
+                                   and not isinstance(value, bool)):
+        return value
+    if isinstance(value, Constant):
+        return {"type": "constant", "value": value.value}
+    if isinstance(value, Sine):
+        return {"type": "sine", "amplitude": value.amplitude, "omega": value.omega,
+                "phase": value.phase, "offset": value.offset}
+    if isinstance(value, Table):
+        return {"type": "table", "times": value.times.tolist(), "values": value.values.tolist()}
+    raise ValueError(f"{path} = {value!r} cannot be written to TOML: a load in a scene file "
+                     "is a number or a table {type = \"constant\" | \"sine\" | \"table\", ...}")
+
+
+def _unit_comment(unit: str) -> str:
+    return f"  # {unit}" if unit else ""
+
+
+def _to_toml_text(data: Dict[str, Any]) -> str:
+    lines = [_TOML_HEADER]
+    for key, entry in SCHEMA.items():
+        if isinstance(entry, Field) and key in data:
+            lines.append(f"{key} = {_toml_value(key, data[key])}")
+    for section, schema in SCHEMA.items():
+        if isinstance(schema, Field) or section not in data:
+            continue
+        values = data[section]
+        lines += ["", f"[{section}]"]
+        tables = []
+        for key, f in schema.items():
+            if key not in values:
+                continue
+            path = f"{section}.{key}"
+            unit = _field_unit(section, key, f, values)
+            value = _load_table(path, values[key]) if f.kind == "load" else values[key]
+            if isinstance(value, dict):
+                tables.append((path, value, unit))
+            else:
+                lines.append(f"{key} = {_toml_value(path, value)}{_unit_comment(unit)}")
+        for path, table, unit in tables:
+            lines += ["", f"[{path}]"]
+            for key, value in table.items():
+                entry_unit = "" if key == "type" else (_LOAD_ENTRY_UNITS[key] or unit)
+                lines.append(f"{key} = {_toml_value(f'{path}.{key}', value)}"
+                             f"{_unit_comment(entry_unit)}")
+    return "\n".join(lines) + "\n"

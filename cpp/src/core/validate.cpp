@@ -51,13 +51,15 @@ double require_in_range(const std::string& name, double value, double low, doubl
 }
 
 int require_choice(const std::string& name, const std::string& value,
-                   const std::vector<std::string>& allowed) {
+                   const std::vector<std::string>& allowed, const std::string& condition) {
   for (std::size_t i = 0; i < allowed.size(); ++i)
     if (allowed[i] == value) return static_cast<int>(i);
   std::string options;
   for (std::size_t i = 0; i < allowed.size(); ++i)
     options += (i ? ", \"" : "\"") + allowed[i] + "\"";
-  throw InvalidArgument(name + " = \"" + value + "\" is invalid: must be one of " + options);
+  throw InvalidArgument(name + " = \"" + value + "\" is invalid" +
+                        (condition.empty() ? "" : " for " + condition) + ": must be one of " +
+                        options);
 }
 
 }  // namespace leadscrew

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 
 #include "leadscrew/lcp/lcp.hpp"
+#include "leadscrew/lcp/workspace.hpp"
 
 namespace leadscrew::lcp::detail {
 
@@ -34,6 +35,15 @@ bool lu_factor(Eigen::Ref<Eigen::MatrixXd> A, int* perm, double relative_pivot_t
 // Solves A x = b with the factors of lu_factor, overwriting b with x.
 void lu_solve(const Eigen::Ref<const Eigen::MatrixXd>& LU, const int* perm,
               Eigen::Ref<Eigen::VectorXd> b);
+
+// Solve M_aa z_a = -q_a on the active set a = {i : z_i > w_i} (z = 0 off it),
+// with one step of iterative refinement: the exact answer of the
+// complementary basis a near-solution points to. Writes the candidate into
+// z_out and M z_out + q into w_out; false if M_aa is singular or z_a < 0.
+// Uses the workspace's square, permutation, indices and vector columns 5, 6.
+bool polish(const Eigen::Ref<const Eigen::MatrixXd>& M, const Eigen::Ref<const Eigen::VectorXd>& q,
+            const double* z, const double* w, int n, Workspace& ws,
+            Eigen::Ref<Eigen::VectorXd> z_out, Eigen::Ref<Eigen::VectorXd> w_out);
 
 // Overall magnitude of the problem, max(1, max|M|, max|q|): scales the
 // methods' internal feasibility tolerances (never the tol of "solved").

@@ -148,6 +148,42 @@ Result finish(const Eigen::Ref<const Eigen::MatrixXd>& M,
   return result;
 }
 
+// Solve M_aa z_a = -q_a on the active set a = {i : z_i > w_i}, z = 0 off it,
+// with one step of iterative refinement. Writes the candidate into z_out and
+// M z_out + q into w_out; returns false if M_aa is singular or z_a < 0.
+bool polish(const Eigen::Ref<const Eigen::MatrixXd>& M,
+            const Eigen::Ref<const Eigen::VectorXd>& q, const double* z, const double* w,
+            int n, Workspace& ws, Eigen::Ref<Eigen::VectorXd> z_out,
+            Eigen::Ref<Eigen::VectorXd> w_out) {
+  int* active = ws.indices.data();
+  int k = 0;
+  for (int i = 0; i < n; ++i)
+    if (z[i] > w[i]) active[k++] = i;
+  auto A = ws.square.topLeftCorner(k, k);
+  for (int c = 0; c < k; ++c)
+    for (int r = 0; r < k; ++r) A(r, c) = M(active[r], active[c]);
+  if (!lu_factor(A, ws.permutation.data())) return false;
+  auto x = ws.vectors.col(5).head(k);
+  auto correction = ws.vectors.col(6).head(k);
+  for (int r = 0; r < k; ++r) x[r] = -q[active[r]];
+  lu_solve(A, ws.permutation.data(), x);
+  for (int r = 0; r < k; ++r) {  // correction = -q_a - M_aa x
+    double sum = -q[active[r]];
+    for (int c = 0; c < k; ++c) sum -= M(active[r], active[c]) * x[c];
+    correction[r] = sum;
+  }
+  lu_solve(A, ws.permutation.data(), correction);
+  z_out.setZero();
+  for (int r = 0; r < k; ++r) {
+    const double value = x[r] + correction[r];
+    if (value < 0.0) return false;
+    z_out[active[r]] = value;
+  }
+  multiply_add(M, z_out, q, w_out);
+  return true;
+}
+
+
 bool lu_factor(Eigen::Ref<Eigen::MatrixXd> A, int* perm, double relative_pivot_tol) {
   const Eigen::Index n = A.rows();
   double scale = 0.0;

@@ -11,14 +11,17 @@ namespace leadscrew::lcp {
 namespace {
 
 // Entries of the entering column below kPivotRelTol * max|column| are not
-// pivoted on; ratios within kTieRelTol (relative) count as tied. Ties are a
-// round-off matter: degenerate problems produce ratios equal to a few ulps.
-// A coarser tolerance lets the lexicographic rule pick a row whose ratio is
-// measurably larger, which leaves the next basis infeasible (a friction LCP at
-// a stick-slip boundary, q = (-6 - 7e-13, 6), showed it).
+// pivoted on; ratios within kTieRelTol (relative) count as tied. Tied ratios
+// carry the cancellation errors of earlier pivots (1 - 213/214 after two), so
+// the tolerance must be well above round-off; a near-tie that the
+// lexicographic rule then resolves the wrong way leaves a basis infeasible by
+// ~1e-13, which the final polish corrects.
 constexpr double kPivotRelTol = 1e-11;
-constexpr double kTieRelTol = 64.0 * 2.220446049250313e-16;
+constexpr double kTieRelTol = 1e-11;
 
+// The floor of 1 makes ratios at zero (degenerate q) tie with their round-off
+// neighbours, which the lexicographic rule needs; a near-tie it resolves the
+// wrong way is caught by the final polish.
 bool nearly_equal(double a, double b) {
   return std::abs(a - b) <= kTieRelTol * std::max({1.0, std::abs(a), std::abs(b)});
 }
@@ -256,6 +259,19 @@ Result solve_lemke(const Eigen::Ref<const Eigen::MatrixXd>& M,
     for (int sweep = 0; sweep < 2; ++sweep) tableau.refine(M, q, value, residual);
     tableau.extract(value, z);
     result = detail::finish(M, q, z, w, status, pivots, options.tol);
+  }
+  // Still off by round-off: near a degenerate point (a friction reserve at
+  // zero, a stick-slip boundary) the lexicographic rule can end on the
+  // neighbouring basis, infeasible by ~1e-14. Solve the basis the answer
+  // points to (z_i > w_i) exactly and keep it if it verifies.
+  if (status == Status::solved && result.status != Status::solved) {
+    auto z_trial = workspace.vectors.col(7).head(n);
+    auto w_trial = workspace.vectors.col(4).head(n);
+    if (detail::polish(M, q, z.data(), w.data(), n, workspace, z_trial, w_trial) &&
+        complementarity_residual(z_trial, w_trial) <= options.tol) {
+      z = z_trial;
+      result = detail::finish(M, q, z, w, Status::solved, pivots, options.tol);
+    }
   }
   return result;
 }

@@ -32,41 +32,6 @@ double merit(const double* z, const double* w, int n) {
   return 0.5 * psi;
 }
 
-// Solve M_aa z_a = -q_a on the active set a = {i : z_i > w_i}, z = 0 off it,
-// with one step of iterative refinement. Writes the candidate into z_out and
-// M z_out + q into w_out; returns false if M_aa is singular or z_a < 0.
-bool polish(const Eigen::Ref<const Eigen::MatrixXd>& M,
-            const Eigen::Ref<const Eigen::VectorXd>& q, const double* z, const double* w,
-            int n, Workspace& ws, Eigen::Ref<Eigen::VectorXd> z_out,
-            Eigen::Ref<Eigen::VectorXd> w_out) {
-  int* active = ws.indices.data();
-  int k = 0;
-  for (int i = 0; i < n; ++i)
-    if (z[i] > w[i]) active[k++] = i;
-  auto A = ws.square.topLeftCorner(k, k);
-  for (int c = 0; c < k; ++c)
-    for (int r = 0; r < k; ++r) A(r, c) = M(active[r], active[c]);
-  if (!detail::lu_factor(A, ws.permutation.data())) return false;
-  auto x = ws.vectors.col(5).head(k);
-  auto correction = ws.vectors.col(6).head(k);
-  for (int r = 0; r < k; ++r) x[r] = -q[active[r]];
-  detail::lu_solve(A, ws.permutation.data(), x);
-  for (int r = 0; r < k; ++r) {  // correction = -q_a - M_aa x
-    double sum = -q[active[r]];
-    for (int c = 0; c < k; ++c) sum -= M(active[r], active[c]) * x[c];
-    correction[r] = sum;
-  }
-  detail::lu_solve(A, ws.permutation.data(), correction);
-  z_out.setZero();
-  for (int r = 0; r < k; ++r) {
-    const double value = x[r] + correction[r];
-    if (value < 0.0) return false;
-    z_out[active[r]] = value;
-  }
-  detail::multiply_add(M, z_out, q, w_out);
-  return true;
-}
-
 }  // namespace
 
 Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
@@ -101,7 +66,7 @@ Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
     }
     // Polishing reuses columns 5 and 6 and the square; done before they hold
     // this step's data.
-    if (polish(M, q, z.data(), w.data(), n, ws, z_trial, w_trial) &&
+    if (detail::polish(M, q, z.data(), w.data(), n, ws, z_trial, w_trial) &&
         complementarity_residual(z_trial, w_trial) <= options.tol) {
       z = z_trial;
       status = Status::solved;

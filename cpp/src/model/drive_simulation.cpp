@@ -256,6 +256,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       }
       default:
         mode_.contact = ThreadContact::penalty;
+        touching_ = std::abs(dynamics_.play()) > 0.5 * p_.clearance;
     }
     decide_friction(t, y, dynamics_.slip_velocity() == 0.0, 0);
     if (mode_.contact == ThreadContact::closed) {
@@ -295,6 +296,10 @@ class DriveHybrid final : public integrate::HybridSystem {
     } else if (mode_.contact == ThreadContact::bilateral && root_info[1] != 0) {
       layout_.compress(q_, v_, y);
       return "flank change";
+    } else if (mode_.contact == ThreadContact::penalty && (root_info[2] != 0 || root_info[3] != 0)) {
+      // A penalty flank is entered (upper rising, lower falling) or left.
+      touching_ = root_info[2] > 0 || root_info[3] < 0;
+      kind = touching_ ? "flank contact" : "flank separation";
     }
     if (mode_.contact != ThreadContact::open) decide_friction(t, y, zero_slip, hint);
     layout_.compress(q_, v_, y);
@@ -384,8 +389,10 @@ class DriveHybrid final : public integrate::HybridSystem {
   // Stick or slip: from the slip velocity, or at zero slip by the flank LCP.
   void decide_friction(double t, double* y, bool at_zero_slip, int hint) {
     (void)t;
-    if (mode_.contact == ThreadContact::open || model_.effective_mu() == 0.0) {
-      // No contact, or a frictionless flank: no stick, no slip, no events.
+    if (mode_.contact == ThreadContact::open || model_.effective_mu() == 0.0 ||
+        (mode_.contact == ThreadContact::penalty && !touching_)) {
+      // No contact (an open play, or a penalty flank not penetrated), or a
+      // frictionless flank: no stick, no slip, no friction events.
       mode_.friction = FrictionMode::none;
       mode_.slip_sign = 0;
       return;
@@ -455,6 +462,14 @@ class DriveHybrid final : public integrate::HybridSystem {
       chosen = candidate;
       ++found;
     }
+    if (found == 0 && mode_.contact == ThreadContact::closed) {
+      // No friction mode keeps the normal force on this flank's side: the
+      // flank opens (the contact is unilateral).
+      mode_.contact = ThreadContact::open;
+      mode_.friction = FrictionMode::none;
+      mode_.slip_sign = 0;
+      return;
+    }
     if (found == 0 || ambiguous) {
       // In the Painleve regime (mu' |G_NT| >= G_NN) the LCP of one normal-force
       // sign may have no solution or admit a spurious slip start. At zero slip
@@ -522,6 +537,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   StateLayout layout_;
   double bounce_threshold_;
   bool backlash_;
+  bool touching_ = false;  // a penalty flank is penetrated
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;
@@ -768,16 +784,9 @@ integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
   const std::vector<std::string> allowed = drive_integrators(p);
-  bool fits = false;
-  for (const auto& name : allowed) fits = fits || name == options.integrator;
-  if (!fits) {
-    std::string list;
-    for (const auto& name : allowed) list += (list.empty() ? "\"" : ", \"") + name + "\"";
-    std::string what = "friction.law = \"" + friction_law_name(p.friction) + "\"";
-    if (p.backlash == BacklashContact::exact) what += " with exact backlash";
-    throw InvalidArgument("integrator = \"" + options.integrator + "\" is invalid for " + what +
-                          ": must be one of " + list);
-  }
+  require_choice("integrator", options.integrator, allowed,
+                 "friction.law = \"" + friction_law_name(p.friction) + "\"" +
+                     (p.backlash == BacklashContact::exact ? " with exact backlash" : ""));
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   if (options.integrator == "moreau" &&
       (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic))

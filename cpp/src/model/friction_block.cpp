@@ -254,14 +254,14 @@ class RegularizedBlock final : public integrate::HybridSystem {
     auto residual = [&](double a) {
       return mass * a + arctan_friction(block_.mu, block_.normal_force(), k_v_, a) - force;
     };
-    double a = std::abs(force) <= bound ? force / (mass + 2.0 / 3.14159265358979323846 * bound * k_v_)
-                                        : (force > 0 ? low : high);
-    a = std::min(std::max(a, low), high);
+    // Start from the previous evaluation's root (successive evaluations are
+    // close in time), kept inside the bracket that always holds the root.
+    double a = std::min(std::max(last_acceleration_, low), high);
     const double scale = std::max({std::abs(low), std::abs(high), 1e-300});
     for (int iteration = 0; iteration < 200; ++iteration) {
       ++nonlinear_iterations_;
       const double r = residual(a);
-      if (r == 0.0) return a;
+      if (r == 0.0) return last_acceleration_ = a;
       if (r > 0.0)
         high = a;
       else
@@ -270,7 +270,8 @@ class RegularizedBlock final : public integrate::HybridSystem {
           mass + 2.0 / 3.14159265358979323846 * bound * k_v_ / (1.0 + k_v_ * k_v_ * a * a);
       double next = a - r / slope;
       if (!(next > low && next < high)) next = 0.5 * (low + high);
-      if (std::abs(next - a) <= 4e-16 * scale || high - low <= 4e-16 * scale) return next;
+      if (std::abs(next - a) <= 4e-16 * scale || high - low <= 4e-16 * scale)
+        return last_acceleration_ = next;
       a = next;
     }
     throw SimulationError(t, "the acceleration of eq. (3.15) did not converge in 200 iterations",
@@ -282,6 +283,7 @@ class RegularizedBlock final : public integrate::HybridSystem {
   double k_v_;
   double kinetic0_;
   long nonlinear_iterations_ = 0;
+  double last_acceleration_ = 0.0;
 };
 
 // ---------------------------------------------------------------------------
@@ -361,15 +363,8 @@ std::vector<std::string> integrators_for(FrictionLaw law) {
 integrate::SimulationResult simulate(const FrictionBlock& block,
                                      const BlockSimulationOptions& options) {
   const std::vector<std::string> allowed = integrators_for(options.friction);
-  bool fits = false;
-  for (const auto& name : allowed) fits = fits || name == options.integrator;
-  if (!fits) {
-    std::string list;
-    for (const auto& name : allowed) list += (list.empty() ? "\"" : ", \"") + name + "\"";
-    throw InvalidArgument("integrator = \"" + options.integrator +
-                          "\" is invalid for friction = \"" +
-                          friction_law_name(options.friction) + "\": must be one of " + list);
-  }
+  require_choice("integrator", options.integrator, allowed,
+                 "friction = \"" + friction_law_name(options.friction) + "\"");
   if (options.friction != FrictionLaw::coulomb) require_positive("k_v", options.k_v);
 
   Eigen::VectorXd y0(kStateSize);

@@ -22,8 +22,9 @@ double require_finite(const std::string& name, double value);
 // finite and in [low, high] (either end open when the flag says so)
 double require_in_range(const std::string& name, double value, double low, double high,
                         bool low_open = false, bool high_open = false);
-// one of the allowed names; returns its index
+// one of the allowed names; returns its index. `condition` qualifies the
+// message: 'integrator = "dopri5" is invalid for friction = "coulomb": ...'.
 int require_choice(const std::string& name, const std::string& value,
-                   const std::vector<std::string>& allowed);
+                   const std::vector<std::string>& allowed, const std::string& condition = "");
 
 }  // namespace leadscrew

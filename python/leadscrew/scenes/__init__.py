@@ -1,0 +1,77 @@
+"""Scenes shipped with leadscrew, as TOML scene files.
+
+- ``default``: a small motor-driven trapezoidal lead screw (Tr 10x2) lifting a
+  2 kg slide under an alternating torque; rigid model, exact Coulomb friction.
+- ``thesis_table_5_1``: the thesis's Table 5.1 drive with load case (5.1),
+  F = -10 N, M = -40 sin(4 pi t) N*mm, mu = 0.3, flexible screw and nut.
+- ``position_holding``: the thesis's section 5.2 case: the same drive with
+  0.2 mm axial play, no preload, no drive torque, a 50 N, 20 Hz alternating
+  axial force.
+
+Each file states in its comments where every value comes from. Use them as
+templates: ``leadscrew.scenes.path(name)`` is the file.
+
+Example::
+
+    import leadscrew as ls
+    scene = ls.scenes.load("thesis_table_5_1")
+    result = ls.simulate(scene.replace(concept="rigid"), 2.0)
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+from typing import List
+
+from ..scene import Scene, _from_toml_text
+
+__all__ = ["available", "load", "path"]
+
+_SUFFIX = ".toml"
+
+
+def available() -> List[str]:
+    """The names of the shipped scenes, sorted (e.g. ``"default"``)."""
+    return sorted(entry.name[: -len(_SUFFIX)] for entry in resources.files(__name__).iterdir()
+                  if entry.name.endswith(_SUFFIX))
+
+
+def _resource(name: str):
+    stem = name[: -len(_SUFFIX)] if name.endswith(_SUFFIX) else name
+    names = available()
+    if stem not in names:
+        raise ValueError(f"scene name = {name!r} is invalid: the shipped scenes are "
+                         f"{', '.join(names)}")
+    return resources.files(__name__).joinpath(stem + _SUFFIX)
+
+
+def path(name: str) -> Path:
+    """The file of a shipped scene.
+
+    Args:
+        name: a name from :func:`available` (``".toml"`` may be appended).
+
+    Returns:
+        Its path (a file inside the installed package).
+
+    Raises:
+        ValueError: no shipped scene has that name (the message lists them).
+    """
+    return Path(str(_resource(name)))
+
+
+def load(name: str) -> Scene:
+    """Read a shipped scene.
+
+    Args:
+        name: a name from :func:`available` (``".toml"`` may be appended).
+
+    Returns:
+        The validated :class:`~leadscrew.Scene`.
+
+    Raises:
+        ValueError: no shipped scene has that name (the message lists them).
+    """
+    resource = _resource(name)
+    return _from_toml_text(resource.read_bytes(), str(resource))

@@ -1,0 +1,60 @@
+"""Studies: parameter sweeps over :func:`leadscrew.simulate` that return a
+pandas DataFrame and draw a diagram (thesis chapters 3 and 5).
+
+``STUDIES`` maps each study's name to its function (the command line and
+notebooks look studies up there). Sweeps take ``executor=`` (any
+``concurrent.futures.Executor``; default a thread pool over all cores, the
+C++ core releasing the GIL) and ``progress=`` (a tqdm bar).
+"""
+
+from . import concepts as _concepts
+from . import creep as _creep
+from . import drive_efficiency as _drive_efficiency
+from . import holding as _holding
+from . import stickslip as _stickslip
+from . import work_precision as _work_precision_module
+from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
+from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
+from .drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu
+from .holding import (
+    alternating_scene,
+    cycle_response,
+    min_holding_preload,
+    plot_min_holding_preload,
+    plot_position_holding,
+    position_holding,
+    static_holding_band,
+)
+from .stickslip import plot_stick_slip, stick_slip, stick_slip_phases
+from .work_precision import (
+    ATOL_PER_RTOL,
+    COLUMNS,
+    CONFIGURATION_KEYS,
+    REFERENCE_OPTIONS,
+    default_configurations,
+    exact_reference,
+    plot_work_precision,
+    work_precision,
+)
+
+STUDIES = {
+    "work_precision": work_precision,
+    "stick_slip": stick_slip,
+    "compare_concepts": compare_concepts,
+    "position_holding": position_holding,
+    "creep_vs_frequency": creep_vs_frequency,
+    "creep_vs_backlash": creep_vs_backlash,
+    "creep_map": creep_map,
+    "min_holding_preload": min_holding_preload,
+    "efficiency_vs_mu": efficiency_vs_mu,
+}
+
+__all__ = [
+    "STUDIES",
+    *_work_precision_module.__all__,
+    *_stickslip.__all__,
+    *_concepts.__all__,
+    *_holding.__all__,
+    *_creep.__all__,
+    *_drive_efficiency.__all__,
+]

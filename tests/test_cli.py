@@ -1,0 +1,323 @@
+"""The command line: run, check, study, demo on the shipped scenes; exit codes; files."""
+
+import importlib.util
+import math
+import os
+import re
+import subprocess
+import sys
+import types
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import leadscrew as ls
+import leadscrew.scenes as shipped
+from helpers.scenes import thesis_scene
+from leadscrew import cli
+
+
+def run_main(capsys, *argv):
+    code = cli.main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def assert_one_line_error(err, *fragments):
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("leadscrew: error: ")
+    for fragment in fragments:
+        assert fragment in lines[0], lines[0]
+    assert "Traceback" not in err
+
+
+def scene_file(tmp_path, name="scene", **changes):
+    path = tmp_path / f"{name}.toml"
+    ls.Scene.from_dict(thesis_scene(**changes)).to_toml(path)
+    return path
+
+
+# --- check ------------------------------------------------------------------------
+
+
+def test_check_without_scene_keeps_the_thread_verdicts(capsys):
+    code, out, err = run_main(capsys, "check")
+    assert code == 0 and err == ""
+    assert "lead angle 0.9118 deg" in out
+    assert re.search(r"self-locking .*:\s+yes", out) and re.search(r"drivable .*:\s+yes", out)
+    t = ls.Thread(1e-3, 20e-3)
+    assert f"efficiency forward {ls.efficiency(t, 0.3):.6g}" in out
+    code, out, _ = run_main(capsys, "check", "--pitch", "0.02", "--mu", "0.1", "--load", "100")
+    t = ls.Thread(0.02, 20e-3)
+    assert code == 0 and re.search(r"self-locking .*:\s+no", out)
+    assert f"torque to raise 100 N: {ls.raise_torque(t, 0.1, 100.0):.6g} N*m" in out
+
+
+@pytest.mark.parametrize("name", ["default", "thesis_table_5_1", "position_holding"])
+def test_check_shipped_scene(capsys, name):
+    code, out, err = run_main(capsys, "check", name)
+    assert code == 0 and err == ""
+    scene = shipped.load(name)
+    d = scene.to_dict()
+    t = scene.thread
+    assert f"scene {name}: valid" in out
+    assert re.search(r"self-locking .*:\s+yes", out)  # all three are self-locking
+    assert f"efficiency forward {ls.efficiency(t, d['friction']['mu']):.6g}" in out
+    for key, value in scene.derived().items():
+        assert f"{key} = {value:.6g}" in out
+    assert "dynamic jamming" in out
+
+
+def jamming_line(out, index):
+    lines = [line for line in out.splitlines() if line.strip().startswith(("m r^2", "J cot"))]
+    return lines[index]
+
+
+def test_check_jamming_matches_the_physics_reference(tmp_path, capsys):
+    """docs/physics/rigid_drive.md section 11: with a 1e-6 kg m^2 rotor the
+    screw-driven Table 5.1 drive jams from a translating mass of 139.2 kg, the
+    nut-driven one from a load of 2.04 kg (translating mass 3.27 kg)."""
+    screw = scene_file(tmp_path, "screw", rotor={"inertia": 1e-6})
+    code, out, _ = run_main(capsys, "check", screw)
+    assert code == 0
+    assert "J = rotor + screw = 6.26538e-05 kg*m^2, m = nut + load = 1.00387 kg" in out
+    first = jamming_line(out, 0)
+    assert ": no (jams from m = 139.2" in first
+    assert "mu' <= cot a: never" in jamming_line(out, 1)
+
+    nut = scene_file(tmp_path, "nut", drive="nut", rotor={"inertia": 1e-6})
+    code, out, _ = run_main(capsys, "check", nut)
+    assert "J = rotor + nut = 1.47219e-06 kg*m^2, m = screw + load = 2.23308 kg" in out
+    critical_load = float(re.search(r"load mass ([0-9.]+) kg", jamming_line(out, 0)).group(1))
+    assert critical_load == pytest.approx(2.039, abs=1e-3)
+
+    heavy = scene_file(tmp_path, "heavy", drive="nut", rotor={"inertia": 1e-6}, load={"mass": 2.5})
+    code, out, _ = run_main(capsys, "check", heavy)
+    assert code == 0 and ": YES, jams" in jamming_line(out, 0)
+    # ... and the simulation agrees: the heavy nut drive jams, exit code 1.
+    code, _, err = run_main(capsys, "run", heavy, "-o", tmp_path, "--t-end", "0.2")
+    assert code == 1
+    assert_one_line_error(err, "JammingError")
+
+
+def test_jamming_margins_are_the_two_inequalities():
+    t = ls.Thread(1e-3, 20e-3)
+    r, tan_a, mu = 0.01, math.tan(t.lead_angle), 0.3
+    J, m = 6.265376e-5, 1.003870
+    jm = cli.jamming_margins(t, mu, J, m)
+    assert jm["lhs1"] == pytest.approx(m * r * r * tan_a * (mu - tan_a), rel=1e-14)
+    assert jm["rhs1"] == pytest.approx(J * (1 + mu * tan_a), rel=1e-14)
+    assert not jm["jams1"] and not jm["jams2"]
+    # At the critical mass both sides are equal (the boundary jams, ">=").
+    at = cli.jamming_margins(t, mu, J, jm["mass1"])
+    assert at["lhs1"] == pytest.approx(at["rhs1"], rel=1e-12)
+    assert cli.jamming_margins(t, mu, J, jm["mass1"] * (1 + 1e-9))["jams1"]
+    # A thread no torque can turn (mu' > cot a) jams with a heavy rotor.
+    steep = ls.Thread(0.2, 0.01)
+    jm = cli.jamming_margins(steep, 0.5, 1e-6, 1.0)
+    assert math.isfinite(jm["inertia2"]) and not jm["jams2"]
+    assert cli.jamming_margins(steep, 0.5, jm["inertia2"] * 1.01, 1.0)["jams2"]
+
+
+def test_check_bad_file_is_one_line_exit_2(tmp_path, capsys):
+    path = tmp_path / "bad.toml"
+    path.write_text('[thread]\npitch = "3 N"\nmean_diameter = "20 mm"\n[friction]\nmu = 0.3\n')
+    code, out, err = run_main(capsys, "check", path)
+    assert code == 2 and out == ""
+    assert_one_line_error(err, str(path), 'thread.pitch = "3 N" is invalid', "not a length")
+    code, _, err = run_main(capsys, "check", "default", "--pitch", "0.002")
+    assert code == 2
+    assert_one_line_error(err, "--pitch apply without SCENE only")
+
+
+# --- run --------------------------------------------------------------------------
+
+
+def test_run_writes_series_and_figure(tmp_path, capsys):
+    code, out, err = run_main(capsys, "run", "default", "-o", tmp_path, "--t-end", "0.5",
+                              "--points", "101")
+    assert code == 0 and err == ""
+    csv, png = tmp_path / "default.csv", tmp_path / "default.png"
+    assert f"wrote {csv}" in out and f"wrote {png}" in out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+    frame = pd.read_csv(csv)
+    expected = ls.simulate(shipped.load("default"), 0.5, t_eval=np.linspace(0, 0.5, 101))
+    assert list(frame.columns) == ["t"] + expected.channels
+    np.testing.assert_array_equal(frame["t"], expected.t)
+    for name in ("u_load", "omega_drive", "normal_force", "friction_force", "stick"):
+        np.testing.assert_allclose(frame[name], expected[name], rtol=1e-15, atol=0)
+
+
+def test_run_a_scene_file_with_options(tmp_path, capsys):
+    path = scene_file(tmp_path, friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 100.0})
+    out_dir = tmp_path / "new" / "dir"
+    code, out, _ = run_main(capsys, "run", path, "-o", out_dir, "--t-end", "0.2",
+                            "--integrator", "cvode_adams", "--rtol", "1e-6", "--points", "0")
+    assert code == 0 and "arctan_velocity/cvode_adams" in out
+    frame = pd.read_csv(out_dir / "scene.csv")
+    assert len(frame) > 10 and frame["t"].iloc[-1] == pytest.approx(0.2, rel=1e-12)
+    assert (out_dir / "scene.png").is_file()
+
+
+@pytest.mark.parametrize(
+    "argv, fragments",
+    [
+        (["run", "missing.toml"], ["missing.toml", "no such file", "default"]),
+        (["run", "default", "--t-end", "-1"], ["--t-end -1 is invalid"]),
+        (["run", "default", "--points", "1"], ["--points 1 is invalid"]),
+        (["run", "default", "--integrator", "dopri5"], ["integrator"]),
+        (["run", "default", "--format", "xlsx"], ["--format", "xlsx"]),
+        (["run"], ["SCENE"]),
+        ([], ["command"]),
+        (["simulate", "default"], ["simulate"]),
+    ],
+)
+def test_usage_errors_exit_2_with_one_line(tmp_path, capsys, argv, fragments):
+    code, out, err = run_main(capsys, *argv, *(["-o", tmp_path] if argv[:1] == ["run"]
+                                                and len(argv) > 1 else []))
+    assert code == 2
+    assert_one_line_error(err, *fragments)
+
+
+def test_parquet_without_pyarrow_is_a_clear_usage_error(tmp_path, capsys, monkeypatch):
+    real = importlib.util.find_spec
+    monkeypatch.setattr(importlib.util, "find_spec",
+                        lambda name, *a: None if name == "pyarrow" else real(name, *a))
+    code, _, err = run_main(capsys, "run", "default", "-o", tmp_path, "--format", "parquet")
+    assert code == 2
+    assert_one_line_error(err, "--format parquet needs pyarrow", "pip install pyarrow")
+    assert not any(tmp_path.iterdir())  # checked before simulating
+
+
+def test_parquet_format(tmp_path, capsys):
+    """Parquet where pyarrow is installed, the clear error where it is not."""
+    code, out, err = run_main(capsys, "run", "default", "-o", tmp_path, "--t-end", "0.2",
+                              "--format", "parquet", "--points", "11")
+    if importlib.util.find_spec("pyarrow") is None:
+        assert code == 2 and "needs pyarrow" in err
+        return
+    assert code == 0
+    frame = pd.read_parquet(tmp_path / "default.parquet")
+    expected = ls.simulate(shipped.load("default"), 0.2, t_eval=np.linspace(0, 0.2, 11))
+    np.testing.assert_array_equal(frame["u_load"], expected["u_load"])
+
+
+def test_debug_shows_the_traceback(tmp_path):
+    with pytest.raises(ValueError, match="no such file"):
+        cli.main(["--debug", "run", str(tmp_path / "missing.toml")])
+    with pytest.raises(ValueError, match="no such file"):
+        cli.main(["run", str(tmp_path / "missing.toml"), "--debug"])
+
+
+# --- study ------------------------------------------------------------------------
+
+
+def fake_studies(monkeypatch):
+    calls = []
+
+    def sweep_mu(scene, mu=(0.1, 0.2), label="x", t_end=0.1):
+        calls.append((scene, mu, label, t_end))
+        rows = []
+        for value in mu:
+            result = ls.simulate(scene.replace(friction={"mu": value}), t_end)
+            rows.append({"mu": value, "label": label, "u_end": result["u_load"][-1]})
+        return pd.DataFrame(rows)
+
+    def broken(scene, **options):
+        raise RuntimeError("the study failed on purpose")
+
+    def not_a_frame(scene):
+        return [1, 2, 3]
+
+    module = types.ModuleType("leadscrew.studies")
+    module.STUDIES = {"sweep_mu": sweep_mu, "broken": broken, "not_a_frame": not_a_frame}
+    monkeypatch.setitem(sys.modules, "leadscrew.studies", module)
+    return calls
+
+
+def test_study_dispatches_options_and_writes_csv(tmp_path, capsys, monkeypatch):
+    calls = fake_studies(monkeypatch)
+    code, out, err = run_main(capsys, "study", "sweep_mu", "default", "mu=0.1,0.3",
+                              "label=abc", "t-end=0.2", "-o", tmp_path)
+    assert code == 0, err
+    (scene, mu, label, t_end), = calls
+    assert scene == shipped.load("default") and mu == [0.1, 0.3] and label == "abc"
+    assert t_end == 0.2
+    frame = pd.read_csv(tmp_path / "sweep_mu_default.csv")
+    assert list(frame.columns) == ["mu", "label", "u_end"]
+    assert frame["mu"].tolist() == [0.1, 0.3]
+    expected = ls.simulate(shipped.load("default").replace(friction={"mu": 0.3}), 0.2)
+    assert frame["u_end"].iloc[1] == pytest.approx(expected["u_load"][-1], rel=1e-12)
+    assert f"wrote {tmp_path / 'sweep_mu_default.csv'}" in out
+
+
+@pytest.mark.parametrize(
+    "argv, code, fragments",
+    [
+        (["study", "nope", "default"], 2, ["study 'nope' is unknown", "broken, not_a_frame, sweep_mu"]),
+        (["study", "sweep_mu", "default", "omega=3"], 2,
+         ["has no option 'omega'", "mu, label, t_end"]),
+        (["study", "sweep_mu", "default", "novalue"], 2, ["KEY=VALUE"]),
+        (["study", "sweep_mu", "missing.toml"], 2, ["no such file"]),
+        (["study", "broken", "default"], 1, ["the study failed on purpose"]),
+        (["study", "not_a_frame", "default"], 1, ["returned list, not a DataFrame"]),
+    ],
+)
+def test_study_errors(tmp_path, capsys, monkeypatch, argv, code, fragments):
+    fake_studies(monkeypatch)
+    got, _, err = run_main(capsys, *argv, "-o", tmp_path)
+    assert got == code
+    assert_one_line_error(err, *fragments)
+
+
+def test_study_without_the_studies_module(tmp_path, capsys, monkeypatch):
+    monkeypatch.setitem(sys.modules, "leadscrew.studies", None)  # import fails
+    code, _, err = run_main(capsys, "study", "stick_slip", "default", "-o", tmp_path)
+    assert code == 1
+    assert_one_line_error(err, "leadscrew.studies cannot be imported")
+
+
+@pytest.mark.parametrize(
+    "text, value",
+    [("5,10,20", [5, 10, 20]), ("[5, 10.5]", [5, 10.5]), ("0.5", 0.5), ("true", True),
+     ("rigid,flexible", ["rigid", "flexible"]), ('"a,b"', "a,b"), ("rigid", "rigid"),
+     ('["1 mm", "2 mm"]', ["1 mm", "2 mm"]), ("1e-3", 1e-3)],
+)
+def test_study_option_values(text, value):
+    assert cli._option_value(text) == value
+
+
+# --- demo and the entry points ----------------------------------------------------
+
+
+def test_demo_writes_its_figures(tmp_path, capsys):
+    code, out, err = run_main(capsys, "demo", "-o", tmp_path / "demo")
+    assert code == 0 and err == ""
+    for name in ("default.csv", "default.png", "default_energy.png"):
+        path = tmp_path / "demo" / name
+        assert path.is_file() and path.stat().st_size > 1000, name
+        assert f"wrote {path}" in out
+    assert "scene default: valid" in out and "dynamic jamming" in out
+    frame = pd.read_csv(tmp_path / "demo" / "default.csv")
+    assert len(frame) == cli.DEFAULT_POINTS and frame["t"].iloc[-1] == cli.DEFAULT_T_END
+
+
+def test_python_m_leadscrew_and_console_script(tmp_path):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    done = subprocess.run([sys.executable, "-m", "leadscrew", "check", "thesis_table_5_1"],
+                          capture_output=True, text=True, env=env, cwd=tmp_path, timeout=120)
+    assert done.returncode == 0 and "scene thesis_table_5_1: valid" in done.stdout
+    done = subprocess.run([sys.executable, "-m", "leadscrew", "run", "missing.toml"],
+                          capture_output=True, text=True, env=env, cwd=tmp_path, timeout=120)
+    assert done.returncode == 2 and done.stdout == ""
+    assert_one_line_error(done.stderr, "missing.toml")
+    done = subprocess.run([sys.executable, "-m", "leadscrew", "--debug", "run", "missing.toml"],
+                          capture_output=True, text=True, env=env, cwd=tmp_path, timeout=120)
+    assert done.returncode != 0 and "Traceback" in done.stderr
+    script = Path(sys.executable).parent / "leadscrew"
+    done = subprocess.run([str(script), "--help"], capture_output=True, text=True, env=env,
+                          timeout=120)
+    assert done.returncode == 0 and "run" in done.stdout and "study" in done.stdout

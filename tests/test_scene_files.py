@@ -1,0 +1,353 @@
+"""Scene files: TOML round trip, values with units, bad files, shipped scenes."""
+
+import math
+import sys
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import leadscrew as ls
+import leadscrew.scenes as shipped
+from helpers.scenes import thesis_scene
+from leadscrew import scene as scene_module
+from leadscrew import units
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:
+    import tomli as tomllib
+
+
+def write(tmp_path, text, name="scene.toml"):
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+# --- round trip -------------------------------------------------------------------
+
+ROUND_TRIP_CASES = {
+    "thesis": thesis_scene(),
+    "flexible_backlash": thesis_scene(concept="flexible", backlash={
+        "axial": 0.2e-3, "contact": "bistop", "stiffness": 3.3e7, "penetration": 1e-6}),
+    "nut_drive_table": thesis_scene(drive="nut", loads={
+        "axial_force": {"type": "table", "times": [0.0, 0.1, 0.25], "values": [0.0, -5.5, 3.0]},
+        "drive_torque": {"type": "constant", "value": 0.01}}),
+    "speed_controlled": thesis_scene(loads={"drive_torque": None,
+                                            "drive_speed": {"type": "sine", "amplitude": 3.0,
+                                                            "omega": 1.0, "phase": 0.5}}),
+    "overrides_left_hand": thesis_scene(
+        thread={"pitch": 2e-3, "mean_diameter": 9e-3, "starts": 2, "hand": "left",
+                "flank_angle": math.radians(30)},
+        friction={"law": "arctan_acceleration", "mu": 0.1, "k_v": 123.456},
+        overrides={"screw_mass": 0.5, "nut_axial_stiffness": 1e8, "damping_ratio": 0.0},
+        initial={"rotor_speed": -1.25, "rotor_angle": 1e-300}),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ROUND_TRIP_CASES))
+def test_toml_round_trip_is_exact(tmp_path, name):
+    scene = ls.Scene.from_dict(ROUND_TRIP_CASES[name])
+    path = tmp_path / "scene.toml"
+    text = scene.to_toml(path)
+    assert path.read_text(encoding="utf-8") == text
+    again = ls.Scene.from_toml(path)
+    assert again == scene
+    assert again.to_dict() == scene.to_dict()
+    # An independent reader sees the same structure: the writer emits plain TOML.
+    assert tomllib.loads(text) == scene.to_dict()
+
+
+@settings(max_examples=40, deadline=None)
+@given(pitch=st.floats(1e-300, 1e300), mu=st.floats(0.0, 1e300),
+       angle=st.floats(-1e300, 1e300), amplitude=st.floats(-1e300, 1e300),
+       times=st.lists(st.floats(-1e6, 1e6), min_size=1, max_size=5, unique=True))
+def test_toml_round_trip_keeps_every_float_bit(tmp_path_factory, pitch, mu, angle, amplitude,
+                                               times):
+    d = thesis_scene(thread={"pitch": pitch}, friction={"mu": mu},
+                     initial={"rotor_angle": angle},
+                     loads={"drive_torque": {"type": "sine", "amplitude": amplitude,
+                                             "omega": 1.0},
+                            "axial_force": {"type": "table", "times": sorted(times),
+                                            "values": [amplitude] * len(times)}})
+    scene = ls.Scene.from_dict(d)
+    path = tmp_path_factory.mktemp("rt") / "scene.toml"
+    scene.to_toml(path)
+    assert ls.Scene.from_toml(path).to_dict() == scene.to_dict()
+
+
+def test_to_toml_comments_units_and_writes_excitation_objects(tmp_path):
+    scene = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": ls.Sine(-0.04, 4 * math.pi),
+                                                   "axial_force": ls.Constant(-10.0)}))
+    text = scene.to_toml()
+    assert "pitch = 0.001  # m" in text
+    assert "youngs_modulus = 210000000000.0  # Pa" in text
+    assert "[loads.drive_torque]" in text and "omega = 12.566370614359172  # rad/s" in text
+    again = ls.Scene.from_toml(write(tmp_path, text))
+    assert again["loads"]["drive_torque"] == {"type": "sine", "amplitude": -0.04,
+                                              "omega": 4 * math.pi, "phase": 0.0, "offset": 0.0}
+    assert again["loads"]["axial_force"] == {"type": "constant", "value": -10.0}
+    # Same motion from the objects and from the tables they were written as.
+    a, b = ls.simulate(scene, 0.3), ls.simulate(again, 0.3)
+    np.testing.assert_array_equal(a["u_load"], b["u_load"])
+
+
+def test_to_toml_rejects_a_python_callable():
+    scene = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": lambda t: 0.01 * t}))
+    with pytest.raises(ValueError, match=r"^loads\.drive_torque = .* cannot be written to TOML"):
+        scene.to_toml()
+
+
+# --- units ------------------------------------------------------------------------
+
+
+def scene_with(**changes):
+    return ls.Scene.from_dict(thesis_scene(**changes))
+
+
+@pytest.mark.parametrize(
+    "changes, section, key, expected",
+    [
+        (dict(thread={"pitch": "1 mm", "mean_diameter": "2 cm"}), "thread", "pitch", 1e-3),
+        (dict(thread={"pitch": "1 mm", "mean_diameter": "2 cm"}), "thread", "mean_diameter", 0.02),
+        (dict(thread={"pitch": "1 mm", "mean_diameter": 0.02, "flank_angle": "30 deg"}),
+         "thread", "flank_angle", math.pi / 6),
+        (dict(thread={"pitch": 1e-3, "mean_diameter": 0.02, "starts": "2"}), "thread", "starts", 2),
+        (dict(screw={"youngs_modulus": "210 GPa"}), "screw", "youngs_modulus", 210e9),
+        (dict(screw={"youngs_modulus": "210e3 N/mm^2"}), "screw", "youngs_modulus", 210e9),
+        (dict(screw={"density": "7.85 g/cm^3"}), "screw", "density", 7850.0),
+        (dict(friction={"mu": "0.3"}), "friction", "mu", 0.3),
+        (dict(friction={"mu": "30 %"}), "friction", "mu", 0.3),
+        (dict(friction={"k_v": "1e4 s/m"}), "friction", "k_v", 1e4),
+        (dict(friction={"law": "arctan_acceleration", "mu": 0.3, "k_v": "2 s^2/mm"}),
+         "friction", "k_v", 2000.0),
+        (dict(rotor={"inertia": "10 g*cm^2"}), "rotor", "inertia", 1e-6),
+        (dict(load={"mass": "500 g"}), "load", "mass", 0.5),
+        (dict(overrides={"nut_torsional_stiffness": "650 N*m/rad"}), "overrides",
+         "nut_torsional_stiffness", 650.0),
+        (dict(overrides={"nut_torsional_stiffness": "11.3 N*m/deg"}), "overrides",
+         "nut_torsional_stiffness", 11.3 * 180 / math.pi),
+        (dict(overrides={"screw_axial_damping": "3 N*s/mm"}), "overrides", "screw_axial_damping",
+         3000.0),
+        (dict(initial={"rotor_speed": "2 Hz"}), "initial", "rotor_speed", 4 * math.pi),
+        (dict(initial={"rotor_speed": "60 rpm"}), "initial", "rotor_speed", 2 * math.pi),
+        (dict(initial={"rotor_speed": "2 rad/s"}), "initial", "rotor_speed", 2.0),
+        (dict(initial={"rotor_speed": "2 1/s"}), "initial", "rotor_speed", 2.0),
+        (dict(initial={"rotor_angle": "1 turn"}), "initial", "rotor_angle", 2 * math.pi),
+        (dict(loads={"axial_force": "-10 N"}), "loads", "axial_force", -10.0),
+        (dict(loads={"axial_force": "-0.01 kN"}), "loads", "axial_force", -10.0),
+    ],
+)
+def test_unit_strings_convert_to_si(changes, section, key, expected):
+    value = scene_with(**changes)[section][key]
+    assert value == pytest.approx(expected, rel=1e-15, abs=0)
+    assert type(value) is type(expected)
+
+
+def test_hz_is_cycles_per_second_in_every_load_entry():
+    loads = scene_with(loads={
+        "drive_torque": {"type": "sine", "amplitude": "-40 N*mm", "omega": "2 Hz",
+                         "phase": "90 deg", "offset": "5 N*mm"},
+        "axial_force": {"type": "table", "times": ["0 s", "250 ms", 0.5],
+                        "values": ["-10 N", "-0.02 kN", -5]}})["loads"]
+    torque, force = loads["drive_torque"], loads["axial_force"]
+    assert torque["amplitude"] == pytest.approx(-0.04, rel=1e-15)
+    assert torque["omega"] == pytest.approx(4 * math.pi, rel=1e-15)
+    assert torque["phase"] == pytest.approx(math.pi / 2, rel=1e-15)
+    assert torque["offset"] == pytest.approx(0.005, rel=1e-15)
+    assert force["times"] == pytest.approx([0.0, 0.25, 0.5], rel=1e-15)
+    assert force["values"] == pytest.approx([-10.0, -20.0, -5.0], rel=1e-15)
+    assert all(type(x) is float for x in force["times"] + force["values"])
+    speed = scene_with(loads={"drive_speed": {"type": "constant", "value": "3000 rpm"},
+                              "drive_torque": None})["loads"]["drive_speed"]
+    assert speed["value"] == pytest.approx(100 * math.pi, rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    "changes, message",
+    [
+        (dict(thread={"pitch": "3 N", "mean_diameter": 0.02}),
+         'thread.pitch = "3 N" is invalid: "3 N" is not a length (m)'),
+        (dict(thread={"pitch": 1e-3, "mean_diameter": 0.02, "flank_angle": "1 mm"}),
+         'thread.flank_angle = "1 mm" is invalid: "1 mm" is not an angle (rad)'),
+        (dict(friction={"mu": "17 deg"}),
+         'friction.mu = "17 deg" is invalid: "17 deg" is an angle, not a plain number'),
+        (dict(friction={"mu": "1 N"}), 'friction.mu = "1 N" is invalid: "1 N" is not a plain number'),
+        (dict(screw={"youngs_modulus": "210 GN"}),
+         'screw.youngs_modulus = "210 GN" is invalid: "210 GN" is not a pressure'),
+        (dict(rotor={"inertia": "1 kg*m"}),
+         'rotor.inertia = "1 kg*m" is invalid: "1 kg*m" is not a moment of inertia (kg*m^2)'),
+        (dict(overrides={"nut_torsional_stiffness": "650 N/m"}),
+         'overrides.nut_torsional_stiffness = "650 N/m" is invalid: "650 N/m" is not a '
+         'torsional stiffness (N*m/rad)'),
+        (dict(friction={"law": "arctan_acceleration", "mu": 0.3, "k_v": "1e4 s/m"}),
+         'friction.k_v = "1e4 s/m" is invalid: "1e4 s/m" is not an inverse acceleration (s^2/m)'),
+        (dict(loads={"axial_force": "-10 N*m"}),
+         'loads.axial_force = "-10 N*m" is invalid: "-10 N*m" is not a force (N)'),
+        (dict(loads={"drive_torque": {"type": "sine", "amplitude": "40 N", "omega": 1.0}}),
+         'loads.drive_torque.amplitude = "40 N" is invalid: "40 N" is not a torque (N*m)'),
+        (dict(loads={"drive_torque": {"type": "sine", "amplitude": 0.04, "omega": "2 m"}}),
+         'loads.drive_torque.omega = "2 m" is invalid: "2 m" is not an angular velocity'),
+        (dict(loads={"axial_force": {"type": "table", "times": [0.0, "1 N"], "values": [1, 2]}}),
+         'loads.axial_force.times[1] = "1 N" is invalid: "1 N" is not a time (s)'),
+        (dict(thread={"pitch": "-1 mm", "mean_diameter": 0.02}),
+         'thread.pitch = "-1 mm" (= -0.001 m) is invalid: must be a finite number > 0 [m]'),
+        (dict(thread={"pitch": "1 furlongz", "mean_diameter": 0.02}),
+         'thread.pitch = "1 furlongz" is invalid: not a number with a unit'),
+        (dict(thread={"pitch": "inf mm", "mean_diameter": 0.02}),
+         'thread.pitch = "inf mm" is invalid: not finite'),
+        (dict(thread={"pitch": "", "mean_diameter": 0.02}), 'thread.pitch = "" is invalid'),
+    ],
+)
+def test_bad_units_name_the_key_and_the_dimension(changes, message):
+    with pytest.raises(ValueError) as info:
+        scene_with(**changes)
+    assert str(info.value).startswith(message)
+    assert "\n" not in str(info.value)
+
+
+def test_every_schema_unit_parses_and_has_a_name():
+    fields = []
+    for key, entry in scene_module.SCHEMA.items():
+        items = [entry] if isinstance(entry, scene_module.Field) else entry.values()
+        fields += [f for f in items]
+    for f in fields:
+        units.parse_unit(f.unit)
+        assert not units.dimension_name(f.unit).startswith("a quantity"), f.unit
+    for unit in ("s^2/m", "s", "N*m*s/rad"):
+        assert not units.dimension_name(unit).startswith("a quantity")
+
+
+def test_plain_number_scenes_never_build_the_unit_registry(monkeypatch):
+    def forbidden():
+        raise AssertionError("the pint registry was built for a scene of plain numbers")
+
+    monkeypatch.setattr(units, "_registry", forbidden)
+    scene = ls.Scene.from_dict(thesis_scene(backlash={"axial": 1e-4}))
+    assert scene.replace(friction={"mu": 0.2})["friction"]["mu"] == 0.2
+
+
+# --- bad files --------------------------------------------------------------------
+
+GOOD = """
+[thread]
+pitch = "1 mm"
+mean_diameter = "20 mm"
+
+[friction]
+mu = 0.3
+"""
+
+
+def test_minimal_file_fills_defaults(tmp_path):
+    scene = ls.Scene.from_toml(write(tmp_path, GOOD))
+    assert scene == ls.Scene.from_dict({"thread": {"pitch": 1e-3, "mean_diameter": 0.02},
+                                        "friction": {"mu": 0.3}})
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        (GOOD.replace("pitch =", "pich ="),
+         "scene.toml: thread.pich is not a known key; thread takes pitch, "),
+        (GOOD + "\n[gearbox]\nratio = 3\n", "scene.toml: gearbox is not a known section"),
+        (GOOD.replace('"1 mm"', '"3 N"'),
+         'scene.toml: thread.pitch = "3 N" is invalid: "3 N" is not a length (m)'),
+        (GOOD.replace("[friction]\nmu = 0.3\n", ""), "scene.toml: friction is missing"),
+        (GOOD.replace('mean_diameter = "20 mm"\n', ""), "scene.toml: thread.mean_diameter is missing"),
+        (GOOD + '\n[loads.drive_torque]\ntype = "sine"\namplitude = "1 N*m"\nomga = "2 Hz"\n',
+         "scene.toml: loads.drive_torque.omga = '2 Hz' is invalid: must be absent"),
+        (GOOD.replace('pitch = "1 mm"', 'pitch = 1 mm'),
+         "scene.toml: TOML syntax error: Expected newline or end of document after a statement "
+         "(at line 3, column 11)"),
+        (GOOD.replace("[friction]", "[friction"), "scene.toml: TOML syntax error: "),
+        (GOOD + "[thread]\n", "scene.toml: TOML syntax error: "),
+    ],
+)
+def test_bad_files_give_one_clear_message(tmp_path, text, message):
+    path = write(tmp_path, text)
+    with pytest.raises(ValueError) as info:
+        ls.Scene.from_toml(path)
+    text = str(info.value)
+    assert text.startswith(str(path.parent) + "/" + message), text
+    assert "\n" not in text
+    if "syntax" in message:
+        assert "line " in text
+
+
+def test_missing_file_and_binary_file(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        ls.Scene.from_toml(tmp_path / "missing.toml")
+    path = tmp_path / "binary.toml"
+    path.write_bytes(b"\xff\xfe\x00junk")
+    with pytest.raises(ValueError, match="not a UTF-8 text file"):
+        ls.Scene.from_toml(path)
+
+
+# --- shipped scenes ---------------------------------------------------------------
+
+
+def test_shipped_scenes_are_listed_and_found():
+    assert shipped.available() == ["default", "position_holding", "thesis_table_5_1"]
+    for name in shipped.available():
+        path = shipped.path(name)
+        assert path.is_file() and path.suffix == ".toml"
+        assert shipped.load(name) == ls.Scene.from_toml(path) == shipped.load(name + ".toml")
+    with pytest.raises(ValueError, match="thesis_table_5_1"):
+        shipped.load("thesis")
+
+
+@pytest.mark.parametrize("name", ["default", "position_holding", "thesis_table_5_1"])
+def test_shipped_scenes_round_trip(tmp_path, name):
+    scene = shipped.load(name)
+    path = tmp_path / f"{name}.toml"
+    scene.to_toml(path)
+    assert ls.Scene.from_toml(path) == scene
+
+
+def test_thesis_scene_is_table_5_1_with_load_case_5_1():
+    """The shipped file states Table 5.1 and eq. (5.1) as the test helper does."""
+    scene = shipped.load("thesis_table_5_1")
+    assert scene == ls.Scene.from_dict(thesis_scene(concept="flexible"))
+    d = scene.to_dict()
+    assert d["concept"] == "flexible" and d["drive"] == "screw"
+    assert d["screw"]["youngs_modulus"] == 210e3 * 1e6  # E_S = 210e3 N/mm^2
+    assert d["nut"]["youngs_modulus"] == 2e3 * 1e6  # E_M = 2e3 N/mm^2
+    assert d["friction"] == {"law": "coulomb", "mu": 0.3, "k_v": 1e4}
+    assert d["loads"]["axial_force"] == -10.0
+    torque = d["loads"]["drive_torque"]
+    assert (torque["type"], torque["amplitude"], torque["omega"]) == ("sine", -0.04, 4 * math.pi)
+
+
+def test_position_holding_scene_is_section_5_2():
+    d = shipped.load("position_holding").to_dict()
+    assert d["backlash"]["axial"] == pytest.approx(0.2e-3, rel=1e-15)
+    assert d["backlash"]["contact"] == "bistop"
+    assert d["loads"]["drive_torque"] == 0.0
+    force = d["loads"]["axial_force"]
+    assert force["offset"] == 0.0 and force["amplitude"] == 50.0  # no static preload
+    assert force["omega"] == pytest.approx(2 * math.pi * 20, rel=1e-15)
+    assert d["initial"]["play_position"] == 0.0  # nut in the middle of the play
+    rest = {k: v for k, v in d.items() if k not in ("backlash", "loads", "friction", "initial")}
+    table = shipped.load("thesis_table_5_1").to_dict()
+    assert rest == {k: table[k] for k in rest}  # otherwise the Table 5.1 drive
+
+
+@pytest.mark.parametrize("name, t_end", [("default", 0.3), ("thesis_table_5_1", 0.1),
+                                         ("position_holding", 0.02)])
+def test_shipped_scenes_simulate(name, t_end):
+    scene = shipped.load(name)
+    result = ls.simulate(scene, t_end)
+    assert result.t[-1] == pytest.approx(t_end, rel=1e-12)
+    frame = result.to_frame()
+    assert np.isfinite(frame.to_numpy()).all()
+    work = np.abs(result["work_drive"]).max() + np.abs(result["work_axial"]).max()
+    assert np.abs(result["energy_residual"]).max() <= 1e-5 * max(work, 1e-9)
+    # The motion follows the loads: the default scene and the thesis case slip
+    # (stick/slip events), the position-holding case moves through its play.
+    if name == "position_holding":
+        assert np.ptp(result["u_load"]) > 0.05e-3
+    else:
+        assert any("slip" in e.kind for e in result.events)

@@ -6,25 +6,30 @@ default thread pool (os.cpu_count() workers; the C++ core releases the GIL):
 - efficiency_vs_mu: 50 friction coefficients x 3 axial loads on the thesis's
   Table 5.1 drive (rigid concept, speed-controlled at 10 rad/s, 0.2 s);
 - creep_map: 30 frequencies x 30 backlash values of the position-holding case
-  (Table 5.1 drive, exact backlash, 5 N mm held torque, 30 N alternating force,
-  6 cycles each).
+  (Table 5.1 drive, exact backlash, 5 N mm held torque, 30 N alternating force
+  at 5-50 Hz, backlash 0.05-0.5 mm, 6 cycles each).
 
-For each: wall time serial and threaded (the minimum over --repeats runs),
-the thread pool's speed-up, the time per simulation in the sweep against a
-single simulation of one case run alone (the minimum over many repeats), the
-share of the serial time spent inside the C++ core (its own wall-time
-measurement; the rest holds the GIL and bounds the speed-up, Amdahl), and the
+For each: wall time serial and threaded (the minimum over --repeats
+interleaved runs), the thread pool's speed-up, the process's CPU time over
+wall time in the threaded run (2.0: both cores were ours), the time per
+simulation in the sweep against a single simulation of one case run alone
+(the minimum over many repeats), the share of the serial time spent inside
+the C++ core (its own wall-time measurement; the rest holds the GIL: with w
+workers the threaded time is at least max(Python part, total / w), so the
+speed-up can reach w while the Python share stays below 1 - 1/w), and the
 load average before and after (other work on the machine slows the threaded
 runs first).
 
-Run: python benchmarks/studies/bench_studies.py [--repeats N] [--flexible]
-(--flexible adds the efficiency sweep on the flexible_nut concept).
+Run: python benchmarks/studies/bench_studies.py [--repeats N] [--flexible] [--dask]
+(--flexible adds the efficiency sweep on the flexible_nut concept, --dask the
+creep map on a local Dask cluster of two worker processes).
 """
 
 from __future__ import annotations
 
 import argparse
 import concurrent.futures
+import math
 import os
 import platform
 import sys
@@ -56,13 +61,11 @@ def holding_scene():
                         loads={"drive_torque": 5e-3, "axial_force": 0.0})
 
 
-def best_of(function, repeats):
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        value = function()
-        times.append(time.perf_counter() - start)
-    return min(times), value
+def timed(function):
+    """Wall time [s], process CPU time [s] (all threads) and the value."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    value = function()
+    return time.perf_counter() - wall, time.process_time() - cpu, value
 
 
 def single_case_time(case_function, case, repeats=200):
@@ -76,18 +79,24 @@ def single_case_time(case_function, case, repeats=200):
 
 
 def run(name, sweep, case_function, case, n, repeats):
+    """Serial, default pool and a reused pool, interleaved; the minimum of each."""
     single = single_case_time(case_function, case)
-    serial, frame = best_of(lambda: sweep(SerialExecutor()), repeats)
-    threaded, _ = best_of(lambda: sweep(None), repeats)
+    serial = threaded = pooled = (math.inf, 0.0)
     with concurrent.futures.ThreadPoolExecutor(default_workers()) as pool:
-        pooled, _ = best_of(lambda: sweep(pool), repeats)
+        for _ in range(repeats):
+            wall, cpu, frame = timed(lambda: sweep(SerialExecutor()))
+            serial = min(serial, (wall, cpu))
+            wall, cpu, _ = timed(lambda: sweep(None))
+            threaded = min(threaded, (wall, cpu))
+            wall, cpu, _ = timed(lambda: sweep(pool))
+            pooled = min(pooled, (wall, cpu))
     core = float(np.nansum(frame["wall_time"]))
-    failed = int(frame["error"].notna().sum())
     return {
-        "name": name, "n": n, "serial": serial, "threaded": threaded, "pooled": pooled,
-        "speedup": serial / threaded, "per_sim": threaded / n, "single": single,
-        "core_share": core / serial, "failed": failed,
-        "target": TARGETS.get(name.split(" ")[0]),
+        "name": name, "n": n, "serial": serial[0], "threaded": threaded[0],
+        "pooled": pooled[0], "speedup": serial[0] / threaded[0],
+        "parallelism": threaded[1] / threaded[0], "per_sim": threaded[0] / n,
+        "single": single, "core_share": core / serial[0],
+        "failed": int(frame["error"].notna().sum()), "target": TARGETS.get(name.split(" ")[0]),
     }
 
 
@@ -95,6 +104,8 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--flexible", action="store_true")
+    parser.add_argument("--dask", action="store_true",
+                        help="also run the creep map on a local Dask cluster (2 processes)")
     args = parser.parse_args()
     load_before = os.getloadavg()
     rows = []
@@ -121,6 +132,25 @@ def main():
         lambda case: _creep_case(case, scene, 30.0, 6, 1, 100, {"rtol": 1e-8, "atol": 1e-10}),
         (20.0, 2e-4), len(frequencies) * len(backlash), args.repeats))
 
+    dask_time = None
+    if args.dask:
+        import warnings
+
+        import distributed
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                          dashboard_address=":0") as cluster, \
+                    distributed.Client(cluster) as client:
+                # pure=False: Dask would otherwise reuse the results of the
+                # previous repeat (same function, same arguments, same keys).
+                executor = client.get_executor(pure=False)
+                dask_time = min(timed(lambda: creep_map(scene, frequencies, backlash,
+                                                        executor=executor,
+                                                        progress=False))[0]
+                                for _ in range(args.repeats))
+
     load_after = os.getloadavg()
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
           f"thread pool of {default_workers()} workers; Python {platform.python_version()}")
@@ -128,16 +158,20 @@ def main():
           f"{load_before[2]:.2f}; after: {load_after[0]:.2f} {load_after[1]:.2f} "
           f"{load_after[2]:.2f}")
     print(f"minimum of {args.repeats} runs per column\n")
-    print("| sweep | sims | serial [s] | threads [s] | speed-up | target [s] | per sim, threads "
-          "[ms] | single sim [ms] | C++ share of serial | failed |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| sweep | sims | serial [s] | threads [s] | speed-up | CPU / wall, threads | "
+          "target [s] | per sim, threads [ms] | single sim [ms] | C++ share of serial | "
+          "failed |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         target = f"< {r['target']:g}" if r["target"] else ""
         print(f"| {r['name']} | {r['n']} | {r['serial']:.3f} | {r['threaded']:.3f} | "
-              f"{r['speedup']:.2f}x | {target} | {r['per_sim'] * 1e3:.3f} | "
+              f"{r['speedup']:.2f}x | {r['parallelism']:.2f} | {target} | {r['per_sim'] * 1e3:.3f} | "
               f"{r['single'] * 1e3:.3f} | {r['core_share']:.0%} | {r['failed']} |")
     print("\n(threads: a new default pool per call; a reused pool gave "
           + ", ".join(f"{r['pooled']:.3f} s" for r in rows) + ")")
+    if dask_time is not None:
+        print(f"creep_map on a local Dask cluster (2 worker processes, cluster started "
+              f"beforehand): {dask_time:.3f} s")
 
 
 if __name__ == "__main__":

@@ -36,17 +36,27 @@ def fail_on_odd(x):
     return -x
 
 
-def test_results_come_back_in_input_order():
+@pytest.mark.parametrize("chunk_size", [None, 1, 3, 10])
+def test_results_come_back_in_input_order(chunk_size):
     with concurrent.futures.ThreadPoolExecutor(4) as pool:
-        outcomes = run_cases(sleep_then_square, range(4), executor=pool, progress=False)
+        outcomes = run_cases(sleep_then_square, range(4), executor=pool, progress=False,
+                             chunk_size=chunk_size)
     assert [o.value for o in outcomes] == [0, 1, 4, 9]
     assert all(o.ok and o.elapsed > 0 for o in outcomes)
 
 
+@pytest.mark.parametrize("chunk_size", [0, 1.5, True])
+def test_bad_chunk_size(chunk_size):
+    with pytest.raises(ValueError, match="chunk_size"):
+        run_cases(abs, [1], chunk_size=chunk_size)
+
+
 @pytest.mark.parametrize("executor", [None, "serial"])
 def test_a_failed_case_is_an_outcome_with_its_message(executor):
+    """Also inside a chunk: the other cases of the task are kept."""
     executor = SerialExecutor() if executor == "serial" else None
-    outcomes = run_cases(fail_on_odd, range(5), executor=executor, progress=False)
+    outcomes = run_cases(fail_on_odd, range(5), executor=executor, progress=False,
+                         chunk_size=2)
     assert [o.value for o in outcomes] == [0, None, -2, None, -4]
     assert [o.error for o in outcomes] == [None, "ValueError: odd case 1", None,
                                            "ValueError: odd case 3", None]

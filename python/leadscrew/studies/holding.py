@@ -8,9 +8,12 @@ backlash. In flight nothing holds the rotating part, so a torque acting on it
 (the scene's ``loads.drive_torque``: a residual motor torque, or the torque a
 load exerts on the rotating side through a gear) turns it; the small turns
 add up and the load creeps. With exact Coulomb friction, plastic flank
-impacts and no torque the drive cannot creep at all: a self-locking flank
-stops the relative motion at every impact (the impulse that stops an axial
-motion lies inside the friction cone iff tan(alpha) <= mu'), so nothing turns.
+impacts and no torque the rigid drive cannot creep at all: a self-locking
+flank stops the relative motion at every impact (the impulse that stops an
+axial motion lies inside the friction cone iff tan(alpha) <= mu'), so nothing
+turns; the flexible concepts, whose light nut body rattles in the play, keep
+the screw still to the integration tolerance. A regularized friction law
+creeps under any load (it slips at a small speed wherever friction acts).
 
 :func:`position_holding` runs the static and the alternating case of one
 scene; :func:`min_holding_preload` answers the design question the thesis ends
@@ -178,9 +181,16 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         **simulate_options: passed on to :func:`leadscrew.simulate`.
 
     Returns:
-        dict with ``creep_per_cycle`` [m]: slope of a least-squares line
-        through u_load at the cycle boundaries k = settle_cycles..cycles,
-        signed along +x; ``max_displacement`` [m]: max |u_load(t) - u_load(0)|
+        dict with ``creep_per_cycle`` [m]: the load travel the thread's
+        turning gives per cycle, -h p times the slope of a least-squares line
+        through the rotor angle at the cycle boundaries k = settle_cycles ..
+        cycles (p = lead / 2 pi, h = +1 right hand), signed along +x. The load
+        position is u_load = -h p phi_drive plus its place in the play plus
+        elastic deflections; those two stay bounded, and a flexible nut
+        rattling in the play puts the load anywhere in it at a cycle boundary,
+        so the load position itself would measure that scatter rather than
+        creep (for the rigid drive, back on its flank at every boundary, both
+        agree). ``max_displacement`` [m]: max |u_load(t) - u_load(0)|
         on the output times; ``separations`` [1]: flank openings (events to
         'open'); ``flight_fraction`` [1]: share of output times with the nut
         off both flanks (gap > 1e-9 of the clearance); ``wall_time`` [s, C++];
@@ -198,12 +208,13 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
     t_eval = np.linspace(0.0, t_end, cycles * points_per_cycle + 1)
     result = simulate(scene, t_end, t_eval=t_eval, **simulate_options)
     u = result["u_load"]
-    boundaries = u[::points_per_cycle]
-    # Least-squares slope, written out so that equal positions give exactly 0.
+    angle = result["phi_drive"][::points_per_cycle][settle_cycles:]
+    # Least-squares slope, written out so that equal angles give exactly 0.
     k = np.arange(settle_cycles, cycles + 1, dtype=float)
     k -= k.mean()
-    fitted = boundaries[settle_cycles:]
-    creep = float(np.dot(k, fitted - fitted.mean()) / np.dot(k, k))
+    thread = scene.thread
+    turn = float(np.dot(k, angle - angle.mean()) / np.dot(k, k))
+    creep = -thread.hand_sign * thread.lead_per_radian * turn
     if "gap" in result:
         clearance = scene["backlash"]["axial"]
         flight = float(np.mean(result["gap"] > 1e-9 * clearance)) if clearance > 0 else 0.0

@@ -5,6 +5,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/friction/flank_lcp.hpp"
 
 namespace leadscrew::model {
 
@@ -333,57 +334,50 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
 }
 
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
-                           double& normal_impulse, double& tangential_impulse) {
+                           double& normal_impulse, double& tangential_impulse,
+                           lcp::Workspace& workspace, const lcp::Options& options) {
   const DriveParameters& p = model_.parameters();
   const int n = model_.coordinate_count();
   const Eigen::VectorXd& normal = model_.normal_direction();
   const Eigen::VectorXd& tangent = model_.tangent_direction();
-  const double mu = model_.effective_mu();
-  const double normal_before = normal.dot(v);
-  // Candidates: stick, then slip in either direction (Newton's impact law
-  // with Coulomb friction on the impulses).
-  for (int candidate = 0; candidate < 3; ++candidate) {
-    const bool stick = candidate == 0;
-    const int slip_sign = candidate == 1 ? 1 : -1;
-    const int nc = 1 + (stick ? 1 : 0) + (p.speed_controlled ? 1 : 0);
+  // Velocity jump M dv = W_N P_N + W_T P_T (+ the rotor's impulse when speed
+  // controlled) with Newton's law W_N (v + dv) = -e W_N v. The post-impact
+  // slip velocity and both impulses are affine in P_T: two solves give the
+  // maps, and the flank LCP on the impulse level decides stick or slip.
+  auto jump = [&](double given_tangential, CoordinateVector& change, double& impulse) {
+    const int nc = 1 + (p.speed_controlled ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
     ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
     SmallVector r = SmallVector::Zero(nc);
-    int row = 0;
-    const double kappa = stick ? 0.0 : slip_sign * mu;
-    B.col(row) = normal - sigma * kappa * tangent;
-    C.row(row) = normal.transpose();
-    r[row++] = -(1.0 + restitution) * normal_before;
-    int stick_row = -1;
-    if (stick) {
-      stick_row = row;
-      B.col(row) = tangent;
-      C.row(row) = tangent.transpose();
-      r[row++] = -tangent.dot(v);
-    }
+    B.col(0) = normal;
+    C.row(0) = normal.transpose();
+    r[0] = -(1.0 + restitution) * normal.dot(v);
     if (p.speed_controlled) {
-      B(model_.rotor(), row) = 1.0;
-      C(row++, model_.rotor()) = 1.0;
+      B(model_.rotor(), 1) = 1.0;
+      C(1, model_.rotor()) = 1.0;
     }
-    CoordinateVector zero = CoordinateVector::Zero(n), change;
+    const CoordinateVector f = given_tangential * CoordinateVector(tangent);
     SmallVector lambda;
-    if (!solve_constrained(inverse_mass_, zero, B, C, r, change, lambda)) continue;
-    const double impulse_normal = lambda[0];
-    if (sigma * impulse_normal < 0.0) continue;
-    double impulse_tangential;
-    if (stick) {
-      impulse_tangential = lambda[stick_row];
-      if (std::abs(impulse_tangential) > mu * std::abs(impulse_normal) * (1.0 + 1e-12)) continue;
-    } else {
-      impulse_tangential = -kappa * sigma * impulse_normal;
-      if (slip_sign * tangent.dot(v + change) <= 0.0) continue;
-    }
-    v += change;
-    normal_impulse = impulse_normal;
-    tangential_impulse = impulse_tangential;
+    if (!solve_constrained(inverse_mass_, f, B, C, r, change, lambda)) return false;
+    impulse = lambda[0];
     return true;
-  }
-  return false;
+  };
+  CoordinateVector without, unit;
+  double beta = 0.0, unit_normal = 0.0;
+  if (!jump(0.0, without, beta) || !jump(1.0, unit, unit_normal)) return false;
+  const double c = tangent.dot(v + without);
+  const double d = tangent.dot(unit - without);
+  const double alpha = unit_normal - beta;
+  const friction::FlankLcpResult r = friction::solve_flank_lcp(
+      c, d, alpha, beta, model_.effective_mu(), sigma, workspace, options);
+  if (!r.consistent) return false;
+  CoordinateVector change;
+  double impulse = 0.0;
+  if (!jump(r.friction_force, change, impulse)) return false;
+  v += change;
+  normal_impulse = impulse;
+  tangential_impulse = r.friction_force;
+  return true;
 }
 
 std::string DriveDynamics::jamming_report() const {

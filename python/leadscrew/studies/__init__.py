@@ -13,6 +13,7 @@ from . import drive_efficiency as _drive_efficiency
 from . import holding as _holding
 from . import stickslip as _stickslip
 from . import work_precision as _work_precision_module
+from ._sweep import SerialExecutor
 from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
 from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
 from .drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu
@@ -51,6 +52,7 @@ STUDIES = {
 
 __all__ = [
     "STUDIES",
+    "SerialExecutor",
     *_work_precision_module.__all__,
     *_stickslip.__all__,
     *_concepts.__all__,

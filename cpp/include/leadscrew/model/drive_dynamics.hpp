@@ -15,6 +15,8 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "leadscrew/lcp/lcp.hpp"
+#include "leadscrew/lcp/workspace.hpp"
 #include "leadscrew/model/drive.hpp"
 
 namespace leadscrew::model {
@@ -61,11 +63,12 @@ class DriveDynamics {
   void project_zero_slip(const ModeSpec& spec, CoordinateVector& v);
 
   // Velocity jump of an impact on a flank (sign sigma) with restitution:
-  // rows W_N (normal velocity -> -restitution * before), the rotor if
-  // speed-controlled, and tangentially stick or slip decided consistently.
-  // Returns false if no consistent frictional impact exists.
+  // Newton's law on the normal velocity, the rotor held if speed-controlled,
+  // stick or slip of the impulses decided by the flank LCP. Returns false if
+  // no consistent frictional impact exists.
   bool impact(int sigma, double restitution, CoordinateVector& v, double& normal_impulse,
-              double& tangential_impulse);
+              double& tangential_impulse, lcp::Workspace& workspace,
+              const lcp::Options& options);
 
   double time() const noexcept { return t_; }
   const CoordinateVector& q() const noexcept { return q_; }

@@ -71,7 +71,8 @@ class _Load:
         if isinstance(spec, (int, float)) and not isinstance(spec, bool):
             self.offset, self.amplitude, self.omega, self.phase = float(spec), 0.0, 0.0, 0.0
         elif isinstance(spec, dict) and spec.get("type") == "constant":
-            self.offset, self.amplitude, self.omega, self.phase = float(spec["value"]), 0.0, 0.0, 0.0
+            self.offset = float(spec["value"])
+            self.amplitude, self.omega, self.phase = 0.0, 0.0, 0.0
         elif isinstance(spec, dict) and spec.get("type") == "sine":
             self.offset = float(spec.get("offset", 0.0))
             self.amplitude = float(spec["amplitude"])
@@ -472,7 +473,8 @@ class DriveEquations:
                           f["p_contact"]])
         return np.concatenate(parts)
 
-    def outputs(self, t: np.ndarray, y: np.ndarray, with_energy: bool = True) -> Dict[str, np.ndarray]:
+    def outputs(self, t: np.ndarray, y: np.ndarray,
+                with_energy: bool = True) -> Dict[str, np.ndarray]:
         """Channels at the times t from the states y (shape (n_state, len(t)))."""
         out = {name: np.empty(len(t)) for name in OUTPUT_NAMES}
         for k, tk in enumerate(t):

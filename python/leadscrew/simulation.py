@@ -112,7 +112,6 @@ def simulate(
         max_step, first_step: optional step-size controls [s].
         smooth_integrator: the ODE integrator inside ``"event_driven"`` for a
             Scene (default ``"rk_verner6"`` for the rigid concept,
-            ``"cvode_bdf"`` for it with exact backlash,
             ``"cvode_bdf"`` for the flexible ones).
         bounce_threshold: a flank impact slower than this [m/s] is plastic
             (exact backlash).

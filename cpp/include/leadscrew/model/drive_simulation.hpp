@@ -15,8 +15,7 @@ namespace leadscrew::model {
 struct DriveSimulationOptions {
   std::string integrator = "event_driven";
   // The smooth integrator inside "event_driven" ("": rk_verner6 for the rigid
-  // concept, cvode_bdf for it with exact flank impacts and for the
-  // stiff flexible ones).
+  // concept, cvode_bdf for the stiff flexible ones).
   std::string smooth_integrator;
   integrate::IntegratorOptions integrator_options;
   double dt = 1e-4;    // moreau

@@ -406,8 +406,13 @@ def _study(args: argparse.Namespace) -> int:
         raise StudyFailed(f"study {args.name!r} returned {type(frame).__name__}, not a DataFrame")
     path = out / f"{args.name}_{scene_name}.csv"
     default_index = type(frame.index).__name__ == "RangeIndex" and frame.index.name is None
-    frame.to_csv(path, index=not default_index)
+    # Columns holding arrays (time series per row) do not fit a CSV cell.
+    arrays = [c for c in frame.columns
+              if frame[c].map(lambda v: hasattr(v, "__len__") and not isinstance(v, str)).any()]
+    frame.drop(columns=arrays).to_csv(path, index=not default_index)
     print(f"{args.name} on {scene_name}: {len(frame)} rows in {elapsed:.3g} s")
+    if arrays:
+        print(f"left out of the CSV (a time series per row): {', '.join(map(str, arrays))}")
     print(f"wrote {path}")
     return 0
 

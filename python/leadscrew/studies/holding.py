@@ -50,6 +50,10 @@ __all__ = [
     "plot_min_holding_preload",
 ]
 
+#: Share of the clearance below which a gap is not a flight: the core's
+#: plastic-bounce resolution (kPlasticHeight), far above a closed flank's drift.
+FLIGHT_RESOLUTION = 1e-6
+
 UNITS = {
     "t": "s", "axial_force_static": "N", "u_load_static": "m", "axial_force_dynamic": "N",
     "u_load_dynamic": "m", "phi_drive_dynamic": "rad", "gap_dynamic": "m",
@@ -193,7 +197,8 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         agree). ``max_displacement`` [m]: max |u_load(t) - u_load(0)|
         on the output times; ``separations`` [1]: flank openings (events to
         'open'); ``flight_fraction`` [1]: share of output times with the nut
-        off both flanks (gap > 1e-9 of the clearance); ``wall_time`` [s, C++];
+        off both flanks (gap > 1e-6 of the clearance, the resolution below which
+        the core treats a bounce as plastic; a closed flank drifts by ~1e-12 m); ``wall_time`` [s, C++];
         ``steps``, ``events`` [1].
 
     Raises:
@@ -217,7 +222,8 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
     creep = -thread.hand_sign * thread.lead_per_radian * turn
     if "gap" in result:
         clearance = scene["backlash"]["axial"]
-        flight = float(np.mean(result["gap"] > 1e-9 * clearance)) if clearance > 0 else 0.0
+        flight = (float(np.mean(result["gap"] > FLIGHT_RESOLUTION * clearance))
+                  if clearance > 0 else 0.0)
     else:
         flight = 0.0
     out = {

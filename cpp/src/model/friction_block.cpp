@@ -258,6 +258,10 @@ class RegularizedBlock final : public integrate::HybridSystem {
     // close in time), kept inside the bracket that always holds the root.
     double a = std::min(std::max(last_acceleration_, low), high);
     const double scale = std::max({std::abs(low), std::abs(high), 1e-300});
+    // Newton on this S-shaped residual can cycle slowly inside the bracket:
+    // as in rtsafe, bisect whenever a Newton step is not at least twice as
+    // short as the one before.
+    double previous_step = high - low;
     for (int iteration = 0; iteration < 200; ++iteration) {
       ++nonlinear_iterations_;
       const double r = residual(a);
@@ -269,7 +273,9 @@ class RegularizedBlock final : public integrate::HybridSystem {
       const double slope =
           mass + 2.0 / 3.14159265358979323846 * bound * k_v_ / (1.0 + k_v_ * k_v_ * a * a);
       double next = a - r / slope;
-      if (!(next > low && next < high)) next = 0.5 * (low + high);
+      if (!(next > low && next < high) || 2.0 * std::abs(next - a) > previous_step)
+        next = 0.5 * (low + high);
+      previous_step = std::abs(next - a);
       if (std::abs(next - a) <= 4e-16 * scale || high - low <= 4e-16 * scale)
         return last_acceleration_ = next;
       a = next;

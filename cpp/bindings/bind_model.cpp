@@ -91,7 +91,6 @@ void bind_model(py::module_& m) {
   m.def("block_integrators", [](const std::string& friction) {
     return model::integrators_for(parse_friction_law(friction));
   });
-  m.def("friction_laws", &friction_law_names);
 
   m.def(
       "simulate_block",

@@ -133,10 +133,8 @@ def simulate(
             raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
                              f"scene's friction.law (it is {model['friction']['law']!r})")
         drive = model.model()
-        allowed = _core.drive_integrators(drive.parameters)
-        if integrator is None:
-            integrator = allowed[0] if model["friction"]["law"] == "coulomb" or \
-                model.to_dict().get("backlash", {}).get("contact") == "exact" else "cvode_bdf"
+        if integrator is None:  # the core lists the fitting integrators, default first
+            integrator = _core.drive_integrators(drive.parameters)[0]
         core_result = _core.simulate_drive(
             drive, float(t_end), integrator, smooth_integrator or "", float(rtol), float(atol),
             1e-4 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
@@ -147,9 +145,9 @@ def simulate(
     if not isinstance(model, _core.FrictionBlock):
         raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
     friction = "coulomb" if friction is None else friction
-    allowed = _core.block_integrators(friction)  # validates the friction name
+    allowed = _core.block_integrators(friction)  # validates the friction name; default first
     if integrator is None:
-        integrator = allowed[0] if friction == "coulomb" else "cvode_bdf"
+        integrator = allowed[0]
     core_result = _core.simulate_block(
         model, float(t_end), friction, integrator, float(k_v), float(rtol), float(atol),
         1e-3 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),

@@ -67,12 +67,6 @@ class Excitation {
   // Times at which the function or its first derivative jumps (table knots):
   // integrators restart there to keep their order.
   const std::vector<double>& breakpoints() const noexcept { return breakpoints_; }
-  bool is_constant() const noexcept { return definition_.index() == 0; }
-  bool is_callable() const noexcept { return definition_.index() == 3; }
-  const std::variant<ConstantExcitation, SineExcitation, TableExcitation, CallableExcitation>&
-  definition() const noexcept {
-    return definition_;
-  }
   std::string describe() const;
 
  private:

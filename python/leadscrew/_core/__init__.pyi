@@ -1,0 +1,416 @@
+"""
+leadscrew numerical core (private: use the leadscrew package)
+"""
+from __future__ import annotations
+import collections.abc
+import numpy
+import numpy.typing
+import typing
+from . import lcp
+from . import integrate
+__all__: list[str] = ['DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'drive_integrators', 'efficiency', 'integrate', 'is_drivable', 'is_self_locking', 'lcp', 'lower_torque', 'raise_torque', 'simulate_block', 'simulate_drive']
+class SimulationError(RuntimeError):
+    """
+    A solver failed during a simulation.
+    
+    Attributes:
+        time: simulated time [s] at which it failed.
+        reason: what failed (solver flag name, step size underflow, LCP failure, ...).
+    """
+class JammingError(SimulationError):
+    """
+    A self-locking drive jams dynamically (Painleve paradox).
+    
+    No consistent flank-contact mode exists. Attributes as SimulationError.
+    """
+class Thread:
+    """
+    Thread geometry of a power screw (immutable).
+    
+    Args:
+        pitch: axial distance between neighbouring thread flanks [m], > 0.
+        mean_diameter: mean (pitch) diameter d_m [m], > 0.
+        starts: number of thread starts, integer >= 1.
+        flank_angle: included thread angle beta [rad] in [0, pi): 0 square,
+            29 deg Acme, 30 deg ISO metric trapezoidal.
+        hand: "right" or "left"; "left" flips the sign of the screw relation.
+    
+    Raises:
+        ValueError: a parameter is non-finite or out of range.
+    """
+    def __getstate__(self) -> tuple[float, float, int, float, str]:
+        ...
+    def __init__(self, pitch: typing.SupportsFloat | typing.SupportsIndex, mean_diameter: typing.SupportsFloat | typing.SupportsIndex, starts: typing.SupportsInt | typing.SupportsIndex = 1, flank_angle: typing.SupportsFloat | typing.SupportsIndex = 0.0, hand: str = 'right') -> None:
+        ...
+    def __repr__(self) -> str:
+        ...
+    def __setstate__(self, arg0: tuple) -> None:
+        ...
+    def effective_mu(self, mu: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        """
+        mu' = mu / cos(flank_angle / 2)
+        """
+    @property
+    def flank_angle(self) -> float:
+        """
+        included flank angle [rad]
+        """
+    @property
+    def hand(self) -> str:
+        ...
+    @property
+    def hand_sign(self) -> float:
+        """
+        +1 right hand, -1 left hand
+        """
+    @property
+    def lead(self) -> float:
+        """
+        starts * pitch [m]
+        """
+    @property
+    def lead_angle(self) -> float:
+        """
+        atan(lead / (pi d_m)) [rad]
+        """
+    @property
+    def lead_per_radian(self) -> float:
+        """
+        lead / (2 pi) [m/rad]
+        """
+    @property
+    def mean_diameter(self) -> float:
+        """
+        mean diameter d_m [m]
+        """
+    @property
+    def mean_radius(self) -> float:
+        """
+        mean radius r_m [m]
+        """
+    @property
+    def pitch(self) -> float:
+        """
+        pitch [m]
+        """
+    @property
+    def starts(self) -> int:
+        """
+        number of starts
+        """
+class Excitation:
+    """
+    A load as a function of time (C++ core).
+    """
+    @typing.overload
+    def __call__(self, t: typing.SupportsFloat | typing.SupportsIndex) -> float:
+        ...
+    @typing.overload
+    def __call__(self, t: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    def __init__(self, kind: str, parameters: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = [], times: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = [], values: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex] = []) -> None:
+        ...
+    def describe(self) -> str:
+        ...
+    @property
+    def breakpoints(self) -> list[float]:
+        ...
+class SimulationResult:
+    @property
+    def channel_names(self) -> list[str]:
+        ...
+    @property
+    def channels(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def events(self) -> list:
+        ...
+    @property
+    def friction(self) -> str:
+        ...
+    @property
+    def integrator(self) -> str:
+        ...
+    @property
+    def stats(self) -> dict:
+        ...
+    @property
+    def time(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+class FrictionBlock:
+    def __init__(self, mass: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex = 9.81, force: typing.Any = 0.0, initial_position: typing.SupportsFloat | typing.SupportsIndex = 0.0, initial_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+        ...
+    @property
+    def force(self) -> Excitation:
+        ...
+    @property
+    def g(self) -> float:
+        ...
+    @property
+    def initial_position(self) -> float:
+        ...
+    @property
+    def initial_velocity(self) -> float:
+        ...
+    @property
+    def mass(self) -> float:
+        ...
+    @property
+    def mu(self) -> float:
+        ...
+    @property
+    def normal_force(self) -> float:
+        ...
+class DriveParameters:
+    """
+    Resolved drive parameters (SI); built by leadscrew.Scene.
+    """
+    backlash: str
+    concept: str
+    drive: str
+    friction: str
+    speed_controlled: bool
+    support: str
+    thread: Thread
+    def __init__(self) -> None:
+        ...
+    @property
+    def axial_force(self) -> Excitation:
+        ...
+    @axial_force.setter
+    def axial_force(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def clearance(self) -> float:
+        ...
+    @clearance.setter
+    def clearance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_damping(self) -> float:
+        ...
+    @contact_damping.setter
+    def contact_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_exponent(self) -> float:
+        ...
+    @contact_exponent.setter
+    def contact_exponent(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_penetration(self) -> float:
+        ...
+    @contact_penetration.setter
+    def contact_penetration(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def contact_stiffness(self) -> float:
+        ...
+    @contact_stiffness.setter
+    def contact_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def damping_ratio(self) -> float:
+        ...
+    @damping_ratio.setter
+    def damping_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def drive_speed(self) -> Excitation:
+        ...
+    @drive_speed.setter
+    def drive_speed(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def drive_torque(self) -> Excitation:
+        ...
+    @drive_torque.setter
+    def drive_torque(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def k_v(self) -> float:
+        ...
+    @k_v.setter
+    def k_v(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load_mass(self) -> float:
+        ...
+    @load_mass.setter
+    def load_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def mu(self) -> float:
+        ...
+    @mu.setter
+    def mu(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_axial_damping(self) -> float:
+        ...
+    @nut_axial_damping.setter
+    def nut_axial_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_axial_stiffness(self) -> float:
+        ...
+    @nut_axial_stiffness.setter
+    def nut_axial_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_inertia(self) -> float:
+        ...
+    @nut_inertia.setter
+    def nut_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_mass(self) -> float:
+        ...
+    @nut_mass.setter
+    def nut_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_position(self) -> float:
+        ...
+    @nut_position.setter
+    def nut_position(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_torsional_damping(self) -> float:
+        ...
+    @nut_torsional_damping.setter
+    def nut_torsional_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_torsional_stiffness(self) -> float:
+        ...
+    @nut_torsional_stiffness.setter
+    def nut_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def play_position(self) -> float:
+        ...
+    @play_position.setter
+    def play_position(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def restitution(self) -> float:
+        ...
+    @restitution.setter
+    def restitution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotor_angle(self) -> float:
+        ...
+    @rotor_angle.setter
+    def rotor_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotor_inertia(self) -> float:
+        ...
+    @rotor_inertia.setter
+    def rotor_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def rotor_speed(self) -> float:
+        ...
+    @rotor_speed.setter
+    def rotor_speed(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_axial_damping(self) -> float:
+        ...
+    @screw_axial_damping.setter
+    def screw_axial_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_axial_rigidity(self) -> float:
+        ...
+    @screw_axial_rigidity.setter
+    def screw_axial_rigidity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_axial_stiffness(self) -> float:
+        ...
+    @screw_axial_stiffness.setter
+    def screw_axial_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_inertia(self) -> float:
+        ...
+    @screw_inertia.setter
+    def screw_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_length(self) -> float:
+        ...
+    @screw_length.setter
+    def screw_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_mass(self) -> float:
+        ...
+    @screw_mass.setter
+    def screw_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_torsional_damping(self) -> float:
+        ...
+    @screw_torsional_damping.setter
+    def screw_torsional_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_torsional_rigidity(self) -> float:
+        ...
+    @screw_torsional_rigidity.setter
+    def screw_torsional_rigidity(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_torsional_stiffness(self) -> float:
+        ...
+    @screw_torsional_stiffness.setter
+    def screw_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+class DriveModel:
+    """
+    An assembled drive (immutable).
+    """
+    def __init__(self, parameters: DriveParameters) -> None:
+        ...
+    @property
+    def coordinate_names(self) -> list[str]:
+        ...
+    @property
+    def degrees_of_freedom(self) -> int:
+        ...
+    @property
+    def effective_mu(self) -> float:
+        ...
+    @property
+    def mass(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        ...
+    @property
+    def parameters(self) -> DriveParameters:
+        ...
+    @property
+    def springs(self) -> list:
+        ...
+def block_integrators(arg0: str) -> list[str]:
+    ...
+def drive_integrators(parameters: DriveParameters) -> list[str]:
+    ...
+def efficiency(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0, backdrive: bool = False) -> float:
+    ...
+def is_drivable(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex) -> bool:
+    ...
+def is_self_locking(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex) -> bool:
+    ...
+def lower_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
+    ...
+def raise_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
+    ...
+def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.SupportsIndex, friction: str, integrator: str, k_v: typing.SupportsFloat | typing.SupportsIndex, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> SimulationResult:
+    ...
+def simulate_drive(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> SimulationResult:
+    ...

@@ -134,6 +134,22 @@ returns (t, root_found, y).
           },
           py::arg("t_out"), py::arg("one_step") = false)
       .def(
+          "advance_to_output",
+          [](BoundIntegrator& self, double t_out, double t_stop) {
+            const integrate::AdvanceResult r =
+                self.integrator->advance_to_output(t_out, t_stop, self.state);
+            return py::make_tuple(r.t, r.status == integrate::AdvanceStatus::root_found,
+                                  Eigen::VectorXd(self.state));
+          },
+          py::arg("t_out"), py::arg("t_stop"),
+          "Like advance, but steps may pass t_out (never t_stop >= t_out) when the method "
+          "interpolates output (see interpolates_output); returns (t, root_found, y) with y "
+          "at t_out from the interpolant.")
+      .def_property_readonly(
+          "interpolates_output",
+          [](const BoundIntegrator& self) { return self.integrator->interpolates_output(); },
+          "True if output times need not end steps (the interpolant has the steps' order).")
+      .def(
           "dense_output",
           [](BoundIntegrator& self, double t) {
             self.integrator->dense_output(t, self.state);

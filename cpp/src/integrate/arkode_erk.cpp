@@ -124,8 +124,8 @@ int ArkodeErkIntegrator::restart_solver(double t0) {
   return ERKStepReInit(memory_.get(), &sundials::CallbackBridge::rhs, t0, y_.get());
 }
 
-int ArkodeErkIntegrator::limit_solver(double t_out, long max_steps) {
-  const int flag = ERKStepSetStopTime(memory_.get(), t_out);
+int ArkodeErkIntegrator::limit_solver(double t_stop, long max_steps) {
+  const int flag = ERKStepSetStopTime(memory_.get(), t_stop);
   if (flag < 0) return flag;
   return ERKStepSetMaxNumSteps(memory_.get(), max_steps);
 }

@@ -34,6 +34,7 @@ class RootGuard final : public OdeSystem {
   int size() const override { return system_.size(); }
   void rhs(double t, const double* y, double* ydot) override { system_.rhs(t, y, ydot); }
   int root_count() const override { return system_.root_count(); }
+  int quadrature_count() const override { return system_.quadrature_count(); }
   void roots(double t, const double* y, double* g) override {
     system_.roots(t, y, g);
     system_.root_directions(directions_.data());
@@ -121,11 +122,16 @@ SimulationResult simulate_event_driven(HybridSystem& system, double t0,
     if (pass > max_passes)
       throw SimulationError(t, "the event-driven scheme made no progress",
                             "the system may chatter; try integrator=\"moreau\"");
-    double target = output.t_end;
-    if (next_break < breaks.size()) target = std::min(target, breaks[next_break]);
-    if (!every_step && next_eval < eval_count) target = std::min(target, output.t_eval[next_eval]);
-
-    const AdvanceResult step = integrator->advance(target, y, every_step);
+    // The next discontinuity ends a step; an output time ends one only for
+    // integrators without an interpolant of their steps' accuracy (a stop at
+    // every output time clips the steps: measured 10-12 % more steps with 201
+    // outputs over 2 s on the flexible drive with cvode_bdf).
+    double stop = output.t_end;
+    if (next_break < breaks.size()) stop = std::min(stop, breaks[next_break]);
+    const bool output_due = !every_step && next_eval < eval_count && output.t_eval[next_eval] < stop;
+    const AdvanceResult step =
+        output_due ? integrator->advance_to_output(output.t_eval[next_eval], stop, y)
+                   : integrator->advance(stop, y, every_step);
     t = step.t;
     if (step.status == AdvanceStatus::root_found && !counts_as_event(integrator->root_info())) {
       if (every_step) record(t);

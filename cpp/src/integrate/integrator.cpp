@@ -16,6 +16,14 @@ void Integrator::dense_output(double /*t*/, Eigen::Ref<Eigen::VectorXd> /*y*/) {
   throw InvalidArgument("dense_output is invalid for " + name() + ": it has no dense output");
 }
 
+AdvanceResult Integrator::advance_to_output(double t_out, double t_stop,
+                                            Eigen::Ref<Eigen::VectorXd> y) {
+  if (!(t_stop >= t_out))
+    throw InvalidArgument("t_stop = " + format_value(t_stop) +
+                          " is invalid: must be >= t_out = " + format_value(t_out));
+  return advance(t_out, y);
+}
+
 std::vector<std::string> integrator_names() {
   // ARKODE's Fehlberg 8(7) (table ARKODE_FEHLBERG_13_7_8) is not offered: its error estimate vanishes identically when f depends on t only
   // (the estimating stages pair up at c = 0 and c = 1), so on y' = cos(t) it

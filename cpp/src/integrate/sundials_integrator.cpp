@@ -40,10 +40,16 @@ void SundialsIntegrator::initialize(OdeSystem& system, double t0,
   if (m < 0)
     throw InvalidArgument("system root_count = " + std::to_string(m) +
                           " is invalid: must be >= 0");
+  const int k = system.quadrature_count();
+  if (k < 0 || k >= n)
+    throw InvalidArgument("system quadrature_count = " + std::to_string(k) +
+                          " is invalid: must be in [0, size - 1] = [0, " + std::to_string(n - 1) +
+                          "]");
   initialized_ = false;
   bridge_.system = &system;
   bridge_.size = n;
   bridge_.root_count = m;
+  bridge_.quadrature_count = k;
   bridge_.clear_all();
   y_ = make_vector(n, context_);
   work_ = make_vector(n, context_);
@@ -68,6 +74,21 @@ void SundialsIntegrator::reinitialize(double t0, const Eigen::Ref<const Eigen::V
 
 AdvanceResult SundialsIntegrator::advance(double t_out, Eigen::Ref<Eigen::VectorXd> y,
                                           bool one_step) {
+  return advance_until(t_out, t_out, y, one_step);
+}
+
+AdvanceResult SundialsIntegrator::advance_to_output(double t_out, double t_stop,
+                                                    Eigen::Ref<Eigen::VectorXd> y) {
+  require_finite("t_stop", t_stop);
+  if (!(t_stop >= t_out))
+    throw InvalidArgument("t_stop = " + format_value(t_stop) +
+                          " is invalid: must be >= t_out = " + format_value(t_out));
+  // Without an interpolant of the steps' accuracy the output time ends a step.
+  return advance_until(t_out, interpolates_output() ? t_stop : t_out, y, false);
+}
+
+AdvanceResult SundialsIntegrator::advance_until(double t_out, double t_stop,
+                                                Eigen::Ref<Eigen::VectorXd> y, bool one_step) {
   if (!initialized_)
     throw InvalidArgument("advance called before initialize is invalid: initialize first");
   require_finite("t_out", t_out);
@@ -90,12 +111,18 @@ AdvanceResult SundialsIntegrator::advance(double t_out, Eigen::Ref<Eigen::Vector
     return {t_out, AdvanceStatus::reached};
   }
 
+  if (t_stop < solver_time())
+    throw InvalidArgument("t_stop = " + format_value(t_stop) +
+                          " is invalid: the integrator has already stepped to " +
+                          format_value(solver_time()) +
+                          " (after advance_to_output, stop times must not decrease)");
+
   // options_.max_steps bounds all steps since initialize; SUNDIALS' own
   // mxstep counts per call, so it gets what is left of the budget.
   const long taken = before_restart_.steps + solver_stats().steps;
   const long left = options_.max_steps - taken;
   if (left <= 0) throw_solver_failure(t_, -1, flag_name(-1), name_, implicit_, bridge_, options_);
-  check_setup(limit_solver(t_out, left), "setting the stop time");
+  check_setup(limit_solver(t_stop, left), "setting the stop time");
 
   bridge_.clear_call();
   double t_reached = t_;

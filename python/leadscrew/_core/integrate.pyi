@@ -40,6 +40,10 @@ class Integrator:
     """
     def advance(self, t_out: typing.SupportsFloat | typing.SupportsIndex, one_step: bool = False) -> tuple[float, bool, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
         ...
+    def advance_to_output(self, t_out: typing.SupportsFloat | typing.SupportsIndex, t_stop: typing.SupportsFloat | typing.SupportsIndex) -> tuple[float, bool, typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]]:
+        """
+        Like advance, but steps may pass t_out (never t_stop >= t_out) when the method interpolates output (see interpolates_output); returns (t, root_found, y) with y at t_out from the interpolant.
+        """
     def dense_output(self, t: typing.SupportsFloat | typing.SupportsIndex) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         """
         The state at t within the last internal step (dense output).
@@ -48,6 +52,11 @@ class Integrator:
         ...
     def reinitialize(self, t0: typing.SupportsFloat | typing.SupportsIndex, y0: typing.Annotated[numpy.typing.ArrayLike, numpy.float64, "[m, 1]"]) -> None:
         ...
+    @property
+    def interpolates_output(self) -> bool:
+        """
+        True if output times need not end steps (the interpolant has the steps' order).
+        """
     @property
     def name(self) -> str:
         ...

@@ -28,7 +28,7 @@ class ArkodeErkIntegrator final : public sundials::SundialsIntegrator {
  private:
   void create_solver(double t0) override;
   int restart_solver(double t0) override;
-  int limit_solver(double t_out, long max_steps) override;
+  int limit_solver(double t_stop, long max_steps) override;
   int evolve_solver(double t_out, bool one_step, double* t_reached) override;
   int solver_root_info(int* info) override;
   int solver_dense_output(double t, N_Vector v) override;

@@ -20,11 +20,14 @@ class CvodeIntegrator final : public sundials::SundialsIntegrator {
   // Throws InvalidArgument for options the method cannot honour (fixed_step,
   // max_order above 5 for BDF / 12 for Adams).
   CvodeIntegrator(Method method, const IntegratorOptions& options);
+  // CVODE returns output at a time behind its last step from the Nordsieck
+  // array, the polynomial of the current order (CV_NORMAL past tout).
+  bool interpolates_output() const override { return true; }
 
  private:
   void create_solver(double t0) override;
   int restart_solver(double t0) override;
-  int limit_solver(double t_out, long max_steps) override;
+  int limit_solver(double t_stop, long max_steps) override;
   int evolve_solver(double t_out, bool one_step, double* t_reached) override;
   int solver_root_info(int* info) override;
   int solver_dense_output(double t, N_Vector v) override;

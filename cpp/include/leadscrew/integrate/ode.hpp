@@ -25,6 +25,12 @@ class OdeSystem {
   virtual int root_count() const { return 0; }
   // g = g(t, y), root_count() values. Must not allocate.
   virtual void roots(double /*t*/, const double* /*y*/, double* /*g*/) {}
+  // Number of trailing states that are quadratures: integrals that f does
+  // not depend on (the drive's work and loss integrals). Their Jacobian
+  // columns are zero, so the implicit methods factor only the leading block
+  // of the Newton matrix [[I - g A, 0], [-g B, I]]; the error test still
+  // covers them. 0 <= quadrature_count() < size().
+  virtual int quadrature_count() const { return 0; }
 };
 
 struct IntegratorOptions {
@@ -71,6 +77,18 @@ class Integrator {
   // output at every step). Throws SimulationError (time, flag name, hint).
   virtual AdvanceResult advance(double t_out, Eigen::Ref<Eigen::VectorXd> y,
                                 bool one_step = false) = 0;
+  // True if the method's interpolant has the accuracy of its steps, so that
+  // output times need not end steps (CVODE: the Nordsieck polynomial of the
+  // current order). False: output needs exact stops (a cubic Hermite
+  // interpolant of a higher-order Runge-Kutta step is less accurate than the
+  // step); advance_to_output then simply stops at t_out.
+  virtual bool interpolates_output() const { return false; }
+  // Like advance, but the method may step past t_out (never past t_stop >=
+  // t_out, the next discontinuity) and returns the state at t_out from its
+  // interpolant. A root before t_out ends the call there as in advance.
+  // Throws InvalidArgument if t_stop < t_out.
+  virtual AdvanceResult advance_to_output(double t_out, double t_stop,
+                                          Eigen::Ref<Eigen::VectorXd> y);
   virtual const std::vector<int>& root_info() const = 0;
   virtual IntegratorStats stats() const = 0;
   // The state at t within the last internal step, from the method's dense

@@ -106,6 +106,7 @@ class CallbackBridge {
   void* owner = nullptr;  // the integrator (for callbacks that need more than the system)
   int size = 0;
   int root_count = 0;
+  int quadrature_count = 0;  // trailing states f does not depend on
 
   // Before a solver call: forgets a previous call's exception and message.
   void clear_call() noexcept;

@@ -19,6 +19,8 @@ class SundialsIntegrator : public Integrator {
                   const Eigen::Ref<const Eigen::VectorXd>& y0) final;
   void reinitialize(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) final;
   AdvanceResult advance(double t_out, Eigen::Ref<Eigen::VectorXd> y, bool one_step = false) final;
+  AdvanceResult advance_to_output(double t_out, double t_stop,
+                                  Eigen::Ref<Eigen::VectorXd> y) final;
   const std::vector<int>& root_info() const final { return root_info_; }
   IntegratorStats stats() const final;
   // CVodeGetDky / ERKStepGetDky (order 0) within the last internal step.
@@ -31,8 +33,8 @@ class SundialsIntegrator : public Integrator {
   virtual void create_solver(double t0) = 0;
   // Restarts the solver from the state in y_ at t0 without allocating.
   virtual int restart_solver(double t0) = 0;
-  // Never step past t_out; at most max_steps internal steps in this call.
-  virtual int limit_solver(double t_out, long max_steps) = 0;
+  // Never step past t_stop; at most max_steps internal steps in this call.
+  virtual int limit_solver(double t_stop, long max_steps) = 0;
   // One CVode / ERKStepEvolve call; the state goes to y_.
   virtual int evolve_solver(double t_out, bool one_step, double* t_reached) = 0;
   virtual int solver_root_info(int* info) = 0;
@@ -54,6 +56,9 @@ class SundialsIntegrator : public Integrator {
 
  private:
   void load_state(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0);
+  // advance and advance_to_output: towards t_out, never past t_stop.
+  AdvanceResult advance_until(double t_out, double t_stop, Eigen::Ref<Eigen::VectorXd> y,
+                              bool one_step);
 
   const std::string name_;
   const bool implicit_;

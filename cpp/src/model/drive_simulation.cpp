@@ -185,6 +185,8 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   int size() const override { return layout_.size(); }
   int root_count() const override { return 4; }
+  // The work and loss integrals close the state; f does not depend on them.
+  int quadrature_count() const override { return kEnergyCount; }
 
   void rhs(double t, const double* y, double* ydot) override {
     set(t, y);

@@ -1,6 +1,7 @@
 #include "leadscrew/model/drive_simulation.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -181,6 +182,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     q_.setZero(n);
     v_.setZero(n);
     names_ = drive_channel_names(model);
+    saved_state_.resize(static_cast<std::size_t>(layout_.size()));
   }
 
   int size() const override { return layout_.size(); }
@@ -299,8 +301,12 @@ class DriveHybrid final : public integrate::HybridSystem {
     bool zero_slip = false;
     int hint = 0;
     std::string kind;
+    bool grazing = false;
+    const int bounced_before = bounced_from_;
     if (mode_.contact == ThreadContact::open && (root_info[2] > 0 || root_info[3] < 0)) {
       const int flank = root_info[2] > 0 ? -1 : 1;
+      grazing = flank * dynamics_.play_rate() >= 0.0;
+      if (grazing) std::copy(y, y + size(), saved_state_.begin());
       zero_slip = flank_impact(t, flank);
       kind = "impact on the " + std::string(flank > 0 ? "lower" : "upper") + " flank";
       if (mode_.contact == ThreadContact::open) {
@@ -333,6 +339,19 @@ class DriveHybrid final : public integrate::HybridSystem {
       kind = touching_ ? "flank contact" : "flank separation";
     }
     if (mode_.contact != ThreadContact::open) decide_friction(t, y, zero_slip, hint);
+    if (grazing && mode_.contact == ThreadContact::open) {
+      // The play touched a flank without approaching it, and the flank
+      // cannot push: no contact, nothing changes (y is left as it was). This
+      // is the integrator's noise at the flank just left: a flank opens when
+      // its normal force falls through zero, so the play leaves it at third
+      // order in time, and a multistep method's first steps after the
+      // restart (CVODE) can show it a round-off beyond the flank.
+      mode_ = before;
+      bounced_from_ = bounced_before;
+      std::copy(saved_state_.begin(), saved_state_.end(), y);
+      set(t, y);
+      return "";
+    }
     layout_.compress(q_, v_, y);
     if (mode_ == before) return kind;
     const std::string change = describe(before, backlash_) + "->" + describe(mode_, backlash_);
@@ -451,7 +470,15 @@ class DriveHybrid final : public integrate::HybridSystem {
     if (!at_zero_slip && dynamics_.slip_velocity() != 0.0) {
       mode_.friction = FrictionMode::slip;
       mode_.slip_sign = sign_of(dynamics_.slip_velocity());
-      solve_current();  // raises JammingError if no normal-force sign is consistent
+      // raises JammingError if no normal-force sign is consistent
+      const ModeSolution s = solve_current();
+      if (mode_.contact == ThreadContact::closed && mode_.flank * s.normal_force < 0.0) {
+        // A closed flank in slip that would have to pull opens (the contact is
+        // unilateral), as at zero slip when no friction mode keeps it.
+        mode_.contact = ThreadContact::open;
+        mode_.friction = FrictionMode::none;
+        mode_.slip_sign = 0;
+      }
       return;
     }
     // Zero slip: project the velocities onto exactly zero slip (the root is
@@ -604,6 +631,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   bool touching_ = false;  // a penalty flank is penetrated
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
+  std::vector<double> saved_state_;  // y before a grazing touch (handle_event)
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;

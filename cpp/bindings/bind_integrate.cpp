@@ -23,16 +23,26 @@ using integrate::OdeSystem;
 // nature (a Python call per evaluation). Runs with the GIL held.
 class PythonOdeSystem final : public OdeSystem {
  public:
-  PythonOdeSystem(py::function fun, int size, py::object events, int root_count)
-      : fun_(std::move(fun)), events_(std::move(events)), size_(size), root_count_(root_count) {
+  PythonOdeSystem(py::function fun, int size, py::object events, int root_count,
+                  int quadrature_count)
+      : fun_(std::move(fun)),
+        events_(std::move(events)),
+        size_(size),
+        root_count_(root_count),
+        quadrature_count_(quadrature_count) {
     if (size < 1)
       throw InvalidArgument("size = " + std::to_string(size) + " is invalid: must be >= 1");
+    if (quadrature_count < 0 || quadrature_count >= size)
+      throw InvalidArgument("quadrature_count = " + std::to_string(quadrature_count) +
+                            " is invalid: must be in [0, size - 1] = [0, " +
+                            std::to_string(size - 1) + "]");
     if (root_count < 0 || (root_count > 0 && events_.is_none()))
       throw InvalidArgument("root_count = " + std::to_string(root_count) +
                             " is invalid: must be >= 0, and 0 without an events callable");
   }
   int size() const override { return size_; }
   int root_count() const override { return root_count_; }
+  int quadrature_count() const override { return quadrature_count_; }
   void rhs(double t, const double* y, double* ydot) override {
     copy_out(fun_(t, state(y)), size_, "fun(t, y)", ydot);
   }
@@ -58,6 +68,7 @@ class PythonOdeSystem final : public OdeSystem {
   py::object events_;
   int size_;
   int root_count_;
+  int quadrature_count_;
 };
 
 // An integrator with the Python object of its system (kept alive: the
@@ -86,7 +97,8 @@ void bind_integrate(py::module_& m) {
 
   py::class_<OdeSystem>(sub, "OdeSystem", "An ODE y' = f(t, y) with root functions g(t, y).")
       .def_property_readonly("size", &OdeSystem::size)
-      .def_property_readonly("root_count", &OdeSystem::root_count);
+      .def_property_readonly("root_count", &OdeSystem::root_count)
+      .def_property_readonly("quadrature_count", &OdeSystem::quadrature_count);
 
   py::class_<PythonOdeSystem, OdeSystem>(sub, "PythonOdeSystem", R"doc(
 ODE system from Python callables.
@@ -96,9 +108,13 @@ Args:
     size: number of states, >= 1.
     events: g(t, y) -> array of `root_count` values, or None.
     root_count: number of root functions, >= 0.
+    quadrature_count: number of trailing states fun does not depend on
+        (integrals of the others); CVODE leaves them out of its Newton
+        matrix. 0 <= quadrature_count < size.
 )doc")
-      .def(py::init<py::function, int, py::object, int>(), py::arg("fun"), py::arg("size"),
-           py::arg("events") = py::none(), py::arg("root_count") = 0);
+      .def(py::init<py::function, int, py::object, int, int>(), py::arg("fun"), py::arg("size"),
+           py::arg("events") = py::none(), py::arg("root_count") = 0,
+           py::arg("quadrature_count") = 0);
 
   py::class_<BoundIntegrator>(sub, "Integrator", R"doc(
 An ODE integrator (make it with make_integrator).

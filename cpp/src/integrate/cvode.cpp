@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <memory>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -31,8 +32,7 @@ const char* method_name(CvodeIntegrator::Method method) {
 // Preallocated in make_block_solver; setup and solve do not allocate.
 struct BlockSolver {
   int n = 0, m = 0;
-  Eigen::MatrixXd block;                 // A11, overwritten by its LU factors
-  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;  // of A11
   Eigen::VectorXd x1;
 
   static BlockSolver* of(SUNLinearSolver s) { return static_cast<BlockSolver*>(s->content); }
@@ -44,8 +44,7 @@ struct BlockSolver {
   static int setup(SUNLinearSolver s, SUNMatrix a) {
     BlockSolver& self = *of(s);
     const Eigen::Map<const Eigen::MatrixXd> full(SUNDenseMatrix_Data(a), self.n, self.n);
-    self.block = full.topLeftCorner(self.m, self.m);
-    self.lu.compute(self.block);
+    self.lu.compute(full.topLeftCorner(self.m, self.m));
     // A zero pivot: singular Newton matrix; CVODE retries with a smaller step.
     const auto& factors = self.lu.matrixLU();
     for (int i = 0; i < self.m; ++i)
@@ -60,8 +59,9 @@ struct BlockSolver {
     self.x1.noalias() = self.lu.solve(rhs.head(self.m));
     if (self.m < self.n) {
       const Eigen::Map<const Eigen::MatrixXd> full(SUNDenseMatrix_Data(a), self.n, self.n);
-      out.tail(self.n - self.m) = rhs.tail(self.n - self.m);
-      out.tail(self.n - self.m).noalias() -= full.bottomLeftCorner(self.n - self.m, self.m) * self.x1;
+      const int k = self.n - self.m;
+      out.tail(k) = rhs.tail(k);
+      out.tail(k).noalias() -= full.bottomLeftCorner(k, self.m) * self.x1;
     }
     out.head(self.m) = self.x1;
     return SUNLS_SUCCESS;
@@ -77,15 +77,14 @@ struct BlockSolver {
 };
 
 SUNLinearSolver make_block_solver(int n, int quadratures, SUNContext context) {
-  SUNLinearSolver s = SUNLinSolNewEmpty(context);
-  if (!s) return nullptr;
-  auto* content = new BlockSolver;
+  auto content = std::make_unique<BlockSolver>();
   content->n = n;
   content->m = n - quadratures;
-  content->block.resize(content->m, content->m);
   content->lu = Eigen::PartialPivLU<Eigen::MatrixXd>(content->m);
   content->x1.resize(content->m);
-  s->content = content;
+  SUNLinearSolver s = SUNLinSolNewEmpty(context);
+  if (!s) return nullptr;
+  s->content = content.release();
   s->ops->gettype = &BlockSolver::type;
   s->ops->getid = &BlockSolver::id;
   s->ops->initialize = &BlockSolver::initialize;

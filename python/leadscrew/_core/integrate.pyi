@@ -12,6 +12,9 @@ class OdeSystem:
     An ODE y' = f(t, y) with root functions g(t, y).
     """
     @property
+    def quadrature_count(self) -> int:
+        ...
+    @property
     def root_count(self) -> int:
         ...
     @property
@@ -26,8 +29,11 @@ class PythonOdeSystem(OdeSystem):
         size: number of states, >= 1.
         events: g(t, y) -> array of `root_count` values, or None.
         root_count: number of root functions, >= 0.
+        quadrature_count: number of trailing states fun does not depend on
+            (integrals of the others); CVODE leaves them out of its Newton
+            matrix. 0 <= quadrature_count < size.
     """
-    def __init__(self, fun: collections.abc.Callable, size: typing.SupportsInt | typing.SupportsIndex, events: typing.Any = None, root_count: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
+    def __init__(self, fun: collections.abc.Callable, size: typing.SupportsInt | typing.SupportsIndex, events: typing.Any = None, root_count: typing.SupportsInt | typing.SupportsIndex = 0, quadrature_count: typing.SupportsInt | typing.SupportsIndex = 0) -> None:
         ...
 class Integrator:
     """

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <limits>
 #include <memory>
@@ -56,7 +57,24 @@ struct BlockSolver {
     BlockSolver& self = *of(s);
     const Eigen::Map<const Eigen::VectorXd> rhs(N_VGetArrayPointer(b), self.n);
     Eigen::Map<Eigen::VectorXd> out(N_VGetArrayPointer(x), self.n);
-    self.x1.noalias() = self.lu.solve(rhs.head(self.m));
+    // x1 = U^-1 L^-1 P b1, written out: Eigen's triangular solves are made
+    // for large dynamic sizes (measured: 9 % of a flexible-drive run on 12 x 12).
+    const Eigen::MatrixXd& lu = self.lu.matrixLU();
+    const auto& permutation = self.lu.permutationP().indices();
+    const int m = self.m;
+    double* x1 = self.x1.data();
+    for (int i = 0; i < m; ++i) x1[permutation[i]] = rhs[i];
+    for (int j = 0; j < m; ++j) {  // L: unit lower triangle, by columns
+      const double xj = x1[j];
+      const double* column = lu.data() + static_cast<std::ptrdiff_t>(j) * m;
+      for (int i = j + 1; i < m; ++i) x1[i] -= column[i] * xj;
+    }
+    for (int j = m - 1; j >= 0; --j) {  // U, by columns
+      const double* column = lu.data() + static_cast<std::ptrdiff_t>(j) * m;
+      x1[j] /= column[j];
+      const double xj = x1[j];
+      for (int i = 0; i < j; ++i) x1[i] -= column[i] * xj;
+    }
     if (self.m < self.n) {
       const Eigen::Map<const Eigen::MatrixXd> full(SUNDenseMatrix_Data(a), self.n, self.n);
       const int k = self.n - self.m;
@@ -133,8 +151,7 @@ void CvodeIntegrator::create_solver(double t0) {
   // until max_steps), and Newton also keeps Adams usable on mildly stiff
   // phases. For the small systems of this package the solve is cheap.
   const sunindextype n = bridge_.size;
-  matrix_.reset(SUNDenseMatrix(n, n, ctx));
-  if (!matrix_) check_setup(-20, "SUNDenseMatrix");
+  matrix_ = sundials::make_dense_matrix(static_cast<int>(n), context_);
   linear_solver_.reset(make_block_solver(bridge_.size, bridge_.quadrature_count, ctx));
   if (!linear_solver_) check_setup(-20, "SUNLinSolNewEmpty");
   check_setup(CVodeSetLinearSolver(mem, linear_solver_.get(), matrix_.get()),

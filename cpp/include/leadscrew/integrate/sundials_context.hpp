@@ -57,8 +57,13 @@ using NonlinearSolver =
     std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, NonlinearSolverDeleter>;
 
 // A serial vector of length n (throws SimulationError if SUNDIALS cannot
-// allocate it).
+// allocate it). Its hot operations (and those of its clones) are compiled
+// with this package, not taken from the SUNDIALS library (see
+// sundials_context.cpp for why).
 NVector make_vector(int n, const Context& context);
+// An n x n dense matrix, with its copy and shift (A = c A + I) operations
+// (and its clones') compiled likewise.
+Matrix make_dense_matrix(int n, const Context& context);
 
 // Owns an integrator's memory block (CVODE: CVodeFree, ARKODE: ERKStepFree).
 template <void (*Free)(void**)>

@@ -200,7 +200,13 @@ class DriveHybrid final : public integrate::HybridSystem {
     double* energy = ydot + layout_.energy_offset();
     energy[kWorkDrive] = s.motor_torque * v_[model_.rotor()];
     energy[kWorkAxial] = dynamics_.axial_force() * v_[model_.load()];
-    energy[kFrictionLoss] = -s.friction_force * dynamics_.slip_velocity();
+    // In stick the flank does not slip: the slip velocity the integration
+    // leaves there (the stick constraint holds on the acceleration level; it
+    // drifts by round-off, ~1e-13 m/s) does no friction work, which would
+    // make friction_loss negative; that drift's work stays in the residual.
+    energy[kFrictionLoss] = mode_.friction == FrictionMode::stick
+                                ? 0.0
+                                : -s.friction_force * dynamics_.slip_velocity();
     energy[kDampingLoss] = dynamics_.damping_power();
     energy[kContactLoss] = dynamics_.contact_loss_power();
   }

@@ -314,6 +314,15 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   return solution;
 }
 
+ModeSolution DriveDynamics::solve_with_forces(const ModeSpec& spec,
+                                             const CoordinateVector& forces) {
+  const CoordinateVector own = forces_;
+  forces_ = forces;
+  const ModeSolution solution = solve(spec);
+  forces_ = own;
+  return solution;
+}
+
 void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v) {
   const DriveParameters& p = model_.parameters();
   const int n = model_.coordinate_count();

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -10,6 +11,7 @@
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
+#include "leadscrew/model/drive_rigid.hpp"
 
 namespace leadscrew::model {
 
@@ -181,12 +183,27 @@ class DriveHybrid final : public integrate::HybridSystem {
     q_.setZero(n);
     v_.setZero(n);
     names_ = drive_channel_names(model);
+    if (RigidDriveModes::applies(model, dynamics_)) rigid_.emplace(model, dynamics_);
   }
 
   int size() const override { return layout_.size(); }
   int root_count() const override { return 4; }
 
   void rhs(double t, const double* y, double* ydot) override {
+    if (rigid_) {
+      // One degree of freedom: y = [phi_rotor, omega_rotor, energy integrals].
+      const RigidSolution s = solve_rigid(t, y);
+      const double omega = y[1];
+      ydot[0] = omega;
+      ydot[1] = s.acceleration;
+      double* energy = ydot + layout_.energy_offset();
+      energy[kWorkDrive] = s.torque * omega;
+      energy[kWorkAxial] = s.axial_force * rigid_->load_per_angle() * omega;
+      energy[kFrictionLoss] = -s.friction_force * rigid_->slip_per_speed() * omega;
+      energy[kDampingLoss] = 0.0;
+      energy[kContactLoss] = 0.0;
+      return;
+    }
     set(t, y);
     const ModeSolution s = solve_current();
     const int np = static_cast<int>(layout_.positions().size());
@@ -203,6 +220,18 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   void roots(double t, const double* y, double* g) override {
     g[0] = g[1] = g[2] = g[3] = 1.0;
+    if (rigid_) {
+      if (mode_.friction == FrictionMode::none) return;
+      const RigidSolution s = solve_rigid(t, y);
+      const double mu = model_.effective_mu();
+      if (mode_.friction == FrictionMode::slip) {
+        g[0] = rigid_->slip_per_speed() * y[1];
+        g[1] = flank_change_root(s.normal_force);
+      } else {
+        g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+      }
+      return;
+    }
     set(t, y);
     const bool active = mode_.contact != ThreadContact::open;
     if (active && mode_.friction != FrictionMode::none) {
@@ -216,7 +245,7 @@ class DriveHybrid final : public integrate::HybridSystem {
         if (mode_.friction == FrictionMode::stick)
           g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
         if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
-          g[1] = s.normal_force;  // the contact changes flank
+          g[1] = flank_change_root(s.normal_force);
         if (mode_.contact == ThreadContact::closed) g[1] = mode_.flank * s.normal_force;
       }
     }
@@ -245,8 +274,12 @@ class DriveHybrid final : public integrate::HybridSystem {
     // g0: slip s ends when s gamma falls through 0; stick when the cone margin falls.
     directions[0] = mode_.friction == FrictionMode::slip ? -mode_.slip_sign : -1;
     // g1: a closed flank opens when its normal force falls; the bilateral
-    // thread changes flank in either direction.
-    directions[1] = mode_.contact == ThreadContact::closed ? -1 : 0;
+    // thread changes flank when the normal force falls through zero on its
+    // side (see flank_change_root).
+    directions[1] = mode_.contact == ThreadContact::closed ||
+                            mode_.contact == ThreadContact::bilateral
+                        ? -1
+                        : 0;
     if (mode_.contact == ThreadContact::open && bounced_from_ != 0)
       directions[1] = bounced_from_ > 0 ? -1 : 1;  // leaving the lower flank: e' falls at the apex
     // g2, g3: an open thread hits the upper flank rising, the lower falling;
@@ -289,6 +322,7 @@ class DriveHybrid final : public integrate::HybridSystem {
         mode_.friction = FrictionMode::none;
       }
     }
+    start_normal_side();
   }
 
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
@@ -323,6 +357,7 @@ class DriveHybrid final : public integrate::HybridSystem {
         hint = -sign_of(s.friction_force);
       }
     } else if (mode_.contact == ThreadContact::bilateral && root_info[1] != 0) {
+      normal_side_ = -normal_side_;
       layout_.compress(q_, v_, y);
       return "flank change";
     } else if (mode_.contact == ThreadContact::penalty && (root_info[2] != 0 || root_info[3] != 0)) {
@@ -332,6 +367,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     }
     if (mode_.contact != ThreadContact::open) decide_friction(t, y, zero_slip, hint);
     layout_.compress(q_, v_, y);
+    start_normal_side();
     if (mode_ == before) return kind;
     const std::string change = describe(before, backlash_) + "->" + describe(mode_, backlash_);
     return kind.empty() ? change : kind + ", " + change;
@@ -378,6 +414,57 @@ class DriveHybrid final : public integrate::HybridSystem {
     s.friction = mode_.contact == ThreadContact::open ? FrictionMode::none : mode_.friction;
     s.slip_sign = mode_.slip_sign;
     return s;
+  }
+
+  // The bilateral thread's normal force at the start of a mode (the state is
+  // set): its sign is the flank in contact; exactly zero leaves it open.
+  void start_normal_side() {
+    normal_side_ = 0;
+    if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick &&
+        mode_.friction != FrictionMode::none)
+      normal_side_ = sign_of(solve_current().normal_force);
+  }
+
+  // Root function of a flank change of the thread without play: the normal
+  // force on the side it pushes, falling through zero. A normal force that is
+  // exactly zero at the start of a mode (a flexible drive whose springs are
+  // relaxed at t = 0 transmits no load yet) has no side: until it leaves zero
+  // the root is |N|, which cannot change sign, and the side it leaves to
+  // becomes the flank (|N| = side N there, so the root stays continuous).
+  // Leaving zero is not a flank change; passing through it is.
+  double flank_change_root(double normal_force) {
+    if (normal_side_ == 0) normal_side_ = sign_of(normal_force);
+    return normal_side_ != 0 ? normal_side_ * normal_force : 0.0;
+  }
+
+  struct RigidSolution {
+    double torque = 0.0, axial_force = 0.0;
+    double acceleration = 0.0, normal_force = 0.0, friction_force = 0.0;
+  };
+
+  // The rigid drive's forces and acceleration at (t, y) from the coefficients
+  // of its mode (RigidDriveModes): the decisions of solve_current without the
+  // constrained solve. Outside the Painleve regime at most one normal-force
+  // sign is consistent: try the last one first.
+  RigidSolution solve_rigid(double t, const double* y) {
+    RigidSolution s;
+    s.torque = p_.drive_torque(t);
+    s.axial_force = p_.axial_force(t);
+    const bool slip = mode_.friction == FrictionMode::slip;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const RigidModeCoefficients& c =
+          rigid_->coefficients(mode_.friction, mode_.slip_sign, slip ? sigma_guess_ : 1);
+      s.normal_force = c.normal_force(s.torque, s.axial_force);
+      if (slip && sigma_guess_ * s.normal_force < 0.0) {
+        sigma_guess_ = -sigma_guess_;
+        continue;
+      }
+      s.acceleration = c.acceleration(s.torque, s.axial_force);
+      s.friction_force = c.friction_force(s.torque, s.axial_force);
+      return s;
+    }
+    set(t, y);  // the state for the report
+    jam("no sign of the flank normal force is consistent");
   }
 
   [[noreturn]] void jam(const std::string& what) const {
@@ -602,6 +689,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   bool touching_ = false;  // a penalty flank is penetrated
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
+  int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;

@@ -57,6 +57,11 @@ class DriveDynamics {
 
   // Accelerations and forces in a mode at the state last set.
   ModeSolution solve(const ModeSpec& spec);
+  // The same mode with the generalized forces replaced by `forces` (the state's
+  // springs, dampers and loads ignored). For a mode whose friction factor is
+  // constant the solution is linear in them: with unit loads this gives the
+  // coefficients of RigidDriveModes.
+  ModeSolution solve_with_forces(const ModeSpec& spec, const CoordinateVector& forces);
 
   // Smallest change of v (in the kinetic metric) that makes the slip velocity
   // zero while keeping the other active velocity constraints.

@@ -132,13 +132,31 @@ struct ContactForces {
   bool stick = false;
 };
 
-// Writes one output row; dynamics holds the state (set_state called).
-void write_drive_channels(const DriveModel& model, const DriveDynamics& dynamics,
+// The state of an output row besides the thread and motor forces.
+struct ChannelState {
+  const CoordinateVector& q;
+  const CoordinateVector& v;
+  double axial_force = 0.0, slip_velocity = 0.0, play = 0.0, kinetic = 0.0, elastic = 0.0;
+};
+
+// From the state last set in dynamics.
+ChannelState channel_state(const DriveDynamics& dynamics) {
+  return {dynamics.q(),
+          dynamics.v(),
+          dynamics.axial_force(),
+          dynamics.slip_velocity(),
+          dynamics.play(),
+          dynamics.kinetic_energy(),
+          dynamics.elastic_energy() + dynamics.contact_energy()};
+}
+
+// Writes one output row.
+void write_drive_channels(const DriveModel& model, const ChannelState& state,
                           const ContactForces& forces, const double* energy, double impact_loss,
                           double kinetic0, double elastic0, double* out) {
   const DriveParameters& p = model.parameters();
-  const CoordinateVector& q = dynamics.q();
-  const CoordinateVector& v = dynamics.v();
+  const CoordinateVector& q = state.q;
+  const CoordinateVector& v = state.v;
   const int n = model.coordinate_count();
   int k = 0;
   out[k++] = q[model.load()];
@@ -146,21 +164,21 @@ void write_drive_channels(const DriveModel& model, const DriveDynamics& dynamics
   out[k++] = p.rotor_angle + q[model.rotor()];
   out[k++] = v[model.rotor()];
   out[k++] = forces.motor_torque;
-  out[k++] = dynamics.axial_force();
+  out[k++] = state.axial_force;
   out[k++] = forces.normal;
   out[k++] = forces.friction;
-  out[k++] = dynamics.slip_velocity();
+  out[k++] = state.slip_velocity;
   out[k++] = forces.stick ? 1.0 : 0.0;
   if (p.backlash != BacklashContact::none) {
-    out[k++] = 0.5 * p.clearance - std::abs(dynamics.play());
-    out[k++] = dynamics.play();
+    out[k++] = 0.5 * p.clearance - std::abs(state.play);
+    out[k++] = state.play;
   }
   for (int i = 1; i < n - 1; ++i) {
     out[k++] = q[i];
     out[k++] = v[i];
   }
-  const double kinetic = dynamics.kinetic_energy();
-  const double elastic = dynamics.elastic_energy() + dynamics.contact_energy();
+  const double kinetic = state.kinetic;
+  const double elastic = state.elastic;
   for (int e = 0; e < kEnergyCount; ++e) out[k++] = energy[e];
   out[k++] = impact_loss;
   out[k++] = kinetic;
@@ -376,15 +394,37 @@ class DriveHybrid final : public integrate::HybridSystem {
   const std::vector<std::string>& channel_names() const override { return names_; }
 
   void channels(double t, const double* y, double* out) override {
+    ContactForces forces;
+    forces.stick = mode_.friction == FrictionMode::stick;
+    if (rigid_) {
+      const RigidSolution s = solve_rigid(t, y);
+      forces.normal = s.normal_force;
+      forces.friction = s.friction_force;
+      forces.motor_torque = s.torque;
+      const double phi = y[0], omega = y[1];
+      const double v_load = rigid_->load_per_angle() * omega;
+      q_[model_.rotor()] = phi;
+      q_[model_.load()] = rigid_->load_per_angle() * phi;
+      v_[model_.rotor()] = omega;
+      v_[model_.load()] = v_load;
+      const ChannelState state{q_,
+                               v_,
+                               s.axial_force,
+                               rigid_->slip_per_speed() * omega,
+                               0.0,
+                               0.5 * (rigid_->inertia() * omega * omega + rigid_->mass() * v_load * v_load),
+                               0.0};
+      write_drive_channels(model_, state, forces, y + layout_.energy_offset(), impact_loss_,
+                           kinetic0_, elastic0_, out);
+      return;
+    }
     set(t, y);
     const ModeSolution s = solve_current();
-    ContactForces forces;
     forces.normal = s.normal_force;
     forces.friction = s.friction_force;
     forces.motor_torque = s.motor_torque;
-    forces.stick = mode_.friction == FrictionMode::stick;
-    write_drive_channels(model_, dynamics_, forces, y + layout_.energy_offset(), impact_loss_,
-                         kinetic0_, elastic0_, out);
+    write_drive_channels(model_, channel_state(dynamics_), forces, y + layout_.energy_offset(),
+                         impact_loss_, kinetic0_, elastic0_, out);
   }
 
   std::vector<double> breakpoints() const override {
@@ -448,8 +488,13 @@ class DriveHybrid final : public integrate::HybridSystem {
   // sign is consistent: try the last one first.
   RigidSolution solve_rigid(double t, const double* y) {
     RigidSolution s;
-    s.torque = p_.drive_torque(t);
-    s.axial_force = p_.axial_force(t);
+    if (t != loads_time_) {  // the roots at a step's end follow its last stage
+      loads_time_ = t;
+      torque_ = p_.drive_torque(t);
+      axial_force_ = p_.axial_force(t);
+    }
+    s.torque = torque_;
+    s.axial_force = axial_force_;
     const bool slip = mode_.friction == FrictionMode::slip;
     for (int attempt = 0; attempt < 2; ++attempt) {
       const RigidModeCoefficients& c =
@@ -691,6 +736,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
   std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
+  double loads_time_ = std::numeric_limits<double>::quiet_NaN();  // the loads last evaluated
+  double torque_ = 0.0, axial_force_ = 0.0;
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;
@@ -848,7 +895,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     const double* energy = y + layout_.energy_offset();
     // The Moreau-Jean scheme's numerical dissipation (and impacts) closes the
     // account: what the work and the named losses leave over.
-    write_drive_channels(model_, dynamics_, last_, energy, 0.0, kinetic0_, elastic0_, out);
+    write_drive_channels(model_, channel_state(dynamics_), last_, energy, 0.0, kinetic0_,
+                         elastic0_, out);
   }
 
  private:

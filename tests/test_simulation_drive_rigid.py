@@ -10,6 +10,7 @@ the nut resting on the flank that carries the load: the flank then stays closed
 closed unilateral contact with its multiplier solved at every step, not the
 eliminated coordinate of the fast path."""
 
+import functools
 import math
 
 import numpy as np
@@ -169,3 +170,104 @@ def test_genuine_flank_changes_of_a_flexible_drive_are_reported(concept):
     for time in changes:
         previous = max(b for b in side_after if b < time)
         assert side_after[previous] == -side_after[time]
+
+
+# --- dynamic jamming of the regularized law (issue 5, defect 1) -------------
+
+def regularized_jamming_onset(drive, torque, force, k_v):
+    """Independent onset of jamming of the rigid drive with arctan_velocity
+    friction (docs/physics/rigid_drive.md sections 5 and 7, eps mu' -> h sigma x):
+    with x = (2/pi) mu' atan(k_V rho phi'), Delta(+-x) = J_eff +- x t (J - m r^2),
+    and the paradox begins where min Delta = J_eff - |x| t |J - m r^2| = 0, at
+    the speed |phi'*| = tan(pi kappa* / (2 mu')) / (k_V rho),
+    kappa* = J_eff / (t |J - m r^2|). The time it is reached: DOP853 in t up to
+    |phi'| = 0.9 |phi'*|, then dt/dphi' = Delta / (Delta phi''), smooth through
+    the onset where phi'' grows without bound, up to |phi'*|."""
+    from scipy.integrate import solve_ivp
+
+    J, m, r, t, h = drive.J, drive.m, drive.mean_radius, drive.tan_alpha, drive.h
+    mu, rho = drive.mu_eff, drive.rho
+    j_eff = J + m * r * r * t * t
+    kappa = j_eff / (t * abs(J - m * r * r))
+    assert kappa < mu
+    speed = math.tan(math.pi * kappa / (2.0 * mu)) / (k_v * rho)
+
+    def terms(time, omega):
+        M, F = float(torque(time)), float(force(time))
+        x = 2.0 / math.pi * mu * math.atan(k_v * rho * omega)
+        sigma = math.copysign(1.0, -(h * m * drive.p * M + J * F))  # sign K (Delta > 0)
+        e = h * sigma * x
+        delta = J * (1 + e * t) + m * r * r * t * (t - e)
+        return delta, (1 + e * t) * M - h * r * (t - e) * F  # Delta, Delta phi''
+
+    def acceleration(time, y):
+        delta, numerator = terms(time, y[0])
+        return [numerator / delta]
+
+    def near(time, y):
+        return abs(y[0]) - 0.9 * speed
+    near.terminal = True
+
+    first = solve_ivp(acceleration, (0.0, 1.0), [0.0], method="DOP853", rtol=1e-13,
+                      atol=1e-16, events=near)
+    assert first.success and first.t_events[0].size == 1
+    t0, omega0 = first.t_events[0][0], first.y_events[0][0][0]
+
+    def time_per_speed(omega, y):
+        delta, numerator = terms(y[0], omega)
+        return [delta / numerator]
+
+    second = solve_ivp(time_per_speed, (omega0, math.copysign(speed, omega0)), [t0],
+                       method="DOP853", rtol=1e-13, atol=1e-16)
+    # phi'' kept its sign (up to round-off in t at the onset, where dt/dphi' = 0)
+    assert second.success and np.all(np.diff(second.y[0]) >= -1e-12)
+    return second.y[0][-1], kappa
+
+
+@functools.lru_cache(maxsize=None)
+def thesis_jamming_onset(torque_sign, force, k_v):
+    """regularized_jamming_onset for the nut-driven thesis drive with 5 kg (once per case)."""
+    drive = reference.thesis_drive(drive="nut", load_mass=5.0)
+    torque = reference.Harmonic(0.0, torque_sign * 0.040, 4 * math.pi)
+    return regularized_jamming_onset(drive, torque, reference.Harmonic(force), k_v)
+
+
+@pytest.mark.parametrize("torque_sign, force", [(1.0, -10.0), (1.0, 10.0), (-1.0, -10.0)],
+                         ids=["branch_ends", "second_sign", "second_sign_reversed"])
+@pytest.mark.parametrize("integrator", ["cvode_bdf", "rk_verner6", "dopri5"])
+def test_regularized_jamming_is_raised_at_its_onset(integrator, torque_sign, force):
+    """The nut-driven thesis drive with a 5 kg load (beyond the exact-Coulomb
+    jamming bound 2.04 kg) and arctan_velocity friction: JammingError at the
+    time the regularized friction factor reaches the Painleve bound, with the
+    condition of the regularized law. Either the consistent branch's
+    denominator vanishes (its acceleration grows without bound) or the other
+    sign's does (from there both signs are consistent)."""
+    k_v = 1e3
+    expected, kappa = thesis_jamming_onset(torque_sign, force, k_v)
+    scene = ls.Scene.from_dict(rigid_scene(
+        "nut", load={"mass": 5.0}, friction={"law": "arctan_velocity", "mu": 0.3, "k_v": k_v},
+        loads={"drive_torque": {"type": "sine", "amplitude": torque_sign * 0.040,
+                                "omega": 4 * math.pi}, "axial_force": force}))
+    with pytest.raises(ls.JammingError) as info:
+        ls.simulate(scene, 0.2, integrator=integrator, rtol=1e-10, atol=1e-14)
+    assert info.value.time == pytest.approx(expected, abs=1e-9)
+    message = str(info.value)
+    assert "regularized law kappa |G_NT| >= G_NN" in message
+    assert "m r^2 tan(a) (kappa - tan a)" in message
+    assert "mu' |G_NT| >= G_NN with" not in message  # not the exact-Coulomb condition
+    reported = float(message.split("|atan(k_V gamma_T)| = ")[1].split()[0])
+    assert reported == pytest.approx(kappa, rel=1e-6)
+    ends = "branch of the flank normal force ends" in message
+    assert ends == (torque_sign * force < 0)
+
+
+def test_regularized_law_below_its_onset_runs():
+    """The same jam-prone drive holding its axial load without torque: under
+    the regularized law it creeps, so slowly that the friction factor stays
+    near tan(a), far below the bound; a full trajectory."""
+    scene = ls.Scene.from_dict(rigid_scene(
+        "nut", load={"mass": 5.0}, friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e3},
+        loads={"drive_torque": 0.0, "axial_force": -10.0}))
+    result = ls.simulate(scene, 0.5, integrator="cvode_bdf", rtol=1e-8, atol=1e-12)
+    assert result.t[-1] == 0.5 and np.all(np.isfinite(result["u_load"]))
+    assert 0.0 < -result["u_load"][-1] < 1e-3  # creeps along the load

@@ -104,6 +104,10 @@ int sign_of(double x) { return (x > 0.0) - (x < 0.0); }
 // flanks' roughness, and a geometric sequence of them only costs events.
 constexpr double kPlasticHeight = 1e-6;
 
+// The regularized law's branch is watched for the onset of jamming once its
+// denominator falls below this fraction of G_NN (DriveHybrid::approach_fold).
+constexpr double kFoldWatch = 0.1;
+
 std::vector<std::string> drive_channel_names(const DriveModel& model) {
   std::vector<std::string> names = {"u_load",        "v_load",      "phi_drive",
                                     "omega_drive",   "drive_torque", "axial_force",
@@ -190,13 +194,16 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
 
 class DriveHybrid final : public integrate::HybridSystem {
  public:
-  DriveHybrid(const DriveModel& model, double bounce_threshold)
+  DriveHybrid(const DriveModel& model, double bounce_threshold, double t_end,
+              const integrate::IntegratorOptions& integrator_options)
       : model_(model),
         p_(model.parameters()),
         dynamics_(model),
         layout_(model),
         bounce_threshold_(bounce_threshold),
-        backlash_(p_.backlash != BacklashContact::none) {
+        backlash_(p_.backlash != BacklashContact::none),
+        t_end_(t_end),
+        integrator_options_(integrator_options) {
     const int n = model.coordinate_count();
     q_.setZero(n);
     v_.setZero(n);
@@ -264,6 +271,16 @@ class DriveHybrid final : public integrate::HybridSystem {
           g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
         if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
           g[1] = flank_change_root(s.normal_force);
+        if (watch_fold()) {
+          // The regularized law's paradox: the margin min over sigma of
+          // G_NN - sigma kappa G_NT, and the current branch's denominator
+          // approaching zero (see approach_fold).
+          const double kappa = current_kappa();
+          const double g_nn = dynamics_.delassus_normal();
+          g[2] = std::min(dynamics_.thread_denominator(1, kappa),
+                          dynamics_.thread_denominator(-1, kappa)) / g_nn;
+          g[3] = dynamics_.thread_denominator(sigma_guess_, kappa) / g_nn - kFoldWatch;
+        }
         if (mode_.contact == ThreadContact::closed) g[1] = mode_.flank * s.normal_force;
       }
     }
@@ -305,6 +322,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     const bool open = mode_.contact == ThreadContact::open;
     directions[2] = open ? 1 : 0;
     directions[3] = open ? -1 : 0;
+    if (watch_fold()) directions[2] = directions[3] = -1;  // both fall towards jamming
   }
 
   void select_initial_mode(double t, double* y) override {
@@ -341,11 +359,29 @@ class DriveHybrid final : public integrate::HybridSystem {
       }
     }
     start_normal_side();
+    if (watch_fold()) {
+      set(t, y);
+      solve_current();
+      if (dynamics_.thread_denominator(sigma_guess_, current_kappa()) <
+          kFoldWatch * dynamics_.delassus_normal())
+        approach_fold(t, y);
+    }
   }
 
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
     set(t, y);
     const Mode before = mode_;
+    if (watch_fold() && root_info[2] != 0) {
+      solve_current();
+      // The other sign's denominator passes through zero (the current branch
+      // stays regular): beyond, that sign is consistent too.
+      jam_regularized("from here both signs of the flank normal force are consistent (the "
+                      "regularized friction factor reached the Painleve bound)");
+    }
+    if (watch_fold() && root_info[3] != 0) {
+      approach_fold(t, y);
+      return "";  // the branch recovers: no event
+    }
     bool zero_slip = false;
     int hint = 0;
     std::string kind;
@@ -512,6 +548,89 @@ class DriveHybrid final : public integrate::HybridSystem {
     jam("no sign of the flank normal force is consistent");
   }
 
+  // The regularized law on the thread without play in a model where the
+  // Painleve paradox is possible (mu' |G_NT| >= G_NN): its friction factor
+  // kappa = (2/pi) mu' atan(k_V gamma_T) depends on the slip velocity, and
+  // the paradox begins where kappa |G_NT| reaches G_NN.
+  bool watch_fold() const {
+    return mode_.contact == ThreadContact::bilateral &&
+           mode_.friction == FrictionMode::regularized_velocity && dynamics_.painleve_possible();
+  }
+  double current_kappa() const { return dynamics_.friction_factor(spec(sigma_guess_), 0.0); }
+
+  [[noreturn]] void jam_regularized(const std::string& what) const {
+    throw JammingError(dynamics_.time(),
+                       "dynamic jamming: " + what + "; " +
+                           dynamics_.jamming_report(std::abs(current_kappa())),
+                       "the drive self-locks dynamically (Painleve paradox of the regularized "
+                       "friction law); reduce the friction or change the inertia ratio");
+  }
+
+  // The denominator S of the current branch fell below kFoldWatch G_NN. If it
+  // reaches zero, the slip velocity stays finite while the acceleration grows
+  // like 1/S: the trajectory ends there in finite time with a square-root
+  // singularity, the onset of jamming, which no step in t can cross or
+  // resolve. In the time s with dt/ds = S the same trajectory is smooth
+  // through it (dz/ds = S (1, f(t, y)), S f finite), and S = 0 is an ordinary
+  // root: integrate it from (t, y) until S = 0 (JammingError at that time and
+  // state, to the integration tolerance), S back above 2 kFoldWatch G_NN or
+  // t_end (the main integration then continues: no event).
+  void approach_fold(double t, const double* y) {
+    FoldApproach fold(*this);
+    integrate::IntegratorOptions options;
+    options.rtol = integrator_options_.rtol;
+    options.atol = integrator_options_.atol;
+    options.max_steps = integrator_options_.max_steps;
+    std::unique_ptr<integrate::Integrator> integrator =
+        integrate::make_integrator("rk_verner6", options);
+    Eigen::VectorXd z(size() + 1);
+    z[0] = t;
+    for (int k = 0; k < size(); ++k) z[k + 1] = y[k];
+    const int saved_sigma = sigma_guess_;
+    integrator->initialize(fold, 0.0, z);
+    // dt/ds >= S, which stays above zero until the onset: every s beyond
+    // (t_end - t) / S_min reaches t_end; S_min is only bounded by the root.
+    const double s_end = 1e12 * (t_end_ - t + 1.0) / dynamics_.delassus_normal();
+    const integrate::AdvanceResult step = integrator->advance(s_end, z);
+    if (step.status == integrate::AdvanceStatus::root_found && integrator->root_info()[0] != 0) {
+      set(z[0], z.data() + 1);
+      solve_current();
+      jam_regularized("the branch of the flank normal force ends (its denominator "
+                      "G_NN - sigma kappa G_NT reaches zero, the acceleration grows without "
+                      "bound)");
+    }
+    sigma_guess_ = saved_sigma;
+    set(t, y);
+  }
+
+  // The drive's equations in the time s with dt/ds = S (approach_fold).
+  class FoldApproach final : public integrate::OdeSystem {
+   public:
+    explicit FoldApproach(DriveHybrid& drive) : drive_(drive) {}
+    int size() const override { return drive_.size() + 1; }
+    void rhs(double /*s*/, const double* z, double* dz) override {
+      drive_.rhs(z[0], z + 1, dz + 1);
+      const double denominator = branch();
+      dz[0] = denominator;
+      for (int k = 1; k < size(); ++k) dz[k] *= denominator;
+    }
+    int root_count() const override { return 3; }
+    void roots(double /*s*/, const double* z, double* g) override {
+      drive_.set(z[0], z + 1);
+      drive_.solve_current();
+      const double relative = branch() / drive_.dynamics_.delassus_normal();
+      g[0] = relative;                       // the onset
+      g[1] = 2.0 * kFoldWatch - relative;    // the branch recovers
+      g[2] = drive_.t_end_ - z[0];           // the end of the simulation
+    }
+
+   private:
+    double branch() const {
+      return drive_.dynamics_.thread_denominator(drive_.sigma_guess_, drive_.current_kappa());
+    }
+    DriveHybrid& drive_;
+  };
+
   [[noreturn]] void jam(const std::string& what) const {
     throw JammingError(dynamics_.time(),
                        "dynamic jamming: " + what + "; " + dynamics_.jamming_report(),
@@ -541,6 +660,23 @@ class DriveHybrid final : public integrate::HybridSystem {
       const ModeSolution minus = dynamics_.solve(spec(-1));
       const bool plus_ok = plus.regular && plus.normal_force >= 0.0;
       const bool minus_ok = minus.regular && minus.normal_force <= 0.0;
+      if (watch_fold()) {
+        // The paradox of the regularized law is located by its roots (the
+        // margin, the branch's denominator; approach_fold). Between them keep
+        // the current sign's branch: where both are consistent it is the
+        // continuous one, and where neither is (a trial state of the
+        // integrator beyond the onset) its continuation, so that the step is
+        // rejected, not the simulation ended at a state off the trajectory.
+        const ModeSolution& current = sigma_guess_ > 0 ? plus : minus;
+        const bool current_ok = sigma_guess_ > 0 ? plus_ok : minus_ok;
+        const bool other_ok = sigma_guess_ > 0 ? minus_ok : plus_ok;
+        if (current_ok || (!other_ok && current.regular)) return current;
+        if (other_ok) {
+          sigma_guess_ = -sigma_guess_;
+          return sigma_guess_ > 0 ? plus : minus;
+        }
+        jam("the constraint equations of the thread are singular");
+      }
       if (plus_ok && minus_ok) {
         if (plus.normal_force == 0.0) return plus;
         if (minus.normal_force == 0.0) return minus;
@@ -735,6 +871,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  double t_end_;
+  integrate::IntegratorOptions integrator_options_;
   std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
   double loads_time_ = std::numeric_limits<double>::quiet_NaN();  // the loads last evaluated
   double torque_ = 0.0, axial_force_ = 0.0;
@@ -1015,7 +1153,8 @@ integrate::SimulationResult simulate(const DriveModel& model,
     return result;
   }
 
-  DriveHybrid system(model, options.bounce_threshold);
+  DriveHybrid system(model, options.bounce_threshold, options.output.t_end,
+                     options.integrator_options);
   integrate::EventDrivenOptions driver;
   driver.integrator_options = options.integrator_options;
   driver.max_events = options.max_events;

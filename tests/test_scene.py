@@ -95,6 +95,62 @@ def test_replace_merges_sections():
     assert "backlash" not in other.replace(backlash=None)
 
 
+def _merged(d, changes):
+    """The reference for replace: merge into a full copy, validate all of it."""
+    d = {key: dict(value) if isinstance(value, dict) else value for key, value in d.items()}
+    for key, value in changes.items():
+        if value is None:
+            d.pop(key, None)
+        elif isinstance(value, dict) and isinstance(d.get(key), dict):
+            d[key].update(value)
+        else:
+            d[key] = value
+    return ls.Scene.from_dict(d)
+
+
+@pytest.mark.parametrize("changes", [
+    {"friction": {"mu": 0.1}},
+    {"concept": "flexible", "nut": {"length": "30 mm"}},
+    {"backlash": {"axial": "0.1 mm", "contact": "bistop"}},
+    {"loads": {"axial_force": {"type": "sine", "amplitude": "5 N", "omega": "2 Hz"}}},
+    {"loads": {"drive_torque": None, "drive_speed": 10.0}},
+    {"drive": None},
+    {"overrides": {"nut_mass": 0.3}, "initial": {"rotor_speed": 2.0}},
+])
+def test_replace_equals_validating_the_merged_dict(changes):
+    # replace checks only the named sections again; it must give exactly the
+    # scene that validating the whole merged dict gives.
+    scene = ls.Scene.from_dict(thesis_scene(drive="nut", backlash={"axial": 2e-4}))
+    assert scene.replace(**changes) == _merged(scene.to_dict(), changes)
+
+
+@pytest.mark.parametrize("changes, path", [
+    ({"friction": {"mu": -0.1}}, "friction.mu"),
+    ({"thread": {"pitch": "3 N"}}, "thread.pitch"),
+    ({"gearbox": {}}, "gearbox"),
+    ({"thread": None}, "thread"),
+    ({"loads": {"drive_speed": 10.0}}, "loads.drive_speed"),  # both torque and speed
+])
+def test_replace_checks_what_it_changes(changes, path):
+    scene = ls.Scene.from_dict(thesis_scene())
+    with pytest.raises(ValueError, match=path.replace(".", r"\.")):
+        scene.replace(**changes)
+
+
+def test_scene_data_is_not_shared_with_callers():
+    table = {"type": "table", "times": [0.0, 1.0], "values": [0.0, -5.0]}
+    scene = ls.Scene.from_dict(thesis_scene(loads={"axial_force": table}))
+    before = scene.to_dict()
+    d = scene.to_dict()
+    d["loads"]["axial_force"]["values"][1] = 99.0
+    d["friction"]["mu"] = 0.9
+    scene["loads"]["axial_force"]["times"].append(2.0)
+    other = scene.replace(friction={"mu": 0.2})
+    other_loads = other["loads"]
+    other_loads["axial_force"]["values"][0] = 7.0
+    assert scene.to_dict() == before
+    assert other["loads"] == before["loads"] and other["friction"]["mu"] == 0.2
+
 def test_schema_documents_every_field():
     text = ls.scene.describe_schema()
     for path in ("thread.pitch [m]", "backlash.axial [m]", "loads.drive_torque [N*m]",

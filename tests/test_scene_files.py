@@ -325,7 +325,7 @@ def test_position_holding_scene_is_section_5_2():
     d = shipped.load("position_holding").to_dict()
     assert d["backlash"]["axial"] == pytest.approx(0.2e-3, rel=1e-15)
     assert d["backlash"]["contact"] == "bistop"
-    assert d["loads"]["drive_torque"] == 0.0
+    assert d["loads"]["drive_torque"] == pytest.approx(5e-3, rel=1e-15)  # held by the thread
     force = d["loads"]["axial_force"]
     assert force["offset"] == 0.0 and force["amplitude"] == 50.0  # no static preload
     assert force["omega"] == pytest.approx(2 * math.pi * 20, rel=1e-15)

@@ -17,7 +17,6 @@ the documentation of every field with its unit and default.
 
 from __future__ import annotations
 
-import copy
 import json
 import math
 import numbers
@@ -335,6 +334,41 @@ def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]
     return out
 
 
+def _check_section_names(d: Dict[str, Any]) -> None:
+    for key in d:
+        if key not in SCHEMA:
+            raise ValueError(f"{key} is not a known section; a scene has "
+                             f"{', '.join(SCHEMA)}")
+
+
+def _validate_entry(key: str, given: Dict[str, Any], data: Dict[str, Any]) -> None:
+    """Check the top-level entry ``key`` of the raw scene ``given`` into ``data``
+    (a field, a required or optional section, or a section of defaults)."""
+    entry = SCHEMA[key]
+    if isinstance(entry, Field):
+        data[key] = _check_field(key, entry, given[key]) if key in given else entry.default
+        return
+    if key not in given:
+        if key in _REQUIRED_SECTIONS:
+            raise ValueError(f"{key} is missing: a scene needs the sections "
+                             f"{', '.join(_REQUIRED_SECTIONS)}")
+        if key in _OPTIONAL_SECTIONS:
+            return
+    data[key] = _validate_section(key, entry, given.get(key, {}))
+
+
+def _copy_tree(value: Any) -> Any:
+    """A copy of a scene's nested dicts and lists. The leaves are numbers,
+    strings, excitations (immutable) and user callables (shared, as
+    copy.deepcopy shares functions), so this equals a deep copy at a fraction
+    of its cost."""
+    if isinstance(value, dict):
+        return {key: _copy_tree(item) for key, item in value.items()}
+    if isinstance(value, list):
+        return [_copy_tree(item) for item in value]
+    return value
+
+
 class Scene:
     """A validated lead-screw drive description (immutable).
 
@@ -362,28 +396,16 @@ class Scene:
         """
         if not isinstance(d, dict):
             _fail("scene", d, "a dict of sections")
-        for key in d:
-            if key not in SCHEMA:
-                raise ValueError(f"{key} is not a known section; a scene has "
-                                 f"{', '.join(SCHEMA)}")
+        _check_section_names(d)
         data: Dict[str, Any] = {}
-        for key, entry in SCHEMA.items():
-            if isinstance(entry, Field):
-                data[key] = _check_field(key, entry, d[key]) if key in d else entry.default
-                continue
-            if key not in d:
-                if key in _REQUIRED_SECTIONS:
-                    raise ValueError(f"{key} is missing: a scene needs the sections "
-                                     f"{', '.join(_REQUIRED_SECTIONS)}")
-                if key in _OPTIONAL_SECTIONS:
-                    continue
-            data[key] = _validate_section(key, entry, d.get(key, {}))
+        for key in SCHEMA:
+            _validate_entry(key, d, data)
         _check_consistency(data)
         return cls(data)
 
     def to_dict(self) -> Dict[str, Any]:
         """The complete scene as a nested dict (a deep copy)."""
-        return copy.deepcopy(self._data)
+        return _copy_tree(self._data)
 
     @classmethod
     def from_toml(cls, path: "str | os.PathLike[str]") -> "Scene":
@@ -434,7 +456,7 @@ class Scene:
         return text
 
     def __getitem__(self, key: str):
-        return copy.deepcopy(self._data[key])
+        return _copy_tree(self._data[key])
 
     def __contains__(self, key: str) -> bool:
         return key in self._data
@@ -446,15 +468,27 @@ class Scene:
         Raises:
             ValueError: as :meth:`from_dict`.
         """
-        d = self.to_dict()
+        _check_section_names(sections)
+        # Only the named sections are merged and checked again: the others are
+        # valid already and shared with this scene (a Scene never mutates its
+        # data; to_dict and item access return copies). The cross-section
+        # checks run on the whole result.
+        merged: Dict[str, Any] = dict(self._data)
         for key, value in sections.items():
             if value is None:
-                d.pop(key, None)
-            elif isinstance(value, dict) and isinstance(d.get(key), dict):
-                d[key].update(value)
+                merged.pop(key, None)
+            elif isinstance(value, dict) and isinstance(merged.get(key), dict):
+                merged[key] = {**merged[key], **value}
             else:
-                d[key] = value
-        return Scene.from_dict(d)
+                merged[key] = value
+        data: Dict[str, Any] = {}
+        for key in SCHEMA:
+            if key in sections:
+                _validate_entry(key, merged, data)
+            elif key in merged:
+                data[key] = merged[key]
+        _check_consistency(data)
+        return Scene(data)
 
     def derived(self) -> Dict[str, Any]:
         """Derived parameters with every override applied.

@@ -314,6 +314,15 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   return solution;
 }
 
+ModeSolution DriveDynamics::solve_with_forces(const ModeSpec& spec,
+                                             const CoordinateVector& forces) {
+  const CoordinateVector own = forces_;
+  forces_ = forces;
+  const ModeSolution solution = solve(spec);
+  forces_ = own;
+  return solution;
+}
+
 void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v) {
   const DriveParameters& p = model_.parameters();
   const int n = model_.coordinate_count();
@@ -380,26 +389,40 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   return true;
 }
 
-std::string DriveDynamics::jamming_report() const {
+std::string DriveDynamics::jamming_report(double regularized_factor) const {
   const DriveParameters& p = model_.parameters();
   const double g_nn = delassus_nn_, g_nt = delassus_nt_;
   const double mu = model_.effective_mu();
+  const bool regularized = regularized_factor >= 0.0;
+  // The friction factor in the condition: mu' for exact Coulomb, the
+  // regularized law's kappa = (2/pi) mu' |atan(k_V ...)| at this state.
+  const double kappa = regularized ? regularized_factor : mu;
+  const std::string name = regularized ? "kappa" : "mu'";
   std::ostringstream out;
   out.precision(10);
-  out << "Painleve condition mu' |G_NT| >= G_NN with mu' = " << mu << ", G_NN = " << g_nn
-      << ", G_NT = " << g_nt << " (" << (mu * std::abs(g_nt) >= g_nn ? "holds" : "does not hold")
-      << ")";
+  if (regularized) {
+    out << "Painleve condition of the regularized law kappa |G_NT| >= G_NN with kappa = (2/pi) mu' "
+        << "|atan(k_V "
+        << (p.friction == FrictionLaw::arctan_acceleration ? "gamma_T')|" : "gamma_T)|")
+        << " = " << kappa << " (mu' = " << mu << "), G_NN = " << g_nn << ", G_NT = " << g_nt
+        << " (" << (kappa * std::abs(g_nt) >= g_nn ? "holds" : "does not hold") << ")";
+  } else {
+    out << "Painleve condition mu' |G_NT| >= G_NN with mu' = " << mu << ", G_NN = " << g_nn
+        << ", G_NT = " << g_nt << " (" << (mu * std::abs(g_nt) >= g_nn ? "holds" : "does not hold")
+        << ")";
+  }
   if (p.concept == Concept::rigid && !p.speed_controlled) {
     const double inertia = model_.mass()[model_.rotor()];
     const double mass = model_.mass()[model_.load()];
     const double r_m = p.thread.mean_radius();
     const double tan_a = std::tan(p.thread.lead_angle());
     const double cot_a = 1.0 / tan_a;
-    out << "; rigid drive: m r^2 tan(a) (mu' - tan a) = " << mass * r_m * r_m * tan_a * (mu - tan_a)
-        << " vs J (1 + mu' tan a) = " << inertia * (1.0 + mu * tan_a)
-        << ", J cot(a) (mu' - cot a) = " << inertia * cot_a * (mu - cot_a)
-        << " vs m r^2 (1 + mu' cot a) = " << mass * r_m * r_m * (1.0 + mu * cot_a)
-        << " (J = " << inertia << " kg m^2, m = " << mass << " kg)";
+    out << "; rigid drive: m r^2 tan(a) (" << name << " - tan a) = "
+        << mass * r_m * r_m * tan_a * (kappa - tan_a) << " vs J (1 + " << name
+        << " tan a) = " << inertia * (1.0 + kappa * tan_a) << ", J cot(a) (" << name
+        << " - cot a) = " << inertia * cot_a * (kappa - cot_a) << " vs m r^2 (1 + " << name
+        << " cot a) = " << mass * r_m * r_m * (1.0 + kappa * cot_a) << " (J = " << inertia
+        << " kg m^2, m = " << mass << " kg)";
   }
   out << "; state q = [";
   for (int i = 0; i < q_.size(); ++i) out << (i ? ", " : "") << q_[i];

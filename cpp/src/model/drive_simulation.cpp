@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -11,6 +12,7 @@
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
+#include "leadscrew/model/drive_rigid.hpp"
 
 namespace leadscrew::model {
 
@@ -103,6 +105,10 @@ int sign_of(double x) { return (x > 0.0) - (x < 0.0); }
 // flanks' roughness, and a geometric sequence of them only costs events.
 constexpr double kPlasticHeight = 1e-6;
 
+// The regularized law's branch is watched for the onset of jamming once its
+// denominator falls below this fraction of G_NN (DriveHybrid::approach_fold).
+constexpr double kFoldWatch = 0.1;
+
 std::vector<std::string> drive_channel_names(const DriveModel& model) {
   std::vector<std::string> names = {"u_load",        "v_load",      "phi_drive",
                                     "omega_drive",   "drive_torque", "axial_force",
@@ -131,13 +137,31 @@ struct ContactForces {
   bool stick = false;
 };
 
-// Writes one output row; dynamics holds the state (set_state called).
-void write_drive_channels(const DriveModel& model, const DriveDynamics& dynamics,
+// The state of an output row besides the thread and motor forces.
+struct ChannelState {
+  const CoordinateVector& q;
+  const CoordinateVector& v;
+  double axial_force = 0.0, slip_velocity = 0.0, play = 0.0, kinetic = 0.0, elastic = 0.0;
+};
+
+// From the state last set in dynamics.
+ChannelState channel_state(const DriveDynamics& dynamics) {
+  return {dynamics.q(),
+          dynamics.v(),
+          dynamics.axial_force(),
+          dynamics.slip_velocity(),
+          dynamics.play(),
+          dynamics.kinetic_energy(),
+          dynamics.elastic_energy() + dynamics.contact_energy()};
+}
+
+// Writes one output row.
+void write_drive_channels(const DriveModel& model, const ChannelState& state,
                           const ContactForces& forces, const double* energy, double impact_loss,
                           double kinetic0, double elastic0, double* out) {
   const DriveParameters& p = model.parameters();
-  const CoordinateVector& q = dynamics.q();
-  const CoordinateVector& v = dynamics.v();
+  const CoordinateVector& q = state.q;
+  const CoordinateVector& v = state.v;
   const int n = model.coordinate_count();
   int k = 0;
   out[k++] = q[model.load()];
@@ -145,21 +169,21 @@ void write_drive_channels(const DriveModel& model, const DriveDynamics& dynamics
   out[k++] = p.rotor_angle + q[model.rotor()];
   out[k++] = v[model.rotor()];
   out[k++] = forces.motor_torque;
-  out[k++] = dynamics.axial_force();
+  out[k++] = state.axial_force;
   out[k++] = forces.normal;
   out[k++] = forces.friction;
-  out[k++] = dynamics.slip_velocity();
+  out[k++] = state.slip_velocity;
   out[k++] = forces.stick ? 1.0 : 0.0;
   if (p.backlash != BacklashContact::none) {
-    out[k++] = 0.5 * p.clearance - std::abs(dynamics.play());
-    out[k++] = dynamics.play();
+    out[k++] = 0.5 * p.clearance - std::abs(state.play);
+    out[k++] = state.play;
   }
   for (int i = 1; i < n - 1; ++i) {
     out[k++] = q[i];
     out[k++] = v[i];
   }
-  const double kinetic = dynamics.kinetic_energy();
-  const double elastic = dynamics.elastic_energy() + dynamics.contact_energy();
+  const double kinetic = state.kinetic;
+  const double elastic = state.elastic;
   for (int e = 0; e < kEnergyCount; ++e) out[k++] = energy[e];
   out[k++] = impact_loss;
   out[k++] = kinetic;
@@ -171,18 +195,22 @@ void write_drive_channels(const DriveModel& model, const DriveDynamics& dynamics
 
 class DriveHybrid final : public integrate::HybridSystem {
  public:
-  DriveHybrid(const DriveModel& model, double bounce_threshold)
+  DriveHybrid(const DriveModel& model, double bounce_threshold, double t_end,
+              const integrate::IntegratorOptions& integrator_options)
       : model_(model),
         p_(model.parameters()),
         dynamics_(model),
         layout_(model),
         bounce_threshold_(bounce_threshold),
-        backlash_(p_.backlash != BacklashContact::none) {
+        backlash_(p_.backlash != BacklashContact::none),
+        t_end_(t_end),
+        integrator_options_(integrator_options) {
     const int n = model.coordinate_count();
     q_.setZero(n);
     v_.setZero(n);
     names_ = drive_channel_names(model);
     saved_state_.resize(static_cast<std::size_t>(layout_.size()));
+    if (RigidDriveModes::applies(model, dynamics_)) rigid_.emplace(model, dynamics_);
   }
 
   int size() const override { return layout_.size(); }
@@ -191,6 +219,20 @@ class DriveHybrid final : public integrate::HybridSystem {
   int quadrature_count() const override { return kEnergyCount; }
 
   void rhs(double t, const double* y, double* ydot) override {
+    if (rigid_) {
+      // One degree of freedom: y = [phi_rotor, omega_rotor, energy integrals].
+      const RigidSolution s = solve_rigid(t, y);
+      const double omega = y[1];
+      ydot[0] = omega;
+      ydot[1] = s.acceleration;
+      double* energy = ydot + layout_.energy_offset();
+      energy[kWorkDrive] = s.torque * omega;
+      energy[kWorkAxial] = s.axial_force * rigid_->load_per_angle() * omega;
+      energy[kFrictionLoss] = -s.friction_force * rigid_->slip_per_speed() * omega;
+      energy[kDampingLoss] = 0.0;
+      energy[kContactLoss] = 0.0;
+      return;
+    }
     set(t, y);
     const ModeSolution s = solve_current();
     const int np = static_cast<int>(layout_.positions().size());
@@ -213,6 +255,18 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   void roots(double t, const double* y, double* g) override {
     g[0] = g[1] = g[2] = g[3] = 1.0;
+    if (rigid_) {
+      if (mode_.friction == FrictionMode::none) return;
+      const RigidSolution s = solve_rigid(t, y);
+      const double mu = model_.effective_mu();
+      if (mode_.friction == FrictionMode::slip) {
+        g[0] = rigid_->slip_per_speed() * y[1];
+        g[1] = flank_change_root(s.normal_force);
+      } else {
+        g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+      }
+      return;
+    }
     set(t, y);
     const bool active = mode_.contact != ThreadContact::open;
     if (active && mode_.friction != FrictionMode::none) {
@@ -226,7 +280,17 @@ class DriveHybrid final : public integrate::HybridSystem {
         if (mode_.friction == FrictionMode::stick)
           g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
         if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
-          g[1] = s.normal_force;  // the contact changes flank
+          g[1] = flank_change_root(s.normal_force);
+        if (watch_fold()) {
+          // The regularized law's paradox: the margin min over sigma of
+          // G_NN - sigma kappa G_NT, and the current branch's denominator
+          // approaching zero (see approach_fold).
+          const double kappa = current_kappa();
+          const double g_nn = dynamics_.delassus_normal();
+          g[2] = std::min(dynamics_.thread_denominator(1, kappa),
+                          dynamics_.thread_denominator(-1, kappa)) / g_nn;
+          g[3] = dynamics_.thread_denominator(sigma_guess_, kappa) / g_nn - kFoldWatch;
+        }
         if (mode_.contact == ThreadContact::closed) g[1] = mode_.flank * s.normal_force;
       }
     }
@@ -255,8 +319,12 @@ class DriveHybrid final : public integrate::HybridSystem {
     // g0: slip s ends when s gamma falls through 0; stick when the cone margin falls.
     directions[0] = mode_.friction == FrictionMode::slip ? -mode_.slip_sign : -1;
     // g1: a closed flank opens when its normal force falls; the bilateral
-    // thread changes flank in either direction.
-    directions[1] = mode_.contact == ThreadContact::closed ? -1 : 0;
+    // thread changes flank when the normal force falls through zero on its
+    // side (see flank_change_root).
+    directions[1] = mode_.contact == ThreadContact::closed ||
+                            mode_.contact == ThreadContact::bilateral
+                        ? -1
+                        : 0;
     if (mode_.contact == ThreadContact::open && bounced_from_ != 0)
       directions[1] = bounced_from_ > 0 ? -1 : 1;  // leaving the lower flank: e' falls at the apex
     // g2, g3: an open thread hits the upper flank rising, the lower falling;
@@ -264,6 +332,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     const bool open = mode_.contact == ThreadContact::open;
     directions[2] = open ? 1 : 0;
     directions[3] = open ? -1 : 0;
+    if (watch_fold()) directions[2] = directions[3] = -1;  // both fall towards jamming
   }
 
   void select_initial_mode(double t, double* y) override {
@@ -299,11 +368,30 @@ class DriveHybrid final : public integrate::HybridSystem {
         mode_.friction = FrictionMode::none;
       }
     }
+    start_normal_side();
+    if (watch_fold()) {
+      set(t, y);
+      solve_current();
+      if (dynamics_.thread_denominator(sigma_guess_, current_kappa()) <
+          kFoldWatch * dynamics_.delassus_normal())
+        approach_fold(t, y);
+    }
   }
 
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
     set(t, y);
     const Mode before = mode_;
+    if (watch_fold() && root_info[2] != 0) {
+      solve_current();
+      // The other sign's denominator passes through zero (the current branch
+      // stays regular): beyond, that sign is consistent too.
+      jam_regularized("from here both signs of the flank normal force are consistent (the "
+                      "regularized friction factor reached the Painleve bound)");
+    }
+    if (watch_fold() && root_info[3] != 0) {
+      approach_fold(t, y);
+      return "";  // the branch recovers: no event
+    }
     bool zero_slip = false;
     int hint = 0;
     std::string kind;
@@ -337,6 +425,7 @@ class DriveHybrid final : public integrate::HybridSystem {
         hint = -sign_of(s.friction_force);
       }
     } else if (mode_.contact == ThreadContact::bilateral && root_info[1] != 0) {
+      normal_side_ = -normal_side_;
       layout_.compress(q_, v_, y);
       return "flank change";
     } else if (mode_.contact == ThreadContact::penalty && (root_info[2] != 0 || root_info[3] != 0)) {
@@ -359,6 +448,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       return "";
     }
     layout_.compress(q_, v_, y);
+    start_normal_side();
     if (mode_ == before) return kind;
     const std::string change = describe(before, backlash_) + "->" + describe(mode_, backlash_);
     return kind.empty() ? change : kind + ", " + change;
@@ -367,15 +457,37 @@ class DriveHybrid final : public integrate::HybridSystem {
   const std::vector<std::string>& channel_names() const override { return names_; }
 
   void channels(double t, const double* y, double* out) override {
+    ContactForces forces;
+    forces.stick = mode_.friction == FrictionMode::stick;
+    if (rigid_) {
+      const RigidSolution s = solve_rigid(t, y);
+      forces.normal = s.normal_force;
+      forces.friction = s.friction_force;
+      forces.motor_torque = s.torque;
+      const double phi = y[0], omega = y[1];
+      const double v_load = rigid_->load_per_angle() * omega;
+      q_[model_.rotor()] = phi;
+      q_[model_.load()] = rigid_->load_per_angle() * phi;
+      v_[model_.rotor()] = omega;
+      v_[model_.load()] = v_load;
+      const ChannelState state{q_,
+                               v_,
+                               s.axial_force,
+                               rigid_->slip_per_speed() * omega,
+                               0.0,
+                               0.5 * (rigid_->inertia() * omega * omega + rigid_->mass() * v_load * v_load),
+                               0.0};
+      write_drive_channels(model_, state, forces, y + layout_.energy_offset(), impact_loss_,
+                           kinetic0_, elastic0_, out);
+      return;
+    }
     set(t, y);
     const ModeSolution s = solve_current();
-    ContactForces forces;
     forces.normal = s.normal_force;
     forces.friction = s.friction_force;
     forces.motor_torque = s.motor_torque;
-    forces.stick = mode_.friction == FrictionMode::stick;
-    write_drive_channels(model_, dynamics_, forces, y + layout_.energy_offset(), impact_loss_,
-                         kinetic0_, elastic0_, out);
+    write_drive_channels(model_, channel_state(dynamics_), forces, y + layout_.energy_offset(),
+                         impact_loss_, kinetic0_, elastic0_, out);
   }
 
   std::vector<double> breakpoints() const override {
@@ -407,6 +519,145 @@ class DriveHybrid final : public integrate::HybridSystem {
     return s;
   }
 
+  // The bilateral thread's normal force at the start of a mode (the state is
+  // set): its sign is the flank in contact; exactly zero leaves it open.
+  void start_normal_side() {
+    normal_side_ = 0;
+    if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick &&
+        mode_.friction != FrictionMode::none)
+      normal_side_ = sign_of(solve_current().normal_force);
+  }
+
+  // Root function of a flank change of the thread without play: the normal
+  // force on the side it pushes, falling through zero. A normal force that is
+  // exactly zero at the start of a mode (a flexible drive whose springs are
+  // relaxed at t = 0 transmits no load yet) has no side: until it leaves zero
+  // the root is |N|, which cannot change sign, and the side it leaves to
+  // becomes the flank (|N| = side N there, so the root stays continuous).
+  // Leaving zero is not a flank change; passing through it is.
+  double flank_change_root(double normal_force) {
+    if (normal_side_ == 0) normal_side_ = sign_of(normal_force);
+    return normal_side_ != 0 ? normal_side_ * normal_force : 0.0;
+  }
+
+  struct RigidSolution {
+    double torque = 0.0, axial_force = 0.0;
+    double acceleration = 0.0, normal_force = 0.0, friction_force = 0.0;
+  };
+
+  // The rigid drive's forces and acceleration at (t, y) from the coefficients
+  // of its mode (RigidDriveModes): the decisions of solve_current without the
+  // constrained solve. Outside the Painleve regime at most one normal-force
+  // sign is consistent: try the last one first.
+  RigidSolution solve_rigid(double t, const double* y) {
+    RigidSolution s;
+    if (t != loads_time_) {  // the roots at a step's end follow its last stage
+      loads_time_ = t;
+      torque_ = p_.drive_torque(t);
+      axial_force_ = p_.axial_force(t);
+    }
+    s.torque = torque_;
+    s.axial_force = axial_force_;
+    const bool slip = mode_.friction == FrictionMode::slip;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const RigidModeCoefficients& c =
+          rigid_->coefficients(mode_.friction, mode_.slip_sign, slip ? sigma_guess_ : 1);
+      s.normal_force = c.normal_force(s.torque, s.axial_force);
+      if (slip && sigma_guess_ * s.normal_force < 0.0) {
+        sigma_guess_ = -sigma_guess_;
+        continue;
+      }
+      s.acceleration = c.acceleration(s.torque, s.axial_force);
+      s.friction_force = c.friction_force(s.torque, s.axial_force);
+      return s;
+    }
+    set(t, y);  // the state for the report
+    jam("no sign of the flank normal force is consistent");
+  }
+
+  // The regularized law on the thread without play in a model where the
+  // Painleve paradox is possible (mu' |G_NT| >= G_NN): its friction factor
+  // kappa = (2/pi) mu' atan(k_V gamma_T) depends on the slip velocity, and
+  // the paradox begins where kappa |G_NT| reaches G_NN.
+  bool watch_fold() const {
+    return mode_.contact == ThreadContact::bilateral &&
+           mode_.friction == FrictionMode::regularized_velocity && dynamics_.painleve_possible();
+  }
+  double current_kappa() const { return dynamics_.friction_factor(spec(sigma_guess_), 0.0); }
+
+  [[noreturn]] void jam_regularized(const std::string& what) const {
+    throw JammingError(dynamics_.time(),
+                       "dynamic jamming: " + what + "; " +
+                           dynamics_.jamming_report(std::abs(current_kappa())),
+                       "the drive self-locks dynamically (Painleve paradox of the regularized "
+                       "friction law); reduce the friction or change the inertia ratio");
+  }
+
+  // The denominator S of the current branch fell below kFoldWatch G_NN. If it
+  // reaches zero, the slip velocity stays finite while the acceleration grows
+  // like 1/S: the trajectory ends there in finite time with a square-root
+  // singularity, the onset of jamming, which no step in t can cross or
+  // resolve. In the time s with dt/ds = S the same trajectory is smooth
+  // through it (dz/ds = S (1, f(t, y)), S f finite), and S = 0 is an ordinary
+  // root: integrate it from (t, y) until S = 0 (JammingError at that time and
+  // state, to the integration tolerance), S back above 2 kFoldWatch G_NN or
+  // t_end (the main integration then continues: no event).
+  void approach_fold(double t, const double* y) {
+    FoldApproach fold(*this);
+    integrate::IntegratorOptions options;
+    options.rtol = integrator_options_.rtol;
+    options.atol = integrator_options_.atol;
+    options.max_steps = integrator_options_.max_steps;
+    std::unique_ptr<integrate::Integrator> integrator =
+        integrate::make_integrator("rk_verner6", options);
+    Eigen::VectorXd z(size() + 1);
+    z[0] = t;
+    for (int k = 0; k < size(); ++k) z[k + 1] = y[k];
+    const int saved_sigma = sigma_guess_;
+    integrator->initialize(fold, 0.0, z);
+    // dt/ds >= S, which stays above zero until the onset: every s beyond
+    // (t_end - t) / S_min reaches t_end; S_min is only bounded by the root.
+    const double s_end = 1e12 * (t_end_ - t + 1.0) / dynamics_.delassus_normal();
+    const integrate::AdvanceResult step = integrator->advance(s_end, z);
+    if (step.status == integrate::AdvanceStatus::root_found && integrator->root_info()[0] != 0) {
+      set(z[0], z.data() + 1);
+      solve_current();
+      jam_regularized("the branch of the flank normal force ends (its denominator "
+                      "G_NN - sigma kappa G_NT reaches zero, the acceleration grows without "
+                      "bound)");
+    }
+    sigma_guess_ = saved_sigma;
+    set(t, y);
+  }
+
+  // The drive's equations in the time s with dt/ds = S (approach_fold).
+  class FoldApproach final : public integrate::OdeSystem {
+   public:
+    explicit FoldApproach(DriveHybrid& drive) : drive_(drive) {}
+    int size() const override { return drive_.size() + 1; }
+    void rhs(double /*s*/, const double* z, double* dz) override {
+      drive_.rhs(z[0], z + 1, dz + 1);
+      const double denominator = branch();
+      dz[0] = denominator;
+      for (int k = 1; k < size(); ++k) dz[k] *= denominator;
+    }
+    int root_count() const override { return 3; }
+    void roots(double /*s*/, const double* z, double* g) override {
+      drive_.set(z[0], z + 1);
+      drive_.solve_current();
+      const double relative = branch() / drive_.dynamics_.delassus_normal();
+      g[0] = relative;                       // the onset
+      g[1] = 2.0 * kFoldWatch - relative;    // the branch recovers
+      g[2] = drive_.t_end_ - z[0];           // the end of the simulation
+    }
+
+   private:
+    double branch() const {
+      return drive_.dynamics_.thread_denominator(drive_.sigma_guess_, drive_.current_kappa());
+    }
+    DriveHybrid& drive_;
+  };
+
   [[noreturn]] void jam(const std::string& what) const {
     throw JammingError(dynamics_.time(),
                        "dynamic jamming: " + what + "; " + dynamics_.jamming_report(),
@@ -436,6 +687,23 @@ class DriveHybrid final : public integrate::HybridSystem {
       const ModeSolution minus = dynamics_.solve(spec(-1));
       const bool plus_ok = plus.regular && plus.normal_force >= 0.0;
       const bool minus_ok = minus.regular && minus.normal_force <= 0.0;
+      if (watch_fold()) {
+        // The paradox of the regularized law is located by its roots (the
+        // margin, the branch's denominator; approach_fold). Between them keep
+        // the current sign's branch: where both are consistent it is the
+        // continuous one, and where neither is (a trial state of the
+        // integrator beyond the onset) its continuation, so that the step is
+        // rejected, not the simulation ended at a state off the trajectory.
+        const ModeSolution& current = sigma_guess_ > 0 ? plus : minus;
+        const bool current_ok = sigma_guess_ > 0 ? plus_ok : minus_ok;
+        const bool other_ok = sigma_guess_ > 0 ? minus_ok : plus_ok;
+        if (current_ok || (!other_ok && current.regular)) return current;
+        if (other_ok) {
+          sigma_guess_ = -sigma_guess_;
+          return sigma_guess_ > 0 ? plus : minus;
+        }
+        jam("the constraint equations of the thread are singular");
+      }
       if (plus_ok && minus_ok) {
         if (plus.normal_force == 0.0) return plus;
         if (minus.normal_force == 0.0) return minus;
@@ -638,6 +906,12 @@ class DriveHybrid final : public integrate::HybridSystem {
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   std::vector<double> saved_state_;  // y before a grazing touch (handle_event)
+  int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  double t_end_;
+  integrate::IntegratorOptions integrator_options_;
+  std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
+  double loads_time_ = std::numeric_limits<double>::quiet_NaN();  // the loads last evaluated
+  double torque_ = 0.0, axial_force_ = 0.0;
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;
@@ -795,7 +1069,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     const double* energy = y + layout_.energy_offset();
     // The Moreau-Jean scheme's numerical dissipation (and impacts) closes the
     // account: what the work and the named losses leave over.
-    write_drive_channels(model_, dynamics_, last_, energy, 0.0, kinetic0_, elastic0_, out);
+    write_drive_channels(model_, channel_state(dynamics_), last_, energy, 0.0, kinetic0_,
+                         elastic0_, out);
   }
 
  private:
@@ -914,7 +1189,8 @@ integrate::SimulationResult simulate(const DriveModel& model,
     return result;
   }
 
-  DriveHybrid system(model, options.bounce_threshold);
+  DriveHybrid system(model, options.bounce_threshold, options.output.t_end,
+                     options.integrator_options);
   integrate::EventDrivenOptions driver;
   driver.integrator_options = options.integrator_options;
   driver.max_events = options.max_events;

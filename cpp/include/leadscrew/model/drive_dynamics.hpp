@@ -57,6 +57,11 @@ class DriveDynamics {
 
   // Accelerations and forces in a mode at the state last set.
   ModeSolution solve(const ModeSpec& spec);
+  // The same mode with the generalized forces replaced by `forces` (the state's
+  // springs, dampers and loads ignored). For a mode whose friction factor is
+  // constant the solution is linear in them: with unit loads this gives the
+  // coefficients of RigidDriveModes.
+  ModeSolution solve_with_forces(const ModeSpec& spec, const CoordinateVector& forces);
 
   // Smallest change of v (in the kinetic metric) that makes the slip velocity
   // zero while keeping the other active velocity constraints.
@@ -89,8 +94,19 @@ class DriveDynamics {
   double friction_factor(const ModeSpec& spec, double slip_acceleration) const;
 
   // Painleve (dynamic jamming) report of a slip mode: the effective Delassus
-  // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN.
-  std::string jamming_report() const;
+  // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN. With a regularized law
+  // (regularized_factor >= 0: the friction factor kappa = (2/pi) mu' |atan(.)|
+  // in effect) the condition that applies is kappa |G_NT| >= G_NN instead.
+  std::string jamming_report(double regularized_factor = -1.0) const;
+  // The Schur complement of the thread without play for a normal-force sign
+  // sigma and friction factor kappa, G_NN - sigma kappa G_NT: the
+  // mass-matrix-like denominator of the normal force (rigid drive: Delta / (m J)
+  // times cos^2 a, docs/physics/rigid_drive.md section 7). A consistent branch
+  // with it at zero is the onset of dynamic jamming.
+  double thread_denominator(int sigma, double kappa) const noexcept {
+    return delassus_nn_ - sigma * kappa * delassus_nt_;
+  }
+  double delassus_normal() const noexcept { return delassus_nn_; }
   // mu' |G_NT| >= G_NN: only then can both signs of the flank normal force be
   // consistent in slip. M and the thread directions are constant, so this is
   // a property of the model, computed once.

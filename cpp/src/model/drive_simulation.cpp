@@ -395,12 +395,22 @@ class DriveHybrid final : public integrate::HybridSystem {
     bool zero_slip = false;
     int hint = 0;
     std::string kind;
-    bool grazing = false;
+    bool touch = false;
     const int bounced_before = bounced_from_;
     if (mode_.contact == ThreadContact::open && (root_info[2] > 0 || root_info[3] < 0)) {
       const int flank = root_info[2] > 0 ? -1 : 1;
-      grazing = flank * dynamics_.play_rate() >= 0.0;
-      if (grazing) std::copy(y, y + size(), saved_state_.begin());
+      // A touch below resolution: the play reaches the flank without
+      // approaching it, or so slowly against a free flight that pulls it
+      // back that it would go less than kPlasticHeight of the clearance
+      // beyond (rate^2 / (2 |e''|)).
+      const double rate = dynamics_.play_rate();
+      touch = flank * rate >= 0.0;
+      if (!touch) {
+        const double acceleration = model_.play_gradient().dot(solve_current().acceleration);
+        touch = flank * acceleration > 0.0 &&
+                rate * rate <= 2.0 * flank * acceleration * kPlasticHeight * p_.clearance;
+      }
+      if (touch) std::copy(y, y + size(), saved_state_.begin());
       zero_slip = flank_impact(t, flank);
       kind = "impact on the " + std::string(flank > 0 ? "lower" : "upper") + " flank";
       if (mode_.contact == ThreadContact::open) {
@@ -434,13 +444,13 @@ class DriveHybrid final : public integrate::HybridSystem {
       kind = touching_ ? "flank contact" : "flank separation";
     }
     if (mode_.contact != ThreadContact::open) decide_friction(t, y, zero_slip, hint);
-    if (grazing && mode_.contact == ThreadContact::open) {
-      // The play touched a flank without approaching it, and the flank
-      // cannot push: no contact, nothing changes (y is left as it was). This
-      // is the integrator's noise at the flank just left: a flank opens when
-      // its normal force falls through zero, so the play leaves it at third
-      // order in time, and a multistep method's first steps after the
-      // restart (CVODE) can show it a round-off beyond the flank.
+    if (touch && mode_.contact == ThreadContact::open) {
+      // A touch below resolution of a flank that cannot push: no contact,
+      // nothing changes (y is left as it was). This is the integrator's noise
+      // at the flank just left: a flank opens when its normal force falls
+      // through zero, so the play leaves it at third order in time, and a
+      // multistep method's first steps after the restart (CVODE) can show it
+      // a round-off beyond the flank, even approaching it at a round-off rate.
       mode_ = before;
       bounced_from_ = bounced_before;
       std::copy(saved_state_.begin(), saved_state_.end(), y);
@@ -905,7 +915,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   bool touching_ = false;  // a penalty flank is penetrated
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
-  std::vector<double> saved_state_;  // y before a grazing touch (handle_event)
+  std::vector<double> saved_state_;  // y before a touch below resolution (handle_event)
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
@@ -1197,8 +1207,8 @@ integrate::SimulationResult simulate(const DriveModel& model,
   if (options.integrator == "event_driven") {
     // Rigid: our Verner 6(5) with exact event location, an order of
     // magnitude cheaper than CVODE. (CVODE used to lose flank events of a
-    // rattling nut, 3 to 8 of 36 at rtol 1e-12; with handle_event's grazing
-    // touch it finds the same ones: tests/test_integrate_flank_events.py.)
+    // rattling nut, 3 to 8 of 36 at rtol 1e-12; with handle_event's touch
+    // below resolution it finds the same ones: tests/test_integrate_flank_events.py.)
     driver.integrator = !options.smooth_integrator.empty() ? options.smooth_integrator
                         : p.concept == Concept::rigid      ? "rk_verner6"
                                                            : "cvode_bdf";

@@ -1,5 +1,6 @@
 #include "leadscrew/model/drive_dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -79,6 +80,25 @@ double smooth_step(double x) {
 }
 
 }  // namespace
+
+friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha, double beta,
+                                                double mu, int sigma, lcp::Workspace& workspace,
+                                                const lcp::Options& options) {
+  // Force scale: the normal force, and the friction force that would stop
+  // the slip acceleration c.
+  const double scale = std::max(std::abs(beta), d != 0.0 ? std::abs(c / d) : std::abs(c));
+  if (!(scale > 0.0) || !std::isfinite(scale))
+    return friction::solve_flank_lcp(c, d, alpha, beta, mu, sigma, workspace, options);
+  int exponent = 0;
+  std::frexp(scale, &exponent);
+  friction::FlankLcpResult r = friction::solve_flank_lcp(
+      std::ldexp(c, -exponent), d, alpha, std::ldexp(beta, -exponent), mu, sigma, workspace,
+      options);
+  r.friction_force = std::ldexp(r.friction_force, exponent);
+  r.normal_force = std::ldexp(r.normal_force, exponent);
+  r.slip_acceleration = std::ldexp(r.slip_acceleration, exponent);
+  return r;
+}
 
 DriveDynamics::DriveDynamics(const DriveModel& model) : model_(model) {
   const int n = model.coordinate_count();
@@ -330,12 +350,31 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
       spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
   const int nc = 1 + (normal_row ? 1 : 0) + (p.speed_controlled ? 1 : 0);
   ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
-  SmallVector r = SmallVector::Zero(nc);
+  SmallVector target = SmallVector::Zero(nc);  // the velocity constraints after the projection
   int row = 0;
-  C.row(row) = model_.tangent_direction().transpose();
-  r[row++] = -model_.tangent_direction().dot(v);
+  C.row(row++) = model_.tangent_direction().transpose();  // zero slip
+  // The thread without play and a closed flank have zero normal velocity
+  // (the constraint; a closed flank's is set so when it closes).
   if (normal_row) C.row(row++) = model_.normal_direction().transpose();
-  if (p.speed_controlled) C(row++, model_.rotor()) = 1.0;
+  if (p.speed_controlled) {
+    C(row, model_.rotor()) = 1.0;
+    target[row++] = v[model_.rotor()];  // the motor's prescribed speed
+  }
+  if (nc == n) {
+    // The constraints fix every velocity (the rigid drive in stick): solve
+    // them directly. A torque-driven rigid drive then stands exactly still,
+    // where the projection v + dv would leave a round-off speed (~1e-28 rad/s)
+    // that keeps the slip velocity off zero for the whole stick phase.
+    Eigen::FullPivLU<SmallMatrix> lu(C.leftCols(n));
+    if (lu.isInvertible()) {
+      const SmallVector fixed = lu.solve(target);
+      if (fixed.allFinite()) {
+        v = fixed;
+        return;
+      }
+    }
+  }
+  SmallVector r = target - C * v;
   ColumnMatrix B = C.transpose();
   CoordinateVector zero = CoordinateVector::Zero(n), change;
   SmallVector lambda;
@@ -377,7 +416,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   const double c = tangent.dot(v + without);
   const double d = tangent.dot(unit - without);
   const double alpha = unit_normal - beta;
-  const friction::FlankLcpResult r = friction::solve_flank_lcp(
+  const friction::FlankLcpResult r = solve_flank_lcp_scaled(
       c, d, alpha, beta, model_.effective_mu(), sigma, workspace, options);
   if (!r.consistent) return false;
   CoordinateVector change;

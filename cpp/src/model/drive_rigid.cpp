@@ -1,5 +1,10 @@
 #include "leadscrew/model/drive_rigid.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include "leadscrew/core/errors.hpp"
 
 namespace leadscrew::model {
@@ -54,6 +59,122 @@ RigidDriveModes::RigidDriveModes(const DriveModel& model, DriveDynamics& dynamic
       c.friction_force = {torque.friction_force, force.friction_force};
     }
   }
+}
+
+}  // namespace leadscrew::model
+
+namespace leadscrew::model {
+
+namespace {
+
+// A bound on |d^2/dt^2| of an excitation between its breakpoints, from the
+// semantics Excitation documents for time_scale() and breakpoints(); nullopt
+// for a callable (time scale 0: no hint).
+std::optional<double> curvature_bound(const Excitation& load) {
+  const double scale = load.time_scale();
+  if (std::isinf(scale)) return 0.0;         // constant (or a sine without amplitude)
+  if (!(scale > 0.0)) return std::nullopt;   // callable
+  if (!load.breakpoints().empty()) return 0.0;  // table: linear between its knots
+  // A sine of period `scale`: its derivative A w cos(w t + phase) has the
+  // amplitude |A| w = hypot(f'(0), f'(scale / 4)), its second derivative |A| w^2.
+  const double omega = 2.0 * 3.14159265358979323846 / scale;
+  return std::hypot(load.derivative(0.0), load.derivative(0.25 * scale)) * omega;
+}
+
+constexpr long kMaxScanSteps = 1000000;
+
+}  // namespace
+
+std::optional<double> first_load_crossing(const Excitation& torque, const Excitation& force,
+                                          const LoadCoefficients* functions, int count,
+                                          double t0, double t_end) {
+  const std::optional<double> torque_curvature = curvature_bound(torque);
+  const std::optional<double> force_curvature = curvature_bound(force);
+  if (!torque_curvature || !force_curvature) return std::nullopt;
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (!(t_end > t0)) return kInfinity;
+  // The knots of table loads: f' jumps there, so a Taylor bound holds only
+  // between them.
+  std::vector<double> knots;
+  for (const Excitation* load : {&torque, &force})
+    for (double knot : load->breakpoints())
+      if (knot > t0 && knot < t_end) knots.push_back(knot);
+  std::sort(knots.begin(), knots.end());
+  knots.push_back(t_end);
+  // The shortest step the scan takes where a bound allows less (a touch).
+  double time_scale = t_end - t0;
+  for (const Excitation* load : {&torque, &force})
+    if (std::isfinite(load->time_scale())) time_scale = std::min(time_scale, load->time_scale());
+  const double floor_step =
+      std::max(1e-12 * time_scale, 64.0 * std::numeric_limits<double>::epsilon() *
+                                       std::max(std::abs(t0), std::abs(t_end)));
+
+  double curvature[2] = {0.0, 0.0};
+  for (int k = 0; k < count; ++k)
+    curvature[k] = (std::abs(functions[k].per_torque) * *torque_curvature +
+                    std::abs(functions[k].per_force) * *force_curvature) *
+                   (1.0 + 1e-9);  // round-off of the bound itself
+  auto value = [&](int k, double t) { return functions[k](torque(t), force(t)); };
+  auto slope = [&](int k, double t) {
+    return functions[k](torque.derivative(t), force.derivative(t));
+  };
+  // Illinois on [low, high] with f(low) >= 0 > f(high): the first time at
+  // which f is negative, to round-off.
+  auto locate = [&](int k, double low, double high) {
+    double f_low = value(k, low), f_high = value(k, high);
+    int side = 0;
+    for (int iteration = 0; iteration < 200 && high - low > 4.0 * std::numeric_limits<double>::epsilon() * std::abs(high); ++iteration) {
+      double t = (low * f_high - high * f_low) / (f_high - f_low);
+      if (!(t > low && t < high)) t = 0.5 * (low + high);
+      const double f = value(k, t);
+      if (f >= 0.0) {
+        low = t;
+        f_low = f;
+        if (side == -1) f_high *= 0.5;
+        side = -1;
+      } else {
+        high = t;
+        f_high = f;
+        if (side == 1) f_low *= 0.5;
+        side = 1;
+      }
+    }
+    return high;
+  };
+
+  double t = t0;
+  std::size_t next_knot = 0;
+  for (long step = 0; step < kMaxScanSteps; ++step) {
+    while (knots[next_knot] <= t && next_knot + 1 < knots.size()) ++next_knot;
+    const double segment_end = knots[next_knot];
+    if (t >= t_end) return kInfinity;
+    // The largest step over which every lower bound stays positive.
+    double h = segment_end - t;
+    for (int k = 0; k < count; ++k) {
+      const double f = value(k, t), d = slope(k, t), c = curvature[k];
+      double safe;
+      if (f <= 0.0) {
+        safe = 0.0;
+      } else if (c == 0.0) {  // linear up to the knot: exact
+        safe = d >= 0.0 ? kInfinity : f / -d;
+      } else {  // the positive root of f + d h - c h^2 / 2, without cancellation
+        const double root = std::sqrt(d * d + 2.0 * c * f);
+        safe = d > 0.0 ? (d + root) / c : 2.0 * f / (root - d);
+      }
+      h = std::min(h, safe);
+    }
+    double t_next = t + std::max(h, floor_step);
+    if (t_next >= segment_end) t_next = segment_end;
+    double crossing = kInfinity;
+    for (int k = 0; k < count; ++k) {
+      if (value(k, t_next) >= 0.0) continue;
+      crossing = std::min(crossing, value(k, t) < 0.0 ? t : locate(k, t, t_next));
+    }
+    if (crossing < kInfinity) return crossing;
+    t = t_next;
+  }
+  throw SimulationError(t, "the scan for the first zero of a load-driven root function did not end",
+                        "the loads may cancel exactly in the thread forces; use other loads");
 }
 
 }  // namespace leadscrew::model

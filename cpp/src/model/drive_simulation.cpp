@@ -251,9 +251,11 @@ class DriveHybrid final : public integrate::HybridSystem {
       const double mu = model_.effective_mu();
       if (mode_.friction == FrictionMode::slip) {
         g[0] = rigid_->slip_per_speed() * y[1];
-        g[1] = flank_change_root(s.normal_force);
+        g[1] = load_root_ == 1 ? load_root_value(t) : flank_change_root(s.normal_force);
       } else {
-        g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+        g[0] = load_root_ == 0 ? load_root_value(t)
+                               : (mu * s.normal_force - s.friction_force) *
+                                     (mu * s.normal_force + s.friction_force);
       }
       return;
     }
@@ -282,6 +284,7 @@ class DriveHybrid final : public integrate::HybridSystem {
           g[3] = dynamics_.thread_denominator(sigma_guess_, kappa) / g_nn - kFoldWatch;
         }
         if (mode_.contact == ThreadContact::closed) g[1] = mode_.flank * s.normal_force;
+        if (load_root_ >= 0) g[load_root_] = load_root_value(t);
       }
     }
     if (mode_.contact == ThreadContact::open || mode_.contact == ThreadContact::penalty) {
@@ -366,9 +369,17 @@ class DriveHybrid final : public integrate::HybridSystem {
           kFoldWatch * dynamics_.delassus_normal())
         approach_fold(t, y);
     }
+    plan_load_roots(t);
   }
 
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
+    std::string kind = change_mode(t, y, root_info);
+    plan_load_roots(t);
+    return kind;
+  }
+
+  // handle_event without the planning of the next mode's load-driven roots.
+  std::string change_mode(double t, double* y, const std::vector<int>& root_info) {
     set(t, y);
     const Mode before = mode_;
     if (watch_fold() && root_info[2] != 0) {
@@ -511,6 +522,83 @@ class DriveHybrid final : public integrate::HybridSystem {
   double flank_change_root(double normal_force) {
     if (normal_side_ == 0) normal_side_ = sign_of(normal_force);
     return normal_side_ != 0 ? normal_side_ * normal_force : 0.0;
+  }
+
+  // True if the thread forces of the current mode depend on the loads alone
+  // (linearly): the rigid drive (no springs, no dampers) with a
+  // torque-driven rotor and exact Coulomb friction on the thread without play
+  // or a closed flank, in stick (every coordinate locked) or slip (the
+  // friction factor +-mu' is constant).
+  bool load_driven() const {
+    return p_.concept == Concept::rigid && model_.springs().empty() && !p_.speed_controlled &&
+           p_.friction == FrictionLaw::coulomb &&
+           (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
+           (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
+  }
+
+  // The thread forces of the current mode per unit drive torque and axial
+  // force (normal-force sign sigma where it matters).
+  RigidModeCoefficients mode_coefficients(int sigma) {
+    if (rigid_) return rigid_->coefficients(mode_.friction, mode_.slip_sign, sigma);
+    const int n = model_.coordinate_count();
+    CoordinateVector unit_torque = CoordinateVector::Zero(n), unit_force = unit_torque;
+    unit_torque[model_.rotor()] = 1.0;
+    unit_force[model_.load()] = 1.0;
+    const ModeSolution torque = dynamics_.solve_with_forces(spec(sigma), unit_torque);
+    const ModeSolution force = dynamics_.solve_with_forces(spec(sigma), unit_force);
+    RigidModeCoefficients c;
+    if (!torque.regular || !force.regular) return c;
+    c.normal_force = {torque.normal_force, force.normal_force};
+    c.friction_force = {torque.friction_force, force.friction_force};
+    return c;
+  }
+
+  // At the start of a mode whose thread forces are load-driven, the stick
+  // cone's margin (stick) or the normal force on its side (slip) is a function
+  // of time alone: its first zero is found by first_load_crossing, and the
+  // root function becomes the time left until it, load_root_time_ - t, which
+  // falls through zero exactly there however short the excursion beyond it.
+  // (The margin sampled at the integrator's steps missed a 13 ms excursion out
+  // of the cone with steps of 21 ms.)
+  void plan_load_roots(double t) {
+    load_root_ = -1;
+    load_root_time_ = std::numeric_limits<double>::infinity();
+    if (!load_driven()) return;
+    const double torque = p_.drive_torque(t), force = p_.axial_force(t);
+    LoadCoefficients functions[2];
+    int count = 0, slot = -1;
+    if (mode_.friction == FrictionMode::stick) {
+      // |T| <= mu' |N| as the two factors mu' s N -+ T, with s the side of N
+      // at the start: before N could change sides, |T| would have to fall to
+      // zero with it, so one factor crosses first.
+      const RigidModeCoefficients c = mode_coefficients(1);
+      int side = sign_of(c.normal_force(torque, force));
+      if (side == 0)
+        side = sign_of(c.normal_force(p_.drive_torque.derivative(t), p_.axial_force.derivative(t)));
+      if (side == 0) return;  // no load on the thread: the sampled margin decides
+      const double mu = model_.effective_mu();
+      for (int s : {1, -1})
+        functions[count++] = {mu * side * c.normal_force.per_torque - s * c.friction_force.per_torque,
+                              mu * side * c.normal_force.per_force - s * c.friction_force.per_force};
+      slot = 0;
+    } else {
+      // The normal force leaving its side: a flank change (bilateral) or the
+      // flank opening (closed).
+      const int side = mode_.contact == ThreadContact::closed ? mode_.flank : normal_side_;
+      if (side == 0) return;  // not left zero yet (flank_change_root)
+      const RigidModeCoefficients c = mode_coefficients(side);
+      functions[count++] = {side * c.normal_force.per_torque, side * c.normal_force.per_force};
+      slot = 1;
+    }
+    const std::optional<double> crossing =
+        first_load_crossing(p_.drive_torque, p_.axial_force, functions, count, t, t_end_);
+    if (!crossing) return;  // a callable load: no curvature bound
+    load_root_ = slot;
+    load_root_time_ = *crossing;
+  }
+
+  double load_root_value(double t) const {
+    return std::isfinite(load_root_time_) ? load_root_time_ - t : 1.0;
   }
 
   struct RigidSolution {
@@ -752,8 +840,8 @@ class DriveHybrid final : public integrate::HybridSystem {
     Mode chosen = mode_;
     for (int sigma : sigmas) {
       const friction::FlankLcpResult r =
-          friction::solve_flank_lcp(c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_,
-                                    lcp_options_);
+          solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_,
+                                 lcp_options_);
       ++lcp_solves_;
       if (!r.consistent) continue;
       Mode candidate = mode_;
@@ -871,6 +959,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  int load_root_ = -1;     // the root function replaced by a load-driven crossing (-1: none)
+  double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
   std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
@@ -973,7 +1063,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
       int found = 0;
       friction::FlankLcpResult chosen;
       for (int sigma : sigmas) {
-        const friction::FlankLcpResult r = friction::solve_flank_lcp(
+        const friction::FlankLcpResult r = solve_flank_lcp_scaled(
             c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_, lcp_options_);
         ++lcp_solves_;
         if (!r.consistent) continue;

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "leadscrew/friction/flank_lcp.hpp"
 #include "leadscrew/lcp/lcp.hpp"
 #include "leadscrew/lcp/workspace.hpp"
 #include "leadscrew/model/drive.hpp"
@@ -44,6 +45,19 @@ struct ModeSolution {
   double slip_acceleration = 0.0;
   CoordinateVector acceleration;
 };
+
+// The flank LCP (friction::solve_flank_lcp) of the drive, solved at unit scale.
+// The problem is homogeneous in (c, beta): scaling both by k scales the
+// friction force, the normal force and the slip acceleration by k and leaves
+// stick or slip unchanged. Lemke's pivot and tie tolerances are not
+// scale-invariant, though: at the start of a flexible drive, whose relaxed
+// springs carry forces of 1e-24 N just after t = 0, it reported no solution
+// (ray termination) where one exists. So the problem is solved with (c, beta)
+// scaled by a power of two to a force scale of 1 (exact in floating point) and
+// the result scaled back.
+friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha, double beta,
+                                                double mu, int sigma, lcp::Workspace& workspace,
+                                                const lcp::Options& options);
 
 class DriveDynamics {
  public:

@@ -253,9 +253,10 @@ class DriveHybrid final : public integrate::HybridSystem {
         g[0] = rigid_->slip_per_speed() * y[1];
         g[1] = load_root_ == 1 ? load_root_value(t) : flank_change_root(s.normal_force);
       } else {
-        g[0] = load_root_ == 0 ? load_root_value(t)
-                               : (mu * s.normal_force - s.friction_force) *
-                                     (mu * s.normal_force + s.friction_force);
+        const double margin =
+            (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+        if (margin > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
+        g[0] = load_root_ == 0 ? load_root_value(t) : margin;
       }
       return;
     }
@@ -269,8 +270,10 @@ class DriveHybrid final : public integrate::HybridSystem {
       if (need_forces) {
         const ModeSolution s = solve_current();
         const double mu = model_.effective_mu();
-        if (mode_.friction == FrictionMode::stick)
+        if (mode_.friction == FrictionMode::stick) {
           g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+          if (g[0] > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
+        }
         if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
           g[1] = flank_change_root(s.normal_force);
         if (watch_fold()) {
@@ -369,13 +372,29 @@ class DriveHybrid final : public integrate::HybridSystem {
           kFoldWatch * dynamics_.delassus_normal())
         approach_fold(t, y);
     }
-    plan_load_roots(t);
+    start_mode(t);
   }
 
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
+    const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
+                           root_info[0] != 0;
     std::string kind = change_mode(t, y, root_info);
+    start_mode(t);
+    // A stick whose cone margin never left zero was no stick phase: the thread
+    // carried no force (a flexible drive's relaxed springs at t = 0) and the
+    // forces, once they grow, leave the cone at once. The slip that follows is
+    // the drive's motion from the start, not an event.
+    return from_zero ? std::string() : kind;
+  }
+
+  // After the mode is chosen (at the start and at every event).
+  void start_mode(double t) {
     plan_load_roots(t);
-    return kind;
+    stick_from_zero_ = false;
+    if (mode_.friction == FrictionMode::stick) {
+      const ModeSolution s = solve_current();
+      stick_from_zero_ = s.normal_force == 0.0 && s.friction_force == 0.0;
+    }
   }
 
   // handle_event without the planning of the next mode's load-driven roots.
@@ -719,6 +738,39 @@ class DriveHybrid final : public integrate::HybridSystem {
     DriveHybrid& drive_;
   };
 
+  // Eq. (3.15) has `count` consistent flank forces at the state set. For the
+  // rigid drive (no springs, no dampers) they depend on the time alone (the
+  // loads; the law does not depend on the velocity), so the onset of the
+  // ambiguity lies between the last time with one solution and now: located
+  // by bisection on the count, to round-off. (A flexible drive's depend on
+  // its state: raised where first seen, at the integrator's resolution.)
+  [[noreturn]] void jam_acceleration_law(int count) {
+    double onset = dynamics_.time();
+    if (model_.springs().empty() && last_unique_time_ < onset) {
+      const CoordinateVector q = q_, v = v_;
+      double low = last_unique_time_, high = onset;
+      for (int iteration = 0; iteration < 200 && high - low > 2.0 * std::numeric_limits<double>::epsilon() * std::abs(high); ++iteration) {
+        const double middle = 0.5 * (low + high);
+        dynamics_.set_state(middle, q, v);
+        const int n = dynamics_.solve(spec(sigma_guess_)).consistent_solutions;
+        (n == 1 ? low : high) = middle;
+        if (n != 1) count = n;
+      }
+      onset = high;
+      dynamics_.set_state(onset, q, v);
+    }
+    throw JammingError(
+        onset,
+        "dynamic jamming: eq. (3.15) admits " + std::to_string(count) +
+            " consistent flank forces from here: its friction factor kappa = (2/pi) mu' "
+            "atan(k_V gamma_T') depends on the slip acceleration it produces, so a solution "
+            "always exists, and it is unique unless mu' |G_NT| >= G_NN (the exact law's "
+            "Painleve condition; then several exist where |kappa| exceeds G_NN / |G_NT| "
+            "between them); " + dynamics_.jamming_report(),
+        "the drive self-locks dynamically (Painleve paradox of the acceleration-dependent "
+        "friction law); reduce the friction or change the inertia ratio");
+  }
+
   [[noreturn]] void jam(const std::string& what) const {
     throw JammingError(dynamics_.time(),
                        "dynamic jamming: " + what + "; " + dynamics_.jamming_report(),
@@ -733,6 +785,19 @@ class DriveHybrid final : public integrate::HybridSystem {
     const bool friction_on_normal = mode_.friction == FrictionMode::slip ||
                                     mode_.friction == FrictionMode::regularized_velocity ||
                                     mode_.friction == FrictionMode::regularized_acceleration;
+    if (mode_.contact == ThreadContact::bilateral &&
+        mode_.friction == FrictionMode::regularized_acceleration && dynamics_.painleve_possible()) {
+      // Eq. (3.15): every consistent flank force at once (DriveDynamics::
+      // solve_acceleration_law); there is always one, several are jamming.
+      const ModeSolution s = dynamics_.solve(spec(sigma_guess_));
+      if (!s.regular)
+        throw SimulationError(dynamics_.time(), "the constraint equations of the drive are singular",
+                              "check masses, inertias and the thread geometry");
+      if (s.consistent_solutions != 1) jam_acceleration_law(s.consistent_solutions);
+      if (s.normal_force != 0.0) sigma_guess_ = sign_of(s.normal_force);
+      last_unique_time_ = std::max(last_unique_time_, dynamics_.time());
+      return s;
+    }
     if (mode_.contact == ThreadContact::bilateral && friction_on_normal &&
         !dynamics_.painleve_possible()) {
       // At most one sign can be consistent: try the last one first.
@@ -959,6 +1024,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  double last_unique_time_ = 0.0;  // eq. (3.15) last seen with one solution (jam_acceleration_law)
+  bool stick_from_zero_ = false;  // a stick mode whose cone margin has not left zero
   int load_root_ = -1;     // the root function replaced by a load-driven crossing (-1: none)
   double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
   double t_end_;

@@ -44,6 +44,9 @@ struct ModeSolution {
   double motor_torque = 0.0;
   double slip_acceleration = 0.0;
   CoordinateVector acceleration;
+  // Eq. (3.15) on the thread without play in the Painleve regime: how many
+  // flank forces are consistent (DriveDynamics::solve); 1 everywhere else.
+  int consistent_solutions = 1;
 };
 
 // The flank LCP (friction::solve_flank_lcp) of the drive, solved at unit scale.
@@ -128,6 +131,7 @@ class DriveDynamics {
 
  private:
   void penalty_force();
+  ModeSolution solve_acceleration_law(const ModeSpec& spec);
 
   const DriveModel& model_;
   double t_ = 0.0;

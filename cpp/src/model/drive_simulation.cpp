@@ -238,7 +238,8 @@ class DriveHybrid final : public integrate::HybridSystem {
     double* energy = ydot + layout_.energy_offset();
     energy[kWorkDrive] = s.motor_torque * v_[model_.rotor()];
     energy[kWorkAxial] = dynamics_.axial_force() * v_[model_.load()];
-    energy[kFrictionLoss] = -s.friction_force * dynamics_.slip_velocity();
+    energy[kFrictionLoss] =
+        mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics_.slip_velocity();
     energy[kDampingLoss] = dynamics_.damping_power();
     energy[kContactLoss] = dynamics_.contact_loss_power();
   }
@@ -489,8 +490,12 @@ class DriveHybrid final : public integrate::HybridSystem {
     forces.normal = s.normal_force;
     forces.friction = s.friction_force;
     forces.motor_torque = s.motor_torque;
-    write_drive_channels(model_, channel_state(dynamics_), forces, y + layout_.energy_offset(),
-                         impact_loss_, kinetic0_, elastic0_, out);
+    ChannelState state = channel_state(dynamics_);
+    // Stick holds the slip velocity at zero; the state carries the integrator's
+    // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
+    if (forces.stick) state.slip_velocity = 0.0;
+    write_drive_channels(model_, state, forces, y + layout_.energy_offset(), impact_loss_,
+                         kinetic0_, elastic0_, out);
   }
 
   std::vector<double> breakpoints() const override {
@@ -870,7 +875,16 @@ class DriveHybrid final : public integrate::HybridSystem {
     if (!at_zero_slip && dynamics_.slip_velocity() != 0.0) {
       mode_.friction = FrictionMode::slip;
       mode_.slip_sign = sign_of(dynamics_.slip_velocity());
-      solve_current();  // raises JammingError if no normal-force sign is consistent
+      // raises JammingError if no normal-force sign is consistent
+      const ModeSolution s = solve_current();
+      if (mode_.contact == ThreadContact::closed && mode_.flank * s.normal_force < 0.0) {
+        // A flank closed by a grazing impact while the drive slips, whose
+        // normal force would pull: the contact is unilateral, it stays open
+        // (as a closed flank opens where its normal force falls through zero).
+        mode_.contact = ThreadContact::open;
+        mode_.friction = FrictionMode::none;
+        mode_.slip_sign = 0;
+      }
       return;
     }
     // Zero slip: project the velocities onto exactly zero slip (the root is

@@ -115,9 +115,6 @@ std::optional<double> first_load_crossing(const Excitation& torque, const Excita
                     std::abs(functions[k].per_force) * *force_curvature) *
                    (1.0 + 1e-9);  // round-off of the bound itself
   auto value = [&](int k, double t) { return functions[k](torque(t), force(t)); };
-  auto slope = [&](int k, double t) {
-    return functions[k](torque.derivative(t), force.derivative(t));
-  };
   // Illinois on [low, high] with f(low) >= 0 > f(high): the first time at
   // which f is negative, to round-off.
   auto locate = [&](int k, double low, double high) {
@@ -144,14 +141,20 @@ std::optional<double> first_load_crossing(const Excitation& torque, const Excita
 
   double t = t0;
   std::size_t next_knot = 0;
+  // The loads and their slopes at t, shared by the functions.
+  double torque_now = torque(t), force_now = force(t);
   for (long step = 0; step < kMaxScanSteps; ++step) {
     while (knots[next_knot] <= t && next_knot + 1 < knots.size()) ++next_knot;
     const double segment_end = knots[next_knot];
     if (t >= t_end) return kInfinity;
     // The largest step over which every lower bound stays positive.
+    const double torque_slope = torque.derivative(t), force_slope = force.derivative(t);
     double h = segment_end - t;
+    double now[2];
     for (int k = 0; k < count; ++k) {
-      const double f = value(k, t), d = slope(k, t), c = curvature[k];
+      const double f = functions[k](torque_now, force_now);
+      const double d = functions[k](torque_slope, force_slope), c = curvature[k];
+      now[k] = f;
       double safe;
       if (f <= 0.0) {
         safe = 0.0;
@@ -165,13 +168,16 @@ std::optional<double> first_load_crossing(const Excitation& torque, const Excita
     }
     double t_next = t + std::max(h, floor_step);
     if (t_next >= segment_end) t_next = segment_end;
+    const double torque_next = torque(t_next), force_next = force(t_next);
     double crossing = kInfinity;
     for (int k = 0; k < count; ++k) {
-      if (value(k, t_next) >= 0.0) continue;
-      crossing = std::min(crossing, value(k, t) < 0.0 ? t : locate(k, t, t_next));
+      if (functions[k](torque_next, force_next) >= 0.0) continue;
+      crossing = std::min(crossing, now[k] < 0.0 ? t : locate(k, t, t_next));
     }
     if (crossing < kInfinity) return crossing;
     t = t_next;
+    torque_now = torque_next;
+    force_now = force_next;
   }
   throw SimulationError(t, "the scan for the first zero of a load-driven root function did not end",
                         "the loads may cancel exactly in the thread forces; use other loads");

@@ -390,27 +390,6 @@ ModeSolution DriveDynamics::solve_acceleration_law(const ModeSpec& spec) {
   // The kink of |N| splits the interval (the bound holds on each side).
   const double kink = B != 0.0 ? std::atan(-A / B) : half_pi;
   const double floor_step = 1e-12 * half_pi;
-  auto locate = [&](double low, double high) {
-    double f_low = H(low), f_high = H(high);
-    int side = 0;
-    for (int iteration = 0; iteration < 200 && high - low > 1e-16; ++iteration) {
-      double u = (low * f_high - high * f_low) / (f_high - f_low);
-      if (!(u > low && u < high)) u = 0.5 * (low + high);
-      const double f = H(u);
-      if ((f > 0.0) == (f_low > 0.0)) {
-        low = u;
-        f_low = f;
-        if (side == -1) f_high *= 0.5;
-        side = -1;
-      } else {
-        high = u;
-        f_high = f;
-        if (side == 1) f_low *= 0.5;
-        side = 1;
-      }
-    }
-    return 0.5 * (low + high);
-  };
   // Roots of H in increasing u. Several make the drive jam (the caller
   // raises), so which one is returned then does not matter: the first.
   double chosen = 0.0;
@@ -429,7 +408,12 @@ ModeSolution DriveDynamics::solve_acceleration_law(const ModeSpec& spec) {
     const bool root_at_next = next_value == 0.0;
     const bool crossing = value != 0.0 && next_value != 0.0 && (next_value > 0.0) != (value > 0.0);
     if (root_at_next || crossing) {
-      if (count++ == 0) chosen = root_at_next ? next : locate(u, next);
+      // (-H if H falls there: first_negative wants f(low) >= 0)
+      const double direction = value > 0.0 ? 1.0 : -1.0;
+      if (count++ == 0)
+        chosen = root_at_next ? next
+                              : first_negative([&](double x) { return direction * H(x); }, u,
+                                               next, 1e-16);
     }
     u = next;
     value = next_value;

@@ -115,30 +115,6 @@ std::optional<double> first_load_crossing(const Excitation& torque, const Excita
                     std::abs(functions[k].per_force) * *force_curvature) *
                    (1.0 + 1e-9);  // round-off of the bound itself
   auto value = [&](int k, double t) { return functions[k](torque(t), force(t)); };
-  // Illinois on [low, high] with f(low) >= 0 > f(high): the first time at
-  // which f is negative, to round-off.
-  auto locate = [&](int k, double low, double high) {
-    double f_low = value(k, low), f_high = value(k, high);
-    int side = 0;
-    for (int iteration = 0; iteration < 200 && high - low > 4.0 * std::numeric_limits<double>::epsilon() * std::abs(high); ++iteration) {
-      double t = (low * f_high - high * f_low) / (f_high - f_low);
-      if (!(t > low && t < high)) t = 0.5 * (low + high);
-      const double f = value(k, t);
-      if (f >= 0.0) {
-        low = t;
-        f_low = f;
-        if (side == -1) f_high *= 0.5;
-        side = -1;
-      } else {
-        high = t;
-        f_high = f;
-        if (side == 1) f_low *= 0.5;
-        side = 1;
-      }
-    }
-    return high;
-  };
-
   double t = t0;
   std::size_t next_knot = 0;
   // The loads and their slopes at t, shared by the functions.
@@ -172,7 +148,10 @@ std::optional<double> first_load_crossing(const Excitation& torque, const Excita
     double crossing = kInfinity;
     for (int k = 0; k < count; ++k) {
       if (functions[k](torque_next, force_next) >= 0.0) continue;
-      crossing = std::min(crossing, now[k] < 0.0 ? t : locate(k, t, t_next));
+      const double located = now[k] < 0.0 ? t : first_negative(
+          [&](double time) { return value(k, time); }, t, t_next,
+          4.0 * std::numeric_limits<double>::epsilon() * std::abs(t_next));
+      crossing = std::min(crossing, located);
     }
     if (crossing < kInfinity) return crossing;
     t = t_next;

@@ -49,6 +49,32 @@ struct ModeSolution {
   int consistent_solutions = 1;
 };
 
+// Illinois (regula falsi halving the stale end) on [low, high], where
+// f(low) >= 0 > f(high): narrows the bracket to `width` or 200 iterations and
+// returns its upper end, the first point known to be negative.
+template <class Function>
+double first_negative(Function f, double low, double high, double width) {
+  double f_low = f(low), f_high = f(high);
+  int side = 0;
+  for (int iteration = 0; iteration < 200 && high - low > width; ++iteration) {
+    double x = (low * f_high - high * f_low) / (f_high - f_low);
+    if (!(x > low && x < high)) x = 0.5 * (low + high);
+    const double fx = f(x);
+    if (fx >= 0.0) {
+      low = x;
+      f_low = fx;
+      if (side == -1) f_high *= 0.5;
+      side = -1;
+    } else {
+      high = x;
+      f_high = fx;
+      if (side == 1) f_low *= 0.5;
+      side = 1;
+    }
+  }
+  return high;
+}
+
 // The flank LCP (friction::solve_flank_lcp) of the drive, solved at unit scale.
 // The problem is homogeneous in (c, beta): scaling both by k scales the
 // friction force, the normal force and the slip acceleration by k and leaves

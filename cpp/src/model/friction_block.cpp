@@ -1,6 +1,8 @@
 #include "leadscrew/model/friction_block.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -194,15 +196,27 @@ class CoulombBlock final : public integrate::HybridSystem {
 
 // ---------------------------------------------------------------------------
 // Regularized friction (eq. 3.15 / 3.16): one smooth mode, no roots.
+//
+// The right-hand side is evaluated ~6 times per step, and its cost is that of
+// the step: the law is kept to one sine and one arctan per distinct argument.
+// Evaluations repeat their arguments: Dormand-Prince's last two stages share
+// the time t_n + h, and the output at a step end takes the state of its last
+// stage; a one-entry memo of F(t) and of lambda_T(v) (or a(F)) returns those
+// without recomputation (bitwise-equal arguments give the same value).
 class RegularizedBlock final : public integrate::HybridSystem {
  public:
   RegularizedBlock(const FrictionBlock& block, FrictionLaw law, double k_v)
-      : block_(block), law_(law), k_v_(k_v), kinetic0_(initial_kinetic(block)) {}
+      : block_(block),
+        law_(law),
+        k_v_(k_v),
+        kinetic0_(initial_kinetic(block)),
+        inverse_mass_(1.0 / block.mass),
+        friction_scale_(2.0 / 3.14159265358979323846 * block.mu * block.normal_force()) {}
 
   int size() const override { return kStateSize; }
 
   void rhs(double t, const double* y, double* ydot) override {
-    const double force = block_.force(t);
+    const double force = force_at(t);
     double acceleration = 0.0, friction = 0.0;
     evaluate(t, force, y[kVelocity], acceleration, friction);
     ydot[kPosition] = y[kVelocity];
@@ -219,7 +233,7 @@ class RegularizedBlock final : public integrate::HybridSystem {
   }
 
   void channels(double t, const double* y, double* out) override {
-    const double force = block_.force(t);
+    const double force = force_at(t);
     double acceleration = 0.0, friction = 0.0;
     evaluate(t, force, y[kVelocity], acceleration, friction);
     // "stick" of a regularized law: inside the regularization band |k_V x| <= 1.
@@ -232,64 +246,132 @@ class RegularizedBlock final : public integrate::HybridSystem {
   long nonlinear_iterations() const override { return nonlinear_iterations_; }
 
  private:
+  double force_at(double t) {
+    if (t != force_time_) {  // always true for the initial NaN
+      force_value_ = block_.force(t);
+      force_time_ = t;
+    }
+    return force_value_;
+  }
+
   void evaluate(double t, double force, double velocity, double& acceleration,
                 double& friction) {
-    const double normal = block_.normal_force();
     if (law_ == FrictionLaw::arctan_velocity) {
-      friction = arctan_friction(block_.mu, normal, k_v_, velocity);
-      acceleration = (force - friction) / block_.mass;
+      // Eq. (3.16): lambda_T = (2/pi) mu N atan(k_V v).
+      if (velocity != friction_velocity_) {
+        friction_value_ = friction_scale_ * std::atan(k_v_ * velocity);
+        friction_velocity_ = velocity;
+      }
+      friction = friction_value_;
+      acceleration = (force - friction) * inverse_mass_;
       return;
     }
-    acceleration = solve_acceleration(t, force);
+    if (force != root_force_) solve_acceleration(t, force);
+    acceleration = root_acceleration_;
     friction = force - block_.mass * acceleration;
   }
 
-  // Eq. (3.15): m a + (2/pi) mu N atan(k_V a) - F = 0. The left side rises
-  // strictly in a, and a lies in [(F - mu N)/m, (F + mu N)/m]: safeguarded
-  // Newton inside that bracket converges for every F.
-  double solve_acceleration(double t, double force) {
+  // Eq. (3.15): r(a) = m a + c atan(k_V a) - F = 0 with c = (2/pi) mu N.
+  // r' = m + c k_V / (1 + (k_V a)^2) >= m > 0, so the root is unique, and it
+  // lies in [(F - mu N)/m, (F + mu N)/m] since |c atan| < mu N. With
+  // x = k_V a and q = 1 / (1 + x^2): r'' = -2 c k_V^2 x q^2 and
+  // r''' = -2 c k_V^3 (1 - 3 x^2) q^3.
+  //
+  // Predictor: the Taylor polynomial of degree 3 of the inverse function
+  // a(F) at the previous root (a0, F0): with u = (F - F0) / r',
+  //   a = a0 + u - r'' u^2 / (2 r') + (3 r''^2 - r' r''') u^3 / (6 r'^2),
+  // the derivatives taken at the last iterate (as good for a predictor): no
+  // arctan, no division. Corrector: Chebyshev's method (Newton's step d plus
+  // -r'' d^2 / (2 r'), third order), with the bracket kept and Newton, then
+  // bisection, whenever the step leaves it or does not halve (rtsafe). It
+  // stops once Newton's own error bound is below half an ulp of a, and then
+  // returns Newton's iterate a + d: its error is r''(xi) e^2 / (2 r'(a)) with
+  // e = root - a ~ d, and |r''(x)| <= min(2 c k_V^3 |x|, (3 sqrt 3 / 8) c k_V^2);
+  // bounding |xi| by |a| + |d| and e^2 by 2 d^2 makes the bound safe. The
+  // divisions do not wait for the arctan. Usually 2 arctan evaluations per
+  // solve (Newton from the last root with a "step below an ulp" test took
+  // ~4), the residual at rounding level.
+  void solve_acceleration(double t, double force) {
     const double mass = block_.mass;
+    const double c = friction_scale_;
+    const double k = k_v_;
+    const double ck = c * k;
     const double bound = block_.mu * block_.normal_force();
-    double low = (force - bound) / mass, high = (force + bound) / mass;
-    auto residual = [&](double a) {
-      return mass * a + arctan_friction(block_.mu, block_.normal_force(), k_v_, a) - force;
-    };
-    // Start from the previous evaluation's root (successive evaluations are
-    // close in time), kept inside the bracket that always holds the root.
-    double a = std::min(std::max(last_acceleration_, low), high);
-    const double scale = std::max({std::abs(low), std::abs(high), 1e-300});
-    // Newton on this S-shaped residual can cycle slowly inside the bracket:
-    // as in rtsafe, bisect whenever a Newton step is not at least twice as
-    // short as the one before.
+    double low = (force - bound) * inverse_mass_, high = (force + bound) * inverse_mass_;
+    double a = 0.0;
+    {
+      const double s = root_inverse_slope_;  // 1 / r'
+      const double u = (force - root_force_) * s;
+      const double c2 = 0.5 * root_curvature_ * s;
+      const double c3 = (3.0 * root_curvature_ * root_curvature_ * s - root_jerk_) * s / 6.0;
+      a = root_acceleration_ + u * (1.0 + u * (-c2 + u * c3));
+    }
+    if (!(a > low && a < high)) a = 0.5 * (low + high);
+    const double peak_curvature = 0.6495190528383290 * ck * k;  // max |r''|
+    const double bracket_tolerance =
+        4e-16 * std::max({std::abs(low), std::abs(high), 1e-300});
     double previous_step = high - low;
     for (int iteration = 0; iteration < 200; ++iteration) {
       ++nonlinear_iterations_;
-      const double r = residual(a);
-      if (r == 0.0) return last_acceleration_ = a;
+      const double x = k * a;
+      const double d = 1.0 + x * x;
+      const double inverse_slope = d / (mass * d + ck);  // 1 / r'(a)
+      const double q = 1.0 / d;
+      const double r = mass * a + c * std::atan(x) - force;
+      // r'' and r''' here, for the corrector and the next predictor.
+      const double curvature_here = -2.0 * ck * k * x * q * q;
+      root_inverse_slope_ = inverse_slope;
+      root_curvature_ = curvature_here;
+      root_jerk_ = -2.0 * ck * k * k * (1.0 - 3.0 * x * x) * q * q * q;
+      if (r == 0.0) return accept(force, a);
       if (r > 0.0)
         high = a;
       else
         low = a;
-      const double slope =
-          mass + 2.0 / 3.14159265358979323846 * bound * k_v_ / (1.0 + k_v_ * k_v_ * a * a);
-      double next = a - r / slope;
-      if (!(next > low && next < high) || 2.0 * std::abs(next - a) > previous_step)
-        next = 0.5 * (low + high);
-      previous_step = std::abs(next - a);
-      if (std::abs(next - a) <= 4e-16 * scale || high - low <= 4e-16 * scale)
-        return last_acceleration_ = next;
-      a = next;
+      const double step = -r * inverse_slope;  // Newton
+      const double newton = a + step;
+      if (!(newton > low && newton < high) || 2.0 * std::abs(step) > previous_step) {
+        const double middle = 0.5 * (low + high);  // bisection
+        previous_step = std::abs(middle - a);
+        if (high - low <= bracket_tolerance) return accept(force, middle);
+        a = middle;
+        continue;
+      }
+      previous_step = std::abs(step);
+      const double reach = std::abs(a) + std::abs(step);
+      const double curvature = std::min(2.0 * ck * k * k * reach, peak_curvature);
+      const double error_bound = curvature * step * step * inverse_slope;
+      if (error_bound <= 0.5 * eps_ * std::abs(newton) || std::abs(step) <= bracket_tolerance)
+        return accept(force, newton);
+      const double chebyshev = newton - 0.5 * curvature_here * step * step * inverse_slope;
+      a = (chebyshev > low && chebyshev < high) ? chebyshev : newton;
     }
     throw SimulationError(t, "the acceleration of eq. (3.15) did not converge in 200 iterations",
                           "lower k_v");
   }
 
+  void accept(double force, double acceleration) {
+    root_force_ = force;
+    root_acceleration_ = acceleration;
+  }
+
+  static constexpr double eps_ = 2.220446049250313e-16;
+  static constexpr double nan_ = std::numeric_limits<double>::quiet_NaN();
+
   const FrictionBlock& block_;
   FrictionLaw law_;
   double k_v_;
   double kinetic0_;
+  double inverse_mass_;
+  double friction_scale_;  // (2/pi) mu N
   long nonlinear_iterations_ = 0;
-  double last_acceleration_ = 0.0;
+  // Memos (see the class comment). (F, a) = (0, 0) is an exact root of
+  // eq. (3.15): the first predictor starts from it.
+  double force_time_ = nan_, force_value_ = 0.0;
+  double friction_velocity_ = nan_, friction_value_ = 0.0;
+  double root_force_ = 0.0, root_acceleration_ = 0.0;
+  double root_inverse_slope_ = 1.0 / (block_.mass + friction_scale_ * k_v_);
+  double root_curvature_ = 0.0, root_jerk_ = 0.0;  // r'' and r''' at the last iterate
 };
 
 // ---------------------------------------------------------------------------

@@ -76,7 +76,9 @@ void check_tableau(const ButcherTableau& tableau);
 
 class ExplicitRungeKutta final : public Integrator {
  public:
-  // Throws InvalidArgument for max_order != 0 (a fixed-order method).
+  // Throws InvalidArgument for max_order != 0 (a fixed-order method). The
+  // tableau is kept by reference (the methods' tableaux are static): it
+  // must outlive the integrator.
   ExplicitRungeKutta(const ButcherTableau& tableau, const IntegratorOptions& options);
 
   std::string name() const override { return tableau_.name; }
@@ -111,7 +113,7 @@ class ExplicitRungeKutta final : public Integrator {
   [[noreturn]] void fail(const std::string& flag, const std::string& meaning,
                          const std::string& hint) const;
 
-  const ButcherTableau tableau_;
+  const ButcherTableau& tableau_;
   const IntegratorOptions options_;
   OdeSystem* system_ = nullptr;
   int n_ = 0;
@@ -130,11 +132,16 @@ class ExplicitRungeKutta final : public Integrator {
   float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
 
-  // y_start_, k_ (stages), y_new_ and f_end_ = f(t_n+1, y_n+1) describe the
-  // last accepted step (dense output); f_current_ = f(t_, y_) is the next
-  // step's first stage.
-  std::vector<double> y_, y_start_, y_new_, y_stage_, y_trial_, k_, k_trial_, f_end_, f_current_;
-  std::vector<double> g_start_, g_end_, g_lo_, g_hi_, g_trial_, weights_;
+  // One allocation (initialize) holds every array below; the pointers are
+  // swapped, never the data. y_start_, k_ (stages), y_new_ and
+  // f_end_ = f(t_n+1, y_n+1) describe the last accepted step (dense
+  // output); f_current_ = f(t_, y_) is the next step's first stage.
+  std::vector<double> workspace_;
+  double *y_ = nullptr, *y_start_ = nullptr, *y_new_ = nullptr, *y_stage_ = nullptr,
+         *y_trial_ = nullptr, *k_ = nullptr, *k_trial_ = nullptr, *f_end_ = nullptr,
+         *f_current_ = nullptr;
+  double *g_start_ = nullptr, *g_end_ = nullptr, *g_lo_ = nullptr, *g_hi_ = nullptr,
+         *g_trial_ = nullptr, *weights_ = nullptr;
   std::vector<int> root_info_;
   IntegratorStats stats_;
 };

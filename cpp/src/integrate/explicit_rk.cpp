@@ -21,6 +21,14 @@ constexpr float pi_beta = 0.04f;
 constexpr int rejection_limit = 100;  // consecutive error-test failures
 constexpr int nonfinite_limit = 64;   // non-finite stage values since the last (re)start
 constexpr int root_iterations = 60;
+// The first step after a (re)start samples the dense output here for sign
+// changes of root functions that started on their surface (hidden_crossing);
+// 1/16 catches an excursion off the surface of a sixteenth of the step.
+constexpr double hidden_samples[] = {0.0625, 0.25, 0.5, 0.75};
+constexpr int hidden_retry_limit = 8;
+// |g| at the start below this fraction of |g| at the step end: the start
+// value is at the level of the function's round-off, its sign unreliable.
+constexpr double surface_fraction = 1e-6;
 
 bool all_finite(const double* v, int n) {
   for (int i = 0; i < n; ++i)
@@ -144,6 +152,7 @@ void ExplicitRungeKutta::start(double t0, const Eigen::Ref<const Eigen::VectorXd
   t_ = t0;
   first_stage_valid_ = false;
   step_available_ = false;
+  probe_step_ = true;
   log_error_old_ = std::log(1e-4f);
   nonfinite_count_ = 0;
   std::fill(root_info_.begin(), root_info_.end(), 0);
@@ -350,6 +359,7 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
   const int q = std::min(tableau_.order, tableau_.embedded_order);
   const float exponent = 1.0f / (q + 1);
   int rejections = 0;  // consecutive
+  int hidden_retries = 0;
   // Bounded: every pass either accepts a step (at most max_steps in total) or
   // rejects one (at most rejection_limit in a row, nonfinite_limit in all).
   for (;;) {
@@ -408,7 +418,27 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       continue;
     }
 
-    // Accepted.
+    // Accepted, unless a root function that started on its switching surface
+    // crossed it and came back inside the step (see hidden_crossing).
+    std::copy_n(y_, n_, y_start_);
+    t_step_ = t_;
+    h_step_ = h;
+    step_available_ = true;
+    const double t_new = to_end ? t_out : t_ + h;
+    if (m_ > 0) {
+      roots_at(t_new, y_new_, g_end_);
+      if (probe_step_ && hidden_retries < hidden_retry_limit) {
+        const double theta = hidden_crossing();
+        if (theta > 0.0) {
+          // Retry up to the sample: its end then shows the sign change.
+          ++hidden_retries;
+          h_ = theta * h;
+          step_available_ = false;
+          continue;
+        }
+      }
+      probe_step_ = false;
+    }
     ++stats_.steps;
     if (!fixed) {
       // PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.
@@ -423,15 +453,9 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       if (to_end) h_ = std::max(h_, wanted);
     }
     rejections = 0;
-    std::copy_n(y_, n_, y_start_);
-    t_step_ = t_;
-    h_step_ = h;
-    step_available_ = true;
-    const double t_new = to_end ? t_out : t_ + h;
     t_end_ = t_new;
 
     if (m_ > 0) {
-      roots_at(t_new, y_new_, g_end_);
       bool any = false;
       for (int i = 0; i < m_ && !any; ++i) any = crosses(g_start_[i], g_end_[i]);
       if (any) {
@@ -449,6 +473,40 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       return {t_, AdvanceStatus::reached};
     }
   }
+}
+
+double ExplicitRungeKutta::hidden_crossing() {
+  // A root function whose value at the start of the step is 0 (inactive) or
+  // at the level of its round-off (|g| tiny against its value at the step
+  // end) has no reliable sign there. After an event that is typical: a gap
+  // that closed to rounding error on either side, a normal force that just
+  // fell to zero; RootGuard (event_driven.cpp) maps exact zeros to +-1e-200.
+  // Such a function can leave its surface and come back within one step (a
+  // nut that lifts off a flank and hits it again), and with the same sign at
+  // both ends of the step the crossing back is missed: the nut passes through
+  // the flank. Small first steps hide this (CVODE, ARKODE), the step size
+  // kept across restarts does not. So the first step after a (re)start looks
+  // inside for the sign opposite to the one at its end; found at theta, the
+  // step is retried up to theta, whose end then shows the sign change (a
+  // function that started at exactly 0 then starts the next step with the
+  // sign it took, as activate_zero_roots would have given it).
+  auto on_surface = [&](int i) {
+    const double g0 = g_start_[i], g1 = g_end_[i];
+    if (g1 == 0.0) return false;
+    if (g0 == 0.0) return true;
+    return (g0 > 0.0) == (g1 > 0.0) && std::fabs(g0) <= surface_fraction * std::fabs(g1);
+  };
+  bool any = false;
+  for (int i = 0; i < m_ && !any; ++i) any = on_surface(i);
+  if (!any) return 0.0;
+  for (const double theta : hidden_samples) {
+    interpolate(theta, y_trial_);
+    roots_at(t_step_ + theta * h_step_, y_trial_, g_trial_);
+    for (int i = 0; i < m_; ++i)
+      if (on_surface(i) && g_trial_[i] != 0.0 && (g_trial_[i] > 0.0) != (g_end_[i] > 0.0))
+        return theta;
+  }
+  return 0.0;
 }
 
 void ExplicitRungeKutta::locate_root() {
@@ -596,6 +654,7 @@ void ExplicitRungeKutta::locate_root() {
   // A function that landed exactly on 0 at the root must not stay inactive
   // if the integration continues without a restart.
   activate_zero_roots();
+  probe_step_ = true;
 }
 
 }  // namespace leadscrew::integrate

@@ -107,6 +107,10 @@ class ExplicitRungeKutta final : public Integrator {
   void interpolate(double theta, double* y_out);
   void roots_at(double t, const double* y, double* g);
   void activate_zero_roots();
+  // In the first step after a (re)start: the fraction theta of the step at
+  // which a root function that started on its surface has left it to the
+  // side opposite to its sign at the step end (crossed twice), 0 if none.
+  double hidden_crossing();
   // After an accepted step with a sign change of some root function between
   // g_start_ and g_end_: locates the earliest root; y_ and t_ move there.
   void locate_root();
@@ -129,6 +133,7 @@ class ExplicitRungeKutta final : public Integrator {
   double t_end_ = 0.0;      // its end (t_out exactly when it landed there)
   bool first_stage_valid_ = false;  // f_current_ = f(t_, y_)
   bool step_available_ = false;     // a step for dense_output exists
+  bool probe_step_ = false;         // the next step is the first after a (re)start
   float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
 

@@ -287,7 +287,9 @@ class RegularizedBlock final : public integrate::HybridSystem {
   // stops once Newton's own error bound is below half an ulp of a, and then
   // returns Newton's iterate a + d: its error is r''(xi) e^2 / (2 r'(a)) with
   // e = root - a ~ d, and |r''(x)| <= min(2 c k_V^3 |x|, (3 sqrt 3 / 8) c k_V^2);
-  // bounding |xi| by |a| + |d| and e^2 by 2 d^2 makes the bound safe. The
+  // bounding |xi| by |a| + |d| and e^2 by 2 d^2 makes the bound safe (the
+  // ulp is that of a, or the root's condition eps (|m a| + |c atan| + |F|) / r'
+  // when that is larger). The
   // divisions do not wait for the arctan. Usually 2 arctan evaluations per
   // solve (Newton from the last root with a "step below an ulp" test took
   // ~4), the residual at rounding level.
@@ -317,7 +319,8 @@ class RegularizedBlock final : public integrate::HybridSystem {
       const double d = 1.0 + x * x;
       const double inverse_slope = d / (mass * d + ck);  // 1 / r'(a)
       const double q = 1.0 / d;
-      const double r = mass * a + c * std::atan(x) - force;
+      const double friction = c * std::atan(x);
+      const double r = mass * a + friction - force;
       // r'' and r''' here, for the corrector and the next predictor.
       const double curvature_here = -2.0 * ck * k * x * q * q;
       root_inverse_slope_ = inverse_slope;
@@ -341,7 +344,15 @@ class RegularizedBlock final : public integrate::HybridSystem {
       const double reach = std::abs(a) + std::abs(step);
       const double curvature = std::min(2.0 * ck * k * k * reach, peak_curvature);
       const double error_bound = curvature * step * step * inverse_slope;
-      if (error_bound <= 0.5 * eps_ * std::abs(newton) || std::abs(step) <= bracket_tolerance)
+      // Rounding: r carries eps times its terms, a + d that over r'. Below
+      // that floor (taken at a + d, where c atan = F - m a) nothing is
+      // certain; and the terms at a must be those at the root, or a step
+      // from far (a tiny root after a large a) inherits their rounding.
+      const double terms_here = std::abs(mass * a) + std::abs(friction) + std::abs(force);
+      const double terms_root =
+          std::abs(mass * newton) + std::abs(force) + std::abs(force - mass * newton);
+      const double floor = std::max(std::abs(newton), terms_root * inverse_slope);
+      if (error_bound <= 0.5 * eps_ * floor && terms_here <= 2.0 * terms_root)
         return accept(force, newton);
       const double chebyshev = newton - 0.5 * curvature_here * step * step * inverse_slope;
       a = (chebyshev > low && chebyshev < high) ? chebyshev : newton;

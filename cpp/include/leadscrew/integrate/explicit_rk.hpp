@@ -14,8 +14,12 @@
 // exactly 0 at a (re)start takes the sign it has just after it along the
 // solution, so a restart on the switching surface does not report that root
 // again but sees the next crossing; if it is 0 there too it stays inactive
-// for the step. The root is found in two
-// stages:
+// for the step. A function that starts the step after a (re)start at 0 or
+// at its round-off level (after an event its sign there is noise) may leave
+// its surface and cross back within that step, which the step ends do not
+// show: that first step samples its dense output for the opposite sign and,
+// if found, is retried up to the sample (hidden_crossing). The root is
+// found in two stages:
 //   1. on the dense output (no right-hand-side calls): Illinois iteration for
 //      every bracketed function; the earliest root is the initial guess;
 //   2. on the exact continuation phi(tau) = g(t_n + tau, Phi_tau(y_n)), where

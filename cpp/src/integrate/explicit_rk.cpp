@@ -230,9 +230,10 @@ double ExplicitRungeKutta::initial_step() {
 }
 
 namespace {
-// out = base + h sum_j coefficients_j k_j over `count` stages (base null: 0),
-// zero coefficients skipped (Dormand-Prince: a_72 = b_2 = 0). N > 0 is the
-// state size fixed at compile time: the sums stay in registers.
+// out = base + h sum_j coefficients_j k_j over `count` stages (base null: 0);
+// zero coefficients are not skipped, so that 0 * inf = NaN still flags a
+// non-finite stage. N > 0 is the state size fixed at compile time: the sums
+// stay in registers.
 template <int N>
 void combine(int n_runtime, const double* base, double h, const double* coefficients, int count,
              const double* k, double* out) {
@@ -242,7 +243,6 @@ void combine(int n_runtime, const double* base, double h, const double* coeffici
     double sum[capacity];
     for (int r = 0; r < N; ++r) sum[r] = base ? base[r] : 0.0;
     for (int j = 0; j < count; ++j) {
-      if (coefficients[j] == 0.0) continue;
       const double w = h * coefficients[j];
       for (int r = 0; r < N; ++r) sum[r] += w * k[j * N + r];
     }
@@ -250,7 +250,6 @@ void combine(int n_runtime, const double* base, double h, const double* coeffici
   } else {
     for (int r = 0; r < n; ++r) out[r] = base ? base[r] : 0.0;
     for (int j = 0; j < count; ++j) {
-      if (coefficients[j] == 0.0) continue;
       const double w = h * coefficients[j];
       const double* kj = k + j * n;
       for (int r = 0; r < n; ++r) out[r] += w * kj[r];

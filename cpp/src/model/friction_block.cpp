@@ -24,8 +24,9 @@ const std::vector<std::string>& block_channel_names() {
   return names;
 }
 
-// Writes the channels from the state and the current friction force and acceleration.
-void write_channels(const FrictionBlock& block, double kinetic0, double t, const double* y,
+// Writes the channels from the state, the load F(t) (evaluated by the caller,
+// who has it) and the current friction force and acceleration.
+void write_channels(const FrictionBlock& block, double kinetic0, double force, const double* y,
                     double acceleration, double friction_force, bool stick, double* out) {
   const double kinetic = 0.5 * block.mass * y[kVelocity] * y[kVelocity];
   out[0] = y[kPosition];
@@ -33,13 +34,33 @@ void write_channels(const FrictionBlock& block, double kinetic0, double t, const
   out[2] = acceleration;
   out[3] = friction_force;
   out[4] = block.normal_force();
-  out[5] = block.force(t);
+  out[5] = force;
   out[6] = stick ? 1.0 : 0.0;
   out[7] = y[kWorkForce];
   out[8] = y[kFrictionLoss];
   out[9] = kinetic;
   out[10] = y[kWorkForce] - y[kFrictionLoss] - (kinetic - kinetic0);
 }
+
+// The load F(t) with a one-entry memo. Evaluations repeat their time: the
+// last two stages of Dormand-Prince share t_n + h, the root functions and the
+// output are evaluated at the step end, where the last stage was.
+class LoadAtTime {
+ public:
+  explicit LoadAtTime(const Excitation& load) : load_(load) {}
+  double operator()(double t) {
+    if (t != time_) {  // always true for the initial NaN
+      value_ = load_(t);
+      time_ = t;
+    }
+    return value_;
+  }
+
+ private:
+  const Excitation& load_;
+  double time_ = std::numeric_limits<double>::quiet_NaN();
+  double value_ = 0.0;
+};
 
 double initial_kinetic(const FrictionBlock& block) {
   return 0.5 * block.mass * block.initial_velocity * block.initial_velocity;
@@ -50,13 +71,13 @@ double initial_kinetic(const FrictionBlock& block) {
 class CoulombBlock final : public integrate::HybridSystem {
  public:
   explicit CoulombBlock(const FrictionBlock& block)
-      : block_(block), kinetic0_(initial_kinetic(block)) {}
+      : block_(block), force_(block.force), kinetic0_(initial_kinetic(block)) {}
 
   int size() const override { return kStateSize; }
   int root_count() const override { return 2; }
 
   void rhs(double t, const double* y, double* ydot) override {
-    const double force = block_.force(t);
+    const double force = force_(t);
     const double friction = friction_force(force);
     const double acceleration = mode_ == Mode::stick ? 0.0 : (force - friction) / block_.mass;
     ydot[kPosition] = y[kVelocity];
@@ -68,7 +89,7 @@ class CoulombBlock final : public integrate::HybridSystem {
   void roots(double t, const double* y, double* g) override {
     if (mode_ == Mode::stick) {
       // Stick ends when the force needed to stick reaches the friction bound.
-      const double force = block_.force(t);
+      const double force = force_(t);
       g[0] = force - friction_bound();
       g[1] = force + friction_bound();
     } else {
@@ -128,10 +149,11 @@ class CoulombBlock final : public integrate::HybridSystem {
   }
 
   void channels(double t, const double* y, double* out) override {
-    const double force = block_.force(t);
+    const double force = force_(t);
     const double friction = friction_force(force);
     const double acceleration = mode_ == Mode::stick ? 0.0 : (force - friction) / block_.mass;
-    write_channels(block_, kinetic0_, t, y, acceleration, friction, mode_ == Mode::stick, out);
+    write_channels(block_, kinetic0_, force, y, acceleration, friction, mode_ == Mode::stick,
+                   out);
   }
 
   std::vector<double> breakpoints() const override { return block_.force.breakpoints(); }
@@ -171,7 +193,7 @@ class CoulombBlock final : public integrate::HybridSystem {
   // between stick and slip in either direction. `tie` is the mode taken when
   // the LCP sits exactly on the cone boundary and admits stick as well.
   Mode mode_from_lcp(double t, Mode tie) {
-    const double force = block_.force(t);
+    const double force = force_(t);
     // gamma' = F/m + lambda/m with the friction force lambda along +u,
     // normal force m g given (alpha = 0).
     const friction::FlankLcpResult solution =
@@ -187,6 +209,7 @@ class CoulombBlock final : public integrate::HybridSystem {
   }
 
   const FrictionBlock& block_;
+  LoadAtTime force_;
   double kinetic0_;
   Mode mode_ = Mode::stick;
   long lcp_solves_ = 0;
@@ -209,6 +232,7 @@ class RegularizedBlock final : public integrate::HybridSystem {
       : block_(block),
         law_(law),
         k_v_(k_v),
+        force_at_(block.force),
         kinetic0_(initial_kinetic(block)),
         inverse_mass_(1.0 / block.mass),
         friction_scale_(2.0 / 3.14159265358979323846 * block.mu * block.normal_force()) {}
@@ -216,7 +240,7 @@ class RegularizedBlock final : public integrate::HybridSystem {
   int size() const override { return kStateSize; }
 
   void rhs(double t, const double* y, double* ydot) override {
-    const double force = force_at(t);
+    const double force = force_at_(t);
     double acceleration = 0.0, friction = 0.0;
     evaluate(t, force, y[kVelocity], acceleration, friction);
     ydot[kPosition] = y[kVelocity];
@@ -233,12 +257,12 @@ class RegularizedBlock final : public integrate::HybridSystem {
   }
 
   void channels(double t, const double* y, double* out) override {
-    const double force = force_at(t);
+    const double force = force_at_(t);
     double acceleration = 0.0, friction = 0.0;
     evaluate(t, force, y[kVelocity], acceleration, friction);
     // "stick" of a regularized law: inside the regularization band |k_V x| <= 1.
     const double regularized = law_ == FrictionLaw::arctan_velocity ? y[kVelocity] : acceleration;
-    write_channels(block_, kinetic0_, t, y, acceleration, friction,
+    write_channels(block_, kinetic0_, force, y, acceleration, friction,
                    std::abs(k_v_ * regularized) <= 1.0, out);
   }
 
@@ -246,14 +270,6 @@ class RegularizedBlock final : public integrate::HybridSystem {
   long nonlinear_iterations() const override { return nonlinear_iterations_; }
 
  private:
-  double force_at(double t) {
-    if (t != force_time_) {  // always true for the initial NaN
-      force_value_ = block_.force(t);
-      force_time_ = t;
-    }
-    return force_value_;
-  }
-
   void evaluate(double t, double force, double velocity, double& acceleration,
                 double& friction) {
     if (law_ == FrictionLaw::arctan_velocity) {
@@ -390,13 +406,13 @@ class RegularizedBlock final : public integrate::HybridSystem {
   const FrictionBlock& block_;
   FrictionLaw law_;
   double k_v_;
+  LoadAtTime force_at_;
   double kinetic0_;
   double inverse_mass_;
   double friction_scale_;  // (2/pi) mu N
   long nonlinear_iterations_ = 0;
   // Memos (see the class comment). (F, a) = (0, 0) is an exact root of
   // eq. (3.15): the first predictor starts from it.
-  double force_time_ = nan_, force_value_ = 0.0;
   double friction_velocity_ = nan_, friction_value_ = 0.0;
   double root_force_ = 0.0, root_acceleration_ = 0.0;
   double root_inverse_slope_ = 1.0 / (block_.mass + friction_scale_ * k_v_);
@@ -443,8 +459,8 @@ class MoreauBlock final : public integrate::TimeSteppingSystem {
   }
 
   void channels(double t, const double* y, double* out) override {
-    write_channels(block_, kinetic0_, t, y, last_acceleration_, last_friction_force_, last_stick_,
-                   out);
+    write_channels(block_, kinetic0_, block_.force(t), y, last_acceleration_, last_friction_force_,
+                   last_stick_, out);
   }
 
   long lcp_solves() const override { return lcp_solves_; }

@@ -28,6 +28,29 @@ bool nearly_equal(double a, double b) {
   return std::abs(a - b) <= kTieRelTol * std::max(1.0, std::max(std::abs(a), std::abs(b)));
 }
 
+// The first index of the smallest of v[0], ..., v[n - 1], that value and the
+// second smallest (+inf for n = 1). nearly_equal grows with the distance
+// (|x - a| rises at rate 1, its bound at rate kTieRelTol), so when the
+// second smallest is not nearly equal to the smallest, no other value is.
+struct Smallest {
+  int index;
+  double value, second;
+};
+
+template <int N>
+Smallest smallest_two(const double* v, int n) {
+  Smallest s{0, v[0], std::numeric_limits<double>::infinity()};
+  for (int i = 1; i < detail::size_of<N>(n); ++i) {
+    s.second = std::min(s.second, std::max(v[i], s.value));
+    if (v[i] < s.value) s.index = i, s.value = v[i];
+  }
+  return s;
+}
+
+bool tied(const Smallest& s) {
+  return s.second < std::numeric_limits<double>::infinity() && nearly_equal(s.second, s.value);
+}
+
 // Memory of the condensed tableau and its bookkeeping. N > 0: a problem of
 // exactly N unknowns in Eigen matrices of fixed size (on the stack: the
 // compiler unrolls and vectorizes every loop, no workspace traffic); N = 0:
@@ -173,17 +196,11 @@ class Tableau {
     // that cannot pivot), then the smallest and the second smallest.
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
     ratio = (t_column > pivot_floor).select(rhs_column / t_column, kInfinity);
-    int best = 0;
-    double best_ratio = ratio[0], second_ratio = kInfinity;
-    for (int i = 1; i < n; ++i) {
-      const double ri = ratio[i];
-      second_ratio = std::min(second_ratio, std::max(ri, best_ratio));
-      if (ri < best_ratio) best = i, best_ratio = ri;
-    }
+    const Smallest smallest = smallest_two<N>(ratio.data(), n);
+    const double best_ratio = smallest.value;
     if (!(best_ratio < kInfinity)) return -1;
-    // No tie (the usual case): the tie relation grows with the distance, so
-    // the second smallest ratio decides (+inf: no second candidate).
-    if (!(second_ratio < kInfinity) || !nearly_equal(second_ratio, best_ratio)) return best;
+    // No tie (the usual case): no lexicographic comparison.
+    if (!tied(smallest)) return smallest.index;
     int artificial_row = -1;
     for (int i = 0; i < n; ++i)
       if (ratio[i] < kInfinity && nearly_equal(ratio[i], best_ratio) &&
@@ -272,9 +289,14 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
   // z0 enters at the lexicographic minimum of (q_i, e_i) / d_i, which makes
   // every row of [rhs, B^-1] lexicographically positive (ties in q: the
   // largest index, whose unit row e_i is the smallest).
-  int r = 0;
-  for (int i = 1; i < n; ++i)
-    if (q[i] < q[r] || nearly_equal(q[i], q[r])) r = i;
+  // Without a tie at the minimum that rule ends on the (unique) minimum.
+  const Smallest smallest = smallest_two<N>(q.data(), n);
+  int r = smallest.index;
+  if (tied(smallest)) {
+    r = 0;
+    for (int i = 1; i < n; ++i)
+      if (q[i] < q[r] || nearly_equal(q[i], q[r])) r = i;
+  }
   tableau.start(M, q, r);
   int leaving = r;  // w_r
   int pivots = 1;

@@ -54,13 +54,19 @@ bool tied(const Smallest& s) {
 // Memory of the condensed tableau and its bookkeeping. N > 0: a problem of
 // exactly N unknowns in Eigen matrices of fixed size (on the stack: the
 // compiler unrolls and vectorizes every loop, no workspace traffic); N = 0:
-// any size, mapped onto the Workspace.
+// any size, mapped onto the Workspace. Besides the tableau: the pending
+// pivots ("etas", see Tableau::bring_current), at most max_etas of them.
 template <int N>
 struct TableauMemory {
+  static constexpr int kEtas = N + 2;
   Eigen::Matrix<double, N, N + 2> t;
-  Eigen::Matrix<double, N, 1> factor, ratio, value, residual;
+  Eigen::Matrix<double, N, 1> ratio, value, residual;
+  Eigen::Matrix<double, N, kEtas> eta_factor;
+  double eta_inverse[kEtas];
+  int eta_row[kEtas], version[N + 2];
   int basic[N], nonbasic[N + 1], location[2 * N + 1];
   TableauMemory(Workspace& /*unused*/, int /*n*/) {}
+  static constexpr int max_etas() { return kEtas; }
 };
 
 template <>
@@ -68,17 +74,26 @@ struct TableauMemory<0> {
   using Matrix = Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
   using Vector = Eigen::Map<Eigen::VectorXd>;
   Matrix t;
-  Vector factor, ratio, value, residual;
+  Vector ratio, value, residual;
+  Matrix eta_factor;
+  double* eta_inverse;
+  int *eta_row, *version;
   int *basic, *nonbasic, *location;
+  int max_etas_;
   TableauMemory(Workspace& ws, int n)
       : t(ws.tableau.data(), n, n + 2, Eigen::OuterStride<>(ws.tableau.outerStride())),
-        factor(ws.vectors.col(0).data(), n),
         ratio(ws.vectors.col(3).data(), n),
         value(ws.vectors.col(1).data(), n),
         residual(ws.vectors.col(2).data(), n),
+        eta_factor(ws.square.data(), n, n, Eigen::OuterStride<>(ws.square.outerStride())),
+        eta_inverse(ws.vectors.col(4).data()),
+        eta_row(ws.indices.data() + 4 * n + 2),
+        version(ws.indices.data() + 5 * n + 2),
         basic(ws.indices.data()),
         nonbasic(ws.indices.data() + n),
-        location(ws.indices.data() + 2 * n + 1) {}
+        location(ws.indices.data() + 2 * n + 1),
+        max_etas_(n) {}
+  int max_etas() const { return max_etas_; }
 };
 
 // The condensed tableau: the basic variables x_B (one per row) satisfy
@@ -90,6 +105,17 @@ struct TableauMemory<0> {
 //
 // Variables: w_j = j, z_j = n + j, z0 = 2n. location[v] >= 0 is the row of a
 // basic v, location[v] < 0 encodes the column -location[v] - 1 of a nonbasic v.
+//
+// The columns are updated lazily: a pivot stores its eta (row r, 1 / pivot,
+// the pivot column with row r zeroed) and rewrites only its own column; a
+// column receives the etas it has missed, in order, when it is read
+// (bring_current): the entering column and the rhs at each ratio test, the
+// columns of B^-1 for a lexicographic tie-break or a refinement. The
+// arithmetic per column is that of an eager update at every pivot, so the
+// numbers are the same to the bit, but a column that never enters is never
+// updated (the last pivot, which ends the method, updates only the rhs).
+// When max_etas are pending, every column is brought up to date and the
+// etas are dropped (bounded memory on Murty's 2^n pivots).
 // One implementation for every size; N as in TableauMemory.
 template <int N>
 class Tableau {
@@ -102,7 +128,7 @@ class Tableau {
   double at(int i, int k) const { return m_.t(i, k); }
   double* column(int k) { return m_.t.col(k).data(); }
   const double* column(int k) const { return m_.t.col(k).data(); }
-  double rhs(int i) const { return at(i, n() + 1); }
+  double rhs(int i) const { return at(i, n() + 1); }  // after bring_current(n() + 1)
   int column_of(int v) const { return -m_.location[v] - 1; }
   double* value() { return m_.value.data(); }
   double* residual() { return m_.residual.data(); }
@@ -136,6 +162,28 @@ class Tableau {
     m_.location[artificial()] = r;
     m_.nonbasic[n] = r;
     m_.location[r] = -(n + 1);
+    for (int c = 0; c < n + 2; ++c) m_.version[c] = 0;
+    etas_ = 0;
+  }
+
+  // Apply to column c the etas it has not received, in order: row r is
+  // divided by the pivot, every other row i loses factor_i times it (the
+  // factor's row r is 0, so row r is set afterwards).
+  void bring_current(int c) {
+    auto column = m_.t.col(c);
+    for (int e = m_.version[c]; e < etas_; ++e) {
+      const int r = m_.eta_row[e];
+      const double trc = column[r] * m_.eta_inverse[e];
+      column -= m_.eta_factor.col(e) * trc;
+      column[r] = trc;
+    }
+    m_.version[c] = etas_;
+  }
+
+  // The columns of B^-1 (those of the nonbasic w_j) up to date.
+  void bring_inverse_current() {
+    for (int j = 0; j < n(); ++j)
+      if (m_.location[j] < 0) bring_current(-m_.location[j] - 1);
   }
 
   // Entry (i, j) of B^-1: the full tableau's column of w_j.
@@ -144,22 +192,27 @@ class Tableau {
     return where >= 0 ? (where == i ? 1.0 : 0.0) : at(i, -where - 1);
   }
 
-  // Exchange the basic variable of row r with the nonbasic one of column k;
-  // returns the variable that left the basis. Row r is divided by the pivot,
-  // then every other row i loses T(i, k) times it: one rank-1 update of the
-  // whole tableau (fixed size: unrolled and vectorized), with T(r, k) taken
-  // out of the factor so that row r, the update's right-hand side, stays as
-  // it is. Column k, now the leaving variable's, is then written anew.
+  // Exchange the basic variable of row r with the nonbasic one of column k
+  // (current: the ratio test brought it up to date); returns the variable
+  // that left the basis. Stores the eta and writes column k anew for the
+  // leaving variable: -T(i, k) / pivot, and 1 / pivot in row r.
   int pivot(int r, int k) {
+    if (etas_ == m_.max_etas()) {  // full: every column up to date, drop the etas
+      for (int c = 0; c < n() + 2; ++c) bring_current(c);
+      for (int c = 0; c < n() + 2; ++c) m_.version[c] = 0;
+      etas_ = 0;
+    }
     auto& t = m_.t;
-    auto& factor = m_.factor;
+    auto factor = m_.eta_factor.col(etas_);
     const double inverse_pivot = 1.0 / t(r, k);
     factor = t.col(k);
     factor[r] = 0.0;
-    t.row(r) *= inverse_pivot;
-    t.noalias() -= factor * t.row(r);
+    m_.eta_inverse[etas_] = inverse_pivot;
+    m_.eta_row[etas_] = r;
+    ++etas_;
     t.col(k) = -inverse_pivot * factor;
     t(r, k) = inverse_pivot;
+    m_.version[k] = etas_;
     const int entering = m_.nonbasic[k], leaving = m_.basic[r];
     m_.basic[r] = entering;
     m_.location[entering] = r;
@@ -188,6 +241,8 @@ class Tableau {
   // tied at the minimum ratio (that ends the method with a solution).
   int ratio_test(int c) {
     const int n = this->n();
+    bring_current(c);
+    bring_current(n + 1);
     const auto t_column = m_.t.col(c).array();
     const auto rhs_column = m_.t.col(n + 1).array();
     auto ratio = m_.ratio.array();
@@ -201,6 +256,7 @@ class Tableau {
     if (!(best_ratio < kInfinity)) return -1;
     // No tie (the usual case): no lexicographic comparison.
     if (!tied(smallest)) return smallest.index;
+    bring_inverse_current();
     int artificial_row = -1;
     for (int i = 0; i < n; ++i)
       if (ratio[i] < kInfinity && nearly_equal(ratio[i], best_ratio) &&
@@ -229,7 +285,7 @@ class Tableau {
 
   // One step of iterative refinement of the basic values against the
   // original data: residual = q - B x_B with B's columns e_j (w_j), -M_.j
-  // (z_j), -d (z0); then x_B += B^-1 residual.
+  // (z_j), -d (z0); then x_B += B^-1 residual. Needs bring_inverse_current().
   void refine(const Eigen::Ref<const Eigen::MatrixXd>& M,
               const Eigen::Ref<const Eigen::VectorXd>& q, double* value,
               double* residual) const {
@@ -260,6 +316,7 @@ class Tableau {
 
  private:
   int n_;
+  int etas_ = 0;  // pending etas
   TableauMemory<N> m_;
 };
 
@@ -319,12 +376,14 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
   }
 
   double* value = tableau.value();
+  tableau.bring_current(n + 1);
   for (int i = 0; i < n; ++i) value[i] = tableau.rhs(i);
   tableau.extract(value, z);
   Result result = detail::verify<N>(M, q, z, w, status, pivots, options.tol);
   // A complementary basis whose rounded values miss tol: refine them twice
   // against the original data and verify again.
   if (status == Status::solved && result.status != Status::solved) {
+    tableau.bring_inverse_current();
     for (int sweep = 0; sweep < 2; ++sweep) tableau.refine(M, q, value, tableau.residual());
     tableau.extract(value, z);
     result = detail::verify<N>(M, q, z, w, status, pivots, options.tol);

@@ -119,17 +119,12 @@ void validate_finite(const Eigen::Ref<const Eigen::MatrixXd>& M,
                      const Eigen::Ref<Eigen::VectorXd>& z, const Options& options,
                      Method method) {
   const Eigen::Index n = q.size();
-  // One pass of independent comparisons (|x| <= DBL_MAX is false exactly for
-  // NaN and +-inf), which vectorizes; only if one fails are the entries
-  // searched for the one to name.
-  constexpr double kLargest = std::numeric_limits<double>::max();
-  bool finite = true;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const double* column = M.data() + M.outerStride() * j;
-    for (Eigen::Index i = 0; i < n; ++i) finite &= std::abs(column[i]) <= kLargest;
-  }
-  for (Eigen::Index i = 0; i < n; ++i) finite &= std::abs(q[i]) <= kLargest;
-  if (!finite) {
+  // x * 0 is NaN exactly for x = NaN or +-inf, and 0 otherwise: the sum is
+  // NaN iff an entry is not finite. Eigen's sum runs in vector registers with
+  // several partial sums (no chain of n^2 dependent additions). Only if it is
+  // NaN are the entries searched for the one to name.
+  const double poison = (M.array() * 0.0).sum() + (q.array() * 0.0).sum();
+  if (poison != poison) {
     for (Eigen::Index j = 0; j < n; ++j)
       for (Eigen::Index i = 0; i < n; ++i)
         if (!std::isfinite(M(i, j)))

@@ -23,6 +23,13 @@ namespace {
 using MatrixRef = Eigen::Ref<const Eigen::MatrixXd>;
 using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
 
+// (z, w, status, iterations, residual), what leadscrew.lcp builds its LcpResult from.
+py::tuple result_tuple(const Eigen::VectorXd& z, const Eigen::VectorXd& w,
+                       const lcp::Result& result) {
+  return py::make_tuple(z, w, lcp::status_name(result.status), result.iterations,
+                        result.residual);
+}
+
 py::tuple solve_lcp(const MatrixRef& M, const VectorRef& q, const std::string& method,
                     double tol, int max_iter, const std::optional<Eigen::VectorXd>& z0,
                     double relaxation) {
@@ -40,8 +47,7 @@ py::tuple solve_lcp(const MatrixRef& M, const VectorRef& q, const std::string& m
     py::gil_scoped_release release;
     result = lcp::solve(M, q, z, w, options, workspace);
   }
-  return py::make_tuple(z, w, lcp::status_name(result.status), result.iterations,
-                        result.residual);
+  return result_tuple(z, w, result);
 }
 
 py::tuple solve_lemke_generic(const MatrixRef& M, const VectorRef& q, double tol, int max_iter) {
@@ -55,8 +61,7 @@ py::tuple solve_lemke_generic(const MatrixRef& M, const VectorRef& q, double tol
     py::gil_scoped_release release;
     result = lcp::solve_lemke_generic(M, q, z, w, options, workspace);
   }
-  return py::make_tuple(z, w, lcp::status_name(result.status), result.iterations,
-                        result.residual);
+  return result_tuple(z, w, result);
 }
 
 py::tuple single_friction_lcp(double delassus, double free_acceleration, double mu,

@@ -95,7 +95,8 @@ Result enumerate(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorR
 
 Result solve_enumerate(const Eigen::Ref<const Eigen::MatrixXd>& M,
                        const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
-                       Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace) {
+                       Eigen::Ref<Eigen::VectorXd> w, const Options& options,
+                       Workspace& workspace) {
   detail::validate(M, q, z, w, options, Method::enumerate);
   return detail::enumerate(M, q, z, w, options, workspace);
 }

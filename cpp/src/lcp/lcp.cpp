@@ -58,7 +58,8 @@ Result run(const detail::MatrixCRef& M, const detail::VectorCRef& q, detail::Vec
     case Method::newton_fb: return detail::newton_fb(M, q, z, w, options, workspace);
     case Method::enumerate: return detail::enumerate(M, q, z, w, options, workspace);
   }
-  throw InvalidArgument("options.method is invalid: must be one of lemke, pgs, newton_fb, enumerate");
+  throw InvalidArgument(
+      "options.method is invalid: must be one of lemke, pgs, newton_fb, enumerate");
 }
 }  // namespace
 

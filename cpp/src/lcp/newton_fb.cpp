@@ -145,7 +145,8 @@ Result newton_fb(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorR
 
 Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
                        const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
-                       Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace) {
+                       Eigen::Ref<Eigen::VectorXd> w, const Options& options,
+                       Workspace& workspace) {
   detail::validate(M, q, z, w, options, Method::newton_fb);
   return detail::newton_fb(M, q, z, w, options, workspace);
 }

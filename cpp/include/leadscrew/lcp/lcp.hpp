@@ -68,7 +68,7 @@ Result solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
 // verification forms M z + q over every column, so any non-finite entry
 // makes the residual infinite; the status is then one of the others
 // (singular, ray_termination, max_iterations or no_solution) and
-// Result::residual is +infinity or the method's last finite residual.
+// Result::residual is +infinity.
 Result solve_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
                        const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
                        Eigen::Ref<Eigen::VectorXd> w, const Options& options,

@@ -15,7 +15,11 @@
 //
 // With q >= 0 the method stops before its first pivot: z = 0 (verified).
 // For n <= kMaxFixedLemkeSize the same code runs on a tableau of fixed size on
-// the stack (dispatch on n once; loops unrolled), larger n on the workspace.
+// the stack (dispatch on n once; loops unrolled; the workspace is used only
+// by the final polish), larger n on the workspace. Columns are updated
+// lazily, when read (same numbers as updating every column at every pivot).
+// The ratio test runs the lexicographic comparison only when the two
+// smallest ratios tie.
 //
 // Finds a solution for every P-matrix and for every feasible LCP with a
 // copositive-plus M (e.g. positive semidefinite); ray_termination on such an M
@@ -36,9 +40,9 @@ Result solve_lemke(const Eigen::Ref<const Eigen::MatrixXd>& M,
 
 // Without the scan of M and q for NaN and inf (see solve_unchecked in lcp.hpp).
 Result solve_lemke_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
-                             const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
-                             Eigen::Ref<Eigen::VectorXd> w, const Options& options,
-                             Workspace& workspace);
+                             const Eigen::Ref<const Eigen::VectorXd>& q,
+                             Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
+                             const Options& options, Workspace& workspace);
 
 // solve_lemke_unchecked on the size-generic code path (runtime n, workspace
 // memory) for every n, also n <= kMaxFixedLemkeSize: the reference that the

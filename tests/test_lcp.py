@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import leadscrew.lcp as lcp
+from leadscrew import _core
 from helpers import lcp_problems, lcp_reference
 
 METHODS = lcp.METHODS
@@ -178,6 +179,29 @@ def test_random_problems(family, n, family_seeds):
                         )
 
 
+@pytest.mark.parametrize("family", sorted(lcp_problems.FAMILIES))
+@pytest.mark.parametrize("n", range(1, _core.lcp.MAX_FIXED_LEMKE_SIZE + 1))
+def test_fixed_size_lemke_matches_generic_path(family, n, family_seeds):
+    """For n <= 8 lemke runs on a fixed-size tableau: the same pivots and the
+    same bits as the size-generic code path, and enumerate's answer where the
+    solution is unique."""
+    for seed in range(6):
+        M, q = make_problem(family, n, 10 + seed, family_seeds)
+        fixed = lcp.solve(M, q, method="lemke")
+        z, w, status, iterations, residual = _core.lcp.solve_lemke_generic(
+            np.asfortranarray(M), q, TOL, 0
+        )
+        assert (fixed.status, fixed.iterations) == (status, iterations), (family, n, seed)
+        assert fixed.z.tobytes() == np.asarray(z).tobytes()
+        assert fixed.w.tobytes() == np.asarray(w).tobytes()
+        assert fixed.residual == residual
+        assert fixed.status == "solved"
+        check_claim(fixed, M, q)
+        if family in lcp_problems.P_MATRIX_FAMILIES:
+            reference = lcp.solve(M, q, method="enumerate")
+            np.testing.assert_allclose(fixed.z, reference.z, rtol=1e-8, atol=1e-9)
+
+
 @pytest.mark.parametrize("n", range(1, 9))
 def test_enumerate_against_brute_force(n, family_seeds):
     """The C++ enumerate finds one of the basic solutions that an independent
@@ -307,3 +331,6 @@ def test_residual_function():
     assert lcp.complementarity_residual([-1.0, 0.0], [0.0, 2.0]) == 2.0  # |min| + negativity
     with pytest.raises(ValueError, match="^w"):
         lcp.complementarity_residual([1.0], [1.0, 2.0])
+    # A non-finite pair is no solution (min and max alone would drop a NaN).
+    assert lcp.complementarity_residual([math.nan, 0.0], [0.0, 2.0]) == math.inf
+    assert lcp.complementarity_residual([0.0, 1.0], [math.inf, 0.0]) == math.inf

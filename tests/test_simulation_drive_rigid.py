@@ -90,9 +90,8 @@ def test_benchmark_settings_meet_the_closed_form(drive, t_eval):
     bound = 2e-8 if t_eval is None else 1e-9
     assert np.max(np.abs(result["u_load"] - u_ref)) <= bound * np.max(np.abs(u_ref))
     stuck = result["stick"] == 1.0
-    # the stick mode's acceleration is exactly zero; the projection onto zero
-    # slip at its start leaves round-off
-    assert np.max(np.abs(result["omega_drive"][stuck])) <= 1e-20
+    # the stick mode's acceleration is exactly zero, and so is its speed
+    assert np.all(result["omega_drive"][stuck] == 0.0)
 
 
 @pytest.mark.parametrize("drive, hand", [(d, h) for d in ("screw", "nut") for h in ("right", "left")])
@@ -100,16 +99,21 @@ def test_flank_changes_and_reversals_against_the_closed_form(drive, hand):
     beta = math.radians(30)
     loads = reference.Harmonic(0.004, 0.03, 4 * math.pi, 0.3), \
         reference.Harmonic(-3.0, 8.0, 6 * math.pi, 1.1)
-    # To 0.9 s: at 0.95 s the loads leave the friction cone for 13 ms while
-    # the drive sticks, shorter than the event-driven scheme's step bound in
-    # stick (1/16 of the shortest load period = 21 ms): both paths miss that
-    # excursion (a known limit of the scheme, not of this path).
-    t_end = 0.9
+    # Through 2 s: near 0.95 s and 1.95 s the right-hand drive's loads leave
+    # the friction cone for 13 ms while it sticks, shorter than the step
+    # bound (1/16 of the shortest load period, 21 ms); the stick-cone margin
+    # is a function of the loads alone there, and its zeros are located
+    # exactly (first_load_crossing), not sampled at the steps.
+    t_end = 2.0
     ref = reference.simulate(reference.thesis_drive(drive, hand=hand, flank_angle=beta), *loads,
                              t_end)
     result = ls.simulate(ls.Scene.from_dict(rigid_scene(drive, hand, beta, loads=MIXED_LOADS)),
                          t_end, rtol=1e-12, atol=1e-14)
     assert {e.kind for e in ref.events} == {"flank change", "slip->stick", "stick->slip", "reversal"}
+    starts = [e.time for e in ref.events if e.kind == "stick->slip"]
+    stops = [e.time for e in ref.events if e.kind == "slip->stick"]
+    short = [a for a in starts if any(a < b < a + 0.021 for b in stops)]
+    assert len(short) == (2 if hand == "right" else 0)
     assert len(result.events) == len(ref.events)
     for ours, theirs in zip(result.events, ref.events):
         assert abs(ours.time - theirs.time) <= 1e-9

@@ -1,6 +1,10 @@
 // Times one LCP solve of every leadscrew method (one Workspace, reused: no
 // allocation) and, when built with Siconos, of Siconos numerics'
 // lcp_lexicolemke on the same problems; checks that the answers agree.
+// The methods are timed through lcp::solve_unchecked (no scan of M and q for
+// NaN and inf: the entry point of the integrators; Siconos does not scan
+// either). Lemke is also timed through the checked lcp::solve ("checked") and
+// on its size-generic code path ("generic", lcp::solve_lemke_generic).
 //
 // Problem families, sizes n = 2, 4, 8, 16, kInstances seeded instances each:
 //   spd       M = A A^T / n + 0.1 I (A standard normal), q standard normal
@@ -9,7 +13,8 @@
 //             lambda_N ~ U(1, 5)  (unique solution, A = [[G, I], [-I, 0]])
 // Per instance the time of one solve is the median over kBatches batches of
 // repeated solves; the tables give the median over the instances and, for
-// Siconos, the median over instances of the ratio t_siconos / t_lemke.
+// Siconos, the medians over instances of the ratios t_siconos / t_lemke and
+// t_siconos / t_checked.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -22,6 +27,7 @@
 #include "leadscrew/friction/coulomb_lcp.hpp"
 #include "leadscrew/lcp/enumerate.hpp"
 #include "leadscrew/lcp/lcp.hpp"
+#include "leadscrew/lcp/lemke.hpp"
 #include "leadscrew/lcp/workspace.hpp"
 #include "random_problems.hpp"  // tests/cpp
 
@@ -108,10 +114,10 @@ int main() {
 
   std::printf("Median time of one solve [us] over %d instances per row (each the median of "
               "%d batches)\n", kInstances, kBatches);
-  std::printf("%-9s %3s | %10s %10s %10s %10s", "family", "n", "lemke", "pgs", "newton_fb",
-              "enumerate");
+  std::printf("%-9s %3s | %8s %8s %8s | %9s %9s %9s", "family", "n", "lemke", "checked",
+              "generic", "pgs", "newton_fb", "enumerate");
 #ifdef LEADSCREW_BENCH_WITH_SICONOS
-  std::printf(" | %10s %13s %7s", "siconos", "siconos/lemke", "pivots");
+  std::printf(" | %8s %13s %15s %6s", "siconos", "siconos/lemke", "siconos/checked", "pivots");
 #endif
   std::printf(" | solved (l/p/n/e%s)\n",
 #ifdef LEADSCREW_BENCH_WITH_SICONOS
@@ -124,7 +130,8 @@ int main() {
   for (const char* family : families) {
     for (const int n : sizes) {
       std::mt19937 rng(1000u * static_cast<unsigned>(n) + (family[0] == 's' ? 1u : 2u));
-      std::vector<double> times[4], siconos_times, ratios, lemke_pivots;
+      std::vector<double> times[4], checked_times, generic_times, siconos_times, ratios,
+          checked_ratios, lemke_pivots;
       int solved[4] = {0, 0, 0, 0}, siconos_solved = 0;
       for (int instance = 0; instance < kInstances; ++instance) {
         const Problem p = family[0] == 's' ? spd_problem(rng, n) : friction_problem(rng, n);
@@ -133,7 +140,8 @@ int main() {
           if (methods[m] == lcp::Method::enumerate && n > lcp::kMaxEnumerateSize) continue;
           lcp::Options options;
           options.method = methods[m];
-          const lcp::Result result = lcp::solve(p.M, p.q, z, w, options, workspace);
+          const lcp::Result result = lcp::solve_unchecked(p.M, p.q, z, w, options, workspace);
+          const Eigen::VectorXd z_first = z;
           if (result.status == lcp::Status::solved) {
             ++solved[m];
             if (m == 0) {
@@ -146,7 +154,28 @@ int main() {
             }
           }
           times[m].push_back(time_per_call([&] {
+            sink = sink + lcp::solve_unchecked(p.M, p.q, z, w, options, workspace).residual;
+          }));
+          if (m != 0) continue;
+          // Lemke through the checked entry point and on the generic code path:
+          // the same answer, bit for bit.
+          Eigen::VectorXd z_other(n), w_other(n);
+          for (const bool checked : {true, false}) {
+            const lcp::Result other =
+                checked ? lcp::solve(p.M, p.q, z_other, w_other, options, workspace)
+                        : lcp::solve_lemke_generic(p.M, p.q, z_other, w_other, options, workspace);
+            if (other.status != result.status || other.iterations != result.iterations ||
+                z_other != z_first) {
+              ++disagreements;
+              std::printf("DISAGREE %s n=%d instance %d: lemke %s vs lemke\n", family, n,
+                          instance, checked ? "checked" : "generic");
+            }
+          }
+          checked_times.push_back(time_per_call([&] {
             sink = sink + lcp::solve(p.M, p.q, z, w, options, workspace).residual;
+          }));
+          generic_times.push_back(time_per_call([&] {
+            sink = sink + lcp::solve_lemke_generic(p.M, p.q, z, w, options, workspace).residual;
           }));
         }
 #ifdef LEADSCREW_BENCH_WITH_SICONOS
@@ -165,18 +194,20 @@ int main() {
           sink = sink + siconos.solve(zs, ws);
         }));
         ratios.push_back(siconos_times.back() / times[0].back());
+        checked_ratios.push_back(siconos_times.back() / checked_times.back());
 #endif
       }
-      std::printf("%-9s %3d |", family, n);
-      for (int m = 0; m < 4; ++m) {
+      std::printf("%-9s %3d | %8.3f %8.3f %8.3f |", family, n, 1e6 * median(times[0]),
+                  1e6 * median(checked_times), 1e6 * median(generic_times));
+      for (int m = 1; m < 4; ++m) {
         if (times[m].empty())
-          std::printf(" %10s", "n/a");
+          std::printf(" %9s", "n/a");
         else
-          std::printf(" %10.3f", 1e6 * median(times[m]));
+          std::printf(" %9.3f", 1e6 * median(times[m]));
       }
 #ifdef LEADSCREW_BENCH_WITH_SICONOS
-      std::printf(" | %10.3f %13.2f %7.1f", 1e6 * median(siconos_times), median(ratios),
-                  median(lemke_pivots));
+      std::printf(" | %8.3f %13.2f %15.2f %6.1f", 1e6 * median(siconos_times), median(ratios),
+                  median(checked_ratios), median(lemke_pivots));
 #endif
       std::printf(" | %d/%d/%d/%d", solved[0], solved[1], solved[2], solved[3]);
 #ifdef LEADSCREW_BENCH_WITH_SICONOS

@@ -11,6 +11,7 @@
 #include "leadscrew/friction/coulomb_lcp.hpp"
 #include "leadscrew/lcp/enumerate.hpp"
 #include "leadscrew/lcp/lcp.hpp"
+#include "leadscrew/lcp/lemke.hpp"
 #include "leadscrew/lcp/workspace.hpp"
 
 namespace py = pybind11;
@@ -21,6 +22,13 @@ namespace {
 
 using MatrixRef = Eigen::Ref<const Eigen::MatrixXd>;
 using VectorRef = Eigen::Ref<const Eigen::VectorXd>;
+
+// (z, w, status, iterations, residual), what leadscrew.lcp builds its LcpResult from.
+py::tuple result_tuple(const Eigen::VectorXd& z, const Eigen::VectorXd& w,
+                       const lcp::Result& result) {
+  return py::make_tuple(z, w, lcp::status_name(result.status), result.iterations,
+                        result.residual);
+}
 
 py::tuple solve_lcp(const MatrixRef& M, const VectorRef& q, const std::string& method,
                     double tol, int max_iter, const std::optional<Eigen::VectorXd>& z0,
@@ -39,8 +47,21 @@ py::tuple solve_lcp(const MatrixRef& M, const VectorRef& q, const std::string& m
     py::gil_scoped_release release;
     result = lcp::solve(M, q, z, w, options, workspace);
   }
-  return py::make_tuple(z, w, lcp::status_name(result.status), result.iterations,
-                        result.residual);
+  return result_tuple(z, w, result);
+}
+
+py::tuple solve_lemke_generic(const MatrixRef& M, const VectorRef& q, double tol, int max_iter) {
+  lcp::Options options;
+  options.tol = tol;
+  options.max_iter = max_iter;
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(q.size()), w = Eigen::VectorXd::Zero(q.size());
+  lcp::Workspace workspace(static_cast<int>(q.size()));
+  lcp::Result result;
+  {
+    py::gil_scoped_release release;
+    result = lcp::solve_lemke_generic(M, q, z, w, options, workspace);
+  }
+  return result_tuple(z, w, result);
 }
 
 py::tuple single_friction_lcp(double delassus, double free_acceleration, double mu,
@@ -98,6 +119,11 @@ void bind_lcp(py::module_& m) {
           py::arg("max_iter"), py::arg("z0"), py::arg("relaxation"),
           "Solve the LCP (M, q); returns (z, w, status, iterations, residual). "
           "max_iter 0 is the method's default; z0 None starts cold.");
+  lcp.def("solve_lemke_generic", &solve_lemke_generic, py::arg("M"), py::arg("q"),
+          py::arg("tol"), py::arg("max_iter"),
+          "Lemke on its size-generic code path, also for n <= 8 (where solve runs the "
+          "fixed-size one), without the NaN/inf scan; for tests. Returns (z, w, status, "
+          "iterations, residual).");
   lcp.def("complementarity_residual", &lcp::complementarity_residual, py::arg("z"),
           py::arg("w"), "max_i |min(z_i, w_i)| + max(0, -min z) + max(0, -min w)");
   lcp.def(
@@ -124,6 +150,7 @@ void bind_lcp(py::module_& m) {
   lcp.def("contact_state", &contact_state, py::arg("z"), py::arg("w"), py::arg("mu"),
           "(lambda_N, lambda_T, g_N'', g_T'') from a solution of contact_lcp.");
   lcp.attr("MAX_ENUMERATE_SIZE") = lcp::kMaxEnumerateSize;
+  lcp.attr("MAX_FIXED_LEMKE_SIZE") = lcp::kMaxFixedLemkeSize;
 }
 
 }  // namespace leadscrew::bindings

@@ -179,7 +179,8 @@ def complementarity_residual(z, w) -> float:
         w: (n,) vector, same size.
 
     Returns:
-        The residual; 0 exactly at a solution.
+        The residual; 0 exactly at a solution; +inf if an entry of z or w is
+        NaN or inf (no solution).
 
     Raises:
         ValueError: z or w not 1-D or of different sizes.

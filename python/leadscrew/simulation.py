@@ -34,26 +34,75 @@ class Result:
 
     ``result[name]`` gives a channel as a numpy array; ``result.channels``
     lists the names; :meth:`to_frame` gives a pandas DataFrame.
+
+    Every attribute is converted from the core's result on first use and
+    kept: a caller that reads ``t`` and one channel pays for those alone
+    (a short simulation costs a few microseconds, the conversions would
+    double it). A pickled Result carries the converted values.
     """
 
+    __slots__ = ("_core", "_t", "_channels", "_data", "_events", "_stats", "_names")
+
     def __init__(self, core_result):
-        self.t = core_result.time
-        self.channels = list(core_result.channel_names)
-        self._index = {name: i for i, name in enumerate(self.channels)}
-        self._data = core_result.channels
-        self.events = [Event(time, kind) for time, kind in core_result.events]
-        self.stats = core_result.stats
-        self.integrator = core_result.integrator
-        self.friction = core_result.friction
+        self._core = core_result
+        self._t = self._channels = self._data = self._events = self._stats = self._names = None
+
+    def __reduce__(self):
+        state = (self.t, self.channels, self._matrix(), self.events, self.stats,
+                 self.integrator, self.friction)
+        return (_restore_result, state)
+
+    @property
+    def t(self) -> np.ndarray:
+        if self._t is None:
+            self._t = self._core.time
+        return self._t
+
+    @property
+    def channels(self) -> list:
+        if self._channels is None:
+            self._channels = self._core.channel_names
+        return self._channels
+
+    @property
+    def events(self) -> list:
+        if self._events is None:
+            self._events = [Event(time, kind) for time, kind in self._core.events]
+        return self._events
+
+    @property
+    def stats(self) -> dict:
+        if self._stats is None:
+            self._stats = self._core.stats
+        return self._stats
+
+    def _what_ran(self) -> tuple:
+        if self._names is None:
+            self._names = (self._core.integrator, self._core.friction)
+        return self._names
+
+    @property
+    def integrator(self) -> str:
+        return self._what_ran()[0]
+
+    @property
+    def friction(self) -> str:
+        return self._what_ran()[1]
+
+    def _matrix(self) -> np.ndarray:
+        if self._data is None:
+            self._data = self._core.channels
+        return self._data
 
     def __getitem__(self, name: str) -> np.ndarray:
         try:
-            return self._data[self._index[name]]
-        except KeyError:
+            index = self.channels.index(name)
+        except ValueError:
             raise KeyError(f"no channel {name!r}; channels are {self.channels}") from None
+        return self._matrix()[index]
 
     def __contains__(self, name: str) -> bool:
-        return name in self._index
+        return name in self.channels
 
     def keys(self):
         return list(self.channels)
@@ -62,13 +111,20 @@ class Result:
         """The time series as a pandas DataFrame with a column ``t``."""
         import pandas as pd
 
-        frame = pd.DataFrame(self._data.T, columns=self.channels)
+        frame = pd.DataFrame(self._matrix().T, columns=self.channels)
         frame.insert(0, "t", self.t)
         return frame
 
     def __repr__(self) -> str:
         return (f"<Result {self.friction}/{self.integrator}: {len(self.t)} points, "
                 f"{len(self.events)} events, {self.stats['wall_time'] * 1e6:.0f} us>")
+
+
+def _restore_result(t, channels, data, events, stats, integrator, friction) -> Result:
+    result = Result(None)
+    result._t, result._channels, result._data = t, channels, data
+    result._events, result._stats, result._names = events, stats, (integrator, friction)
+    return result
 
 
 def simulate(
@@ -128,6 +184,17 @@ def simulate(
         SimulationError: the integrator or the LCP failed (time and reason).
     """
     t_eval_list = [] if t_eval is None else np.asarray(t_eval, dtype=float).ravel().tolist()
+    if isinstance(model, _core.FrictionBlock):
+        friction = "coulomb" if friction is None else friction
+        if integrator is None:  # the core lists the fitting integrators, default first
+            integrator = _core.block_integrators(friction)[0]
+        # The core validates the names (listing the allowed ones) and values.
+        return Result(_core.simulate_block(
+            model, float(t_end), friction, integrator, float(k_v), float(rtol), float(atol),
+            1e-3 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
+            int(max_events), 0.0 if max_step is None else float(max_step),
+            0.0 if first_step is None else float(first_step),
+            0 if max_order is None else int(max_order)))
     if isinstance(model, Scene):
         if friction is not None and friction != model["friction"]["law"]:
             raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
@@ -142,17 +209,4 @@ def simulate(
             0.0 if first_step is None else float(first_step), float(bounce_threshold),
             0 if max_order is None else int(max_order))
         return Result(core_result)
-    if not isinstance(model, _core.FrictionBlock):
-        raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
-    friction = "coulomb" if friction is None else friction
-    allowed = _core.block_integrators(friction)  # validates the friction name; default first
-    if integrator is None:
-        integrator = allowed[0]
-    core_result = _core.simulate_block(
-        model, float(t_end), friction, integrator, float(k_v), float(rtol), float(atol),
-        1e-3 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
-        int(max_events), 0.0 if max_step is None else float(max_step),
-        0.0 if first_step is None else float(first_step),
-        0 if max_order is None else int(max_order),
-    )
-    return Result(core_result)
+    raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")

@@ -32,4 +32,25 @@ inline Eigen::MatrixXd spd(std::mt19937& rng, int n, double shift) {
   return gram(gaussian(rng, n, n)) / n + shift * Eigen::MatrixXd::Identity(n, n);
 }
 
+// M z by columns (plain loops, see above).
+inline Eigen::VectorXd times(const Eigen::MatrixXd& M, const Eigen::VectorXd& z) {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(M.rows());
+  for (Eigen::Index j = 0; j < M.cols(); ++j) y += z[j] * M.col(j);
+  return y;
+}
+
+// q = w* - M z* for a complementary pair with random support, some indices
+// degenerate (z*_i = w*_i = 0): feasible, with ties for Lemke.
+inline Eigen::VectorXd q_from_solution(const Eigen::MatrixXd& M, std::mt19937& rng) {
+  const int n = static_cast<int>(M.rows());
+  std::uniform_int_distribution<int> pick(0, 2), value(1, 3);
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(n), w = Eigen::VectorXd::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    const int kind = pick(rng);
+    if (kind == 0) z[i] = value(rng);
+    if (kind == 1) w[i] = value(rng);
+  }
+  return w - times(M, z);
+}
+
 }  // namespace lcp_problems

@@ -1,5 +1,6 @@
 // Proves that solving LCPs of size n <= 16 with a Workspace of the default
-// capacity performs no heap allocation, for every method and the problem
+// capacity performs no heap allocation (checked and unchecked entry points),
+// for every method and the problem
 // families of tests/test_lcp.py, and that the friction builders do not
 // allocate either. Positive controls show that the counter sees allocations
 // (Eigen's, std::vector's, and a Workspace's growth).
@@ -39,26 +40,7 @@ struct Problem {
 
 using lcp_problems::gaussian;
 using lcp_problems::gram;
-
-Eigen::VectorXd times(const Eigen::MatrixXd& M, const Eigen::VectorXd& z) {
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(M.rows());
-  for (Eigen::Index j = 0; j < M.cols(); ++j) y += z[j] * M.col(j);
-  return y;
-}
-
-// q = w* - M z* for a complementary pair with random support, some indices
-// degenerate (z*_i = w*_i = 0): feasible, with ties for Lemke.
-Eigen::VectorXd q_from_solution(const Eigen::MatrixXd& M, std::mt19937& rng) {
-  const int n = static_cast<int>(M.rows());
-  std::uniform_int_distribution<int> pick(0, 2), value(1, 3);
-  Eigen::VectorXd z = Eigen::VectorXd::Zero(n), w = Eigen::VectorXd::Zero(n);
-  for (int i = 0; i < n; ++i) {
-    const int kind = pick(rng);
-    if (kind == 0) z[i] = value(rng);
-    if (kind == 1) w[i] = value(rng);
-  }
-  return w - times(M, z);
-}
+using lcp_problems::q_from_solution;
 
 std::vector<Problem> make_problems() {
   std::mt19937 rng(20130101);
@@ -101,6 +83,7 @@ void solver_checks(const std::vector<Problem>& problems) {
       auto w = w_storage.head(n);
       z.setZero();
       alloc_counter::start();
+      lcp::solve_unchecked(p.M, p.q, z, w, options, workspace);
       const lcp::Result result = lcp::solve(p.M, p.q, z, w, options, workspace);
       allocations += alloc_counter::stop();
       ++solves;
@@ -150,15 +133,16 @@ void positive_controls(const std::vector<Problem>& problems) {
   count = alloc_counter::stop();
   check(count > 0 && eigen_vector[99] == 1.0, "counter sees Eigen's malloc", count);
 
-  // A workspace too small for n = 8 grows once, then is allocation-free.
+  // A workspace too small for n = 12 grows once, then is allocation-free
+  // (Lemke's n <= kMaxFixedLemkeSize runs on the stack and needs no growth).
   lcp::Workspace small(4);
-  const Problem& p = problems[4 * 7];  // spd, n = 8
-  Eigen::VectorXd z(8), w(8);
+  const Problem& p = problems[4 * 11];  // spd, n = 12
+  Eigen::VectorXd z(12), w(12);
   lcp::Options options;
   alloc_counter::start();
   lcp::solve(p.M, p.q, z, w, options, small);
   count = alloc_counter::stop();
-  check(count > 0 && small.capacity() == 8, "a workspace grows for n > capacity", count);
+  check(count > 0 && small.capacity() == 12, "a workspace grows for n > capacity", count);
   alloc_counter::start();
   lcp::solve(p.M, p.q, z, w, options, small);
   count = alloc_counter::stop();

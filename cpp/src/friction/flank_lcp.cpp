@@ -17,11 +17,13 @@ FlankLcpResult solve_flank_lcp(double c, double d, double alpha, double beta, do
   const Eigen::Vector2d offset(c - d * mu * sigma * beta / coupling,
                                2.0 * mu * sigma * beta / coupling);
   Eigen::Vector2d z = Eigen::Vector2d::Zero(), w;
+  // The inputs come from model values (a non-finite one gives a non-solved
+  // status, which the caller reports), so the unchecked entry point.
   // The tolerance is relative to the problem: accelerations of 1e4 m/s^2 or
   // forces of 1e3 N carry round-off far above an absolute 1e-12.
   lcp::Options scaled = options;
   scaled.tol = options.tol * std::max(1e-300, offset.cwiseAbs().maxCoeff());
-  const lcp::Result solved = lcp::solve(matrix, offset, z, w, scaled, workspace);
+  const lcp::Result solved = lcp::solve_unchecked(matrix, offset, z, w, scaled, workspace);
   result.status = solved.status;
   result.lcp_iterations = solved.iterations;
   if (solved.status != lcp::Status::solved) return result;

@@ -21,6 +21,14 @@ constexpr float pi_beta = 0.04f;
 constexpr int rejection_limit = 100;  // consecutive error-test failures
 constexpr int nonfinite_limit = 64;   // non-finite stage values since the last (re)start
 constexpr int root_iterations = 60;
+// The first step after a (re)start samples the dense output here for sign
+// changes of root functions that started on their surface (hidden_crossing);
+// 1/16 catches an excursion off the surface of a sixteenth of the step.
+constexpr double hidden_samples[] = {0.0625, 0.25, 0.5, 0.75};
+constexpr int hidden_retry_limit = 8;
+// |g| at the start below this fraction of |g| at the step end: the start
+// value is at the level of the function's round-off, its sign unreliable.
+constexpr double surface_fraction = 1e-6;
 
 bool all_finite(const double* v, int n) {
   for (int i = 0; i < n; ++i)
@@ -103,12 +111,21 @@ void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
   system_ = nullptr;
   n_ = n;
   m_ = m;
-  for (auto* v : {&y_, &y_start_, &y_new_, &y_stage_, &y_trial_, &f_end_, &f_current_})
-    v->assign(n, 0.0);
-  k_.assign(static_cast<std::size_t>(s_) * n, 0.0);
-  k_trial_.assign(static_cast<std::size_t>(s_) * n, 0.0);
-  for (auto* v : {&g_start_, &g_end_, &g_lo_, &g_hi_, &g_trial_}) v->assign(m, 0.0);
-  weights_.assign(s_, 0.0);
+  const std::size_t states = static_cast<std::size_t>(n), stages = static_cast<std::size_t>(s_);
+  workspace_.assign(7 * states + 2 * stages * states + 5 * static_cast<std::size_t>(m) + stages,
+                    0.0);
+  double* next = workspace_.data();
+  auto take = [&next](std::size_t count) {
+    double* block = next;
+    next += count;
+    return block;
+  };
+  for (double** v : {&y_, &y_start_, &y_new_, &y_stage_, &y_trial_, &f_end_, &f_current_})
+    *v = take(states);
+  k_ = take(stages * states);
+  k_trial_ = take(stages * states);
+  for (double** v : {&g_start_, &g_end_, &g_lo_, &g_hi_, &g_trial_}) *v = take(m);
+  weights_ = take(stages);
   root_info_.assign(m, 0);
   stats_ = IntegratorStats{};
   h_ = options_.first_step;  // 0: estimated at the first step
@@ -135,13 +152,14 @@ void ExplicitRungeKutta::start(double t0, const Eigen::Ref<const Eigen::VectorXd
   t_ = t0;
   first_stage_valid_ = false;
   step_available_ = false;
+  probe_step_ = true;
   log_error_old_ = std::log(1e-4f);
   nonfinite_count_ = 0;
   std::fill(root_info_.begin(), root_info_.end(), 0);
   // h_ is kept: after an event the previous step size is a better first
   // guess than a fresh estimate (the error test corrects it if not).
   if (m_ > 0) {
-    roots_at(t_, y_.data(), g_start_.data());
+    roots_at(t_, y_, g_start_);
     activate_zero_roots();
   }
 }
@@ -156,14 +174,14 @@ void ExplicitRungeKutta::activate_zero_roots() {
   for (int i = 0; i < m_ && !any_zero; ++i) any_zero = g_start_[i] == 0.0;
   if (!any_zero) return;
   if (!first_stage_valid_) {
-    system_->rhs(t_, y_.data(), f_current_.data());
+    system_->rhs(t_, y_, f_current_);
     ++stats_.rhs_evaluations;
-    if (!all_finite(f_current_.data(), n_)) return;  // the next step reports it
+    if (!all_finite(f_current_, n_)) return;  // the next step reports it
     first_stage_valid_ = true;
   }
   const double delta = 100.0 * eps * std::max(std::fabs(t_), h_ > 0.0 ? h_ : 1.0);
   for (int i = 0; i < n_; ++i) y_trial_[i] = y_[i] + delta * f_current_[i];
-  roots_at(t_ + delta, y_trial_.data(), g_trial_.data());
+  roots_at(t_ + delta, y_trial_, g_trial_);
   for (int i = 0; i < m_; ++i)
     if (g_start_[i] == 0.0) g_start_[i] = g_trial_[i];
 }
@@ -191,18 +209,18 @@ double ExplicitRungeKutta::weighted_mean_square(const double* v, const double* y
 double ExplicitRungeKutta::initial_step() {
   // Hairer, Norsett & Wanner, Solving ODE I, II.4: h0 from ||y0|| / ||f0||,
   // then from the second derivative estimated with one Euler step.
-  const double* f0 = k_.data();
-  const double d0 = std::sqrt(weighted_mean_square(y_.data(), y_.data(), y_.data()));
-  const double d1 = std::sqrt(weighted_mean_square(f0, y_.data(), y_.data()));
+  const double* f0 = k_;
+  const double d0 = std::sqrt(weighted_mean_square(y_, y_, y_));
+  const double d1 = std::sqrt(weighted_mean_square(f0, y_, y_));
   double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
   if (options_.max_step > 0.0) h0 = std::min(h0, options_.max_step);
   for (int i = 0; i < n_; ++i) y_trial_[i] = y_[i] + h0 * f0[i];
-  double* f1 = k_trial_.data();
-  system_->rhs(t_ + h0, y_trial_.data(), f1);
+  double* f1 = k_trial_;
+  system_->rhs(t_ + h0, y_trial_, f1);
   ++stats_.rhs_evaluations;
   if (!all_finite(f1, n_)) return h0;
   for (int i = 0; i < n_; ++i) y_stage_[i] = f1[i] - f0[i];
-  const double d2 = std::sqrt(weighted_mean_square(y_stage_.data(), y_.data(), y_.data())) / h0;
+  const double d2 = std::sqrt(weighted_mean_square(y_stage_, y_, y_)) / h0;
   const double dmax = std::max(d1, d2);
   const double h1 = dmax <= 1e-15 ? std::max(1e-6, h0 * 1e-3)
                                   : std::pow(0.01 / dmax, 1.0 / (tableau_.order + 1));
@@ -211,65 +229,96 @@ double ExplicitRungeKutta::initial_step() {
   return h;
 }
 
+namespace {
+// out = base + h sum_j coefficients_j k_j over `count` stages (base null: 0);
+// zero coefficients are not skipped, so that 0 * inf = NaN still flags a
+// non-finite stage. N > 0 is the state size fixed at compile time: the sums
+// stay in registers.
+template <int N>
+void combine(int n_runtime, const double* base, double h, const double* coefficients, int count,
+             const double* k, double* out) {
+  constexpr int capacity = N > 0 ? N : 1;
+  const int n = N > 0 ? N : n_runtime;
+  if constexpr (N > 0) {
+    double sum[capacity];
+    for (int r = 0; r < N; ++r) sum[r] = base ? base[r] : 0.0;
+    for (int j = 0; j < count; ++j) {
+      const double w = h * coefficients[j];
+      for (int r = 0; r < N; ++r) sum[r] += w * k[j * N + r];
+    }
+    for (int r = 0; r < N; ++r) out[r] = sum[r];
+  } else {
+    for (int r = 0; r < n; ++r) out[r] = base ? base[r] : 0.0;
+    for (int j = 0; j < count; ++j) {
+      const double w = h * coefficients[j];
+      const double* kj = k + j * n;
+      for (int r = 0; r < n; ++r) out[r] += w * kj[r];
+    }
+  }
+}
+
+void combine_any(int n, const double* base, double h, const double* coefficients, int count,
+                 const double* k, double* out) {
+  switch (n) {  // the small systems of the event-driven models
+    case 2:
+      return combine<2>(n, base, h, coefficients, count, k, out);
+    case 4:
+      return combine<4>(n, base, h, coefficients, count, k, out);
+    default:
+      return combine<0>(n, base, h, coefficients, count, k, out);
+  }
+}
+}  // namespace
+
 bool ExplicitRungeKutta::stages(double t, const double* y, double h, double* k, double* y_out) {
+  // Stage i at y + h sum_j a_ij k_j.
+  const int n = n_, s = s_;
   const double* a = tableau_.a.data();
   const double* c = tableau_.c.data();
-  double* y_stage = y_stage_.data();
-  for (int i = 1; i < s_; ++i) {
-    const double* ai = a + i * s_;
-    for (int r = 0; r < n_; ++r) {
-      double sum = 0.0;
-      for (int j = 0; j < i; ++j) sum += ai[j] * k[j * n_ + r];
-      y_stage[r] = y[r] + h * sum;
-    }
-    system_->rhs(t + c[i] * h, y_stage, k + i * n_);
+  for (int i = 1; i < s; ++i) {
+    combine_any(n, y, h, a + i * s, i, k, y_stage_);
+    system_->rhs(t + c[i] * h, y_stage_, k + i * n);
   }
-  stats_.rhs_evaluations += s_ - 1;
-  const double* b = tableau_.b.data();
-  for (int r = 0; r < n_; ++r) {
-    double sum = 0.0;
-    for (int j = 0; j < s_; ++j) sum += b[j] * k[j * n_ + r];
-    y_out[r] = y[r] + h * sum;
-  }
+  stats_.rhs_evaluations += s - 1;
+  if (tableau_.fsal)
+    std::copy_n(y_stage_, n, y_out);  // the last stage's argument is y + h sum b_j k_j
+  else
+    combine_any(n, y, h, tableau_.b.data(), s, k, y_out);
   // A NaN or inf in any stage reaches y_out (b_j = 0 or not: 0 * inf is NaN)
   // or, for the last stage of an FSAL pair, the error estimate.
-  return all_finite(y_out, n_) && (!tableau_.fsal || all_finite(k + (s_ - 1) * n_, n_));
+  return all_finite(y_out, n) && (!tableau_.fsal || all_finite(k + (s - 1) * n, n));
 }
 
 ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* error_square) {
-  if (!stages(t_, y_.data(), h, k_.data(), y_new_.data())) return StepOutcome::nonfinite;
+  if (!stages(t_, y_, h, k_, y_new_)) return StepOutcome::nonfinite;
   *error_square = 0.0;
   if (options_.fixed_step <= 0.0) {
-    const double* e = tableau_.e.data();
-    for (int r = 0; r < n_; ++r) {
-      double sum = 0.0;
-      for (int j = 0; j < s_; ++j) sum += e[j] * k_[j * n_ + r];
-      y_trial_[r] = h * sum;
-    }
+    combine_any(n_, nullptr, h, tableau_.e.data(), s_, k_, y_trial_);
     // The squared RMS norm (Hairer's error measure, squared: no sqrt needed).
-    *error_square = weighted_mean_square(y_trial_.data(), y_.data(), y_new_.data());
+    *error_square = weighted_mean_square(y_trial_, y_, y_new_);
     // NaN: a non-finite stage that only the error estimate uses.
     if (std::isnan(*error_square)) return StepOutcome::nonfinite;
     if (!(*error_square <= 1.0)) return StepOutcome::rejected;
   }
   if (tableau_.fsal) {
-    std::copy_n(k_.data() + (s_ - 1) * n_, n_, f_end_.data());
+    std::copy_n(k_ + (s_ - 1) * n_, n_, f_end_);
   } else {
     // Not wasted: it is the first stage of the next step.
-    system_->rhs(t_ + h, y_new_.data(), f_end_.data());
+    system_->rhs(t_ + h, y_new_, f_end_);
     ++stats_.rhs_evaluations;
   }
-  return all_finite(f_end_.data(), n_) ? StepOutcome::accepted : StepOutcome::nonfinite;
+  return all_finite(f_end_, n_) ? StepOutcome::accepted : StepOutcome::nonfinite;
 }
 
 void ExplicitRungeKutta::interpolate(double theta, double* y_out) {
   double w_end = 0.0;
-  double* w = weights_.data();
-  tableau_.dense_weights(theta, tableau_, w, &w_end);
-  for (int r = 0; r < n_; ++r) {
-    double sum = w_end * f_end_[r];
-    for (int j = 0; j < s_; ++j) sum += w[j] * k_[j * n_ + r];
-    y_out[r] = y_start_[r] + h_step_ * sum;
+  tableau_.dense_weights(theta, tableau_, weights_, &w_end);
+  // The same arithmetic as the step: at theta = 1 (w = b) this is y_n+1 bit
+  // for bit.
+  combine_any(n_, y_start_, h_step_, weights_, s_, k_, y_out);
+  if (w_end != 0.0) {
+    const double w = h_step_ * w_end;
+    for (int r = 0; r < n_; ++r) y_out[r] += w * f_end_[r];
   }
 }
 
@@ -281,7 +330,7 @@ void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) {
   if (y.size() != n_)
     throw InvalidArgument("y has " + std::to_string(y.size()) +
                           " components, invalid: must have the system size " + std::to_string(n_));
-  interpolate((t - t_step_) / h_step_, y_trial_.data());
+  interpolate((t - t_step_) / h_step_, y_trial_);
   for (int i = 0; i < n_; ++i) y[i] = y_trial_[i];
 }
 
@@ -309,6 +358,7 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
   const int q = std::min(tableau_.order, tableau_.embedded_order);
   const float exponent = 1.0f / (q + 1);
   int rejections = 0;  // consecutive
+  int hidden_retries = 0;
   // Bounded: every pass either accepts a step (at most max_steps in total) or
   // rejects one (at most rejection_limit in a row, nonfinite_limit in all).
   for (;;) {
@@ -319,15 +369,15 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
            "increase max_steps or check whether the solution blows up; if the step size "
            "collapsed the problem may be stiff: use cvode_bdf");
     if (!first_stage_valid_) {
-      system_->rhs(t_, y_.data(), f_current_.data());
+      system_->rhs(t_, y_, f_current_);
       ++stats_.rhs_evaluations;
-      if (!all_finite(f_current_.data(), n_))
+      if (!all_finite(f_current_, n_))
         fail("RK_RHSFUNC_FAIL", "the right-hand side returned a non-finite value (NaN or inf) "
                                 "at the current state",
              "check the model at this state");
       first_stage_valid_ = true;
     }
-    std::copy_n(f_current_.data(), n_, k_.data());
+    std::copy_n(f_current_, n_, k_);
     step_available_ = false;  // k_ is about to be overwritten
     if (h_ <= 0.0) h_ = fixed ? options_.fixed_step : initial_step();
     double h = fixed ? options_.fixed_step : h_;
@@ -367,7 +417,27 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       continue;
     }
 
-    // Accepted.
+    // Accepted, unless a root function that started on its switching surface
+    // crossed it and came back inside the step (see hidden_crossing).
+    std::copy_n(y_, n_, y_start_);
+    t_step_ = t_;
+    h_step_ = h;
+    step_available_ = true;
+    const double t_new = to_end ? t_out : t_ + h;
+    if (m_ > 0) {
+      roots_at(t_new, y_new_, g_end_);
+      if (probe_step_ && hidden_retries < hidden_retry_limit) {
+        const double theta = hidden_crossing();
+        if (theta > 0.0) {
+          // Retry up to the sample: its end then shows the sign change.
+          ++hidden_retries;
+          h_ = theta * h;
+          step_available_ = false;
+          continue;
+        }
+      }
+      probe_step_ = false;
+    }
     ++stats_.steps;
     if (!fixed) {
       // PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.
@@ -382,15 +452,9 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       if (to_end) h_ = std::max(h_, wanted);
     }
     rejections = 0;
-    std::copy_n(y_.data(), n_, y_start_.data());
-    t_step_ = t_;
-    h_step_ = h;
-    step_available_ = true;
-    const double t_new = to_end ? t_out : t_ + h;
     t_end_ = t_new;
 
     if (m_ > 0) {
-      roots_at(t_new, y_new_.data(), g_end_.data());
       bool any = false;
       for (int i = 0; i < m_ && !any; ++i) any = crosses(g_start_[i], g_end_[i]);
       if (any) {
@@ -402,12 +466,46 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
     }
     t_ = t_new;
     std::swap(y_, y_new_);
-    std::copy_n(f_end_.data(), n_, f_current_.data());
+    std::copy_n(f_end_, n_, f_current_);
     if (t_ == t_out || one_step) {
       for (int i = 0; i < n_; ++i) y[i] = y_[i];
       return {t_, AdvanceStatus::reached};
     }
   }
+}
+
+double ExplicitRungeKutta::hidden_crossing() {
+  // A root function whose value at the start of the step is 0 (inactive) or
+  // at the level of its round-off (|g| tiny against its value at the step
+  // end) has no reliable sign there. After an event that is typical: a gap
+  // that closed to rounding error on either side, a normal force that just
+  // fell to zero; RootGuard (event_driven.cpp) maps exact zeros to +-1e-200.
+  // Such a function can leave its surface and come back within one step (a
+  // nut that lifts off a flank and hits it again), and with the same sign at
+  // both ends of the step the crossing back is missed: the nut passes through
+  // the flank. Small first steps hide this (CVODE, ARKODE), the step size
+  // kept across restarts does not. So the first step after a (re)start looks
+  // inside for the sign opposite to the one at its end; found at theta, the
+  // step is retried up to theta, whose end then shows the sign change (a
+  // function that started at exactly 0 then starts the next step with the
+  // sign it took, as activate_zero_roots would have given it).
+  auto on_surface = [&](int i) {
+    const double g0 = g_start_[i], g1 = g_end_[i];
+    if (g1 == 0.0) return false;
+    if (g0 == 0.0) return true;
+    return (g0 > 0.0) == (g1 > 0.0) && std::fabs(g0) <= surface_fraction * std::fabs(g1);
+  };
+  bool any = false;
+  for (int i = 0; i < m_ && !any; ++i) any = on_surface(i);
+  if (!any) return 0.0;
+  for (const double theta : hidden_samples) {
+    interpolate(theta, y_trial_);
+    roots_at(t_step_ + theta * h_step_, y_trial_, g_trial_);
+    for (int i = 0; i < m_; ++i)
+      if (on_surface(i) && g_trial_[i] != 0.0 && (g_trial_[i] > 0.0) != (g_end_[i] > 0.0))
+        return theta;
+  }
+  return 0.0;
 }
 
 void ExplicitRungeKutta::locate_root() {
@@ -421,12 +519,12 @@ void ExplicitRungeKutta::locate_root() {
   // Illinois: the value kept at an end is halved when that end is kept twice.
   double scale_lo = 1.0, scale_hi = 1.0;
   int last_side = 0;
-  auto crossing = [&](int i, const std::vector<double>& g_a, const std::vector<double>& g_b) {
+  auto crossing = [&](int i, const double* g_a, const double* g_b) {
     return g_start_[i] != 0.0 && crosses(g_a[i], g_b[i]);
   };
   auto reset_bracket = [&] {
-    std::copy(g_start_.begin(), g_start_.end(), g_lo_.begin());
-    std::copy(g_end_.begin(), g_end_.end(), g_hi_.begin());
+    std::copy_n(g_start_, m_, g_lo_);
+    std::copy_n(g_end_, m_, g_hi_);
     lo = 0.0;
     hi = h;
     scale_lo = scale_hi = 1.0;
@@ -478,8 +576,8 @@ void ExplicitRungeKutta::locate_root() {
   for (int iteration = 0; iteration < root_iterations && hi - lo > dense_tolerance;
        ++iteration) {
     const double tau = clamp(earliest_secant(&active));
-    interpolate(tau / h, y_trial_.data());
-    roots_at(t_n + tau, y_trial_.data(), g_trial_.data());
+    interpolate(tau / h, y_trial_);
+    roots_at(t_n + tau, y_trial_, g_trial_);
     update_bracket(tau);
   }
   const double tau_dense = earliest_secant(&active);
@@ -488,11 +586,11 @@ void ExplicitRungeKutta::locate_root() {
   {
     const double delta = std::max(1e-7 * h, 16.0 * tolerance);
     const double a = std::max(0.0, tau_dense - delta), b = std::min(h, tau_dense + delta);
-    interpolate(a / h, y_trial_.data());
-    roots_at(t_n + a, y_trial_.data(), g_trial_.data());
+    interpolate(a / h, y_trial_);
+    roots_at(t_n + a, y_trial_, g_trial_);
     const double g_a = g_trial_[active];
-    interpolate(b / h, y_trial_.data());
-    roots_at(t_n + b, y_trial_.data(), g_trial_.data());
+    interpolate(b / h, y_trial_);
+    roots_at(t_n + b, y_trial_, g_trial_);
     slope = (g_trial_[active] - g_a) / (b - a);
   }
 
@@ -504,21 +602,21 @@ void ExplicitRungeKutta::locate_root() {
   // Newton leaves it, is for another function, or takes too long. Usually
   // two evaluations of phi.
   reset_bracket();
-  std::copy_n(y_new_.data(), n_, y_.data());    // the state at hi
-  std::copy_n(k_.data(), n_, k_trial_.data());  // stage 1: f(t_n, y_n)
+  std::copy_n(y_new_, n_, y_);    // the state at hi
+  std::copy_n(k_, n_, k_trial_);  // stage 1: f(t_n, y_n)
   double tau = tau_dense;
   double previous_tau = -1.0, previous_g = 0.0;
   constexpr int newton_iterations = 8;
   for (int iteration = 0; iteration < root_iterations && hi - lo > tolerance; ++iteration) {
     tau = clamp(tau);
-    if (!stages(t_n, y_start_.data(), tau, k_trial_.data(), y_trial_.data()))
+    if (!stages(t_n, y_start_, tau, k_trial_, y_trial_))
       fail("RK_RHSFUNC_FAIL",
            "the right-hand side returned a non-finite value (NaN or inf) while locating a root",
            "check the model near the event");
-    roots_at(t_n + tau, y_trial_.data(), g_trial_.data());
+    roots_at(t_n + tau, y_trial_, g_trial_);
     const double g_tau = g_trial_[active];
     const bool hi_moved = update_bracket(tau);
-    if (hi_moved) std::copy_n(y_trial_.data(), n_, y_.data());
+    if (hi_moved) std::copy_n(y_trial_, n_, y_);
     int earliest = -1;
     double next = earliest_secant(&earliest);
     if (earliest < 0) break;  // not reached: the bracket always holds a crossing
@@ -545,16 +643,17 @@ void ExplicitRungeKutta::locate_root() {
     root_info_[i] = crossing(i, g_lo_, g_hi_) ? (g_start_[i] < 0.0 ? 1 : -1) : 0;
   if (hi == h) {
     t_ = t_end_;  // exactly t_out when the step landed on it
-    std::copy_n(f_end_.data(), n_, f_current_.data());
+    std::copy_n(f_end_, n_, f_current_);
     first_stage_valid_ = true;
   } else {
     t_ = t_n + hi;
     first_stage_valid_ = false;
   }
-  std::copy(g_hi_.begin(), g_hi_.end(), g_start_.begin());
+  std::copy_n(g_hi_, m_, g_start_);
   // A function that landed exactly on 0 at the root must not stay inactive
   // if the integration continues without a restart.
   activate_zero_roots();
+  probe_step_ = true;
 }
 
 }  // namespace leadscrew::integrate

@@ -2,30 +2,147 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "leadscrew/lcp/lcp.hpp"
 #include "leadscrew/lcp/workspace.hpp"
 
 namespace leadscrew::lcp::detail {
 
-// Checks shapes, finiteness and options; returns n. Throws InvalidArgument
-// naming the argument. Builds no string unless it throws (no allocation).
+using MatrixCRef = Eigen::Ref<const Eigen::MatrixXd>;
+using VectorCRef = Eigen::Ref<const Eigen::VectorXd>;
+// The outputs z, w travel through the internal calls by reference (a Ref
+// copied by value at every call costs more than a small solve's arithmetic).
+using VectorRef = Eigen::Ref<Eigen::VectorXd>;
+
+// Throws InvalidArgument naming the first argument or option out of range
+// (out of line: builds the message; the check itself is validate_shapes).
+[[noreturn]] void fail_shapes(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                              const Eigen::Ref<const Eigen::VectorXd>& q,
+                              const Eigen::Ref<Eigen::VectorXd>& z,
+                              const Eigen::Ref<Eigen::VectorXd>& w, const Options& options);
+
+// Checks shapes and options: a few integer and scalar compares, kept by the
+// unchecked entry points so that a wrong size never reads out of bounds.
+// Returns n. Throws InvalidArgument naming the argument.
+inline int validate_shapes(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                           const Eigen::Ref<const Eigen::VectorXd>& q,
+                           const Eigen::Ref<Eigen::VectorXd>& z,
+                           const Eigen::Ref<Eigen::VectorXd>& w, const Options& options) {
+  const Eigen::Index n = M.rows();
+  // One combined test (& rather than &&: no branch per condition); NaN
+  // options fail their comparisons.
+  const bool valid = (M.cols() == n) & (q.size() == n) & (z.size() == n) & (w.size() == n) &
+                     (n <= (Eigen::Index{1} << 29)) & (options.tol > 0.0) &
+                     (options.tol <= std::numeric_limits<double>::max()) &
+                     (options.max_iter >= 0) & (options.relaxation > 0.0) &
+                     (options.relaxation < 2.0);
+  if (!valid) fail_shapes(M, q, z, w, options);
+  return static_cast<int>(n);
+}
+
+// Checks that M, q (and a warm start z of pgs, newton_fb) hold no NaN or inf:
+// the O(n^2) part of the validation, done only at the API boundary.
+void validate_finite(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                     const Eigen::Ref<const Eigen::VectorXd>& q,
+                     const Eigen::Ref<Eigen::VectorXd>& z, const Options& options, Method method);
+
+// Both: the checked entry points. Returns n.
 int validate(const Eigen::Ref<const Eigen::MatrixXd>& M,
              const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<Eigen::VectorXd>& z,
              const Eigen::Ref<Eigen::VectorXd>& w, const Options& options, Method method);
 
-// w = M z + q, skipping zero entries of z.
+// w = M z + q, skipping zero entries of z (the methods' inner iterations).
 void multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& M,
                   const Eigen::Ref<const Eigen::VectorXd>& z,
                   const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> w);
 
-// The common ending of every method: w = M z + q, residual, and the status.
-// A method's `claimed` solved is downgraded to singular when the verified
-// residual exceeds tol (a basis too ill-conditioned to meet it); any other
-// status is reported as given.
-Result finish(const Eigen::Ref<const Eigen::MatrixXd>& M,
-              const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<Eigen::VectorXd>& z,
-              Eigen::Ref<Eigen::VectorXd> w, Status claimed, int iterations, double tol);
+// Lemke's pivot budget for max_iter = 0 (default_max_iterations), inline for
+// the small solves: 1000 + 2^(min(n, 20) + 1) (Murty's problems need 2^n).
+constexpr int default_lemke_pivots(int n) {
+  return 1000 + (1 << (std::min(std::max(n, 0), 20) + 1));
+}
+
+// Loop bound of the size-generic (N = 0) and fixed-size (N > 0) code paths:
+// a compile-time constant for N > 0, so that the loops unroll.
+template <int N>
+constexpr int size_of(int n) {
+  return N > 0 ? N : n;
+}
+
+// complementarity_residual on raw arrays, for n = size_of<N>(n) entries;
+// +infinity if any z_i or w_i is NaN or inf (std::max and std::min would drop
+// a NaN; a non-finite pair is no solution).
+template <int N>
+inline double residual_of(const double* z, const double* w, int n) {
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  double worst_pair = 0.0, min_z = 0.0, min_w = 0.0;
+  bool finite = true;
+  for (int i = 0; i < size_of<N>(n); ++i) {
+    worst_pair = std::max(worst_pair, std::abs(std::min(z[i], w[i])));
+    min_z = std::min(min_z, z[i]);
+    min_w = std::min(min_w, w[i]);
+    finite &= (std::abs(z[i]) <= kLargest) & (std::abs(w[i]) <= kLargest);
+  }
+  return finite ? worst_pair - min_z - min_w : std::numeric_limits<double>::infinity();
+}
+
+// M, q, z as Eigen maps of compile-time size N (N > 0; the loops over them
+// unroll and vectorize) or of runtime size (N = 0).
+template <int N>
+constexpr int kEigenSize = (N > 0 ? N : Eigen::Dynamic);
+template <int N>
+using FixedVector = Eigen::Matrix<double, kEigenSize<N>, 1>;
+template <int N>
+using FixedMatrixMap = Eigen::Map<const Eigen::Matrix<double, kEigenSize<N>, kEigenSize<N>>,
+                                  Eigen::Unaligned, Eigen::OuterStride<>>;
+template <int N>
+using FixedVectorMap = Eigen::Map<const FixedVector<N>>;
+
+template <int N>
+inline FixedMatrixMap<N> fixed_map(const MatrixCRef& M) {
+  return FixedMatrixMap<N>(M.data(), M.rows(), M.cols(), Eigen::OuterStride<>(M.outerStride()));
+}
+template <int N>
+inline FixedVectorMap<N> fixed_map(const VectorCRef& v) {
+  return FixedVectorMap<N>(v.data(), v.size());
+}
+
+template <int N>
+inline Result verify(const MatrixCRef& M, const VectorCRef& q, const VectorRef& z, VectorRef& w,
+                     Status claimed, int iterations, double tol) {
+  const int n = size_of<N>(static_cast<int>(q.size()));
+  const auto m = fixed_map<N>(M);
+  const FixedVectorMap<N> zf(z.data(), n);
+  Eigen::Map<FixedVector<N>> wf(w.data(), n);
+  // Column by column, in the order of multiply_add: w = q, then w += M_.j z_j.
+  wf = fixed_map<N>(q);
+  for (int j = 0; j < n; ++j) wf += m.col(j) * zf[j];
+  Result result;
+  result.iterations = iterations;
+  result.residual = residual_of<N>(z.data(), w.data(), n);
+  result.status = claimed;
+  if (claimed == Status::solved && !(result.residual <= tol)) result.status = Status::singular;
+  return result;
+}
+
+// verify<0>: the size-generic ending the iterative methods use.
+Result finish(const MatrixCRef& M, const VectorCRef& q, const VectorRef& z, VectorRef& w,
+              Status claimed, int iterations, double tol);
+
+// The methods themselves (one source file each), without validation: sizes
+// equal, options in range, M and q possibly non-finite. The entry points
+// solve_<method> and solve_<method>_unchecked validate and call these.
+Result lemke(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
+             const Options& options, Workspace& workspace);
+Result pgs(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
+           const Options& options, Workspace& workspace);
+Result newton_fb(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
+                 const Options& options, Workspace& workspace);
+Result enumerate(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
+                 const Options& options, Workspace& workspace);
 
 // In-place LU factorization with partial pivoting of the square A (P A = L U,
 // unit lower L). perm[k] is the row swapped with row k at step k. Returns

@@ -16,11 +16,11 @@ namespace {
 constexpr double kFeasibilityRelTol = 1e-9;
 }  // namespace
 
-Result solve_enumerate(const Eigen::Ref<const Eigen::MatrixXd>& M,
-                       const Eigen::Ref<const Eigen::VectorXd>& q,
-                       Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
-                       const Options& options, Workspace& workspace) {
-  const int n = detail::validate(M, q, z, w, options, Method::enumerate);
+namespace detail {
+
+Result enumerate(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
+                 const Options& options, Workspace& workspace) {
+  const int n = static_cast<int>(q.size());
   if (n > kMaxEnumerateSize)
     throw InvalidArgument("M has size " + std::to_string(n) +
                           " is invalid for method enumerate: must be <= " +
@@ -28,7 +28,7 @@ Result solve_enumerate(const Eigen::Ref<const Eigen::MatrixXd>& M,
   workspace.reserve(n);
   const int bases = 1 << n;
   const int max_bases = options.max_iter > 0 ? std::min(options.max_iter, bases) : bases;
-  const double feasibility_floor = -kFeasibilityRelTol * detail::problem_scale(M, q);
+  const double feasibility_floor = -kFeasibilityRelTol * problem_scale(M, q);
 
   int* active = workspace.indices.data();
   auto best_z = workspace.vectors.col(0).head(n);
@@ -48,31 +48,31 @@ Result solve_enumerate(const Eigen::Ref<const Eigen::MatrixXd>& M,
       auto A = workspace.square.topLeftCorner(k, k);
       for (int c = 0; c < k; ++c)
         for (int r = 0; r < k; ++r) A(r, c) = M(active[r], active[c]);
-      if (!detail::lu_factor(A, workspace.permutation.data())) {
+      if (!lu_factor(A, workspace.permutation.data())) {
         any_singular = true;
         continue;
       }
       auto xa = x.head(k);
       auto ca = correction.head(k);
       for (int r = 0; r < k; ++r) xa[r] = -q[active[r]];
-      detail::lu_solve(A, workspace.permutation.data(), xa);
+      lu_solve(A, workspace.permutation.data(), xa);
       for (int r = 0; r < k; ++r) {  // one step of iterative refinement
         double sum = -q[active[r]];
         for (int c = 0; c < k; ++c) sum -= M(active[r], active[c]) * xa[c];
         ca[r] = sum;
       }
-      detail::lu_solve(A, workspace.permutation.data(), ca);
+      lu_solve(A, workspace.permutation.data(), ca);
       for (int r = 0; r < k; ++r) z[active[r]] = xa[r] + ca[r];
     }
-    detail::multiply_add(M, z, q, w);
+    multiply_add(M, z, q, w);
     bool feasible = true;
     for (int i = 0; i < n && feasible; ++i)
       feasible = (mask & (1 << i)) ? z[i] >= feasibility_floor : w[i] >= feasibility_floor;
     if (!feasible) continue;
     for (int i = 0; i < n; ++i) z[i] = std::max(z[i], 0.0);
-    detail::multiply_add(M, z, q, w);
+    multiply_add(M, z, q, w);
     const double residual = complementarity_residual(z, w);
-    if (residual <= options.tol) return detail::finish(M, q, z, w, Status::solved, tried, options.tol);
+    if (residual <= options.tol) return finish(M, q, z, w, Status::solved, tried, options.tol);
     if (best_residual < 0.0 || residual < best_residual) {
       best_residual = residual;
       best_z = z;
@@ -88,7 +88,25 @@ Result solve_enumerate(const Eigen::Ref<const Eigen::MatrixXd>& M,
     status = tried < bases ? Status::max_iterations
                            : (any_singular ? Status::singular : Status::no_solution);
   }
-  return detail::finish(M, q, z, w, status, tried, options.tol);
+  return finish(M, q, z, w, status, tried, options.tol);
+}
+
+}  // namespace detail
+
+Result solve_enumerate(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                       const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
+                       Eigen::Ref<Eigen::VectorXd> w, const Options& options,
+                       Workspace& workspace) {
+  detail::validate(M, q, z, w, options, Method::enumerate);
+  return detail::enumerate(M, q, z, w, options, workspace);
+}
+
+Result solve_enumerate_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                 const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
+                                 const Options& options, Workspace& workspace) {
+  detail::validate_shapes(M, q, z, w, options);
+  return detail::enumerate(M, q, z, w, options, workspace);
 }
 
 }  // namespace leadscrew::lcp

@@ -2,15 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "detail.hpp"
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/lcp/enumerate.hpp"
-#include "leadscrew/lcp/lemke.hpp"
-#include "leadscrew/lcp/newton_fb.hpp"
-#include "leadscrew/lcp/pgs.hpp"
 #include "leadscrew/lcp/workspace.hpp"
 
 namespace leadscrew::lcp {
@@ -43,7 +41,7 @@ Method parse_method(const std::string& name) {
 
 int default_max_iterations(Method method, int n) {
   switch (method) {
-    case Method::lemke: return 1000 + (1 << (std::min(std::max(n, 0), 20) + 1));
+    case Method::lemke: return detail::default_lemke_pivots(n);
     case Method::pgs: return 10000;
     case Method::newton_fb: return 100;
     case Method::enumerate: return 1 << std::min(std::max(n, 0), kMaxEnumerateSize);
@@ -51,27 +49,42 @@ int default_max_iterations(Method method, int n) {
   return 0;
 }
 
+namespace {
+Result run(const detail::MatrixCRef& M, const detail::VectorCRef& q, detail::VectorRef& z,
+           detail::VectorRef& w, const Options& options, Workspace& workspace) {
+  switch (options.method) {
+    case Method::lemke: return detail::lemke(M, q, z, w, options, workspace);
+    case Method::pgs: return detail::pgs(M, q, z, w, options, workspace);
+    case Method::newton_fb: return detail::newton_fb(M, q, z, w, options, workspace);
+    case Method::enumerate: return detail::enumerate(M, q, z, w, options, workspace);
+  }
+  throw InvalidArgument(
+      "options.method is invalid: must be one of lemke, pgs, newton_fb, enumerate");
+}
+}  // namespace
+
 Result solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
              const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
              Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace) {
-  switch (options.method) {
-    case Method::lemke: return solve_lemke(M, q, z, w, options, workspace);
-    case Method::pgs: return solve_pgs(M, q, z, w, options, workspace);
-    case Method::newton_fb: return solve_newton_fb(M, q, z, w, options, workspace);
-    case Method::enumerate: return solve_enumerate(M, q, z, w, options, workspace);
-  }
-  throw InvalidArgument("options.method is invalid: must be one of lemke, pgs, newton_fb, enumerate");
+  detail::validate(M, q, z, w, options, options.method);
+  return run(M, q, z, w, options, workspace);
+}
+
+Result solve_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                       const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
+                       Eigen::Ref<Eigen::VectorXd> w, const Options& options,
+                       Workspace& workspace) {
+  detail::validate_shapes(M, q, z, w, options);
+  return run(M, q, z, w, options, workspace);
 }
 
 double complementarity_residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                                 const Eigen::Ref<const Eigen::VectorXd>& w) {
-  double worst_pair = 0.0, min_z = 0.0, min_w = 0.0;
-  for (Eigen::Index i = 0; i < z.size(); ++i) {
-    worst_pair = std::max(worst_pair, std::abs(std::min(z[i], w[i])));
-    min_z = std::min(min_z, z[i]);
-    min_w = std::min(min_w, w[i]);
-  }
-  return worst_pair - min_z - min_w;
+  if (w.size() != z.size())
+    throw InvalidArgument("w has size " + std::to_string(w.size()) +
+                          " is invalid: must equal the size of z (" + std::to_string(z.size()) +
+                          ")");
+  return detail::residual_of<0>(z.data(), w.data(), static_cast<int>(z.size()));
 }
 
 namespace detail {
@@ -83,9 +96,9 @@ namespace {
 }
 }  // namespace
 
-int validate(const Eigen::Ref<const Eigen::MatrixXd>& M,
-             const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<Eigen::VectorXd>& z,
-             const Eigen::Ref<Eigen::VectorXd>& w, const Options& options, Method method) {
+void fail_shapes(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                 const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<Eigen::VectorXd>& z,
+                 const Eigen::Ref<Eigen::VectorXd>& w, const Options& options) {
   const Eigen::Index n = M.rows();
   if (M.cols() != n)
     throw InvalidArgument("M has shape " + std::to_string(M.rows()) + "x" +
@@ -93,14 +106,25 @@ int validate(const Eigen::Ref<const Eigen::MatrixXd>& M,
   if (q.size() != n) fail_size("q", q.size(), n);
   if (z.size() != n) fail_size("z", z.size(), n);
   if (w.size() != n) fail_size("w", w.size(), n);
-  // One vectorizable pass: x * 0 is NaN exactly for x = NaN or +-inf. Only if
-  // the sum is NaN are the entries searched for the one to name.
-  double poison = 0.0;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const double* column = M.data() + M.outerStride() * j;
-    for (Eigen::Index i = 0; i < n; ++i) poison += column[i] * 0.0;
-  }
-  for (Eigen::Index i = 0; i < n; ++i) poison += q[i] * 0.0;
+  if (!(std::isfinite(options.tol) && options.tol > 0.0)) require_positive("tol", options.tol);
+  if (options.max_iter < 0)
+    throw InvalidArgument("max_iter = " + std::to_string(options.max_iter) +
+                          " is invalid: must be an integer >= 0 (0: the method's default)");
+  if (!(options.relaxation > 0.0 && options.relaxation < 2.0))
+    require_in_range("relaxation", options.relaxation, 0.0, 2.0, true, true);
+  throw InvalidArgument("M has " + std::to_string(n) + " rows is invalid: too large");
+}
+
+void validate_finite(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                     const Eigen::Ref<const Eigen::VectorXd>& q,
+                     const Eigen::Ref<Eigen::VectorXd>& z, const Options& options,
+                     Method method) {
+  const Eigen::Index n = q.size();
+  // x * 0 is NaN exactly for x = NaN or +-inf, and 0 otherwise: the sum is
+  // NaN iff an entry is not finite. Eigen's sum runs in vector registers with
+  // several partial sums (no chain of n^2 dependent additions). Only if it is
+  // NaN are the entries searched for the one to name.
+  const double poison = (M.array() * 0.0).sum() + (q.array() * 0.0).sum();
   if (poison != poison) {
     for (Eigen::Index j = 0; j < n; ++j)
       for (Eigen::Index i = 0; i < n; ++i)
@@ -109,18 +133,17 @@ int validate(const Eigen::Ref<const Eigen::MatrixXd>& M,
     for (Eigen::Index i = 0; i < n; ++i)
       if (!std::isfinite(q[i])) require_finite("q[" + std::to_string(i) + "]", q[i]);
   }
-  if (!(std::isfinite(options.tol) && options.tol > 0.0)) require_positive("tol", options.tol);
-  if (options.max_iter < 0)
-    throw InvalidArgument("max_iter = " + std::to_string(options.max_iter) +
-                          " is invalid: must be an integer >= 0 (0: the method's default)");
-  if (!(options.relaxation > 0.0 && options.relaxation < 2.0))
-    require_in_range("relaxation", options.relaxation, 0.0, 2.0, true, true);
   if (options.warm_start && (method == Method::pgs || method == Method::newton_fb))
     for (Eigen::Index i = 0; i < n; ++i)
       if (!std::isfinite(z[i])) require_finite("z0[" + std::to_string(i) + "]", z[i]);
-  if (n > static_cast<Eigen::Index>(1 << 29))
-    throw InvalidArgument("M has " + std::to_string(n) + " rows is invalid: too large");
-  return static_cast<int>(n);
+}
+
+int validate(const Eigen::Ref<const Eigen::MatrixXd>& M,
+             const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<Eigen::VectorXd>& z,
+             const Eigen::Ref<Eigen::VectorXd>& w, const Options& options, Method method) {
+  const int n = validate_shapes(M, q, z, w, options);
+  validate_finite(M, q, z, options, method);
+  return n;
 }
 
 void multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& M,
@@ -136,16 +159,9 @@ void multiply_add(const Eigen::Ref<const Eigen::MatrixXd>& M,
   }
 }
 
-Result finish(const Eigen::Ref<const Eigen::MatrixXd>& M,
-              const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::Ref<Eigen::VectorXd>& z,
-              Eigen::Ref<Eigen::VectorXd> w, Status claimed, int iterations, double tol) {
-  multiply_add(M, z, q, w);
-  Result result;
-  result.iterations = iterations;
-  result.residual = complementarity_residual(z, w);
-  result.status = claimed;
-  if (claimed == Status::solved && !(result.residual <= tol)) result.status = Status::singular;
-  return result;
+Result finish(const MatrixCRef& M, const VectorCRef& q, const VectorRef& z, VectorRef& w,
+              Status claimed, int iterations, double tol) {
+  return verify<0>(M, q, z, w, claimed, iterations, tol);
 }
 
 // Solve M_aa z_a = -q_a on the active set a = {i : z_i > w_i}, z = 0 off it,

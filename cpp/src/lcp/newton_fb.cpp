@@ -34,11 +34,11 @@ double merit(const double* z, const double* w, int n) {
 
 }  // namespace
 
-Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
-                       const Eigen::Ref<const Eigen::VectorXd>& q,
-                       Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
-                       const Options& options, Workspace& workspace) {
-  const int n = detail::validate(M, q, z, w, options, Method::newton_fb);
+namespace detail {
+
+Result newton_fb(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
+                 const Options& options, Workspace& workspace) {
+  const int n = static_cast<int>(q.size());
   workspace.reserve(n);
   if (!options.warm_start) z.setZero();
   const int max_steps =
@@ -59,14 +59,14 @@ Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
   Status status = Status::max_iterations;
   int steps = 0;
   while (true) {
-    detail::multiply_add(M, z, q, w);
+    multiply_add(M, z, q, w);
     if (complementarity_residual(z, w) <= options.tol) {
       status = Status::solved;
       break;
     }
     // Polishing reuses columns 5 and 6 and the square; done before they hold
     // this step's data.
-    if (detail::polish(M, q, z.data(), w.data(), n, ws, z_trial, w_trial) &&
+    if (polish(M, q, z.data(), w.data(), n, ws, z_trial, w_trial) &&
         complementarity_residual(z_trial, w_trial) <= options.tol) {
       z = z_trial;
       status = Status::solved;
@@ -97,11 +97,11 @@ Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
     const double psi = merit(z.data(), w.data(), n);
 
     // Newton direction H d = -Phi if regular and a descent direction.
-    bool newton = detail::lu_factor(H, ws.permutation.data());
+    bool newton = lu_factor(H, ws.permutation.data());
     if (newton) {
       Eigen::Map<Eigen::VectorXd> d(direction, n);
       for (int i = 0; i < n; ++i) d[i] = -phi[i];
-      detail::lu_solve(H, ws.permutation.data(), d);
+      lu_solve(H, ws.permutation.data(), d);
       double slope = 0.0, norm2 = 0.0;
       for (int i = 0; i < n; ++i) slope += gradient[i] * d[i], norm2 += d[i] * d[i];
       newton = std::isfinite(slope) &&
@@ -138,7 +138,25 @@ Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
     z = z_trial;
     ++steps;
   }
-  return detail::finish(M, q, z, w, status, steps, options.tol);
+  return finish(M, q, z, w, status, steps, options.tol);
+}
+
+}  // namespace detail
+
+Result solve_newton_fb(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                       const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
+                       Eigen::Ref<Eigen::VectorXd> w, const Options& options,
+                       Workspace& workspace) {
+  detail::validate(M, q, z, w, options, Method::newton_fb);
+  return detail::newton_fb(M, q, z, w, options, workspace);
+}
+
+Result solve_newton_fb_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                                 const Eigen::Ref<const Eigen::VectorXd>& q,
+                                 Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
+                                 const Options& options, Workspace& workspace) {
+  detail::validate_shapes(M, q, z, w, options);
+  return detail::newton_fb(M, q, z, w, options, workspace);
 }
 
 }  // namespace leadscrew::lcp

@@ -12,17 +12,18 @@ namespace {
 constexpr double kDivergenceFactor = 1e50;
 }  // namespace
 
-Result solve_pgs(const Eigen::Ref<const Eigen::MatrixXd>& M,
-                 const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
-                 Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace) {
-  const int n = detail::validate(M, q, z, w, options, Method::pgs);
+namespace detail {
+
+Result pgs(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
+           const Options& options, Workspace& workspace) {
+  const int n = static_cast<int>(q.size());
   workspace.reserve(n);
   if (options.warm_start)
     for (int i = 0; i < n; ++i) z[i] = std::max(z[i], 0.0);
   else
     z.setZero();
   for (int i = 0; i < n; ++i)
-    if (!(M(i, i) > 0.0)) return detail::finish(M, q, z, w, Status::singular, 0, options.tol);
+    if (!(M(i, i) > 0.0)) return finish(M, q, z, w, Status::singular, 0, options.tol);
 
   const int max_sweeps =
       options.max_iter > 0 ? options.max_iter : default_max_iterations(Method::pgs, n);
@@ -32,12 +33,12 @@ Result solve_pgs(const Eigen::Ref<const Eigen::MatrixXd>& M,
   for (int i = 0; i < n; ++i) inverse_diagonal[i] = 1.0 / M(i, i);
 
   int sweeps = 0;
-  detail::multiply_add(M, z, q, w);
+  multiply_add(M, z, q, w);
   bool converged = complementarity_residual(z, w) <= options.tol;
   double* previous = workspace.vectors.col(1).data();
   // Iterates this far out have left every solution behind (PGS diverges on
   // some non-H-matrices); stopping here keeps z and M z finite.
-  const double divergence = kDivergenceFactor * detail::problem_scale(M, q);
+  const double divergence = kDivergenceFactor * problem_scale(M, q);
   while (!converged && sweeps < max_sweeps) {
     for (int i = 0; i < n; ++i) previous[i] = z[i];
     for (int i = 0; i < n; ++i) {
@@ -46,7 +47,7 @@ Result solve_pgs(const Eigen::Ref<const Eigen::MatrixXd>& M,
       z[i] = std::max(0.0, z[i] - omega * wi * inverse_diagonal[i]);
     }
     ++sweeps;
-    detail::multiply_add(M, z, q, w);
+    multiply_add(M, z, q, w);
     const double residual = complementarity_residual(z, w);
     if (!(residual <= divergence)) {  // diverged: report the previous iterate
       for (int i = 0; i < n; ++i) z[i] = previous[i];
@@ -54,8 +55,25 @@ Result solve_pgs(const Eigen::Ref<const Eigen::MatrixXd>& M,
     }
     converged = residual <= options.tol;
   }
-  return detail::finish(M, q, z, w, converged ? Status::solved : Status::max_iterations,
+  return finish(M, q, z, w, converged ? Status::solved : Status::max_iterations,
                         sweeps, options.tol);
+}
+
+}  // namespace detail
+
+Result solve_pgs(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                 const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
+                 Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace) {
+  detail::validate(M, q, z, w, options, Method::pgs);
+  return detail::pgs(M, q, z, w, options, workspace);
+}
+
+Result solve_pgs_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                           const Eigen::Ref<const Eigen::VectorXd>& q,
+                           Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
+                           const Options& options, Workspace& workspace) {
+  detail::validate_shapes(M, q, z, w, options);
+  return detail::pgs(M, q, z, w, options, workspace);
 }
 
 }  // namespace leadscrew::lcp

@@ -22,7 +22,7 @@ void Workspace::allocate(int capacity) {
   tableau.resize(capacity, capacity + 2);
   square.resize(capacity, capacity);
   vectors.resize(capacity, kVectorCount);
-  indices.resize(4 * capacity + 2);
+  indices.resize(6 * capacity + 4);
   permutation.resize(capacity);
   capacity_ = capacity;
 }

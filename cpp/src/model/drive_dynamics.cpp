@@ -1,6 +1,8 @@
 #include "leadscrew/model/drive_dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "leadscrew/core/errors.hpp"
@@ -79,6 +81,25 @@ double smooth_step(double x) {
 }
 
 }  // namespace
+
+friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha, double beta,
+                                                double mu, int sigma, lcp::Workspace& workspace,
+                                                const lcp::Options& options) {
+  // Force scale: the normal force, and the friction force that would stop
+  // the slip acceleration c.
+  const double scale = std::max(std::abs(beta), d != 0.0 ? std::abs(c / d) : std::abs(c));
+  if (!(scale > 0.0) || !std::isfinite(scale))
+    return friction::solve_flank_lcp(c, d, alpha, beta, mu, sigma, workspace, options);
+  int exponent = 0;
+  std::frexp(scale, &exponent);
+  friction::FlankLcpResult r = friction::solve_flank_lcp(
+      std::ldexp(c, -exponent), d, alpha, std::ldexp(beta, -exponent), mu, sigma, workspace,
+      options);
+  r.friction_force = std::ldexp(r.friction_force, exponent);
+  r.normal_force = std::ldexp(r.normal_force, exponent);
+  r.slip_acceleration = std::ldexp(r.slip_acceleration, exponent);
+  return r;
+}
 
 DriveDynamics::DriveDynamics(const DriveModel& model) : model_(model) {
   const int n = model.coordinate_count();
@@ -263,6 +284,9 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   };
 
   ModeSolution solution;
+  if (spec.friction == FrictionMode::regularized_acceleration &&
+      spec.contact == ThreadContact::bilateral && painleve_possible_)
+    return solve_acceleration_law(spec);
   if (spec.friction != FrictionMode::regularized_acceleration ||
       spec.contact == ThreadContact::open) {
     evaluate(friction_factor(spec, 0.0), solution);
@@ -314,6 +338,94 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   return solution;
 }
 
+// Eq. (3.15) on the thread without play, every consistent solution. With
+// the friction force T as the unknown, the normal force and the slip
+// acceleration are affine in it (every other constraint enforced):
+// N = N_0 + alpha T, x = x_0 + d T (d > 0), and the law with the normal
+// force's sign sigma = sign N consistent by construction is
+//   Phi(T) = T + kappa(x) |N| = 0,   kappa(x) = (2/pi) mu' atan(k_V x).
+// Phi runs from -inf to +inf (|kappa| < mu' and kappa takes the sign of T for
+// large |T|), so a solution always exists: the law never jams for lack of a
+// consistent sign, unlike exact Coulomb in slip. Phi' = 1 + kappa' d |N| +
+// kappa sigma alpha > 0 when mu' |alpha| = mu' |G_NT| / G_NN < 1, so the
+// solution is unique outside the Painleve regime (the general solve above
+// handles that case). Inside it several solutions can coexist: the friction
+// factor of one slip acceleration cancels the inertia the normal force sees
+// (|kappa| > G_NN / |G_NT| somewhere between them). All of them are found on
+// the compact interval u = atan(k_V x) in (-pi/2, pi/2), where
+//   H(u) = cos(u) Phi = C cos u + D sin u + (2/pi) mu' u |A cos u + B sin u|
+// (C = -x_0 / d, D = 1 / (d k_V), A = N_0 - alpha x_0 / d, B = alpha / (d k_V))
+// has H(-pi/2) < 0 < H(pi/2) and |H''| <= hypot(C, D) + (2/pi) mu' hypot(A, B)
+// (2 + pi/2) between the kink of |N|: a scan with certified steps (no sign
+// change passed unseen; a double root narrower than 1e-12 is taken for a
+// touch) and Illinois at every sign change.
+ModeSolution DriveDynamics::solve_acceleration_law(const ModeSpec& spec) {
+  ModeSpec free = spec;
+  free.friction = FrictionMode::none;
+  free.given_tangential = 0.0;
+  const ModeSolution without = solve(free);
+  free.given_tangential = 1.0;
+  const ModeSolution unit = solve(free);
+  ModeSolution solution;
+  if (!without.regular || !unit.regular) return solution;
+  const double n0 = without.normal_force, x0 = without.slip_acceleration;
+  const double alpha = unit.normal_force - n0, d = unit.slip_acceleration - x0;
+  const double k_v = model_.parameters().k_v, mu = model_.effective_mu();
+  if (!(d > 0.0)) return solution;
+  const double C = -x0 / d, D = 1.0 / (d * k_v), A = n0 - alpha * x0 / d, B = alpha / (d * k_v);
+  const double factor = kTwoOverPi * mu;
+  auto H = [&](double u) {
+    const double c = std::cos(u), s = std::sin(u);
+    return C * c + D * s + factor * u * std::abs(A * c + B * s);
+  };
+  auto slope = [&](double u) {
+    const double c = std::cos(u), s = std::sin(u);
+    const double inner = A * c + B * s;
+    const double sign = (inner > 0.0) - (inner < 0.0);
+    return -C * s + D * c + factor * (std::abs(inner) + u * sign * (-A * s + B * c));
+  };
+  const double half_pi = 1.57079632679489661923;
+  const double curvature =
+      (std::hypot(C, D) + factor * std::hypot(A, B) * (2.0 + half_pi)) * (1.0 + 1e-9);
+  // The kink of |N| splits the interval (the bound holds on each side).
+  const double kink = B != 0.0 ? std::atan(-A / B) : half_pi;
+  const double floor_step = 1e-12 * half_pi;
+  // Roots of H in increasing u. Several make the drive jam (the caller
+  // raises), so which one is returned then does not matter: the first.
+  double chosen = 0.0;
+  int count = 0;
+  double u = -half_pi;
+  double value = H(u);
+  for (long step = 0; step < 1000000 && u < half_pi; ++step) {
+    double h = floor_step;
+    if (value != 0.0) {
+      const double g = std::abs(slope(u)), f = std::abs(value);
+      h = std::max(2.0 * f / (g + std::sqrt(g * g + 2.0 * curvature * f)), floor_step);
+    }
+    double next = std::min(u + h, half_pi);
+    if (u < kink && next > kink) next = kink;
+    const double next_value = H(next);
+    const bool root_at_next = next_value == 0.0;
+    const bool crossing = value != 0.0 && next_value != 0.0 && (next_value > 0.0) != (value > 0.0);
+    if (root_at_next || crossing) {
+      // (-H if H falls there: first_negative wants f(low) >= 0)
+      const double direction = value > 0.0 ? 1.0 : -1.0;
+      if (count++ == 0)
+        chosen = root_at_next ? next
+                              : first_negative([&](double x) { return direction * H(x); }, u,
+                                               next, 1e-16);
+    }
+    u = next;
+    value = next_value;
+  }
+  if (count == 0) return solution;  // unreachable: H changes sign on the interval
+  const double x = std::tan(chosen) / k_v;
+  free.given_tangential = (x - x0) / d;  // the friction force T
+  solution = solve(free);
+  solution.consistent_solutions = count;
+  return solution;
+}
+
 ModeSolution DriveDynamics::solve_with_forces(const ModeSpec& spec,
                                              const CoordinateVector& forces) {
   const CoordinateVector own = forces_;
@@ -330,12 +442,31 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
       spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
   const int nc = 1 + (normal_row ? 1 : 0) + (p.speed_controlled ? 1 : 0);
   ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
-  SmallVector r = SmallVector::Zero(nc);
+  SmallVector target = SmallVector::Zero(nc);  // the velocity constraints after the projection
   int row = 0;
-  C.row(row) = model_.tangent_direction().transpose();
-  r[row++] = -model_.tangent_direction().dot(v);
+  C.row(row++) = model_.tangent_direction().transpose();  // zero slip
+  // The thread without play and a closed flank have zero normal velocity
+  // (the constraint; a closed flank's is set so when it closes).
   if (normal_row) C.row(row++) = model_.normal_direction().transpose();
-  if (p.speed_controlled) C(row++, model_.rotor()) = 1.0;
+  if (p.speed_controlled) {
+    C(row, model_.rotor()) = 1.0;
+    target[row++] = v[model_.rotor()];  // the motor's prescribed speed
+  }
+  if (nc == n) {
+    // The constraints fix every velocity (the rigid drive in stick): solve
+    // them directly. A torque-driven rigid drive then stands exactly still,
+    // where the projection v + dv would leave a round-off speed (~1e-28 rad/s)
+    // that keeps the slip velocity off zero for the whole stick phase.
+    Eigen::FullPivLU<SmallMatrix> lu(C.leftCols(n));
+    if (lu.isInvertible()) {
+      const SmallVector fixed = lu.solve(target);
+      if (fixed.allFinite()) {
+        v = fixed;
+        return;
+      }
+    }
+  }
+  SmallVector r = target - C * v;
   ColumnMatrix B = C.transpose();
   CoordinateVector zero = CoordinateVector::Zero(n), change;
   SmallVector lambda;
@@ -377,7 +508,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   const double c = tangent.dot(v + without);
   const double d = tangent.dot(unit - without);
   const double alpha = unit_normal - beta;
-  const friction::FlankLcpResult r = friction::solve_flank_lcp(
+  const friction::FlankLcpResult r = solve_flank_lcp_scaled(
       c, d, alpha, beta, model_.effective_mu(), sigma, workspace, options);
   if (!r.consistent) return false;
   CoordinateVector change;

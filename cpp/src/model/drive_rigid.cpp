@@ -1,5 +1,10 @@
 #include "leadscrew/model/drive_rigid.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
 #include "leadscrew/core/errors.hpp"
 
 namespace leadscrew::model {
@@ -54,6 +59,107 @@ RigidDriveModes::RigidDriveModes(const DriveModel& model, DriveDynamics& dynamic
       c.friction_force = {torque.friction_force, force.friction_force};
     }
   }
+}
+
+}  // namespace leadscrew::model
+
+namespace leadscrew::model {
+
+namespace {
+
+// A bound on |d^2/dt^2| of an excitation between its breakpoints, from the
+// semantics Excitation documents for time_scale() and breakpoints(); nullopt
+// for a callable (time scale 0: no hint).
+std::optional<double> curvature_bound(const Excitation& load) {
+  const double scale = load.time_scale();
+  if (std::isinf(scale)) return 0.0;         // constant (or a sine without amplitude)
+  if (!(scale > 0.0)) return std::nullopt;   // callable
+  if (!load.breakpoints().empty()) return 0.0;  // table: linear between its knots
+  // A sine of period `scale`: its derivative A w cos(w t + phase) has the
+  // amplitude |A| w = hypot(f'(0), f'(scale / 4)), its second derivative |A| w^2.
+  const double omega = 2.0 * 3.14159265358979323846 / scale;
+  return std::hypot(load.derivative(0.0), load.derivative(0.25 * scale)) * omega;
+}
+
+constexpr long kMaxScanSteps = 1000000;
+
+}  // namespace
+
+std::optional<double> first_load_crossing(const Excitation& torque, const Excitation& force,
+                                          const LoadCoefficients* functions, int count,
+                                          double t0, double t_end) {
+  const std::optional<double> torque_curvature = curvature_bound(torque);
+  const std::optional<double> force_curvature = curvature_bound(force);
+  if (!torque_curvature || !force_curvature) return std::nullopt;
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (!(t_end > t0)) return kInfinity;
+  // The knots of table loads: f' jumps there, so a Taylor bound holds only
+  // between them.
+  std::vector<double> knots;
+  for (const Excitation* load : {&torque, &force})
+    for (double knot : load->breakpoints())
+      if (knot > t0 && knot < t_end) knots.push_back(knot);
+  std::sort(knots.begin(), knots.end());
+  knots.push_back(t_end);
+  // The shortest step the scan takes where a bound allows less (a touch).
+  double time_scale = t_end - t0;
+  for (const Excitation* load : {&torque, &force})
+    if (std::isfinite(load->time_scale())) time_scale = std::min(time_scale, load->time_scale());
+  const double floor_step =
+      std::max(1e-12 * time_scale, 64.0 * std::numeric_limits<double>::epsilon() *
+                                       std::max(std::abs(t0), std::abs(t_end)));
+
+  double curvature[2] = {0.0, 0.0};
+  for (int k = 0; k < count; ++k)
+    curvature[k] = (std::abs(functions[k].per_torque) * *torque_curvature +
+                    std::abs(functions[k].per_force) * *force_curvature) *
+                   (1.0 + 1e-9);  // round-off of the bound itself
+  auto value = [&](int k, double t) { return functions[k](torque(t), force(t)); };
+  double t = t0;
+  std::size_t next_knot = 0;
+  // The loads and their slopes at t, shared by the functions.
+  double torque_now = torque(t), force_now = force(t);
+  for (long step = 0; step < kMaxScanSteps; ++step) {
+    while (knots[next_knot] <= t && next_knot + 1 < knots.size()) ++next_knot;
+    const double segment_end = knots[next_knot];
+    if (t >= t_end) return kInfinity;
+    // The largest step over which every lower bound stays positive.
+    const double torque_slope = torque.derivative(t), force_slope = force.derivative(t);
+    double h = segment_end - t;
+    double now[2];
+    for (int k = 0; k < count; ++k) {
+      const double f = functions[k](torque_now, force_now);
+      const double d = functions[k](torque_slope, force_slope), c = curvature[k];
+      now[k] = f;
+      double safe;
+      if (f <= 0.0) {
+        safe = 0.0;
+      } else if (c == 0.0) {  // linear up to the knot: exact
+        safe = d >= 0.0 ? kInfinity : f / -d;
+      } else {  // the positive root of f + d h - c h^2 / 2, without cancellation
+        const double root = std::sqrt(d * d + 2.0 * c * f);
+        safe = d > 0.0 ? (d + root) / c : 2.0 * f / (root - d);
+      }
+      h = std::min(h, safe);
+    }
+    double t_next = t + std::max(h, floor_step);
+    if (t_next >= segment_end) t_next = segment_end;
+    const double torque_next = torque(t_next), force_next = force(t_next);
+    double crossing = kInfinity;
+    for (int k = 0; k < count; ++k) {
+      if (functions[k](torque_next, force_next) >= 0.0) continue;
+      const double located = now[k] < 0.0 ? t : first_negative(
+          [&](double time) { return value(k, time); }, t, t_next,
+          4.0 * std::numeric_limits<double>::epsilon() * std::abs(t_next));
+      crossing = std::min(crossing, located);
+    }
+    if (crossing < kInfinity) return crossing;
+    t = t_next;
+    torque_now = torque_next;
+    force_now = force_next;
+  }
+  throw SimulationError(t, "the scan for the first zero of a load-driven root function did not end",
+                        "the loads may cancel exactly in the thread forces; use other loads");
 }
 
 }  // namespace leadscrew::model

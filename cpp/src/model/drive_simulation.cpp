@@ -242,13 +242,8 @@ class DriveHybrid final : public integrate::HybridSystem {
     double* energy = ydot + layout_.energy_offset();
     energy[kWorkDrive] = s.motor_torque * v_[model_.rotor()];
     energy[kWorkAxial] = dynamics_.axial_force() * v_[model_.load()];
-    // In stick the flank does not slip: the slip velocity the integration
-    // leaves there (the stick constraint holds on the acceleration level; it
-    // drifts by round-off, ~1e-13 m/s) does no friction work, which would
-    // make friction_loss negative; that drift's work stays in the residual.
-    energy[kFrictionLoss] = mode_.friction == FrictionMode::stick
-                                ? 0.0
-                                : -s.friction_force * dynamics_.slip_velocity();
+    energy[kFrictionLoss] =
+        mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics_.slip_velocity();
     energy[kDampingLoss] = dynamics_.damping_power();
     energy[kContactLoss] = dynamics_.contact_loss_power();
   }
@@ -261,9 +256,12 @@ class DriveHybrid final : public integrate::HybridSystem {
       const double mu = model_.effective_mu();
       if (mode_.friction == FrictionMode::slip) {
         g[0] = rigid_->slip_per_speed() * y[1];
-        g[1] = flank_change_root(s.normal_force);
+        g[1] = load_root_ == 1 ? load_root_value(t) : flank_change_root(s.normal_force);
       } else {
-        g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+        const double margin =
+            (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+        if (margin > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
+        g[0] = load_root_ == 0 ? load_root_value(t) : margin;
       }
       return;
     }
@@ -277,8 +275,10 @@ class DriveHybrid final : public integrate::HybridSystem {
       if (need_forces) {
         const ModeSolution s = solve_current();
         const double mu = model_.effective_mu();
-        if (mode_.friction == FrictionMode::stick)
+        if (mode_.friction == FrictionMode::stick) {
           g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+          if (g[0] > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
+        }
         if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
           g[1] = flank_change_root(s.normal_force);
         if (watch_fold()) {
@@ -292,6 +292,7 @@ class DriveHybrid final : public integrate::HybridSystem {
           g[3] = dynamics_.thread_denominator(sigma_guess_, kappa) / g_nn - kFoldWatch;
         }
         if (mode_.contact == ThreadContact::closed) g[1] = mode_.flank * s.normal_force;
+        if (load_root_ >= 0) g[load_root_] = load_root_value(t);
       }
     }
     if (mode_.contact == ThreadContact::open || mode_.contact == ThreadContact::penalty) {
@@ -376,9 +377,33 @@ class DriveHybrid final : public integrate::HybridSystem {
           kFoldWatch * dynamics_.delassus_normal())
         approach_fold(t, y);
     }
+    start_mode(t);
   }
 
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
+    const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
+                           root_info[0] != 0;
+    std::string kind = change_mode(t, y, root_info);
+    start_mode(t);
+    // A stick whose cone margin never left zero was no stick phase: the thread
+    // carried no force (a flexible drive's relaxed springs at t = 0) and the
+    // forces, once they grow, leave the cone at once. The slip that follows is
+    // the drive's motion from the start, not an event.
+    return from_zero ? std::string() : kind;
+  }
+
+  // After the mode is chosen (at the start and at every event).
+  void start_mode(double t) {
+    plan_load_roots(t);
+    stick_from_zero_ = false;
+    if (mode_.friction == FrictionMode::stick) {
+      const ModeSolution s = solve_current();
+      stick_from_zero_ = s.normal_force == 0.0 && s.friction_force == 0.0;
+    }
+  }
+
+  // handle_event without the planning of the next mode's load-driven roots.
+  std::string change_mode(double t, double* y, const std::vector<int>& root_info) {
     set(t, y);
     const Mode before = mode_;
     if (watch_fold() && root_info[2] != 0) {
@@ -496,8 +521,12 @@ class DriveHybrid final : public integrate::HybridSystem {
     forces.normal = s.normal_force;
     forces.friction = s.friction_force;
     forces.motor_torque = s.motor_torque;
-    write_drive_channels(model_, channel_state(dynamics_), forces, y + layout_.energy_offset(),
-                         impact_loss_, kinetic0_, elastic0_, out);
+    ChannelState state = channel_state(dynamics_);
+    // Stick holds the slip velocity at zero; the state carries the integrator's
+    // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
+    if (forces.stick) state.slip_velocity = 0.0;
+    write_drive_channels(model_, state, forces, y + layout_.energy_offset(), impact_loss_,
+                         kinetic0_, elastic0_, out);
   }
 
   std::vector<double> breakpoints() const override {
@@ -548,6 +577,83 @@ class DriveHybrid final : public integrate::HybridSystem {
   double flank_change_root(double normal_force) {
     if (normal_side_ == 0) normal_side_ = sign_of(normal_force);
     return normal_side_ != 0 ? normal_side_ * normal_force : 0.0;
+  }
+
+  // True if the thread forces of the current mode depend on the loads alone
+  // (linearly): the rigid drive (no springs, no dampers) with a
+  // torque-driven rotor and exact Coulomb friction on the thread without play
+  // or a closed flank, in stick (every coordinate locked) or slip (the
+  // friction factor +-mu' is constant).
+  bool load_driven() const {
+    return p_.concept == Concept::rigid && model_.springs().empty() && !p_.speed_controlled &&
+           p_.friction == FrictionLaw::coulomb &&
+           (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
+           (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
+  }
+
+  // The thread forces of the current mode per unit drive torque and axial
+  // force (normal-force sign sigma where it matters).
+  RigidModeCoefficients mode_coefficients(int sigma) {
+    if (rigid_) return rigid_->coefficients(mode_.friction, mode_.slip_sign, sigma);
+    const int n = model_.coordinate_count();
+    CoordinateVector unit_torque = CoordinateVector::Zero(n), unit_force = unit_torque;
+    unit_torque[model_.rotor()] = 1.0;
+    unit_force[model_.load()] = 1.0;
+    const ModeSolution torque = dynamics_.solve_with_forces(spec(sigma), unit_torque);
+    const ModeSolution force = dynamics_.solve_with_forces(spec(sigma), unit_force);
+    RigidModeCoefficients c;
+    if (!torque.regular || !force.regular) return c;
+    c.normal_force = {torque.normal_force, force.normal_force};
+    c.friction_force = {torque.friction_force, force.friction_force};
+    return c;
+  }
+
+  // At the start of a mode whose thread forces are load-driven, the stick
+  // cone's margin (stick) or the normal force on its side (slip) is a function
+  // of time alone: its first zero is found by first_load_crossing, and the
+  // root function becomes the time left until it, load_root_time_ - t, which
+  // falls through zero exactly there however short the excursion beyond it.
+  // (The margin sampled at the integrator's steps missed a 13 ms excursion out
+  // of the cone with steps of 21 ms.)
+  void plan_load_roots(double t) {
+    load_root_ = -1;
+    load_root_time_ = std::numeric_limits<double>::infinity();
+    if (!load_driven()) return;
+    const double torque = p_.drive_torque(t), force = p_.axial_force(t);
+    LoadCoefficients functions[2];
+    int count = 0, slot = -1;
+    if (mode_.friction == FrictionMode::stick) {
+      // |T| <= mu' |N| as the two factors mu' s N -+ T, with s the side of N
+      // at the start: before N could change sides, |T| would have to fall to
+      // zero with it, so one factor crosses first.
+      const RigidModeCoefficients c = mode_coefficients(1);
+      int side = sign_of(c.normal_force(torque, force));
+      if (side == 0)
+        side = sign_of(c.normal_force(p_.drive_torque.derivative(t), p_.axial_force.derivative(t)));
+      if (side == 0) return;  // no load on the thread: the sampled margin decides
+      const double mu = model_.effective_mu();
+      for (int s : {1, -1})
+        functions[count++] = {mu * side * c.normal_force.per_torque - s * c.friction_force.per_torque,
+                              mu * side * c.normal_force.per_force - s * c.friction_force.per_force};
+      slot = 0;
+    } else {
+      // The normal force leaving its side: a flank change (bilateral) or the
+      // flank opening (closed).
+      const int side = mode_.contact == ThreadContact::closed ? mode_.flank : normal_side_;
+      if (side == 0) return;  // not left zero yet (flank_change_root)
+      const RigidModeCoefficients c = mode_coefficients(side);
+      functions[count++] = {side * c.normal_force.per_torque, side * c.normal_force.per_force};
+      slot = 1;
+    }
+    const std::optional<double> crossing =
+        first_load_crossing(p_.drive_torque, p_.axial_force, functions, count, t, t_end_);
+    if (!crossing) return;  // a callable load: no curvature bound
+    load_root_ = slot;
+    load_root_time_ = *crossing;
+  }
+
+  double load_root_value(double t) const {
+    return std::isfinite(load_root_time_) ? load_root_time_ - t : 1.0;
   }
 
   struct RigidSolution {
@@ -668,6 +774,39 @@ class DriveHybrid final : public integrate::HybridSystem {
     DriveHybrid& drive_;
   };
 
+  // Eq. (3.15) has `count` consistent flank forces at the state set. For the
+  // rigid drive (no springs, no dampers) they depend on the time alone (the
+  // loads; the law does not depend on the velocity), so the onset of the
+  // ambiguity lies between the last time with one solution and now: located
+  // by bisection on the count, to round-off. (A flexible drive's depend on
+  // its state: raised where first seen, at the integrator's resolution.)
+  [[noreturn]] void jam_acceleration_law(int count) {
+    double onset = dynamics_.time();
+    if (model_.springs().empty() && last_unique_time_ < onset) {
+      const CoordinateVector q = q_, v = v_;
+      double low = last_unique_time_, high = onset;
+      for (int iteration = 0; iteration < 200 && high - low > 2.0 * std::numeric_limits<double>::epsilon() * std::abs(high); ++iteration) {
+        const double middle = 0.5 * (low + high);
+        dynamics_.set_state(middle, q, v);
+        const int n = dynamics_.solve(spec(sigma_guess_)).consistent_solutions;
+        (n == 1 ? low : high) = middle;
+        if (n != 1) count = n;
+      }
+      onset = high;
+      dynamics_.set_state(onset, q, v);
+    }
+    throw JammingError(
+        onset,
+        "dynamic jamming: eq. (3.15) admits " + std::to_string(count) +
+            " consistent flank forces from here: its friction factor kappa = (2/pi) mu' "
+            "atan(k_V gamma_T') depends on the slip acceleration it produces, so a solution "
+            "always exists, and it is unique unless mu' |G_NT| >= G_NN (the exact law's "
+            "Painleve condition; then several exist where |kappa| exceeds G_NN / |G_NT| "
+            "between them); " + dynamics_.jamming_report(),
+        "the drive self-locks dynamically (Painleve paradox of the acceleration-dependent "
+        "friction law); reduce the friction or change the inertia ratio");
+  }
+
   [[noreturn]] void jam(const std::string& what) const {
     throw JammingError(dynamics_.time(),
                        "dynamic jamming: " + what + "; " + dynamics_.jamming_report(),
@@ -682,6 +821,19 @@ class DriveHybrid final : public integrate::HybridSystem {
     const bool friction_on_normal = mode_.friction == FrictionMode::slip ||
                                     mode_.friction == FrictionMode::regularized_velocity ||
                                     mode_.friction == FrictionMode::regularized_acceleration;
+    if (mode_.contact == ThreadContact::bilateral &&
+        mode_.friction == FrictionMode::regularized_acceleration && dynamics_.painleve_possible()) {
+      // Eq. (3.15): every consistent flank force at once (DriveDynamics::
+      // solve_acceleration_law); there is always one, several are jamming.
+      const ModeSolution s = dynamics_.solve(spec(sigma_guess_));
+      if (!s.regular)
+        throw SimulationError(dynamics_.time(), "the constraint equations of the drive are singular",
+                              "check masses, inertias and the thread geometry");
+      if (s.consistent_solutions != 1) jam_acceleration_law(s.consistent_solutions);
+      if (s.normal_force != 0.0) sigma_guess_ = sign_of(s.normal_force);
+      last_unique_time_ = std::max(last_unique_time_, dynamics_.time());
+      return s;
+    }
     if (mode_.contact == ThreadContact::bilateral && friction_on_normal &&
         !dynamics_.painleve_possible()) {
       // At most one sign can be consistent: try the last one first.
@@ -757,8 +909,9 @@ class DriveHybrid final : public integrate::HybridSystem {
       // raises JammingError if no normal-force sign is consistent
       const ModeSolution s = solve_current();
       if (mode_.contact == ThreadContact::closed && mode_.flank * s.normal_force < 0.0) {
-        // A closed flank in slip that would have to pull opens (the contact is
-        // unilateral), as at zero slip when no friction mode keeps it.
+        // A flank closed by a grazing impact while the drive slips, whose
+        // normal force would pull: the contact is unilateral, it stays open
+        // (as a closed flank opens where its normal force falls through zero).
         mode_.contact = ThreadContact::open;
         mode_.friction = FrictionMode::none;
         mode_.slip_sign = 0;
@@ -797,8 +950,8 @@ class DriveHybrid final : public integrate::HybridSystem {
     Mode chosen = mode_;
     for (int sigma : sigmas) {
       const friction::FlankLcpResult r =
-          friction::solve_flank_lcp(c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_,
-                                    lcp_options_);
+          solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_,
+                                 lcp_options_);
       ++lcp_solves_;
       if (!r.consistent) continue;
       Mode candidate = mode_;
@@ -917,6 +1070,10 @@ class DriveHybrid final : public integrate::HybridSystem {
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   std::vector<double> saved_state_;  // y before a touch below resolution (handle_event)
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  double last_unique_time_ = 0.0;  // eq. (3.15) last seen with one solution (jam_acceleration_law)
+  bool stick_from_zero_ = false;  // a stick mode whose cone margin has not left zero
+  int load_root_ = -1;     // the root function replaced by a load-driven crossing (-1: none)
+  double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
   std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
@@ -1019,7 +1176,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
       int found = 0;
       friction::FlankLcpResult chosen;
       for (int sigma : sigmas) {
-        const friction::FlankLcpResult r = friction::solve_flank_lcp(
+        const friction::FlankLcpResult r = solve_flank_lcp_scaled(
             c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_, lcp_options_);
         ++lcp_solves_;
         if (!r.consistent) continue;

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy
 import numpy.typing
 import typing
-__all__: list[str] = ['MAX_ENUMERATE_SIZE', 'complementarity_residual', 'contact_lcp', 'contact_state', 'default_max_iterations', 'friction_lcp', 'friction_state', 'single_friction_lcp', 'single_friction_state', 'solve']
+__all__: list[str] = ['MAX_ENUMERATE_SIZE', 'MAX_FIXED_LEMKE_SIZE', 'complementarity_residual', 'contact_lcp', 'contact_state', 'default_max_iterations', 'friction_lcp', 'friction_state', 'single_friction_lcp', 'single_friction_state', 'solve', 'solve_lemke_generic']
 def complementarity_residual(z: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], w: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]) -> float:
     """
     max_i |min(z_i, w_i)| + max(0, -min z) + max(0, -min w)
@@ -42,4 +42,9 @@ def solve(M: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "fl
     """
     Solve the LCP (M, q); returns (z, w, status, iterations, residual). max_iter 0 is the method's default; z0 None starts cold.
     """
+def solve_lemke_generic(M: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.f_contiguous"], q: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"], tol: typing.SupportsFloat | typing.SupportsIndex, max_iter: typing.SupportsInt | typing.SupportsIndex) -> tuple:
+    """
+    Lemke on its size-generic code path, also for n <= 8 (where solve runs the fixed-size one), without the NaN/inf scan; for tests. Returns (z, w, status, iterations, residual).
+    """
 MAX_ENUMERATE_SIZE: int = 12
+MAX_FIXED_LEMKE_SIZE: int = 8

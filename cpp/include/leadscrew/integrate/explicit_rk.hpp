@@ -14,8 +14,12 @@
 // exactly 0 at a (re)start takes the sign it has just after it along the
 // solution, so a restart on the switching surface does not report that root
 // again but sees the next crossing; if it is 0 there too it stays inactive
-// for the step. The root is found in two
-// stages:
+// for the step. A function that starts the step after a (re)start at 0 or
+// at its round-off level (after an event its sign there is noise) may leave
+// its surface and cross back within that step, which the step ends do not
+// show: that first step samples its dense output for the opposite sign and,
+// if found, is retried up to the sample (hidden_crossing). The root is
+// found in two stages:
 //   1. on the dense output (no right-hand-side calls): Illinois iteration for
 //      every bracketed function; the earliest root is the initial guess;
 //   2. on the exact continuation phi(tau) = g(t_n + tau, Phi_tau(y_n)), where
@@ -76,7 +80,9 @@ void check_tableau(const ButcherTableau& tableau);
 
 class ExplicitRungeKutta final : public Integrator {
  public:
-  // Throws InvalidArgument for max_order != 0 (a fixed-order method).
+  // Throws InvalidArgument for max_order != 0 (a fixed-order method). The
+  // tableau is kept by reference (the methods' tableaux are static): it
+  // must outlive the integrator.
   ExplicitRungeKutta(const ButcherTableau& tableau, const IntegratorOptions& options);
 
   std::string name() const override { return tableau_.name; }
@@ -105,13 +111,17 @@ class ExplicitRungeKutta final : public Integrator {
   void interpolate(double theta, double* y_out);
   void roots_at(double t, const double* y, double* g);
   void activate_zero_roots();
+  // In the first step after a (re)start: the fraction theta of the step at
+  // which a root function that started on its surface has left it to the
+  // side opposite to its sign at the step end (crossed twice), 0 if none.
+  double hidden_crossing();
   // After an accepted step with a sign change of some root function between
   // g_start_ and g_end_: locates the earliest root; y_ and t_ move there.
   void locate_root();
   [[noreturn]] void fail(const std::string& flag, const std::string& meaning,
                          const std::string& hint) const;
 
-  const ButcherTableau tableau_;
+  const ButcherTableau& tableau_;
   const IntegratorOptions options_;
   OdeSystem* system_ = nullptr;
   int n_ = 0;
@@ -127,14 +137,20 @@ class ExplicitRungeKutta final : public Integrator {
   double t_end_ = 0.0;      // its end (t_out exactly when it landed there)
   bool first_stage_valid_ = false;  // f_current_ = f(t_, y_)
   bool step_available_ = false;     // a step for dense_output exists
+  bool probe_step_ = false;         // the next step is the first after a (re)start
   float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
 
-  // y_start_, k_ (stages), y_new_ and f_end_ = f(t_n+1, y_n+1) describe the
-  // last accepted step (dense output); f_current_ = f(t_, y_) is the next
-  // step's first stage.
-  std::vector<double> y_, y_start_, y_new_, y_stage_, y_trial_, k_, k_trial_, f_end_, f_current_;
-  std::vector<double> g_start_, g_end_, g_lo_, g_hi_, g_trial_, weights_;
+  // One allocation (initialize) holds every array below; the pointers are
+  // swapped, never the data. y_start_, k_ (stages), y_new_ and
+  // f_end_ = f(t_n+1, y_n+1) describe the last accepted step (dense
+  // output); f_current_ = f(t_, y_) is the next step's first stage.
+  std::vector<double> workspace_;
+  double *y_ = nullptr, *y_start_ = nullptr, *y_new_ = nullptr, *y_stage_ = nullptr,
+         *y_trial_ = nullptr, *k_ = nullptr, *k_trial_ = nullptr, *f_end_ = nullptr,
+         *f_current_ = nullptr;
+  double *g_start_ = nullptr, *g_end_ = nullptr, *g_lo_ = nullptr, *g_hi_ = nullptr,
+         *g_trial_ = nullptr, *weights_ = nullptr;
   std::vector<int> root_info_;
   IntegratorStats stats_;
 };

@@ -26,6 +26,8 @@ namespace leadscrew::lcp {
 // no_solution:     enumerate proved that no solution exists (every principal
 //                  submatrix regular, no complementary basis feasible).
 // Every status but solved leaves in z the method's last iterate, with w = M z + q.
+// Each method has a checked entry point solve_<method> and an unchecked one
+// solve_<method>_unchecked with the contracts of solve() and solve_unchecked().
 enum class Status { solved, ray_termination, max_iterations, singular, no_solution };
 enum class Method { lemke, pgs, newton_fb, enumerate };
 
@@ -58,7 +60,22 @@ Result solve(const Eigen::Ref<const Eigen::MatrixXd>& M,
              const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
              Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace);
 
-// max_i |min(z_i, w_i)| + max(0, -min z) + max(0, -min w)
+// solve() without the O(n^2) scan of M and q for NaN and inf: for callers that
+// build M and q themselves (the integrators, the benchmark), where that scan
+// costs as much as a small solve. Shapes and options are still checked
+// (InvalidArgument). A NaN or inf in M or q (or a non-finite warm start) is
+// not reported as an error but can never give Status::solved: the final
+// verification forms M z + q over every column, so any non-finite entry
+// makes the residual infinite; the status is then one of the others
+// (singular, ray_termination, max_iterations or no_solution) and
+// Result::residual is +infinity.
+Result solve_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                       const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
+                       Eigen::Ref<Eigen::VectorXd> w, const Options& options,
+                       Workspace& workspace);
+
+// max_i |min(z_i, w_i)| + max(0, -min z) + max(0, -min w); +infinity if an
+// entry of z or w is NaN or inf. InvalidArgument if the sizes differ.
 double complementarity_residual(const Eigen::Ref<const Eigen::VectorXd>& z,
                                 const Eigen::Ref<const Eigen::VectorXd>& w);
 

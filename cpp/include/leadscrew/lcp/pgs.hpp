@@ -18,4 +18,10 @@ Result solve_pgs(const Eigen::Ref<const Eigen::MatrixXd>& M,
                  const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::Ref<Eigen::VectorXd> z,
                  Eigen::Ref<Eigen::VectorXd> w, const Options& options, Workspace& workspace);
 
+// Without the scan of M and q for NaN and inf (see solve_unchecked in lcp.hpp).
+Result solve_pgs_unchecked(const Eigen::Ref<const Eigen::MatrixXd>& M,
+                           const Eigen::Ref<const Eigen::VectorXd>& q,
+                           Eigen::Ref<Eigen::VectorXd> z, Eigen::Ref<Eigen::VectorXd> w,
+                           const Options& options, Workspace& workspace);
+
 }  // namespace leadscrew::lcp

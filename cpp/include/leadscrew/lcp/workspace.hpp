@@ -25,9 +25,10 @@ class Workspace {
   // Scratch, contents unspecified between calls (public so that the one
   // source file per method can use it without accessors):
   Eigen::MatrixXd tableau;      // capacity x (capacity + 2): Lemke's condensed tableau
-  Eigen::MatrixXd square;       // capacity x capacity: Jacobians, principal submatrices, LU
+  Eigen::MatrixXd square;       // capacity x capacity: Jacobians, principal submatrices, LU,
+                                // Lemke's pending pivots
   Eigen::MatrixXd vectors;      // capacity x kVectorCount scratch vectors
-  Eigen::VectorXi indices;      // 4 capacity + 2: Lemke's basis bookkeeping, index sets
+  Eigen::VectorXi indices;      // 6 capacity + 4: Lemke's basis bookkeeping, index sets
   Eigen::VectorXi permutation;  // capacity: LU row interchanges
 
  private:

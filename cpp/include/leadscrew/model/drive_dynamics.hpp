@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "leadscrew/friction/flank_lcp.hpp"
 #include "leadscrew/lcp/lcp.hpp"
 #include "leadscrew/lcp/workspace.hpp"
 #include "leadscrew/model/drive.hpp"
@@ -43,7 +44,49 @@ struct ModeSolution {
   double motor_torque = 0.0;
   double slip_acceleration = 0.0;
   CoordinateVector acceleration;
+  // Eq. (3.15) on the thread without play in the Painleve regime: how many
+  // flank forces are consistent (DriveDynamics::solve); 1 everywhere else.
+  int consistent_solutions = 1;
 };
+
+// Illinois (regula falsi halving the stale end) on [low, high], where
+// f(low) >= 0 > f(high): narrows the bracket to `width` or 200 iterations and
+// returns its upper end, the first point known to be negative.
+template <class Function>
+double first_negative(Function f, double low, double high, double width) {
+  double f_low = f(low), f_high = f(high);
+  int side = 0;
+  for (int iteration = 0; iteration < 200 && high - low > width; ++iteration) {
+    double x = (low * f_high - high * f_low) / (f_high - f_low);
+    if (!(x > low && x < high)) x = 0.5 * (low + high);
+    const double fx = f(x);
+    if (fx >= 0.0) {
+      low = x;
+      f_low = fx;
+      if (side == -1) f_high *= 0.5;
+      side = -1;
+    } else {
+      high = x;
+      f_high = fx;
+      if (side == 1) f_low *= 0.5;
+      side = 1;
+    }
+  }
+  return high;
+}
+
+// The flank LCP (friction::solve_flank_lcp) of the drive, solved at unit scale.
+// The problem is homogeneous in (c, beta): scaling both by k scales the
+// friction force, the normal force and the slip acceleration by k and leaves
+// stick or slip unchanged. Lemke's pivot and tie tolerances are not
+// scale-invariant, though: at the start of a flexible drive, whose relaxed
+// springs carry forces of 1e-24 N just after t = 0, it reported no solution
+// (ray termination) where one exists. So the problem is solved with (c, beta)
+// scaled by a power of two to a force scale of 1 (exact in floating point) and
+// the result scaled back.
+friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha, double beta,
+                                                double mu, int sigma, lcp::Workspace& workspace,
+                                                const lcp::Options& options);
 
 class DriveDynamics {
  public:
@@ -114,6 +157,7 @@ class DriveDynamics {
 
  private:
   void penalty_force();
+  ModeSolution solve_acceleration_law(const ModeSpec& spec);
 
   const DriveModel& model_;
   double t_ = 0.0;

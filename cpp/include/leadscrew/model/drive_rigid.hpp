@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
@@ -41,6 +42,25 @@ struct RigidModeCoefficients {
   LoadCoefficients normal_force;    // lambda_N on the screw [N]
   LoadCoefficients friction_force;  // lambda_T on the screw [N]
 };
+
+// The first time in (t0, t_end] at which one of `count` load-driven functions
+// f_k(t) = functions[k](M(t), F(t)) falls below zero (f_k >= 0 at t0 is
+// assumed; a function already <= 0 there and falling crosses at t0), or +inf
+// if none does. In a mode of the rigid drive the thread forces are linear in
+// the loads (RigidModeCoefficients), and in stick the state is frozen, so the
+// stick-cone margin and the normal force's side are such functions of time
+// alone: a step bound of a fraction of the load period cannot see an
+// excursion shorter than a step, this scan can. It steps by certified lower
+// bounds f_k(t + h) >= f_k(t) + f_k'(t) h - K_k h^2 / 2 with K_k >= |f_k''|
+// (a sine's |A| w^2, a table's 0 between its knots, which bound the scan's
+// steps), so no sign change is passed unseen; an excursion shorter than
+// 1e-12 of the loads' time scale is taken for a touch. The zero is then
+// located by Illinois to round-off. nullopt: a load gives no bound on its
+// curvature (a callable); the caller keeps the root function sampled at the
+// integrator's steps. Every loop is bounded (SimulationError beyond).
+std::optional<double> first_load_crossing(const Excitation& torque, const Excitation& force,
+                                          const LoadCoefficients* functions, int count,
+                                          double t0, double t_end);
 
 class RigidDriveModes {
  public:

@@ -14,7 +14,7 @@ import pytest
 
 import leadscrew as ls
 from helpers.scenes import thesis_scene
-from leadscrew.studies._sweep import SerialExecutor, default_workers, run_cases
+from leadscrew.studies._sweep import SerialExecutor, default_workers, guided_chunks, run_cases
 from leadscrew.studies.creep import creep_vs_backlash
 from leadscrew.studies.drive_efficiency import efficiency_vs_mu
 
@@ -144,3 +144,18 @@ def test_serial_threaded_and_dask_agree():
             pd.testing.assert_frame_equal(ours, theirs)
     assert serial[0]["error"].isna().all() and serial[1]["error"].isna().all()
 
+
+
+@pytest.mark.parametrize("count", [0, 1, 7, 8, 150, 900, 10_000])
+@pytest.mark.parametrize("workers", [1, 2, 16])
+def test_guided_chunks_cover_every_case_once_and_shrink(count, workers):
+    chunks = guided_chunks(count, workers)
+    assert [i for chunk in chunks for i in chunk] == list(range(count))
+    sizes = [len(chunk) for chunk in chunks]
+    assert all(size >= 1 for size in sizes)
+    assert sizes == sorted(sizes, reverse=True)  # large first, small last
+    if count:
+        assert sizes[0] == -(-count // (4 * workers))
+        assert sizes[-1] == 1
+        # About 4 w ln(count) tasks: few enough for a cluster's task overhead.
+        assert len(chunks) <= 4 * workers * (math.log(count) + 1) + 1

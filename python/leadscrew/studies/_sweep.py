@@ -6,9 +6,12 @@ process-based executors such as a Dask distributed client can ship it).
 :func:`run_cases` maps the function over the cases and returns one
 :class:`Outcome` per case, in input order. A case that raises becomes an
 outcome with its error message instead of ending the sweep. Cases travel in
-chunks (about eight tasks per local core by default): a simulation of a
-millisecond would otherwise spend a good part of its time in scheduling,
-with the GIL held (a thread pool) or in task overhead (Dask).
+chunks: a simulation of a millisecond would otherwise spend a good part of
+its time in scheduling, with the GIL held (a thread pool) or in task overhead
+(Dask). By default the chunks shrink along the sweep (guided scheduling: each
+takes a quarter of the remaining cases' share per worker), so the first tasks
+are large and the last ones small, and no worker idles long at the end while
+another finishes a large chunk.
 
 The default executor is a thread pool over ``os.cpu_count()`` workers: the
 C++ core releases the GIL while it integrates, so threads run simulations in
@@ -26,7 +29,7 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
 
-__all__ = ["Outcome", "SerialExecutor", "run_cases", "default_workers"]
+__all__ = ["Outcome", "SerialExecutor", "run_cases", "default_workers", "guided_chunks"]
 
 
 @dataclass(frozen=True)
@@ -76,6 +79,29 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
+def guided_chunks(count: int, workers: int) -> List[range]:
+    """Split ``count`` cases into consecutive chunks that shrink along the sweep.
+
+    Each chunk takes ceil(remaining / (4 workers)) cases: about 4 w ln(count)
+    tasks in all, the first ones large (little scheduling per case), the last
+    ones single cases (the workers finish together).
+
+    Args:
+        count: number of cases, >= 0.
+        workers: number of workers, >= 1.
+
+    Returns:
+        The chunks as index ranges, in order, covering 0 .. count - 1.
+    """
+    chunks: List[range] = []
+    start = 0
+    while start < count:  # every pass takes at least one case
+        size = -(-(count - start) // (4 * workers))
+        chunks.append(range(start, start + size))
+        start += size
+    return chunks
+
+
 def _describe(error: BaseException) -> str:
     return f"{type(error).__name__}: {error}"
 
@@ -118,9 +144,8 @@ def run_cases(
             :func:`default_workers` workers, shut down before returning.
         progress: show a tqdm progress bar over the finished cases.
         description: the progress bar's label.
-        chunk_size: cases per task, >= 1 (default: about eight tasks per
-            worker of the default pool, so that scheduling costs little
-            against the simulations and the load still balances).
+        chunk_size: cases per task, >= 1 (default: guided, shrinking
+            chunks, see :func:`guided_chunks`).
 
     Returns:
         One :class:`Outcome` per case, in the order of ``cases``. A case that
@@ -131,11 +156,12 @@ def run_cases(
     if not cases:
         return []
     if chunk_size is None:
-        chunk_size = max(1, len(cases) // (8 * default_workers()))
+        chunks = guided_chunks(len(cases), default_workers())
     elif isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
         raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
-    chunks = [range(start, min(start + chunk_size, len(cases)))
-              for start in range(0, len(cases), chunk_size)]
+    else:
+        chunks = [range(start, min(start + chunk_size, len(cases)))
+                  for start in range(0, len(cases), chunk_size)]
     owned = executor is None
     if owned:
         executor = concurrent.futures.ThreadPoolExecutor(max_workers=default_workers())

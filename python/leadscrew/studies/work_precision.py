@@ -26,6 +26,7 @@ from ..errors import SimulationError
 from ..models import FrictionBlock
 from ..scene import Scene
 from ..simulation import Result, simulate
+from ._common import check_count, numeric_or_nan
 
 __all__ = [
     "work_precision",
@@ -283,10 +284,6 @@ def _label(entry: Dict[str, object]) -> str:
     return f"{friction}{gain} {integrator} {knob}"
 
 
-def _float_or_nan(value) -> float:
-    return float(value) if value is not None else math.nan
-
-
 def work_precision(
     model,
     t_end: float,
@@ -360,8 +357,7 @@ def work_precision(
     if not isinstance(model, (_core.FrictionBlock, Scene)):
         raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
     t_end = _check_t_end(t_end)
-    if isinstance(repeats, bool) or not isinstance(repeats, numbers.Integral) or repeats < 1:
-        raise ValueError(f"repeats = {repeats!r} is invalid: must be an integer >= 1")
+    repeats = check_count("repeats", repeats, 1)
     if on_failure not in ("record", "raise"):
         raise ValueError(f"on_failure = {on_failure!r} is invalid: must be \"record\" or \"raise\"")
     quantity = _quantity_for(model, quantity)
@@ -384,11 +380,11 @@ def work_precision(
             "label": _label(entry),
             "friction": friction,
             "integrator": entry.get("integrator"),
-            "k_v": _float_or_nan(entry.get("k_v")),
-            "rtol": _float_or_nan(entry.get("rtol")),
-            "atol": _float_or_nan(entry.get("atol")),
-            "dt": _float_or_nan(entry.get("dt")),
-            "theta": _float_or_nan(entry.get("theta")),
+            "k_v": numeric_or_nan(entry.get("k_v")),
+            "rtol": numeric_or_nan(entry.get("rtol")),
+            "atol": numeric_or_nan(entry.get("atol")),
+            "dt": numeric_or_nan(entry.get("dt")),
+            "theta": numeric_or_nan(entry.get("theta")),
             "failure": "",
         }
         try:

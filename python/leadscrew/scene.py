@@ -512,9 +512,7 @@ class Scene:
 
     @property
     def thread(self) -> "_core.Thread":
-        t = self._data["thread"]
-        return _core.Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
-                            t["hand"])
+        return _thread(self._data)
 
     def __repr__(self) -> str:
         b = self._data.get("backlash")
@@ -608,13 +606,17 @@ def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
     return d
 
 
+def _thread(data: Dict[str, Any]) -> "_core.Thread":
+    t = data["thread"]
+    return _core.Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
+                        t["hand"])
+
+
 def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
     p = _core.DriveParameters()
-    t = data["thread"]
     p.concept = data["concept"]
     p.drive = data["drive"]
-    p.thread = _core.Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
-                            t["hand"])
+    p.thread = _thread(data)
     f = data["friction"]
     p.friction, p.mu, p.k_v = f["law"], f["mu"], f["k_v"]
     d = _derived(data)

@@ -32,7 +32,7 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 import pandas as pd
 
-from ..excitation import Sine
+from ..excitation import Constant, Sine
 from ..scene import Scene
 from ..simulation import simulate
 from ..thread import is_self_locking, lower_torque, raise_torque
@@ -76,7 +76,7 @@ def _constant_torque(scene: Scene) -> float:
         return float(torque)
     if isinstance(torque, dict) and torque.get("type") == "constant":
         return float(torque["value"])
-    if hasattr(torque, "value") and type(torque).__name__ == "Constant":
+    if isinstance(torque, Constant):
         return float(torque.value)
     raise ValueError(f"loads.drive_torque = {torque!r} is invalid for a position-holding "
                      "study: must be constant (the torque held by the thread)")

@@ -165,6 +165,19 @@ creep_map.__doc__ = """Creep over every pair of frequency and backlash (Fig. 5.5
             clearances for the first frequency, then the second, ...""" + _COMMON_ARGS
 
 
+def _quantity_label(quantity: str) -> str:
+    """The axis label of a drawable creep measure (drawn in um or um/s).
+
+    Raises:
+        ValueError: ``quantity`` is not one of the drawable measures.
+    """
+    if quantity not in ("creep_per_cycle", "creep_rate", "max_displacement"):
+        raise ValueError(f"quantity = {quantity!r} is invalid: must be creep_per_cycle, "
+                         "creep_rate or max_displacement")
+    unit = "um/s" if quantity == "creep_rate" else "um"
+    return f"|{quantity.replace('_', ' ')}| [{unit}]"
+
+
 def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optional[Any] = None):
     """Draw |creep per cycle| (or another measure) against the swept
     parameter, frequency or backlash (Fig. 5.5a or b).
@@ -181,9 +194,7 @@ def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optio
     Raises:
         ValueError: neither or both parameters vary, or an unknown quantity.
     """
-    if quantity not in ("creep_per_cycle", "creep_rate", "max_displacement"):
-        raise ValueError(f"quantity = {quantity!r} is invalid: must be creep_per_cycle, "
-                         "creep_rate or max_displacement")
+    label = _quantity_label(quantity)
     varying = [c for c in ("frequency", "backlash") if frame[c].nunique() > 1]
     if len(varying) != 1:
         raise ValueError("frame is invalid: exactly one of frequency and backlash must vary "
@@ -193,8 +204,7 @@ def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optio
     scale = 1e3 if x == "backlash" else 1.0
     ax.plot(frame[x] * scale, np.abs(frame[quantity]) * 1e6, "o-")
     ax.set_xlabel("backlash [mm]" if x == "backlash" else "frequency [Hz]")
-    unit = "um/s" if quantity == "creep_rate" else "um"
-    ax.set_ylabel(f"|{quantity.replace('_', ' ')}| [{unit}]")
+    ax.set_ylabel(label)
     return ax
 
 
@@ -213,15 +223,12 @@ def plot_creep_map(frame: pd.DataFrame, quantity: str = "creep_per_cycle",
     Raises:
         ValueError: an unknown quantity.
     """
-    if quantity not in ("creep_per_cycle", "creep_rate", "max_displacement"):
-        raise ValueError(f"quantity = {quantity!r} is invalid: must be creep_per_cycle, "
-                         "creep_rate or max_displacement")
+    label = _quantity_label(quantity)
     grid = frame.pivot(index="backlash", columns="frequency", values=quantity).abs()
     ax = axes(ax)
     mesh = ax.pcolormesh(grid.columns.to_numpy(), grid.index.to_numpy() * 1e3,
                          grid.to_numpy() * 1e6, shading="nearest")
-    unit = "um/s" if quantity == "creep_rate" else "um"
-    ax.figure.colorbar(mesh, ax=ax, label=f"|{quantity.replace('_', ' ')}| [{unit}]")
+    ax.figure.colorbar(mesh, ax=ax, label=label)
     ax.set_xlabel("frequency [Hz]")
     ax.set_ylabel("backlash [mm]")
     return ax

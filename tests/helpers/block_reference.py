@@ -70,6 +70,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
+from .series import x_minus_sin
+
 __all__ = ["Phase", "Event", "BlockSolution", "solve_block", "free_motion"]
 
 _EPS = np.finfo(float).eps
@@ -110,26 +112,6 @@ class Event:
     kind: str
     position: float
     force: float
-
-
-def _x_minus_sin(x):
-    """x - sin(x) without cancellation for small |x| (vectorised).
-
-    For |x| < 1 the series sum_{k>=1} (-1)^(k+1) x^(2k+1)/(2k+1)! is summed by
-    Horner in x^2 up to k = 11; the first omitted term is below 1/25! < 1e-25.
-    """
-    shape = np.shape(x)
-    x = np.atleast_1d(np.asarray(x, dtype=float))
-    out = x - np.sin(x)
-    small = np.abs(x) < 1.0
-    if np.any(small):
-        xs = x[small]
-        x2 = xs * xs
-        acc = np.zeros_like(xs)
-        for k in range(11, 0, -1):
-            acc = (-1.0) ** (k + 1) / math.factorial(2 * k + 1) + acc * x2
-        out[small] = xs * x2 * acc
-    return out.reshape(shape)
 
 
 def _require_finite(name, value):
@@ -237,7 +219,7 @@ class BlockSolution:
         a_amp = self.amplitude / (self.mass * self.omega)
         b = (self.offset - s * self.friction_limit) / self.mass
         dv = a_amp * (2.0 * c0 * half * half + s0 * np.sin(x)) + b * tau
-        du = (a_amp / self.omega) * (2.0 * s0 * half * half + c0 * _x_minus_sin(x)) \
+        du = (a_amp / self.omega) * (2.0 * s0 * half * half + c0 * x_minus_sin(x)) \
             + 0.5 * b * tau * tau
         return tau, dv, du
 

@@ -43,6 +43,8 @@ from typing import List, Sequence
 import numpy as np
 from scipy.optimize import brentq
 
+from .series import x_minus_sin
+
 __all__ = [
     "ReferenceJamming",
     "Harmonic",
@@ -83,26 +85,6 @@ def _check(name, value, ok, valid):
 # ---------------------------------------------------------------------------
 # Loads
 # ---------------------------------------------------------------------------
-
-
-def _x_minus_sin(x):
-    """x - sin(x) without cancellation for small |x| (array)."""
-    x = np.asarray(x, dtype=float)
-    out = x - np.sin(x)
-    small = np.abs(x) < 1.0
-    if np.any(small):
-        xs = x[small]
-        x2 = xs * xs
-        # x^3/3! - x^5/5! + ... ; after 11 terms the rest is < 1e-22 x^3 for |x| < 1.
-        terms = np.zeros_like(xs)
-        term = xs * x2 / 6.0
-        n = 3
-        for _ in range(11):
-            terms = terms + term
-            term = -term * x2 / ((n + 1) * (n + 2))
-            n += 2
-        out[small] = terms
-    return out
 
 
 @dataclass(frozen=True)
@@ -150,7 +132,7 @@ class Harmonic:
         th0 = self.omega * t0 + self.phase
         x = self.omega * tau
         one_minus_cos = 2.0 * np.sin(0.5 * x) ** 2
-        osc = (math.cos(th0) * _x_minus_sin(x) + math.sin(th0) * one_minus_cos) / self.omega**2
+        osc = (math.cos(th0) * x_minus_sin(x) + math.sin(th0) * one_minus_cos) / self.omega**2
         return 0.5 * self.mean * tau**2 + self.amplitude * osc
 
 

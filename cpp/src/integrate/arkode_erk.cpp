@@ -7,6 +7,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/integrate/integrator_checks.hpp"
 
 namespace leadscrew::integrate {
 
@@ -82,11 +83,7 @@ int ArkodeErkIntegrator::order(Method method) {
 
 ArkodeErkIntegrator::ArkodeErkIntegrator(Method method, const IntegratorOptions& options)
     : SundialsIntegrator(method_name(method), options, false), method_(method) {
-  if (options.max_order != 0)
-    throw InvalidArgument("max_order = " + std::to_string(options.max_order) +
-                          " is invalid: must be 0 for " + method_name(method) +
-                          " (a one-step method of fixed order " +
-                          std::to_string(order(method)) + ")");
+  check_fixed_order(options, method_name(method), order(method));
 }
 
 void ArkodeErkIntegrator::create_solver(double t0) {

@@ -37,12 +37,20 @@ class RootGuard final : public OdeSystem {
   int quadrature_count() const override { return system_.quadrature_count(); }
   void roots(double t, const double* y, double* g) override {
     system_.roots(t, y, g);
-    system_.root_directions(directions_.data());
     // Far below any physical value, far above underflow: CVODE interpolates
     // between root values, and DBL_MIN there gives NaN times.
     constexpr double tiny = 1e-200;
-    for (std::size_t i = 0; i < directions_.size(); ++i)
-      if (g[i] == 0.0) g[i] = directions_[i] > 0 ? -tiny : tiny;
+    // The directions (a function of the mode) are read only when a value is
+    // exactly 0, which is rare: no second virtual call on every evaluation.
+    bool directions_read = false;
+    for (std::size_t i = 0; i < directions_.size(); ++i) {
+      if (g[i] != 0.0) continue;
+      if (!directions_read) {
+        system_.root_directions(directions_.data());
+        directions_read = true;
+      }
+      g[i] = directions_[i] > 0 ? -tiny : tiny;
+    }
   }
 
  private:

@@ -6,6 +6,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/integrate/integrator_checks.hpp"
 
 namespace leadscrew::integrate {
 
@@ -29,12 +30,6 @@ constexpr int hidden_retry_limit = 8;
 // |g| at the start below this fraction of |g| at the step end: the start
 // value is at the level of the function's round-off, its sign unreliable.
 constexpr double surface_fraction = 1e-6;
-
-bool all_finite(const double* v, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
 
 // Sign change of a root function from g0 (start of the interval) to g1: g0
 // exactly 0 means inactive (a restart on the switching surface).
@@ -87,11 +82,7 @@ ExplicitRungeKutta::ExplicitRungeKutta(const ButcherTableau& tableau,
                                        const IntegratorOptions& options)
     : tableau_(tableau), options_(options), s_(tableau.stages) {
   check_tableau(tableau_);
-  if (options.max_order != 0)
-    throw InvalidArgument("max_order = " + std::to_string(options.max_order) +
-                          " is invalid: must be 0 for " + tableau_.name +
-                          " (a one-step method of fixed order " + std::to_string(tableau_.order) +
-                          ")");
+  check_fixed_order(options, tableau_.name, tableau_.order);
 }
 
 void ExplicitRungeKutta::fail(const std::string& flag, const std::string& meaning,
@@ -101,13 +92,9 @@ void ExplicitRungeKutta::fail(const std::string& flag, const std::string& meanin
 
 void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
                                     const Eigen::Ref<const Eigen::VectorXd>& y0) {
+  check_system(system);
   const int n = system.size();
-  if (n < 1)
-    throw InvalidArgument("system size = " + std::to_string(n) + " is invalid: must be >= 1");
   const int m = system.root_count();
-  if (m < 0)
-    throw InvalidArgument("system root_count = " + std::to_string(m) +
-                          " is invalid: must be >= 0");
   system_ = nullptr;
   n_ = n;
   m_ = m;
@@ -134,21 +121,14 @@ void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
 }
 
 void ExplicitRungeKutta::reinitialize(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) {
-  if (!system_)
-    throw InvalidArgument("reinitialize called before initialize is invalid: initialize first");
+  check_initialized(system_ != nullptr, "reinitialize");
   start(t0, y0);
   ++stats_.restarts;
 }
 
 void ExplicitRungeKutta::start(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) {
-  require_finite("t0", t0);
-  if (y0.size() != n_)
-    throw InvalidArgument("y0 has " + std::to_string(y0.size()) +
-                          " components, invalid: must have the system size " + std::to_string(n_));
-  for (int i = 0; i < n_; ++i) {
-    if (!std::isfinite(y0[i])) require_finite("y0[" + std::to_string(i) + "]", y0[i]);
-    y_[i] = y0[i];
-  }
+  check_start(t0, y0, n_);
+  for (int i = 0; i < n_; ++i) y_[i] = y0[i];
   t_ = t0;
   first_stage_valid_ = false;
   step_available_ = false;
@@ -327,24 +307,16 @@ void ExplicitRungeKutta::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) {
     throw InvalidArgument("t = " + format_value(t) +
                           " is invalid: must lie in the last accepted step [" +
                           format_value(t_step_) + ", " + format_value(t_step_ + h_step_) + "]");
-  if (y.size() != n_)
-    throw InvalidArgument("y has " + std::to_string(y.size()) +
-                          " components, invalid: must have the system size " + std::to_string(n_));
+  check_state_size("y", y.size(), n_);
   interpolate((t - t_step_) / h_step_, y_trial_);
   for (int i = 0; i < n_; ++i) y[i] = y_trial_[i];
 }
 
 AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::VectorXd> y,
                                           bool one_step) {
-  if (!system_)
-    throw InvalidArgument("advance called before initialize is invalid: initialize first");
-  require_finite("t_out", t_out);
-  if (t_out < t_)
-    throw InvalidArgument("t_out = " + format_value(t_out) +
-                          " is invalid: must be >= the current time " + format_value(t_));
-  if (y.size() != n_)
-    throw InvalidArgument("y has " + std::to_string(y.size()) +
-                          " components, invalid: must have the system size " + std::to_string(n_));
+  check_initialized(system_ != nullptr, "advance");
+  check_output_time(t_out, t_);
+  check_state_size("y", y.size(), n_);
   std::fill(root_info_.begin(), root_info_.end(), 0);
   const double time_resolution = 8.0 * eps * std::max(std::fabs(t_), std::fabs(t_out));
   if (t_out - t_ <= time_resolution) {

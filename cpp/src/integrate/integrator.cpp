@@ -6,6 +6,7 @@
 #include "leadscrew/integrate/arkode_erk.hpp"
 #include "leadscrew/integrate/cvode.hpp"
 #include "leadscrew/integrate/explicit_rk.hpp"
+#include "leadscrew/integrate/integrator_checks.hpp"
 #include "leadscrew/integrate/rk_dopri5.hpp"
 #include "leadscrew/integrate/rk_verner6.hpp"
 #include "leadscrew/integrate/ode.hpp"
@@ -18,9 +19,7 @@ void Integrator::dense_output(double /*t*/, Eigen::Ref<Eigen::VectorXd> /*y*/) {
 
 AdvanceResult Integrator::advance_to_output(double t_out, double t_stop,
                                             Eigen::Ref<Eigen::VectorXd> y) {
-  if (!(t_stop >= t_out))
-    throw InvalidArgument("t_stop = " + format_value(t_stop) +
-                          " is invalid: must be >= t_out = " + format_value(t_out));
+  check_stop_time(t_out, t_stop);
   return advance(t_out, y);
 }
 

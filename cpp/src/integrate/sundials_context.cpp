@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/integrate/integrator_checks.hpp"
 
 namespace leadscrew::integrate::sundials {
 
@@ -226,14 +227,6 @@ std::string CallbackBridge::nonfinite_report() const {
     out << "a root function returned a non-finite value (NaN or inf) at t = " << nonfinite_t_;
   return out.str();
 }
-
-namespace {
-bool all_finite(const double* v, int n) {
-  for (int i = 0; i < n; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
-}  // namespace
 
 int CallbackBridge::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data) {
   auto* self = static_cast<CallbackBridge*>(user_data);

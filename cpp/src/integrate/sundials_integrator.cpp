@@ -5,6 +5,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/integrate/integrator_checks.hpp"
 
 namespace leadscrew::integrate::sundials {
 
@@ -20,12 +21,7 @@ void SundialsIntegrator::check_setup(int flag, const char* call) const {
 }
 
 void SundialsIntegrator::load_state(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) {
-  require_finite("t0", t0);
-  if (y0.size() != bridge_.size)
-    throw InvalidArgument("y0 has " + std::to_string(y0.size()) +
-                          " components, invalid: must have the system size " +
-                          std::to_string(bridge_.size));
-  for (int i = 0; i < bridge_.size; ++i) require_finite("y0[" + std::to_string(i) + "]", y0[i]);
+  check_start(t0, y0, bridge_.size);
   double* y = N_VGetArrayPointer(y_.get());
   for (int i = 0; i < bridge_.size; ++i) y[i] = y0[i];
   t_ = t0;
@@ -33,13 +29,9 @@ void SundialsIntegrator::load_state(double t0, const Eigen::Ref<const Eigen::Vec
 
 void SundialsIntegrator::initialize(OdeSystem& system, double t0,
                                     const Eigen::Ref<const Eigen::VectorXd>& y0) {
+  check_system(system);
   const int n = system.size();
-  if (n < 1)
-    throw InvalidArgument("system size = " + std::to_string(n) + " is invalid: must be >= 1");
   const int m = system.root_count();
-  if (m < 0)
-    throw InvalidArgument("system root_count = " + std::to_string(m) +
-                          " is invalid: must be >= 0");
   const int k = system.quadrature_count();
   if (k < 0 || k >= n)
     throw InvalidArgument("system quadrature_count = " + std::to_string(k) +
@@ -62,8 +54,7 @@ void SundialsIntegrator::initialize(OdeSystem& system, double t0,
 }
 
 void SundialsIntegrator::reinitialize(double t0, const Eigen::Ref<const Eigen::VectorXd>& y0) {
-  if (!initialized_)
-    throw InvalidArgument("reinitialize called before initialize is invalid: initialize first");
+  check_initialized(initialized_, "reinitialize");
   accumulate(before_restart_, solver_stats());
   load_state(t0, y0);
   bridge_.clear_all();
@@ -80,25 +71,16 @@ AdvanceResult SundialsIntegrator::advance(double t_out, Eigen::Ref<Eigen::Vector
 AdvanceResult SundialsIntegrator::advance_to_output(double t_out, double t_stop,
                                                     Eigen::Ref<Eigen::VectorXd> y) {
   require_finite("t_stop", t_stop);
-  if (!(t_stop >= t_out))
-    throw InvalidArgument("t_stop = " + format_value(t_stop) +
-                          " is invalid: must be >= t_out = " + format_value(t_out));
+  check_stop_time(t_out, t_stop);
   // Without an interpolant of the steps' accuracy the output time ends a step.
   return advance_until(t_out, interpolates_output() ? t_stop : t_out, y, false);
 }
 
 AdvanceResult SundialsIntegrator::advance_until(double t_out, double t_stop,
                                                 Eigen::Ref<Eigen::VectorXd> y, bool one_step) {
-  if (!initialized_)
-    throw InvalidArgument("advance called before initialize is invalid: initialize first");
-  require_finite("t_out", t_out);
-  if (t_out < t_)
-    throw InvalidArgument("t_out = " + format_value(t_out) +
-                          " is invalid: must be >= the current time " + format_value(t_));
-  if (y.size() != bridge_.size)
-    throw InvalidArgument("y has " + std::to_string(y.size()) +
-                          " components, invalid: must have the system size " +
-                          std::to_string(bridge_.size));
+  check_initialized(initialized_, "advance");
+  check_output_time(t_out, t_);
+  check_state_size("y", y.size(), bridge_.size);
   std::fill(root_info_.begin(), root_info_.end(), 0);
   double* state = N_VGetArrayPointer(y_.get());
   const double span = t_out - t_;
@@ -148,12 +130,8 @@ AdvanceResult SundialsIntegrator::advance_until(double t_out, double t_stop,
 }
 
 void SundialsIntegrator::dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) {
-  if (!initialized_)
-    throw InvalidArgument("dense_output called before initialize is invalid: initialize first");
-  if (y.size() != bridge_.size)
-    throw InvalidArgument("y has " + std::to_string(y.size()) +
-                          " components, invalid: must have the system size " +
-                          std::to_string(bridge_.size));
+  check_initialized(initialized_, "dense_output");
+  check_state_size("y", y.size(), bridge_.size);
   bridge_.clear_call();
   if (solver_dense_output(t, work_.get()) < 0)
     throw InvalidArgument("t = " + format_value(t) +

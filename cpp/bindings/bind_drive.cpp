@@ -19,24 +19,14 @@ void bind_drive(py::module_& m) {
           "concept", [](const DriveParameters& p) { return model::concept_name(p.concept); },
           [](DriveParameters& p, const std::string& v) { p.concept = model::parse_concept(v); })
       .def_property(
-          "drive",
-          [](const DriveParameters& p) {
-            return std::string(p.drive == model::DrivenPart::screw ? "screw" : "nut");
-          },
+          "drive", [](const DriveParameters& p) { return model::drive_name(p.drive); },
           [](DriveParameters& p, const std::string& v) { p.drive = model::parse_drive(v); })
       .def_property(
-          "support",
-          [](const DriveParameters& p) {
-            return std::string(p.support == model::ScrewSupport::both_ends ? "both_ends"
-                                                                          : "drive_end");
-          },
+          "support", [](const DriveParameters& p) { return model::support_name(p.support); },
           [](DriveParameters& p, const std::string& v) { p.support = model::parse_support(v); })
       .def_property(
           "backlash",
-          [](const DriveParameters& p) {
-            static const char* names[] = {"none", "exact", "bistop", "cubic"};
-            return std::string(names[static_cast<int>(p.backlash)]);
-          },
+          [](const DriveParameters& p) { return model::backlash_contact_name(p.backlash); },
           [](DriveParameters& p, const std::string& v) {
             p.backlash = model::parse_backlash_contact(v);
           })

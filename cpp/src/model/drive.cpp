@@ -20,35 +20,48 @@ void add_gradient(Eigen::VectorXd& gradient, int index, double value) {
   if (index >= 0) gradient[index] += value;
 }
 
+// One list per enumeration, in the order of its values: the names and the
+// parser cannot drift apart.
+const std::vector<std::string>& concept_names() {
+  static const std::vector<std::string> names = {"rigid", "flexible_nut", "flexible"};
+  return names;
+}
+const std::vector<std::string>& drive_names() {
+  static const std::vector<std::string> names = {"screw", "nut"};
+  return names;
+}
+const std::vector<std::string>& support_names() {
+  static const std::vector<std::string> names = {"both_ends", "drive_end"};
+  return names;
+}
+const std::vector<std::string>& backlash_contact_names() {
+  static const std::vector<std::string> names = {"none", "exact", "bistop", "cubic"};
+  return names;
+}
 }  // namespace
 
-std::string concept_name(Concept c) {
-  switch (c) {
-    case Concept::rigid:
-      return "rigid";
-    case Concept::flexible_nut:
-      return "flexible_nut";
-    default:
-      return "flexible";
-  }
+std::string concept_name(Concept c) { return concept_names()[static_cast<int>(c)]; }
+std::string drive_name(DrivenPart d) { return drive_names()[static_cast<int>(d)]; }
+std::string support_name(ScrewSupport s) { return support_names()[static_cast<int>(s)]; }
+std::string backlash_contact_name(BacklashContact b) {
+  return backlash_contact_names()[static_cast<int>(b)];
 }
 
 Concept parse_concept(const std::string& name) {
-  return static_cast<Concept>(require_choice("concept", name, {"rigid", "flexible_nut", "flexible"}));
+  return static_cast<Concept>(require_choice("concept", name, concept_names()));
 }
 
 DrivenPart parse_drive(const std::string& name) {
-  return static_cast<DrivenPart>(require_choice("drive", name, {"screw", "nut"}));
+  return static_cast<DrivenPart>(require_choice("drive", name, drive_names()));
 }
 
 ScrewSupport parse_support(const std::string& name) {
-  return static_cast<ScrewSupport>(
-      require_choice("screw.support", name, {"both_ends", "drive_end"}));
+  return static_cast<ScrewSupport>(require_choice("screw.support", name, support_names()));
 }
 
 BacklashContact parse_backlash_contact(const std::string& name) {
   return static_cast<BacklashContact>(
-      require_choice("backlash.contact", name, {"none", "exact", "bistop", "cubic"}));
+      require_choice("backlash.contact", name, backlash_contact_names()));
 }
 
 DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
@@ -99,22 +112,21 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
   names_.push_back("phi_rotor");
   masses.push_back(p_.rotor_inertia + (rotating_flexible ? 0.0 : rotating_inertia));
   int rotating_u = -1, rotating_phi = 0, translating_u = -1, translating_phi = -1;
-  if (rotating_flexible) {
-    rotating_u = static_cast<int>(names_.size());
-    names_.push_back("u_" + rotating);
-    masses.push_back(require_positive(rotating + " mass", rotating_mass));
-    rotating_phi = static_cast<int>(names_.size());
-    names_.push_back("phi_" + rotating);
-    masses.push_back(require_positive(rotating + " inertia", rotating_inertia));
-  }
-  if (translating_flexible) {
-    translating_u = static_cast<int>(names_.size());
-    names_.push_back("u_" + translating);
-    masses.push_back(require_positive(translating + " mass", translating_mass));
-    translating_phi = static_cast<int>(names_.size());
-    names_.push_back("phi_" + translating);
-    masses.push_back(require_positive(translating + " inertia", translating_inertia));
-  }
+  // A flexible part is its own contact body: coordinates u_<part> and phi_<part>.
+  auto add_contact_body = [&](const std::string& part, double mass, double inertia, int& u,
+                              int& phi) {
+    u = static_cast<int>(names_.size());
+    names_.push_back("u_" + part);
+    masses.push_back(require_positive(part + " mass", mass));
+    phi = static_cast<int>(names_.size());
+    names_.push_back("phi_" + part);
+    masses.push_back(require_positive(part + " inertia", inertia));
+  };
+  if (rotating_flexible)
+    add_contact_body(rotating, rotating_mass, rotating_inertia, rotating_u, rotating_phi);
+  if (translating_flexible)
+    add_contact_body(translating, translating_mass, translating_inertia, translating_u,
+                     translating_phi);
   const int load_index = static_cast<int>(names_.size());
   names_.push_back("u_load");
   const double load_total = p_.load_mass + (translating_flexible ? 0.0 : translating_mass);

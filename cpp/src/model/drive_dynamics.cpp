@@ -172,7 +172,7 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
 void DriveDynamics::penalty_force() {
   const DriveParameters& p = model_.parameters();
   penalty_normal_ = 0.0;
-  contact_energy_ = 0.0;
+  penetration_[0] = penetration_[1] = 0.0;
   contact_loss_power_ = 0.0;
   if (p.backlash != BacklashContact::bistop && p.backlash != BacklashContact::cubic) return;
   const double half = 0.5 * p.clearance;
@@ -183,29 +183,46 @@ void DriveDynamics::penalty_force() {
     const double sign = flank == 0 ? 1.0 : -1.0;  // upper flank e = +c/2, lower e = -c/2
     const double penetration = sign * play_ - half;
     if (penetration <= 0.0) continue;
+    penetration_[flank] = penetration;
     const double rate = sign * play_rate_;
-    double elastic_force, potential;
+    double elastic_force;
     if (p.backlash == BacklashContact::bistop) {
       // Adams BISTOP: k d^e, damping ramped in over the penetration depth.
       elastic_force = k * std::pow(penetration, p.contact_exponent);
-      potential = k * std::pow(penetration, p.contact_exponent + 1.0) / (p.contact_exponent + 1.0);
     } else if (penetration < depth) {
       // Cubic onset joining the linear spring k with matching slope at the
       // depth: a C1 approximation of the dead zone with walls (thesis Fig. 2.6).
       elastic_force = k * penetration * penetration * penetration / (3.0 * depth * depth);
-      potential = k * std::pow(penetration, 4) / (12.0 * depth * depth);
     } else {
       const double beyond = penetration - depth;
       elastic_force = k * beyond + k * depth / 3.0;
-      potential = k * depth * depth / 12.0 + k * depth * beyond / 3.0 + 0.5 * k * beyond * beyond;
     }
     double force = elastic_force + p.contact_damping * smooth_step(penetration / depth) * rate;
     if (force < 0.0) force = 0.0;  // flanks push, they do not pull
     axial -= sign * force;
-    contact_energy_ += potential;
     contact_loss_power_ += (force - elastic_force) * rate;
   }
   penalty_normal_ = axial / std::cos(p.thread.lead_angle());
+}
+
+double DriveDynamics::contact_energy() const noexcept {
+  const DriveParameters& p = model_.parameters();
+  const double k = p.contact_stiffness;
+  const double depth = p.contact_penetration;
+  double energy = 0.0;
+  for (const double penetration : penetration_) {
+    if (penetration <= 0.0) continue;
+    // The potentials of penalty_force's elastic forces.
+    if (p.backlash == BacklashContact::bistop) {
+      energy += k * std::pow(penetration, p.contact_exponent + 1.0) / (p.contact_exponent + 1.0);
+    } else if (penetration < depth) {
+      energy += k * std::pow(penetration, 4) / (12.0 * depth * depth);
+    } else {
+      const double beyond = penetration - depth;
+      energy += k * depth * depth / 12.0 + k * depth * beyond / 3.0 + 0.5 * k * beyond * beyond;
+    }
+  }
+  return energy;
 }
 
 double DriveDynamics::kinetic_energy() const {

@@ -431,7 +431,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       const double rate = dynamics_.play_rate();
       touch = flank * rate >= 0.0;
       if (!touch) {
-        const double acceleration = model_.play_gradient().dot(solve_current().acceleration);
+        const double acceleration = free_flight_play_acceleration();
         touch = flank * acceleration > 0.0 &&
                 rate * rate <= 2.0 * flank * acceleration * kPlasticHeight * p_.clearance;
       }
@@ -934,24 +934,27 @@ class DriveHybrid final : public integrate::HybridSystem {
     const double c = without.slip_acceleration;
     const double d = unit.slip_acceleration - c;
     double alpha = 0.0, beta = dynamics_.penalty_normal_force();
-    std::vector<int> sigmas;
+    // The normal-force signs to try: the penalty force's, the closed flank's, or both.
+    int sigmas[2] = {1, -1};
+    int sigma_count = 2;
     if (mode_.contact == ThreadContact::penalty) {
-      sigmas = {beta >= 0.0 ? 1 : -1};
+      sigmas[0] = beta >= 0.0 ? 1 : -1;
+      sigma_count = 1;
     } else {
       beta = without.normal_force;
       alpha = unit.normal_force - beta;
-      if (mode_.contact == ThreadContact::closed)
-        sigmas = {mode_.flank};
-      else
-        sigmas = {1, -1};
+      if (mode_.contact == ThreadContact::closed) {
+        sigmas[0] = mode_.flank;
+        sigma_count = 1;
+      }
     }
     int found = 0;
     bool ambiguous = false;
     Mode chosen = mode_;
-    for (int sigma : sigmas) {
+    for (int k = 0; k < sigma_count; ++k) {
       const friction::FlankLcpResult r =
-          solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_,
-                                 lcp_options_);
+          solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigmas[k],
+                                 lcp_workspace_, lcp_options_);
       ++lcp_solves_;
       if (!r.consistent) continue;
       Mode candidate = mode_;
@@ -992,6 +995,18 @@ class DriveHybrid final : public integrate::HybridSystem {
       }
     }
     mode_ = chosen;
+  }
+
+  // The play's acceleration e'' in free flight (the thread open) at the state
+  // set: how far a flight would rise (flank_impact) or a slow approach go
+  // beyond a flank (change_mode's touch below resolution).
+  double free_flight_play_acceleration() {
+    const Mode saved = mode_;
+    mode_.contact = ThreadContact::open;
+    mode_.friction = FrictionMode::none;
+    const ModeSolution flight = solve_current();
+    mode_ = saved;
+    return model_.play_gradient().dot(flight.acceleration);
   }
 
   // An exact flank closes: Newton's impact law with Coulomb friction on the
@@ -1040,12 +1055,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     const double normal_after = dynamics_.play_rate();
     // Height of the flight the bounce would start: v^2 / (2 |e''|) with the
     // play's acceleration in free flight; see kPlasticHeight.
-    const Mode before_flight = mode_;
-    mode_.contact = ThreadContact::open;
-    mode_.friction = FrictionMode::none;
-    const ModeSolution flight = solve_current();
-    mode_ = before_flight;
-    const double play_acceleration = model_.play_gradient().dot(flight.acceleration);
+    const double play_acceleration = free_flight_play_acceleration();
     const bool pushed_back = flank * play_acceleration < 0.0;
     const double height = pushed_back ? normal_after * normal_after / (2.0 * std::abs(play_acceleration))
                                       : std::numeric_limits<double>::infinity();
@@ -1165,8 +1175,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     Impulses impulses;
     bool stick = false;
     if (contact) {
-      const std::vector<int> sigmas =
-          sigma_fixed != 0 ? std::vector<int>{sigma_fixed} : std::vector<int>{1, -1};
+      // The flank's sign, or both (no allocation: this runs every step).
+      const int sigmas[2] = {sigma_fixed != 0 ? sigma_fixed : 1, -1};
+      const int sigma_count = sigma_fixed != 0 ? 1 : 2;
       const Impulses without = solve(true, normal_target, rotor_target, 0.0);
       const Impulses unit = solve(true, normal_target, rotor_target, 1.0);
       const double c = model_.tangent_direction().dot(without.velocity);
@@ -1175,9 +1186,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
       const double alpha = unit.normal - beta;
       int found = 0;
       friction::FlankLcpResult chosen;
-      for (int sigma : sigmas) {
+      for (int k = 0; k < sigma_count; ++k) {
         const friction::FlankLcpResult r = solve_flank_lcp_scaled(
-            c, d, alpha, beta, model_.effective_mu(), sigma, lcp_workspace_, lcp_options_);
+            c, d, alpha, beta, model_.effective_mu(), sigmas[k], lcp_workspace_, lcp_options_);
         ++lcp_solves_;
         if (!r.consistent) continue;
         if (found == 0) chosen = r;
@@ -1333,8 +1344,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
   if (options.integrator == "moreau" &&
       (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic))
     throw InvalidArgument("integrator = \"moreau\" is invalid for backlash.contact = \"" +
-                          std::string(p.backlash == BacklashContact::bistop ? "bistop" : "cubic") +
-                          "\": a penalty contact needs an ODE integrator (the stepping scheme "
+                          backlash_contact_name(p.backlash) + "\": a penalty contact needs an ODE integrator (the stepping scheme "
                           "handles exact flank contacts)");
 
   StateLayout layout(model);

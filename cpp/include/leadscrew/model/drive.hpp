@@ -153,7 +153,12 @@ class DriveModel {
   std::vector<int> rotating_group_, translating_group_;
 };
 
+// The names of the enumerations in scene files; parse_* raise InvalidArgument
+// naming the key and the allowed names.
 std::string concept_name(Concept c);
+std::string drive_name(DrivenPart d);
+std::string support_name(ScrewSupport s);
+std::string backlash_contact_name(BacklashContact b);
 Concept parse_concept(const std::string& name);
 DrivenPart parse_drive(const std::string& name);
 ScrewSupport parse_support(const std::string& name);

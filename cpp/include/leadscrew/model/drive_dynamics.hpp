@@ -126,7 +126,9 @@ class DriveDynamics {
   double slip_velocity() const noexcept { return slip_; }    // gamma_T [m/s]
   double penalty_normal_force() const noexcept { return penalty_normal_; }
   double elastic_energy() const noexcept { return elastic_; }
-  double contact_energy() const noexcept { return contact_energy_; }
+  // Potential of the penalty flanks at the state last set: evaluated on request
+  // (outputs and the energy account), not in every set_state of the right-hand side.
+  double contact_energy() const noexcept;
   double damping_power() const noexcept { return damping_power_; }
   double contact_loss_power() const noexcept { return contact_loss_power_; }
   double applied_torque() const noexcept { return applied_torque_; }
@@ -163,7 +165,8 @@ class DriveDynamics {
   double t_ = 0.0;
   CoordinateVector q_, v_, forces_, inverse_mass_;
   double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0;
-  double penalty_normal_ = 0.0, elastic_ = 0.0, contact_energy_ = 0.0;
+  double penalty_normal_ = 0.0, elastic_ = 0.0;
+  double penetration_[2] = {0.0, 0.0};  // of the upper and the lower penalty flank (0: none)
   double damping_power_ = 0.0, contact_loss_power_ = 0.0;
   double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <random>
 
 namespace lcp_problems {
@@ -51,6 +52,17 @@ inline Eigen::VectorXd q_from_solution(const Eigen::MatrixXd& M, std::mt19937& r
     if (kind == 1) w[i] = value(rng);
   }
   return w - times(M, z);
+}
+
+// Murty's problem of size n (Murty 1978): M upper triangular with unit
+// diagonal and 2 above it, q_i = -(2^(n+1) - 2^(i+1)); Lemke needs 2^n pivots.
+inline void murty(int n, Eigen::MatrixXd& M, Eigen::VectorXd& q) {
+  M = Eigen::MatrixXd::Identity(n, n);
+  q.resize(n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) M(i, j) = 2.0;
+    q[i] = -(std::ldexp(1.0, n + 1) - std::ldexp(1.0, i + 1));
+  }
 }
 
 }  // namespace lcp_problems

@@ -50,12 +50,9 @@ std::vector<Problem> make_problems() {
     const Eigen::MatrixXd K = gaussian(rng, n, n);
     problems.push_back({"spd", spd, gaussian(rng, n, 1)});
     problems.push_back({"pd_nonsym", Eigen::MatrixXd(spd + K - K.transpose()), gaussian(rng, n, 1)});
-    Eigen::MatrixXd murty = Eigen::MatrixXd::Identity(n, n);
-    Eigen::VectorXd murty_q(n);
-    for (int i = 0; i < n; ++i) {
-      for (int j = i + 1; j < n; ++j) murty(i, j) = 2.0;
-      murty_q[i] = -(std::ldexp(1.0, n + 1) - std::ldexp(1.0, i + 1));
-    }
+    Eigen::MatrixXd murty;
+    Eigen::VectorXd murty_q;
+    lcp_problems::murty(n, murty, murty_q);
     problems.push_back({"murty", murty, murty_q});
     std::uniform_int_distribution<int> entry(-1, 1);
     Eigen::MatrixXd B(n, std::max(1, n / 2));

@@ -59,12 +59,9 @@ std::vector<Problem> families(int n, std::mt19937& rng) {
     for (int i = j + 1; i < n; ++i) T(i, j) = entry(rng);
   if (entry(rng) > 0) T.transposeInPlace();
   problems.push_back({"degenerate_p", true, T, lcp_problems::q_from_solution(T, rng)});
-  Eigen::MatrixXd murty = Eigen::MatrixXd::Identity(n, n);
-  Eigen::VectorXd murty_q(n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) murty(i, j) = 2.0;
-    murty_q[i] = -(std::ldexp(1.0, n + 1) - std::ldexp(1.0, i + 1));
-  }
+  Eigen::MatrixXd murty;
+  Eigen::VectorXd murty_q;
+  lcp_problems::murty(n, murty, murty_q);
   problems.push_back({"murty", true, murty, murty_q});
   Eigen::MatrixXd B(n, std::max(1, n / 2));
   for (int j = 0; j < B.cols(); ++j)

@@ -18,12 +18,22 @@ void require_size(const char* name, Eigen::Index actual, Eigen::Index expected) 
                           " is invalid: must have size " + std::to_string(expected));
 }
 
-void require_shape(const char* name, const Eigen::Ref<const Eigen::MatrixXd>& m,
-                   Eigen::Index rows, Eigen::Index cols) {
-  if (m.rows() != rows || m.cols() != cols)
-    throw InvalidArgument(std::string(name) + " has shape " + std::to_string(m.rows()) + "x" +
-                          std::to_string(m.cols()) + " is invalid: must be " +
-                          std::to_string(rows) + "x" + std::to_string(cols));
+void require_shape(const char* name, Eigen::Index rows, Eigen::Index cols,
+                   Eigen::Index expected_rows, Eigen::Index expected_cols) {
+  if (rows != expected_rows || cols != expected_cols)
+    throw InvalidArgument(std::string(name) + " has shape " + std::to_string(rows) + "x" +
+                          std::to_string(cols) + " is invalid: must be " +
+                          std::to_string(expected_rows) + "x" + std::to_string(expected_cols));
+}
+
+// require_nonnegative, with the name made a std::string only when it throws.
+void require_nonnegative_scalar(const char* name, double value) {
+  if (!(std::isfinite(value) && value >= 0.0)) require_nonnegative(name, value);
+}
+
+void require_finite_matrix(const char* name, const Eigen::Ref<const Eigen::MatrixXd>& m,
+                           Eigen::Index rows, Eigen::Index cols) {
+  require_shape(name, m.rows(), m.cols(), rows, cols);
   for (Eigen::Index j = 0; j < cols; ++j)
     for (Eigen::Index i = 0; i < rows; ++i)
       if (!std::isfinite(m(i, j)))
@@ -47,22 +57,14 @@ void require_nonnegative_vector(const char* name, const Eigen::Ref<const Eigen::
       require_nonnegative(std::string(name) + "[" + std::to_string(i) + "]", v[i]);
 }
 
-void require_output(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen::Index n) {
-  if (rows != n || cols != n)
-    throw InvalidArgument(std::string(name) + " has shape " + std::to_string(rows) + "x" +
-                          std::to_string(cols) + " is invalid: must be " + std::to_string(n) +
-                          "x" + std::to_string(n));
-}
-
 }  // namespace
 
 SingleFrictionLcp single_friction_lcp(double delassus, double free_acceleration, double mu,
                                       double normal_force) {
   if (!(std::isfinite(delassus) && delassus > 0.0)) require_positive("delassus", delassus);
   if (!std::isfinite(free_acceleration)) require_finite("free_acceleration", free_acceleration);
-  if (!(std::isfinite(mu) && mu >= 0.0)) require_nonnegative("mu", mu);
-  if (!(std::isfinite(normal_force) && normal_force >= 0.0))
-    require_nonnegative("normal_force", normal_force);
+  require_nonnegative_scalar("mu", mu);
+  require_nonnegative_scalar("normal_force", normal_force);
   const double reserve = mu * normal_force;  // the friction bound mu lambda_N
   SingleFrictionLcp lcp;
   lcp.A << delassus, 0.0, 0.0, delassus;  // eq. (3.14): 1/m on the diagonal
@@ -75,9 +77,8 @@ TangentialState single_friction_state(const Eigen::Ref<const Eigen::VectorXd>& z
                                       double normal_force) {
   require_finite_vector("z", z, 2);
   require_finite_vector("w", w, 2);
-  if (!(std::isfinite(mu) && mu >= 0.0)) require_nonnegative("mu", mu);
-  if (!(std::isfinite(normal_force) && normal_force >= 0.0))
-    require_nonnegative("normal_force", normal_force);
+  require_nonnegative_scalar("mu", mu);
+  require_nonnegative_scalar("normal_force", normal_force);
   const double reserve = mu * normal_force;
   // Row 1 holds for lambda_T = r - x1 unless the contact slides forwards
   // (g_T''+ = w2 > 0, x2 = 0, lambda_T = -r); when sticking both rows agree.
@@ -91,11 +92,11 @@ void friction_lcp(const Eigen::Ref<const Eigen::MatrixXd>& delassus,
                   const Eigen::Ref<const Eigen::VectorXd>& normal_force,
                   Eigen::Ref<Eigen::MatrixXd> A, Eigen::Ref<Eigen::VectorXd> b) {
   const Eigen::Index n = delassus.rows();
-  require_shape("delassus", delassus, n, n);
+  require_finite_matrix("delassus", delassus, n, n);
   require_finite_vector("free_acceleration", free_acceleration, n);
   require_nonnegative_vector("mu", mu, n);
   require_nonnegative_vector("normal_force", normal_force, n);
-  require_output("A", A.rows(), A.cols(), 2 * n);
+  require_shape("A", A.rows(), A.cols(), 2 * n, 2 * n);
   require_size("b", b.size(), 2 * n);
   A.setZero();
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -135,10 +136,10 @@ void contact_lcp(const Eigen::Ref<const Eigen::MatrixXd>& delassus,
                  const Eigen::Ref<const Eigen::VectorXd>& mu, Eigen::Ref<Eigen::MatrixXd> A,
                  Eigen::Ref<Eigen::VectorXd> b) {
   const Eigen::Index n = mu.size();
-  require_shape("delassus", delassus, 2 * n, 2 * n);
+  require_finite_matrix("delassus", delassus, 2 * n, 2 * n);
   require_finite_vector("free_acceleration", free_acceleration, 2 * n);
   require_nonnegative_vector("mu", mu, n);
-  require_output("A", A.rows(), A.cols(), 3 * n);
+  require_shape("A", A.rows(), A.cols(), 3 * n, 3 * n);
   require_size("b", b.size(), 3 * n);
   // Blocks of G: NN = G(0:n, 0:n), NT = G(0:n, n:2n), TN = G(n:2n, 0:n), TT.
   A.setZero();
@@ -185,7 +186,7 @@ void contact_state(const Eigen::Ref<const Eigen::VectorXd>& z,
 
 PlanarContactLcp planar_contact_lcp(const Eigen::Matrix2d& delassus,
                                     const Eigen::Vector2d& free_acceleration, double mu) {
-  if (!(std::isfinite(mu) && mu >= 0.0)) require_nonnegative("mu", mu);
+  require_nonnegative_scalar("mu", mu);
   PlanarContactLcp lcp;
   const Eigen::Matrix<double, 1, 1> mu_vector(mu);
   contact_lcp(delassus, free_acceleration, mu_vector, lcp.A, lcp.b);
@@ -194,7 +195,7 @@ PlanarContactLcp planar_contact_lcp(const Eigen::Matrix2d& delassus,
 
 ContactState planar_contact_state(const Eigen::Ref<const Eigen::VectorXd>& z,
                                   const Eigen::Ref<const Eigen::VectorXd>& w, double mu) {
-  if (!(std::isfinite(mu) && mu >= 0.0)) require_nonnegative("mu", mu);
+  require_nonnegative_scalar("mu", mu);
   ContactState state;
   const Eigen::Matrix<double, 1, 1> mu_vector(mu);
   Eigen::Map<Eigen::VectorXd> normal_force(&state.normal_force, 1);

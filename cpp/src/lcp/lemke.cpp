@@ -124,9 +124,7 @@ class Tableau {
 
   int n() const { return detail::size_of<N>(n_); }
   int artificial() const { return 2 * n(); }
-  double& at(int i, int k) { return m_.t(i, k); }
   double at(int i, int k) const { return m_.t(i, k); }
-  double* column(int k) { return m_.t.col(k).data(); }
   const double* column(int k) const { return m_.t.col(k).data(); }
   double rhs(int i) const { return at(i, n() + 1); }  // after bring_current(n() + 1)
   int column_of(int v) const { return -m_.location[v] - 1; }

@@ -15,12 +15,16 @@ constexpr int kMaxBacktracks = 60;       // step lengths 1, 1/2, ..., 2^-60
 constexpr double kDescentRho = 1e-10;    // Newton direction accepted if grad.d <= -rho |d|^2.1
 constexpr double kDescentPower = 2.1;
 
-// Fischer-Burmeister function sqrt(a^2 + b^2) - a - b, without the cancellation
-// of the direct formula when a, b > 0.
-double fischer_burmeister(double a, double b) {
-  const double s = std::hypot(a, b);
+// Fischer-Burmeister function s - a - b with s = sqrt(a^2 + b^2) = hypot(a, b)
+// (passed in: the Jacobian needs s too), without the cancellation of the
+// direct formula when a, b > 0.
+double fischer_burmeister(double a, double b, double s) {
   if (a + b > 0.0) return -2.0 * a * b / (s + a + b);
   return s - a - b;
+}
+
+double fischer_burmeister(double a, double b) {
+  return fischer_burmeister(a, b, std::hypot(a, b));
 }
 
 double merit(const double* z, const double* w, int n) {
@@ -74,10 +78,13 @@ Result newton_fb(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorR
     }
     if (steps >= max_steps) break;
 
-    // Phi, the generalized Jacobian H = D_a + D_b M and grad Psi = H^T Phi.
+    // Phi, Psi = |Phi|^2 / 2 (the sum of merit(), in its order), the
+    // generalized Jacobian H = D_a + D_b M and grad Psi = H^T Phi.
+    double phi_norm2 = 0.0;
     for (int i = 0; i < n; ++i) {
-      phi[i] = fischer_burmeister(z[i], w[i]);
       const double s = std::hypot(z[i], w[i]);
+      phi[i] = fischer_burmeister(z[i], w[i], s);
+      phi_norm2 += phi[i] * phi[i];
       if (s > 0.0) {
         da[i] = z[i] / s - 1.0;
         db[i] = w[i] / s - 1.0;
@@ -94,7 +101,7 @@ Result newton_fb(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorR
       gradient[j] = sum;
       gradient_norm2 += sum * sum;
     }
-    const double psi = merit(z.data(), w.data(), n);
+    const double psi = 0.5 * phi_norm2;
 
     // Newton direction H d = -Phi if regular and a descent direction.
     bool newton = lu_factor(H, ws.permutation.data());

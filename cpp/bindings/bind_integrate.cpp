@@ -183,13 +183,8 @@ returns (t, root_found, y).
       "make_integrator",
       [](const std::string& method, double rtol, double atol, double max_step, double first_step,
          long max_steps, int max_order, double fixed_step) {
-        IntegratorOptions options;
-        options.rtol = rtol;
-        options.atol = atol;
-        options.max_step = max_step;
-        options.first_step = first_step;
-        options.max_steps = max_steps;
-        options.max_order = max_order;
+        IntegratorOptions options =
+            integrator_options(rtol, atol, max_steps, max_step, first_step, max_order);
         options.fixed_step = fixed_step;
         return BoundIntegrator{integrate::make_integrator(method, options), py::none(), {}};
       },

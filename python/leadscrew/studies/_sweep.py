@@ -13,6 +13,11 @@ takes a quarter of the remaining cases' share per worker), so the first tasks
 are large and the last ones small, and no worker idles long at the end while
 another finishes a large chunk.
 
+:func:`run_chunks` is the same machinery one level down: its function takes
+a whole chunk (a list of cases) and returns whatever describes them, e.g. the
+arrays of one C++ batch call (:mod:`leadscrew.studies._batch`), so that the
+Python work is per chunk rather than per case.
+
 The default executor is a thread pool over ``os.cpu_count()`` workers: the
 C++ core releases the GIL while it integrates, so threads run simulations in
 parallel. :class:`SerialExecutor` runs every case in the calling thread (the
@@ -23,13 +28,15 @@ cheap cases).
 from __future__ import annotations
 
 import concurrent.futures
+import functools
 import os
 import threading
 import time
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
 
-__all__ = ["Outcome", "SerialExecutor", "run_cases", "default_workers", "guided_chunks"]
+__all__ = ["Outcome", "ChunkOutcome", "SerialExecutor", "run_cases", "run_chunks",
+           "default_workers", "guided_chunks"]
 
 
 @dataclass(frozen=True)
@@ -42,6 +49,29 @@ class Outcome:
         elapsed: wall time of the case function in its worker [s].
     """
 
+    value: Any
+    error: Optional[str]
+    elapsed: float
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+
+@dataclass(frozen=True)
+class ChunkOutcome:
+    """What one chunk of cases gave (:func:`run_chunks`).
+
+    Attributes:
+        cases: the indices of the chunk's cases in the sweep.
+        value: the chunk function's return value (None if it failed).
+        error: None, or ``"ExceptionType: message"`` of the failure (of the
+            function, or of the executor that lost or refused the task).
+        elapsed: wall time of the chunk function in its worker [s] (0 if it
+            never ran).
+    """
+
+    cases: range
     value: Any
     error: Optional[str]
     elapsed: float
@@ -106,6 +136,15 @@ def _describe(error: BaseException) -> str:
     return f"{type(error).__name__}: {error}"
 
 
+def _chunks(count: int, chunk_size: Optional[int]) -> List[range]:
+    """Guided chunks (None) or chunks of ``chunk_size`` cases."""
+    if chunk_size is None:
+        return guided_chunks(count, default_workers())
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
+        raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
+    return [range(start, min(start + chunk_size, count)) for start in range(0, count, chunk_size)]
+
+
 def _guarded(function: Callable[[Any], Any], case: Any) -> Outcome:
     """Run one case in its worker; a failure becomes the outcome's error.
 
@@ -124,6 +163,83 @@ def _guarded_chunk(function: Callable[[Any], Any], cases: Sequence[Any]) -> List
     return [_guarded(function, case) for case in cases]
 
 
+def _timed_chunk(function: Callable[[List[Any]], Any], cases: List[Any]):
+    """Run a chunk function in its worker: (value, elapsed [s]).
+
+    Module-level so that process-based executors can pickle it.
+    """
+    start = time.perf_counter()
+    value = function(cases)
+    return value, time.perf_counter() - start
+
+
+def run_chunks(
+    function: Callable[[List[Any]], Any],
+    cases: Sequence[Any],
+    executor: Optional[concurrent.futures.Executor] = None,
+    progress: bool = True,
+    description: Optional[str] = None,
+    chunk_size: Optional[int] = None,
+) -> List[ChunkOutcome]:
+    """Call ``function`` once per chunk of ``cases`` on an executor.
+
+    Args:
+        function: called as ``function(list_of_cases)`` in a worker, once per
+            chunk; for process-based executors it and the cases must pickle.
+        cases: the cases.
+        executor: any :class:`concurrent.futures.Executor` (a thread pool,
+            a process pool, :class:`SerialExecutor`, or a Dask client's
+            ``client.get_executor()``). Default: a thread pool over
+            :func:`default_workers` workers, shut down before returning.
+        progress: show a tqdm progress bar over the finished cases.
+        description: the progress bar's label.
+        chunk_size: cases per chunk, >= 1 (default: guided, shrinking
+            chunks, see :func:`guided_chunks`).
+
+    Returns:
+        One :class:`ChunkOutcome` per chunk, in the order of ``cases``; the
+        chunks cover every case once. A chunk whose function raised, or that
+        the executor refused or lost, has ``error`` set and ``value`` None.
+
+    Raises:
+        ValueError: invalid ``chunk_size``.
+    """
+    cases = list(cases)
+    chunks = _chunks(len(cases), chunk_size)
+    if not chunks:
+        return []
+    owned = executor is None
+    if owned:
+        executor = concurrent.futures.ThreadPoolExecutor(max_workers=default_workers())
+    from tqdm.auto import tqdm
+
+    outcomes: List[Optional[ChunkOutcome]] = [None] * len(chunks)
+    try:
+        with tqdm(total=len(cases), desc=description, disable=not progress,
+                  leave=False) as bar:
+            futures = {}
+            for k, chunk in enumerate(chunks):
+                try:
+                    future = executor.submit(_timed_chunk, function,
+                                             [cases[i] for i in chunk])
+                    futures[future] = k
+                except Exception as error:  # e.g. a case does not pickle
+                    outcomes[k] = ChunkOutcome(chunk, None, _describe(error), 0.0)
+                    bar.update(len(chunk))
+            for future in concurrent.futures.as_completed(futures):
+                k = futures[future]
+                try:
+                    value, elapsed = future.result()
+                    outcomes[k] = ChunkOutcome(chunks[k], value, None, elapsed)
+                except Exception as error:  # the function failed or the executor lost it
+                    outcomes[k] = ChunkOutcome(chunks[k], None, _describe(error), 0.0)
+                bar.update(len(chunks[k]))
+    finally:
+        if owned:
+            executor.shutdown(wait=True)
+    return outcomes  # type: ignore[return-value]
+
+
 def run_cases(
     function: Callable[[Any], Any],
     cases: Sequence[Any],
@@ -138,59 +254,23 @@ def run_cases(
         function: called as ``function(case)`` in a worker; for process-based
             executors it and the cases must pickle.
         cases: the cases.
-        executor: any :class:`concurrent.futures.Executor` (a thread pool,
-            a process pool, :class:`SerialExecutor`, or a Dask client's
-            ``client.get_executor()``). Default: a thread pool over
-            :func:`default_workers` workers, shut down before returning.
-        progress: show a tqdm progress bar over the finished cases.
-        description: the progress bar's label.
-        chunk_size: cases per task, >= 1 (default: guided, shrinking
-            chunks, see :func:`guided_chunks`).
+        executor, progress, description, chunk_size: as :func:`run_chunks`
+            (the cases travel in its chunks).
 
     Returns:
         One :class:`Outcome` per case, in the order of ``cases``. A case that
         raised (in the function, or while the executor shipped it) has
         ``error`` set and ``value`` None.
-    """
-    cases = list(cases)
-    if not cases:
-        return []
-    if chunk_size is None:
-        chunks = guided_chunks(len(cases), default_workers())
-    elif isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
-        raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
-    else:
-        chunks = [range(start, min(start + chunk_size, len(cases)))
-                  for start in range(0, len(cases), chunk_size)]
-    owned = executor is None
-    if owned:
-        executor = concurrent.futures.ThreadPoolExecutor(max_workers=default_workers())
-    from tqdm.auto import tqdm
 
-    outcomes: List[Optional[Outcome]] = [None] * len(cases)
-    try:
-        with tqdm(total=len(cases), desc=description, disable=not progress,
-                  leave=False) as bar:
-            futures = {}
-            for chunk in chunks:
-                try:
-                    future = executor.submit(_guarded_chunk, function,
-                                             [cases[i] for i in chunk])
-                    futures[future] = chunk
-                except Exception as error:  # e.g. a case does not pickle
-                    for i in chunk:
-                        outcomes[i] = Outcome(None, _describe(error), 0.0)
-                    bar.update(len(chunk))
-            for future in concurrent.futures.as_completed(futures):
-                chunk = futures[future]
-                try:
-                    results = future.result()
-                except Exception as error:  # the executor lost the task
-                    results = [Outcome(None, _describe(error), 0.0)] * len(chunk)
-                for i, outcome in zip(chunk, results):
-                    outcomes[i] = outcome
-                bar.update(len(chunk))
-    finally:
-        if owned:
-            executor.shutdown(wait=True)
-    return outcomes  # type: ignore[return-value]
+    Raises:
+        ValueError: invalid ``chunk_size``.
+    """
+    outcomes: List[Outcome] = []
+    for chunk in run_chunks(functools.partial(_guarded_chunk, function), cases,
+                            executor=executor, progress=progress, description=description,
+                            chunk_size=chunk_size):
+        if chunk.ok:
+            outcomes.extend(chunk.value)
+        else:
+            outcomes.extend([Outcome(None, chunk.error, 0.0)] * len(chunk.cases))
+    return outcomes

@@ -14,7 +14,8 @@ import pytest
 
 import leadscrew as ls
 from helpers.scenes import thesis_scene
-from leadscrew.studies._sweep import SerialExecutor, default_workers, guided_chunks, run_cases
+from leadscrew.studies._sweep import (MIN_CHUNK_SECONDS, SerialExecutor, default_workers,
+                                      guided_size, run_cases, run_chunks)
 from leadscrew.studies.creep import creep_vs_backlash
 from leadscrew.studies.drive_efficiency import efficiency_vs_mu
 
@@ -146,16 +147,59 @@ def test_serial_threaded_and_dask_agree():
 
 
 
-@pytest.mark.parametrize("count", [0, 1, 7, 8, 150, 900, 10_000])
+def guided_plan(count, workers, seconds_per_case):
+    """The chunk sizes guided_size gives along a sweep at a fixed cost per case
+    (after the first chunk: one case, which measures it)."""
+    sizes, sent = [], 0
+    while sent < count:  # every pass sends at least one case
+        size = guided_size(count - sent, workers, seconds_per_case if sizes else None)
+        sizes.append(min(size, count - sent))
+        sent += sizes[-1]
+    return sizes
+
+
+@pytest.mark.parametrize("count", [1, 7, 8, 150, 900, 10_000])
 @pytest.mark.parametrize("workers", [1, 2, 16])
-def test_guided_chunks_cover_every_case_once_and_shrink(count, workers):
-    chunks = guided_chunks(count, workers)
-    assert [i for chunk in chunks for i in chunk] == list(range(count))
-    sizes = [len(chunk) for chunk in chunks]
-    assert all(size >= 1 for size in sizes)
-    assert sizes == sorted(sizes, reverse=True)  # large first, small last
-    if count:
-        assert sizes[0] == -(-count // (4 * workers))
-        assert sizes[-1] == 1
-        # About 4 w ln(count) tasks: few enough for a cluster's task overhead.
-        assert len(chunks) <= 4 * workers * (math.log(count) + 1) + 1
+def test_guided_chunks_of_costly_cases_shrink_to_single_cases(count, workers):
+    """A case of 10 ms is above MIN_CHUNK_SECONDS: plain guided scheduling."""
+    sizes = guided_plan(count, workers, 10e-3)
+    assert sum(sizes) == count and all(size >= 1 for size in sizes)
+    assert sizes[0] == 1  # the probe
+    assert sizes[1:] == sorted(sizes[1:], reverse=True)  # large first, small last
+    assert sizes[-1] == 1
+    if count > 1:
+        assert sizes[1] == -(-(count - 1) // (4 * workers))
+    # About 4 w ln(count) tasks: few enough for a cluster's task overhead.
+    assert len(sizes) <= 4 * workers * (math.log(count) + 1) + 2
+
+
+@pytest.mark.parametrize("count", [8, 150, 250, 900, 10_000])
+@pytest.mark.parametrize("workers", [1, 2, 16])
+def test_guided_chunks_of_cheap_cases_carry_a_millisecond(count, workers):
+    """Cases of 10 us travel in chunks of MIN_CHUNK_SECONDS (100 cases), less
+    only where a worker's share of the rest is smaller, and then not below an
+    eighth of that."""
+    sizes = guided_plan(count, workers, 10e-6)
+    floor = round(MIN_CHUNK_SECONDS / 10e-6)
+    sent = 1
+    for size in sizes[1:]:
+        remaining = count - sent
+        if size < floor:
+            assert size == remaining or size >= -(-remaining // workers)
+            assert size == remaining or size >= floor // 8
+        sent += size
+    # The bulk in chunks of the floor, the tail in about log2(8) halvings.
+    assert len(sizes) <= 1 + count / floor + 4 + 2 * workers
+    assert guided_size(10, 2, 0.0) == 10  # a zero cost: everything at once
+    assert guided_size(150, 2, 10e-6) == 75 and guided_size(20, 2, 10e-6) == 13
+
+
+def test_run_chunks_sizes_chunks_by_the_measured_cost():
+    """Fast cases: the probes, then a few large chunks covering every case once."""
+    chunks = run_chunks(lambda cases: len(cases), range(1000), executor=SerialExecutor(),
+                        progress=False)
+    assert [i for c in chunks for i in c.cases] == list(range(1000))
+    assert [c.value for c in chunks] == [len(c.cases) for c in chunks]
+    workers = default_workers()
+    assert [len(c.cases) for c in chunks[:2 * workers]] == [1] * (2 * workers)
+    assert len(chunks) <= 2 * workers + 2 * workers

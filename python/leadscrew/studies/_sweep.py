@@ -8,10 +8,16 @@ process-based executors such as a Dask distributed client can ship it).
 outcome with its error message instead of ending the sweep. Cases travel in
 chunks: a simulation of a millisecond would otherwise spend a good part of
 its time in scheduling, with the GIL held (a thread pool) or in task overhead
-(Dask). By default the chunks shrink along the sweep (guided scheduling: each
-takes a quarter of the remaining cases' share per worker), so the first tasks
-are large and the last ones small, and no worker idles long at the end while
-another finishes a large chunk.
+(Dask). By default the chunks are sized as the sweep goes (guided
+self-scheduling, :func:`guided_size`): the first task per worker slot holds
+one case, which measures the cost of a case; after that each chunk takes a
+quarter of the remaining cases' share per worker, but at least
+:data:`MIN_CHUNK_SECONDS` of work at the measured cost and at most the
+remaining share per worker. The chunks shrink along the sweep, so no worker
+idles long at the end while another finishes a large chunk, and cases of
+microseconds travel in a few large chunks instead of dozens of tiny ones.
+How the cases are split depends on timing; the results must not (every
+study's cases are independent).
 
 :func:`run_chunks` is the same machinery one level down: its function takes
 a whole chunk (a list of cases) and returns whatever describes them, e.g. the
@@ -29,6 +35,7 @@ from __future__ import annotations
 
 import concurrent.futures
 import functools
+import math
 import os
 import threading
 import time
@@ -36,7 +43,12 @@ from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
 
 __all__ = ["Outcome", "ChunkOutcome", "SerialExecutor", "run_cases", "run_chunks",
-           "default_workers", "guided_chunks"]
+           "default_workers", "guided_size", "MIN_CHUNK_SECONDS"]
+
+# Least work per chunk once the cost of a case is known [s]: the Python
+# around a chunk (submission, future, the chunk function's own work) takes
+# some 30-50 us on a thread pool, under 5% of this.
+MIN_CHUNK_SECONDS = 1e-3
 
 
 @dataclass(frozen=True)
@@ -109,40 +121,41 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
-def guided_chunks(count: int, workers: int) -> List[range]:
-    """Split ``count`` cases into consecutive chunks that shrink along the sweep.
-
-    Each chunk takes ceil(remaining / (4 workers)) cases: about 4 w ln(count)
-    tasks in all, the first ones large (little scheduling per case), the last
-    ones single cases (the workers finish together).
+def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float]) -> int:
+    """Cases in the next chunk of a sweep (guided self-scheduling).
 
     Args:
-        count: number of cases, >= 0.
+        remaining: cases not yet sent, >= 1.
         workers: number of workers, >= 1.
+        seconds_per_case: measured wall time of a case [s] (of the chunks
+            done so far), or None while no chunk has finished.
 
     Returns:
-        The chunks as index ranges, in order, covering 0 .. count - 1.
+        1 while the cost is unknown (the first chunks measure it). Then
+        ceil(remaining / (4 workers)) (guided: about 4 w ln(count) chunks,
+        shrinking to single cases), raised to the f cases that take
+        :data:`MIN_CHUNK_SECONDS` or, if less, a worker's share of the
+        remaining cases, ceil(remaining / workers) (no worker waits for
+        another's large chunk); but not below f / 8 (the tail of a cheap
+        sweep halves down to chunks of an eighth of the least work). Never
+        more than ``remaining``.
     """
-    chunks: List[range] = []
-    start = 0
-    while start < count:  # every pass takes at least one case
-        size = -(-(count - start) // (4 * workers))
-        chunks.append(range(start, start + size))
-        start += size
-    return chunks
+    if seconds_per_case is None:
+        return 1
+    guided = -(-remaining // (4 * workers))
+    floor = math.ceil(MIN_CHUNK_SECONDS / max(seconds_per_case, 1e-9))
+    size = max(guided, min(floor, -(-remaining // workers)), -(-floor // 8))
+    return max(1, min(size, remaining))
+
+
+def _check_chunk_size(chunk_size: Optional[int]) -> None:
+    if chunk_size is not None and (isinstance(chunk_size, bool)
+                                   or not isinstance(chunk_size, int) or chunk_size < 1):
+        raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
 
 
 def _describe(error: BaseException) -> str:
     return f"{type(error).__name__}: {error}"
-
-
-def _chunks(count: int, chunk_size: Optional[int]) -> List[range]:
-    """Guided chunks (None) or chunks of ``chunk_size`` cases."""
-    if chunk_size is None:
-        return guided_chunks(count, default_workers())
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
-        raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
-    return [range(start, min(start + chunk_size, count)) for start in range(0, count, chunk_size)]
 
 
 def _guarded(function: Callable[[Any], Any], case: Any) -> Outcome:
@@ -193,8 +206,8 @@ def run_chunks(
             :func:`default_workers` workers, shut down before returning.
         progress: show a tqdm progress bar over the finished cases.
         description: the progress bar's label.
-        chunk_size: cases per chunk, >= 1 (default: guided, shrinking
-            chunks, see :func:`guided_chunks`).
+        chunk_size: cases per chunk, >= 1 (default: guided self-scheduling,
+            see :func:`guided_size`).
 
     Returns:
         One :class:`ChunkOutcome` per chunk, in the order of ``cases``; the
@@ -205,39 +218,58 @@ def run_chunks(
         ValueError: invalid ``chunk_size``.
     """
     cases = list(cases)
-    chunks = _chunks(len(cases), chunk_size)
-    if not chunks:
+    _check_chunk_size(chunk_size)
+    count = len(cases)
+    if not count:
         return []
+    workers = default_workers()
+    # Fixed chunks are all sent at once; guided ones as the sweep goes, with
+    # at most two per worker in flight (one running, one queued).
+    window = count if chunk_size is not None else 2 * workers
     owned = executor is None
     if owned:
-        executor = concurrent.futures.ThreadPoolExecutor(max_workers=default_workers())
+        executor = concurrent.futures.ThreadPoolExecutor(max_workers=workers)
     from tqdm.auto import tqdm
 
-    outcomes: List[Optional[ChunkOutcome]] = [None] * len(chunks)
+    outcomes: List[ChunkOutcome] = []
+    in_flight: dict = {}
+    sent = 0
+    measured_cases, measured_seconds = 0, 0.0
     try:
-        with tqdm(total=len(cases), desc=description, disable=not progress,
-                  leave=False) as bar:
-            futures = {}
-            for k, chunk in enumerate(chunks):
-                try:
-                    future = executor.submit(_timed_chunk, function,
-                                             [cases[i] for i in chunk])
-                    futures[future] = k
-                except Exception as error:  # e.g. a case does not pickle
-                    outcomes[k] = ChunkOutcome(chunk, None, _describe(error), 0.0)
+        with tqdm(total=count, desc=description, disable=not progress, leave=False) as bar:
+            while sent < count or in_flight:  # each pass sends a chunk or waits for one
+                while sent < count and len(in_flight) < window:
+                    size = chunk_size or guided_size(
+                        count - sent, workers,
+                        measured_seconds / measured_cases if measured_cases else None)
+                    chunk = range(sent, min(sent + size, count))
+                    sent = chunk.stop
+                    try:
+                        future = executor.submit(_timed_chunk, function,
+                                                 [cases[i] for i in chunk])
+                        in_flight[future] = chunk
+                    except Exception as error:  # e.g. a case does not pickle
+                        outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))
+                        bar.update(len(chunk))
+                if not in_flight:
+                    continue
+                done, _ = concurrent.futures.wait(
+                    in_flight, return_when=concurrent.futures.FIRST_COMPLETED)
+                for future in done:
+                    chunk = in_flight.pop(future)
+                    try:
+                        value, elapsed = future.result()
+                        outcomes.append(ChunkOutcome(chunk, value, None, elapsed))
+                        measured_cases += len(chunk)
+                        measured_seconds += elapsed
+                    except Exception as error:  # the function failed or the executor lost it
+                        outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))
                     bar.update(len(chunk))
-            for future in concurrent.futures.as_completed(futures):
-                k = futures[future]
-                try:
-                    value, elapsed = future.result()
-                    outcomes[k] = ChunkOutcome(chunks[k], value, None, elapsed)
-                except Exception as error:  # the function failed or the executor lost it
-                    outcomes[k] = ChunkOutcome(chunks[k], None, _describe(error), 0.0)
-                bar.update(len(chunks[k]))
     finally:
         if owned:
             executor.shutdown(wait=True)
-    return outcomes  # type: ignore[return-value]
+    outcomes.sort(key=lambda outcome: outcome.cases.start)
+    return outcomes
 
 
 def run_cases(

@@ -87,8 +87,9 @@ def check_grid(name: str, values: Iterable[float], allow_zero: bool = False) -> 
         raise ValueError(f"{name} = {values!r} is invalid: must be a sequence of numbers") from None
     if array.ndim != 1 or array.size == 0:
         raise ValueError(f"{name} = {values!r} is invalid: must be a non-empty 1-D sequence")
-    for value in array:
-        check_positive(f"{name} entry", float(value), allow_zero)
+    valid = np.isfinite(array) & ((array >= 0) if allow_zero else (array > 0))
+    if not valid.all():  # the message names the first offending entry
+        check_positive(f"{name} entry", float(array[np.argmin(valid)]), allow_zero)
     return array
 
 

@@ -44,7 +44,11 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
         TypeError: an unknown keyword (or ``t_eval``, which the batch sets).
         ValueError: ``friction`` differs from the scene's law.
     """
-    bound = _SIMULATE.bind(scene, t_end, t_eval=t_eval, **options)
+    try:
+        bound = _SIMULATE.bind(scene, t_end, t_eval=t_eval, **options)
+    except TypeError as error:
+        raise TypeError(f"{error} (the options are those of leadscrew.simulate, but t_eval)") \
+            from None
     bound.apply_defaults()
     a = bound.arguments
     friction = a["friction"]

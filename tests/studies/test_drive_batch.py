@@ -98,6 +98,25 @@ def test_other_parameters_of_a_torque_driven_drive(parameters, values, edit):
         np.testing.assert_array_equal(ours, simulated(edit(base, *row), 0.3, t_eval, CHANNELS))
 
 
+def test_each_case_takes_the_default_integrator_of_its_own_model():
+    """Exact backlash of zero play is the thread without play: with the arctan
+    law simulate's default is then an ODE integrator, not event_driven."""
+    base = scene(friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4},
+                 backlash={"axial": 1e-4})
+    t_eval = [0.01, 0.05]
+    options = dict(rtol=1e-6, atol=1e-9)
+    samples, errors, _ = DriveBatch(base, ["clearance"], CHANNELS, 0.05, t_eval,
+                                    **options).run([[0.0], [1e-4]])
+    assert errors == [None, None]
+    integrators = []
+    for play, ours in zip([0.0, 1e-4], samples):
+        result = ls.simulate(base.replace(backlash={"axial": play}), 0.05, t_eval=t_eval,
+                             **options)
+        integrators.append(result.integrator)
+        np.testing.assert_array_equal(ours, [result[name] for name in CHANNELS])
+    assert integrators[0] != integrators[1] == "event_driven"
+
+
 def test_rigid_batch_efficiency_is_the_closed_form():
     """eq. (5.2) from the batch's works at steady state: tan a / tan(a + rho')
     (thesis Fig. 5.6), and the output work F v dt."""

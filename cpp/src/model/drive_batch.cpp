@@ -185,8 +185,11 @@ DriveBatchResult DriveBatch::run(const Eigen::Ref<const BatchValues>& values) co
       p = base_;
       overrides_.apply(values.row(i).data(), p);
       const DriveModel model(p);
-      options.integrator =
-          options_.integrator.empty() ? drive_integrators(p).front() : options_.integrator;
+      // The model's parameters, as leadscrew.simulate asks: it may resolve
+      // some (exact backlash of zero play is the thread without play).
+      options.integrator = options_.integrator.empty()
+                               ? drive_integrators(model.parameters()).front()
+                               : options_.integrator;
       const integrate::SimulationResult run = simulate(model, options);
       find_channels(channels_, run.channel_names, index);
       if (run.time.size() != times.size())

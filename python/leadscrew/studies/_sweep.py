@@ -9,13 +9,13 @@ outcome with its error message instead of ending the sweep. Cases travel in
 chunks: a simulation of a millisecond would otherwise spend a good part of
 its time in scheduling, with the GIL held (a thread pool) or in task overhead
 (Dask). By default the chunks are sized as the sweep goes (guided
-self-scheduling, :func:`guided_size`): the first task per worker slot holds
-one case, which measures the cost of a case; after that each chunk takes a
-quarter of the remaining cases' share per worker, but at least
-:data:`MIN_CHUNK_SECONDS` of work at the measured cost and at most the
-remaining share per worker. The chunks shrink along the sweep, so no worker
-idles long at the end while another finishes a large chunk, and cases of
-microseconds travel in a few large chunks instead of dozens of tiny ones.
+self-scheduling, :func:`guided_size`): each takes a quarter of the remaining
+cases' share per worker, so the chunks shrink along the sweep and no worker
+idles long at the end while another finishes a large chunk; once the first
+chunks have measured the cost of a case, each chunk also carries at least
+:data:`MIN_CHUNK_SECONDS` of work (or a worker's share of what is left), so
+that cases of microseconds travel in a few large chunks instead of dozens of
+tiny ones whose scheduling would cost more than the cases.
 How the cases are split depends on timing; the results must not (every
 study's cases are independent).
 
@@ -121,30 +121,32 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
-def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float]) -> int:
+def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float],
+                in_flight: int = 0) -> int:
     """Cases in the next chunk of a sweep (guided self-scheduling).
 
     Args:
         remaining: cases not yet sent, >= 1.
         workers: number of workers, >= 1.
-        seconds_per_case: measured wall time of a case [s] (of the chunks
+        seconds_per_case: measured wall time of a case [s] (over the chunks
             done so far), or None while no chunk has finished.
+        in_flight: cases sent and not yet done.
 
     Returns:
-        1 while the cost is unknown (the first chunks measure it). Then
         ceil(remaining / (4 workers)) (guided: about 4 w ln(count) chunks,
-        shrinking to single cases), raised to the f cases that take
-        :data:`MIN_CHUNK_SECONDS` or, if less, a worker's share of the
-        remaining cases, ceil(remaining / workers) (no worker waits for
-        another's large chunk); but not below f / 8 (the tail of a cheap
-        sweep halves down to chunks of an eighth of the least work). Never
-        more than ``remaining``.
+        shrinking to single cases); once the cost is known raised to the f
+        cases that take :data:`MIN_CHUNK_SECONDS` or, if less, a worker's
+        share of the cases left, ceil((remaining + in_flight) / workers) (no
+        worker waits long for another's large chunk), but not below f / 8
+        (the tail of a cheap sweep shrinks to an eighth of the least work).
+        Never more than ``remaining``.
     """
-    if seconds_per_case is None:
-        return 1
     guided = -(-remaining // (4 * workers))
+    if seconds_per_case is None:
+        return max(1, min(guided, remaining))
     floor = math.ceil(MIN_CHUNK_SECONDS / max(seconds_per_case, 1e-9))
-    size = max(guided, min(floor, -(-remaining // workers)), -(-floor // 8))
+    share = -(-(remaining + in_flight) // workers)
+    size = max(guided, min(floor, share), -(-floor // 8))
     return max(1, min(size, remaining))
 
 
@@ -223,9 +225,10 @@ def run_chunks(
     if not count:
         return []
     workers = default_workers()
-    # Fixed chunks are all sent at once; guided ones as the sweep goes, with
-    # at most two per worker in flight (one running, one queued).
-    window = count if chunk_size is not None else 2 * workers
+    # Fixed chunks are all sent at once; guided ones as the sweep goes: one
+    # per worker until the first has measured the cost of a case, then at
+    # most two per worker in flight (one running, one queued).
+    window = count if chunk_size is not None else workers
     owned = executor is None
     if owned:
         executor = concurrent.futures.ThreadPoolExecutor(max_workers=workers)
@@ -241,7 +244,8 @@ def run_chunks(
                 while sent < count and len(in_flight) < window:
                     size = chunk_size or guided_size(
                         count - sent, workers,
-                        measured_seconds / measured_cases if measured_cases else None)
+                        measured_seconds / measured_cases if measured_cases else None,
+                        sum(len(chunk) for chunk in in_flight.values()))
                     chunk = range(sent, min(sent + size, count))
                     sent = chunk.stop
                     try:
@@ -262,6 +266,7 @@ def run_chunks(
                         outcomes.append(ChunkOutcome(chunk, value, None, elapsed))
                         measured_cases += len(chunk)
                         measured_seconds += elapsed
+                        window = max(window, 2 * workers)
                     except Exception as error:  # the function failed or the executor lost it
                         outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))
                     bar.update(len(chunk))

@@ -20,6 +20,10 @@ the sweep takes), the share of the serial time spent inside the C++ core
 threaded time is at least max(Python part, total / w), so the speed-up can
 reach w while the Python share stays below 1 - 1/w), and the load average
 before and after (other work on the machine slows the threaded runs first).
+Before and after the sweeps it also times two threads each running one
+C++ batch with no Python in between: that speed-up is what the machine's
+cores give at the time (other jobs, or virtual cores that share a physical
+one, lower it), the ceiling for every sweep's speed-up.
 
 Run: python benchmarks/studies/bench_studies.py [--repeats N] [--flexible] [--dask]
 (--flexible adds the efficiency sweep on the flexible_nut concept, --dask the
@@ -79,6 +83,27 @@ def single_case_time(case_function, case, repeats=200):
     return min(times)
 
 
+def core_scaling(repeats=5, cases=1000):
+    """Speed-up of two threads each running one C++ batch of rigid efficiency
+    cases (the GIL released throughout, no Python in between) over the two
+    batches in a row: what the machine's cores give now, the most any sweep
+    can reach (other jobs, or vCPUs that share a physical core, lower it)."""
+    batch = _efficiency_batch(thesis_scene(), 10.0, 0.2, (0.1, 0.2),
+                              {"rtol": 1e-8, "atol": 1e-10})
+    values = np.tile([0.3, -10.0], (cases, 1))
+    serial = threaded = float("inf")
+    for _ in range(repeats):
+        start = time.perf_counter()
+        batch.run(values)
+        batch.run(values)
+        serial = min(serial, time.perf_counter() - start)
+        with concurrent.futures.ThreadPoolExecutor(2) as pool:
+            start = time.perf_counter()
+            list(pool.map(batch.run, [values, values]))
+            threaded = min(threaded, time.perf_counter() - start)
+    return serial / threaded
+
+
 def run(name, sweep, case_function, case, n, repeats):
     """Serial, default pool and a reused pool, interleaved; the minimum of each."""
     single = single_case_time(case_function, case)
@@ -112,6 +137,7 @@ def main():
                         help="also run the creep map on a local Dask cluster (2 processes)")
     args = parser.parse_args()
     load_before = os.getloadavg()
+    scaling_before = core_scaling()
     rows = []
 
     mu = np.linspace(0.0, 0.5, 50)
@@ -158,11 +184,14 @@ def main():
                                 for _ in range(args.repeats))
 
     load_after = os.getloadavg()
+    scaling_after = core_scaling()
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
           f"thread pool of {default_workers()} workers; Python {platform.python_version()}")
     print(f"load average (1, 5, 15 min) before: {load_before[0]:.2f} {load_before[1]:.2f} "
           f"{load_before[2]:.2f}; after: {load_after[0]:.2f} {load_after[1]:.2f} "
           f"{load_after[2]:.2f}")
+    print(f"two threads of pure C++ (the most a sweep can reach now): speed-up "
+          f"{scaling_before:.2f}x before, {scaling_after:.2f}x after")
     print(f"minimum of {args.repeats} runs per column (but the speed-up of medians)\n")
     print("| sweep | sims | serial [s] | threads [s] | speed-up | speed-up of medians | "
           "CPU / wall, threads | target [s] | per sim, threads [ms] | single sim [ms] | "

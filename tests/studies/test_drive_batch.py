@@ -278,7 +278,8 @@ def test_efficiency_is_the_same_for_every_executor_and_chunking(chunk_size, monk
     mu, loads = np.linspace(0.0, 0.5, 13), [10.0, 50.0, 100.0]
     reference = efficiency_vs_mu(scene(), mu, loads, executor=SerialExecutor(), progress=False)
     if chunk_size is not None:
-        monkeypatch.setattr(_sweep, "guided_size", lambda remaining, workers, cost, in_flight: chunk_size)
+        monkeypatch.setattr(_sweep, "guided_size", lambda remaining, workers, cost: chunk_size)
+        monkeypatch.setattr(_sweep, "MIN_CHUNK_SECONDS", 0.0)  # no equal split at the end
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
         for executor in (SerialExecutor(), pool, None):
             frame = efficiency_vs_mu(scene(), mu, loads, executor=executor, progress=False)

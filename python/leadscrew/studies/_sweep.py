@@ -13,9 +13,10 @@ self-scheduling, :func:`guided_size`): each takes a quarter of the remaining
 cases' share per worker, so the chunks shrink along the sweep and no worker
 idles long at the end while another finishes a large chunk; once the first
 chunks have measured the cost of a case, each chunk also carries at least
-:data:`MIN_CHUNK_SECONDS` of work (or a worker's share of what is left), so
-that cases of microseconds travel in a few large chunks instead of dozens of
-tiny ones whose scheduling would cost more than the cases.
+:data:`MIN_CHUNK_SECONDS` of work, and when what is left would take less than
+that per worker it goes out at once in one equal chunk per worker. Cases of
+microseconds thus travel in a few large chunks instead of dozens of tiny ones
+whose scheduling would cost more than the cases.
 How the cases are split depends on timing; the results must not (every
 study's cases are independent).
 
@@ -121,8 +122,7 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
-def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float],
-                in_flight: int = 0) -> int:
+def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float]) -> int:
     """Cases in the next chunk of a sweep (guided self-scheduling).
 
     Args:
@@ -130,23 +130,17 @@ def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float],
         workers: number of workers, >= 1.
         seconds_per_case: measured wall time of a case [s] (over the chunks
             done so far), or None while no chunk has finished.
-        in_flight: cases sent and not yet done.
 
     Returns:
         ceil(remaining / (4 workers)) (guided: about 4 w ln(count) chunks,
-        shrinking to single cases); once the cost is known raised to the f
-        cases that take :data:`MIN_CHUNK_SECONDS` or, if less, a worker's
-        share of the cases left, ceil((remaining + in_flight) / workers) (no
-        worker waits long for another's large chunk), but not below f / 8
-        (the tail of a cheap sweep shrinks to an eighth of the least work).
-        Never more than ``remaining``.
+        shrinking to single cases), once the cost is known at least the
+        cases that take :data:`MIN_CHUNK_SECONDS`; never more than
+        ``remaining``. (:func:`run_chunks` sends the last cases, once they
+        take less than that per worker, as one equal chunk per worker.)
     """
-    guided = -(-remaining // (4 * workers))
-    if seconds_per_case is None:
-        return max(1, min(guided, remaining))
-    floor = math.ceil(MIN_CHUNK_SECONDS / max(seconds_per_case, 1e-9))
-    share = -(-(remaining + in_flight) // workers)
-    size = max(guided, min(floor, share), -(-floor // 8))
+    size = -(-remaining // (4 * workers))
+    if seconds_per_case is not None:
+        size = max(size, math.ceil(MIN_CHUNK_SECONDS / max(seconds_per_case, 1e-9)))
     return max(1, min(size, remaining))
 
 
@@ -225,10 +219,11 @@ def run_chunks(
     if not count:
         return []
     workers = default_workers()
-    # Fixed chunks are all sent at once; guided ones as the sweep goes: one
-    # per worker until the first has measured the cost of a case, then at
-    # most two per worker in flight (one running, one queued).
-    window = count if chunk_size is not None else workers
+    # Fixed chunks are all sent at once; guided ones as the sweep goes, at
+    # most two per worker in flight (one running, one queued: a worker that
+    # finishes a chunk starts the next at once, while the calling thread
+    # sizes the one after it).
+    window = count if chunk_size is not None else 2 * workers
     owned = executor is None
     if owned:
         executor = concurrent.futures.ThreadPoolExecutor(max_workers=workers)
@@ -238,14 +233,20 @@ def run_chunks(
     in_flight: dict = {}
     sent = 0
     measured_cases, measured_seconds = 0, 0.0
+    tail: Optional[int] = None  # the size of the last chunks, once decided
     try:
         with tqdm(total=count, desc=description, disable=not progress, leave=False) as bar:
             while sent < count or in_flight:  # each pass sends a chunk or waits for one
                 while sent < count and len(in_flight) < window:
-                    size = chunk_size or guided_size(
-                        count - sent, workers,
-                        measured_seconds / measured_cases if measured_cases else None,
-                        sum(len(chunk) for chunk in in_flight.values()))
+                    cost = measured_seconds / measured_cases if measured_cases else None
+                    if tail is None and cost is not None and chunk_size is None and \
+                            (count - sent) * cost <= workers * MIN_CHUNK_SECONDS:
+                        # The rest is less than a chunk's work per worker:
+                        # one equal chunk each, sent now (the calling thread
+                        # need not wake again to feed the workers).
+                        tail = -(-(count - sent) // workers)
+                        window = count
+                    size = chunk_size or tail or guided_size(count - sent, workers, cost)
                     chunk = range(sent, min(sent + size, count))
                     sent = chunk.stop
                     try:
@@ -266,7 +267,6 @@ def run_chunks(
                         outcomes.append(ChunkOutcome(chunk, value, None, elapsed))
                         measured_cases += len(chunk)
                         measured_seconds += elapsed
-                        window = max(window, 2 * workers)
                     except Exception as error:  # the function failed or the executor lost it
                         outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))
                     bar.update(len(chunk))

@@ -203,3 +203,22 @@ def test_the_last_cheap_cases_go_as_one_equal_chunk_per_worker(count):
         share = -(-rest // workers)
         assert sizes[len(first):] == [share] * (rest // share) + ([rest % share]
                                                                   if rest % share else [])
+
+
+class Stop(BaseException):
+    """Not an Exception: like KeyboardInterrupt it ends the sweep."""
+
+
+def stop_at_three(cases):
+    if 3 in cases:
+        raise Stop()
+    return cases
+
+
+def test_an_interrupt_ends_the_sweep_and_its_own_pool():
+    import threading
+
+    before = threading.active_count()
+    with pytest.raises(Stop):
+        run_chunks(stop_at_three, range(8), progress=False, chunk_size=1)
+    assert threading.active_count() == before  # the default pool was shut down and joined

@@ -270,9 +270,12 @@ def run_chunks(
                     except Exception as error:  # the function failed or the executor lost it
                         outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))
                     bar.update(len(chunk))
-    finally:
+    except BaseException:  # e.g. KeyboardInterrupt: drop what has not started
         if owned:
-            executor.shutdown(wait=True)
+            executor.shutdown(wait=True, cancel_futures=True)
+        raise
+    if owned:  # every chunk is done: the threads only exit, nothing to wait for
+        executor.shutdown(wait=False)
     outcomes.sort(key=lambda outcome: outcome.cases.start)
     return outcomes
 

@@ -1038,8 +1038,9 @@ class DriveHybrid final : public integrate::HybridSystem {
       return dynamics_.slip_velocity() == 0.0;
     }
     double normal_impulse = 0.0, tangential_impulse = 0.0;
+    bool sticks = false;
     ++lcp_solves_;
-    if (!dynamics_.impact(flank, p_.restitution, v_, normal_impulse, tangential_impulse,
+    if (!dynamics_.impact(flank, p_.restitution, v_, normal_impulse, tangential_impulse, sticks,
                           lcp_workspace_, lcp_options_))
       jam("no consistent frictional impact");
     // Work of the speed-controlled motor's impulse at constant speed.
@@ -1061,8 +1062,9 @@ class DriveHybrid final : public integrate::HybridSystem {
                                       : std::numeric_limits<double>::infinity();
     if (std::abs(normal_after) <= bounce_threshold_ || height <= kPlasticHeight * p_.clearance) {
       close_flank();
-      return dynamics_.slip_velocity() == 0.0 || std::abs(tangential_impulse) <
-                 model_.effective_mu() * std::abs(normal_impulse);
+      // Zero slip only where the impulse LCP chose stick (its post-impact
+      // slip velocity carries round-off, which decide_friction projects away).
+      return sticks || dynamics_.slip_velocity() == 0.0;
     }
     mode_.contact = ThreadContact::open;
     mode_.friction = FrictionMode::none;

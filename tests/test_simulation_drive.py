@@ -390,3 +390,15 @@ def test_flexible_regularized_drive_at_loose_tolerance():
         "law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}))
     r = ls.simulate(scene, 2.0, integrator="cvode_bdf", rtol=1e-4, atol=1e-8, t_eval=[2.0])
     assert r.t[-1] == 2.0 and np.all(np.isfinite(r["u_load"]))
+
+
+def test_a_value_just_outside_its_range_prints_distinct_from_the_bound():
+    # 0.1 + 0.2 > 0.3 by one ulp: twelve digits would print both as 0.3.
+    t_end = 0.3
+    late = 0.1 + 0.2
+    scene = ls.Scene.from_dict(thesis_scene())
+    with pytest.raises(ValueError) as error:
+        ls.simulate(scene, t_end, t_eval=[0.0, late])
+    message = str(error.value)
+    assert "t_eval[1] = 0.30000000000000004 is invalid" in message
+    assert "[0, 0.3]" in message

@@ -43,6 +43,12 @@ class Excitation {
   Excitation(TableExcitation table);  // validates: sizes, strictly increasing finite times
   Excitation(CallableExcitation f);
 
+  // By name, as Python's Excitation(kind, parameters, times, values):
+  // "constant" [value], "sine" [amplitude, omega, phase = 0, offset = 0],
+  // "table" (times, values). Wrong counts raise InvalidArgument.
+  static Excitation from_kind(const std::string& kind, const std::vector<double>& parameters,
+                              const std::vector<double>& times, const std::vector<double>& values);
+
   double operator()(double t) const {
     switch (definition_.index()) {
       case 0:

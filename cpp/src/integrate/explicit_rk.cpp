@@ -215,12 +215,15 @@ namespace {
 // out = base + h sum_j coefficients_j k_j over `count` stages (base null: 0);
 // zero coefficients are not skipped, so that 0 * inf = NaN still flags a
 // non-finite stage. N > 0 is the state size fixed at compile time: the sums
-// stay in registers.
-template <int N>
-void combine(int n_runtime, const double* base, double h, const double* coefficients, int count,
-             const double* k, double* out) {
+// stay in registers. Count > 0 fixes the number of terms as well (the loops
+// unroll completely; see FixedSizeKernels); the arithmetic and its order do
+// not depend on N or Count: bit for bit the same values.
+template <int N, int Count = 0>
+void combine(int n_runtime, const double* base, double h, const double* coefficients,
+             int count_runtime, const double* k, double* out) {
   constexpr int capacity = N > 0 ? N : 1;
   const int n = N > 0 ? N : n_runtime;
+  const int count = Count > 0 ? Count : count_runtime;
   if constexpr (N > 0) {
     double sum[capacity];
     for (int r = 0; r < N; ++r) sum[r] = base ? base[r] : 0.0;
@@ -251,20 +254,12 @@ void combine_any(int n, const double* base, double h, const double* coefficients
   }
 }
 
-// The same sums with the number of terms fixed at compile time as well:
-// fully unrolled, no loop control and no dispatch on n (the combinations are
-// ~40 % of the engine's instructions for a 4-state system). The arithmetic
-// and its order are those of combine: bit for bit the same values.
+// Without loop control and dispatch on n (the combinations were ~40 % of the
+// engine's instructions for a 4-state system).
 template <int N, int Count>
 inline void combine_fixed(const double* base, double h, const double* coefficients,
                           const double* k, double* out) {
-  double sum[N];
-  for (int r = 0; r < N; ++r) sum[r] = base ? base[r] : 0.0;
-  for (int j = 0; j < Count; ++j) {
-    const double w = h * coefficients[j];
-    for (int r = 0; r < N; ++r) sum[r] += w * k[j * N + r];
-  }
-  for (int r = 0; r < N; ++r) out[r] = sum[r];
+  combine<N, Count>(N, base, h, coefficients, Count, k, out);
 }
 
 template <int N, int S, int... I>

@@ -271,6 +271,18 @@ class Tableau {
 
   // z from the basic values `value` (one per row); a NaN stays NaN (std::max
   // returns its first argument), so that the verification sees it.
+  // The same z as extract(value) for a fixed size, gathered into registers:
+  // z_j from the row of a basic z_j (location >= 0), else 0.
+  detail::FixedVector<N> extracted(const double* value) const {
+    static_assert(N > 0, "fixed sizes only");
+    detail::FixedVector<N> z;
+    for (int j = 0; j < N; ++j) {
+      const int row = m_.location[N + j];
+      z[j] = row >= 0 ? std::max(value[row], 0.0) : 0.0;
+    }
+    return z;
+  }
+
   void extract(const double* value, detail::VectorRef& z) const {
     const int n = this->n();
     double* zd = z.data();
@@ -331,8 +343,13 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
   bool q_nonnegative = true;
   for (int i = 0; i < n; ++i) q_nonnegative &= q[i] >= 0.0;
   if (q_nonnegative) {
-    for (int i = 0; i < n; ++i) z[i] = 0.0;
-    return detail::verify<N>(M, q, z, w, Status::solved, 0, options.tol);
+    if constexpr (N > 0) {
+      return detail::verify_values<N>(M, q, detail::FixedVector<N>::Zero(), z.data(), w.data(),
+                                      Status::solved, 0, options.tol);
+    } else {
+      for (int i = 0; i < n; ++i) z[i] = 0.0;
+      return detail::verify<N>(M, q, z, w, Status::solved, 0, options.tol);
+    }
   }
   const int max_pivots =
       options.max_iter > 0 ? options.max_iter : detail::default_lemke_pivots(n);
@@ -375,12 +392,22 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
 
   double* value = tableau.value();
   tableau.bring_current(n + 1);
-  for (int i = 0; i < n; ++i) value[i] = tableau.rhs(i);
-  tableau.extract(value, z);
-  Result result = detail::verify<N>(M, q, z, w, status, pivots, options.tol);
+  Result result;
+  if constexpr (N > 0) {
+    // Straight from the tableau's rhs into registers and on to the
+    // verification (no copy of the rhs, no store and reload of z).
+    result = detail::verify_values<N>(M, q, tableau.extracted(tableau.column(n + 1)), z.data(),
+                                      w.data(), status, pivots, options.tol);
+  } else {
+    for (int i = 0; i < n; ++i) value[i] = tableau.rhs(i);
+    tableau.extract(value, z);
+    result = detail::verify<N>(M, q, z, w, status, pivots, options.tol);
+  }
   // A complementary basis whose rounded values miss tol: refine them twice
   // against the original data and verify again.
   if (status == Status::solved && result.status != Status::solved) {
+    if constexpr (N > 0)
+      for (int i = 0; i < n; ++i) value[i] = tableau.rhs(i);
     tableau.bring_inverse_current();
     for (int sweep = 0; sweep < 2; ++sweep) tableau.refine(M, q, value, tableau.residual());
     tableau.extract(value, z);

@@ -175,8 +175,9 @@ def simulate(
         bounce_threshold: a flank impact slower than this [m/s] is plastic
             (exact backlash).
         max_order: highest order of the CVODE methods (default: BDF 5,
-            Adams 12; for the flexible drive models at rtol >= 1e-9, BDF 3,
-            faster and robust with their lightly damped stiff modes).
+            Adams 12; for the flexible drive models with a regularized
+            friction law at rtol >= 1e-9, BDF 3: faster and robust with their
+            lightly damped stiff modes and the law's stiffness near zero slip).
 
     Returns:
         A :class:`Result`.

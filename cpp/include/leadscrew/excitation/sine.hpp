@@ -15,8 +15,8 @@
 //     significant bits each, so that k P1 and k P2 (|k| < 2^18) are exact
 //     products, P3 is the next 53 bits; x - k P1 is exact (both are multiples
 //     of ulp(x) <= 2^-35 and the difference is below 1 < 2^53 ulp(x));
-//     - k P2 enters by an exact two-sum, k P3 rounded, and r is carried as
-//     hi + lo (double-double) into the polynomials;
+//     hi = x - k P1 - k P2 rounded, lo = its exact rounding error - k P3
+//     rounded: r = hi + lo goes into the polynomials;
 //  3. with z = hi^2 and (q = k mod 4) sin(x) = sin r, cos r, -sin r, -cos r:
 //       sin(hi + lo) = hi + (hi z S(z) + lo (1 - z/2))
 //       cos(hi + lo) = (1 - z/2) + (z^2 C(z) - lo hi)
@@ -30,8 +30,7 @@
 // std::sin densely and against mpmath):
 //  - Reduction: |r - (x - k pi/2)| <= |k| |pi/2 - P1 - P2 - P3| (2^-130.4 |k|)
 //    + rounding of k P3 (half an ulp of a number below 2^-58) + rounding of
-//    its sum with the two-sum's error e (|e| <= ulp(r)/2): <= 2^-110 +
-//    2^-106 |r| in all. The smallest |r|
+//    its sum with hi's error e (|e| <= ulp(hi)/2): <= 2^-110 + 2^-106 |r|. The smallest |r|
 //    over all doubles |x| < 2^18 is 2^-60.5 (x = 45.553093477052, k = 29;
 //    found by going through every k with mpmath), and over every k the
 //    reduction error is at most 0.003 ulp of sin x. (With 33-bit P1, P2 up to
@@ -72,21 +71,24 @@ inline double sine(double x) {
   std::memcpy(&shifted_bits, &shifted, sizeof shifted);
   const unsigned quadrant = static_cast<unsigned>(shifted_bits) & 3u;
 
-  // 2. r = x - k pi/2 = hi + lo.
+  // 2. r = x - k pi/2 = hi + lo, hi = t - k P2 rounded.
   constexpr double pio2_1 = 0x1.921fb54440000p+0;  // 35 bits
   constexpr double pio2_2 = 0x1.68c234c4c0000p-39;  // the next 35 bits
   constexpr double pio2_3 = 0x1.98a2e03707345p-77;  // the next 53 bits
   const double t = x - k * pio2_1;                  // exact
   const double w = k * pio2_2;                      // exact
-  const double s = t - w;                           // two-sum: s + e = t - w exactly
-  const double s_from_t = s + w;
-  const double e = (t - s_from_t) - (w + (s - s_from_t));
-  const double tail = e - k * pio2_3;
-  const double hi = s + tail;  // two-sum again: |s| may be below |tail| when r is tiny
-  const double hi_from_s = hi - tail;
-  const double lo = (s - hi_from_s) + (tail - (hi - hi_from_s));
+  const double hi = t - w;
+  // Exact error of hi: Dekker's fast two-sum where |t| >= |w|; otherwise
+  // |t - w| < 2 |w| < 2^-20 is a multiple of 2^-73 (the last bit of P2),
+  // so hi is exact and this gives 0.
+  const double hi_error = (t - hi) - w;
+  // |lo| <= ulp(hi)/2 + 2^-58: not renormalized against hi (|hi| can be
+  // below 2^-58), which the polynomials below do not need.
+  const double lo = hi_error - k * pio2_3;
 
-  // 3. Both polynomials (Estrin), then the quadrant's one: no branch on k.
+  // 3. The polynomials (Estrin: short dependency chains) and the quadrant's
+  //    one; compilers turn the choice into a branch, well predicted where
+  //    successive calls (Runge-Kutta stages) lie close together.
   const double z = hi * hi;
   const double z2 = z * z;
   const double z4 = z2 * z2;

@@ -11,11 +11,12 @@ Release build (-O3, GNU C++17, no -march) and run once per session."""
 
 import pathlib
 import re
-import shutil
-import subprocess
 
 import mpmath
 import pytest
+
+from helpers.native_program import (assert_special_passed, compile_and_run, max_ulp_line,
+                                    samples, worst_ulp_error)
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SOURCE = ROOT / "tests" / "cpp" / "test_sine.cpp"
@@ -26,56 +27,30 @@ REDUCED_RANGE = 2.0 ** 18  # below it, the own Cody-Waite reduction
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
-    compiler = shutil.which("c++") or shutil.which("g++")
-    assert compiler, "a C++ compiler is needed to build tests/cpp/test_sine.cpp"
-    program = tmp_path_factory.mktemp("sine") / "test_sine"
-    build = subprocess.run(
-        [compiler, "-O3", "-DNDEBUG", "-std=gnu++17", "-I", str(ROOT / "cpp" / "include"),
-         str(SOURCE), "-o", str(program)], capture_output=True, text=True)
-    assert build.returncode == 0, build.stdout + build.stderr
-    run = subprocess.run([str(program)], capture_output=True, text=True, timeout=120)
-    assert run.returncode == 0, run.stderr
-    return run.stdout
+    return compile_and_run(SOURCE, tmp_path_factory.mktemp("sine"))
 
 
 @pytest.mark.parametrize("points, at_least", [("binades", 6_000_000), ("dense", 4_000_000),
                                               ("multiples", 5_000_000), ("edges", 900_000)])
 def test_within_two_ulp_of_std_sin(report, points, at_least):
-    line = re.search(rf"^MAXULP {points} (\d+) (\d+) (\S+)$", report, re.MULTILINE)
-    assert line, report[:2000]
-    ulps, count = int(line.group(1)), int(line.group(2))
+    ulps, count, worst_x = max_ulp_line(report, points)
     assert count >= at_least  # the sweep ran
-    assert ulps <= 2, f"{ulps} ulp from std::sin at x = {line.group(3)}"
+    assert ulps <= 2, f"{ulps} ulp from std::sin at x = {worst_x}"
 
 
 @pytest.mark.parametrize("name", ["plus_zero", "minus_zero", "plus_inf", "minus_inf", "nan",
                                   "max", "subnormal_and_tiny_identity", "odd", "range",
                                   "monotonic_across_quadrant_switches"])
 def test_special_values_and_shape(report, name):
-    assert re.search(rf"^SPECIAL {name} PASS$", report, re.MULTILINE), \
-        [line for line in report.splitlines() if line.startswith("SPECIAL")]
-
-
-def ulp_of(value):
-    """The spacing of doubles at |value| (an mpmath number), subnormals included."""
-    magnitude = abs(value)
-    exponent = max(int(mpmath.floor(mpmath.log(magnitude, 2))), -1022)
-    return mpmath.mpf(2) ** (exponent - 52)
+    assert_special_passed(report, name)
 
 
 def test_within_proven_bound_of_exact_sine(report):
-    samples = [tuple(float.fromhex(v) for v in line.split()[1:])
-               for line in report.splitlines() if line.startswith("SAMPLE")]
-    assert len(samples) == 5400
-    worst = 0.0
-    smallest_result = 1.0
-    with mpmath.workdps(60):  # |r| >= 2^-61 relative to |x| < 2^18: 60 digits keep 100 bits
-        for x, ours in samples:
-            exact = mpmath.sin(mpmath.mpf(x))
-            error = float(abs(mpmath.mpf(ours) - exact) / ulp_of(exact))
-            worst = max(worst, error)
-            smallest_result = min(smallest_result, abs(ours))
-            assert error <= PROVEN_BOUND_ULPS, (x.hex(), error)
+    points = samples(report)
+    assert len(points) == 5400
+    # |r| >= 2^-61 relative to |x| < 2^18: 60 digits keep 100 bits
+    worst = worst_ulp_error(points, mpmath.sin, PROVEN_BOUND_ULPS, digits=60)
+    smallest_result = min(1.0, *(abs(ours) for _, ours in points))
     # Not vacuous: the samples reach rounding level (a correctly rounded
     # result is up to 0.5 ulp off) and the hard reductions (sin x ~ 1e-16
     # next to multiples of pi).

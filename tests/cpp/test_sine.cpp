@@ -7,35 +7,19 @@
 //   SAMPLE <x (hex)> <sine(x) (hex)>   (for the mpmath check in Python)
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
-#include <cstring>
 #include <limits>
 #include <random>
 
 #include "leadscrew/excitation/sine.hpp"
+#include "ulp_sweep.hpp"
 
 namespace {
 
 using leadscrew::excitation::sine;
+using namespace ulp_sweep;
 
 constexpr double kReductionBound = 0x1p18;  // sine.hpp: own reduction below it
 constexpr double kHalfPi = 0x1.921fb54442d18p+0;
-
-// Doubles mapped to integers that are consecutive in the order of the reals
-// (+0 and -0 both to 0): the difference is the distance in ulps.
-std::int64_t ordered(double x) {
-  std::int64_t i = 0;
-  std::memcpy(&i, &x, sizeof x);
-  return i < 0 ? std::numeric_limits<std::int64_t>::min() - i : i;
-}
-
-double from_bits(std::uint64_t bits) {
-  double x = 0.0;
-  std::memcpy(&x, &bits, sizeof x);
-  return x;
-}
-
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // The double nearest to k pi/2 (to within an ulp: the sweeps around it go far
 // beyond): k (P1 + P2) with the 35-bit parts of sine.hpp is exact to 2^-70 k.
@@ -44,36 +28,8 @@ double near_multiple(long k) {
   return kd * 0x1.921fb54440000p+0 + kd * 0x1.68c234c4c0000p-39;
 }
 
-struct Worst {
-  const char* name;
-  std::int64_t ulps = 0;
-  long points = 0;
-  double x = 0.0;
-  void check(double x_value) {
-    const double ours = sine(x_value), reference = std::sin(x_value);
-    std::int64_t distance = ordered(ours) - ordered(reference);
-    if (distance < 0) distance = -distance;
-    if (std::isnan(ours) != std::isnan(reference)) distance = std::numeric_limits<std::int64_t>::max();
-    if (distance > ulps) {
-      ulps = distance;
-      x = x_value;
-    }
-    ++points;
-  }
-  // n consecutive doubles on either side of `center`, both signs.
-  void around(double center, int n) {
-    for (const double sign : {1.0, -1.0}) {
-      double x = sign * center;
-      for (int i = 0; i < n; ++i) x = std::nextafter(x, 0.0);
-      for (int i = 0; i < 2 * n; ++i, x = std::nextafter(x, sign * INFINITY)) check(x);
-    }
-  }
-  void print() const {
-    std::printf("MAXULP %s %lld %ld %a\n", name, static_cast<long long>(ulps), points, x);
-  }
-};
-
-void special(const char* name, bool ok) { std::printf("SPECIAL %s %s\n", name, ok ? "PASS" : "FAIL"); }
+const auto ours = [](double x) { return sine(x); };
+const auto reference = [](double x) { return std::sin(x); };
 
 }  // namespace
 
@@ -83,22 +39,18 @@ int main() {
   // Every binade below the reduction bound (subnormals included), both signs:
   // 1024 evenly spaced mantissas and 2048 random ones each (6.4 million
   // points); the binades above it (std::sin itself) sparsely.
-  Worst binades{"binades"};
+  Worst binades("binades", ours, reference);
   const std::uint64_t bound_exponent = 1023 + 18;
-  for (std::uint64_t exponent = 0; exponent < 2047; ++exponent)
-    for (std::uint64_t sign = 0; sign < 2; ++sign) {
-      const std::uint64_t count = exponent < bound_exponent ? 3072 : 16;
-      for (std::uint64_t j = 0; j < count; ++j) {
-        const std::uint64_t mantissa =
-            j < 1024 ? (j << 42) | (j * 0x9E3779B97F4A7C15ull >> 54) : random() >> 12;
-        binades.check(from_bits(sign << 63 | exponent << 52 | mantissa));
-      }
-    }
+  binades.every_binade(
+      [&](std::uint64_t exponent) { return exponent < bound_exponent ? 3072 : 16; },
+      [&](std::uint64_t j) {
+        return j < 1024 ? (j << 42) | (j * 0x9E3779B97F4A7C15ull >> 54) : random() >> 12;
+      });
   binades.print();
 
   // The working range of the loads (omega t + phase up to a few hundred
   // rad), densely, and the whole reduced range uniformly.
-  Worst dense{"dense"};
+  Worst dense("dense", ours, reference);
   std::uniform_real_distribution<double> working(-400.0, 400.0);
   for (int i = 0; i < 3000000; ++i) dense.check(working(random));
   std::uniform_real_distribution<double> reduced(-kReductionBound, kReductionBound);
@@ -110,7 +62,7 @@ int main() {
   // every 16th k up to the bound (40 each), and the k with the closest
   // approaches of doubles to k pi/2 below 2^18 (29, 28958, 58654: found with
   // mpmath; 226 and 452 for x near 355 and 710), 200000 doubles each.
-  Worst multiples{"multiples"};
+  Worst multiples("multiples", ours, reference);
   for (long k = 1; k <= 2000; ++k) multiples.around(near_multiple(k), 500);
   const long k_max = static_cast<long>(kReductionBound / kHalfPi);
   for (long k = 2001; k <= k_max; k += 16) multiples.around(near_multiple(k), 10);
@@ -120,7 +72,7 @@ int main() {
 
   // Branch points: the bounds 2^-26 and 2^18, and the quadrant switches at
   // odd multiples of pi/4 (where k is rounded either way).
-  Worst edges{"edges"};
+  Worst edges("edges", ours, reference);
   for (const double edge : {0x1p-26, 0x1p18}) edges.around(edge, 20000);
   for (long j = 0; j < 400; ++j) edges.around((2 * j + 1) * 0.5 * kHalfPi, 500);
   edges.print();
@@ -160,36 +112,16 @@ int main() {
       const double center = (2 * j + 1) * 0.5 * kHalfPi;
       // (2j+1) pi/4 lies in a rising stretch for j mod 4 in {0, 3}.
       const bool rising = (j % 4 == 0) || (j % 4 == 3);
-      double x = center;
-      for (int i = 0; i < 2000; ++i) x = std::nextafter(x, 0.0);
-      double previous = sine(x);
-      for (int i = 0; i < 4000; ++i) {
-        x = std::nextafter(x, INFINITY);
-        const double value = sine(x);
-        if (rising ? value < previous : value > previous) return false;
-        previous = value;
-      }
+      if (!monotonic_around(ours, center, 2000, rising)) return false;
     }
     return true;
   }());
 
   // Points for the comparison with the exact sin (mpmath): log-uniform
   // magnitudes, both signs; the working range; the hardest reductions.
-  std::uniform_real_distribution<double> exponent(-30.0, 18.0);
-  for (int i = 0; i < 3000; ++i) {
-    const double x = (i % 2 ? -1.0 : 1.0) * std::exp2(exponent(random));
-    std::printf("SAMPLE %a %a\n", x, sine(x));
-  }
-  std::uniform_real_distribution<double> small(-8.0, 8.0);
-  for (int i = 0; i < 2000; ++i) {
-    const double x = small(random);
-    std::printf("SAMPLE %a %a\n", x, sine(x));
-  }
-  for (const long k : {1L, 2L, 3L, 4L, 29L, 226L, 452L, 28958L, 58654L, k_max}) {
-    double x = near_multiple(k);
-    for (int i = 0; i < 20; ++i) x = std::nextafter(x, 0.0);
-    for (int i = 0; i < 40; ++i, x = std::nextafter(x, INFINITY))
-      std::printf("SAMPLE %a %a\n", x, sine(x));
-  }
+  log_uniform_samples(ours, random, -30.0, 18.0, 3000);
+  uniform_samples(ours, random, -8.0, 8.0, 2000);
+  for (const long k : {1L, 2L, 3L, 4L, 29L, 226L, 452L, 28958L, 58654L, k_max})
+    samples_around(ours, near_multiple(k), 20);
   return 0;
 }

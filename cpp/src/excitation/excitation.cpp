@@ -83,10 +83,6 @@ Excitation::Excitation(CallableExcitation f) : definition_(std::move(f)) {
     throw InvalidArgument("function is invalid: must be callable");
 }
 
-double Excitation::sine_value(const SineExcitation& s, double t) {
-  return s.amplitude * std::sin(s.omega * t + s.phase) + s.offset;
-}
-
 double Excitation::general_value(double t) const {
   if (definition_.index() == 2) {
     const auto& table = std::get<2>(definition_);

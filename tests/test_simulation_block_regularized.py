@@ -129,3 +129,19 @@ def test_result_converts_lazily_and_completely():
     assert repr(copy) == repr(r)
     frame = copy.to_frame()
     assert list(frame.columns) == ["t"] + r.channels and len(frame) == len(r.t)
+
+
+def test_one_channel_without_the_others_matches_the_matrix():
+    fresh = ls.simulate(block(), 1.0, friction="arctan_velocity", k_v=10.0, integrator="rk_dopri5")
+    with pytest.raises(KeyError, match="no channel 'w'; channels are"):
+        fresh["w"]
+    with pytest.raises(KeyError):
+        fresh[0]
+    u = fresh["u"]  # before any other conversion: the core's one-channel path
+    assert fresh._data is None
+    frame = fresh.to_frame()  # converts the whole matrix
+    np.testing.assert_array_equal(u, frame["u"].to_numpy())
+    for name in fresh.channels:
+        np.testing.assert_array_equal(fresh[name], frame[name].to_numpy())
+    with pytest.raises(KeyError, match="no channel 'w'; channels are"):
+        fresh["w"]

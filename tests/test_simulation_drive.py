@@ -390,3 +390,33 @@ def test_flexible_regularized_drive_at_loose_tolerance():
         "law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}))
     r = ls.simulate(scene, 2.0, integrator="cvode_bdf", rtol=1e-4, atol=1e-8, t_eval=[2.0])
     assert r.t[-1] == 2.0 and np.all(np.isfinite(r["u_load"]))
+
+
+def test_a_value_just_outside_its_range_prints_distinct_from_the_bound():
+    # 0.1 + 0.2 > 0.3 by one ulp: twelve digits would print both as 0.3.
+    t_end = 0.3
+    late = 0.1 + 0.2
+    scene = ls.Scene.from_dict(thesis_scene())
+    with pytest.raises(ValueError) as error:
+        ls.simulate(scene, t_end, t_eval=[0.0, late])
+    message = str(error.value)
+    assert "t_eval[1] = 0.30000000000000004 is invalid" in message
+    assert "[0, 0.3]" in message
+
+
+def test_rattling_flexible_nut_at_tight_tolerance_finishes_within_its_step_bound():
+    # Exact Coulomb with exact backlash runs CVODE BDF up to order 5: capped
+    # at 3 (the regularized laws' default) this case took 287k steps over
+    # 0.1 s at rtol 1e-9, and 1e6 steps were not enough for 0.43 s.
+    from leadscrew.studies.holding import alternating_scene
+    scene = alternating_scene(ls.Scene.from_dict(thesis_scene(
+        concept="flexible_nut", backlash={"axial": 2e-4}, friction={"law": "coulomb", "mu": 0.05},
+        loads={"drive_torque": -3.8e-3, "axial_force": 0.0})), 19.1, 8.5)
+    result = ls.simulate(scene, 0.1, integrator="event_driven", rtol=1e-9, atol=1e-13,
+                         max_steps=150_000)
+    with pytest.raises(ls.SimulationError, match="max_steps"):
+        ls.simulate(scene, 0.1, integrator="event_driven", rtol=1e-9, atol=1e-13,
+                    max_steps=150_000, max_order=3)
+    tight = ls.simulate(scene, 0.1, integrator="event_driven", rtol=1e-11, atol=1e-15,
+                        t_eval=[0.1])
+    assert abs(result["u_load"][-1] - tight["u_load"][-1]) <= 1e-6 * abs(tight["u_load"][-1])

@@ -49,17 +49,7 @@ Excitation to_excitation(py::handle value, const std::string& name) {
 
 void bind_excitation(py::module_& m) {
   py::class_<Excitation>(m, "Excitation", "A load as a function of time (C++ core).")
-      .def(py::init([](const std::string& kind, const std::vector<double>& parameters,
-                       const std::vector<double>& times, const std::vector<double>& values) {
-             if (kind == "constant") return Excitation(ConstantExcitation{parameters.at(0)});
-             if (kind == "sine")
-               return Excitation(SineExcitation{parameters.at(0), parameters.at(1),
-                                                parameters.at(2), parameters.at(3)});
-             if (kind == "table") return Excitation(TableExcitation{times, values});
-             throw InvalidArgument("kind = \"" + kind +
-                                   "\" is invalid: must be one of \"constant\", \"sine\", "
-                                   "\"table\"");
-           }),
+      .def(py::init(&Excitation::from_kind),
            py::arg("kind"), py::arg("parameters") = std::vector<double>{},
            py::arg("times") = std::vector<double>{}, py::arg("values") = std::vector<double>{})
       .def("__call__", [](const Excitation& e, double t) { return e(t); }, py::arg("t"))

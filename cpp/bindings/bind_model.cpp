@@ -66,6 +66,14 @@ void bind_model(py::module_& m) {
       .def_property_readonly("channel_names",
                              [](const integrate::SimulationResult& r) { return r.channel_names; })
       .def_property_readonly("channels", &channel_matrix)
+      .def(
+          "channel",
+          [](const integrate::SimulationResult& r, const std::string& name) -> py::object {
+            const int k = r.channel_index(name);
+            if (k < 0) return py::none();
+            return py::array_t<double>(r.channels[k].size(), r.channels[k].data());
+          },
+          py::arg("name"), "One channel as a new array, or None if there is no such channel.")
       .def_property_readonly("events",
                              [](const integrate::SimulationResult& r) {
                                py::list events;

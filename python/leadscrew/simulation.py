@@ -95,11 +95,14 @@ class Result:
         return self._data
 
     def __getitem__(self, name: str) -> np.ndarray:
-        try:
-            index = self.channels.index(name)
-        except ValueError:
-            raise KeyError(f"no channel {name!r}; channels are {self.channels}") from None
-        return self._matrix()[index]
+        if self._data is None and self._core is not None:
+            # One channel without converting the others (or their names).
+            row = self._core.channel(name) if isinstance(name, str) else None
+            if row is not None:
+                return row
+        elif name in self.channels:
+            return self._matrix()[self.channels.index(name)]
+        raise KeyError(f"no channel {name!r}; channels are {self.channels}")
 
     def __contains__(self, name: str) -> bool:
         return name in self.channels
@@ -172,8 +175,9 @@ def simulate(
         bounce_threshold: a flank impact slower than this [m/s] is plastic
             (exact backlash).
         max_order: highest order of the CVODE methods (default: BDF 5,
-            Adams 12; for the flexible drive models at rtol >= 1e-9, BDF 3,
-            faster and robust with their lightly damped stiff modes).
+            Adams 12; for the flexible drive models with a regularized
+            friction law at rtol >= 1e-9, BDF 3: faster and robust with their
+            lightly damped stiff modes and the law's stiffness near zero slip).
 
     Returns:
         A :class:`Result`.

@@ -1,6 +1,7 @@
 #include "leadscrew/core/validate.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 #include "leadscrew/core/errors.hpp"
@@ -10,10 +11,18 @@ namespace leadscrew {
 std::string format_value(double value) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  std::ostringstream out;
-  out.precision(12);
-  out << value;
-  return out.str();
+  // The shortest form from 12 significant digits up that reads back as the
+  // same double: a value just outside a range must not print as its bound
+  // ("t_eval[3] = 0.0294 is invalid: must be in [0, 0.0294]").
+  std::string text;
+  for (int digits = 12; digits <= 17; ++digits) {
+    std::ostringstream out;
+    out.precision(digits);
+    out << value;
+    text = out.str();
+    if (std::strtod(text.c_str(), nullptr) == value) break;
+  }
+  return text;
 }
 
 namespace {

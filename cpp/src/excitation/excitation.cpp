@@ -21,6 +21,44 @@ Excitation::Excitation(SineExcitation s) : definition_(s) {
   require_finite("offset", s.offset);
 }
 
+Excitation Excitation::from_kind(const std::string& kind, const std::vector<double>& parameters,
+                                 const std::vector<double>& times,
+                                 const std::vector<double>& values) {
+  auto count = [&](std::size_t low, std::size_t high, const std::string& names) {
+    if (parameters.size() >= low && parameters.size() <= high) return;
+    std::string listed = "[";
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+      listed += (i ? ", " : "") + format_value(parameters[i]);
+    throw InvalidArgument("parameters = " + listed + "] is invalid for kind = \"" + kind +
+                          "\": must hold " + names);
+  };
+  auto no_table = [&]() {
+    if (!times.empty() || !values.empty())
+      throw InvalidArgument("times and values are invalid for kind = \"" + kind +
+                            "\": only a \"table\" takes them");
+  };
+  if (kind == "constant") {
+    count(1, 1, "[value]");
+    no_table();
+    return Excitation(ConstantExcitation{parameters[0]});
+  }
+  if (kind == "sine") {
+    count(2, 4, "[amplitude, omega], [amplitude, omega, phase] or "
+                "[amplitude, omega, phase, offset]");
+    no_table();
+    SineExcitation sine{parameters[0], parameters[1]};
+    if (parameters.size() > 2) sine.phase = parameters[2];
+    if (parameters.size() > 3) sine.offset = parameters[3];
+    return Excitation(sine);
+  }
+  if (kind == "table") {
+    count(0, 0, "empty (a table takes times and values)");
+    return Excitation(TableExcitation{times, values});
+  }
+  throw InvalidArgument("kind = \"" + kind +
+                        "\" is invalid: must be one of \"constant\", \"sine\", \"table\"");
+}
+
 Excitation::Excitation(TableExcitation table) {
   if (table.times.size() != table.values.size())
     throw InvalidArgument("times and values must have the same length (got " +
@@ -43,10 +81,6 @@ Excitation::Excitation(TableExcitation table) {
 Excitation::Excitation(CallableExcitation f) : definition_(std::move(f)) {
   if (!std::get<3>(definition_).function)
     throw InvalidArgument("function is invalid: must be callable");
-}
-
-double Excitation::sine_value(const SineExcitation& s, double t) {
-  return s.amplitude * std::sin(s.omega * t + s.phase) + s.offset;
 }
 
 double Excitation::general_value(double t) const {

@@ -94,8 +94,13 @@ SimulationResult simulate_event_driven(HybridSystem& system, double t0,
   if (hint > 0.0 && (integrator_options.max_step <= 0.0 || hint < integrator_options.max_step))
     integrator_options.max_step = hint;
   std::unique_ptr<Integrator> integrator = make_integrator(options.integrator, integrator_options);
+  // Without root functions there is nothing to guard: the integrator calls
+  // the system directly (one virtual call per right-hand side, not two).
   RootGuard guarded(system);
-  integrator->initialize(guarded, t0, y);
+  if (system.root_count() > 0)
+    integrator->initialize(guarded, t0, y);
+  else
+    integrator->initialize(system, t0, y);
 
   std::vector<int> directions(static_cast<std::size_t>(std::max(system.root_count(), 0)), 0);
   auto counts_as_event = [&](const std::vector<int>& info) {

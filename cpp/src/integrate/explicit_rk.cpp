@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -99,6 +100,7 @@ void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
   n_ = n;
   m_ = m;
   const std::size_t states = static_cast<std::size_t>(n), stages = static_cast<std::size_t>(s_);
+  select_kernels();
   workspace_.assign(7 * states + 2 * stages * states + 5 * static_cast<std::size_t>(m) + stages,
                     0.0);
   double* next = workspace_.data();
@@ -213,12 +215,15 @@ namespace {
 // out = base + h sum_j coefficients_j k_j over `count` stages (base null: 0);
 // zero coefficients are not skipped, so that 0 * inf = NaN still flags a
 // non-finite stage. N > 0 is the state size fixed at compile time: the sums
-// stay in registers.
-template <int N>
-void combine(int n_runtime, const double* base, double h, const double* coefficients, int count,
-             const double* k, double* out) {
+// stay in registers. Count > 0 fixes the number of terms as well (the loops
+// unroll completely; see FixedSizeKernels); the arithmetic and its order do
+// not depend on N or Count: bit for bit the same values.
+template <int N, int Count = 0>
+void combine(int n_runtime, const double* base, double h, const double* coefficients,
+             int count_runtime, const double* k, double* out) {
   constexpr int capacity = N > 0 ? N : 1;
   const int n = N > 0 ? N : n_runtime;
+  const int count = Count > 0 ? Count : count_runtime;
   if constexpr (N > 0) {
     double sum[capacity];
     for (int r = 0; r < N; ++r) sum[r] = base ? base[r] : 0.0;
@@ -248,22 +253,83 @@ void combine_any(int n, const double* base, double h, const double* coefficients
       return combine<0>(n, base, h, coefficients, count, k, out);
   }
 }
+
+// Without loop control and dispatch on n (the combinations were ~40 % of the
+// engine's instructions for a 4-state system).
+template <int N, int Count>
+inline void combine_fixed(const double* base, double h, const double* coefficients,
+                          const double* k, double* out) {
+  combine<N, Count>(N, base, h, coefficients, Count, k, out);
+}
+
+template <int N, int S, int... I>
+void fixed_stages(OdeSystem& system, const double* a, const double* c, double t,
+                  const double* y, double h, double* k, double* y_stage,
+                  std::integer_sequence<int, I...>) {
+  // Stage I + 1 from the stages 0..I, in order (the fold runs left to right).
+  ((combine_fixed<N, I + 1>(y, h, a + (I + 1) * S, k, y_stage),
+    system.rhs(t + c[I + 1] * h, y_stage, k + (I + 1) * N)),
+   ...);
+}
 }  // namespace
+
+// Kernels for a state size N and a stage count S fixed at compile time.
+template <int N, int S>
+struct FixedSizeKernels {
+  static void stages(OdeSystem& system, const double* a, const double* c, double t,
+                     const double* y, double h, double* k, double* y_stage) {
+    fixed_stages<N, S>(system, a, c, t, y, h, k, y_stage, std::make_integer_sequence<int, S - 1>{});
+  }
+  static void combine_all(const double* base, double h, const double* coefficients,
+                          const double* k, double* out) {
+    combine_fixed<N, S>(base, h, coefficients, k, out);
+  }
+};
+
+void ExplicitRungeKutta::select_kernels() {
+  // The engine's methods (7 stages: Dormand-Prince, 8: Verner 6(5)) on the
+  // small systems of the event-driven models; anything else runs the
+  // generic loops.
+  stage_kernel_ = nullptr;
+  combine_kernel_ = nullptr;
+  auto take = [this](auto kernels) {
+    using K = decltype(kernels);
+    stage_kernel_ = &K::stages;
+    combine_kernel_ = &K::combine_all;
+  };
+  if (n_ == 2 && s_ == 7) take(FixedSizeKernels<2, 7>{});
+  if (n_ == 2 && s_ == 8) take(FixedSizeKernels<2, 8>{});
+  if (n_ == 4 && s_ == 7) take(FixedSizeKernels<4, 7>{});
+  if (n_ == 4 && s_ == 8) take(FixedSizeKernels<4, 8>{});
+}
+
+void ExplicitRungeKutta::combine_stages(const double* base, double h, const double* coefficients,
+                                        const double* k, double* out) const {
+  if (combine_kernel_)
+    combine_kernel_(base, h, coefficients, k, out);
+  else
+    combine_any(n_, base, h, coefficients, s_, k, out);
+}
+
 
 bool ExplicitRungeKutta::stages(double t, const double* y, double h, double* k, double* y_out) {
   // Stage i at y + h sum_j a_ij k_j.
   const int n = n_, s = s_;
   const double* a = tableau_.a.data();
   const double* c = tableau_.c.data();
-  for (int i = 1; i < s; ++i) {
-    combine_any(n, y, h, a + i * s, i, k, y_stage_);
-    system_->rhs(t + c[i] * h, y_stage_, k + i * n);
+  if (stage_kernel_) {
+    stage_kernel_(*system_, a, c, t, y, h, k, y_stage_);
+  } else {
+    for (int i = 1; i < s; ++i) {
+      combine_any(n, y, h, a + i * s, i, k, y_stage_);
+      system_->rhs(t + c[i] * h, y_stage_, k + i * n);
+    }
   }
   stats_.rhs_evaluations += s - 1;
   if (tableau_.fsal)
     std::copy_n(y_stage_, n, y_out);  // the last stage's argument is y + h sum b_j k_j
   else
-    combine_any(n, y, h, tableau_.b.data(), s, k, y_out);
+    combine_stages(y, h, tableau_.b.data(), k, y_out);
   // A NaN or inf in any stage reaches y_out (b_j = 0 or not: 0 * inf is NaN)
   // or, for the last stage of an FSAL pair, the error estimate.
   return all_finite(y_out, n) && (!tableau_.fsal || all_finite(k + (s - 1) * n, n));
@@ -273,7 +339,7 @@ ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* er
   if (!stages(t_, y_, h, k_, y_new_)) return StepOutcome::nonfinite;
   *error_square = 0.0;
   if (options_.fixed_step <= 0.0) {
-    combine_any(n_, nullptr, h, tableau_.e.data(), s_, k_, y_trial_);
+    combine_stages(nullptr, h, tableau_.e.data(), k_, y_trial_);
     // The squared RMS norm (Hairer's error measure, squared: no sqrt needed).
     *error_square = weighted_mean_square(y_trial_, y_, y_new_);
     // NaN: a non-finite stage that only the error estimate uses.
@@ -295,7 +361,7 @@ void ExplicitRungeKutta::interpolate(double theta, double* y_out) {
   tableau_.dense_weights(theta, tableau_, weights_, &w_end);
   // The same arithmetic as the step: at theta = 1 (w = b) this is y_n+1 bit
   // for bit.
-  combine_any(n_, y_start_, h_step_, weights_, s_, k_, y_out);
+  combine_stages(y_start_, h_step_, weights_, k_, y_out);
   if (w_end != 0.0) {
     const double w = h_step_ * w_end;
     for (int r = 0; r < n_; ++r) y_out[r] += w * f_end_[r];

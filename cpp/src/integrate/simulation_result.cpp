@@ -15,6 +15,12 @@ void SimulationResult::append(double t, const double* values) {
   for (std::size_t k = 0; k < channels.size(); ++k) channels[k].push_back(values[k]);
 }
 
+int SimulationResult::channel_index(const std::string& name) const {
+  for (std::size_t k = 0; k < channel_names.size(); ++k)
+    if (channel_names[k] == name) return static_cast<int>(k);
+  return -1;
+}
+
 void validate_output_request(const OutputRequest& request, double t0) {
   require_finite("t_end", request.t_end);
   if (!(request.t_end > t0))

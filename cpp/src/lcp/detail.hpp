@@ -110,22 +110,65 @@ inline FixedVectorMap<N> fixed_map(const VectorCRef& v) {
   return FixedVectorMap<N>(v.data(), v.size());
 }
 
+// The residual of z, w held in vector registers (N > 0): the same number as
+// residual_of, whose min and max are exact, so that their order does not
+// change the value (a zero's sign included: the comparisons against 0.0 keep
+// +0.0). x - x is NaN exactly for a NaN or inf x, so the sum is NaN iff an
+// entry is not finite.
 template <int N>
-inline Result verify(const MatrixCRef& M, const VectorCRef& q, const VectorRef& z, VectorRef& w,
-                     Status claimed, int iterations, double tol) {
-  const int n = size_of<N>(static_cast<int>(q.size()));
-  const auto m = fixed_map<N>(M);
-  const FixedVectorMap<N> zf(z.data(), n);
-  Eigen::Map<FixedVector<N>> wf(w.data(), n);
-  // Column by column, in the order of multiply_add: w = q, then w += M_.j z_j.
-  wf = fixed_map<N>(q);
-  for (int j = 0; j < n; ++j) wf += m.col(j) * zf[j];
+inline double residual_of(const Eigen::Array<double, N, 1>& z, const Eigen::Array<double, N, 1>& w) {
+  static_assert(N > 0, "fixed sizes only");
+  const double poison = ((z - z) + (w - w)).sum();
+  if (poison != poison) return std::numeric_limits<double>::infinity();
+  const double worst_pair = std::max(0.0, z.min(w).abs().maxCoeff());
+  return worst_pair - std::min(0.0, z.minCoeff()) - std::min(0.0, w.minCoeff());
+}
+
+template <int N>
+inline Result verified(double residual, Status claimed, int iterations, double tol) {
   Result result;
   result.iterations = iterations;
-  result.residual = residual_of<N>(z.data(), w.data(), n);
+  result.residual = residual;
   result.status = claimed;
   if (claimed == Status::solved && !(result.residual <= tol)) result.status = Status::singular;
   return result;
+}
+
+// verify for a z of fixed size N passed by value (in registers): writes it
+// to z (unless nullptr), w = M z + q to w, and checks the residual without reading either
+// back from memory (at these sizes the store-to-load round trips are a
+// large part of the time).
+template <int N>
+inline Result verify_values(const MatrixCRef& M, const VectorCRef& q, const FixedVector<N>& z_value,
+                            double* z, double* w, Status claimed, int iterations, double tol) {
+  static_assert(N > 0, "fixed sizes only");
+  const auto m = fixed_map<N>(M);
+  // Column by column, in the order of multiply_add: w = q, then w += M_.j z_j.
+  FixedVector<N> w_value = fixed_map<N>(q);
+  for (int j = 0; j < N; ++j) w_value += m.col(j) * z_value[j];
+  if (z != nullptr) Eigen::Map<FixedVector<N>>{z} = z_value;
+  Eigen::Map<FixedVector<N>>{w} = w_value;
+  return verified<N>(residual_of<N>(z_value.array(), w_value.array()), claimed, iterations, tol);
+}
+
+// Recomputes w = M z + q and checks complementarity_residual(z, w) <= tol for
+// a claimed Status::solved (else Status::singular); other statuses pass through.
+template <int N>
+inline Result verify(const MatrixCRef& M, const VectorCRef& q, const VectorRef& z, VectorRef& w,
+                     Status claimed, int iterations, double tol) {
+  if constexpr (N > 0) {
+    const FixedVector<N> z_value = FixedVectorMap<N>(z.data());
+    return verify_values<N>(M, q, z_value, nullptr, w.data(), claimed, iterations, tol);
+  } else {
+    const int n = static_cast<int>(q.size());
+    const auto m = fixed_map<N>(M);
+    const FixedVectorMap<N> zf(z.data(), n);
+    Eigen::Map<FixedVector<N>> wf(w.data(), n);
+    // Column by column, in the order of multiply_add: w = q, then w += M_.j z_j.
+    wf = fixed_map<N>(q);
+    for (int j = 0; j < n; ++j) wf += m.col(j) * zf[j];
+    return verified<N>(residual_of<N>(z.data(), w.data(), n), claimed, iterations, tol);
+  }
 }
 
 // verify<0>: the size-generic ending the iterative methods use.

@@ -167,13 +167,24 @@ class Tableau {
   // Apply to column c the etas it has not received, in order: row r is
   // divided by the pivot, every other row i loses factor_i times it (the
   // factor's row r is 0, so row r is set afterwards).
+  //
+  // Row r is selected in the same pass rather than stored after it: a store
+  // of one entry behind the vector stores of the column would keep the next
+  // vector load of the column (the next eta, the ratio test) from being
+  // forwarded the stored data, and stall it until the stores retire.
   void bring_current(int c) {
-    auto column = m_.t.col(c);
+    double* column = m_.t.col(c).data();
     for (int e = m_.version[c]; e < etas_; ++e) {
       const int r = m_.eta_row[e];
       const double trc = column[r] * m_.eta_inverse[e];
-      column -= m_.eta_factor.col(e) * trc;
-      column[r] = trc;
+      const double* factor = m_.eta_factor.col(e).data();
+      if constexpr (N > 0) {
+        for (int i = 0; i < N; ++i) column[i] = i == r ? trc : column[i] - factor[i] * trc;
+      } else {  // the same numbers; Eigen's loop is the faster one at runtime sizes
+        auto column_map = m_.t.col(c);
+        column_map -= m_.eta_factor.col(e) * trc;
+        column[r] = trc;
+      }
     }
     m_.version[c] = etas_;
   }
@@ -203,13 +214,21 @@ class Tableau {
     auto& t = m_.t;
     auto factor = m_.eta_factor.col(etas_);
     const double inverse_pivot = 1.0 / t(r, k);
-    factor = t.col(k);
-    factor[r] = 0.0;
+    if constexpr (N > 0) {  // row r selected in the pass, as in bring_current
+      for (int i = 0; i < N; ++i) {
+        const double factor_i = i == r ? 0.0 : t(i, k);
+        factor[i] = factor_i;
+        t(i, k) = i == r ? inverse_pivot : -inverse_pivot * factor_i;
+      }
+    } else {
+      factor = t.col(k);
+      factor[r] = 0.0;
+      t.col(k) = -inverse_pivot * factor;
+      t(r, k) = inverse_pivot;
+    }
     m_.eta_inverse[etas_] = inverse_pivot;
     m_.eta_row[etas_] = r;
     ++etas_;
-    t.col(k) = -inverse_pivot * factor;
-    t(r, k) = inverse_pivot;
     m_.version[k] = etas_;
     const int entering = m_.nonbasic[k], leaving = m_.basic[r];
     m_.basic[r] = entering;
@@ -243,17 +262,36 @@ class Tableau {
     bring_current(n + 1);
     const auto t_column = m_.t.col(c).array();
     const auto rhs_column = m_.t.col(n + 1).array();
-    auto ratio = m_.ratio.array();
     const double pivot_floor = kPivotRelTol * t_column.abs().maxCoeff();
     // All ratios at once (independent divisions, no branch; +inf for the rows
     // that cannot pivot), then the smallest and the second smallest.
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
-    ratio = (t_column > pivot_floor).select(rhs_column / t_column, kInfinity);
-    const Smallest smallest = smallest_two<N>(ratio.data(), n);
-    const double best_ratio = smallest.value;
-    if (!(best_ratio < kInfinity)) return -1;
-    // No tie (the usual case): no lexicographic comparison.
-    if (!tied(smallest)) return smallest.index;
+    Smallest smallest;
+    if constexpr (N > 0) {
+      // A local array indexed by constants only stays in registers (the
+      // search would otherwise store every ratio and load it back).
+      const Eigen::Array<double, N, 1> ratio =
+          (t_column > pivot_floor).select(rhs_column / t_column, kInfinity);
+      smallest = smallest_two<N>(ratio.data(), N);
+      if (!(smallest.value < kInfinity)) return -1;
+      if (!tied(smallest)) return smallest.index;  // the usual case
+      m_.ratio = ratio.matrix();
+    } else {
+      auto ratio = m_.ratio.array();
+      ratio = (t_column > pivot_floor).select(rhs_column / t_column, kInfinity);
+      smallest = smallest_two<N>(ratio.data(), n);
+      if (!(smallest.value < kInfinity)) return -1;
+      if (!tied(smallest)) return smallest.index;  // the usual case
+    }
+    return tie_break(c, smallest.value);
+  }
+
+  // The leaving row among the rows whose ratio (in m_.ratio) is tied with
+  // best_ratio: the artificial variable's, else the lexicographic minimum.
+  int tie_break(int c, double best_ratio) {
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    const int n = this->n();
+    const auto ratio = m_.ratio.array();
     bring_inverse_current();
     int artificial_row = -1;
     for (int i = 0; i < n; ++i)
@@ -267,6 +305,18 @@ class Tableau {
       if (lexico_best < 0 || lexicographically_smaller(i, lexico_best, c)) lexico_best = i;
     }
     return lexico_best;
+  }
+
+  // The same z as extract(value) for a fixed size, gathered into registers:
+  // z_j from the row of a basic z_j (location >= 0), else 0.
+  detail::FixedVector<N> extracted(const double* value) const {
+    static_assert(N > 0, "fixed sizes only");
+    detail::FixedVector<N> z;
+    for (int j = 0; j < N; ++j) {
+      const int row = m_.location[N + j];
+      z[j] = row >= 0 ? std::max(value[row], 0.0) : 0.0;
+    }
+    return z;
   }
 
   // z from the basic values `value` (one per row); a NaN stays NaN (std::max
@@ -331,8 +381,13 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
   bool q_nonnegative = true;
   for (int i = 0; i < n; ++i) q_nonnegative &= q[i] >= 0.0;
   if (q_nonnegative) {
-    for (int i = 0; i < n; ++i) z[i] = 0.0;
-    return detail::verify<N>(M, q, z, w, Status::solved, 0, options.tol);
+    if constexpr (N > 0) {
+      return detail::verify_values<N>(M, q, detail::FixedVector<N>::Zero(), z.data(), w.data(),
+                                      Status::solved, 0, options.tol);
+    } else {
+      for (int i = 0; i < n; ++i) z[i] = 0.0;
+      return detail::verify<N>(M, q, z, w, Status::solved, 0, options.tol);
+    }
   }
   const int max_pivots =
       options.max_iter > 0 ? options.max_iter : detail::default_lemke_pivots(n);
@@ -375,12 +430,22 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
 
   double* value = tableau.value();
   tableau.bring_current(n + 1);
-  for (int i = 0; i < n; ++i) value[i] = tableau.rhs(i);
-  tableau.extract(value, z);
-  Result result = detail::verify<N>(M, q, z, w, status, pivots, options.tol);
+  Result result;
+  if constexpr (N > 0) {
+    // Straight from the tableau's rhs into registers and on to the
+    // verification (no copy of the rhs, no store and reload of z).
+    result = detail::verify_values<N>(M, q, tableau.extracted(tableau.column(n + 1)), z.data(),
+                                      w.data(), status, pivots, options.tol);
+  } else {
+    for (int i = 0; i < n; ++i) value[i] = tableau.rhs(i);
+    tableau.extract(value, z);
+    result = detail::verify<N>(M, q, z, w, status, pivots, options.tol);
+  }
   // A complementary basis whose rounded values miss tol: refine them twice
   // against the original data and verify again.
   if (status == Status::solved && result.status != Status::solved) {
+    if constexpr (N > 0)
+      for (int i = 0; i < n; ++i) value[i] = tableau.rhs(i);
     tableau.bring_inverse_current();
     for (int sweep = 0; sweep < 2; ++sweep) tableau.refine(M, q, value, tableau.residual());
     tableau.extract(value, z);

@@ -39,19 +39,29 @@ Result pgs(const MatrixCRef& M, const VectorCRef& q, VectorRef& z, VectorRef& w,
   // Iterates this far out have left every solution behind (PGS diverges on
   // some non-H-matrices); stopping here keeps z and M z finite.
   const double divergence = kDivergenceFactor * problem_scale(M, q);
+  // w = M z + q is kept current through the sweep: a changed z_i adds its
+  // column (contiguous), so row i reads its Gauss-Seidel residual from w and
+  // a sweep costs one pass over M, not two. The update's round-off is
+  // cleared by an exact M z + q wherever the sweep looks converged.
   while (!converged && sweeps < max_sweeps) {
     for (int i = 0; i < n; ++i) previous[i] = z[i];
     for (int i = 0; i < n; ++i) {
-      double wi = q[i];
-      for (int j = 0; j < n; ++j) wi += M(i, j) * z[j];
-      z[i] = std::max(0.0, z[i] - omega * wi * inverse_diagonal[i]);
+      const double updated = std::max(0.0, z[i] - omega * w[i] * inverse_diagonal[i]);
+      const double change = updated - z[i];
+      if (change != 0.0) {
+        z[i] = updated;
+        w += change * M.col(i);
+      }
     }
     ++sweeps;
-    multiply_add(M, z, q, w);
-    const double residual = complementarity_residual(z, w);
+    double residual = complementarity_residual(z, w);
     if (!(residual <= divergence)) {  // diverged: report the previous iterate
       for (int i = 0; i < n; ++i) z[i] = previous[i];
       break;
+    }
+    if (residual <= options.tol) {
+      multiply_add(M, z, q, w);
+      residual = complementarity_residual(z, w);
     }
     converged = residual <= options.tol;
   }

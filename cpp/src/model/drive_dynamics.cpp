@@ -491,7 +491,7 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
 }
 
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
-                           double& normal_impulse, double& tangential_impulse,
+                           double& normal_impulse, double& tangential_impulse, bool& sticks,
                            lcp::Workspace& workspace, const lcp::Options& options) {
   const DriveParameters& p = model_.parameters();
   const int n = model_.coordinate_count();
@@ -534,6 +534,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   v += change;
   normal_impulse = impulse;
   tangential_impulse = r.friction_force;
+  sticks = r.slip_acceleration == 0.0;  // the new slip velocity, exactly 0 in the stick basis
   return true;
 }
 

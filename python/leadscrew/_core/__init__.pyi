@@ -116,6 +116,8 @@ class Excitation:
     def breakpoints(self) -> list[float]:
         ...
 class SimulationResult:
+    def channel(self, name: str) -> typing.Any:
+        """One channel as a new array, or None if there is no such channel."""
     @property
     def channel_names(self) -> list[str]:
         ...

@@ -37,6 +37,8 @@ struct SimulationResult {
   void reserve(std::size_t points);
   // Appends one output point; `values` holds one value per channel.
   void append(double t, const double* values);
+  // Index of the channel called `name`, or -1.
+  int channel_index(const std::string& name) const;
 };
 
 // When to record output: at the given times, or (empty) at every step and

@@ -112,10 +112,12 @@ class DriveDynamics {
 
   // Velocity jump of an impact on a flank (sign sigma) with restitution:
   // Newton's law on the normal velocity, the rotor held if speed-controlled,
-  // stick or slip of the impulses decided by the flank LCP. Returns false if
-  // no consistent frictional impact exists.
+  // stick or slip of the impulses decided by the flank LCP. `sticks` is the
+  // LCP's verdict (zero post-impact slip), taken from its basis: a sliding
+  // impact has |P_T| = mu' |P_N| exactly, so comparing the impulses would let
+  // round-off decide. Returns false if no consistent frictional impact exists.
   bool impact(int sigma, double restitution, CoordinateVector& v, double& normal_impulse,
-              double& tangential_impulse, lcp::Workspace& workspace,
+              double& tangential_impulse, bool& sticks, lcp::Workspace& workspace,
               const lcp::Options& options);
 
   double time() const noexcept { return t_; }

@@ -10,15 +10,20 @@ default thread pool (os.cpu_count() workers; the C++ core releases the GIL):
   at 5-50 Hz, backlash 0.05-0.5 mm, 6 cycles each).
 
 For each: wall time serial and threaded (the minimum over --repeats
-interleaved runs), the thread pool's speed-up, the process's CPU time over
-wall time in the threaded run (2.0: both cores were ours), the time per
-simulation in the sweep against a single simulation of one case run alone
-(the minimum over many repeats), the share of the serial time spent inside
-the C++ core (its own wall-time measurement; the rest holds the GIL: with w
-workers the threaded time is at least max(Python part, total / w), so the
-speed-up can reach w while the Python share stays below 1 - 1/w), and the
-load average before and after (other work on the machine slows the threaded
-runs first).
+interleaved runs), the thread pool's speed-up (of the minima, and of the
+medians), the process's CPU time over wall time in the threaded run (2.0:
+both cores were ours), the time per simulation in the sweep against a single
+simulation of one case run alone (the minimum over many repeats; for
+efficiency_vs_mu one C++ batch call of one case with its measures, the path
+the sweep takes), the share of the serial time spent inside the C++ core
+(its own wall-time measurement; the rest holds the GIL: with w workers the
+threaded time is at least max(Python part, total / w), so the speed-up can
+reach w while the Python share stays below 1 - 1/w), and the load average
+before and after (other work on the machine slows the threaded runs first).
+Before and after the sweeps it also times two threads each running one
+C++ batch with no Python in between: that speed-up is what the machine's
+cores give at the time (other jobs, or virtual cores that share a physical
+one, lower it), the ceiling for every sweep's speed-up.
 
 Run: python benchmarks/studies/bench_studies.py [--repeats N] [--flexible] [--dask]
 (--flexible adds the efficiency sweep on the flexible_nut concept, --dask the
@@ -29,7 +34,6 @@ from __future__ import annotations
 
 import argparse
 import concurrent.futures
-import math
 import os
 import platform
 import sys
@@ -41,7 +45,8 @@ import numpy as np
 import leadscrew as ls
 from leadscrew.studies._sweep import SerialExecutor, default_workers
 from leadscrew.studies.creep import _creep_case, creep_map
-from leadscrew.studies.drive_efficiency import _efficiency_case, efficiency_vs_mu
+from leadscrew.studies.drive_efficiency import (_efficiency_batch, _efficiency_chunk,
+                                                efficiency_vs_mu)
 
 # The thesis's Table 5.1 drive, shared with the tests.
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests"))
@@ -78,22 +83,46 @@ def single_case_time(case_function, case, repeats=200):
     return min(times)
 
 
+def core_scaling(repeats=5, cases=1000):
+    """Speed-up of two threads each running one C++ batch of rigid efficiency
+    cases (the GIL released throughout, no Python in between) over the two
+    batches in a row: what the machine's cores give now, the most any sweep
+    can reach (other jobs, or vCPUs that share a physical core, lower it)."""
+    batch = _efficiency_batch(thesis_scene(), 10.0, 0.2, (0.1, 0.2),
+                              {"rtol": 1e-8, "atol": 1e-10})
+    values = np.tile([0.3, -10.0], (cases, 1))
+    serial = threaded = float("inf")
+    for _ in range(repeats):
+        start = time.perf_counter()
+        batch.run(values)
+        batch.run(values)
+        serial = min(serial, time.perf_counter() - start)
+        with concurrent.futures.ThreadPoolExecutor(2) as pool:
+            start = time.perf_counter()
+            list(pool.map(batch.run, [values, values]))
+            threaded = min(threaded, time.perf_counter() - start)
+    return serial / threaded
+
+
 def run(name, sweep, case_function, case, n, repeats):
     """Serial, default pool and a reused pool, interleaved; the minimum of each."""
     single = single_case_time(case_function, case)
-    serial = threaded = pooled = (math.inf, 0.0)
+    serial, threaded, pooled = [], [], []
     with concurrent.futures.ThreadPoolExecutor(default_workers()) as pool:
         for _ in range(repeats):
             wall, cpu, frame = timed(lambda: sweep(SerialExecutor()))
-            serial = min(serial, (wall, cpu))
+            serial.append((wall, cpu))
             wall, cpu, _ = timed(lambda: sweep(None))
-            threaded = min(threaded, (wall, cpu))
+            threaded.append((wall, cpu))
             wall, cpu, _ = timed(lambda: sweep(pool))
-            pooled = min(pooled, (wall, cpu))
+            pooled.append((wall, cpu))
     core = float(np.nansum(frame["wall_time"]))
+    median_speedup = (np.median([w for w, _ in serial]) / np.median([w for w, _ in threaded]))
+    serial, threaded, pooled = min(serial), min(threaded), min(pooled)
     return {
         "name": name, "n": n, "serial": serial[0], "threaded": threaded[0],
         "pooled": pooled[0], "speedup": serial[0] / threaded[0],
+        "median_speedup": median_speedup,
         "parallelism": threaded[1] / threaded[0], "per_sim": threaded[0] / n,
         "single": single, "core_share": core / serial[0],
         "failed": int(frame["error"].notna().sum()), "target": TARGETS.get(name.split(" ")[0]),
@@ -108,6 +137,7 @@ def main():
                         help="also run the creep map on a local Dask cluster (2 processes)")
     args = parser.parse_args()
     load_before = os.getloadavg()
+    scaling_before = core_scaling()
     rows = []
 
     mu = np.linspace(0.0, 0.5, 50)
@@ -115,12 +145,14 @@ def main():
     for concept in ["rigid"] + (["flexible_nut"] if args.flexible else []):
         scene = thesis_scene(concept=concept)
         t_end = 0.2 if concept == "rigid" else 0.1
+        # A single case: one C++ batch call of one case and its measures.
+        batch = _efficiency_batch(scene, 10.0, t_end, (t_end / 2, t_end),
+                                  {"rtol": 1e-8, "atol": 1e-10})
         rows.append(run(
             f"efficiency_vs_mu ({concept})",
             lambda ex, s=scene, t=t_end: efficiency_vs_mu(s, mu, loads, t_end=t, executor=ex,
                                                           progress=False),
-            lambda case, s=scene, t=t_end: _efficiency_case(
-                case, s, 10.0, t, (t / 2, t), {"rtol": 1e-8, "atol": 1e-10}),
+            lambda case, b=batch: _efficiency_chunk([case], b),
             (0.3, 50.0), len(mu) * len(loads), args.repeats))
 
     frequencies = np.geomspace(5.0, 50.0, 30)
@@ -152,21 +184,25 @@ def main():
                                 for _ in range(args.repeats))
 
     load_after = os.getloadavg()
+    scaling_after = core_scaling()
     print(f"machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores, "
           f"thread pool of {default_workers()} workers; Python {platform.python_version()}")
     print(f"load average (1, 5, 15 min) before: {load_before[0]:.2f} {load_before[1]:.2f} "
           f"{load_before[2]:.2f}; after: {load_after[0]:.2f} {load_after[1]:.2f} "
           f"{load_after[2]:.2f}")
-    print(f"minimum of {args.repeats} runs per column\n")
-    print("| sweep | sims | serial [s] | threads [s] | speed-up | CPU / wall, threads | "
-          "target [s] | per sim, threads [ms] | single sim [ms] | C++ share of serial | "
-          "failed |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print(f"two threads of pure C++ (the most a sweep can reach now): speed-up "
+          f"{scaling_before:.2f}x before, {scaling_after:.2f}x after")
+    print(f"minimum of {args.repeats} runs per column (but the speed-up of medians)\n")
+    print("| sweep | sims | serial [s] | threads [s] | speed-up | speed-up of medians | "
+          "CPU / wall, threads | target [s] | per sim, threads [ms] | single sim [ms] | "
+          "C++ share of serial | failed |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         target = f"< {r['target']:g}" if r["target"] else ""
-        print(f"| {r['name']} | {r['n']} | {r['serial']:.3f} | {r['threaded']:.3f} | "
-              f"{r['speedup']:.2f}x | {r['parallelism']:.2f} | {target} | {r['per_sim'] * 1e3:.3f} | "
-              f"{r['single'] * 1e3:.3f} | {r['core_share']:.0%} | {r['failed']} |")
+        print(f"| {r['name']} | {r['n']} | {r['serial']:.4f} | {r['threaded']:.4f} | "
+              f"{r['speedup']:.2f}x | {r['median_speedup']:.2f}x | {r['parallelism']:.2f} | "
+              f"{target} | {r['per_sim'] * 1e3:.3f} | {r['single'] * 1e3:.3f} | "
+              f"{r['core_share']:.0%} | {r['failed']} |")
     print("\n(threads: a new default pool per call; a reused pool gave "
           + ", ".join(f"{r['pooled']:.3f} s" for r in rows) + ")")
     if dask_time is not None:

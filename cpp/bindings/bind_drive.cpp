@@ -1,14 +1,42 @@
 #include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
 #include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/drive_batch.hpp"
 #include "leadscrew/model/drive_simulation.hpp"
 
 namespace py = pybind11;
 
 namespace leadscrew::bindings {
+
+namespace {
+
+// The options of simulate_drive and simulate_drive_batch from their keyword
+// arguments (the same list, leadscrew.simulate's).
+model::DriveSimulationOptions drive_options(double t_end, const std::string& integrator,
+                                            const std::string& smooth_integrator, double rtol,
+                                            double atol, double dt, double theta,
+                                            std::vector<double> t_eval, long max_steps,
+                                            long max_events, double max_step, double first_step,
+                                            double bounce_threshold, int max_order) {
+  model::DriveSimulationOptions options;
+  options.integrator = integrator;
+  options.smooth_integrator = smooth_integrator;
+  options.integrator_options =
+      integrator_options(rtol, atol, max_steps, max_step, first_step, max_order);
+  options.dt = dt;
+  options.theta = theta;
+  options.max_events = max_events;
+  options.bounce_threshold = bounce_threshold;
+  options.output.t_end = t_end;
+  options.output.t_eval = std::move(t_eval);
+  return options;
+}
+
+}  // namespace
 
 void bind_drive(py::module_& m) {
   using model::DriveParameters;
@@ -110,17 +138,10 @@ void bind_drive(py::module_& m) {
          const std::string& smooth_integrator, double rtol, double atol, double dt, double theta,
          std::vector<double> t_eval, long max_steps, long max_events, double max_step,
          double first_step, double bounce_threshold, int max_order) {
-        model::DriveSimulationOptions options;
-        options.integrator = integrator;
-        options.smooth_integrator = smooth_integrator;
-        options.integrator_options =
-            integrator_options(rtol, atol, max_steps, max_step, first_step, max_order);
-        options.dt = dt;
-        options.theta = theta;
-        options.max_events = max_events;
-        options.bounce_threshold = bounce_threshold;
-        options.output.t_end = t_end;
-        options.output.t_eval = std::move(t_eval);
+        const model::DriveSimulationOptions options =
+            drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt, theta,
+                          std::move(t_eval), max_steps, max_events, max_step, first_step,
+                          bounce_threshold, max_order);
         py::gil_scoped_release release;
         return model::simulate(drive, options);
       },
@@ -128,6 +149,71 @@ void bind_drive(py::module_& m) {
       py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
       py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"), py::arg("first_step"),
       py::arg("bounce_threshold"), py::arg("max_order"));
+
+  py::class_<model::DriveBatchResult>(m, "DriveBatchResult",
+                                      "What DriveBatch.run gives: samples and failures.")
+      .def_property_readonly(
+          "samples",
+          [](const model::DriveBatchResult& r) {
+            py::array_t<double> out({static_cast<py::ssize_t>(r.samples.rows()),
+                                     static_cast<py::ssize_t>(r.channel_count),
+                                     static_cast<py::ssize_t>(r.time_count)});
+            std::copy(r.samples.data(), r.samples.data() + r.samples.size(),
+                      out.mutable_data());
+            return out;
+          },
+          "(cases, channels, sample times) array; NaN in a failed case's rows.")
+      .def_property_readonly(
+          "failures",
+          [](const model::DriveBatchResult& r) {
+            std::vector<std::string> names;
+            for (model::CaseFailure f : r.failures) names.push_back(model::case_failure_name(f));
+            return names;
+          },
+          "Per case: \"none\", \"invalid_argument\" (ValueError), \"simulation\" "
+          "(SimulationError), \"jamming\" (JammingError) or \"other\" (RuntimeError).")
+      .def_readonly("messages", &model::DriveBatchResult::messages,
+                    "Per case: the failure's message, \"\" where none.")
+      .def_readonly("wall_time", &model::DriveBatchResult::wall_time,
+                    "Per case: the simulation's wall time [s, C++ clock], NaN where it failed.");
+
+  py::class_<model::DriveBatch>(
+      m, "DriveBatch",
+      "Simulations of one drive that differ in a few scalar parameters (immutable).")
+      .def(py::init([](DriveParameters base, const std::vector<std::string>& parameters,
+                       std::vector<std::string> channels, double t_end,
+                       const std::string& integrator, const std::string& smooth_integrator,
+                       double rtol, double atol, double dt, double theta,
+                       std::vector<double> t_eval, long max_steps, long max_events,
+                       double max_step, double first_step, double bounce_threshold,
+                       int max_order) {
+             return model::DriveBatch(
+                 std::move(base), parameters, std::move(channels),
+                 drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt, theta,
+                               std::move(t_eval), max_steps, max_events, max_step,
+                               first_step, bounce_threshold, max_order));
+           }),
+           py::arg("base"), py::arg("parameters"), py::arg("channels"), py::arg("t_end"),
+           py::arg("integrator"), py::arg("smooth_integrator"), py::arg("rtol"),
+           py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
+           py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
+           py::arg("first_step"), py::arg("bounce_threshold"), py::arg("max_order"),
+           "base: DriveParameters; parameters: the fields each case sets (numeric "
+           "DriveParameters attributes; drive_torque, drive_speed, axial_force as "
+           "constants); channels: the result channels to sample at t_eval; the rest as "
+           "simulate_drive (integrator \"\": each case's default). ValueError for a bad "
+           "request.")
+      .def_property_readonly("parameter_count", &model::DriveBatch::parameter_count)
+      .def_property_readonly("channels", &model::DriveBatch::channels)
+      .def(
+          "run",
+          [](const model::DriveBatch& batch, const Eigen::Ref<const model::BatchValues>& values) {
+            py::gil_scoped_release release;  // for the whole batch
+            return batch.run(values);
+          },
+          py::arg("values"),
+          "Simulate one case per row of values (cases, parameters): a DriveBatchResult. A "
+          "failed case sets its row's failure and message.");
 }
 
 }  // namespace leadscrew::bindings

@@ -14,7 +14,8 @@ import pytest
 
 import leadscrew as ls
 from helpers.scenes import thesis_scene
-from leadscrew.studies._sweep import SerialExecutor, default_workers, guided_chunks, run_cases
+from leadscrew.studies._sweep import (MIN_CHUNK_SECONDS, SerialExecutor, default_workers,
+                                      guided_size, run_cases, run_chunks)
 from leadscrew.studies.creep import creep_vs_backlash
 from leadscrew.studies.drive_efficiency import efficiency_vs_mu
 
@@ -146,16 +147,78 @@ def test_serial_threaded_and_dask_agree():
 
 
 
-@pytest.mark.parametrize("count", [0, 1, 7, 8, 150, 900, 10_000])
+def guided_plan(count, workers, seconds_per_case):
+    """The chunk sizes guided_size gives along a sweep at a fixed cost per case
+    (known once the first chunk is done; None: never)."""
+    sizes, sent = [], 0
+    while sent < count:  # every pass sends at least one case
+        size = guided_size(count - sent, workers, seconds_per_case if sizes else None)
+        sizes.append(min(size, count - sent))
+        sent += sizes[-1]
+    return sizes
+
+
+@pytest.mark.parametrize("count", [1, 7, 8, 150, 900, 10_000])
 @pytest.mark.parametrize("workers", [1, 2, 16])
-def test_guided_chunks_cover_every_case_once_and_shrink(count, workers):
-    chunks = guided_chunks(count, workers)
-    assert [i for chunk in chunks for i in chunk] == list(range(count))
-    sizes = [len(chunk) for chunk in chunks]
-    assert all(size >= 1 for size in sizes)
+def test_guided_chunks_of_costly_cases_shrink_to_single_cases(count, workers):
+    """A case of 10 ms is above MIN_CHUNK_SECONDS: plain guided scheduling."""
+    sizes = guided_plan(count, workers, 10e-3)
+    assert sum(sizes) == count and all(size >= 1 for size in sizes)
     assert sizes == sorted(sizes, reverse=True)  # large first, small last
-    if count:
-        assert sizes[0] == -(-count // (4 * workers))
-        assert sizes[-1] == 1
-        # About 4 w ln(count) tasks: few enough for a cluster's task overhead.
-        assert len(chunks) <= 4 * workers * (math.log(count) + 1) + 1
+    assert sizes[0] == -(-count // (4 * workers)) and sizes[-1] == 1
+    # About 4 w ln(count) tasks: few enough for a cluster's task overhead.
+    assert len(sizes) <= 4 * workers * (math.log(count) + 1) + 1
+
+
+@pytest.mark.parametrize("count", [8, 150, 900, 10_000])
+@pytest.mark.parametrize("workers", [1, 2, 16])
+def test_guided_chunks_of_cheap_cases_carry_a_millisecond(count, workers):
+    """Cases of 10 us travel in chunks of at least MIN_CHUNK_SECONDS (100 cases)."""
+    sizes = guided_plan(count, workers, 10e-6)
+    floor = round(MIN_CHUNK_SECONDS / 10e-6)
+    assert sum(sizes) == count
+    assert all(size >= floor for size in sizes[1:-1])
+    assert guided_size(10, 2, 0.0) == 10  # a zero cost: everything at once
+    assert guided_size(150, 2, 10e-6) == 100 and guided_size(20, 2, 10e-6) == 20
+    assert guided_size(150, 2, None) == 19 and guided_size(10_000, 2, 10e-6) == 1250
+
+
+def square_all(cases):
+    return [case * case for case in cases]
+
+
+@pytest.mark.parametrize("count", [1, 8, 150, 900])
+def test_the_last_cheap_cases_go_as_one_equal_chunk_per_worker(count):
+    """Once what is left takes less than MIN_CHUNK_SECONDS per worker it is
+    split evenly at once: no geometric tail of tiny chunks."""
+    workers = default_workers()
+    chunks = run_chunks(square_all, range(count), executor=SerialExecutor(), progress=False)
+    assert [i for c in chunks for i in c.cases] == list(range(count))
+    assert [v for c in chunks for v in c.value] == [i * i for i in range(count)]
+    sizes = [len(c.cases) for c in chunks]
+    first = guided_plan(count, workers, None)[:2 * workers]  # before the cost is known
+    assert sizes[:len(first)] == first[:len(sizes)]
+    rest = count - sum(first)
+    if rest > 0:  # microsecond cases: the rest at once, one chunk per worker
+        share = -(-rest // workers)
+        assert sizes[len(first):] == [share] * (rest // share) + ([rest % share]
+                                                                  if rest % share else [])
+
+
+class Stop(BaseException):
+    """Not an Exception: like KeyboardInterrupt it ends the sweep."""
+
+
+def stop_at_three(cases):
+    if 3 in cases:
+        raise Stop()
+    return cases
+
+
+def test_an_interrupt_ends_the_sweep_and_its_own_pool():
+    import threading
+
+    before = threading.active_count()
+    with pytest.raises(Stop):
+        run_chunks(stop_at_three, range(8), progress=False, chunk_size=1)
+    assert threading.active_count() == before  # the default pool was shut down and joined

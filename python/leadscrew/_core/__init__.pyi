@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'drive_integrators', 'efficiency', 'integrate', 'is_drivable', 'is_self_locking', 'lcp', 'lower_torque', 'raise_torque', 'simulate_block', 'simulate_drive']
+__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'drive_integrators', 'efficiency', 'integrate', 'is_drivable', 'is_self_locking', 'lcp', 'lower_torque', 'raise_torque', 'simulate_block', 'simulate_drive']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -397,6 +397,48 @@ class DriveModel:
         ...
     @property
     def springs(self) -> list:
+        ...
+class DriveBatchResult:
+    """
+    What DriveBatch.run gives: samples and failures.
+    """
+    @property
+    def failures(self) -> list[str]:
+        """
+        Per case: "none", "invalid_argument" (ValueError), "simulation" (SimulationError), "jamming" (JammingError) or "other" (RuntimeError).
+        """
+    @property
+    def messages(self) -> list[str]:
+        """
+        Per case: the failure's message, "" where none.
+        """
+    @property
+    def samples(self) -> numpy.typing.NDArray[numpy.float64]:
+        """
+        (cases, channels, sample times) array; NaN in a failed case's rows.
+        """
+    @property
+    def wall_time(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
+        """
+        Per case: the simulation's wall time [s, C++ clock], NaN where it failed.
+        """
+class DriveBatch:
+    """
+    Simulations of one drive that differ in a few scalar parameters (immutable).
+    """
+    def __init__(self, base: DriveParameters, parameters: collections.abc.Sequence[str], channels: collections.abc.Sequence[str], t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> None:
+        """
+        base: DriveParameters; parameters: the fields each case sets (numeric DriveParameters attributes; drive_torque, drive_speed, axial_force as constants); channels: the result channels to sample at t_eval; the rest as simulate_drive (integrator "": each case's default). ValueError for a bad request.
+        """
+    def run(self, values: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"]) -> DriveBatchResult:
+        """
+        Simulate one case per row of values (cases, parameters): a DriveBatchResult. A failed case sets its row's failure and message.
+        """
+    @property
+    def channels(self) -> list[str]:
+        ...
+    @property
+    def parameter_count(self) -> int:
         ...
 def block_integrators(arg0: str) -> list[str]:
     ...

@@ -8,10 +8,22 @@ process-based executors such as a Dask distributed client can ship it).
 outcome with its error message instead of ending the sweep. Cases travel in
 chunks: a simulation of a millisecond would otherwise spend a good part of
 its time in scheduling, with the GIL held (a thread pool) or in task overhead
-(Dask). By default the chunks shrink along the sweep (guided scheduling: each
-takes a quarter of the remaining cases' share per worker), so the first tasks
-are large and the last ones small, and no worker idles long at the end while
-another finishes a large chunk.
+(Dask). By default the chunks are sized as the sweep goes (guided
+self-scheduling, :func:`guided_size`): each takes a quarter of the remaining
+cases' share per worker, so the chunks shrink along the sweep and no worker
+idles long at the end while another finishes a large chunk; once the first
+chunks have measured the cost of a case, each chunk also carries at least
+:data:`MIN_CHUNK_SECONDS` of work, and when what is left would take less than
+that per worker it goes out at once in one equal chunk per worker. Cases of
+microseconds thus travel in a few large chunks instead of dozens of tiny ones
+whose scheduling would cost more than the cases.
+How the cases are split depends on timing; the results must not (every
+study's cases are independent).
+
+:func:`run_chunks` is the same machinery one level down: its function takes
+a whole chunk (a list of cases) and returns whatever describes them, e.g. the
+arrays of one C++ batch call (:mod:`leadscrew.studies._batch`), so that the
+Python work is per chunk rather than per case.
 
 The default executor is a thread pool over ``os.cpu_count()`` workers: the
 C++ core releases the GIL while it integrates, so threads run simulations in
@@ -23,13 +35,21 @@ cheap cases).
 from __future__ import annotations
 
 import concurrent.futures
+import functools
+import math
 import os
 import threading
 import time
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
 
-__all__ = ["Outcome", "SerialExecutor", "run_cases", "default_workers", "guided_chunks"]
+__all__ = ["Outcome", "ChunkOutcome", "SerialExecutor", "run_cases", "run_chunks",
+           "default_workers", "guided_size", "MIN_CHUNK_SECONDS"]
+
+# Least work per chunk once the cost of a case is known [s]: the Python
+# around a chunk (submission, future, the chunk function's own work) takes
+# some 30-50 us on a thread pool, under 5% of this.
+MIN_CHUNK_SECONDS = 1e-3
 
 
 @dataclass(frozen=True)
@@ -42,6 +62,29 @@ class Outcome:
         elapsed: wall time of the case function in its worker [s].
     """
 
+    value: Any
+    error: Optional[str]
+    elapsed: float
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+
+@dataclass(frozen=True)
+class ChunkOutcome:
+    """What one chunk of cases gave (:func:`run_chunks`).
+
+    Attributes:
+        cases: the indices of the chunk's cases in the sweep.
+        value: the chunk function's return value (None if it failed).
+        error: None, or ``"ExceptionType: message"`` of the failure (of the
+            function, or of the executor that lost or refused the task).
+        elapsed: wall time of the chunk function in its worker [s] (0 if it
+            never ran).
+    """
+
+    cases: range
     value: Any
     error: Optional[str]
     elapsed: float
@@ -79,27 +122,32 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
-def guided_chunks(count: int, workers: int) -> List[range]:
-    """Split ``count`` cases into consecutive chunks that shrink along the sweep.
-
-    Each chunk takes ceil(remaining / (4 workers)) cases: about 4 w ln(count)
-    tasks in all, the first ones large (little scheduling per case), the last
-    ones single cases (the workers finish together).
+def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float]) -> int:
+    """Cases in the next chunk of a sweep (guided self-scheduling).
 
     Args:
-        count: number of cases, >= 0.
+        remaining: cases not yet sent, >= 1.
         workers: number of workers, >= 1.
+        seconds_per_case: measured wall time of a case [s] (over the chunks
+            done so far), or None while no chunk has finished.
 
     Returns:
-        The chunks as index ranges, in order, covering 0 .. count - 1.
+        ceil(remaining / (4 workers)) (guided: about 4 w ln(count) chunks,
+        shrinking to single cases), once the cost is known at least the
+        cases that take :data:`MIN_CHUNK_SECONDS`; never more than
+        ``remaining``. (:func:`run_chunks` sends the last cases, once they
+        take less than that per worker, as one equal chunk per worker.)
     """
-    chunks: List[range] = []
-    start = 0
-    while start < count:  # every pass takes at least one case
-        size = -(-(count - start) // (4 * workers))
-        chunks.append(range(start, start + size))
-        start += size
-    return chunks
+    size = -(-remaining // (4 * workers))
+    if seconds_per_case is not None:
+        size = max(size, math.ceil(MIN_CHUNK_SECONDS / max(seconds_per_case, 1e-9)))
+    return max(1, min(size, remaining))
+
+
+def _check_chunk_size(chunk_size: Optional[int]) -> None:
+    if chunk_size is not None and (isinstance(chunk_size, bool)
+                                   or not isinstance(chunk_size, int) or chunk_size < 1):
+        raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
 
 
 def _describe(error: BaseException) -> str:
@@ -124,6 +172,114 @@ def _guarded_chunk(function: Callable[[Any], Any], cases: Sequence[Any]) -> List
     return [_guarded(function, case) for case in cases]
 
 
+def _timed_chunk(function: Callable[[List[Any]], Any], cases: List[Any]):
+    """Run a chunk function in its worker: (value, elapsed [s]).
+
+    Module-level so that process-based executors can pickle it.
+    """
+    start = time.perf_counter()
+    value = function(cases)
+    return value, time.perf_counter() - start
+
+
+def run_chunks(
+    function: Callable[[List[Any]], Any],
+    cases: Sequence[Any],
+    executor: Optional[concurrent.futures.Executor] = None,
+    progress: bool = True,
+    description: Optional[str] = None,
+    chunk_size: Optional[int] = None,
+) -> List[ChunkOutcome]:
+    """Call ``function`` once per chunk of ``cases`` on an executor.
+
+    Args:
+        function: called as ``function(list_of_cases)`` in a worker, once per
+            chunk; for process-based executors it and the cases must pickle.
+        cases: the cases.
+        executor: any :class:`concurrent.futures.Executor` (a thread pool,
+            a process pool, :class:`SerialExecutor`, or a Dask client's
+            ``client.get_executor()``). Default: a thread pool over
+            :func:`default_workers` workers, shut down before returning.
+        progress: show a tqdm progress bar over the finished cases.
+        description: the progress bar's label.
+        chunk_size: cases per chunk, >= 1 (default: guided self-scheduling,
+            see :func:`guided_size`).
+
+    Returns:
+        One :class:`ChunkOutcome` per chunk, in the order of ``cases``; the
+        chunks cover every case once. A chunk whose function raised, or that
+        the executor refused or lost, has ``error`` set and ``value`` None.
+
+    Raises:
+        ValueError: invalid ``chunk_size``.
+    """
+    cases = list(cases)
+    _check_chunk_size(chunk_size)
+    count = len(cases)
+    if not count:
+        return []
+    workers = default_workers()
+    # Fixed chunks are all sent at once; guided ones as the sweep goes, at
+    # most two per worker in flight (one running, one queued: a worker that
+    # finishes a chunk starts the next at once, while the calling thread
+    # sizes the one after it).
+    window = count if chunk_size is not None else 2 * workers
+    owned = executor is None
+    if owned:
+        executor = concurrent.futures.ThreadPoolExecutor(max_workers=workers)
+    from tqdm.auto import tqdm
+
+    outcomes: List[ChunkOutcome] = []
+    in_flight: dict = {}
+    sent = 0
+    measured_cases, measured_seconds = 0, 0.0
+    tail: Optional[int] = None  # the size of the last chunks, once decided
+    try:
+        with tqdm(total=count, desc=description, disable=not progress, leave=False) as bar:
+            while sent < count or in_flight:  # each pass sends a chunk or waits for one
+                while sent < count and len(in_flight) < window:
+                    cost = measured_seconds / measured_cases if measured_cases else None
+                    if tail is None and cost is not None and chunk_size is None and \
+                            (count - sent) * cost <= workers * MIN_CHUNK_SECONDS:
+                        # The rest is less than a chunk's work per worker:
+                        # one equal chunk each, sent now (the calling thread
+                        # need not wake again to feed the workers).
+                        tail = -(-(count - sent) // workers)
+                        window = count
+                    size = chunk_size or tail or guided_size(count - sent, workers, cost)
+                    chunk = range(sent, min(sent + size, count))
+                    sent = chunk.stop
+                    try:
+                        future = executor.submit(_timed_chunk, function,
+                                                 [cases[i] for i in chunk])
+                        in_flight[future] = chunk
+                    except Exception as error:  # e.g. a case does not pickle
+                        outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))
+                        bar.update(len(chunk))
+                if not in_flight:
+                    continue
+                done, _ = concurrent.futures.wait(
+                    in_flight, return_when=concurrent.futures.FIRST_COMPLETED)
+                for future in done:
+                    chunk = in_flight.pop(future)
+                    try:
+                        value, elapsed = future.result()
+                        outcomes.append(ChunkOutcome(chunk, value, None, elapsed))
+                        measured_cases += len(chunk)
+                        measured_seconds += elapsed
+                    except Exception as error:  # the function failed or the executor lost it
+                        outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))
+                    bar.update(len(chunk))
+    except BaseException:  # e.g. KeyboardInterrupt: drop what has not started
+        if owned:
+            executor.shutdown(wait=True, cancel_futures=True)
+        raise
+    if owned:  # every chunk is done: the threads only exit, nothing to wait for
+        executor.shutdown(wait=False)
+    outcomes.sort(key=lambda outcome: outcome.cases.start)
+    return outcomes
+
+
 def run_cases(
     function: Callable[[Any], Any],
     cases: Sequence[Any],
@@ -138,59 +294,23 @@ def run_cases(
         function: called as ``function(case)`` in a worker; for process-based
             executors it and the cases must pickle.
         cases: the cases.
-        executor: any :class:`concurrent.futures.Executor` (a thread pool,
-            a process pool, :class:`SerialExecutor`, or a Dask client's
-            ``client.get_executor()``). Default: a thread pool over
-            :func:`default_workers` workers, shut down before returning.
-        progress: show a tqdm progress bar over the finished cases.
-        description: the progress bar's label.
-        chunk_size: cases per task, >= 1 (default: guided, shrinking
-            chunks, see :func:`guided_chunks`).
+        executor, progress, description, chunk_size: as :func:`run_chunks`
+            (the cases travel in its chunks).
 
     Returns:
         One :class:`Outcome` per case, in the order of ``cases``. A case that
         raised (in the function, or while the executor shipped it) has
         ``error`` set and ``value`` None.
-    """
-    cases = list(cases)
-    if not cases:
-        return []
-    if chunk_size is None:
-        chunks = guided_chunks(len(cases), default_workers())
-    elif isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
-        raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
-    else:
-        chunks = [range(start, min(start + chunk_size, len(cases)))
-                  for start in range(0, len(cases), chunk_size)]
-    owned = executor is None
-    if owned:
-        executor = concurrent.futures.ThreadPoolExecutor(max_workers=default_workers())
-    from tqdm.auto import tqdm
 
-    outcomes: List[Optional[Outcome]] = [None] * len(cases)
-    try:
-        with tqdm(total=len(cases), desc=description, disable=not progress,
-                  leave=False) as bar:
-            futures = {}
-            for chunk in chunks:
-                try:
-                    future = executor.submit(_guarded_chunk, function,
-                                             [cases[i] for i in chunk])
-                    futures[future] = chunk
-                except Exception as error:  # e.g. a case does not pickle
-                    for i in chunk:
-                        outcomes[i] = Outcome(None, _describe(error), 0.0)
-                    bar.update(len(chunk))
-            for future in concurrent.futures.as_completed(futures):
-                chunk = futures[future]
-                try:
-                    results = future.result()
-                except Exception as error:  # the executor lost the task
-                    results = [Outcome(None, _describe(error), 0.0)] * len(chunk)
-                for i, outcome in zip(chunk, results):
-                    outcomes[i] = outcome
-                bar.update(len(chunk))
-    finally:
-        if owned:
-            executor.shutdown(wait=True)
-    return outcomes  # type: ignore[return-value]
+    Raises:
+        ValueError: invalid ``chunk_size``.
+    """
+    outcomes: List[Outcome] = []
+    for chunk in run_chunks(functools.partial(_guarded_chunk, function), cases,
+                            executor=executor, progress=progress, description=description,
+                            chunk_size=chunk_size):
+        if chunk.ok:
+            outcomes.extend(chunk.value)
+        else:
+            outcomes.extend([Outcome(None, chunk.error, 0.0)] * len(chunk.cases))
+    return outcomes

@@ -13,15 +13,15 @@ tan(alpha) / tan(alpha + rho') (:func:`leadscrew.efficiency`) for any load.
 from __future__ import annotations
 
 import functools
-import itertools
-from typing import Any, Dict, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
+import numpy as np
 import pandas as pd
 
-from ..simulation import simulate
 from ..thread import efficiency, is_drivable
-from ._common import annotate, axes, as_scene, check_grid, check_positive, numeric_or_nan
-from ._sweep import run_cases
+from ._batch import DriveBatch
+from ._common import annotate, axes, as_scene, check_grid, check_positive
+from ._sweep import run_chunks
 
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
 
@@ -30,37 +30,52 @@ UNITS = {"mu": "1", "load": "N", "efficiency": "1", "efficiency_closed_form": "1
          "drive_torque": "N*m", "work_drive": "J", "friction_loss": "J", "load_speed": "m/s",
          "wall_time": "s", "error": ""}
 
+# What each case samples (at t = 0, start, middle and end of the window) and
+# what the study measures from it.
+_CHANNELS = ("work_drive", "friction_loss", "drive_torque", "v_load")
+_MEASURES = ("efficiency", "window_change", "drive_torque", "work_drive", "friction_loss",
+             "load_speed", "wall_time")
 
-def _efficiency_case(case: Tuple[float, float], scene, speed: float, t_end: float,
-                     window: Tuple[float, float], options: Dict[str, Any]) -> Dict[str, Any]:
-    mu, load = case
+
+def _efficiency_batch(scene, speed: float, t_end: float, window: Tuple[float, float],
+                      options: Dict[str, Any]) -> DriveBatch:
+    """The C++ batch of the sweep: the scene speed-controlled at ``speed`` in
+    the direction that raises the load, each case setting mu and the axial
+    force, sampled at the window's start, middle and end."""
     # Raise the load: move it along +x against the force -load. The rotor's
     # forward turn moves the load along -h x (docs/physics/drive_models.md).
     omega = -scene.thread.hand_sign * speed
-    running = scene.replace(friction={"mu": mu},
-                            loads={"drive_torque": None, "drive_speed": omega,
-                                   "axial_force": -load},
+    running = scene.replace(loads={"drive_torque": None, "drive_speed": omega},
                             initial={"rotor_speed": omega})
     start, end = window
-    middle = 0.5 * (start + end)
-    result = simulate(running, t_end, t_eval=[0.0, start, middle, end], **options)
-    work = result["work_drive"]
-    loss = result["friction_loss"]
+    return DriveBatch(running, ("mu", "axial_force"), _CHANNELS, t_end,
+                      [0.0, start, 0.5 * (start + end), end], **options)
+
+
+def _efficiency_chunk(cases: List[Tuple[float, float]], batch: DriveBatch) -> Dict[str, Any]:
+    """The measures of a chunk of (mu, load) cases, from one C++ batch call.
+
+    eta = (W_in - W_friction) / W_in (eq. 5.2) between two sample times, for
+    every case of the chunk at once (columns of the samples).
+    """
+    mu_and_load = np.asarray(cases, dtype=float).reshape(-1, 2)
+    # The load is raised: it acts along -x (loads.axial_force = -load).
+    samples, errors, wall_time = batch.run(mu_and_load * [1.0, -1.0])
+    work, loss, torque, speed = (samples[:, c] for c in range(len(_CHANNELS)))
 
     def eta(i, j):
-        w_in = work[j] - work[i]
-        return (w_in - (loss[j] - loss[i])) / w_in
+        w_in = work[:, j] - work[:, i]
+        return (w_in - (loss[:, j] - loss[:, i])) / w_in
 
-    first, second = eta(1, 2), eta(2, 3)
-    return {
-        "efficiency": eta(1, 3),
-        "window_change": abs(second - first) / abs(eta(1, 3)),
-        "drive_torque": float(result["drive_torque"][3]),
-        "work_drive": float(work[3] - work[1]),
-        "friction_loss": float(loss[3] - loss[1]),
-        "load_speed": float(result["v_load"][3]),
-        "wall_time": float(result.stats["wall_time"]),
-    }
+    whole, first, second = eta(1, 3), eta(1, 2), eta(2, 3)
+    return {"efficiency": whole,
+            "window_change": np.abs(second - first) / np.abs(whole),
+            "drive_torque": torque[:, 3],
+            "work_drive": work[:, 3] - work[:, 1],
+            "friction_loss": loss[:, 3] - loss[:, 1],
+            "load_speed": speed[:, 3],
+            "wall_time": np.asarray(wall_time, dtype=float),
+            "error": errors}
 
 
 def efficiency_vs_mu(
@@ -87,6 +102,11 @@ def efficiency_vs_mu(
     moves the load: that row has ``drivable`` False, ``simulated`` False and
     efficiency 0 without a simulation.
 
+    The cases run in chunks, each one call of the C++ batch
+    (:class:`leadscrew.studies._batch.DriveBatch`), which simulates its cases
+    with the GIL released and returns the works at the window's ends: the
+    Python work is per chunk, so a thread pool runs the chunks in parallel.
+
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict); its loads are replaced.
         mu: friction coefficients [1], >= 0.
@@ -97,9 +117,10 @@ def efficiency_vs_mu(
             (default: the second half of the run).
         rtol, atol: integration tolerances (relative [1], absolute [SI]).
         executor: a :class:`concurrent.futures.Executor` (default: a thread
-            pool over all cores).
+            pool over all cores); each task is one chunk of cases.
         progress: show a tqdm progress bar.
-        **simulate_options: passed on to :func:`leadscrew.simulate`.
+        **simulate_options: passed on to :func:`leadscrew.simulate` (all but
+            ``t_eval``).
 
     Returns:
         DataFrame with one row per (mu, load), mu-major: ``mu``, ``load``
@@ -113,7 +134,9 @@ def efficiency_vs_mu(
         the message of a failed simulation, whose numbers are NaN).
 
     Raises:
-        ValueError: invalid scene or arguments.
+        ValueError: invalid scene or arguments (also a ``friction`` option
+            that is not the scene's law).
+        TypeError: an unknown keyword in ``simulate_options``.
     """
     scene = as_scene(scene)
     mus = check_grid("mu", mu, allow_zero=True)
@@ -130,39 +153,48 @@ def efficiency_vs_mu(
         raise ValueError(f"window = {window!r} is invalid: must satisfy 0 <= start < end <= "
                          f"t_end = {t_end:g}")
     thread = scene.thread
-    cases = [(float(m), float(f)) for m, f in itertools.product(mus, forces)]
-    drivable = [bool(is_drivable(thread, m)) for m, _ in cases]
-    function = functools.partial(_efficiency_case, scene=scene, speed=speed, t_end=t_end,
-                                 window=(start, end),
-                                 options=dict(simulate_options, rtol=rtol, atol=atol))
-    outcomes = iter(run_cases(function, [c for c, d in zip(cases, drivable) if d],
-                              executor=executor, progress=progress,
-                              description="efficiency_vs_mu"))
-    rows = []
-    for (m, force), can_drive in zip(cases, drivable):
-        closed_form = float(efficiency(thread, m))
-        row: Dict[str, Any] = {"mu": m, "load": force, "drivable": can_drive,
-                               "simulated": can_drive}
-        if can_drive:
-            outcome = next(outcomes)
-            value = outcome.value or {}
-            row.update({name: numeric_or_nan(value.get(name)) for name in (
-                "efficiency", "window_change", "drive_torque", "work_drive", "friction_loss",
-                "load_speed", "wall_time")})
-            row["error"] = outcome.error
-        else:
-            row.update(efficiency=0.0, window_change=0.0, drive_torque=float("inf"),
-                       work_drive=0.0, friction_loss=0.0, load_speed=0.0, wall_time=0.0,
-                       error=None)
-        row["efficiency_closed_form"] = closed_form
-        row["relative_error"] = (abs(row["efficiency"] - closed_form) / closed_form
-                                 if closed_form > 0 else abs(row["efficiency"]))
-        rows.append(row)
-    columns = ["mu", "load", "efficiency", "efficiency_closed_form", "relative_error",
-               "window_change", "drivable", "simulated", "drive_torque", "work_drive",
-               "friction_loss", "load_speed", "wall_time", "error"]
-    return annotate(pd.DataFrame(rows, columns=columns), UNITS, speed=speed,
-                    window=(start, end))
+    batch = _efficiency_batch(scene, speed, t_end, (start, end),
+                              dict(simulate_options, rtol=rtol, atol=atol))
+    count = len(mus) * len(forces)
+    mu_column = np.repeat(mus, len(forces))
+    load_column = np.tile(forces, len(mus))
+    closed_form = np.repeat([float(efficiency(thread, m)) for m in mus], len(forces))
+    drivable = np.repeat([bool(is_drivable(thread, m)) for m in mus], len(forces))
+    simulated = np.flatnonzero(drivable)
+    # A case that is not simulated: no torque moves the load, eta = 0.
+    columns: Dict[str, Any] = {
+        "efficiency": np.zeros(count), "window_change": np.zeros(count),
+        "drive_torque": np.full(count, np.inf), "work_drive": np.zeros(count),
+        "friction_loss": np.zeros(count), "load_speed": np.zeros(count),
+        "wall_time": np.zeros(count)}
+    errors = np.full(count, None, dtype=object)
+    chunks = run_chunks(functools.partial(_efficiency_chunk, batch=batch),
+                        list(zip(mu_column[simulated].tolist(),
+                                 load_column[simulated].tolist())),
+                        executor=executor, progress=progress, description="efficiency_vs_mu")
+    for chunk in chunks:
+        rows = simulated[chunk.cases.start:chunk.cases.stop]
+        if chunk.ok:
+            for name in _MEASURES:
+                columns[name][rows] = chunk.value[name]
+            errors[rows] = chunk.value["error"]
+        else:  # the chunk function failed or the executor lost the task
+            for name in _MEASURES:
+                columns[name][rows] = np.nan
+            errors[rows] = chunk.error
+    eta = columns["efficiency"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        relative_error = np.where(closed_form > 0, np.abs(eta - closed_form) / closed_form,
+                                  np.abs(eta))
+    frame = pd.DataFrame({
+        "mu": mu_column, "load": load_column, "efficiency": eta,
+        "efficiency_closed_form": closed_form, "relative_error": relative_error,
+        "window_change": columns["window_change"], "drivable": drivable,
+        "simulated": drivable.copy(), "drive_torque": columns["drive_torque"],
+        "work_drive": columns["work_drive"], "friction_loss": columns["friction_loss"],
+        "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
+        "error": errors})
+    return annotate(frame, UNITS, speed=speed, window=(start, end))
 
 
 def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):

@@ -1,0 +1,218 @@
+#include "leadscrew/model/drive_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+
+namespace leadscrew::model {
+
+namespace {
+
+using Setter = void (*)(DriveParameters&, double);
+
+struct NamedSetter {
+  const char* name;
+  Setter set;
+};
+
+#define LEADSCREW_SCALAR(field) \
+  NamedSetter { #field, [](DriveParameters& p, double v) { p.field = v; } }
+#define LEADSCREW_LOAD(field)                                                      \
+  NamedSetter {                                                                    \
+    #field, [](DriveParameters& p, double v) { p.field = ConstantExcitation{v}; } \
+  }
+
+// Every field of DriveParameters that is one number, and the loads.
+const std::vector<NamedSetter>& named_setters() {
+  static const std::vector<NamedSetter> setters = {
+      LEADSCREW_SCALAR(mu),
+      LEADSCREW_SCALAR(k_v),
+      LEADSCREW_SCALAR(clearance),
+      LEADSCREW_SCALAR(restitution),
+      LEADSCREW_SCALAR(contact_stiffness),
+      LEADSCREW_SCALAR(contact_exponent),
+      LEADSCREW_SCALAR(contact_damping),
+      LEADSCREW_SCALAR(contact_penetration),
+      LEADSCREW_SCALAR(rotor_inertia),
+      LEADSCREW_SCALAR(load_mass),
+      LEADSCREW_SCALAR(screw_mass),
+      LEADSCREW_SCALAR(screw_inertia),
+      LEADSCREW_SCALAR(nut_mass),
+      LEADSCREW_SCALAR(nut_inertia),
+      LEADSCREW_SCALAR(screw_axial_rigidity),
+      LEADSCREW_SCALAR(screw_torsional_rigidity),
+      LEADSCREW_SCALAR(screw_length),
+      LEADSCREW_SCALAR(nut_position),
+      LEADSCREW_SCALAR(screw_axial_stiffness),
+      LEADSCREW_SCALAR(screw_torsional_stiffness),
+      LEADSCREW_SCALAR(nut_axial_stiffness),
+      LEADSCREW_SCALAR(nut_torsional_stiffness),
+      LEADSCREW_SCALAR(damping_ratio),
+      LEADSCREW_SCALAR(screw_axial_damping),
+      LEADSCREW_SCALAR(screw_torsional_damping),
+      LEADSCREW_SCALAR(nut_axial_damping),
+      LEADSCREW_SCALAR(nut_torsional_damping),
+      LEADSCREW_SCALAR(rotor_angle),
+      LEADSCREW_SCALAR(rotor_speed),
+      LEADSCREW_SCALAR(play_position),
+      LEADSCREW_LOAD(drive_torque),
+      LEADSCREW_LOAD(drive_speed),
+      LEADSCREW_LOAD(axial_force),
+  };
+  return setters;
+}
+
+#undef LEADSCREW_SCALAR
+#undef LEADSCREW_LOAD
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "\"" : ", \"") + name + "\"";
+  return out;
+}
+
+// The row of a case that did not run to its samples.
+void fail_case(DriveBatchResult& result, Eigen::Index i, CaseFailure failure,
+               const char* message) {
+  result.samples.row(i).setConstant(std::numeric_limits<double>::quiet_NaN());
+  result.failures[static_cast<std::size_t>(i)] = failure;
+  result.messages[static_cast<std::size_t>(i)] = message;
+  result.wall_time[i] = std::numeric_limits<double>::quiet_NaN();
+}
+
+// Index of each requested channel in a result (whose names depend on the
+// model: the backlash channels exist only with backlash).
+void find_channels(const std::vector<std::string>& requested,
+                   const std::vector<std::string>& available, std::vector<int>& index) {
+  for (std::size_t c = 0; c < requested.size(); ++c) {
+    const auto found = std::find(available.begin(), available.end(), requested[c]);
+    if (found == available.end())
+      throw InvalidArgument("channels entry \"" + requested[c] +
+                            "\" is invalid: must be one of this model's channels " +
+                            quoted_list(available));
+    index[c] = static_cast<int>(found - available.begin());
+  }
+}
+
+}  // namespace
+
+std::string case_failure_name(CaseFailure failure) {
+  static const char* const names[] = {"none", "invalid_argument", "simulation", "jamming",
+                                      "other"};
+  return names[static_cast<int>(failure)];
+}
+
+std::vector<std::string> DriveParameterOverrides::allowed_names() {
+  std::vector<std::string> names;
+  for (const NamedSetter& s : named_setters()) names.emplace_back(s.name);
+  return names;
+}
+
+DriveParameterOverrides::DriveParameterOverrides(const std::vector<std::string>& names,
+                                                 const DriveParameters& base) {
+  const std::vector<std::string> allowed = allowed_names();
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string entry = "parameters entry";
+    const int index = require_choice(entry, names[k], allowed);
+    if (std::find(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(k), names[k]) !=
+        names.begin() + static_cast<std::ptrdiff_t>(k))
+      throw InvalidArgument(entry + " = \"" + names[k] +
+                            "\" is invalid: must not repeat an earlier entry");
+    // The motor is either torque-driven or speed-controlled (the Scene's
+    // loads.drive_torque / loads.drive_speed): the other load is unused.
+    if ((names[k] == "drive_speed" && !base.speed_controlled) ||
+        (names[k] == "drive_torque" && base.speed_controlled))
+      throw InvalidArgument(entry + " = \"" + names[k] + "\" is invalid for a " +
+                            (base.speed_controlled ? "speed-controlled" : "torque-driven") +
+                            " drive: must be " +
+                            (base.speed_controlled ? "\"drive_speed\"" : "\"drive_torque\"") +
+                            " or another parameter");
+    fields_.push_back(index);
+  }
+}
+
+void DriveParameterOverrides::apply(const double* values, DriveParameters& p) const {
+  const std::vector<NamedSetter>& table = named_setters();
+  for (std::size_t k = 0; k < fields_.size(); ++k) {
+    const NamedSetter& field = table[static_cast<std::size_t>(fields_[k])];
+    // No parameter is infinite or NaN (DriveModel checks the ranges of some).
+    if (!std::isfinite(values[k])) require_finite(field.name, values[k]);
+    field.set(p, values[k]);
+  }
+}
+
+DriveBatch::DriveBatch(DriveParameters base, const std::vector<std::string>& parameters,
+                       std::vector<std::string> channels, DriveSimulationOptions options)
+    : base_(std::move(base)),
+      overrides_(parameters, base_),
+      channels_(std::move(channels)),
+      options_(std::move(options)) {
+  if (channels_.empty())
+    throw InvalidArgument("channels = [] is invalid: must name at least one channel");
+  if (options_.output.t_eval.empty())
+    throw InvalidArgument("t_eval = [] is invalid: a batch samples its channels at given times");
+}
+
+DriveBatchResult DriveBatch::run(const Eigen::Ref<const BatchValues>& values) const {
+  if (values.cols() != overrides_.size())
+    throw InvalidArgument("values has " + std::to_string(values.cols()) +
+                          " columns: must have one per parameters entry (" +
+                          std::to_string(overrides_.size()) + ")");
+  const std::vector<double>& times = options_.output.t_eval;
+  DriveBatchResult result;
+  const Eigen::Index cases = values.rows();
+  result.channel_count = static_cast<int>(channels_.size());
+  result.time_count = static_cast<int>(times.size());
+  result.samples.resize(cases, result.channel_count * result.time_count);
+  result.failures.assign(static_cast<std::size_t>(cases), CaseFailure::none);
+  result.messages.assign(static_cast<std::size_t>(cases), std::string());
+  result.wall_time.setZero(cases);
+
+  // Reused by every case: the parameters (copied from the base, then the
+  // overrides set), the options (the integrator may be the case's default)
+  // and the channel indices.
+  DriveParameters p;
+  DriveSimulationOptions options = options_;
+  std::vector<int> index(channels_.size());
+  for (Eigen::Index i = 0; i < cases; ++i) {  // one simulation per row
+    try {
+      p = base_;
+      overrides_.apply(values.row(i).data(), p);
+      const DriveModel model(p);
+      // The model's parameters, as leadscrew.simulate asks: it may resolve
+      // some (exact backlash of zero play is the thread without play).
+      options.integrator = options_.integrator.empty()
+                               ? drive_integrators(model.parameters()).front()
+                               : options_.integrator;
+      const integrate::SimulationResult run = simulate(model, options);
+      find_channels(channels_, run.channel_names, index);
+      if (run.time.size() != times.size())
+        throw std::logic_error("a simulation returned " + std::to_string(run.time.size()) +
+                               " points for " + std::to_string(times.size()) +
+                               " sample times");
+      double* row = result.samples.row(i).data();
+      for (std::size_t c = 0; c < channels_.size(); ++c) {
+        const std::vector<double>& channel = run.channels[static_cast<std::size_t>(index[c])];
+        std::copy(channel.begin(), channel.end(), row + c * times.size());
+      }
+      result.wall_time[i] = run.stats.wall_time;
+    } catch (const JammingError& e) {  // before its base class SimulationError
+      fail_case(result, i, CaseFailure::jamming, e.what());
+    } catch (const SimulationError& e) {
+      fail_case(result, i, CaseFailure::simulation, e.what());
+    } catch (const std::invalid_argument& e) {  // InvalidArgument too
+      fail_case(result, i, CaseFailure::invalid_argument, e.what());
+    } catch (const std::exception& e) {  // a case never ends the batch
+      fail_case(result, i, CaseFailure::other, e.what());
+    }
+  }
+  return result;
+}
+
+}  // namespace leadscrew::model

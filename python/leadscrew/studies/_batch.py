@@ -1,0 +1,153 @@
+"""Batches of drive simulations run in C++ (``leadscrew._core.DriveBatch``).
+
+A sweep whose cases differ only in a few scalar parameters of one scene (the
+friction coefficient, a constant load, ...) need not build a Scene, a model
+and a Result per case in Python: :class:`DriveBatch` holds the scene's
+resolved parameters once, and :meth:`DriveBatch.run` sends a whole chunk of
+cases (one row of parameter values each) to the core, which simulates them
+one after the other with the GIL released and returns only the requested
+channels at the requested times. A case that fails becomes its row's error
+message, as :func:`leadscrew.studies._sweep.run_cases` gives it
+(``"ExceptionType: message"``), and its samples are NaN.
+"""
+
+from __future__ import annotations
+
+import inspect
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from .. import _core
+from ..errors import JammingError, SimulationError
+from ..scene import Scene
+from ..simulation import simulate
+
+__all__ = ["DriveBatch"]
+
+# The exception a failure kind of the core stands for (the name its message
+# carries, as a per-case simulate() call would have raised it).
+_EXCEPTION_NAMES = {"invalid_argument": ValueError.__name__,
+                    "simulation": SimulationError.__name__,
+                    "jamming": JammingError.__name__,
+                    "other": RuntimeError.__name__}
+
+_SIMULATE = inspect.signature(simulate)
+
+
+def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
+                    options: Dict[str, Any]) -> Dict[str, Any]:
+    """The core's simulation arguments from :func:`leadscrew.simulate`'s
+    keywords, with its defaults (as simulate passes them for a Scene).
+
+    Raises:
+        TypeError: an unknown keyword (or ``t_eval``, which the batch sets).
+        ValueError: ``friction`` differs from the scene's law.
+    """
+    try:
+        bound = _SIMULATE.bind(scene, t_end, t_eval=t_eval, **options)
+    except TypeError as error:
+        raise TypeError(f"{error} (the options are those of leadscrew.simulate, but t_eval)") \
+            from None
+    bound.apply_defaults()
+    a = bound.arguments
+    friction = a["friction"]
+    if friction is not None and friction != scene["friction"]["law"]:
+        raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
+                         f"scene's friction.law (it is {scene['friction']['law']!r})")
+
+    def optional(name: str, absent: float, kind=float):
+        return absent if a[name] is None else kind(a[name])
+
+    return {"t_end": float(t_end), "integrator": a["integrator"] or "",
+            "smooth_integrator": a["smooth_integrator"] or "", "rtol": float(a["rtol"]),
+            "atol": float(a["atol"]), "dt": optional("dt", 1e-4), "theta": float(a["theta"]),
+            "t_eval": [float(t) for t in t_eval], "max_steps": int(a["max_steps"]),
+            "max_events": int(a["max_events"]), "max_step": optional("max_step", 0.0),
+            "first_step": optional("first_step", 0.0),
+            "bounce_threshold": float(a["bounce_threshold"]),
+            "max_order": optional("max_order", 0, int)}
+
+
+class DriveBatch:
+    """Simulations of one scene that differ in a few scalar parameters.
+
+    Args:
+        scene: the base :class:`~leadscrew.Scene`; its parameters apply
+            wherever a case does not set them.
+        parameters: names of the fields each case sets, one column of the
+            values each: ``"mu"``, ``"axial_force"`` (a constant [N]),
+            ``"drive_torque"`` [N*m] or ``"drive_speed"`` [rad/s] (constants,
+            the one the scene's motor takes), ``"rotor_speed"``, ... (any
+            numeric attribute of ``leadscrew._core.DriveParameters``, in SI).
+            They are set as given: values the Scene derives from them (e.g. a
+            default damping from a mass) keep the base scene's, so vary only
+            fields nothing else follows.
+        channels: names of the result channels to sample (see
+            :class:`leadscrew.Result`).
+        t_end: simulated time [s], > 0.
+        t_eval: the sample times [s], non-empty, within [0, t_end].
+        **simulate_options: as :func:`leadscrew.simulate` (``rtol``,
+            ``integrator``, ``max_steps``, ...).
+
+    Raises:
+        TypeError: an unknown keyword.
+        ValueError: the scene's model is invalid, ``friction`` is not the
+            scene's law, or a parameter name is unknown (the message lists
+            those allowed).
+
+    A DriveBatch pickles (as its scene and arguments; a process-based executor
+    rebuilds the core parameters once per task).
+    """
+
+    def __init__(self, scene: Scene, parameters: Sequence[str], channels: Sequence[str],
+                 t_end: float, t_eval: Sequence[float], **simulate_options: Any):
+        self._scene = scene
+        self._parameters = [str(name) for name in parameters]
+        self._channels = [str(name) for name in channels]
+        self._options = dict(simulate_options)
+        self._arguments = _core_arguments(scene, t_end, t_eval, self._options)
+        self._core = _core.DriveBatch(scene.model().parameters, self._parameters,
+                                      self._channels, **self._arguments)
+
+    def __reduce__(self):
+        return (_restore_batch, (self._scene, self._parameters, self._channels,
+                                 self._arguments["t_end"], self._arguments["t_eval"],
+                                 self._options))
+
+    @property
+    def parameters(self) -> List[str]:
+        return list(self._parameters)
+
+    @property
+    def channels(self) -> List[str]:
+        return list(self._channels)
+
+    def run(self, values: Any) -> Tuple[np.ndarray, List[Optional[str]], np.ndarray]:
+        """Simulate one case per row of ``values`` (one column per parameter).
+
+        Args:
+            values: (cases, parameters) array of the parameters' values [SI].
+
+        Returns:
+            ``(samples, errors, wall_time)``: samples (cases, channels,
+            sample times), NaN for a failed case; errors, one per case: None
+            or ``"ExceptionType: message"``; wall_time (cases,) [s], each
+            simulation's C++ clock (NaN for a failed case).
+
+        Raises:
+            ValueError: ``values`` has the wrong number of columns.
+        """
+        values = np.asarray(values, dtype=float)
+        if values.ndim != 2 or values.shape[1] != len(self._parameters):
+            raise ValueError(f"values has shape {values.shape}: must be (cases, "
+                             f"{len(self._parameters)})")
+        result = self._core.run(values)
+        errors: List[Optional[str]] = [
+            None if kind == "none" else f"{_EXCEPTION_NAMES[kind]}: {message}"
+            for kind, message in zip(result.failures, result.messages)]
+        return result.samples, errors, result.wall_time
+
+
+def _restore_batch(scene, parameters, channels, t_end, t_eval, options) -> DriveBatch:
+    return DriveBatch(scene, parameters, channels, t_end, t_eval, **options)

@@ -1,0 +1,306 @@
+"""The C++ batch of drive simulations (leadscrew.studies._batch.DriveBatch) and
+the efficiency sweep built on it, against the per-case path: a Scene edited
+in Python and simulated by leadscrew.simulate, one case at a time."""
+
+import concurrent.futures
+import math
+import pickle
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import leadscrew as ls
+from helpers.scenes import thesis_scene
+from leadscrew.studies._batch import DriveBatch
+from leadscrew.studies._sweep import SerialExecutor, run_chunks
+from leadscrew.studies.drive_efficiency import efficiency_vs_mu
+
+CHANNELS = ["u_load", "v_load", "omega_drive", "drive_torque", "work_drive", "friction_loss",
+            "energy_residual"]
+
+
+def scene(**changes):
+    return ls.Scene.from_dict(thesis_scene(**changes))
+
+
+def speed_controlled(base, omega=-10.0):
+    return base.replace(loads={"drive_torque": None, "drive_speed": omega},
+                        initial={"rotor_speed": omega})
+
+
+def simulated(case_scene, t_end, t_eval, channels, **options):
+    """The per-case path: (channels, sample times) from leadscrew.simulate."""
+    result = ls.simulate(case_scene, t_end, t_eval=t_eval, **options)
+    return np.array([result[name] for name in channels])
+
+
+def described(call):
+    """The row text of a failed per-case call, as the sweeps write it."""
+    try:
+        call()
+    except Exception as error:
+        return f"{type(error).__name__}: {error}"
+    raise AssertionError("the call did not fail")
+
+
+# (scene changes, speed-controlled, simulated time, options): every concept,
+# both friction formulations, exact backlash (under the thesis's torque).
+CONFIGURATIONS = {
+    "rigid": ({}, True, 0.2, {}),
+    "flexible_nut": (dict(concept="flexible_nut"), True, 0.02, {}),
+    "flexible": (dict(concept="flexible"), True, 0.02, {}),
+    "rigid arctan": (dict(friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4}), True,
+                     0.02, dict(rtol=1e-6, atol=1e-9)),
+    "rigid backlash": (dict(backlash={"axial": 1e-4}), False, 0.5, {}),
+}
+
+
+@pytest.mark.parametrize("name", list(CONFIGURATIONS))
+def test_batch_samples_are_the_per_case_simulation_bit_for_bit(name):
+    """Setting mu and the axial force in C++ gives the same parameters as
+    Scene.replace, so every sample is identical, not merely close."""
+    changes, speed, t_end, options = CONFIGURATIONS[name]
+    base = speed_controlled(scene(**changes)) if speed else scene(**changes)
+    t_eval = [0.0, t_end / 3, t_end / 2, t_end]
+    cases = [(0.0, -5.0), (0.1, -20.0), (0.35, -80.0)]
+    batch = DriveBatch(base, ["mu", "axial_force"], CHANNELS, t_end, t_eval, **options)
+    samples, errors, wall_time = batch.run(cases)
+    assert samples.shape == (len(cases), len(CHANNELS), len(t_eval))
+    for (mu, force), ours, error, time in zip(cases, samples, errors, wall_time):
+        edited = base.replace(friction={"mu": mu}, loads={"axial_force": force})
+        try:
+            reference = simulated(edited, t_end, t_eval, CHANNELS, **options)
+        except ls.SimulationError:  # then the batch row holds the same message
+            assert error == described(lambda: simulated(edited, t_end, t_eval, CHANNELS,
+                                                        **options))
+            assert np.isnan(ours).all() and np.isnan(time)
+            continue
+        assert error is None and time > 0
+        np.testing.assert_array_equal(ours, reference)
+    assert errors.count(None) == len(cases)
+
+
+@pytest.mark.parametrize("parameters, values, edit", [
+    (["drive_torque"], [[-0.05], [0.02]], lambda s, v: s.replace(loads={"drive_torque": v})),
+    (["load_mass"], [[0.5], [4.0]], lambda s, v: s.replace(load={"mass": v})),
+    (["rotor_inertia", "rotor_speed"], [[2e-5, 1.0], [5e-6, -3.0]],
+     lambda s, inertia, speed: s.replace(rotor={"inertia": inertia},
+                                         initial={"rotor_speed": speed})),
+], ids=["drive_torque", "load_mass", "rotor"])
+def test_other_parameters_of_a_torque_driven_drive(parameters, values, edit):
+    """The batch serves other sweeps: any scene input that is one field."""
+    base = scene(loads={"drive_torque": -0.04, "axial_force": -10.0})
+    t_eval = np.linspace(0.0, 0.3, 7)
+    samples, errors, _ = DriveBatch(base, parameters, CHANNELS, 0.3, t_eval).run(values)
+    assert errors == [None, None]
+    for row, ours in zip(values, samples):
+        np.testing.assert_array_equal(ours, simulated(edit(base, *row), 0.3, t_eval, CHANNELS))
+
+
+def test_each_case_takes_the_default_integrator_of_its_own_model():
+    """Exact backlash of zero play is the thread without play: with the arctan
+    law simulate's default is then an ODE integrator, not event_driven."""
+    base = scene(friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4},
+                 backlash={"axial": 1e-4})
+    t_eval = [0.01, 0.05]
+    options = dict(rtol=1e-6, atol=1e-9)
+    samples, errors, _ = DriveBatch(base, ["clearance"], CHANNELS, 0.05, t_eval,
+                                    **options).run([[0.0], [1e-4]])
+    assert errors == [None, None]
+    integrators = []
+    for play, ours in zip([0.0, 1e-4], samples):
+        result = ls.simulate(base.replace(backlash={"axial": play}), 0.05, t_eval=t_eval,
+                             **options)
+        integrators.append(result.integrator)
+        np.testing.assert_array_equal(ours, [result[name] for name in CHANNELS])
+    assert integrators[0] != integrators[1] == "event_driven"
+
+
+def test_rigid_batch_efficiency_is_the_closed_form():
+    """eq. (5.2) from the batch's works at steady state: tan a / tan(a + rho')
+    (thesis Fig. 5.6), and the output work F v dt."""
+    thread = ls.Thread(1e-3, 20e-3)
+    batch = DriveBatch(speed_controlled(scene()), ["mu", "axial_force"],
+                       ["work_drive", "friction_loss", "v_load"], 0.2, [0.1, 0.2])
+    mu = np.array([0.0, 0.05, 0.2, 0.5])
+    samples, errors, _ = batch.run(np.column_stack([mu, np.full(4, -30.0)]))
+    work = samples[:, 0, 1] - samples[:, 0, 0]
+    loss = samples[:, 1, 1] - samples[:, 1, 0]
+    closed = [ls.efficiency(thread, m) for m in mu]
+    np.testing.assert_allclose((work - loss) / work, closed, rtol=1e-12)
+    np.testing.assert_allclose(samples[:, 2, 1], 10.0 * thread.lead_per_radian, rtol=1e-12)
+    np.testing.assert_allclose(work - loss, 30.0 * 10.0 * thread.lead_per_radian * 0.1,
+                               rtol=1e-12)
+
+
+def test_failed_cases_are_rows_with_the_per_case_message():
+    """A bad value, a solver failure and a jam each fail their own row, with the
+    text the per-case path writes; the cases between them run."""
+    base = speed_controlled(scene(concept="flexible"))
+    batch = DriveBatch(base, ["mu", "axial_force"], ["u_load"], 0.01, [0.0, 0.01],
+                       max_steps=50)
+    samples, errors, wall_time = batch.run([[0.1, -10.0], [-1.0, -10.0], [0.1, math.nan]])
+    edited = base.replace(friction={"mu": 0.1}, loads={"axial_force": -10.0})
+    assert errors[0] == described(lambda: ls.simulate(edited, 0.01, t_eval=[0.0, 0.01],
+                                                      max_steps=50))
+    assert errors[0].startswith("SimulationError: at t = ")
+    assert errors[1] == "ValueError: friction.mu = -1 is invalid: must be a finite number >= 0"
+    assert errors[2] == "ValueError: axial_force = nan is invalid: must be a finite number"
+    assert np.isnan(samples).all() and np.isnan(wall_time).all()
+
+    # A self-locking drive whose load is heavy jams (test_simulation_drive.py).
+    jam = ls.Scene.from_dict(thesis_scene(
+        drive="nut", rotor={"inertia": 1e-6},
+        thread={"pitch": 1e-3, "mean_diameter": 20e-3, "hand": "right", "flank_angle": 0.0}))
+    samples, errors, _ = DriveBatch(jam, ["load_mass"], ["u_load"], 1.0, [0.0, 1.0]).run(
+        [[50.0], [1.0]])
+    assert errors[0] == described(lambda: ls.simulate(jam.replace(load={"mass": 50.0}), 1.0,
+                                                      t_eval=[0.0, 1.0]))
+    assert errors[0].startswith("JammingError")
+    assert errors[1] is None and np.isfinite(samples[1]).all()
+
+
+def test_a_channel_the_model_lacks_fails_each_case():
+    """"gap" exists only with backlash: the batch cannot know before a case runs."""
+    batch = DriveBatch(scene(), ["mu"], ["u_load", "gap"], 0.01, [0.01])
+    _, errors, _ = batch.run([[0.1], [0.2]])
+    assert all(e.startswith('ValueError: channels entry "gap" is invalid') for e in errors)
+
+
+@pytest.mark.parametrize("parameters, channels, t_eval, options, error, match", [
+    (["mu", "nu"], ["u_load"], [0.1], {}, ValueError, 'parameters entry = "nu".*"mu", "k_v"'),
+    (["mu", "mu"], ["u_load"], [0.1], {}, ValueError, "must not repeat"),
+    (["drive_speed"], ["u_load"], [0.1], {}, ValueError, "torque-driven"),
+    (["mu"], [], [0.1], {}, ValueError, "channels"),
+    (["mu"], ["u_load"], [], {}, ValueError, "t_eval"),
+    (["mu"], ["u_load"], [0.1], {"friction": "arctan_velocity"}, ValueError, "friction.law"),
+    (["mu"], ["u_load"], [0.1], {"t_eval": [0.1]}, TypeError, "t_eval"),
+    (["mu"], ["u_load"], [0.1], {"rtoll": 1e-6}, TypeError, "rtoll"),
+])
+def test_bad_requests_raise_at_once(parameters, channels, t_eval, options, error, match):
+    with pytest.raises(error, match=match):
+        DriveBatch(scene(), parameters, channels, 0.1, t_eval, **options)
+
+
+def test_drive_torque_needs_a_torque_driven_base_and_values_their_width():
+    with pytest.raises(ValueError, match="speed-controlled"):
+        DriveBatch(speed_controlled(scene()), ["drive_torque"], ["u_load"], 0.1, [0.1])
+    batch = DriveBatch(scene(), ["mu", "axial_force"], ["u_load"], 0.1, [0.1])
+    for values in ([0.1, 2.0], [[0.1]], [[[0.1, 2.0]]]):
+        with pytest.raises(ValueError, match="values has shape"):
+            batch.run(values)
+    samples, errors, wall_time = batch.run(np.empty((0, 2)))
+    assert samples.shape == (0, 1, 1) and errors == [] and wall_time.shape == (0,)
+
+
+def test_a_batch_pickles_and_gives_the_same_samples():
+    batch = DriveBatch(speed_controlled(scene()), ["mu", "axial_force"], CHANNELS, 0.1,
+                       [0.05, 0.1], rtol=1e-9)
+    copy = pickle.loads(pickle.dumps(batch))
+    assert copy.parameters == ["mu", "axial_force"] and copy.channels == CHANNELS
+    np.testing.assert_array_equal(copy.run([[0.2, -7.0]])[0], batch.run([[0.2, -7.0]])[0])
+
+
+def per_case_efficiency(base, mu, load, speed, t_end, window, **options):
+    """eq. (5.2) for one case on the per-case path (the study before the batch)."""
+    omega = -base.thread.hand_sign * speed
+    running = base.replace(friction={"mu": mu},
+                           loads={"drive_torque": None, "drive_speed": omega,
+                                  "axial_force": -load},
+                           initial={"rotor_speed": omega})
+    start, end = window
+    result = ls.simulate(running, t_end, t_eval=[0.0, start, 0.5 * (start + end), end],
+                         **options)
+    work, loss = result["work_drive"], result["friction_loss"]
+
+    def eta(i, j):
+        return ((work[j] - work[i]) - (loss[j] - loss[i])) / (work[j] - work[i])
+
+    return {"efficiency": eta(1, 3),
+            "window_change": abs(eta(2, 3) - eta(1, 2)) / abs(eta(1, 3)),
+            "drive_torque": result["drive_torque"][3], "work_drive": work[3] - work[1],
+            "friction_loss": loss[3] - loss[1], "load_speed": result["v_load"][3]}
+
+
+@pytest.mark.parametrize("changes, mu, loads, options", [
+    ({}, np.linspace(0.0, 0.5, 11), [10.0, 100.0], {}),
+    (dict(concept="flexible_nut"), [0.05, 0.3], [20.0], dict(t_end=0.04)),
+    (dict(friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4}), [0.1], [20.0],
+     dict(t_end=0.02)),
+], ids=["rigid", "flexible_nut", "arctan"])
+def test_efficiency_vs_mu_matches_the_per_case_path(changes, mu, loads, options):
+    base = scene(**changes)
+    frame = efficiency_vs_mu(base, mu, loads, progress=False, **options)
+    t_end = options.get("t_end", 0.2)
+    for row in frame.itertuples():
+        expected = per_case_efficiency(base, row.mu, row.load, 10.0, t_end,
+                                       (t_end / 2, t_end), rtol=1e-8, atol=1e-10)
+        for name, value in expected.items():
+            assert getattr(row, name) == value, name
+        assert row.error is None and row.wall_time > 0
+
+
+def test_efficiency_rows_of_failed_and_undrivable_cases():
+    """Failed rows carry the per-case message and NaN; undrivable ones are not
+    simulated (eta = 0) and keep their place in the mu-major order."""
+    cot = 1.0 / math.tan(ls.Thread(1e-3, 20e-3).lead_angle)
+    base = scene(concept="flexible")
+    frame = efficiency_vs_mu(base, [0.1, 1.01 * cot, 0.2], [20.0], t_end=0.1, max_steps=50,
+                             progress=False)
+    assert list(frame["simulated"]) == [True, False, True]
+    for index, mu in ((0, 0.1), (2, 0.2)):
+        expected = described(lambda: per_case_efficiency(base, mu, 20.0, 10.0, 0.1,
+                                                         (0.05, 0.1), max_steps=50))
+        assert frame.loc[index, "error"] == expected
+        assert frame.loc[index, ["efficiency", "work_drive", "wall_time"]].isna().all()
+    assert frame.loc[1, "error"] is None and frame.loc[1, "efficiency"] == 0.0
+    assert frame.loc[1, "drive_torque"] == math.inf
+
+
+def test_efficiency_options_are_checked_before_the_sweep():
+    with pytest.raises(TypeError, match="t_eval"):
+        efficiency_vs_mu(scene(), [0.1], [10.0], t_eval=[0.1], progress=False)
+    with pytest.raises(ValueError, match="friction.law"):
+        efficiency_vs_mu(scene(), [0.1], [10.0], friction="arctan_velocity", progress=False)
+    # A value the core checks per case (as leadscrew.simulate would) fails each row.
+    frame = efficiency_vs_mu(scene(), [0.1, 0.2], [10.0], rtol=-1.0, progress=False)
+    assert list(frame["error"]) == ["ValueError: rtol = -1 is invalid: must be a finite "
+                                    "number in (0, 1)"] * 2
+
+
+@pytest.mark.parametrize("chunk_size", [None, 1, 7, 1000])
+def test_efficiency_is_the_same_for_every_executor_and_chunking(chunk_size, monkeypatch):
+    """Chunks are independent C++ calls: how the cases are split and where they
+    run changes nothing."""
+    from leadscrew.studies import _sweep
+
+    mu, loads = np.linspace(0.0, 0.5, 13), [10.0, 50.0, 100.0]
+    reference = efficiency_vs_mu(scene(), mu, loads, executor=SerialExecutor(), progress=False)
+    if chunk_size is not None:
+        monkeypatch.setattr(_sweep, "guided_size", lambda remaining, workers, cost: chunk_size)
+        monkeypatch.setattr(_sweep, "MIN_CHUNK_SECONDS", 0.0)  # no equal split at the end
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        for executor in (SerialExecutor(), pool, None):
+            frame = efficiency_vs_mu(scene(), mu, loads, executor=executor, progress=False)
+            pd.testing.assert_frame_equal(frame.drop(columns="wall_time"),
+                                          reference.drop(columns="wall_time"))
+
+
+def test_run_chunks_gives_chunks_in_order_and_failures_per_chunk():
+    def total(cases):
+        if 13 in cases:
+            raise ValueError("unlucky chunk")
+        return sum(cases)
+
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        chunks = run_chunks(total, range(20), executor=pool, progress=False, chunk_size=6)
+    assert [c.cases for c in chunks] == [range(0, 6), range(6, 12), range(12, 18),
+                                         range(18, 20)]
+    assert [c.value for c in chunks] == [15, 51, None, 37]
+    assert [c.error for c in chunks] == [None, None, "ValueError: unlucky chunk", None]
+    assert all(c.elapsed > 0 for c in chunks if c.ok) and chunks[2].elapsed == 0.0
+    assert run_chunks(total, [], progress=False) == []
+    pool.shutdown()
+    refused = run_chunks(total, [1, 2], executor=pool, progress=False)
+    assert all(c.error.startswith("RuntimeError") for c in refused)

@@ -130,6 +130,22 @@ def _restore_result(t, channels, data, events, stats, integrator, friction) -> R
     return result
 
 
+def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval,
+                     max_steps, max_events, max_step, first_step, bounce_threshold,
+                     max_order) -> dict:
+    """The core's drive-simulation keywords from :func:`simulate`'s (None:
+    the default; ``integrator`` ``""``: the core's default per model). Shared
+    with :class:`leadscrew.studies._batch.DriveBatch`."""
+    return {"t_end": float(t_end), "integrator": integrator or "",
+            "smooth_integrator": smooth_integrator or "", "rtol": float(rtol),
+            "atol": float(atol), "dt": 1e-4 if dt is None else float(dt), "theta": float(theta),
+            "t_eval": [float(t) for t in t_eval], "max_steps": int(max_steps),
+            "max_events": int(max_events), "max_step": 0.0 if max_step is None else float(max_step),
+            "first_step": 0.0 if first_step is None else float(first_step),
+            "bounce_threshold": float(bounce_threshold),
+            "max_order": 0 if max_order is None else int(max_order)}
+
+
 def simulate(
     model,
     t_end: float,
@@ -206,11 +222,7 @@ def simulate(
         drive = model.model()
         if integrator is None:  # the core lists the fitting integrators, default first
             integrator = _core.drive_integrators(drive.parameters)[0]
-        core_result = _core.simulate_drive(
-            drive, float(t_end), integrator, smooth_integrator or "", float(rtol), float(atol),
-            1e-4 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
-            int(max_events), 0.0 if max_step is None else float(max_step),
-            0.0 if first_step is None else float(first_step), float(bounce_threshold),
-            0 if max_order is None else int(max_order))
-        return Result(core_result)
+        return Result(_core.simulate_drive(drive, **_drive_arguments(
+            t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
+            max_events, max_step, first_step, bounce_threshold, max_order)))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")

@@ -21,7 +21,7 @@ import numpy as np
 from .. import _core
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
-from ..simulation import simulate
+from ..simulation import _drive_arguments, simulate
 
 __all__ = ["DriveBatch"]
 
@@ -56,17 +56,10 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
         raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
                          f"scene's friction.law (it is {scene['friction']['law']!r})")
 
-    def optional(name: str, absent: float, kind=float):
-        return absent if a[name] is None else kind(a[name])
-
-    return {"t_end": float(t_end), "integrator": a["integrator"] or "",
-            "smooth_integrator": a["smooth_integrator"] or "", "rtol": float(a["rtol"]),
-            "atol": float(a["atol"]), "dt": optional("dt", 1e-4), "theta": float(a["theta"]),
-            "t_eval": [float(t) for t in t_eval], "max_steps": int(a["max_steps"]),
-            "max_events": int(a["max_events"]), "max_step": optional("max_step", 0.0),
-            "first_step": optional("first_step", 0.0),
-            "bounce_threshold": float(a["bounce_threshold"]),
-            "max_order": optional("max_order", 0, int)}
+    return _drive_arguments(t_end, a["integrator"], a["smooth_integrator"], a["rtol"], a["atol"],
+                            a["dt"], a["theta"], t_eval, a["max_steps"], a["max_events"],
+                            a["max_step"], a["first_step"], a["bounce_threshold"],
+                            a["max_order"])
 
 
 class DriveBatch:

@@ -134,3 +134,16 @@ def test_bad_scenes_and_arguments():
         min_holding_preload(holding_scene(), EXCITATION, direction=0.5)
     with pytest.raises(ValueError, match="creep_limit"):
         min_holding_preload(holding_scene(), EXCITATION, creep_limit=-1.0)
+
+
+def test_the_simulated_excitation_keeps_the_users_omega_bit_for_bit(monkeypatch):
+    # 13.95 rad/s does not survive omega -> f -> omega (13.950000000000001).
+    import leadscrew.studies.holding as holding
+    omega = 13.95
+    assert (omega / (2 * math.pi)) * 2 * math.pi != omega
+    seen = []
+    monkeypatch.setattr(holding, "cycle_response", lambda scene, *args, **kwargs: seen.append(
+        scene["loads"]["axial_force"]["omega"]) or {})
+    sine = {"amplitude": 30.0, "omega": omega, "phase": 0.0, "offset": 0.0}
+    holding._preload_case(40.0, holding_scene(), sine, -1.0, 2, 1, 20, {})
+    assert seen == [omega]

@@ -149,11 +149,19 @@ def alternating_scene(scene: Scene, amplitude: float, frequency: float, offset: 
             scene check names any other invalid field).
     """
     frequency = check_positive("frequency", frequency)
+    return _alternating(scene, amplitude, 2.0 * math.pi * frequency, offset, backlash, on_flank,
+                        phase)
+
+
+def _alternating(scene: Scene, amplitude: float, omega: float, offset: float,
+                 backlash: Optional[float], on_flank: bool, phase: float) -> Scene:
+    """alternating_scene with the angular frequency omega [rad/s] > 0 as given
+    (a user's Sine keeps its omega bit for bit: no round trip through f)."""
     amplitude = check_finite("amplitude", amplitude)
     offset = check_finite("offset", offset)
     phase = check_finite("phase", phase)
     changes: Dict[str, Any] = {"loads": {"axial_force": {
-        "type": "sine", "amplitude": float(amplitude), "omega": 2.0 * math.pi * frequency,
+        "type": "sine", "amplitude": float(amplitude), "omega": float(omega),
         "phase": float(phase), "offset": float(offset)}}}
     if backlash is not None:
         changes["backlash"] = {"axial": float(backlash)}
@@ -388,9 +396,8 @@ def _sine_parameters(excitation: Any) -> Dict[str, float]:
 def _preload_case(preload: float, scene: Scene, sine: Dict[str, float], direction: float,
                   cycles: int, settle_cycles: int, points_per_cycle: int,
                   options: Dict[str, Any]) -> Dict[str, Any]:
-    loaded = alternating_scene(scene, sine["amplitude"], sine["omega"] / (2.0 * math.pi),
-                               sine["offset"] + direction * preload, on_flank=True,
-                               phase=sine["phase"])
+    loaded = _alternating(scene, sine["amplitude"], sine["omega"],
+                          sine["offset"] + direction * preload, None, True, sine["phase"])
     return cycle_response(loaded, sine["omega"] / (2.0 * math.pi), cycles, settle_cycles,
                           points_per_cycle, **options)
 

@@ -326,28 +326,15 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     evaluate(friction_factor(spec, x), solution);
     return solution.slip_acceleration - x;
   };
-  double h_low = h(x_low), h_high = h(x_high);
+  IllinoisBracket bracket{x_low, x_high, h(x_low), h(x_high)};
   const double scale = std::max({std::abs(x_low), std::abs(x_high), 1e-300});
-  int side = 0;
   for (int iteration = 0; iteration < 300 && solution.regular; ++iteration) {
-    if (h_low == 0.0) return (void)h(x_low), solution;
-    if (h_high == 0.0) return (void)h(x_high), solution;
-    // Illinois (regula falsi with halving of the stale end).
-    double x = (x_low * h_high - x_high * h_low) / (h_high - h_low);
-    if (!(x > x_low && x < x_high)) x = 0.5 * (x_low + x_high);
+    if (bracket.f_low == 0.0) return (void)h(bracket.low), solution;
+    if (bracket.f_high == 0.0) return (void)h(bracket.high), solution;
+    const double x = bracket.next();
     const double hx = h(x);
-    if (x_high - x_low <= 4e-16 * scale || hx == 0.0) return solution;
-    if ((hx > 0.0) == (h_low > 0.0)) {
-      x_low = x;
-      h_low = hx;
-      if (side == -1) h_high *= 0.5;
-      side = -1;
-    } else {
-      x_high = x;
-      h_high = hx;
-      if (side == 1) h_low *= 0.5;
-      side = 1;
-    }
+    if (bracket.high - bracket.low <= 4e-16 * scale || hx == 0.0) return solution;
+    bracket.update(x, hx, (hx > 0.0) == (bracket.f_low > 0.0));
   }
   if (solution.regular)
     throw SimulationError(t_, "the slip acceleration of eq. (3.15) did not converge",

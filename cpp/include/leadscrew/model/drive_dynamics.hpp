@@ -49,18 +49,21 @@ struct ModeSolution {
   int consistent_solutions = 1;
 };
 
-// Illinois (regula falsi halving the stale end) on [low, high], where
-// f(low) >= 0 > f(high): narrows the bracket to `width` or 200 iterations and
-// returns its upper end, the first point known to be negative.
-template <class Function>
-double first_negative(Function f, double low, double high, double width) {
-  double f_low = f(low), f_high = f(high);
-  int side = 0;
-  for (int iteration = 0; iteration < 200 && high - low > width; ++iteration) {
-    double x = (low * f_high - high * f_low) / (f_high - f_low);
-    if (!(x > low && x < high)) x = 0.5 * (low + high);
-    const double fx = f(x);
-    if (fx >= 0.0) {
+// A bracket [low, high] of a sign change narrowed by Illinois: regula falsi
+// whose stale end has its value halved. Shared by first_negative and the
+// eq. (3.15) slip-acceleration solve (DriveDynamics::solve).
+struct IllinoisBracket {
+  double low, high, f_low, f_high;
+  int side = 0;  // the end moved last: -1 low, +1 high
+
+  // The regula-falsi point, or the midpoint where it falls outside.
+  double next() const {
+    const double x = (low * f_high - high * f_low) / (f_high - f_low);
+    return x > low && x < high ? x : 0.5 * (low + high);
+  }
+  // Moves the end on x's side (`low_side`: f(x) has f(low)'s sign).
+  void update(double x, double fx, bool low_side) {
+    if (low_side) {
       low = x;
       f_low = fx;
       if (side == -1) f_high *= 0.5;
@@ -72,7 +75,20 @@ double first_negative(Function f, double low, double high, double width) {
       side = 1;
     }
   }
-  return high;
+};
+
+// Illinois on [low, high], where f(low) >= 0 > f(high): narrows the bracket
+// to `width` or 200 iterations and returns its upper end, the first point
+// known to be negative.
+template <class Function>
+double first_negative(Function f, double low, double high, double width) {
+  IllinoisBracket bracket{low, high, f(low), f(high)};
+  for (int iteration = 0; iteration < 200 && bracket.high - bracket.low > width; ++iteration) {
+    const double x = bracket.next();
+    const double fx = f(x);
+    bracket.update(x, fx, fx >= 0.0);
+  }
+  return bracket.high;
 }
 
 // The flank LCP (friction::solve_flank_lcp) of the drive, solved at unit scale.

@@ -71,39 +71,9 @@ void bind_drive(py::module_& m) {
       .def_property(
           "axial_force", [](const DriveParameters& p) { return p.axial_force; },
           [](DriveParameters& p, py::handle v) { p.axial_force = to_excitation(v, "loads.axial_force"); });
-#define LEADSCREW_FIELD(name) parameters.def_readwrite(#name, &DriveParameters::name)
-  LEADSCREW_FIELD(mu);
-  LEADSCREW_FIELD(k_v);
-  LEADSCREW_FIELD(clearance);
-  LEADSCREW_FIELD(restitution);
-  LEADSCREW_FIELD(contact_stiffness);
-  LEADSCREW_FIELD(contact_exponent);
-  LEADSCREW_FIELD(contact_damping);
-  LEADSCREW_FIELD(contact_penetration);
-  LEADSCREW_FIELD(rotor_inertia);
-  LEADSCREW_FIELD(load_mass);
-  LEADSCREW_FIELD(screw_mass);
-  LEADSCREW_FIELD(screw_inertia);
-  LEADSCREW_FIELD(nut_mass);
-  LEADSCREW_FIELD(nut_inertia);
-  LEADSCREW_FIELD(screw_axial_rigidity);
-  LEADSCREW_FIELD(screw_torsional_rigidity);
-  LEADSCREW_FIELD(screw_length);
-  LEADSCREW_FIELD(nut_position);
-  LEADSCREW_FIELD(screw_axial_stiffness);
-  LEADSCREW_FIELD(screw_torsional_stiffness);
-  LEADSCREW_FIELD(nut_axial_stiffness);
-  LEADSCREW_FIELD(nut_torsional_stiffness);
-  LEADSCREW_FIELD(damping_ratio);
-  LEADSCREW_FIELD(screw_axial_damping);
-  LEADSCREW_FIELD(screw_torsional_damping);
-  LEADSCREW_FIELD(nut_axial_damping);
-  LEADSCREW_FIELD(nut_torsional_damping);
-  LEADSCREW_FIELD(speed_controlled);
-  LEADSCREW_FIELD(rotor_angle);
-  LEADSCREW_FIELD(rotor_speed);
-  LEADSCREW_FIELD(play_position);
-#undef LEADSCREW_FIELD
+  for (const model::ScalarField& field : model::scalar_fields())
+    parameters.def_readwrite(field.name, field.member);
+  parameters.def_readwrite("speed_controlled", &DriveParameters::speed_controlled);
 
   py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")
       .def(py::init<DriveParameters>(), py::arg("parameters"))

@@ -8,6 +8,44 @@
 
 namespace leadscrew::model {
 
+const std::vector<ScalarField>& scalar_fields() {
+#define LEADSCREW_FIELD(name) ScalarField{#name, &DriveParameters::name}
+  static const std::vector<ScalarField> fields = {
+      LEADSCREW_FIELD(mu),
+      LEADSCREW_FIELD(k_v),
+      LEADSCREW_FIELD(clearance),
+      LEADSCREW_FIELD(restitution),
+      LEADSCREW_FIELD(contact_stiffness),
+      LEADSCREW_FIELD(contact_exponent),
+      LEADSCREW_FIELD(contact_damping),
+      LEADSCREW_FIELD(contact_penetration),
+      LEADSCREW_FIELD(rotor_inertia),
+      LEADSCREW_FIELD(load_mass),
+      LEADSCREW_FIELD(screw_mass),
+      LEADSCREW_FIELD(screw_inertia),
+      LEADSCREW_FIELD(nut_mass),
+      LEADSCREW_FIELD(nut_inertia),
+      LEADSCREW_FIELD(screw_axial_rigidity),
+      LEADSCREW_FIELD(screw_torsional_rigidity),
+      LEADSCREW_FIELD(screw_length),
+      LEADSCREW_FIELD(nut_position),
+      LEADSCREW_FIELD(screw_axial_stiffness),
+      LEADSCREW_FIELD(screw_torsional_stiffness),
+      LEADSCREW_FIELD(nut_axial_stiffness),
+      LEADSCREW_FIELD(nut_torsional_stiffness),
+      LEADSCREW_FIELD(damping_ratio),
+      LEADSCREW_FIELD(screw_axial_damping),
+      LEADSCREW_FIELD(screw_torsional_damping),
+      LEADSCREW_FIELD(nut_axial_damping),
+      LEADSCREW_FIELD(nut_torsional_damping),
+      LEADSCREW_FIELD(rotor_angle),
+      LEADSCREW_FIELD(rotor_speed),
+      LEADSCREW_FIELD(play_position),
+  };
+#undef LEADSCREW_FIELD
+  return fields;
+}
+
 namespace {
 
 // Coordinates of the screw's and the nut's contact bodies: an index into q, or

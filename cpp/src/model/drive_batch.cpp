@@ -14,62 +14,16 @@ namespace leadscrew::model {
 
 namespace {
 
-using Setter = void (*)(DriveParameters&, double);
-
-struct NamedSetter {
+// The loads a case may set, as constants (after the scalar fields).
+struct LoadSetter {
   const char* name;
-  Setter set;
+  void (*set)(DriveParameters&, double);
 };
-
-#define LEADSCREW_SCALAR(field) \
-  NamedSetter { #field, [](DriveParameters& p, double v) { p.field = v; } }
-#define LEADSCREW_LOAD(field)                                                      \
-  NamedSetter {                                                                    \
-    #field, [](DriveParameters& p, double v) { p.field = ConstantExcitation{v}; } \
-  }
-
-// Every field of DriveParameters that is one number, and the loads.
-const std::vector<NamedSetter>& named_setters() {
-  static const std::vector<NamedSetter> setters = {
-      LEADSCREW_SCALAR(mu),
-      LEADSCREW_SCALAR(k_v),
-      LEADSCREW_SCALAR(clearance),
-      LEADSCREW_SCALAR(restitution),
-      LEADSCREW_SCALAR(contact_stiffness),
-      LEADSCREW_SCALAR(contact_exponent),
-      LEADSCREW_SCALAR(contact_damping),
-      LEADSCREW_SCALAR(contact_penetration),
-      LEADSCREW_SCALAR(rotor_inertia),
-      LEADSCREW_SCALAR(load_mass),
-      LEADSCREW_SCALAR(screw_mass),
-      LEADSCREW_SCALAR(screw_inertia),
-      LEADSCREW_SCALAR(nut_mass),
-      LEADSCREW_SCALAR(nut_inertia),
-      LEADSCREW_SCALAR(screw_axial_rigidity),
-      LEADSCREW_SCALAR(screw_torsional_rigidity),
-      LEADSCREW_SCALAR(screw_length),
-      LEADSCREW_SCALAR(nut_position),
-      LEADSCREW_SCALAR(screw_axial_stiffness),
-      LEADSCREW_SCALAR(screw_torsional_stiffness),
-      LEADSCREW_SCALAR(nut_axial_stiffness),
-      LEADSCREW_SCALAR(nut_torsional_stiffness),
-      LEADSCREW_SCALAR(damping_ratio),
-      LEADSCREW_SCALAR(screw_axial_damping),
-      LEADSCREW_SCALAR(screw_torsional_damping),
-      LEADSCREW_SCALAR(nut_axial_damping),
-      LEADSCREW_SCALAR(nut_torsional_damping),
-      LEADSCREW_SCALAR(rotor_angle),
-      LEADSCREW_SCALAR(rotor_speed),
-      LEADSCREW_SCALAR(play_position),
-      LEADSCREW_LOAD(drive_torque),
-      LEADSCREW_LOAD(drive_speed),
-      LEADSCREW_LOAD(axial_force),
-  };
-  return setters;
-}
-
-#undef LEADSCREW_SCALAR
-#undef LEADSCREW_LOAD
+const LoadSetter kLoadSetters[] = {
+    {"drive_torque", [](DriveParameters& p, double v) { p.drive_torque = ConstantExcitation{v}; }},
+    {"drive_speed", [](DriveParameters& p, double v) { p.drive_speed = ConstantExcitation{v}; }},
+    {"axial_force", [](DriveParameters& p, double v) { p.axial_force = ConstantExcitation{v}; }},
+};
 
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string out;
@@ -110,7 +64,8 @@ std::string case_failure_name(CaseFailure failure) {
 
 std::vector<std::string> DriveParameterOverrides::allowed_names() {
   std::vector<std::string> names;
-  for (const NamedSetter& s : named_setters()) names.emplace_back(s.name);
+  for (const ScalarField& field : scalar_fields()) names.emplace_back(field.name);
+  for (const LoadSetter& load : kLoadSetters) names.emplace_back(load.name);
   return names;
 }
 
@@ -138,12 +93,18 @@ DriveParameterOverrides::DriveParameterOverrides(const std::vector<std::string>&
 }
 
 void DriveParameterOverrides::apply(const double* values, DriveParameters& p) const {
-  const std::vector<NamedSetter>& table = named_setters();
+  const std::vector<ScalarField>& scalars = scalar_fields();
   for (std::size_t k = 0; k < fields_.size(); ++k) {
-    const NamedSetter& field = table[static_cast<std::size_t>(fields_[k])];
+    const std::size_t index = static_cast<std::size_t>(fields_[k]);
+    const bool scalar = index < scalars.size();
     // No parameter is infinite or NaN (DriveModel checks the ranges of some).
-    if (!std::isfinite(values[k])) require_finite(field.name, values[k]);
-    field.set(p, values[k]);
+    if (!std::isfinite(values[k]))
+      require_finite(scalar ? scalars[index].name : kLoadSetters[index - scalars.size()].name,
+                     values[k]);
+    if (scalar)
+      p.*scalars[index].member = values[k];
+    else
+      kLoadSetters[index - scalars.size()].set(p, values[k]);
   }
 }
 
@@ -184,7 +145,7 @@ DriveBatchResult DriveBatch::run(const Eigen::Ref<const BatchValues>& values) co
     try {
       p = base_;
       overrides_.apply(values.row(i).data(), p);
-      const DriveModel model(p);
+      const DriveModel model(std::move(p));  // p is reset from the base per case
       // The model's parameters, as leadscrew.simulate asks: it may resolve
       // some (exact backlash of zero play is the thread without play).
       options.integrator = options_.integrator.empty()

@@ -1333,21 +1333,27 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
 
 }  // namespace
 
-std::vector<std::string> drive_integrators(const DriveParameters& p) {
-  if (p.friction == FrictionLaw::coulomb) return {"event_driven", "moreau"};
-  if (p.backlash == BacklashContact::exact) return {"event_driven"};
-  std::vector<std::string> names = integrate::integrator_names();
-  names.push_back("event_driven");
-  return names;
+const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+  static const std::vector<std::string> coulomb = {"event_driven", "moreau"};
+  static const std::vector<std::string> exact_play = {"event_driven"};
+  static const std::vector<std::string> smooth = [] {
+    std::vector<std::string> names = integrate::integrator_names();
+    names.push_back("event_driven");
+    return names;
+  }();
+  if (p.friction == FrictionLaw::coulomb) return coulomb;
+  if (p.backlash == BacklashContact::exact) return exact_play;
+  return smooth;
 }
 
 integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
-  const std::vector<std::string> allowed = drive_integrators(p);
-  require_choice("integrator", options.integrator, allowed,
-                 "friction.law = \"" + friction_law_name(p.friction) + "\"" +
-                     (p.backlash == BacklashContact::exact ? " with exact backlash" : ""));
+  const std::vector<std::string>& allowed = drive_integrators(p);
+  if (std::find(allowed.begin(), allowed.end(), options.integrator) == allowed.end())
+    require_choice("integrator", options.integrator, allowed,
+                   "friction.law = \"" + friction_law_name(p.friction) + "\"" +
+                       (p.backlash == BacklashContact::exact ? " with exact backlash" : ""));
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   if (options.integrator == "moreau" &&
       (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic))

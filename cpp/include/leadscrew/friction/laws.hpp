@@ -17,10 +17,4 @@ FrictionLaw parse_friction_law(const std::string& name);
 std::string friction_law_name(FrictionLaw law);
 std::vector<std::string> friction_law_names();
 
-// Regularized Coulomb force magnitude law, eq. (2.25): bounded by mu |normal|.
-inline double arctan_friction(double mu, double normal_force, double k_v, double slip) {
-  constexpr double two_over_pi = 0.63661977236758134308;
-  return two_over_pi * mu * std::abs(normal_force) * std::atan(k_v * slip);
-}
-
 }  // namespace leadscrew

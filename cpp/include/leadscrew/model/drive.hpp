@@ -97,6 +97,15 @@ struct DriveParameters {
   double play_position = 0.0;
 };
 
+// Every field of DriveParameters that is one number, by name, in declaration
+// order: the Python binding's attributes and DriveBatch's overrides both
+// list them from here.
+struct ScalarField {
+  const char* name;
+  double DriveParameters::*member;
+};
+const std::vector<ScalarField>& scalar_fields();
+
 // A linear spring-damper between two coordinates (or one and the ground),
 // optionally with the screw's position-dependent stiffness.
 struct Spring {

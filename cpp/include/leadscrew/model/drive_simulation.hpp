@@ -28,7 +28,7 @@ struct DriveSimulationOptions {
 };
 
 // Integrators that fit a model (the first is the default).
-std::vector<std::string> drive_integrators(const DriveParameters& parameters);
+const std::vector<std::string>& drive_integrators(const DriveParameters& parameters);
 
 integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options);

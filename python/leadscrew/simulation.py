@@ -41,11 +41,12 @@ class Result:
     double it). A pickled Result carries the converted values.
     """
 
-    __slots__ = ("_core", "_t", "_channels", "_data", "_events", "_stats", "_names")
+    __slots__ = ("_core", "_t", "_channels", "_data", "_events", "_stats", "_names", "_rows")
 
     def __init__(self, core_result):
         self._core = core_result
         self._t = self._channels = self._data = self._events = self._stats = self._names = None
+        self._rows = {}  # channels converted one by one (before the whole matrix)
 
     def __reduce__(self):
         state = (self.t, self.channels, self._matrix(), self.events, self.stats,
@@ -97,7 +98,11 @@ class Result:
     def __getitem__(self, name: str) -> np.ndarray:
         if self._data is None and self._core is not None:
             # One channel without converting the others (or their names).
-            row = self._core.channel(name) if isinstance(name, str) else None
+            row = self._rows.get(name) if isinstance(name, str) else None
+            if row is None and isinstance(name, str):
+                row = self._core.channel(name)
+                if row is not None:
+                    self._rows[name] = row
             if row is not None:
                 return row
         elif name in self.channels:
@@ -130,16 +135,24 @@ def _restore_result(t, channels, data, events, stats, integrator, friction) -> R
     return result
 
 
+def _check_scene_friction(scene: Scene, friction: Optional[str]) -> None:
+    """A Scene carries its friction law: ``friction`` may only repeat it."""
+    if friction is not None and friction != scene["friction"]["law"]:
+        raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
+                         f"scene's friction.law (it is {scene['friction']['law']!r})")
+
+
 def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval,
                      max_steps, max_events, max_step, first_step, bounce_threshold,
                      max_order) -> dict:
     """The core's drive-simulation keywords from :func:`simulate`'s (None:
-    the default; ``integrator`` ``""``: the core's default per model). Shared
-    with :class:`leadscrew.studies._batch.DriveBatch`."""
+    the default; ``integrator`` None or ``""``: the core's default per model;
+    ``t_eval`` a list of floats). Shared with
+    :class:`leadscrew.studies._batch.DriveBatch`."""
     return {"t_end": float(t_end), "integrator": integrator or "",
             "smooth_integrator": smooth_integrator or "", "rtol": float(rtol),
             "atol": float(atol), "dt": 1e-4 if dt is None else float(dt), "theta": float(theta),
-            "t_eval": [float(t) for t in t_eval], "max_steps": int(max_steps),
+            "t_eval": t_eval, "max_steps": int(max_steps),
             "max_events": int(max_events), "max_step": 0.0 if max_step is None else float(max_step),
             "first_step": 0.0 if first_step is None else float(first_step),
             "bounce_threshold": float(bounce_threshold),
@@ -216,13 +229,9 @@ def simulate(
             0.0 if first_step is None else float(first_step),
             0 if max_order is None else int(max_order)))
     if isinstance(model, Scene):
-        if friction is not None and friction != model["friction"]["law"]:
-            raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
-                             f"scene's friction.law (it is {model['friction']['law']!r})")
-        drive = model.model()
-        if integrator is None:  # the core lists the fitting integrators, default first
-            integrator = _core.drive_integrators(drive.parameters)[0]
-        return Result(_core.simulate_drive(drive, **_drive_arguments(
+        _check_scene_friction(model, friction)
+        # integrator None: the core takes the model's default
+        return Result(_core.simulate_drive(model.model(), **_drive_arguments(
             t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
             max_events, max_step, first_step, bounce_threshold, max_order)))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")

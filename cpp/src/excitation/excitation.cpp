@@ -37,26 +37,25 @@ Excitation Excitation::from_kind(const std::string& kind, const std::vector<doub
       throw InvalidArgument("times and values are invalid for kind = \"" + kind +
                             "\": only a \"table\" takes them");
   };
-  if (kind == "constant") {
-    count(1, 1, "[value]");
-    no_table();
-    return Excitation(ConstantExcitation{parameters[0]});
+  static const std::vector<std::string> kinds = {"constant", "sine", "table"};
+  switch (require_choice("kind", kind, kinds)) {
+    case 0:
+      count(1, 1, "[value]");
+      no_table();
+      return Excitation(ConstantExcitation{parameters[0]});
+    case 1: {
+      count(2, 4, "[amplitude, omega], [amplitude, omega, phase] or "
+                  "[amplitude, omega, phase, offset]");
+      no_table();
+      SineExcitation sine{parameters[0], parameters[1]};
+      if (parameters.size() > 2) sine.phase = parameters[2];
+      if (parameters.size() > 3) sine.offset = parameters[3];
+      return Excitation(sine);
+    }
+    default:
+      count(0, 0, "empty (a table takes times and values)");
+      return Excitation(TableExcitation{times, values});
   }
-  if (kind == "sine") {
-    count(2, 4, "[amplitude, omega], [amplitude, omega, phase] or "
-                "[amplitude, omega, phase, offset]");
-    no_table();
-    SineExcitation sine{parameters[0], parameters[1]};
-    if (parameters.size() > 2) sine.phase = parameters[2];
-    if (parameters.size() > 3) sine.offset = parameters[3];
-    return Excitation(sine);
-  }
-  if (kind == "table") {
-    count(0, 0, "empty (a table takes times and values)");
-    return Excitation(TableExcitation{times, values});
-  }
-  throw InvalidArgument("kind = \"" + kind +
-                        "\" is invalid: must be one of \"constant\", \"sine\", \"table\"");
 }
 
 Excitation::Excitation(TableExcitation table) {

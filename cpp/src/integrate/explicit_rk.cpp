@@ -242,18 +242,6 @@ void combine(int n_runtime, const double* base, double h, const double* coeffici
   }
 }
 
-void combine_any(int n, const double* base, double h, const double* coefficients, int count,
-                 const double* k, double* out) {
-  switch (n) {  // the small systems of the event-driven models
-    case 2:
-      return combine<2>(n, base, h, coefficients, count, k, out);
-    case 4:
-      return combine<4>(n, base, h, coefficients, count, k, out);
-    default:
-      return combine<0>(n, base, h, coefficients, count, k, out);
-  }
-}
-
 // Without loop control and dispatch on n (the combinations were ~40 % of the
 // engine's instructions for a 4-state system).
 template <int N, int Count>
@@ -308,7 +296,7 @@ void ExplicitRungeKutta::combine_stages(const double* base, double h, const doub
   if (combine_kernel_)
     combine_kernel_(base, h, coefficients, k, out);
   else
-    combine_any(n_, base, h, coefficients, s_, k, out);
+    combine<0>(n_, base, h, coefficients, s_, k, out);
 }
 
 
@@ -321,7 +309,7 @@ bool ExplicitRungeKutta::stages(double t, const double* y, double h, double* k, 
     stage_kernel_(*system_, a, c, t, y, h, k, y_stage_);
   } else {
     for (int i = 1; i < s; ++i) {
-      combine_any(n, y, h, a + i * s, i, k, y_stage_);
+      combine<0>(n, y, h, a + i * s, i, k, y_stage_);
       system_->rhs(t + c[i] * h, y_stage_, k + i * n);
     }
   }

@@ -15,6 +15,11 @@ void check_system(const OdeSystem& system) {
   if (m < 0)
     throw InvalidArgument("system root_count = " + std::to_string(m) +
                           " is invalid: must be >= 0");
+  const int k = system.quadrature_count();
+  if (k < 0 || k >= n)
+    throw InvalidArgument("system quadrature_count = " + std::to_string(k) +
+                          " is invalid: must be in [0, size - 1] = [0, " + std::to_string(n - 1) +
+                          "]");
 }
 
 void check_initialized(bool initialized, const char* call) {

@@ -164,13 +164,18 @@ int scale_add_identity(sunrealtype c, SUNMatrix a) {
   }
   return SUNMAT_SUCCESS;
 }
+SUNMatrix clone_matrix(SUNMatrix a);
+
+// The compiled dense-matrix operations (a clone gets them too).
+void use_compiled_matrix_ops(SUNMatrix a) {
+  a->ops->copy = &copy_matrix;
+  a->ops->scaleaddi = &scale_add_identity;
+  a->ops->clone = &clone_matrix;
+}
+
 SUNMatrix clone_matrix(SUNMatrix a) {
   SUNMatrix b = SUNDenseMatrix(SM_ROWS_D(a), SM_COLUMNS_D(a), a->sunctx);
-  if (b) {
-    b->ops->copy = &copy_matrix;
-    b->ops->scaleaddi = &scale_add_identity;
-    b->ops->clone = &clone_matrix;
-  }
+  if (b) use_compiled_matrix_ops(b);
   return b;
 }
 
@@ -191,9 +196,7 @@ Matrix make_dense_matrix(int n, const Context& context) {
   if (!a)
     throw SimulationError(0.0, "SUNDenseMatrix failed: SUNDIALS could not allocate a matrix",
                           "the machine is out of memory");
-  a->ops->copy = &copy_matrix;
-  a->ops->scaleaddi = &scale_add_identity;
-  a->ops->clone = &clone_matrix;
+  use_compiled_matrix_ops(a.get());
   return a;
 }
 

@@ -33,10 +33,6 @@ void SundialsIntegrator::initialize(OdeSystem& system, double t0,
   const int n = system.size();
   const int m = system.root_count();
   const int k = system.quadrature_count();
-  if (k < 0 || k >= n)
-    throw InvalidArgument("system quadrature_count = " + std::to_string(k) +
-                          " is invalid: must be in [0, size - 1] = [0, " + std::to_string(n - 1) +
-                          "]");
   initialized_ = false;
   bridge_.system = &system;
   bridge_.size = n;

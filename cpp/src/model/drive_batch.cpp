@@ -42,15 +42,15 @@ void fail_case(DriveBatchResult& result, Eigen::Index i, CaseFailure failure,
 
 // Index of each requested channel in a result (whose names depend on the
 // model: the backlash channels exist only with backlash).
+// Each requested channel's index in a result (SimulationResult::channel_index).
 void find_channels(const std::vector<std::string>& requested,
-                   const std::vector<std::string>& available, std::vector<int>& index) {
+                   const integrate::SimulationResult& run, std::vector<int>& index) {
   for (std::size_t c = 0; c < requested.size(); ++c) {
-    const auto found = std::find(available.begin(), available.end(), requested[c]);
-    if (found == available.end())
+    index[c] = run.channel_index(requested[c]);
+    if (index[c] < 0)
       throw InvalidArgument("channels entry \"" + requested[c] +
                             "\" is invalid: must be one of this model's channels " +
-                            quoted_list(available));
-    index[c] = static_cast<int>(found - available.begin());
+                            quoted_list(run.channel_names));
   }
 }
 
@@ -136,23 +136,19 @@ DriveBatchResult DriveBatch::run(const Eigen::Ref<const BatchValues>& values) co
   result.wall_time.setZero(cases);
 
   // Reused by every case: the parameters (copied from the base, then the
-  // overrides set), the options (the integrator may be the case's default)
-  // and the channel indices.
+  // overrides set) and the channel indices.
   DriveParameters p;
-  DriveSimulationOptions options = options_;
   std::vector<int> index(channels_.size());
   for (Eigen::Index i = 0; i < cases; ++i) {  // one simulation per row
     try {
       p = base_;
       overrides_.apply(values.row(i).data(), p);
       const DriveModel model(std::move(p));  // p is reset from the base per case
-      // The model's parameters, as leadscrew.simulate asks: it may resolve
-      // some (exact backlash of zero play is the thread without play).
-      options.integrator = options_.integrator.empty()
-                               ? drive_integrators(model.parameters()).front()
-                               : options_.integrator;
-      const integrate::SimulationResult run = simulate(model, options);
-      find_channels(channels_, run.channel_names, index);
+      // An empty integrator is each case's default (simulate resolves it
+      // from the model, which may resolve parameters: exact backlash of zero
+      // play is the thread without play).
+      const integrate::SimulationResult run = simulate(model, options_);
+      find_channels(channels_, run, index);
       if (run.time.size() != times.size())
         throw std::logic_error("a simulation returned " + std::to_string(run.time.size()) +
                                " points for " + std::to_string(times.size()) +

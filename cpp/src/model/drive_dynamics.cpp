@@ -13,8 +13,6 @@ namespace leadscrew::model {
 
 namespace {
 
-constexpr double kTwoOverPi = 0.63661977236758134308;
-
 using ConstraintMatrix =
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxConstraints, kMaxCoordinates>;
 using ColumnMatrix =

@@ -1350,12 +1350,14 @@ integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
   const std::vector<std::string>& allowed = drive_integrators(p);
-  if (std::find(allowed.begin(), allowed.end(), options.integrator) == allowed.end())
-    require_choice("integrator", options.integrator, allowed,
+  // "" is the model's default, the first that fits.
+  const std::string& integrator = options.integrator.empty() ? allowed.front() : options.integrator;
+  if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
+    require_choice("integrator", integrator, allowed,
                    "friction.law = \"" + friction_law_name(p.friction) + "\"" +
                        (p.backlash == BacklashContact::exact ? " with exact backlash" : ""));
   require_nonnegative("bounce_threshold", options.bounce_threshold);
-  if (options.integrator == "moreau" &&
+  if (integrator == "moreau" &&
       (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic))
     throw InvalidArgument("integrator = \"moreau\" is invalid for backlash.contact = \"" +
                           backlash_contact_name(p.backlash) + "\": a penalty contact needs an ODE integrator (the stepping scheme "
@@ -1368,7 +1370,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
   CoordinateVector q = CoordinateVector::Zero(model.coordinate_count()), v = v0;
   layout.compress(q, v, y0.data());
 
-  if (options.integrator == "moreau") {
+  if (integrator == "moreau") {
     DriveMoreau system(model);
     system.initialize(0.0, y0.data());
     integrate::MoreauOptions moreau;
@@ -1385,7 +1387,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
   integrate::EventDrivenOptions driver;
   driver.integrator_options = options.integrator_options;
   driver.max_events = options.max_events;
-  if (options.integrator == "event_driven") {
+  if (integrator == "event_driven") {
     // Rigid: our Verner 6(5) with exact event location, an order of
     // magnitude cheaper than CVODE. (CVODE used to lose flank events of a
     // rattling nut, 3 to 8 of 36 at rtol 1e-12; with handle_event's touch
@@ -1394,7 +1396,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
                         : p.concept == Concept::rigid      ? "rk_verner6"
                                                            : "cvode_bdf";
   } else {
-    driver.integrator = options.integrator;
+    driver.integrator = integrator;
   }
   // The regularized friction laws are stiff near zero slip, and with the
   // flexible models' lightly damped modes BDF above order 3 is not stable
@@ -1412,7 +1414,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
     driver.integrator_options.max_order = 3;
   integrate::SimulationResult result =
       integrate::simulate_event_driven(system, 0.0, y0, options.output, driver);
-  result.integrator = options.integrator;
+  result.integrator = integrator;
   result.friction = friction_law_name(p.friction);
   return result;
 }

@@ -238,7 +238,7 @@ class RegularizedBlock final : public integrate::HybridSystem {
         force_at_(block.force),
         kinetic0_(initial_kinetic(block)),
         inverse_mass_(1.0 / block.mass),
-        friction_scale_(2.0 / 3.14159265358979323846 * block.mu * block.normal_force()) {}
+        friction_scale_(kTwoOverPi * block.mu * block.normal_force()) {}
 
   int size() const override { return kStateSize; }
 

@@ -21,7 +21,7 @@ import numpy as np
 from .. import _core
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
-from ..simulation import _drive_arguments, simulate
+from ..simulation import _check_scene_friction, _drive_arguments, simulate
 
 __all__ = ["DriveBatch"]
 
@@ -51,13 +51,11 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
             from None
     bound.apply_defaults()
     a = bound.arguments
-    friction = a["friction"]
-    if friction is not None and friction != scene["friction"]["law"]:
-        raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
-                         f"scene's friction.law (it is {scene['friction']['law']!r})")
+    _check_scene_friction(scene, a["friction"])
 
     return _drive_arguments(t_end, a["integrator"], a["smooth_integrator"], a["rtol"], a["atol"],
-                            a["dt"], a["theta"], t_eval, a["max_steps"], a["max_events"],
+                            a["dt"], a["theta"], np.asarray(t_eval, dtype=float).ravel().tolist(),
+                            a["max_steps"], a["max_events"],
                             a["max_step"], a["first_step"], a["bounce_threshold"],
                             a["max_order"])
 

@@ -251,7 +251,7 @@ def run_chunks(
                     sent = chunk.stop
                     try:
                         future = executor.submit(_timed_chunk, function,
-                                                 [cases[i] for i in chunk])
+                                                 list(cases[chunk.start:chunk.stop]))
                         in_flight[future] = chunk
                     except Exception as error:  # e.g. a case does not pickle
                         outcomes.append(ChunkOutcome(chunk, None, _describe(error), 0.0))

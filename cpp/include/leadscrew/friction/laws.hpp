@@ -13,6 +13,9 @@ namespace leadscrew {
 
 enum class FrictionLaw { coulomb, arctan_velocity, arctan_acceleration };
 
+// 2/pi of the arctan laws lambda_T = (2/pi) mu' lambda_N atan(k_V x), eq. (3.15)/(3.16).
+constexpr double kTwoOverPi = 0.63661977236758134308;
+
 FrictionLaw parse_friction_law(const std::string& name);
 std::string friction_law_name(FrictionLaw law);
 std::vector<std::string> friction_law_names();

@@ -18,7 +18,8 @@ inline bool all_finite(const double* v, int n) {
   return true;
 }
 
-// Throws InvalidArgument unless system.size() >= 1 and system.root_count() >= 0.
+// Throws InvalidArgument unless system.size() >= 1, system.root_count() >= 0
+// and 0 <= system.quadrature_count() < system.size().
 void check_system(const OdeSystem& system);
 
 // Throws InvalidArgument unless `call` (e.g. "advance") comes after initialize.

@@ -13,7 +13,7 @@
 namespace leadscrew::model {
 
 struct DriveSimulationOptions {
-  std::string integrator = "event_driven";
+  std::string integrator = "event_driven";  // "": the model's default (drive_integrators()[0])
   // The smooth integrator inside "event_driven" ("": rk_verner6 for the rigid
   // concept, cvode_bdf for the stiff flexible ones).
   std::string smooth_integrator;

@@ -177,13 +177,16 @@ void bind_drive(py::module_& m) {
       .def_property_readonly("channels", &model::DriveBatch::channels)
       .def(
           "run",
-          [](const model::DriveBatch& batch, const Eigen::Ref<const model::BatchValues>& values) {
+          [](const model::DriveBatch& batch, const Eigen::Ref<const model::BatchValues>& values,
+             int workers) {
             py::gil_scoped_release release;  // for the whole batch
-            return batch.run(values);
+            return batch.run(values, workers);
           },
-          py::arg("values"),
+          py::arg("values"), py::arg("workers") = 1,
           "Simulate one case per row of values (cases, parameters): a DriveBatchResult. A "
-          "failed case sets its row's failure and message.");
+          "failed case sets its row's failure and message. workers: threads that share the "
+          "rows, >= 1 (capped at the row count; 1: the calling thread only); the result is "
+          "the same for every count. ValueError for a wrong width or workers < 1.");
 }
 
 }  // namespace leadscrew::bindings

@@ -1,10 +1,14 @@
 #include "leadscrew/model/drive_batch.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
+#include <system_error>
+#include <thread>
 #include <utility>
 
 #include "leadscrew/core/errors.hpp"
@@ -120,56 +124,99 @@ DriveBatch::DriveBatch(DriveParameters base, const std::vector<std::string>& par
     throw InvalidArgument("t_eval = [] is invalid: a batch samples its channels at given times");
 }
 
-DriveBatchResult DriveBatch::run(const Eigen::Ref<const BatchValues>& values) const {
+DriveBatchResult DriveBatch::run(const Eigen::Ref<const BatchValues>& values,
+                                 int workers) const {
   if (values.cols() != overrides_.size())
     throw InvalidArgument("values has " + std::to_string(values.cols()) +
                           " columns: must have one per parameters entry (" +
                           std::to_string(overrides_.size()) + ")");
-  const std::vector<double>& times = options_.output.t_eval;
+  if (workers < 1)
+    throw InvalidArgument("workers = " + std::to_string(workers) +
+                          " is invalid: must be an integer >= 1");
   DriveBatchResult result;
   const Eigen::Index cases = values.rows();
   result.channel_count = static_cast<int>(channels_.size());
-  result.time_count = static_cast<int>(times.size());
+  result.time_count = static_cast<int>(options_.output.t_eval.size());
   result.samples.resize(cases, result.channel_count * result.time_count);
   result.failures.assign(static_cast<std::size_t>(cases), CaseFailure::none);
   result.messages.assign(static_cast<std::size_t>(cases), std::string());
   result.wall_time.setZero(cases);
 
-  // Reused by every case: the parameters (copied from the base, then the
-  // overrides set) and the channel indices.
-  DriveParameters p;
-  std::vector<int> index(channels_.size());
-  for (Eigen::Index i = 0; i < cases; ++i) {  // one simulation per row
-    try {
-      p = base_;
-      overrides_.apply(values.row(i).data(), p);
-      const DriveModel model(std::move(p));  // p is reset from the base per case
-      // An empty integrator is each case's default (simulate resolves it
-      // from the model, which may resolve parameters: exact backlash of zero
-      // play is the thread without play).
-      const integrate::SimulationResult run = simulate(model, options_);
-      find_channels(channels_, run, index);
-      if (run.time.size() != times.size())
-        throw std::logic_error("a simulation returned " + std::to_string(run.time.size()) +
-                               " points for " + std::to_string(times.size()) +
-                               " sample times");
-      double* row = result.samples.row(i).data();
-      for (std::size_t c = 0; c < channels_.size(); ++c) {
-        const std::vector<double>& channel = run.channels[static_cast<std::size_t>(index[c])];
-        std::copy(channel.begin(), channel.end(), row + c * times.size());
-      }
-      result.wall_time[i] = run.stats.wall_time;
-    } catch (const JammingError& e) {  // before its base class SimulationError
-      fail_case(result, i, CaseFailure::jamming, e.what());
-    } catch (const SimulationError& e) {
-      fail_case(result, i, CaseFailure::simulation, e.what());
-    } catch (const std::invalid_argument& e) {  // InvalidArgument too
-      fail_case(result, i, CaseFailure::invalid_argument, e.what());
-    } catch (const std::exception& e) {  // a case never ends the batch
-      fail_case(result, i, CaseFailure::other, e.what());
-    }
+  const Eigen::Index threads = std::min<Eigen::Index>(workers, cases);
+  if (threads <= 1) {  // the calling thread alone, row after row
+    Workspace workspace{DriveParameters(), std::vector<int>(channels_.size())};
+    for (Eigen::Index i = 0; i < cases; ++i) run_case(values, i, workspace, result);
+    return result;
   }
+
+  // Rows go to whichever thread is free (a shared counter, not fixed blocks):
+  // a jamming or stiff case may cost a hundred cheap ones. Each thread writes
+  // only the rows it took (distinct elements of the result, sized above), the
+  // batch itself is read-only, and simulate() keeps its state (integrator,
+  // SUNDIALS context, LCP workspace) per call, so the threads share nothing
+  // mutable but the counter; join() makes their rows visible here.
+  std::atomic<Eigen::Index> next_row{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;  // what escaped a thread (run_case catches a case's own failures)
+  auto work = [&]() noexcept {
+    try {
+      Workspace workspace{DriveParameters(), std::vector<int>(channels_.size())};
+      for (Eigen::Index i = next_row.fetch_add(1, std::memory_order_relaxed); i < cases;
+           i = next_row.fetch_add(1, std::memory_order_relaxed))
+        run_case(values, i, workspace, result);
+    } catch (...) {  // e.g. bad_alloc recording a failure: stop every thread, rethrow below
+      next_row.store(cases, std::memory_order_relaxed);
+      const std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+    }
+  };
+  std::vector<std::thread> helpers;
+  helpers.reserve(static_cast<std::size_t>(threads - 1));
+  try {
+    for (Eigen::Index k = 1; k < threads; ++k) helpers.emplace_back(work);
+  } catch (const std::system_error&) {
+    // The system would not start another thread: those running (at least
+    // the calling one, below) take the remaining rows.
+  }
+  work();  // the calling thread is one of the workers
+  for (std::thread& helper : helpers) helper.join();
+  if (error) std::rethrow_exception(error);
   return result;
+}
+
+void DriveBatch::run_case(const Eigen::Ref<const BatchValues>& values, Eigen::Index i,
+                          Workspace& workspace, DriveBatchResult& result) const {
+  const std::vector<double>& times = options_.output.t_eval;
+  DriveParameters& p = workspace.parameters;
+  std::vector<int>& index = workspace.channel_index;
+  try {
+    p = base_;
+    overrides_.apply(values.row(i).data(), p);
+    const DriveModel model(std::move(p));  // p is reset from the base per case
+    // An empty integrator is each case's default (simulate resolves it
+    // from the model, which may resolve parameters: exact backlash of zero
+    // play is the thread without play).
+    const integrate::SimulationResult run = simulate(model, options_);
+    find_channels(channels_, run, index);
+    if (run.time.size() != times.size())
+      throw std::logic_error("a simulation returned " + std::to_string(run.time.size()) +
+                             " points for " + std::to_string(times.size()) +
+                             " sample times");
+    double* row = result.samples.row(i).data();
+    for (std::size_t c = 0; c < channels_.size(); ++c) {
+      const std::vector<double>& channel = run.channels[static_cast<std::size_t>(index[c])];
+      std::copy(channel.begin(), channel.end(), row + c * times.size());
+    }
+    result.wall_time[i] = run.stats.wall_time;
+  } catch (const JammingError& e) {  // before its base class SimulationError
+    fail_case(result, i, CaseFailure::jamming, e.what());
+  } catch (const SimulationError& e) {
+    fail_case(result, i, CaseFailure::simulation, e.what());
+  } catch (const std::invalid_argument& e) {  // InvalidArgument too
+    fail_case(result, i, CaseFailure::invalid_argument, e.what());
+  } catch (const std::exception& e) {  // a case never ends the batch
+    fail_case(result, i, CaseFailure::other, e.what());
+  }
 }
 
 }  // namespace leadscrew::model

@@ -430,9 +430,9 @@ class DriveBatch:
         """
         base: DriveParameters; parameters: the fields each case sets (numeric DriveParameters attributes; drive_torque, drive_speed, axial_force as constants); channels: the result channels to sample at t_eval; the rest as simulate_drive (integrator "": each case's default). ValueError for a bad request.
         """
-    def run(self, values: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"]) -> DriveBatchResult:
+    def run(self, values: typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, n]", "flags.c_contiguous"], workers: typing.SupportsInt | typing.SupportsIndex = 1) -> DriveBatchResult:
         """
-        Simulate one case per row of values (cases, parameters): a DriveBatchResult. A failed case sets its row's failure and message.
+        Simulate one case per row of values (cases, parameters): a DriveBatchResult. A failed case sets its row's failure and message. workers: threads that share the rows, >= 1 (capped at the row count; 1: the calling thread only); the result is the same for every count. ValueError for a wrong width or workers < 1.
         """
     @property
     def channels(self) -> list[str]:

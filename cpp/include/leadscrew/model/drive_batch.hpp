@@ -4,9 +4,10 @@
 //
 // A study's sweep calls this once per chunk of cases: the per-case work (the
 // parameter edit, the model assembly, the simulation, picking out the
-// samples) stays in C++, so that the Python around it is per chunk and a
-// thread pool runs the chunks in parallel while the GIL is released. A case
-// that fails becomes a failure entry of its row; the other cases run on.
+// samples) stays in C++, so that the Python around it is per chunk. The batch
+// may also spread its rows over its own threads (run's `workers`): then the
+// thread pool stays in C++ and a sweep of microsecond cases is one call. A
+// case that fails becomes a failure entry of its row; the other cases run on.
 #pragma once
 
 #include <Eigen/Core>
@@ -68,7 +69,8 @@ using BatchValues = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 
 // A batch request (immutable, like a DriveModel): the base parameters, which
 // of them each case sets, the channels to sample and the simulation options,
-// checked once; run() may be called from several threads at once.
+// checked once; run() may be called from several threads at once, and runs
+// its rows on several threads itself when asked.
 class DriveBatch {
  public:
   // options.output.t_eval are the sample times (required, non-empty: with
@@ -81,15 +83,31 @@ class DriveBatch {
 
   // Simulates one case per row of `values` (one column per parameter name)
   // from the base with those fields set, and samples the channels. Throws
-  // InvalidArgument if `values` has the wrong width; a case that fails (its
-  // parameters, an unknown channel, the simulation) only sets its row's
-  // failure.
-  DriveBatchResult run(const Eigen::Ref<const BatchValues>& values) const;
+  // InvalidArgument if `values` has the wrong width or `workers` < 1; a case
+  // that fails (its parameters, an unknown channel, the simulation) only sets
+  // its row's failure.
+  //
+  // workers: threads that simulate the rows, >= 1, capped at the row count.
+  // 1 runs every row on the calling thread; w > 1 runs the calling thread and
+  // w - 1 std::threads, each taking the next row from a shared counter (cheap
+  // and expensive cases balance). Each row's result depends only on that row:
+  // the result is bit-for-bit the same for every worker count.
+  DriveBatchResult run(const Eigen::Ref<const BatchValues>& values, int workers = 1) const;
 
   int parameter_count() const noexcept { return overrides_.size(); }
   const std::vector<std::string>& channels() const noexcept { return channels_; }
 
  private:
+  // What one thread of run() reuses from case to case.
+  struct Workspace {
+    DriveParameters parameters;  // copied from the base, then the overrides set
+    std::vector<int> channel_index;
+  };
+  // Simulates row i into result's row i (and only that row), or records its
+  // failure there.
+  void run_case(const Eigen::Ref<const BatchValues>& values, Eigen::Index i,
+                Workspace& workspace, DriveBatchResult& result) const;
+
   DriveParameters base_;
   DriveParameterOverrides overrides_;
   std::vector<std::string> channels_;

@@ -5,8 +5,8 @@ friction coefficient, a constant load, ...) need not build a Scene, a model
 and a Result per case in Python: :class:`DriveBatch` holds the scene's
 resolved parameters once, and :meth:`DriveBatch.run` sends a whole chunk of
 cases (one row of parameter values each) to the core, which simulates them
-one after the other with the GIL released and returns only the requested
-channels at the requested times. A case that fails becomes its row's error
+with the GIL released, on the calling thread or on ``workers`` threads of
+its own, and returns only the requested channels at the requested times. A case that fails becomes its row's error
 message, as :func:`leadscrew.studies._sweep.run_cases` gives it
 (``"ExceptionType: message"``), and its samples are NaN.
 """
@@ -22,6 +22,7 @@ from .. import _core
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
 from ..simulation import _check_scene_friction, _drive_arguments, simulate
+from ._common import check_count
 
 __all__ = ["DriveBatch"]
 
@@ -114,11 +115,16 @@ class DriveBatch:
     def channels(self) -> List[str]:
         return list(self._channels)
 
-    def run(self, values: Any) -> Tuple[np.ndarray, List[Optional[str]], np.ndarray]:
+    def run(self, values: Any, workers: int = 1
+            ) -> Tuple[np.ndarray, List[Optional[str]], np.ndarray]:
         """Simulate one case per row of ``values`` (one column per parameter).
 
         Args:
             values: (cases, parameters) array of the parameters' values [SI].
+            workers: threads of the core that share the rows, an integer >= 1
+                (at most one per row is started; 1: the calling thread only).
+                Each thread takes the next row when it is free, so cheap and
+                costly cases balance; every row is the same for any count.
 
         Returns:
             ``(samples, errors, wall_time)``: samples (cases, channels,
@@ -127,13 +133,17 @@ class DriveBatch:
             simulation's C++ clock (NaN for a failed case).
 
         Raises:
-            ValueError: ``values`` has the wrong number of columns.
+            ValueError: ``values`` has the wrong number of columns, or
+                ``workers`` is not an integer >= 1.
         """
+        workers = check_count("workers", workers, 1)
         values = np.asarray(values, dtype=float)
         if values.ndim != 2 or values.shape[1] != len(self._parameters):
             raise ValueError(f"values has shape {values.shape}: must be (cases, "
                              f"{len(self._parameters)})")
-        result = self._core.run(values)
+        # The core starts at most one thread per row; capping here also keeps
+        # a huge count within its int.
+        result = self._core.run(values, min(workers, max(1, len(values))))
         errors: List[Optional[str]] = [
             None if kind == "none" else f"{_EXCEPTION_NAMES[kind]}: {message}"
             for kind, message in zip(result.failures, result.messages)]

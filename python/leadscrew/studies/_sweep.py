@@ -25,6 +25,12 @@ a whole chunk (a list of cases) and returns whatever describes them, e.g. the
 arrays of one C++ batch call (:mod:`leadscrew.studies._batch`), so that the
 Python work is per chunk rather than per case.
 
+:func:`run_batches` is for a chunk function that spreads its cases over
+threads of its own (a C++ batch, ``DriveBatch.run(values, workers)``): it
+calls it in the calling thread, on the whole sweep at once, or, with a
+progress bar, on a few consecutive ranges that each take about
+:data:`PROGRESS_SECONDS`, so the bar moves while the thread pool stays in C++.
+
 The default executor is a thread pool over ``os.cpu_count()`` workers: the
 C++ core releases the GIL while it integrates, so threads run simulations in
 parallel. :class:`SerialExecutor` runs every case in the calling thread (the
@@ -44,12 +50,19 @@ from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
 
 __all__ = ["Outcome", "ChunkOutcome", "SerialExecutor", "run_cases", "run_chunks",
-           "default_workers", "guided_size", "MIN_CHUNK_SECONDS"]
+           "run_batches", "default_workers", "guided_size", "MIN_CHUNK_SECONDS",
+           "PROGRESS_SECONDS"]
 
 # Least work per chunk once the cost of a case is known [s]: the Python
 # around a chunk (submission, future, the chunk function's own work) takes
 # some 30-50 us on a thread pool, under 5% of this.
 MIN_CHUNK_SECONDS = 1e-3
+
+# Wall time of one call of run_batches while a progress bar shows [s]: about
+# the bar's own refresh interval (tqdm's mininterval, 0.1 s) or more. Each
+# call ends with its threads finishing their last cases unevenly (at most one
+# case each), so fewer, longer calls waste less.
+PROGRESS_SECONDS = 0.25
 
 
 @dataclass(frozen=True)
@@ -277,6 +290,64 @@ def run_chunks(
     if owned:  # every chunk is done: the threads only exit, nothing to wait for
         executor.shutdown(wait=False)
     outcomes.sort(key=lambda outcome: outcome.cases.start)
+    return outcomes
+
+
+def run_batches(
+    function: Callable[[range], Any],
+    count: int,
+    workers: int,
+    progress: bool = True,
+    description: Optional[str] = None,
+) -> List[ChunkOutcome]:
+    """Call ``function`` in the calling thread on consecutive ranges of ``count`` cases.
+
+    For a function that runs a range of cases in parallel itself (a C++
+    batch on ``workers`` threads of its own): without a progress bar it is
+    called once, on every case; with one, first on one case per worker (to
+    measure the sweep's wall time per case), then on ranges that take about
+    :data:`PROGRESS_SECONDS` each at that rate, the bar updated after each.
+
+    Args:
+        function: called as ``function(range_of_case_indices)``.
+        count: number of cases, >= 0.
+        workers: the threads ``function`` runs its range on, >= 1 (no range
+            but the last is smaller).
+        progress: show a tqdm progress bar over the finished cases.
+        description: the progress bar's label.
+
+    Returns:
+        One :class:`ChunkOutcome` per call, in order; the ranges cover every
+        case once. A call that raised has ``error`` set and ``value`` None
+        (the later ranges still run).
+    """
+    if count <= 0:
+        return []
+    from tqdm.auto import tqdm
+
+    outcomes: List[ChunkOutcome] = []
+    done, measured_cases, measured_seconds = 0, 0, 0.0
+    with tqdm(total=count, desc=description, disable=not progress, leave=False) as bar:
+        while done < count:  # each pass runs at least `workers` cases
+            if not progress:
+                size = count  # one call: nothing to report until it ends
+            elif measured_cases:
+                size = math.ceil(PROGRESS_SECONDS * measured_cases / max(measured_seconds, 1e-9))
+            else:
+                size = workers
+            cases = range(done, min(count, done + max(size, workers)))
+            start = time.perf_counter()
+            try:
+                value = function(cases)
+            except Exception as error:  # the rows say so, as those of a lost chunk
+                outcomes.append(ChunkOutcome(cases, None, _describe(error), 0.0))
+            else:
+                elapsed = time.perf_counter() - start
+                outcomes.append(ChunkOutcome(cases, value, None, elapsed))
+                measured_cases += len(cases)
+                measured_seconds += elapsed
+            done = cases.stop
+            bar.update(len(cases))
     return outcomes
 
 

@@ -21,7 +21,7 @@ import pandas as pd
 from ..thread import efficiency, is_drivable
 from ._batch import DriveBatch
 from ._common import annotate, axes, as_scene, check_grid, check_positive
-from ._sweep import run_chunks
+from ._sweep import default_workers, run_batches, run_chunks
 
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
 
@@ -52,15 +52,16 @@ def _efficiency_batch(scene, speed: float, t_end: float, window: Tuple[float, fl
                       [0.0, start, 0.5 * (start + end), end], **options)
 
 
-def _efficiency_chunk(cases: List[Tuple[float, float]], batch: DriveBatch) -> Dict[str, Any]:
-    """The measures of a chunk of (mu, load) cases, from one C++ batch call.
+def _efficiency_chunk(cases: Any, batch: DriveBatch, workers: int = 1) -> Dict[str, Any]:
+    """The measures of a chunk of (mu, load) cases (a list of pairs or an
+    (n, 2) array), from one C++ batch call on ``workers`` threads of the core.
 
     eta = (W_in - W_friction) / W_in (eq. 5.2) between two sample times, for
     every case of the chunk at once (columns of the samples).
     """
     mu_and_load = np.asarray(cases, dtype=float).reshape(-1, 2)
     # The load is raised: it acts along -x (loads.axial_force = -load).
-    samples, errors, wall_time = batch.run(mu_and_load * [1.0, -1.0])
+    samples, errors, wall_time = batch.run(mu_and_load * [1.0, -1.0], workers)
     work, loss, torque, speed = (samples[:, c] for c in range(len(_CHANNELS)))
 
     def eta(i, j):
@@ -102,10 +103,17 @@ def efficiency_vs_mu(
     moves the load: that row has ``drivable`` False, ``simulated`` False and
     efficiency 0 without a simulation.
 
-    The cases run in chunks, each one call of the C++ batch
-    (:class:`leadscrew.studies._batch.DriveBatch`), which simulates its cases
-    with the GIL released and returns the works at the window's ends: the
-    Python work is per chunk, so a thread pool runs the chunks in parallel.
+    The cases run as calls of the C++ batch
+    (:class:`leadscrew.studies._batch.DriveBatch`), which simulates them with
+    the GIL released and returns the works at the window's ends. By default
+    (``executor=None``) the thread pool is the core's: the calling thread
+    sends the whole sweep to the batch, whose :func:`default_workers`
+    threads (one per core) take the cases one at a time; with ``progress``
+    it sends a few consecutive ranges of the sweep instead, each taking
+    about a quarter of a second (:func:`leadscrew.studies._sweep.run_batches`),
+    and the bar moves after each. With an ``executor`` the cases go to it in
+    chunks (:func:`leadscrew.studies._sweep.run_chunks`), each chunk one
+    single-threaded batch call. Every path gives the same numbers.
 
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict); its loads are replaced.
@@ -116,8 +124,10 @@ def efficiency_vs_mu(
         window: (start, end) [s] of the measurement, 0 <= start < end <= t_end
             (default: the second half of the run).
         rtol, atol: integration tolerances (relative [1], absolute [SI]).
-        executor: a :class:`concurrent.futures.Executor` (default: a thread
-            pool over all cores); each task is one chunk of cases.
+        executor: a :class:`concurrent.futures.Executor` (a thread or process
+            pool, :class:`~leadscrew.studies._sweep.SerialExecutor`, a Dask
+            client's executor), each task one chunk of cases; default: the
+            C++ core's own threads, one per core (see above).
         progress: show a tqdm progress bar.
         **simulate_options: passed on to :func:`leadscrew.simulate` (all but
             ``t_eval``).
@@ -168,10 +178,19 @@ def efficiency_vs_mu(
         "friction_loss": np.zeros(count), "load_speed": np.zeros(count),
         "wall_time": np.zeros(count)}
     errors = np.full(count, None, dtype=object)
-    chunks = run_chunks(functools.partial(_efficiency_chunk, batch=batch),
-                        list(zip(mu_column[simulated].tolist(),
-                                 load_column[simulated].tolist())),
-                        executor=executor, progress=progress, description="efficiency_vs_mu")
+    if executor is None:  # the thread pool is in the core (one batch call per range)
+        workers = default_workers()
+        cases = np.column_stack([mu_column[simulated], load_column[simulated]])
+        chunks = run_batches(lambda rows: _efficiency_chunk(cases[rows.start:rows.stop], batch,
+                                                            workers),
+                             len(cases), workers, progress=progress,
+                             description="efficiency_vs_mu")
+    else:
+        chunks = run_chunks(functools.partial(_efficiency_chunk, batch=batch),
+                            list(zip(mu_column[simulated].tolist(),
+                                     load_column[simulated].tolist())),
+                            executor=executor, progress=progress,
+                            description="efficiency_vs_mu")
     for chunk in chunks:
         rows = simulated[chunk.cases.start:chunk.cases.stop]
         if chunk.ok:

@@ -304,3 +304,140 @@ def test_run_chunks_gives_chunks_in_order_and_failures_per_chunk():
     pool.shutdown()
     refused = run_chunks(total, [1, 2], executor=pool, progress=False)
     assert all(c.error.startswith("RuntimeError") for c in refused)
+
+
+# The batch's own threads (DriveBatch.run(values, workers)).
+
+def jamming_batch():
+    """A self-locking drive driven by its nut: a heavy load jams (JammingError),
+    a light one runs, and a negative mu or a NaN mass is an invalid row."""
+    jam = ls.Scene.from_dict(thesis_scene(
+        drive="nut", rotor={"inertia": 1e-6},
+        thread={"pitch": 1e-3, "mean_diameter": 20e-3, "hand": "right", "flank_angle": 0.0}))
+    return DriveBatch(jam, ["load_mass", "mu"], CHANNELS, 0.2, [0.0, 0.05, 0.2])
+
+
+MIXED_ROWS = [[1.0, 0.3], [50.0, 0.3], [2.0, -1.0], [0.5, 0.1], [math.nan, 0.3],
+              [50.0, 0.2], [3.0, 0.25], [1.5, 0.0]]
+
+
+def run_with(batch, values, workers):
+    samples, errors, wall_time = batch.run(values, workers)
+    return samples, errors, np.isnan(wall_time)
+
+
+@pytest.mark.parametrize("workers", [2, 3, len(MIXED_ROWS), 64])
+def test_workers_give_the_rows_of_one_thread_bit_for_bit_failures_included(workers):
+    """Rows go to whichever thread is free, but each row depends only on its
+    values: samples, failures and their messages are those of workers=1, with
+    jamming and invalid rows between the good ones (and more workers than rows)."""
+    batch = jamming_batch()
+    reference = run_with(batch, MIXED_ROWS, 1)
+    kinds = [e.split(":")[0] if e else None for e in reference[1]]
+    assert kinds == [None, "JammingError", "ValueError", None, "ValueError", "JammingError",
+                     "JammingError", None]
+    for _ in range(3):  # the order the threads take rows in varies from run to run
+        samples, errors, failed = run_with(batch, MIXED_ROWS, workers)
+        np.testing.assert_array_equal(samples, reference[0])  # NaN rows equal too
+        assert errors == reference[1]
+        np.testing.assert_array_equal(failed, reference[2])
+
+
+def test_workers_share_a_sweep_of_cheap_cases_identically():
+    """150 rigid cases of ~10 us each: the threads interleave row by row, which
+    is where a data race would show."""
+    batch = DriveBatch(speed_controlled(scene()), ["mu", "axial_force"], CHANNELS, 0.2,
+                       [0.0, 0.1, 0.15, 0.2])
+    mu, loads = np.linspace(0.0, 0.5, 50), [10.0, 50.0, 100.0]
+    values = np.column_stack([np.repeat(mu, 3), -np.tile(loads, 50)])
+    values[[7, 77], 0] = [-0.5, math.inf]  # invalid rows among them
+    reference, errors, _ = batch.run(values)
+    assert [i for i, e in enumerate(errors) if e] == [7, 77]
+    for workers in (2, 4):
+        for _ in range(5):
+            samples, errors_now, wall_time = batch.run(values, workers)
+            np.testing.assert_array_equal(samples, reference)
+            assert errors_now == errors
+            assert np.isnan(wall_time).sum() == 2 and (wall_time[np.isfinite(wall_time)] > 0).all()
+
+
+def test_workers_with_no_rows():
+    batch = DriveBatch(scene(), ["mu"], ["u_load"], 0.1, [0.1])
+    samples, errors, wall_time = batch.run(np.empty((0, 1)), workers=4)
+    assert samples.shape == (0, 1, 1) and errors == [] and wall_time.shape == (0,)
+
+
+@pytest.mark.parametrize("workers", [0, -2, 1.5, True, "2", None])
+def test_bad_workers_raise(workers):
+    batch = DriveBatch(scene(), ["mu"], ["u_load"], 0.1, [0.1])
+    with pytest.raises(ValueError, match=f"workers = {workers!r} is invalid: must be an "
+                                         r"integer >= 1"):
+        batch.run([[0.1]], workers)
+
+
+@pytest.mark.parametrize("workers", [0, -3])
+def test_the_core_checks_workers_itself(workers):
+    """The C++ batch (leadscrew._core.DriveBatch) refuses a count < 1 too,
+    before any case runs."""
+    batch = DriveBatch(scene(), ["mu"], ["u_load"], 0.1, [0.1])
+    with pytest.raises(ValueError, match=f"workers = {workers} is invalid: must be an integer "
+                                         ">= 1"):
+        batch._core.run(np.array([[0.1]]), workers)
+
+
+def test_a_huge_worker_count_is_capped_at_the_rows():
+    batch = DriveBatch(scene(), ["mu"], ["u_load"], 0.1, [0.1])
+    samples, errors, _ = batch.run([[0.1], [0.2]], 10**12)
+    np.testing.assert_array_equal(samples, batch.run([[0.1], [0.2]])[0])
+    assert errors == [None, None]
+
+
+def test_default_efficiency_sweep_runs_on_the_cores_threads(monkeypatch):
+    """executor=None: one batch call on default_workers() threads of the core
+    (no Python thread pool), the same frame as SerialExecutor and a thread
+    pool's chunks, failed and undrivable rows included."""
+    from leadscrew.studies import _batch, drive_efficiency
+
+    calls = []
+    run = _batch.DriveBatch.run
+
+    def spy(self, values, workers=1):
+        calls.append((len(values), workers))
+        return run(self, values, workers)
+
+    monkeypatch.setattr(_batch.DriveBatch, "run", spy)
+    monkeypatch.setattr(drive_efficiency, "default_workers", lambda: 3)
+    cot = 1.0 / math.tan(ls.Thread(1e-3, 20e-3).lead_angle)
+    mu, loads = [0.0, 0.1, 1.01 * cot, 0.3, 0.45], [10.0, 50.0, 100.0]
+    base = scene()
+    default = efficiency_vs_mu(base, mu, loads, progress=False)
+    assert calls == [(12, 3)]  # the 12 drivable cases, one call
+    calls.clear()
+    serial = efficiency_vs_mu(base, mu, loads, executor=SerialExecutor(), progress=False)
+    assert {workers for _, workers in calls} == {1}
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        pooled = efficiency_vs_mu(base, mu, loads, executor=pool, progress=False)
+    assert list(default["simulated"]) == [True] * 6 + [False] * 3 + [True] * 6
+    for frame in (serial, pooled):
+        pd.testing.assert_frame_equal(default.drop(columns="wall_time"),
+                                      frame.drop(columns="wall_time"))
+    # A failing option fails every simulated row alike, on every path.
+    failing = [efficiency_vs_mu(base, mu, loads, executor=executor, rtol=-1.0, progress=False)
+               for executor in (None, SerialExecutor())]
+    assert failing[0]["error"].str.startswith("ValueError: rtol = -1").sum() == 12
+    pd.testing.assert_frame_equal(failing[0].drop(columns="wall_time"),
+                                  failing[1].drop(columns="wall_time"))
+
+
+def test_default_efficiency_sweep_with_a_progress_bar(monkeypatch, capsys):
+    """With progress the sweep goes to the core in consecutive ranges (here
+    forced small), the bar moving after each: the same frame."""
+    from leadscrew.studies import _sweep
+
+    mu, loads = np.linspace(0.0, 0.5, 9), [10.0, 100.0]
+    quiet = efficiency_vs_mu(scene(), mu, loads, progress=False)
+    monkeypatch.setattr(_sweep, "PROGRESS_SECONDS", 1e-9)  # every range a worker's cases
+    shown = efficiency_vs_mu(scene(), mu, loads, progress=True)
+    assert "efficiency_vs_mu" in capsys.readouterr().err
+    pd.testing.assert_frame_equal(shown.drop(columns="wall_time"),
+                                  quiet.drop(columns="wall_time"))

@@ -14,8 +14,9 @@ import pytest
 
 import leadscrew as ls
 from helpers.scenes import thesis_scene
+from leadscrew.studies import _sweep
 from leadscrew.studies._sweep import (MIN_CHUNK_SECONDS, SerialExecutor, default_workers,
-                                      guided_size, run_cases, run_chunks)
+                                      guided_size, run_batches, run_cases, run_chunks)
 from leadscrew.studies.creep import creep_vs_backlash
 from leadscrew.studies.drive_efficiency import efficiency_vs_mu
 
@@ -222,3 +223,45 @@ def test_an_interrupt_ends_the_sweep_and_its_own_pool():
     with pytest.raises(Stop):
         run_chunks(stop_at_three, range(8), progress=False, chunk_size=1)
     assert threading.active_count() == before  # the default pool was shut down and joined
+
+
+# run_batches: a chunk function with threads of its own, called in this thread.
+
+def test_run_batches_without_a_bar_is_one_call():
+    calls = []
+    outcomes = run_batches(lambda cases: calls.append(cases) or len(cases), 10, workers=4,
+                           progress=False)
+    assert calls == [range(0, 10)]
+    assert [(o.cases, o.value, o.error) for o in outcomes] == [(range(0, 10), 10, None)]
+    assert outcomes[0].elapsed >= 0.0
+    assert run_batches(lambda cases: 1 / 0, 0, workers=2, progress=False) == []
+
+
+def test_run_batches_with_a_bar_sizes_ranges_by_the_measured_rate(monkeypatch, capsys):
+    """One case per worker first, then ranges of about PROGRESS_SECONDS at the
+    rate measured so far (never fewer than the workers), covering every case."""
+    def cases_of_a_millisecond(cases):
+        time.sleep(1e-3 * len(cases))
+        return list(cases)
+
+    monkeypatch.setattr(_sweep, "PROGRESS_SECONDS", 0.01)  # ~10 cases of 1 ms
+    outcomes = run_batches(cases_of_a_millisecond, 40, workers=2, description="ranges")
+    sizes = [len(o.cases) for o in outcomes]
+    assert sizes[0] == 2 and all(2 <= n <= 11 for n in sizes[1:]) and len(sizes) >= 4
+    assert [case for o in outcomes for case in o.value] == list(range(40))
+    assert "ranges" in capsys.readouterr().err
+
+
+def test_run_batches_keeps_going_after_a_failed_call(monkeypatch):
+    def fail_on_the_second(cases):
+        if cases.start == 3:
+            raise RuntimeError("lost range")
+        return len(cases)
+
+    monkeypatch.setattr(_sweep, "PROGRESS_SECONDS", 1e-9)  # every range `workers` cases
+    outcomes = run_batches(fail_on_the_second, 8, workers=3, progress=True)
+    assert [o.cases for o in outcomes] == [range(0, 3), range(3, 6), range(6, 8)]
+    assert [o.error for o in outcomes] == [None, "RuntimeError: lost range", None]
+    assert outcomes[1].value is None and outcomes[1].elapsed == 0.0
+    single = run_batches(fail_on_the_second, 8, workers=3, progress=False)
+    assert [o.cases for o in single] == [range(0, 8)] and single[0].ok

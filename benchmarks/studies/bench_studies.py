@@ -1,7 +1,11 @@
 """Benchmark of the parallel study sweeps (not a test).
 
 Two sweeps of leadscrew.studies, each run serially (SerialExecutor) and on the
-default thread pool (os.cpu_count() workers; the C++ core releases the GIL):
+default path (executor=None, os.cpu_count() workers): for efficiency_vs_mu the
+C++ batch's own threads (one call of DriveBatch.run(values, workers), no Python
+thread pool), for creep_map a thread pool of Python threads (the C++ core
+releases the GIL while it integrates); and on a reused ThreadPoolExecutor
+passed as executor (Python threads sending chunks, for both):
 
 - efficiency_vs_mu: 50 friction coefficients x 3 axial loads on the thesis's
   Table 5.1 drive (rigid concept, speed-controlled at 10 rad/s, 0.2 s);
@@ -10,7 +14,8 @@ default thread pool (os.cpu_count() workers; the C++ core releases the GIL):
   at 5-50 Hz, backlash 0.05-0.5 mm, 6 cycles each).
 
 For each: wall time serial and threaded (the minimum over --repeats
-interleaved runs), the thread pool's speed-up (of the minima, and of the
+interleaved runs; --cheap-repeats for the rigid efficiency sweep, which takes
+milliseconds), the default path's speed-up (of the minima, and of the
 medians), the process's CPU time over wall time in the threaded run (2.0:
 both cores were ours), the time per simulation in the sweep against a single
 simulation of one case run alone (the minimum over many repeats; for
@@ -21,11 +26,13 @@ threaded time is at least max(Python part, total / w), so the speed-up can
 reach w while the Python share stays below 1 - 1/w), and the load average
 before and after (other work on the machine slows the threaded runs first).
 Before and after the sweeps it also times two threads each running one
-C++ batch with no Python in between: that speed-up is what the machine's
-cores give at the time (other jobs, or virtual cores that share a physical
-one, lower it), the ceiling for every sweep's speed-up.
+C++ batch with no Python in between (two Python threads, and the batch's own
+two workers): that speed-up is what the machine's cores give at the time
+(other jobs, or virtual cores that share a physical one, lower it), the
+ceiling for every sweep's speed-up.
 
-Run: python benchmarks/studies/bench_studies.py [--repeats N] [--flexible] [--dask]
+Run: python benchmarks/studies/bench_studies.py [--repeats N] [--cheap-repeats N]
+[--flexible] [--dask]
 (--flexible adds the efficiency sweep on the flexible_nut concept, --dask the
 creep map on a local Dask cluster of two worker processes).
 """
@@ -84,14 +91,17 @@ def single_case_time(case_function, case, repeats=200):
 
 
 def core_scaling(repeats=5, cases=1000):
-    """Speed-up of two threads each running one C++ batch of rigid efficiency
-    cases (the GIL released throughout, no Python in between) over the two
-    batches in a row: what the machine's cores give now, the most any sweep
-    can reach (other jobs, or vCPUs that share a physical core, lower it)."""
+    """Speed-ups of C++ batches of rigid efficiency cases (the GIL released
+    throughout, no Python in between) on two threads over one: two Python
+    threads each running one batch, and one batch of both on its own two
+    workers (DriveBatch.run(values, 2)), against the two batches in a row.
+    What the machine's cores give now, the most any sweep can reach (other
+    jobs, or vCPUs that share a physical core, lower it)."""
     batch = _efficiency_batch(thesis_scene(), 10.0, 0.2, (0.1, 0.2),
                               {"rtol": 1e-8, "atol": 1e-10})
     values = np.tile([0.3, -10.0], (cases, 1))
-    serial = threaded = float("inf")
+    both = np.tile([0.3, -10.0], (2 * cases, 1))
+    serial = threaded = workers = float("inf")
     for _ in range(repeats):
         start = time.perf_counter()
         batch.run(values)
@@ -101,11 +111,15 @@ def core_scaling(repeats=5, cases=1000):
             start = time.perf_counter()
             list(pool.map(batch.run, [values, values]))
             threaded = min(threaded, time.perf_counter() - start)
-    return serial / threaded
+        start = time.perf_counter()
+        batch.run(both, 2)
+        workers = min(workers, time.perf_counter() - start)
+    return serial / threaded, serial / workers
 
 
 def run(name, sweep, case_function, case, n, repeats):
-    """Serial, default pool and a reused pool, interleaved; the minimum of each."""
+    """Serial, the default path (executor=None) and a reused thread pool,
+    interleaved; the minimum of each."""
     single = single_case_time(case_function, case)
     serial, threaded, pooled = [], [], []
     with concurrent.futures.ThreadPoolExecutor(default_workers()) as pool:
@@ -132,6 +146,8 @@ def run(name, sweep, case_function, case, n, repeats):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--cheap-repeats", type=int, default=100,
+                        help="repeats of the rigid efficiency sweep (milliseconds each)")
     parser.add_argument("--flexible", action="store_true")
     parser.add_argument("--dask", action="store_true",
                         help="also run the creep map on a local Dask cluster (2 processes)")
@@ -153,7 +169,8 @@ def main():
             lambda ex, s=scene, t=t_end: efficiency_vs_mu(s, mu, loads, t_end=t, executor=ex,
                                                           progress=False),
             lambda case, b=batch: _efficiency_chunk([case], b),
-            (0.3, 50.0), len(mu) * len(loads), args.repeats))
+            (0.3, 50.0), len(mu) * len(loads),
+            args.cheap_repeats if concept == "rigid" else args.repeats))
 
     frequencies = np.geomspace(5.0, 50.0, 30)
     backlash = np.linspace(0.05e-3, 0.5e-3, 30)
@@ -191,8 +208,11 @@ def main():
           f"{load_before[2]:.2f}; after: {load_after[0]:.2f} {load_after[1]:.2f} "
           f"{load_after[2]:.2f}")
     print(f"two threads of pure C++ (the most a sweep can reach now): speed-up "
-          f"{scaling_before:.2f}x before, {scaling_after:.2f}x after")
-    print(f"minimum of {args.repeats} runs per column (but the speed-up of medians)\n")
+          f"{scaling_before[0]:.2f}x before, {scaling_after[0]:.2f}x after (two Python "
+          f"threads); {scaling_before[1]:.2f}x, {scaling_after[1]:.2f}x (the batch's own two "
+          f"workers)")
+    print(f"minimum of {args.repeats} runs per column ({args.cheap_repeats} for the rigid "
+          f"efficiency sweep; but the speed-up of medians)\n")
     print("| sweep | sims | serial [s] | threads [s] | speed-up | speed-up of medians | "
           "CPU / wall, threads | target [s] | per sim, threads [ms] | single sim [ms] | "
           "C++ share of serial | failed |")
@@ -203,8 +223,10 @@ def main():
               f"{r['speedup']:.2f}x | {r['median_speedup']:.2f}x | {r['parallelism']:.2f} | "
               f"{target} | {r['per_sim'] * 1e3:.3f} | {r['single'] * 1e3:.3f} | "
               f"{r['core_share']:.0%} | {r['failed']} |")
-    print("\n(threads: a new default pool per call; a reused pool gave "
-          + ", ".join(f"{r['pooled']:.3f} s" for r in rows) + ")")
+    print("\n(threads: the default, executor=None: the C++ batch's own threads for "
+          "efficiency_vs_mu, a new thread pool per call for creep_map; a reused "
+          "ThreadPoolExecutor passed as executor gave "
+          + ", ".join(f"{r['pooled']:.4f} s" for r in rows) + ")")
     if dask_time is not None:
         print(f"creep_map on a local Dask cluster (2 worker processes, cluster started "
               f"beforehand): {dask_time:.3f} s")

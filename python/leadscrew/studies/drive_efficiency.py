@@ -212,7 +212,7 @@ def efficiency_vs_mu(
         "simulated": drivable.copy(), "drive_torque": columns["drive_torque"],
         "work_drive": columns["work_drive"], "friction_loss": columns["friction_loss"],
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
-        "error": errors})
+        "error": errors}, copy=False)  # the arrays are the frame's alone: no copies (~50 us)
     return annotate(frame, UNITS, speed=speed, window=(start, end))
 
 

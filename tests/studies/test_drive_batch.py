@@ -361,6 +361,25 @@ def test_workers_share_a_sweep_of_cheap_cases_identically():
             assert np.isnan(wall_time).sum() == 2 and (wall_time[np.isfinite(wall_time)] > 0).all()
 
 
+def test_workers_call_a_python_load_under_the_gil():
+    """A Python-callable load re-acquires the GIL from the core's threads (run
+    releases it): no deadlock, and the per-case samples."""
+    def axial_force(t):
+        return -10.0 * (1.0 + t)
+
+    base = speed_controlled(scene(loads={"axial_force": axial_force}))
+    t_eval = [0.0, 0.05, 0.1]
+    batch = DriveBatch(base, ["mu"], CHANNELS, 0.1, t_eval)
+    mu = [0.05, 0.1, 0.2, 0.3, -1.0]
+    reference = batch.run(np.array(mu)[:, None])
+    samples, errors, _ = batch.run(np.array(mu)[:, None], 3)
+    np.testing.assert_array_equal(samples, reference[0])
+    assert errors == reference[1] == [None] * 4 + [
+        "ValueError: friction.mu = -1 is invalid: must be a finite number >= 0"]
+    np.testing.assert_array_equal(
+        samples[2], simulated(base.replace(friction={"mu": 0.2}), 0.1, t_eval, CHANNELS))
+
+
 def test_workers_with_no_rows():
     batch = DriveBatch(scene(), ["mu"], ["u_load"], 0.1, [0.1])
     samples, errors, wall_time = batch.run(np.empty((0, 1)), workers=4)

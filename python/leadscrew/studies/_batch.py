@@ -124,7 +124,9 @@ class DriveBatch:
             workers: threads of the core that share the rows, an integer >= 1
                 (at most one per row is started; 1: the calling thread only).
                 Each thread takes the next row when it is free, so cheap and
-                costly cases balance; every row is the same for any count.
+                costly cases balance; every row is the same for any count
+                (but the message of an exception that a Python-callable load
+                raised lists the Python frames of the thread that called it).
 
         Returns:
             ``(samples, errors, wall_time)``: samples (cases, channels,

@@ -91,7 +91,9 @@ class DriveBatch {
   // 1 runs every row on the calling thread; w > 1 runs the calling thread and
   // w - 1 std::threads, each taking the next row from a shared counter (cheap
   // and expensive cases balance). Each row's result depends only on that row:
-  // the result is bit-for-bit the same for every worker count.
+  // the result is bit-for-bit the same for every worker count (only the
+  // message of an exception from a CallableExcitation may describe the
+  // thread that called it, e.g. a Python traceback).
   DriveBatchResult run(const Eigen::Ref<const BatchValues>& values, int workers = 1) const;
 
   int parameter_count() const noexcept { return overrides_.size(); }

@@ -34,12 +34,11 @@ py::dict stats_dict(const integrate::SimulationStats& s) {
 
 // channels as one (n_channels, n_points) array
 py::array_t<double> channel_matrix(const integrate::SimulationResult& r) {
-  const py::ssize_t rows = static_cast<py::ssize_t>(r.channels.size());
-  const py::ssize_t cols = static_cast<py::ssize_t>(r.time.size());
+  const py::ssize_t rows = static_cast<py::ssize_t>(r.channel_count());
+  const py::ssize_t cols = static_cast<py::ssize_t>(r.point_count());
   py::array_t<double> out({rows, cols});
   double* data = out.mutable_data();
-  for (py::ssize_t k = 0; k < rows; ++k)
-    std::copy(r.channels[k].begin(), r.channels[k].end(), data + k * cols);
+  for (py::ssize_t k = 0; k < rows; ++k) r.copy_channel(static_cast<std::size_t>(k), data + k * cols);
   return out;
 }
 
@@ -71,7 +70,9 @@ void bind_model(py::module_& m) {
           [](const integrate::SimulationResult& r, const std::string& name) -> py::object {
             const int k = r.channel_index(name);
             if (k < 0) return py::none();
-            return py::array_t<double>(r.channels[k].size(), r.channels[k].data());
+            py::array_t<double> out(static_cast<py::ssize_t>(r.point_count()));
+            r.copy_channel(static_cast<std::size_t>(k), out.mutable_data());
+            return out;
           },
           py::arg("name"), "One channel as a new array, or None if there is no such channel.")
       .def_property_readonly("events",

@@ -80,10 +80,11 @@ SimulationResult simulate_event_driven(HybridSystem& system, double t0,
   SimulationResult result;
   result.integrator = options.integrator;
   result.channel_names = system.channel_names();
-  result.channels.resize(result.channel_names.size());
   std::vector<double> values(result.channel_names.size());
   const bool every_step = output.t_eval.empty();
-  result.reserve(every_step ? 1024 : output.t_eval.size());
+  // Every step: a guess that most short runs stay within (the storage
+  // doubles beyond it); a large reservation costs more than it saves here.
+  result.reserve(every_step ? 128 : output.t_eval.size());
   auto record = [&](double t) {
     system.channels(t, y.data(), values.data());
     result.append(t, values.data());

@@ -79,10 +79,14 @@ void check_tableau(const ButcherTableau& t) {
   }
 }
 
+ButcherTableau checked_tableau(ButcherTableau tableau) {
+  check_tableau(tableau);
+  return tableau;
+}
+
 ExplicitRungeKutta::ExplicitRungeKutta(const ButcherTableau& tableau,
                                        const IntegratorOptions& options)
     : tableau_(tableau), options_(options), s_(tableau.stages) {
-  check_tableau(tableau_);
   check_fixed_order(options, tableau_.name, tableau_.order);
 }
 

@@ -23,12 +23,14 @@ AdvanceResult Integrator::advance_to_output(double t_out, double t_stop,
   return advance(t_out, y);
 }
 
-std::vector<std::string> integrator_names() {
+const std::vector<std::string>& integrator_names() {
   // ARKODE's Fehlberg 8(7) (table ARKODE_FEHLBERG_13_7_8) is not offered: its error estimate vanishes identically when f depends on t only
   // (the estimating stages pair up at c = 0 and c = 1), so on y' = cos(t) it
   // takes huge steps and returns O(1) errors at any tolerance (measured:
   // error 5.8 at rtol 1e-10). Forcing terms of the drive models have that part.
-  return {"cvode_bdf", "cvode_adams", "dopri5", "verner6", "rk_dopri5", "rk_verner6"};
+  static const std::vector<std::string> names = {"cvode_bdf", "cvode_adams", "dopri5",
+                                                 "verner6",   "rk_dopri5",   "rk_verner6"};
+  return names;
 }
 
 void validate_options(const IntegratorOptions& options) {
@@ -48,8 +50,7 @@ void validate_options(const IntegratorOptions& options) {
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name,
                                             const IntegratorOptions& options) {
-  const std::vector<std::string> names = integrator_names();
-  const int index = require_choice("method", name, names);
+  const int index = require_choice("method", name, integrator_names());
   validate_options(options);
   switch (index) {
     case 0:

@@ -27,9 +27,9 @@ SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
   SimulationResult result;
   result.integrator = "moreau";
   result.channel_names = system.channel_names();
-  result.channels.resize(result.channel_names.size());
   const std::size_t channel_count = result.channel_names.size();
-  std::vector<double> values(channel_count), previous_values(channel_count);
+  std::vector<double> values(channel_count), previous_values(channel_count),
+      interpolated(channel_count);
   const bool every_step = output.t_eval.empty();
   result.reserve(every_step ? static_cast<std::size_t>(step_count) + 1 : output.t_eval.size());
 
@@ -59,10 +59,9 @@ SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
       // Linear interpolation between step ends: first order, as the scheme.
       while (next_eval < eval_count && output.t_eval[next_eval] <= t_next) {
         const double s = (output.t_eval[next_eval] - t) / (t_next - t);
-        std::vector<double>& row = previous_values;  // reuse as scratch below
-        result.time.push_back(output.t_eval[next_eval]);
         for (std::size_t c = 0; c < channel_count; ++c)
-          result.channels[c].push_back(row[c] + s * (values[c] - row[c]));
+          interpolated[c] = previous_values[c] + s * (values[c] - previous_values[c]);
+        result.append(output.t_eval[next_eval], interpolated.data());
         ++next_eval;
       }
     }

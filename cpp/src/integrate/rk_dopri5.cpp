@@ -55,7 +55,7 @@ ButcherTableau make_dopri5() {
 }  // namespace
 
 const ButcherTableau& dopri5_tableau() {
-  static const ButcherTableau tableau = make_dopri5();
+  static const ButcherTableau tableau = checked_tableau(make_dopri5());
   return tableau;
 }
 

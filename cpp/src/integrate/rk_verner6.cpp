@@ -36,7 +36,7 @@ ButcherTableau make_verner6() {
 }  // namespace
 
 const ButcherTableau& verner6_tableau() {
-  static const ButcherTableau tableau = make_verner6();
+  static const ButcherTableau tableau = checked_tableau(make_verner6());
   return tableau;
 }
 

@@ -7,12 +7,18 @@ namespace leadscrew::integrate {
 
 void SimulationResult::reserve(std::size_t points) {
   time.reserve(points);
-  for (auto& channel : channels) channel.reserve(points);
+  values.reserve(points * channel_count());
 }
 
-void SimulationResult::append(double t, const double* values) {
+void SimulationResult::append(double t, const double* row) {
   time.push_back(t);
-  for (std::size_t k = 0; k < channels.size(); ++k) channels[k].push_back(values[k]);
+  values.insert(values.end(), row, row + channel_count());
+}
+
+void SimulationResult::copy_channel(std::size_t k, double* out) const {
+  const std::size_t stride = channel_count();
+  const double* in = values.data() + k;
+  for (std::size_t i = 0; i < time.size(); ++i) out[i] = in[i * stride];
 }
 
 int SimulationResult::channel_index(const std::string& name) const {

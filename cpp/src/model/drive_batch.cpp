@@ -204,8 +204,7 @@ void DriveBatch::run_case(const Eigen::Ref<const BatchValues>& values, Eigen::In
                              " sample times");
     double* row = result.samples.row(i).data();
     for (std::size_t c = 0; c < channels_.size(); ++c) {
-      const std::vector<double>& channel = run.channels[static_cast<std::size_t>(index[c])];
-      std::copy(channel.begin(), channel.end(), row + c * times.size());
+      run.copy_channel(static_cast<std::size_t>(index[c]), row + c * times.size());
     }
     result.wall_time[i] = run.stats.wall_time;
   } catch (const JammingError& e) {  // before its base class SimulationError

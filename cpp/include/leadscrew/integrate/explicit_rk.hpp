@@ -77,12 +77,16 @@ void hermite_dense_weights(double theta, const ButcherTableau& tableau, double* 
 // Throws InvalidArgument if the tableau is inconsistent (sizes, explicitness,
 // row sums a_i. = c_i, sum b = 1, sum e = 0, FSAL rows).
 void check_tableau(const ButcherTableau& tableau);
+// The tableau, after check_tableau.
+ButcherTableau checked_tableau(ButcherTableau tableau);
 
 class ExplicitRungeKutta final : public Integrator {
  public:
   // Throws InvalidArgument for max_order != 0 (a fixed-order method). The
   // tableau is kept by reference (the methods' tableaux are static): it
-  // must outlive the integrator.
+  // must outlive the integrator, and have passed check_tableau (the
+  // methods' factories, dopri5_tableau() and verner6_tableau(), check theirs
+  // once when they build them, not per integrator).
   ExplicitRungeKutta(const ButcherTableau& tableau, const IntegratorOptions& options);
 
   std::string name() const override { return tableau_.name; }

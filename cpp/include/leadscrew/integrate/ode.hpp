@@ -116,7 +116,7 @@ class Integrator {
 // unknown name, or naming an invalid option.
 std::unique_ptr<Integrator> make_integrator(const std::string& name,
                                             const IntegratorOptions& options);
-std::vector<std::string> integrator_names();
+const std::vector<std::string>& integrator_names();
 
 // Throws InvalidArgument naming the first invalid option, its value and the
 // allowed range (make_integrator calls it; method-specific limits such as

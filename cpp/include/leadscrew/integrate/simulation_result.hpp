@@ -27,16 +27,25 @@ struct SimulationStats {
 struct SimulationResult {
   std::vector<double> time;
   std::vector<std::string> channel_names;
-  // channels[k][i]: channel k at time[i]
-  std::vector<std::vector<double>> channels;
+  // values[i * channel_count() + k]: channel k at time[i]. Point-major, so
+  // that recording an output point is one append of a row (one capacity
+  // check, one contiguous write) however many channels a model has.
+  std::vector<double> values;
   std::vector<Event> events;
   SimulationStats stats;
   std::string integrator;
   std::string friction;
 
+  std::size_t channel_count() const noexcept { return channel_names.size(); }
+  std::size_t point_count() const noexcept { return time.size(); }
+  // Channel k at output point i.
+  double value(std::size_t k, std::size_t i) const { return values[i * channel_count() + k]; }
+  // Copies channel k (point_count() values) to out.
+  void copy_channel(std::size_t k, double* out) const;
+
   void reserve(std::size_t points);
-  // Appends one output point; `values` holds one value per channel.
-  void append(double t, const double* values);
+  // Appends one output point; `row` holds one value per channel.
+  void append(double t, const double* row);
   // Index of the channel called `name`, or -1.
   int channel_index(const std::string& name) const;
 };

@@ -212,7 +212,8 @@ def efficiency_vs_mu(
         "simulated": drivable.copy(), "drive_torque": columns["drive_torque"],
         "work_drive": columns["work_drive"], "friction_loss": columns["friction_loss"],
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
-        "error": errors}, copy=False)  # the arrays are the frame's alone: no copies (~50 us)
+        # object, as annotate leaves it (not inferred as strings, then converted back)
+        "error": pd.Series(errors, dtype=object, copy=False)}, copy=False)  # the arrays are the frame's alone: no copies (~50 us)
     return annotate(frame, UNITS, speed=speed, window=(start, end))
 
 

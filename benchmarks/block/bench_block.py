@@ -37,6 +37,7 @@ same target (through Python, and inside C++).
 from __future__ import annotations
 
 import argparse
+import functools
 import gc
 import math
 import os
@@ -268,27 +269,42 @@ def loosest_meeting(run, reference, target):
     return None
 
 
-def median_time(call, repeats):
-    call()  # warm-up
-    gc.collect()
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        call()
-        times.append(time.perf_counter() - start)
-    return statistics.median(times)
+def time_interleaved(ours_runs, theirs_runs, repeats_ours, repeats_theirs):
+    """Times our runs and solve_ivp's in alternation, so that both see the same
+    machine (the shared vCPUs change speed within seconds): repeats_theirs
+    rounds, each running every one of ours about repeats_ours / repeats_theirs
+    times and every one of theirs once.
 
+    Args:
+        ours_runs: callables returning (t, u, stats) (stats["wall_time"] is
+            the C++ clock).
+        theirs_runs: callables.
 
-def time_ours(run, rtol, repeats):
-    run(rtol)  # warm-up
-    core, python = [], []
+    Returns:
+        (ours, theirs): per run of ours (median C++, median Python, min C++,
+        min Python) [s]; per run of theirs the median [s].
+    """
+    per_round = max(1, round(repeats_ours / repeats_theirs))
+    for run in (*ours_runs, *theirs_runs):
+        run()  # warm-up
+    core = [[] for _ in ours_runs]
+    python = [[] for _ in ours_runs]
+    theirs = [[] for _ in theirs_runs]
     gc.collect()
-    for _ in range(repeats):
-        start = time.perf_counter()
-        _, _, stats = run(rtol)
-        python.append(time.perf_counter() - start)
-        core.append(stats["wall_time"])
-    return statistics.median(core), statistics.median(python), min(core), min(python)
+    for _ in range(repeats_theirs):
+        for i, run in enumerate(ours_runs):
+            for _ in range(per_round):
+                start = time.perf_counter()
+                _, _, stats = run()
+                python[i].append(time.perf_counter() - start)
+                core[i].append(stats["wall_time"])
+        for j, run in enumerate(theirs_runs):
+            start = time.perf_counter()
+            run()
+            theirs[j].append(time.perf_counter() - start)
+    median = statistics.median
+    return ([(median(c), median(p), min(c), min(p)) for c, p in zip(core, python)],
+            [median(t) for t in theirs])
 
 
 def cases():
@@ -313,7 +329,9 @@ def benchmark(repeats_ours, repeats_theirs, progress=print):
             our_integrators = OURS_REGULARIZED
             notes.append(f"{title}: reference DOP853 vs our cvode_bdf at rtol 1e-12: "
                          f"max |diff| = {agreement:.1e} m")
-        case_rows = []
+        # Tolerances first (the loosest meeting the target), then every timing
+        # of the case interleaved.
+        case_rows, ours_runs, theirs_runs = [], [], []
         for integrator in our_integrators:
             run = ours(amplitude, friction, integrator, k_v)
             found = loosest_meeting(run, reference, target)
@@ -321,28 +339,23 @@ def benchmark(repeats_ours, repeats_theirs, progress=print):
                 case_rows.append(dict(case=title, solver=f"leadscrew {integrator}", failed=True))
                 continue
             rtol, error_max, error_final, stats = found
-            core, python, core_min, python_min = time_ours(run, rtol, repeats_ours)
             case_rows.append(dict(case=title, solver=f"leadscrew {integrator}", rtol=rtol,
                                   error_max=error_max, error_final=error_final,
                                   steps=stats["steps"], rhs=stats["rhs_evaluations"],
-                                  events=stats["events"], core=core, python=python,
-                                  core_min=core_min, python_min=python_min))
-            progress(f"  {title:45s} {integrator:12s} rtol {rtol:.2g} err {error_max:.1e} "
-                     f"{core * 1e6:9.1f} us C++ {python * 1e6:9.1f} us Python")
-        ours_rows = [r for r in case_rows if not r.get("failed")]
+                                  events=stats["events"], matched=True))
+            ours_runs.append(functools.partial(run, rtol))
         if friction == "coulomb":
             # Not part of the matched-error comparison: the same integrator at
             # a tolerance a user would set, for the record.
             run = ours(amplitude, friction, "event_driven")
             t, u, stats = run(1e-8)
             error_max, error_final = errors_of(reference, t, u)
-            core, python, _, _ = time_ours(run, 1e-8, repeats_ours)
             case_rows.append(dict(case=title, solver="leadscrew event_driven (fixed rtol)",
                                   rtol=1e-8, error_max=error_max, error_final=error_final,
                                   steps=stats["steps"], rhs=stats["rhs_evaluations"],
-                                  events=stats["events"], core=core, python=python))
-        best_python = min(r["python"] for r in ours_rows)
-        best_core = min(r["core"] for r in ours_rows)
+                                  events=stats["events"], matched=False))
+            ours_runs.append(functools.partial(run, 1e-8))
+        their_rows = []
         for method in ("RK45", "Radau"):
             run = theirs(amplitude, friction, k_v)
             found = loosest_meeting(lambda rtol: run(method, rtol), reference, target)
@@ -351,15 +364,29 @@ def benchmark(repeats_ours, repeats_theirs, progress=print):
                 progress(f"  {title:45s} {method:12s} does not reach {target:g}")
                 continue
             rtol, error_max, error_final, stats = found
-            python = median_time(lambda: run(method, rtol), repeats_theirs)
-            case_rows.append(dict(case=title, solver=f"solve_ivp {method}", rtol=rtol,
-                                  error_max=error_max, error_final=error_final,
-                                  steps=stats["steps"], rhs=stats["rhs_evaluations"],
-                                  events=stats["events"], core=None, python=python,
-                                  ratio_python=python / best_python,
-                                  ratio_core=python / best_core))
-            progress(f"  {title:45s} {method:12s} rtol {rtol:.2g} err {error_max:.1e} "
-                     f"{python * 1e6:9.1f} us Python  x{python / best_python:.0f}")
+            row = dict(case=title, solver=f"solve_ivp {method}", rtol=rtol,
+                       error_max=error_max, error_final=error_final, steps=stats["steps"],
+                       rhs=stats["rhs_evaluations"], events=stats["events"], core=None)
+            their_rows.append(row)
+            theirs_runs.append(functools.partial(run, method, rtol))
+        ours_rows = [r for r in case_rows if "matched" in r]
+        ours_times, theirs_times = time_interleaved(ours_runs, theirs_runs, repeats_ours,
+                                                    repeats_theirs)
+        for row, (core, python, core_min, python_min) in zip(ours_rows, ours_times):
+            row.update(core=core, python=python, core_min=core_min, python_min=python_min)
+            progress(f"  {title:45s} {row['solver']:34s} rtol {row['rtol']:.2g} err "
+                     f"{row['error_max']:.1e} {core * 1e6:9.1f} us C++ {python * 1e6:9.1f} us "
+                     "Python")
+        matched = [r for r in ours_rows if r["matched"]]
+        best_python = min(r["python"] for r in matched)
+        best_core = min(r["core"] for r in matched)
+        for row, python in zip(their_rows, theirs_times):
+            row.update(python=python, ratio_python=python / best_python,
+                       ratio_core=python / best_core)
+            progress(f"  {title:45s} {row['solver']:34s} rtol {row['rtol']:.2g} err "
+                     f"{row['error_max']:.1e} {python * 1e6:9.1f} us Python  "
+                     f"x{python / best_python:.0f}")
+        case_rows.extend(their_rows)
         for row in case_rows:
             row["target"] = target
         rows.extend(case_rows)
@@ -419,8 +446,10 @@ def markdown(rows, notes, repeats_ours, repeats_theirs):
         f"{platform.python_version()}, numpy {np.__version__}, scipy "
         f"{__import__('scipy').__version__}, leadscrew {ls.__version__}, {os.cpu_count()} CPUs, "
         f"load average {os.getloadavg()[0]:.1f} at the end of the run. "
-        f"Medians of {repeats_ours} runs (ours) and {repeats_theirs} runs (solve_ivp) after a "
-        "warm-up. Matched error: each solver at the loosest rtol in 10^-2, 10^-2.25, ..., "
+        f"Medians of about {repeats_ours} runs (ours) and {repeats_theirs} runs (solve_ivp) "
+        "after a warm-up, in alternation (each of the solve_ivp runs follows about "
+        f"{max(1, round(repeats_ours / repeats_theirs))} of each of ours), so that both see the "
+        "same machine. Matched error: each solver at the loosest rtol in 10^-2, 10^-2.25, ..., "
         "10^-13 (atol = 1e-2 rtol) whose max error of u over its own output points is <= the "
         "target. Ratios: solve_ivp time / our fastest time in the same case.",
         "",

@@ -482,9 +482,11 @@ def markdown(rows, notes, repeats_ours, repeats_theirs):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeats", type=int, default=50, help="timed runs of ours")
-    parser.add_argument("--repeats-solve-ivp", type=int, default=11,
-                        help="timed runs of solve_ivp")
+    # Many repeats: the machine's speed changes within seconds, and a median
+    # of few runs of either side moves by several per cent between runs.
+    parser.add_argument("--repeats", type=int, default=200, help="timed runs of ours")
+    parser.add_argument("--repeats-solve-ivp", type=int, default=21,
+                        help="timed runs of solve_ivp (rounds of the alternation)")
     parser.add_argument("--output", default=os.path.join(HERE, "results.md"),
                         help="markdown file to write ('' for none)")
     args = parser.parse_args(argv)

@@ -7,8 +7,8 @@ impacts of an exact backlash.
 References: the piecewise closed form of tests/helpers/rigid_drive_reference.py
 (its own root finder: extrema found recursively down to the third derivative),
 a tighter-tolerance run, the impact law enumerated independently
-(tests/helpers/impact_reference.py), the energy balance, and for eq. (3.15) an independent NumPy solution of
-docs/physics/rigid_drive.md section 5 with the friction factor of the slip
+(tests/helpers/impact_reference.py), the energy balance, and for eq. (3.15)
+an independent NumPy solution of docs/physics/rigid_drive.md section 5 with the friction factor of the slip
 acceleration (per normal-force sign, consistency by the sign of K / Delta)."""
 
 import math

@@ -38,7 +38,8 @@ py::array_t<double> channel_matrix(const integrate::SimulationResult& r) {
   const py::ssize_t cols = static_cast<py::ssize_t>(r.point_count());
   py::array_t<double> out({rows, cols});
   double* data = out.mutable_data();
-  for (py::ssize_t k = 0; k < rows; ++k) r.copy_channel(static_cast<std::size_t>(k), data + k * cols);
+  for (py::ssize_t k = 0; k < rows; ++k)
+    r.copy_channel(static_cast<std::size_t>(k), data + k * cols);
   return out;
 }
 

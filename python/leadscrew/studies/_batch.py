@@ -6,9 +6,10 @@ and a Result per case in Python: :class:`DriveBatch` holds the scene's
 resolved parameters once, and :meth:`DriveBatch.run` sends a whole chunk of
 cases (one row of parameter values each) to the core, which simulates them
 with the GIL released, on the calling thread or on ``workers`` threads of
-its own, and returns only the requested channels at the requested times. A case that fails becomes its row's error
-message, as :func:`leadscrew.studies._sweep.run_cases` gives it
-(``"ExceptionType: message"``), and its samples are NaN.
+its own, and returns only the requested channels at the requested times. A
+case that fails becomes its row's error message, as
+:func:`leadscrew.studies._sweep.run_cases` gives it (``"ExceptionType:
+message"``), and its samples are NaN.
 """
 
 from __future__ import annotations

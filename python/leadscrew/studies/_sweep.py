@@ -336,13 +336,11 @@ def run_batches(
             else:
                 size = workers
             cases = range(done, min(count, done + max(size, workers)))
-            start = time.perf_counter()
             try:
-                value = function(cases)
+                value, elapsed = _timed_chunk(function, cases)
             except Exception as error:  # the rows say so, as those of a lost chunk
                 outcomes.append(ChunkOutcome(cases, None, _describe(error), 0.0))
             else:
-                elapsed = time.perf_counter() - start
                 outcomes.append(ChunkOutcome(cases, value, None, elapsed))
                 measured_cases += len(cases)
                 measured_seconds += elapsed

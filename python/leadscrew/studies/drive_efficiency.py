@@ -213,7 +213,8 @@ def efficiency_vs_mu(
         "work_drive": columns["work_drive"], "friction_loss": columns["friction_loss"],
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
         # object, as annotate leaves it (not inferred as strings, then converted back)
-        "error": pd.Series(errors, dtype=object, copy=False)}, copy=False)  # the arrays are the frame's alone: no copies (~50 us)
+        "error": pd.Series(errors, dtype=object, copy=False)},
+        copy=False)  # the arrays are the frame's alone: no copies (~50 us)
     return annotate(frame, UNITS, speed=speed, window=(start, end))
 
 

@@ -206,8 +206,8 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         on the output times; ``separations`` [1]: flank openings (events to
         'open'); ``flight_fraction`` [1]: share of output times with the nut
         off both flanks (gap > 1e-6 of the clearance, the resolution below which
-        the core treats a bounce as plastic; a closed flank drifts by ~1e-12 m); ``wall_time`` [s, C++];
-        ``steps``, ``events`` [1].
+        the core treats a bounce as plastic; a closed flank drifts by ~1e-12
+        m); ``wall_time`` [s, C++]; ``steps``, ``events`` [1].
 
     Raises:
         ValueError: invalid arguments.

@@ -38,8 +38,6 @@ struct SimulationResult {
 
   std::size_t channel_count() const noexcept { return channel_names.size(); }
   std::size_t point_count() const noexcept { return time.size(); }
-  // Channel k at output point i.
-  double value(std::size_t k, std::size_t i) const { return values[i * channel_count() + k]; }
   // Copies channel k (point_count() values) to out.
   void copy_channel(std::size_t k, double* out) const;
 

@@ -3,6 +3,7 @@ tan(alpha) < mu' < cot(alpha) of thesis eq. (3.5)-(3.8)."""
 
 import math
 
+import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -141,6 +142,31 @@ def test_not_drivable_returns_inf_and_zero_efficiency():
     assert not ls.is_drivable(thread, mu)
     assert ls.raise_torque(thread, mu, 1.0) == math.inf
     assert ls.efficiency(thread, mu) == 0.0
+
+
+@given(threads(), st.lists(mus, min_size=1, max_size=20))
+@settings(max_examples=50, deadline=None)
+def test_array_forms_equal_the_scalar_functions(thread, mu_values):
+    # The sweeps' closed-form columns (efficiency_vs_mu) come from these.
+    from leadscrew import _core
+
+    mu = np.array(mu_values)
+    efficiency = _core.efficiency_array(thread, mu)
+    drivable = _core.is_drivable_array(thread, mu)
+    assert efficiency.dtype == float and drivable.dtype == bool
+    assert efficiency.tolist() == [ls.efficiency(thread, m) for m in mu_values]
+    assert drivable.tolist() == [ls.is_drivable(thread, m) for m in mu_values]
+
+
+def test_array_forms_reject_bad_mu():
+    from leadscrew import _core
+
+    thread = ls.Thread(pitch=3e-3, mean_diameter=20e-3)
+    for call in (_core.efficiency_array, _core.is_drivable_array):
+        with pytest.raises(ValueError, match="mu"):
+            call(thread, np.array([0.1, -0.2]))
+        with pytest.raises(ValueError, match="mu"):
+            call(thread, np.array([0.1, np.nan]))
 
 
 @pytest.mark.parametrize(

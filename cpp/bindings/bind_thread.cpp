@@ -1,3 +1,4 @@
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -70,6 +71,17 @@ Raises:
         py::arg("backdrive") = false);
   m.def("is_self_locking", &is_self_locking, py::arg("thread"), py::arg("mu"));
   m.def("is_drivable", &is_drivable, py::arg("thread"), py::arg("mu"));
+  // Elementwise over an array of mu (the closed-form columns of a sweep: one
+  // call instead of one per value).
+  // Elementwise over an array of mu (the closed-form columns of a sweep: one
+  // call instead of one per value); the thread by value, as py::vectorize
+  // passes its non-vectorized arguments.
+  m.def("efficiency_array",
+        py::vectorize([](Thread thread, double mu) { return efficiency(thread, mu); }),
+        py::arg("thread"), py::arg("mu"));
+  m.def("is_drivable_array",
+        py::vectorize([](Thread thread, double mu) { return is_drivable(thread, mu); }),
+        py::arg("thread"), py::arg("mu"));
 }
 
 }  // namespace leadscrew::bindings

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from typing import Any, Dict, Iterable, Optional
@@ -19,6 +20,7 @@ __all__ = [
     "check_grid",
     "with_loads",
     "annotate",
+    "frame_of",
     "numeric_or_nan",
     "axes",
 ]
@@ -104,21 +106,75 @@ def with_loads(scene: Scene, **loads: Any) -> Scene:
     return scene.replace(loads=loads)
 
 
-def annotate(frame, units: Dict[str, str], **summary: Any):
+def frame_of(columns: Dict[str, np.ndarray]):
+    """A DataFrame of 1-D arrays of one length, in the order given, with
+    plain (object) column labels; an object array stays object (None and
+    messages are not turned into strings). The frame may share memory with
+    the arrays: pass arrays nothing else writes to.
+
+    Why not ``pd.DataFrame(columns)``: that checks and converts every column
+    on its own (~100 us for the 14 columns of a sweep, as much as the rest of
+    the Python around a sweep of 150 microsecond simulations). pandas builds
+    frames from checked arrays with ``DataFrame._from_arrays``, which groups
+    columns of one dtype into one block: ~25 us. It is internal to pandas,
+    so where it is missing or its signature differs, the public constructor
+    runs instead (the same frame; tests/studies/test_common.py compares).
+
+    Raises:
+        ValueError: the arrays are not 1-D, or their lengths differ.
+    """
+    arrays = [np.asarray(values) for values in columns.values()]
+    length = len(arrays[0]) if arrays else 0
+    if any(a.ndim != 1 or len(a) != length for a in arrays):
+        raise ValueError("frame columns must be 1-D arrays of one length: got shapes "
+                         f"{[a.shape for a in arrays]}")
+    names = _labels(tuple(columns))
+    from_arrays = getattr(pd.DataFrame, "_from_arrays", None)
+    if from_arrays is not None:
+        try:
+            return from_arrays(arrays, columns=names, index=pd.RangeIndex(length),
+                               verify_integrity=False)
+        except TypeError:  # another signature: the public way
+            pass
+    return _public_frame_of(names, arrays)
+
+
+@functools.lru_cache(maxsize=64)
+def _labels(names: tuple):
+    """An object Index of column names (immutable: one per set of names)."""
+    return pd.Index(list(names), dtype=object)
+
+
+def _public_frame_of(names, arrays):
+    """frame_of with pandas' public constructor only."""
+    frame = pd.DataFrame(
+        {name: pd.Series(a, dtype=object, copy=False) if a.dtype == object else a
+         for name, a in zip(names, arrays)}, copy=False)
+    frame.columns = names
+    return frame
+
+
+# What an error column holds when it needs no conversion.
+_ERROR_TYPES = {type(None), str}
+
+
+def annotate(frame, units: Dict[str, str], errors_checked: bool = False, **summary: Any):
     """Attach ``attrs["units"]`` (column -> SI unit, ``"1"`` for ratios and
     ``""`` for labels) and, if given, ``attrs["summary"]`` (scalars) to a frame.
-    An ``error`` column holds None for every case that succeeded."""
+    An ``error`` column holds None for every case that succeeded (converted
+    here unless ``errors_checked``: the caller built it of None and
+    messages only, an object column)."""
     # Plain labels: pandas 3 makes the labels an Arrow-backed index, whose
     # first lookup costs ~0.1 ms (what a sweep of microsecond simulations
     # notices); an object index of the same names costs a few microseconds.
     names = frame.columns.tolist()
-    frame.columns = pd.Index(names, dtype=object)
-    if "error" in frame:
+    if frame.columns.dtype != object:
+        frame.columns = pd.Index(names, dtype=object)
+    if not errors_checked and "error" in frame:
         errors = frame["error"]
         # Only a column that holds something besides None and messages (NaN
         # from a frame built of rows) needs the conversion.
-        if errors.dtype != object or not all(
-                e is None or isinstance(e, str) for e in errors.to_numpy()):
+        if errors.dtype != object or not set(map(type, errors.to_numpy())) <= _ERROR_TYPES:
             frame["error"] = errors.astype(object).where(errors.notna(), None)
     frame.attrs["units"] = {column: units[column] for column in names if column in units}
     if summary:

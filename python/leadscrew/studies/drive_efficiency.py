@@ -18,9 +18,9 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
-from ..thread import efficiency, is_drivable
+from .. import _core
 from ._batch import DriveBatch
-from ._common import annotate, axes, as_scene, check_grid, check_positive
+from ._common import annotate, axes, as_scene, check_grid, check_positive, frame_of
 from ._sweep import default_workers, run_batches, run_chunks
 
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
@@ -168,8 +168,9 @@ def efficiency_vs_mu(
     count = len(mus) * len(forces)
     mu_column = np.repeat(mus, len(forces))
     load_column = np.tile(forces, len(mus))
-    closed_form = np.repeat([float(efficiency(thread, m)) for m in mus], len(forces))
-    drivable = np.repeat([bool(is_drivable(thread, m)) for m in mus], len(forces))
+    # leadscrew.efficiency and is_drivable, elementwise over mu (one call each)
+    closed_form = np.repeat(_core.efficiency_array(thread, mus), len(forces))
+    drivable = np.repeat(_core.is_drivable_array(thread, mus), len(forces))
     simulated = np.flatnonzero(drivable)
     # A case that is not simulated: no torque moves the load, eta = 0.
     columns: Dict[str, Any] = {
@@ -205,17 +206,16 @@ def efficiency_vs_mu(
     with np.errstate(divide="ignore", invalid="ignore"):
         relative_error = np.where(closed_form > 0, np.abs(eta - closed_form) / closed_form,
                                   np.abs(eta))
-    frame = pd.DataFrame({
+    frame = frame_of({
         "mu": mu_column, "load": load_column, "efficiency": eta,
         "efficiency_closed_form": closed_form, "relative_error": relative_error,
         "window_change": columns["window_change"], "drivable": drivable,
         "simulated": drivable.copy(), "drive_torque": columns["drive_torque"],
         "work_drive": columns["work_drive"], "friction_loss": columns["friction_loss"],
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
-        # object, as annotate leaves it (not inferred as strings, then converted back)
-        "error": pd.Series(errors, dtype=object, copy=False)},
-        copy=False)  # the arrays are the frame's alone: no copies (~50 us)
-    return annotate(frame, UNITS, speed=speed, window=(start, end))
+        "error": errors})
+    # errors: an object array of None and the messages of failed cases
+    return annotate(frame, UNITS, errors_checked=True, speed=speed, window=(start, end))
 
 
 def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):

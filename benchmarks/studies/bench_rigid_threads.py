@@ -4,7 +4,8 @@ efficiency_vs_mu over 50 values of mu x 3 loads on the thesis's Table 5.1
 drive (rigid concept, 0.2 s per case, ~11 us of C++ each), run in interleaved
 blocks of:
 
-- serial: ``executor=SerialExecutor()`` (chunks of cases in the calling thread);
+- serial: ``executor=SerialExecutor()`` (the default path's batch calls with
+  the calling thread as the only worker);
 - default: ``executor=None`` (one call of the C++ batch on its own
   ``default_workers()`` threads);
 - a reused ``ThreadPoolExecutor`` (Python threads sending chunks);

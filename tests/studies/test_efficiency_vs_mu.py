@@ -96,6 +96,31 @@ def test_failed_simulations_are_rows():
     assert frame.loc[0, "efficiency_closed_form"] == ls.efficiency(ls.Thread(1e-3, 20e-3), 0.1)
 
 
+@pytest.mark.parametrize("progress", [False, True])
+def test_a_serial_executor_runs_the_batch_on_the_calling_thread(rigid, monkeypatch, progress):
+    # SerialExecutor: the default path's batch calls with one worker (the
+    # calling thread), the same rows as the core's thread pool.
+    import threading
+
+    from leadscrew.studies import _batch
+    from leadscrew.studies._sweep import SerialExecutor
+
+    calls = []
+    run = _batch.DriveBatch.run
+
+    def recording(self, values, workers=1):
+        calls.append((workers, threading.current_thread() is threading.main_thread()))
+        return run(self, values, workers)
+
+    monkeypatch.setattr(_batch.DriveBatch, "run", recording)
+    frame = efficiency_vs_mu(scene(), MU, LOADS, executor=SerialExecutor(), progress=progress)
+    assert calls and all(call == (1, True) for call in calls)
+    assert len(calls) == 1 or progress
+    numeric = [c for c in frame.columns if c not in ("wall_time", "error")]
+    assert frame[numeric].equals(rigid[numeric])
+    assert frame["error"].tolist() == rigid["error"].tolist()
+
+
 def test_columns_units_and_plot(rigid):
     assert len(rigid) == len(MU) * len(LOADS)
     assert list(rigid["mu"]) == [m for m in MU for _ in LOADS]

@@ -21,7 +21,7 @@ import pandas as pd
 from .. import _core
 from ._batch import DriveBatch
 from ._common import annotate, axes, as_scene, check_grid, check_positive, frame_of
-from ._sweep import default_workers, run_batches, run_chunks
+from ._sweep import SerialExecutor, default_workers, run_batches, run_chunks
 
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
 
@@ -111,8 +111,10 @@ def efficiency_vs_mu(
     threads (one per core) take the cases one at a time; with ``progress``
     it sends a few consecutive ranges of the sweep instead, each taking
     about a quarter of a second (:func:`leadscrew.studies._sweep.run_batches`),
-    and the bar moves after each. With an ``executor`` the cases go to it in
-    chunks (:func:`leadscrew.studies._sweep.run_chunks`), each chunk one
+    and the bar moves after each. ``executor=SerialExecutor()`` makes the
+    same calls with the calling thread as the batch's only worker. With
+    any other ``executor`` the cases go to it in chunks
+    (:func:`leadscrew.studies._sweep.run_chunks`), each chunk one
     single-threaded batch call. Every path gives the same numbers.
 
     Args:
@@ -125,9 +127,10 @@ def efficiency_vs_mu(
             (default: the second half of the run).
         rtol, atol: integration tolerances (relative [1], absolute [SI]).
         executor: a :class:`concurrent.futures.Executor` (a thread or process
-            pool, :class:`~leadscrew.studies._sweep.SerialExecutor`, a Dask
-            client's executor), each task one chunk of cases; default: the
-            C++ core's own threads, one per core (see above).
+            pool, a Dask client's executor), each task one chunk of cases;
+            :class:`~leadscrew.studies._sweep.SerialExecutor`: the calling
+            thread alone; default: the C++ core's own threads, one per core
+            (see above).
         progress: show a tqdm progress bar.
         **simulate_options: passed on to :func:`leadscrew.simulate` (all but
             ``t_eval``).
@@ -179,8 +182,10 @@ def efficiency_vs_mu(
         "friction_loss": np.zeros(count), "load_speed": np.zeros(count),
         "wall_time": np.zeros(count)}
     errors = np.full(count, None, dtype=object)
-    if executor is None:  # the thread pool is in the core (one batch call per range)
-        workers = default_workers()
+    if executor is None or isinstance(executor, SerialExecutor):
+        # The thread pool is in the core (one batch call per range); serial:
+        # the same calls on the calling thread alone.
+        workers = default_workers() if executor is None else 1
         cases = np.column_stack([mu_column[simulated], load_column[simulated]])
         chunks = run_batches(lambda rows: _efficiency_chunk(cases[rows.start:rows.stop], batch,
                                                             workers),

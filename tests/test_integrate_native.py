@@ -1,10 +1,12 @@
 """Native check of the ODE integrators that Python cannot make: no heap
 allocation after initialize, in restarts, advances, root location and dense
 output, for every method (benchmarks/integrate/alloc_check.cpp, which
-interposes malloc & co. for the whole process, SUNDIALS included).
+interposes malloc & co. for the whole process, SUNDIALS included); and a
+model's own Runge-Kutta stage loop against the engine's, bit for bit
+(benchmarks/integrate/rk_kernel_check.cpp).
 
-Builds the CMake project benchmarks/integrate (target integrate_alloc_check)
-once per session into a temporary directory, or into
+Builds the CMake project benchmarks/integrate (targets integrate_alloc_check
+and rk_kernel_check) once per session into a temporary directory, or into
 $LEADSCREW_NATIVE_BUILD_DIR/integrate, reused across sessions."""
 
 import os
@@ -21,7 +23,8 @@ SOURCE = pathlib.Path(__file__).resolve().parent.parent / "benchmarks" / "integr
 
 
 @pytest.fixture(scope="session")
-def alloc_report(tmp_path_factory):
+def native_build(tmp_path_factory):
+    """The configured build directory of benchmarks/integrate."""
     cmake = shutil.which("cmake")
     assert cmake, "cmake is needed to build benchmarks/integrate (pip install cmake)"
     shared = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR")
@@ -31,12 +34,39 @@ def alloc_report(tmp_path_factory):
         if shutil.which("ninja"):
             configure += ["-G", "Ninja"]
         subprocess.run(configure, check=True, capture_output=True, text=True)
+    return build
+
+
+def build_and_run(build, target):
     done = subprocess.run(
-        [cmake, "--build", str(build), "--target", "integrate_alloc_check", "--parallel", "2"],
+        [shutil.which("cmake"), "--build", str(build), "--target", target, "--parallel", "2"],
         capture_output=True, text=True)
     assert done.returncode == 0, done.stdout + done.stderr
-    return subprocess.run([str(build / "integrate_alloc_check")], capture_output=True, text=True,
-                          timeout=120)
+    return subprocess.run([str(build / target)], capture_output=True, text=True, timeout=120)
+
+
+@pytest.fixture(scope="session")
+def alloc_report(native_build):
+    return build_and_run(native_build, "integrate_alloc_check")
+
+
+@pytest.fixture(scope="session")
+def rk_kernel_report(native_build):
+    return build_and_run(native_build, "rk_kernel_check")
+
+
+def test_own_stage_loops_give_the_same_bits(rk_kernel_report):
+    # A model's own Runge-Kutta stage loop (its rhs inlined, as the friction
+    # block's) against the engine's virtual calls: dopri5 and verner6 on 2
+    # and 4 states (benchmarks/integrate/rk_kernel_check.cpp).
+    out = rk_kernel_report.stdout
+    assert rk_kernel_report.returncode == 0 and out.strip().endswith("RESULT: PASS"), \
+        out + rk_kernel_report.stderr
+    for method in ("rk_dopri5", "rk_verner6"):
+        for states in (2, 4):
+            assert re.search(rf"^PASS same bits with the own stage loop: {method}, {states} "
+                             rf"states \((\d+) steps\)$", out, re.MULTILINE), out
+            assert f"PASS own stage loop offered: {method}, {states} states" in out
 
 
 def test_native_program_passes(alloc_report):

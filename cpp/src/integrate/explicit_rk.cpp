@@ -8,6 +8,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/integrator_checks.hpp"
+#include "leadscrew/integrate/rk_stage_kernels.hpp"
 
 namespace leadscrew::integrate {
 
@@ -104,7 +105,7 @@ void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
   n_ = n;
   m_ = m;
   const std::size_t states = static_cast<std::size_t>(n), stages = static_cast<std::size_t>(s_);
-  select_kernels();
+  select_kernels(system);
   workspace_.assign(7 * states + 2 * stages * states + 5 * static_cast<std::size_t>(m) + stages,
                     0.0);
   double* next = workspace_.data();
@@ -216,83 +217,50 @@ double ExplicitRungeKutta::initial_step() {
 }
 
 namespace {
-// out = base + h sum_j coefficients_j k_j over `count` stages (base null: 0);
-// zero coefficients are not skipped, so that 0 * inf = NaN still flags a
-// non-finite stage. N > 0 is the state size fixed at compile time: the sums
-// stay in registers. Count > 0 fixes the number of terms as well (the loops
-// unroll completely; see FixedSizeKernels); the arithmetic and its order do
-// not depend on N or Count: bit for bit the same values.
-template <int N, int Count = 0>
-void combine(int n_runtime, const double* base, double h, const double* coefficients,
-             int count_runtime, const double* k, double* out) {
-  constexpr int capacity = N > 0 ? N : 1;
-  const int n = N > 0 ? N : n_runtime;
-  const int count = Count > 0 ? Count : count_runtime;
-  if constexpr (N > 0) {
-    double sum[capacity];
-    for (int r = 0; r < N; ++r) sum[r] = base ? base[r] : 0.0;
-    for (int j = 0; j < count; ++j) {
-      const double w = h * coefficients[j];
-      for (int r = 0; r < N; ++r) sum[r] += w * k[j * N + r];
-    }
-    for (int r = 0; r < N; ++r) out[r] = sum[r];
-  } else {
-    for (int r = 0; r < n; ++r) out[r] = base ? base[r] : 0.0;
-    for (int j = 0; j < count; ++j) {
-      const double w = h * coefficients[j];
-      const double* kj = k + j * n;
-      for (int r = 0; r < n; ++r) out[r] += w * kj[r];
-    }
+// out = base + h sum_j coefficients_j k_j over `count` stages of n states
+// (base null: 0), for any sizes; the same arithmetic in the same order as
+// rk_kernels::combine (fixed sizes): bit for bit the same values. Zero
+// coefficients are not skipped, so that 0 * inf = NaN still flags a
+// non-finite stage.
+void combine(int n, const double* base, double h, const double* coefficients, int count,
+             const double* k, double* out) {
+  for (int r = 0; r < n; ++r) out[r] = base ? base[r] : 0.0;
+  for (int j = 0; j < count; ++j) {
+    const double w = h * coefficients[j];
+    const double* kj = k + j * n;
+    for (int r = 0; r < n; ++r) out[r] += w * kj[r];
   }
-}
-
-// Without loop control and dispatch on n (the combinations were ~40 % of the
-// engine's instructions for a 4-state system).
-template <int N, int Count>
-inline void combine_fixed(const double* base, double h, const double* coefficients,
-                          const double* k, double* out) {
-  combine<N, Count>(N, base, h, coefficients, Count, k, out);
-}
-
-template <int N, int S, int... I>
-void fixed_stages(OdeSystem& system, const double* a, const double* c, double t,
-                  const double* y, double h, double* k, double* y_stage,
-                  std::integer_sequence<int, I...>) {
-  // Stage I + 1 from the stages 0..I, in order (the fold runs left to right).
-  ((combine_fixed<N, I + 1>(y, h, a + (I + 1) * S, k, y_stage),
-    system.rhs(t + c[I + 1] * h, y_stage, k + (I + 1) * N)),
-   ...);
 }
 }  // namespace
 
-// Kernels for a state size N and a stage count S fixed at compile time.
+// Kernels for a state size N and a stage count S fixed at compile time (the
+// combinations were ~40 % of the engine's instructions for a 4-state
+// system); the stages through the virtual rhs.
 template <int N, int S>
 struct FixedSizeKernels {
-  static void stages(OdeSystem& system, const double* a, const double* c, double t,
-                     const double* y, double h, double* k, double* y_stage) {
-    fixed_stages<N, S>(system, a, c, t, y, h, k, y_stage, std::make_integer_sequence<int, S - 1>{});
-  }
   static void combine_all(const double* base, double h, const double* coefficients,
                           const double* k, double* out) {
-    combine_fixed<N, S>(base, h, coefficients, k, out);
+    rk_kernels::combine<N, S>(base, h, coefficients, k, out);
   }
+  static constexpr RkStageKernel stages = &rk_kernels::stage_kernel<OdeSystem, N, S>;
 };
 
-void ExplicitRungeKutta::select_kernels() {
+void ExplicitRungeKutta::select_kernels(const OdeSystem& system) {
   // The engine's methods (7 stages: Dormand-Prince, 8: Verner 6(5)) on the
   // small systems of the event-driven models; anything else runs the
-  // generic loops.
+  // generic loops. A system's own stage loop (its rhs inlined) first.
   stage_kernel_ = nullptr;
   combine_kernel_ = nullptr;
   auto take = [this](auto kernels) {
     using K = decltype(kernels);
-    stage_kernel_ = &K::stages;
+    stage_kernel_ = K::stages;
     combine_kernel_ = &K::combine_all;
   };
   if (n_ == 2 && s_ == 7) take(FixedSizeKernels<2, 7>{});
   if (n_ == 2 && s_ == 8) take(FixedSizeKernels<2, 8>{});
   if (n_ == 4 && s_ == 7) take(FixedSizeKernels<4, 7>{});
   if (n_ == 4 && s_ == 8) take(FixedSizeKernels<4, 8>{});
+  if (const RkStageKernel own = system.explicit_rk_stages(s_)) stage_kernel_ = own;
 }
 
 void ExplicitRungeKutta::combine_stages(const double* base, double h, const double* coefficients,
@@ -300,7 +268,7 @@ void ExplicitRungeKutta::combine_stages(const double* base, double h, const doub
   if (combine_kernel_)
     combine_kernel_(base, h, coefficients, k, out);
   else
-    combine<0>(n_, base, h, coefficients, s_, k, out);
+    combine(n_, base, h, coefficients, s_, k, out);
 }
 
 
@@ -313,7 +281,7 @@ bool ExplicitRungeKutta::stages(double t, const double* y, double h, double* k, 
     stage_kernel_(*system_, a, c, t, y, h, k, y_stage_);
   } else {
     for (int i = 1; i < s; ++i) {
-      combine<0>(n, y, h, a + i * s, i, k, y_stage_);
+      combine(n, y, h, a + i * s, i, k, y_stage_);
       system_->rhs(t + c[i] * h, y_stage_, k + i * n);
     }
   }

@@ -10,6 +10,7 @@
 #include "leadscrew/friction/flank_lcp.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
+#include "leadscrew/integrate/rk_stage_kernels.hpp"
 
 namespace leadscrew::model {
 
@@ -76,15 +77,21 @@ class CoulombBlock final : public integrate::HybridSystem {
 
   int size() const override { return kStateSize; }
   int root_count() const override { return 2; }
+  integrate::RkStageKernel explicit_rk_stages(int stage_count) const override {
+    return integrate::rk_kernels::stage_kernel_for<CoulombBlock, kStateSize>(stage_count);
+  }
 
   void rhs(double t, const double* y, double* ydot) override {
+    // The state is read before any store (the memo's, ydot's), which the
+    // compiler must otherwise assume to change it (see RegularizedBlock::rhs).
+    const double velocity = y[kVelocity];
     const double force = force_(t);
     const double friction = friction_force(force);
     const double acceleration = mode_ == Mode::stick ? 0.0 : (force - friction) / block_.mass;
-    ydot[kPosition] = y[kVelocity];
+    ydot[kPosition] = velocity;
     ydot[kVelocity] = acceleration;
-    ydot[kWorkForce] = force * y[kVelocity];
-    ydot[kFrictionLoss] = friction * y[kVelocity];
+    ydot[kWorkForce] = force * velocity;
+    ydot[kFrictionLoss] = friction * velocity;
   }
 
   void roots(double t, const double* y, double* g) override {
@@ -241,15 +248,24 @@ class RegularizedBlock final : public integrate::HybridSystem {
         friction_scale_(kTwoOverPi * block.mu * block.normal_force()) {}
 
   int size() const override { return kStateSize; }
+  integrate::RkStageKernel explicit_rk_stages(int stage_count) const override {
+    return integrate::rk_kernels::stage_kernel_for<RegularizedBlock, kStateSize>(stage_count);
+  }
 
   void rhs(double t, const double* y, double* ydot) override {
+    // The state is read before any store: a store to a double (the memos
+    // of the load and of the friction law, ydot) might change y for all
+    // the compiler knows, and the velocity would be loaded back from
+    // memory. Read first, it stays in a register from the Runge-Kutta
+    // stage that computed it (rk_stage_kernels.hpp inlines this rhs).
+    const double velocity = y[kVelocity];
     const double force = force_at_(t);
     double acceleration = 0.0, friction = 0.0;
-    evaluate(t, force, y[kVelocity], acceleration, friction);
-    ydot[kPosition] = y[kVelocity];
+    evaluate(t, force, velocity, acceleration, friction);
+    ydot[kPosition] = velocity;
     ydot[kVelocity] = acceleration;
-    ydot[kWorkForce] = force * y[kVelocity];
-    ydot[kFrictionLoss] = friction * y[kVelocity];
+    ydot[kWorkForce] = force * velocity;
+    ydot[kFrictionLoss] = friction * velocity;
   }
 
   void select_initial_mode(double, double*) override {}

@@ -112,8 +112,9 @@ class ExplicitRungeKutta final : public Integrator {
   // y_out = y + h sum b_j k_j. Returns false if a value is not finite.
   bool stages(double t, const double* y, double h, double* k, double* y_out);
   StepOutcome attempt(double h, double* error_square);
-  // Chooses the fixed-size kernels for (n_, s_), if there are any.
-  void select_kernels();
+  // Chooses the fixed-size kernels for (n_, s_), if there are any, and the
+  // system's own stage loop (OdeSystem::explicit_rk_stages), if it has one.
+  void select_kernels(const OdeSystem& system);
   // out = base + h sum_j coefficients_j k_j over all stages (base null: 0).
   void combine_stages(const double* base, double h, const double* coefficients, const double* k,
                       double* out) const;
@@ -164,8 +165,7 @@ class ExplicitRungeKutta final : public Integrator {
   IntegratorStats stats_;
   // Unrolled kernels for the state size and stage count (select_kernels);
   // null: the generic loops.
-  void (*stage_kernel_)(OdeSystem& system, const double* a, const double* c, double t,
-                        const double* y, double h, double* k, double* y_stage) = nullptr;
+  RkStageKernel stage_kernel_ = nullptr;
   void (*combine_kernel_)(const double* base, double h, const double* coefficients,
                           const double* k, double* out) = nullptr;
 };

@@ -14,6 +14,15 @@
 
 namespace leadscrew::integrate {
 
+class OdeSystem;
+
+// Stages 2..S of an explicit Runge-Kutta step of size h from (t, y), stage 1
+// in k[0..n): k_i = f(t + c_i h, y + h sum_j a_ij k_j) into k[(i-1) n ..),
+// y_stage left holding the last stage's argument. a is S x S row-major.
+// See rk_stage_kernels.hpp.
+using RkStageKernel = void (*)(OdeSystem& system, const double* a, const double* c, double t,
+                               const double* y, double h, double* k, double* y_stage);
+
 // A smooth ODE y' = f(t, y) with optional root (event) functions g(t, y).
 class OdeSystem {
  public:
@@ -31,6 +40,11 @@ class OdeSystem {
   // of the Newton matrix [[I - g A, 0], [-g B, I]]; the error test still
   // covers them. 0 <= quadrature_count() < size().
   virtual int quadrature_count() const { return 0; }
+  // The stage loop of an explicit Runge-Kutta method of `stage_count` stages
+  // with this system's rhs inlined (rk_kernels::stage_kernel_for<Own, N>
+  // for a final class Own of size N), or null: the integrator's own loop,
+  // one virtual rhs call per stage. The same numbers either way.
+  virtual RkStageKernel explicit_rk_stages(int /*stage_count*/) const { return nullptr; }
 };
 
 struct IntegratorOptions {

@@ -3,7 +3,9 @@
 // the engine's loop through the virtual rhs: for Dormand-Prince 5(4) and
 // Verner 6(5), on 2 and 4 states, with a right-hand side shaped like the
 // friction block's (arctan velocity law, sine load, memo members, work
-// integrals). Prints PASS/FAIL lines and "RESULT: PASS" last
+// integrals); the loop against a plain transcription of its definition; and
+// that the engine takes a system's own loop. Prints PASS/FAIL lines and
+// "RESULT: PASS" last
 // (tests/test_integrate_native.py builds and runs it).
 #include <chrono>
 #include <cmath>
@@ -61,6 +63,25 @@ struct Inlined final : integrate::OdeSystem {
   }
 };
 
+// Offers the engine a stage loop that counts its calls (and runs the
+// inlined one): the engine must take a system's own loop when it has one.
+long counted_calls = 0;
+
+struct Counted final : integrate::OdeSystem {
+  Block<4> block;
+  int size() const override { return 4; }
+  void rhs(double t, const double* y, double* ydot) override { block.evaluate(t, y, ydot); }
+  template <int S>
+  static void counting(integrate::OdeSystem& system, const double* a, const double* c, double t,
+                       const double* y, double h, double* k, double* y_stage) {
+    ++counted_calls;
+    integrate::rk_kernels::stage_kernel<Counted, 4, S>(system, a, c, t, y, h, k, y_stage);
+  }
+  integrate::RkStageKernel explicit_rk_stages(int stage_count) const override {
+    return stage_count == 7 ? &counting<7> : stage_count == 8 ? &counting<8> : nullptr;
+  }
+};
+
 // Every accepted step's (t, y), and the run's wall time [s].
 template <class System>
 std::vector<double> run(const integrate::ButcherTableau& tableau, double* seconds) {
@@ -91,6 +112,35 @@ void check(bool pass, const std::string& label) {
   all_pass = all_pass && pass;
 }
 
+// The stage loop against a plain transcription of its definition,
+// k_i = f(t + c_i h, y + h sum_{j<i} a_ij k_j), on arbitrary data: a slip
+// in the templates' indices would show here (the engine comparison below
+// runs the same templates on both sides).
+template <int S>
+void check_against_definition(const integrate::ButcherTableau& tableau) {
+  constexpr int N = 4;
+  double y[N], k[S * N], k_reference[S * N], y_stage[N], y_stage_reference[N];
+  for (int r = 0; r < N; ++r) y[r] = 0.3 * r - 0.4;
+  for (int r = 0; r < N; ++r) k[r] = k_reference[r] = 1.0 - 0.7 * r;
+  const double t = 0.37, h = 0.011;
+  const double* a = tableau.a.data();
+  const double* c = tableau.c.data();
+  Inlined<N> system;
+  integrate::rk_kernels::stage_kernel<Inlined<N>, N, S>(system, a, c, t, y, h, k, y_stage);
+  Inlined<N> reference;
+  for (int i = 1; i < S; ++i) {
+    for (int r = 0; r < N; ++r) {
+      double sum = y[r];
+      for (int j = 0; j < i; ++j) sum += (h * a[i * S + j]) * k_reference[j * N + r];
+      y_stage_reference[r] = sum;
+    }
+    reference.rhs(t + c[i] * h, y_stage_reference, k_reference + i * N);
+  }
+  check(std::memcmp(k, k_reference, sizeof k) == 0 &&
+            std::memcmp(y_stage, y_stage_reference, sizeof y_stage) == 0,
+        "stage loop as defined: " + tableau.name);
+}
+
 template <int N>
 void compare(const integrate::ButcherTableau& tableau) {
   const std::string what = tableau.name + ", " + std::to_string(N) + " states";
@@ -111,6 +161,17 @@ void compare(const integrate::ButcherTableau& tableau) {
 }  // namespace
 
 int main() {
+  check_against_definition<7>(integrate::dopri5_tableau());
+  check_against_definition<8>(integrate::verner6_tableau());
+  for (const integrate::ButcherTableau* tableau :
+       {&integrate::dopri5_tableau(), &integrate::verner6_tableau()}) {
+    counted_calls = 0;
+    double seconds = 0.0;
+    const std::size_t values = run<Counted>(*tableau, &seconds).size();
+    check(counted_calls > 0 && counted_calls >= static_cast<long>(values / 5) - 1,
+          "the engine takes the system's own stage loop: " + tableau->name + " (" +
+              std::to_string(counted_calls) + " calls)");
+  }
   compare<2>(integrate::dopri5_tableau());
   compare<4>(integrate::dopri5_tableau());
   compare<2>(integrate::verner6_tableau());

@@ -72,16 +72,18 @@ Raises:
   m.def("is_self_locking", &is_self_locking, py::arg("thread"), py::arg("mu"));
   m.def("is_drivable", &is_drivable, py::arg("thread"), py::arg("mu"));
   // Elementwise over an array of mu (the closed-form columns of a sweep: one
-  // call instead of one per value).
-  // Elementwise over an array of mu (the closed-form columns of a sweep: one
   // call instead of one per value); the thread by value, as py::vectorize
   // passes its non-vectorized arguments.
   m.def("efficiency_array",
         py::vectorize([](Thread thread, double mu) { return efficiency(thread, mu); }),
-        py::arg("thread"), py::arg("mu"));
+        py::arg("thread"), py::arg("mu"),
+        "efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); "
+        "ValueError for a negative or non-finite m.");
   m.def("is_drivable_array",
         py::vectorize([](Thread thread, double mu) { return is_drivable(thread, mu); }),
-        py::arg("thread"), py::arg("mu"));
+        py::arg("thread"), py::arg("mu"),
+        "is_drivable(thread, m) for each m of the array mu [1]; ValueError for a negative "
+        "or non-finite m.");
 }
 
 }  // namespace leadscrew::bindings

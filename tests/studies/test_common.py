@@ -38,20 +38,33 @@ def test_frame_of_keeps_order_dtypes_and_none():
 def test_frame_of_without_the_pandas_internal(monkeypatch):
     # pandas without DataFrame._from_arrays, or with another signature: the
     # public constructor gives the same frame.
+    assert _common._FROM_ARRAYS  # the pandas the tests run with has it
     expected = frame_of(columns())
-    monkeypatch.delattr(pd.DataFrame, "_from_arrays")
+    monkeypatch.setattr(_common, "_FROM_ARRAYS", False)
     check_frame(frame_of(columns()), columns())
     pd.testing.assert_frame_equal(frame_of(columns()), expected)
 
 
-def test_frame_of_with_another_signature(monkeypatch):
-    expected = frame_of(columns())
+def test_the_pandas_internal_is_recognised_by_its_signature(monkeypatch):
+    assert _common._has_from_arrays()
 
-    def other(*args, **kwargs):
-        raise TypeError("unexpected keyword argument 'verify_integrity'")
+    def other(arrays, columns, index, dtype=None):  # no verify_integrity
+        raise AssertionError("not to be called")
 
-    monkeypatch.setattr(pd.DataFrame, "_from_arrays", other)
-    pd.testing.assert_frame_equal(frame_of(columns()), expected)
+    monkeypatch.setattr(pd.DataFrame, "_from_arrays", other, raising=False)
+    assert not _common._has_from_arrays()
+    monkeypatch.delattr(pd.DataFrame, "_from_arrays")
+    assert not _common._has_from_arrays()
+
+
+@pytest.mark.parametrize("internal", [True, False])
+def test_frame_of_strings_are_objects_and_labels_are_the_frames_own(monkeypatch, internal):
+    monkeypatch.setattr(_common, "_FROM_ARRAYS", internal)
+    given = {"name": np.array(["a", "bc", "d"]), "value": np.arange(3.0)}
+    first = frame_of(given)
+    assert first["name"].dtype == object and first["name"].tolist() == ["a", "bc", "d"]
+    first.columns.name = "quantity"  # another frame of the same labels keeps its own
+    assert frame_of(given).columns.name is None
 
 
 @pytest.mark.parametrize("bad", [{"a": np.zeros(3), "b": np.zeros(4)},

@@ -280,8 +280,11 @@ def test_efficiency_is_the_same_for_every_executor_and_chunking(chunk_size, monk
     if chunk_size is not None:
         monkeypatch.setattr(_sweep, "guided_size", lambda remaining, workers, cost: chunk_size)
         monkeypatch.setattr(_sweep, "MIN_CHUNK_SECONDS", 0.0)  # no equal split at the end
+    class ChunkingSerialExecutor(SerialExecutor):
+        """Serial, but not exactly SerialExecutor: the sweep sends it chunks."""
+
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
-        for executor in (SerialExecutor(), pool, None):
+        for executor in (SerialExecutor(), ChunkingSerialExecutor(), pool, None):
             frame = efficiency_vs_mu(scene(), mu, loads, executor=executor, progress=False)
             pd.testing.assert_frame_equal(frame.drop(columns="wall_time"),
                                           reference.drop(columns="wall_time"))

@@ -12,6 +12,7 @@ import pytest  # noqa: E402
 
 import leadscrew as ls  # noqa: E402
 from helpers.scenes import thesis_scene  # noqa: E402
+from leadscrew.studies import drive_efficiency  # noqa: E402
 from leadscrew.studies.drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu  # noqa: E402
 
 MU = [0.0, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5]
@@ -112,13 +113,27 @@ def test_a_serial_executor_runs_the_batch_on_the_calling_thread(rigid, monkeypat
         calls.append((workers, threading.current_thread() is threading.main_thread()))
         return run(self, values, workers)
 
+    def no_chunks(*args, **kwargs):
+        raise AssertionError("a SerialExecutor's sweep went through run_chunks")
+
     monkeypatch.setattr(_batch.DriveBatch, "run", recording)
+    monkeypatch.setattr(drive_efficiency, "run_chunks", no_chunks)
     frame = efficiency_vs_mu(scene(), MU, LOADS, executor=SerialExecutor(), progress=progress)
     assert calls and all(call == (1, True) for call in calls)
     assert len(calls) == 1 or progress
     numeric = [c for c in frame.columns if c not in ("wall_time", "error")]
     assert frame[numeric].equals(rigid[numeric])
     assert frame["error"].tolist() == rigid["error"].tolist()
+
+
+def test_a_shut_down_serial_executor_refuses_the_cases():
+    from leadscrew.studies._sweep import SerialExecutor
+
+    executor = SerialExecutor()
+    executor.shutdown()
+    frame = efficiency_vs_mu(scene(), [0.1, 0.2], [20.0], executor=executor, progress=False)
+    assert frame["error"].str.contains("cannot schedule new calls after shutdown").all()
+    assert frame["efficiency"].isna().all()
 
 
 def test_columns_units_and_plot(rigid):

@@ -77,21 +77,15 @@ class CoulombBlock final : public integrate::HybridSystem {
 
   int size() const override { return kStateSize; }
   int root_count() const override { return 2; }
-  integrate::RkStageKernel explicit_rk_stages(int stage_count) const override {
-    return integrate::rk_kernels::stage_kernel_for<CoulombBlock, kStateSize>(stage_count);
-  }
 
   void rhs(double t, const double* y, double* ydot) override {
-    // The state is read before any store (the memo's, ydot's), which the
-    // compiler must otherwise assume to change it (see RegularizedBlock::rhs).
-    const double velocity = y[kVelocity];
     const double force = force_(t);
     const double friction = friction_force(force);
     const double acceleration = mode_ == Mode::stick ? 0.0 : (force - friction) / block_.mass;
-    ydot[kPosition] = velocity;
+    ydot[kPosition] = y[kVelocity];
     ydot[kVelocity] = acceleration;
-    ydot[kWorkForce] = force * velocity;
-    ydot[kFrictionLoss] = friction * velocity;
+    ydot[kWorkForce] = force * y[kVelocity];
+    ydot[kFrictionLoss] = friction * y[kVelocity];
   }
 
   void roots(double t, const double* y, double* g) override {
@@ -248,6 +242,10 @@ class RegularizedBlock final : public integrate::HybridSystem {
         friction_scale_(kTwoOverPi * block.mu * block.normal_force()) {}
 
   int size() const override { return kStateSize; }
+  // Its own Runge-Kutta stage loop, the rhs inlined (rk_stage_kernels.hpp).
+  // It has no root functions, so the event-driven driver hands the
+  // integrator this object itself (a system with roots is wrapped in a
+  // RootGuard, which offers no loop of its own: the engine's runs).
   integrate::RkStageKernel explicit_rk_stages(int stage_count) const override {
     return integrate::rk_kernels::stage_kernel_for<RegularizedBlock, kStateSize>(stage_count);
   }

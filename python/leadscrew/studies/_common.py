@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import inspect
 import math
 import numbers
 from typing import Any, Dict, Iterable, Optional
@@ -106,42 +107,67 @@ def with_loads(scene: Scene, **loads: Any) -> Scene:
     return scene.replace(loads=loads)
 
 
-def frame_of(columns: Dict[str, np.ndarray]):
-    """A DataFrame of 1-D arrays of one length, in the order given, with
-    plain (object) column labels; an object array stays object (None and
-    messages are not turned into strings). The frame may share memory with
-    the arrays: pass arrays nothing else writes to.
+def _has_from_arrays() -> bool:
+    """Whether pandas has ``DataFrame._from_arrays(arrays, columns, index,
+    ..., verify_integrity)`` as :func:`frame_of` calls it."""
+    from_arrays = getattr(pd.DataFrame, "_from_arrays", None)
+    try:
+        parameters = inspect.signature(from_arrays).parameters
+    except (TypeError, ValueError):  # None, or not introspectable
+        return False
+    return all(name in parameters
+               for name in ("arrays", "columns", "index", "verify_integrity"))
+
+
+# Decided once, at import (tests/studies/test_common.py runs both paths).
+_FROM_ARRAYS = _has_from_arrays()
+
+
+def frame_of(columns: Dict[str, Any]):
+    """A DataFrame of 1-D columns of one length.
 
     Why not ``pd.DataFrame(columns)``: that checks and converts every column
     on its own (~100 us for the 14 columns of a sweep, as much as the rest of
     the Python around a sweep of 150 microsecond simulations). pandas builds
     frames from checked arrays with ``DataFrame._from_arrays``, which groups
     columns of one dtype into one block: ~25 us. It is internal to pandas,
-    so where it is missing or its signature differs, the public constructor
-    runs instead (the same frame; tests/studies/test_common.py compares).
+    so where it is missing or has another signature (checked at import), the
+    public constructor builds the same frame (tests/studies/test_common.py
+    compares the two).
+
+    Args:
+        columns: column name -> 1-D array (or sequence) of values, all of one
+            length, in the order of the frame's columns. Numeric and bool
+            arrays keep their dtype; object arrays and arrays of strings
+            become object columns (None and messages are not turned into a
+            string dtype). The frame may share memory with the arrays: pass
+            arrays nothing else writes to.
+
+    Returns:
+        The DataFrame, with a RangeIndex and plain (object) column labels.
 
     Raises:
-        ValueError: the arrays are not 1-D, or their lengths differ.
+        ValueError: a column is not 1-D, or the lengths differ.
     """
     arrays = [np.asarray(values) for values in columns.values()]
+    arrays = [a.astype(object) if a.dtype.kind in "US" else a for a in arrays]
     length = len(arrays[0]) if arrays else 0
     if any(a.ndim != 1 or len(a) != length for a in arrays):
         raise ValueError("frame columns must be 1-D arrays of one length: got shapes "
                          f"{[a.shape for a in arrays]}")
-    names = _labels(tuple(columns))
-    from_arrays = getattr(pd.DataFrame, "_from_arrays", None)
-    if from_arrays is not None:
-        try:
-            return from_arrays(arrays, columns=names, index=pd.RangeIndex(length),
-                               verify_integrity=False)
-        except TypeError:  # another signature: the public way
-            pass
+    # A view: each frame gets its own Index object (its name is the frame's
+    # to set), on the cached labels.
+    names = _labels(tuple(columns)).view()
+    if _FROM_ARRAYS:
+        return pd.DataFrame._from_arrays(arrays, columns=names, index=pd.RangeIndex(length),
+                                         verify_integrity=False)
     return _public_frame_of(names, arrays)
 
 
 @functools.lru_cache(maxsize=64)
 def _labels(names: tuple):
-    """An object Index of column names (immutable: one per set of names)."""
+    """An object Index of column names, one per set of names (frame_of hands
+    out views of it)."""
     return pd.Index(list(names), dtype=object)
 
 
@@ -159,11 +185,21 @@ _ERROR_TYPES = {type(None), str}
 
 
 def annotate(frame, units: Dict[str, str], errors_checked: bool = False, **summary: Any):
-    """Attach ``attrs["units"]`` (column -> SI unit, ``"1"`` for ratios and
-    ``""`` for labels) and, if given, ``attrs["summary"]`` (scalars) to a frame.
-    An ``error`` column holds None for every case that succeeded (converted
-    here unless ``errors_checked``: the caller built it of None and
-    messages only, an object column)."""
+    """Attach units and a summary to a study's frame.
+
+    Args:
+        frame: the DataFrame (changed in place).
+        units: column -> SI unit (``"1"`` for ratios, ``""`` for labels),
+            stored as ``attrs["units"]`` for the frame's columns.
+        errors_checked: True if the caller built the ``error`` column itself
+            as an object column of None and messages only; otherwise it is
+            converted here so that it is (NaN from a frame built of rows
+            becomes None).
+        **summary: scalars stored as ``attrs["summary"]``.
+
+    Returns:
+        The frame, with plain (object) column labels.
+    """
     # Plain labels: pandas 3 makes the labels an Arrow-backed index, whose
     # first lookup costs ~0.1 ms (what a sweep of microsecond simulations
     # notices); an object index of the same names costs a few microseconds.

@@ -129,6 +129,11 @@ class SerialExecutor(concurrent.futures.Executor):
         with self._lock:
             self._shutdown = True
 
+    @property
+    def is_shutdown(self) -> bool:
+        """True once :meth:`shutdown` was called (``submit`` then raises)."""
+        return self._shutdown
+
 
 def default_workers() -> int:
     """Number of workers of the default thread pool: ``os.cpu_count()`` (at least 1)."""

@@ -112,7 +112,8 @@ def efficiency_vs_mu(
     it sends a few consecutive ranges of the sweep instead, each taking
     about a quarter of a second (:func:`leadscrew.studies._sweep.run_batches`),
     and the bar moves after each. ``executor=SerialExecutor()`` makes the
-    same calls with the calling thread as the batch's only worker. With
+    same calls with the calling thread as the batch's only worker (a
+    subclass, or one shut down, is treated as any other executor). With
     any other ``executor`` the cases go to it in chunks
     (:func:`leadscrew.studies._sweep.run_chunks`), each chunk one
     single-threaded batch call. Every path gives the same numbers.
@@ -182,10 +183,13 @@ def efficiency_vs_mu(
         "friction_loss": np.zeros(count), "load_speed": np.zeros(count),
         "wall_time": np.zeros(count)}
     errors = np.full(count, None, dtype=object)
-    if executor is None or isinstance(executor, SerialExecutor):
+    # A SerialExecutor (exactly that class, not shut down) runs nothing but
+    # what the calling thread would: the default path's calls, on one worker.
+    serial = type(executor) is SerialExecutor and not executor.is_shutdown
+    if executor is None or serial:
         # The thread pool is in the core (one batch call per range); serial:
         # the same calls on the calling thread alone.
-        workers = default_workers() if executor is None else 1
+        workers = 1 if serial else default_workers()
         cases = np.column_stack([mu_column[simulated], load_column[simulated]])
         chunks = run_batches(lambda rows: _efficiency_chunk(cases[rows.start:rows.stop], batch,
                                                             workers),

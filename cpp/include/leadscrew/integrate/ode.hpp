@@ -44,6 +44,9 @@ class OdeSystem {
   // with this system's rhs inlined (rk_kernels::stage_kernel_for<Own, N>
   // for a final class Own of size N), or null: the integrator's own loop,
   // one virtual rhs call per stage. The same numbers either way.
+  // The loop casts its system argument to Own: call it only with the object
+  // that returned it (a wrapper, such as event_driven's RootGuard, must not
+  // pass on its inner system's loop; it returns null).
   virtual RkStageKernel explicit_rk_stages(int /*stage_count*/) const { return nullptr; }
 };
 

@@ -20,6 +20,7 @@
 // tests/test_integrate_native.py).
 #pragma once
 
+#include <cassert>
 #include <utility>
 
 #include "leadscrew/integrate/ode.hpp"
@@ -57,6 +58,8 @@ inline void stages(System& system, const double* a, const double* c, double t, c
 template <class System, int N, int S>
 void stage_kernel(OdeSystem& system, const double* a, const double* c, double t,
                   const double* y, double h, double* k, double* y_stage) {
+  // Only the object that offered this loop may be passed (ode.hpp).
+  assert(dynamic_cast<System*>(&system) != nullptr);
   stages<System, N, S>(static_cast<System&>(system), a, c, t, y, h, k, y_stage,
                        std::make_integer_sequence<int, S - 1>{});
 }

@@ -46,41 +46,38 @@ struct Block {
   }
 };
 
-template <int N>
-struct Virtual final : integrate::OdeSystem {
-  Block<N> block;
-  int size() const override { return N; }
-  void rhs(double t, const double* y, double* ydot) override { block.evaluate(t, y, ydot); }
-};
+// Which stage loop a system offers the engine: none (the engine's own, one
+// virtual rhs call per stage), its own (the rhs inlined), or its own behind
+// a counter of its calls (the engine must take a system's own loop).
+enum class Loop { engine, own, counted };
 
-template <int N>
-struct Inlined final : integrate::OdeSystem {
-  Block<N> block;
-  int size() const override { return N; }
-  void rhs(double t, const double* y, double* ydot) override { block.evaluate(t, y, ydot); }
-  integrate::RkStageKernel explicit_rk_stages(int stage_count) const override {
-    return integrate::rk_kernels::stage_kernel_for<Inlined, N>(stage_count);
-  }
-};
-
-// Offers the engine a stage loop that counts its calls (and runs the
-// inlined one): the engine must take a system's own loop when it has one.
 long counted_calls = 0;
 
-struct Counted final : integrate::OdeSystem {
-  Block<4> block;
-  int size() const override { return 4; }
+template <int N, Loop loop>
+struct BlockSystem final : integrate::OdeSystem {
+  Block<N> block;
+  int size() const override { return N; }
   void rhs(double t, const double* y, double* ydot) override { block.evaluate(t, y, ydot); }
   template <int S>
   static void counting(integrate::OdeSystem& system, const double* a, const double* c, double t,
                        const double* y, double h, double* k, double* y_stage) {
     ++counted_calls;
-    integrate::rk_kernels::stage_kernel<Counted, 4, S>(system, a, c, t, y, h, k, y_stage);
+    integrate::rk_kernels::stage_kernel<BlockSystem, N, S>(system, a, c, t, y, h, k, y_stage);
   }
   integrate::RkStageKernel explicit_rk_stages(int stage_count) const override {
-    return stage_count == 7 ? &counting<7> : stage_count == 8 ? &counting<8> : nullptr;
+    if (loop == Loop::own)
+      return integrate::rk_kernels::stage_kernel_for<BlockSystem, N>(stage_count);
+    if (loop == Loop::counted)
+      return stage_count == 7 ? &counting<7> : stage_count == 8 ? &counting<8> : nullptr;
+    return nullptr;
   }
 };
+
+template <int N>
+using Virtual = BlockSystem<N, Loop::engine>;
+template <int N>
+using Inlined = BlockSystem<N, Loop::own>;
+using Counted = BlockSystem<4, Loop::counted>;
 
 // Every accepted step's (t, y), and the run's wall time [s].
 template <class System>

@@ -248,7 +248,7 @@ struct FixedSizeKernels {
 void ExplicitRungeKutta::select_kernels(const OdeSystem& system) {
   // The engine's methods (7 stages: Dormand-Prince, 8: Verner 6(5)) on the
   // small systems of the event-driven models; anything else runs the
-  // generic loops. A system's own stage loop (its rhs inlined) first.
+  // generic loops. A system's own stage loop (its rhs inlined) takes precedence.
   stage_kernel_ = nullptr;
   combine_kernel_ = nullptr;
   auto take = [this](auto kernels) {

@@ -3,41 +3,19 @@ while solving (tests/cpp/test_lcp_alloc.cpp, which interposes malloc & co.);
 Lemke's fixed-size code paths against its generic one and non-finite input
 through the unchecked entry points (tests/cpp/test_lcp_paths.cpp).
 
-Builds the small CMake project tests/cpp once per session into a temporary
-directory (or into $LEADSCREW_NATIVE_BUILD_DIR, reused across sessions)."""
+The small CMake project tests/cpp is built once per session (the fixture
+native_tests_build of tests/conftest.py)."""
 
-import os
-import pathlib
 import re
-import shutil
 import subprocess
 
 import pytest
 
-SOURCE = pathlib.Path(__file__).resolve().parent / "cpp"
-
 
 @pytest.fixture(scope="session")
-def native_build(tmp_path_factory):
-    cmake = shutil.which("cmake")
-    assert cmake, "cmake is needed to build tests/cpp (pip install cmake)"
-    build = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR") or str(tmp_path_factory.mktemp("native"))
-    configure = [cmake, "-S", str(SOURCE), "-B", build, "-DCMAKE_BUILD_TYPE=Release"]
-    if shutil.which("ninja"):
-        configure += ["-G", "Ninja"]
-    if not (pathlib.Path(build) / "CMakeCache.txt").exists():
-        subprocess.run(configure, check=True, capture_output=True, text=True)
-    done = subprocess.run(
-        [cmake, "--build", build, "--parallel", "2"], capture_output=True, text=True
-    )
-    assert done.returncode == 0, done.stdout + done.stderr
-    return pathlib.Path(build)
-
-
-@pytest.fixture(scope="session")
-def alloc_report(native_build):
+def alloc_report(native_tests_build):
     run = subprocess.run(
-        [str(native_build / "test_lcp_alloc")], capture_output=True, text=True, timeout=60
+        [str(native_tests_build / "test_lcp_alloc")], capture_output=True, text=True, timeout=60
     )
     return run
 
@@ -73,9 +51,9 @@ def test_friction_builders_do_not_allocate(alloc_report):
 
 
 @pytest.fixture(scope="session")
-def paths_report(native_build):
+def paths_report(native_tests_build):
     return subprocess.run(
-        [str(native_build / "test_lcp_paths")], capture_output=True, text=True, timeout=60
+        [str(native_tests_build / "test_lcp_paths")], capture_output=True, text=True, timeout=60
     )
 
 

@@ -142,6 +142,8 @@ void bind_drive(py::module_& m) {
           },
           "Per case: \"none\", \"invalid_argument\" (ValueError), \"simulation\" "
           "(SimulationError), \"jamming\" (JammingError) or \"other\" (RuntimeError).")
+      .def_property_readonly("failure_count", &model::DriveBatchResult::failure_count,
+                             "Cases that failed (0: no need to read failures).")
       .def_readonly("messages", &model::DriveBatchResult::messages,
                     "Per case: the failure's message, \"\" where none.")
       .def_readonly("wall_time", &model::DriveBatchResult::wall_time,

@@ -12,7 +12,7 @@
 namespace leadscrew::bindings {
 
 
-void bind_core(pybind11::module_& m);    // error types
+void bind_core(pybind11::module_& m);    // error types, the helper threads (wake, count)
 void bind_thread(pybind11::module_& m);  // Thread and closed-form mechanics
 void bind_lcp(pybind11::module_& m);     // LCP solvers (submodule "lcp")
 void bind_excitation(pybind11::module_& m);

@@ -35,31 +35,56 @@ def test_frame_of_keeps_order_dtypes_and_none():
         _common._labels(tuple(given)), list(given.values())))
 
 
-def test_frame_of_without_the_pandas_internal(monkeypatch):
-    # pandas without DataFrame._from_arrays, or with another signature: the
-    # public constructor gives the same frame.
-    assert _common._FROM_ARRAYS  # the pandas the tests run with has it
-    expected = frame_of(columns())
-    monkeypatch.setattr(_common, "_FROM_ARRAYS", False)
+# The ways frame_of can build a frame with the pandas the tests run with
+# ("blocks" needs pandas >= 3; "public" is always there).
+PATHS = [path for path, there in (("blocks", _common._pandas_from_blocks() is not None),
+                                  ("arrays", hasattr(pd.DataFrame, "_from_arrays")),
+                                  ("public", True)) if there]
+
+
+def test_frame_of_takes_the_fastest_way_this_pandas_has():
+    assert _common._CONSTRUCTOR == PATHS[0]
+
+
+@pytest.mark.parametrize("path", PATHS)
+def test_every_way_gives_the_same_frame(monkeypatch, path):
+    expected = _common._public_frame_of(_common._labels(tuple(columns())),
+                                        list(columns().values()))
+    monkeypatch.setattr(_common, "_CONSTRUCTOR", path)
     check_frame(frame_of(columns()), columns())
     pd.testing.assert_frame_equal(frame_of(columns()), expected)
+    # a dtype the blocks path leaves to the public constructor, and no rows
+    dates = {"t": np.array(["2026-11-22", "2026-11-23"], dtype="datetime64[ns]"),
+             "x": np.arange(2.0)}
+    pd.testing.assert_frame_equal(frame_of(dates), pd.DataFrame(dates), check_column_type=False)
+    pairs = np.empty(2, dtype=object)
+    pairs[:] = [[1, 2], (3, 4)]  # cells that are sequences stay cells
+    assert frame_of({"pair": pairs, "x": np.arange(2.0)})["pair"].tolist() == [[1, 2], (3, 4)]
+    empty = frame_of({"mu": np.zeros(0), "error": np.zeros(0, dtype=object)})
+    assert empty.shape == (0, 2) and empty.dtypes.tolist() == [np.float64, object]
 
 
-def test_the_pandas_internal_is_recognised_by_its_signature(monkeypatch):
-    assert _common._has_from_arrays()
+def test_the_pandas_constructors_are_recognised_by_their_parameters(monkeypatch):
+    from pandas.api import internals
 
-    def other(arrays, columns, index, dtype=None):  # no verify_integrity
+    def other(arrays, columns, index, dtype=None):  # no verify_integrity, no blocks
         raise AssertionError("not to be called")
 
+    expected = "blocks" if hasattr(internals, "create_dataframe_from_blocks") else "arrays"
+    assert _common._frame_constructor() == expected
+    monkeypatch.setattr(internals, "create_dataframe_from_blocks", other, raising=False)
+    assert _common._frame_constructor() == "arrays"
+    monkeypatch.delattr(internals, "create_dataframe_from_blocks")
+    assert _common._frame_constructor() == "arrays"
     monkeypatch.setattr(pd.DataFrame, "_from_arrays", other, raising=False)
-    assert not _common._has_from_arrays()
+    assert _common._frame_constructor() == "public"
     monkeypatch.delattr(pd.DataFrame, "_from_arrays")
-    assert not _common._has_from_arrays()
+    assert _common._frame_constructor() == "public"
 
 
-@pytest.mark.parametrize("internal", [True, False])
-def test_frame_of_strings_are_objects_and_labels_are_the_frames_own(monkeypatch, internal):
-    monkeypatch.setattr(_common, "_FROM_ARRAYS", internal)
+@pytest.mark.parametrize("path", PATHS)
+def test_frame_of_strings_are_objects_and_labels_are_the_frames_own(monkeypatch, path):
+    monkeypatch.setattr(_common, "_CONSTRUCTOR", path)
     given = {"name": np.array(["a", "bc", "d"]), "value": np.arange(3.0)}
     first = frame_of(given)
     assert first["name"].dtype == object and first["name"].tolist() == ["a", "bc", "d"]

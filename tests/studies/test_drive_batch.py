@@ -4,13 +4,19 @@ in Python and simulated by leadscrew.simulate, one case at a time."""
 
 import concurrent.futures
 import math
+import os
 import pickle
+import subprocess
+import sys
+import textwrap
+import threading
 
 import numpy as np
 import pandas as pd
 import pytest
 
 import leadscrew as ls
+from leadscrew import _core
 from helpers.scenes import thesis_scene
 from leadscrew.studies._batch import DriveBatch
 from leadscrew.studies._sweep import SerialExecutor, run_chunks
@@ -346,13 +352,20 @@ def test_workers_give_the_rows_of_one_thread_bit_for_bit_failures_included(worke
         np.testing.assert_array_equal(failed, reference[2])
 
 
+def test_the_failure_count_is_that_of_the_failed_rows():
+    """The core's result counts its failed rows, so that a sweep without
+    failures (the usual case) need not convert one name per row."""
+    batch = jamming_batch()
+    for workers in (1, 3):
+        result = batch._core.run(np.array(MIXED_ROWS), workers)
+        assert result.failure_count == 5 == sum(kind != "none" for kind in result.failures)
+    assert batch._core.run(np.array([MIXED_ROWS[0], MIXED_ROWS[3]]), 2).failure_count == 0
+
+
 def test_workers_share_a_sweep_of_cheap_cases_identically():
     """150 rigid cases of ~10 us each: the threads interleave row by row, which
     is where a data race would show."""
-    batch = DriveBatch(speed_controlled(scene()), ["mu", "axial_force"], CHANNELS, 0.2,
-                       [0.0, 0.1, 0.15, 0.2])
-    mu, loads = np.linspace(0.0, 0.5, 50), [10.0, 50.0, 100.0]
-    values = np.column_stack([np.repeat(mu, 3), -np.tile(loads, 50)])
+    batch, values = cheap_sweep()
     values[[7, 77], 0] = [-0.5, math.inf]  # invalid rows among them
     reference, errors, _ = batch.run(values)
     assert [i for i, e in enumerate(errors) if e] == [7, 77]
@@ -362,6 +375,69 @@ def test_workers_share_a_sweep_of_cheap_cases_identically():
             np.testing.assert_array_equal(samples, reference)
             assert errors_now == errors
             assert np.isnan(wall_time).sum() == 2 and (wall_time[np.isfinite(wall_time)] > 0).all()
+
+
+def cheap_sweep():
+    """The rigid efficiency sweep's 150 cases as a batch and its values."""
+    batch = DriveBatch(speed_controlled(scene()), ["mu", "axial_force"], CHANNELS, 0.2,
+                       [0.0, 0.1, 0.15, 0.2])
+    mu, loads = np.linspace(0.0, 0.5, 50), [10.0, 50.0, 100.0]
+    return batch, np.column_stack([np.repeat(mu, 3), -np.tile(loads, 50)])
+
+
+def test_two_python_threads_run_batches_on_workers_at_once():
+    """The core's helper threads are one pool per process: while one call has
+    it, another (from a second Python thread) starts helpers of its own.
+    Every result is the serial one, and the pool stays within one helper per
+    core."""
+    batch, values = cheap_sweep()
+    reference, _, _ = batch.run(values)
+    mismatches = []
+
+    def sweep():
+        for _ in range(8):
+            samples, errors, _ = batch.run(values, 2)
+            if not (np.array_equal(samples, reference) and errors == [None] * len(values)):
+                mismatches.append(samples)
+
+    threads = [threading.Thread(target=sweep) for _ in range(2)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(timeout=120)
+    assert not any(thread.is_alive() for thread in threads)
+    assert mismatches == []
+    assert 1 <= _core.pooled_helper_count() <= max(1, os.cpu_count() or 1)
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="os.fork is POSIX only")
+def test_a_forked_child_runs_a_batch_on_workers():
+    """A process forked after a batch ran on the core's helper threads (as
+    multiprocessing's fork start method does) has none of those threads: its
+    own batch on 2 workers must neither wait for them nor differ. Run in a
+    fresh interpreter, so the test process's own threads do not matter."""
+    script = textwrap.dedent("""
+        import os, sys
+        import numpy as np
+        sys.path.insert(0, sys.argv[1])
+        from studies.test_drive_batch import cheap_sweep
+        batch, values = cheap_sweep()
+        reference, _, _ = batch.run(values, 2)
+        child = os.fork()
+        if child == 0:
+            import signal
+            signal.alarm(60)  # a hang ends the child with SIGALRM
+            samples, errors, _ = batch.run(values, 2)
+            os._exit(0 if np.array_equal(samples, reference) and not any(errors) else 3)
+        _, status = os.waitpid(child, 0)
+        print("child status", status)
+        sys.exit(0 if os.waitstatus_to_exitcode(status) == 0 else 1)
+        """)
+    tests = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    done = subprocess.run([sys.executable, "-c", script, tests], capture_output=True, text=True,
+                          timeout=180)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "child status 0" in done.stdout
 
 
 def test_workers_call_a_python_load_under_the_gil():
@@ -427,18 +503,30 @@ def test_default_efficiency_sweep_runs_on_the_cores_threads(monkeypatch):
         calls.append((len(values), workers))
         return run(self, values, workers)
 
+    woken = []
+    wake = _core.wake_helpers
+
+    def wake_spy(threads, seconds):
+        woken.append((threads, seconds))
+        wake(threads, seconds)
+
     monkeypatch.setattr(_batch.DriveBatch, "run", spy)
+    monkeypatch.setattr(_core, "wake_helpers", wake_spy)
     monkeypatch.setattr(drive_efficiency, "default_workers", lambda: 3)
     cot = 1.0 / math.tan(ls.Thread(1e-3, 20e-3).lead_angle)
     mu, loads = [0.0, 0.1, 1.01 * cot, 0.3, 0.45], [10.0, 50.0, 100.0]
     base = scene()
     default = efficiency_vs_mu(base, mu, loads, progress=False)
     assert calls == [(12, 3)]  # the 12 drivable cases, one call
+    # its helpers woken first, to wait for the batch spinning
+    assert woken == [(3, drive_efficiency._WAKE_SECONDS)]
     calls.clear()
+    woken.clear()
     serial = efficiency_vs_mu(base, mu, loads, executor=SerialExecutor(), progress=False)
     assert {workers for _, workers in calls} == {1}
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
         pooled = efficiency_vs_mu(base, mu, loads, executor=pool, progress=False)
+    assert woken == []  # no helper of the core's is used
     assert list(default["simulated"]) == [True] * 6 + [False] * 3 + [True] * 6
     for frame in (serial, pooled):
         pd.testing.assert_frame_equal(default.drop(columns="wall_time"),

@@ -3,6 +3,7 @@ pickling, and the same results serial, threaded and on a Dask cluster."""
 
 import concurrent.futures
 import math
+import os
 import pickle
 import time
 import warnings
@@ -85,6 +86,21 @@ def test_empty_sweep_and_progress_bar(capsys):
     outcomes = run_cases(abs, [-1, 2], progress=True, description="demo")
     assert [o.value for o in outcomes] == [1, 2]
     assert default_workers() >= 1
+
+
+def test_default_workers_are_the_cores_this_process_may_use(monkeypatch):
+    """One worker per core of the process's CPU affinity (a taskset or a
+    container's cpuset), not of the whole machine; os.cpu_count() where the
+    system has no affinity."""
+    if hasattr(os, "sched_getaffinity"):
+        assert default_workers() == len(os.sched_getaffinity(0))
+        monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {3}, raising=True)
+        assert default_workers() == 1
+    monkeypatch.setattr(_sweep, "_HAS_AFFINITY", False)
+    monkeypatch.setattr(os, "cpu_count", lambda: None)
+    assert default_workers() == 1
+    monkeypatch.setattr(os, "cpu_count", lambda: 6)
+    assert default_workers() == 6
 
 
 def test_study_rows_carry_failures():

@@ -151,12 +151,11 @@ class DriveBatch:
         # The core starts at most one thread per row; capping here also keeps
         # a huge count within its int.
         result = self._core.run(values, min(workers, max(1, len(values))))
-        failures = result.failures
-        if failures.count("none") == len(failures):  # the usual case, without a loop
-            errors: List[Optional[str]] = [None] * len(failures)
+        if result.failure_count == 0:  # the usual case: no failure names to convert
+            errors: List[Optional[str]] = [None] * len(values)
         else:
             errors = [None if kind == "none" else f"{_EXCEPTION_NAMES[kind]}: {message}"
-                      for kind, message in zip(failures, result.messages)]
+                      for kind, message in zip(result.failures, result.messages)]
         return result.samples, errors, result.wall_time
 
 

@@ -31,7 +31,8 @@ calls it in the calling thread, on the whole sweep at once, or, with a
 progress bar, on a few consecutive ranges that each take about
 :data:`PROGRESS_SECONDS`, so the bar moves while the thread pool stays in C++.
 
-The default executor is a thread pool over ``os.cpu_count()`` workers: the
+The default executor is a thread pool with one worker per core this process
+may run on (:func:`default_workers`): the
 C++ core releases the GIL while it integrates, so threads run simulations in
 parallel. :class:`SerialExecutor` runs every case in the calling thread (the
 reference for the parallel paths, and the fastest choice for a handful of
@@ -136,8 +137,15 @@ class SerialExecutor(concurrent.futures.Executor):
 
 
 def default_workers() -> int:
-    """Number of workers of the default thread pool: ``os.cpu_count()`` (at least 1)."""
+    """Number of workers of the default thread pool: one per core this process
+    may run on (its CPU affinity where the system has one, else
+    ``os.cpu_count()``), at least 1."""
+    if _HAS_AFFINITY:  # ~0.4 us, where os.cpu_count() reads /sys (~7 us)
+        return max(1, len(os.sched_getaffinity(0)))
     return max(1, os.cpu_count() or 1)
+
+
+_HAS_AFFINITY = hasattr(os, "sched_getaffinity")
 
 
 def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float]) -> int:

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,14 @@ struct DriveBatchResult {
   std::vector<CaseFailure> failures;  // one per case
   std::vector<std::string> messages;  // what() of the failure, "" where none
   Eigen::VectorXd wall_time;          // [s] each simulation's own clock, NaN where it failed
+
+  // Cases that failed (a sweep mostly has none: then it need not look at
+  // the failures one by one).
+  int failure_count() const noexcept {
+    return static_cast<int>(failures.size() - static_cast<std::size_t>(std::count(
+                                                  failures.begin(), failures.end(),
+                                                  CaseFailure::none)));
+  }
 };
 
 using BatchValues = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
@@ -89,8 +98,9 @@ class DriveBatch {
   //
   // workers: threads that simulate the rows, >= 1, capped at the row count.
   // 1 runs every row on the calling thread; w > 1 runs the calling thread and
-  // w - 1 std::threads, each taking the next row from a shared counter (cheap
-  // and expensive cases balance). Each row's result depends only on that row:
+  // w - 1 helper threads (run_in_parallel, core/parallel.hpp: kept asleep
+  // between calls), each taking the next row from a shared counter (cheap and
+  // expensive cases balance). Each row's result depends only on that row:
   // the result is bit-for-bit the same for every worker count (only the
   // message of an exception from a CallableExcitation may describe the
   // thread that called it, e.g. a Python traceback).

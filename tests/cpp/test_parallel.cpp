@@ -1,0 +1,187 @@
+// run_in_parallel (core/parallel.hpp): every call runs at once on its own
+// thread, the calling thread among them, and all have returned (their writes
+// visible) when it returns; the pool is reused, bounded, shared safely by
+// concurrent and nested callers, and rebuilt in a forked child.
+//
+// Prints "PASS <label> (<count>)" or "FAIL <label> (<count>)" per check and
+// "RESULT: PASS" at the end if all passed (read by tests/test_core_native.py).
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <set>
+#include <thread>
+#include <vector>
+
+#include "leadscrew/core/parallel.hpp"
+
+namespace {
+
+bool all_passed = true;
+
+void report(bool ok, const char* label, long count) {
+  std::printf("%s %s (%ld)\n", ok ? "PASS" : "FAIL", label, count);
+  all_passed = all_passed && ok;
+}
+
+// Each call waits until `threads` calls have arrived (so they run at once:
+// a pool that ran them one after another would never get there), bounded by
+// a deadline so that a failure ends instead of hanging.
+struct Rendezvous {
+  explicit Rendezvous(int threads) : threads(threads), ids(static_cast<std::size_t>(threads)) {}
+  void operator()() noexcept {
+    const int slot = arrived.fetch_add(1);
+    if (slot < threads) ids[static_cast<std::size_t>(slot)] = std::this_thread::get_id();
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (arrived.load() < threads && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::yield();
+    if (arrived.load() < threads) timed_out.store(true);
+    returned.fetch_add(1);
+  }
+  // All calls ran at once, each on its own thread, the caller's among them,
+  // and all had returned when run_in_parallel did.
+  bool ok() const {
+    std::set<std::thread::id> distinct(ids.begin(), ids.end());
+    return !timed_out.load() && arrived.load() == threads && returned.load() == threads &&
+           static_cast<int>(distinct.size()) == threads &&
+           distinct.count(std::this_thread::get_id()) == 1;
+  }
+  const int threads;
+  std::vector<std::thread::id> ids;  // written by the calls, read after the return
+  std::atomic<int> arrived{0}, returned{0};
+  std::atomic<bool> timed_out{false};
+};
+
+// A job of `pieces` pieces shared through a counter; each piece writes its
+// own element (plain memory, read after the return).
+struct Pieces {
+  explicit Pieces(int pieces) : done(static_cast<std::size_t>(pieces), 0) {}
+  void operator()() noexcept {
+    for (std::size_t i = next.fetch_add(1); i < done.size(); i = next.fetch_add(1)) ++done[i];
+  }
+  bool each_once() const {
+    return std::all_of(done.begin(), done.end(), [](int d) { return d == 1; });
+  }
+  std::atomic<std::size_t> next{0};
+  std::vector<int> done;
+};
+
+// CPU time this process has used [s] (all its threads).
+double process_cpu_seconds() {
+  rusage usage{};
+  ::getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+bool throws_invalid_argument(int threads, double seconds) {
+  try {
+    leadscrew::wake_helpers(threads, seconds);
+  } catch (const std::invalid_argument&) {
+    return true;
+  }
+  return false;
+}
+
+bool rendezvous_of(int threads) {
+  Rendezvous job(threads);
+  leadscrew::run_in_parallel(threads, job);
+  return job.ok();
+}
+
+}  // namespace
+
+int main() {
+  // 1. Every thread count, twice (the second time from the pool's sleep).
+  for (int round = 0; round < 2; ++round) {
+    for (int threads = 1; threads <= 6; ++threads) {
+      char label[96];
+      std::snprintf(label, sizeof label, "%d calls at once, the caller's among them, round %d",
+                    threads, round);
+      report(rendezvous_of(threads), label, threads);
+    }
+  }
+
+  // 2. The pool keeps at most one helper per hardware thread (the rest of a
+  // larger request are started per call), and reuses them.
+  const int hardware = std::max(1u, std::thread::hardware_concurrency());
+  const int pooled = leadscrew::pooled_helper_count();
+  report(pooled >= 1 && pooled <= hardware, "the pool keeps 1 to hardware_concurrency helpers",
+         pooled);
+  for (int k = 0; k < 200; ++k) rendezvous_of(2);
+  report(leadscrew::pooled_helper_count() == pooled, "the pool reuses its helpers", pooled);
+
+  // 3. Two threads calling at once (one gets the pool, the other starts its
+  // own helpers), many times: every job's pieces done exactly once.
+  std::atomic<long> bad_jobs{0};
+  auto caller = [&] {
+    for (int k = 0; k < 300; ++k) {
+      Pieces job(500);
+      leadscrew::run_in_parallel(3, job);
+      if (!job.each_once()) bad_jobs.fetch_add(1);
+    }
+  };
+  std::thread first(caller), second(caller);
+  first.join();
+  second.join();
+  report(bad_jobs.load() == 0, "concurrent callers: every piece once in 600 jobs", bad_jobs.load());
+
+  // 4. A call made from inside a call, on the calling thread and on a helper.
+  std::atomic<int> inner_ok{0};
+  struct Nested {
+    std::atomic<int>* inner_ok;
+    void operator()() noexcept {
+      if (rendezvous_of(2)) inner_ok->fetch_add(1);
+    }
+  } nested{&inner_ok};
+  leadscrew::run_in_parallel(2, nested);
+  report(inner_ok.load() == 2, "nested calls on the caller and on a helper", inner_ok.load());
+
+  // 5. wake_helpers: a job after it runs as any other (on helpers that
+  // spin for it); without a job the helpers spin for the time given and no
+  // longer (CPU time of the process while the caller sleeps: ~10 ms of the
+  // 10 ms alert, bounded well below the 80 ms slept); bad arguments throw.
+  leadscrew::wake_helpers(3, 0.01);
+  report(rendezvous_of(3), "a job after wake_helpers", 3);
+  leadscrew::wake_helpers(2, 0.0);  // wakes none
+  report(rendezvous_of(2), "a job after wake_helpers of no time", 2);
+  const double cpu_before = process_cpu_seconds();
+  leadscrew::wake_helpers(2, 0.01);
+  std::this_thread::sleep_for(std::chrono::milliseconds(80));
+  const double spun = process_cpu_seconds() - cpu_before;
+  report(spun > 0.001 && spun < 0.05, "an alert without a job spins for its time only [us]",
+         std::lround(spun * 1e6));
+  report(rendezvous_of(2), "a job after the alert ended", 2);
+  int refused = 0;
+  for (const auto& [threads, seconds] : {std::pair<int, double>{0, 0.001}, {-1, 0.001},
+                                         {2, -1e-9}, {2, 0.011}, {2, std::nan("")},
+                                         {2, HUGE_VAL}})
+    refused += throws_invalid_argument(threads, seconds) ? 1 : 0;
+  report(refused == 6, "wake_helpers refuses threads < 1 and seconds outside [0, 0.01]",
+         refused);
+
+  // 6. A forked child has none of the parent's helper threads: it must build
+  // its own pool rather than wait for them (alarm ends a hang).
+  std::fflush(stdout);
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::alarm(30);
+    const bool ok = rendezvous_of(2) && rendezvous_of(3) && leadscrew::pooled_helper_count() >= 1;
+    std::_Exit(ok ? 0 : 1);
+  }
+  int status = 0;
+  const bool waited = child > 0 && ::waitpid(child, &status, 0) == child;
+  report(waited && WIFEXITED(status) && WEXITSTATUS(status) == 0,
+         "a forked child runs calls on a pool of its own", waited ? status : -1);
+  // ... and the parent's pool still works.
+  report(rendezvous_of(2), "the parent's pool after the fork", 2);
+
+  std::printf("RESULT: %s\n", all_passed ? "PASS" : "FAIL");
+  return all_passed ? 0 : 1;
+}

@@ -1,0 +1,87 @@
+"""Native check of run_in_parallel (cpp/include/leadscrew/core/parallel.hpp),
+the helper-thread pool under the batches' workers, from tests/cpp/test_parallel.cpp:
+what threads do cannot be observed from Python."""
+
+import os
+import re
+import subprocess
+
+import pytest
+
+from leadscrew import _core
+
+
+@pytest.fixture(scope="module")
+def parallel_report(native_tests_build):
+    return subprocess.run([str(native_tests_build / "test_parallel")], capture_output=True,
+                          text=True, timeout=120)
+
+
+def passed(report, label):
+    """The count of the line `PASS <label> (<count>)`; fails if it is missing."""
+    line = re.search(rf"^PASS {re.escape(label)} \((-?\d+)\)$", report.stdout, re.MULTILINE)
+    assert line, report.stdout + report.stderr
+    return int(line.group(1))
+
+
+def test_parallel_program_passes(parallel_report):
+    assert parallel_report.returncode == 0, parallel_report.stdout + parallel_report.stderr
+    assert parallel_report.stdout.strip().endswith("RESULT: PASS")
+    assert "FAIL" not in parallel_report.stdout
+
+
+@pytest.mark.parametrize("threads", range(1, 7))
+@pytest.mark.parametrize("round_", [0, 1])
+def test_every_call_runs_at_once_and_has_returned(parallel_report, threads, round_):
+    """`threads` calls meet at a rendezvous (a pool that ran them one after
+    another would never get there), on distinct threads, the caller's among
+    them, and all have returned when run_in_parallel does; round 1 from the
+    pool's sleep."""
+    label = f"{threads} calls at once, the caller's among them, round {round_}"
+    assert passed(parallel_report, label) == threads
+
+
+def test_the_pool_is_bounded_and_reused(parallel_report):
+    kept = passed(parallel_report, "the pool keeps 1 to hardware_concurrency helpers")
+    assert 1 <= kept
+    assert passed(parallel_report, "the pool reuses its helpers") == kept
+
+
+def test_concurrent_and_nested_callers(parallel_report):
+    assert passed(parallel_report, "concurrent callers: every piece once in 600 jobs") == 0
+    assert passed(parallel_report, "nested calls on the caller and on a helper") == 2
+
+
+def test_wake_helpers_announces_a_job_and_spins_for_its_time_only(parallel_report):
+    """Helpers woken for a job run it; without one they spin for the time
+    given (10 ms: the process's CPU time while the caller sleeps 80 ms is
+    between 1 and 50 ms) and then sleep; bad arguments throw."""
+    assert passed(parallel_report, "a job after wake_helpers") == 3
+    assert passed(parallel_report, "a job after wake_helpers of no time") == 2
+    spun_us = passed(parallel_report, "an alert without a job spins for its time only [us]")
+    assert 1000 < spun_us < 50000
+    assert passed(parallel_report, "a job after the alert ended") == 2
+    assert passed(parallel_report,
+                  "wake_helpers refuses threads < 1 and seconds outside [0, 0.01]") == 6
+
+
+@pytest.mark.parametrize("threads, seconds, message", [
+    (0, 0.001, "threads = 0 is invalid: must be an integer >= 1"),
+    (2, -1.0, r"seconds = -1 is invalid: must be in \[0, 0.01\]"),
+    (2, float("nan"), r"seconds = nan is invalid: must be in \[0, 0.01\]"),
+    (2, 0.5, r"seconds = 0.5 is invalid: must be in \[0, 0.01\]")])
+def test_wake_helpers_from_python_checks_its_arguments(threads, seconds, message):
+    with pytest.raises(ValueError, match=message):
+        _core.wake_helpers(threads, seconds)
+
+
+def test_wake_helpers_from_python_grows_the_pool_within_its_bound():
+    _core.wake_helpers(2, 0.001)
+    assert 1 <= _core.pooled_helper_count() <= max(1, os.cpu_count() or 1)
+
+
+def test_a_forked_child_builds_its_own_pool(parallel_report):
+    """The child of a fork() has none of the parent's helper threads: waiting
+    for them would hang (the child's alarm would end it with status 14)."""
+    assert passed(parallel_report, "a forked child runs calls on a pool of its own") == 0
+    assert passed(parallel_report, "the parent's pool after the fork") == 2

@@ -38,7 +38,7 @@ struct Rendezvous {
   void operator()() noexcept {
     const int slot = arrived.fetch_add(1);
     if (slot < threads) ids[static_cast<std::size_t>(slot)] = std::this_thread::get_id();
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
     while (arrived.load() < threads && std::chrono::steady_clock::now() < deadline)
       std::this_thread::yield();
     if (arrived.load() < threads) timed_out.store(true);
@@ -114,23 +114,37 @@ int main() {
   const int pooled = leadscrew::pooled_helper_count();
   report(pooled >= 1 && pooled <= hardware, "the pool keeps 1 to hardware_concurrency helpers",
          pooled);
-  for (int k = 0; k < 200; ++k) rendezvous_of(2);
-  report(leadscrew::pooled_helper_count() == pooled, "the pool reuses its helpers", pooled);
+  // 200 calls on the pool's helpers: no more distinct helper threads than it
+  // keeps (a pool that started a thread per call would show 200).
+  std::set<std::thread::id> helper_ids;
+  bool all_met = true;
+  for (int k = 0; k < 200; ++k) {
+    Rendezvous job(2);
+    leadscrew::run_in_parallel(2, job);
+    all_met = all_met && job.ok();
+    for (const std::thread::id& id : job.ids)
+      if (id != std::this_thread::get_id()) helper_ids.insert(id);
+  }
+  report(all_met && static_cast<int>(helper_ids.size()) <= pooled &&
+             leadscrew::pooled_helper_count() == pooled,
+         "the pool reuses its helpers", static_cast<long>(helper_ids.size()));
 
   // 3. Two threads calling at once (one gets the pool, the other starts its
-  // own helpers), many times: every job's pieces done exactly once.
+  // own helpers), many times: each call meets its 3 threads at once, and
+  // every job's pieces are done exactly once.
   std::atomic<long> bad_jobs{0};
   auto caller = [&] {
     for (int k = 0; k < 300; ++k) {
       Pieces job(500);
       leadscrew::run_in_parallel(3, job);
-      if (!job.each_once()) bad_jobs.fetch_add(1);
+      if (!job.each_once() || !rendezvous_of(3)) bad_jobs.fetch_add(1);
     }
   };
   std::thread first(caller), second(caller);
   first.join();
   second.join();
-  report(bad_jobs.load() == 0, "concurrent callers: every piece once in 600 jobs", bad_jobs.load());
+  report(bad_jobs.load() == 0, "concurrent callers: 600 jobs, each on 3 threads at once",
+         bad_jobs.load());
 
   // 4. A call made from inside a call, on the calling thread and on a helper.
   std::atomic<int> inner_ok{0};
@@ -146,7 +160,9 @@ int main() {
   // 5. wake_helpers: a job after it runs as any other (on helpers that
   // spin for it); without a job the helpers spin for the time given and no
   // longer (CPU time of the process while the caller sleeps: ~10 ms of the
-  // 10 ms alert, bounded well below the 80 ms slept); bad arguments throw.
+  // 10 ms alert, bounded well below the 80 ms slept; the lower bound only
+  // asks for a fraction of it, a loaded machine may run the helper late);
+  // bad arguments throw.
   leadscrew::wake_helpers(3, 0.01);
   report(rendezvous_of(3), "a job after wake_helpers", 3);
   leadscrew::wake_helpers(2, 0.0);  // wakes none
@@ -155,7 +171,7 @@ int main() {
   leadscrew::wake_helpers(2, 0.01);
   std::this_thread::sleep_for(std::chrono::milliseconds(80));
   const double spun = process_cpu_seconds() - cpu_before;
-  report(spun > 0.001 && spun < 0.05, "an alert without a job spins for its time only [us]",
+  report(spun > 0.0003 && spun < 0.05, "an alert without a job spins for its time only [us]",
          std::lround(spun * 1e6));
   report(rendezvous_of(2), "a job after the alert ended", 2);
   int refused = 0;

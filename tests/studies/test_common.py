@@ -38,7 +38,9 @@ def test_frame_of_keeps_order_dtypes_and_none():
 # The ways frame_of can build a frame with the pandas the tests run with
 # ("blocks" needs pandas >= 3; "public" is always there).
 PATHS = [path for path, there in (("blocks", _common._pandas_from_blocks() is not None),
-                                  ("arrays", hasattr(pd.DataFrame, "_from_arrays")),
+                                  ("arrays", _common._has_parameters(
+                                      getattr(pd.DataFrame, "_from_arrays", None),
+                                      ("arrays", "columns", "index", "verify_integrity"))),
                                   ("public", True)) if there]
 
 
@@ -65,16 +67,15 @@ def test_every_way_gives_the_same_frame(monkeypatch, path):
 
 
 def test_the_pandas_constructors_are_recognised_by_their_parameters(monkeypatch):
-    from pandas.api import internals
-
     def other(arrays, columns, index, dtype=None):  # no verify_integrity, no blocks
         raise AssertionError("not to be called")
 
-    expected = "blocks" if hasattr(internals, "create_dataframe_from_blocks") else "arrays"
-    assert _common._frame_constructor() == expected
-    monkeypatch.setattr(internals, "create_dataframe_from_blocks", other, raising=False)
+    assert _common._frame_constructor() == PATHS[0]
+    # pandas < 3 has no pandas.api.internals (or not this function): the
+    # next way; so has a function of other parameters.
+    monkeypatch.setattr(_common, "_pandas_from_blocks", lambda: other)
     assert _common._frame_constructor() == "arrays"
-    monkeypatch.delattr(internals, "create_dataframe_from_blocks")
+    monkeypatch.setattr(_common, "_pandas_from_blocks", lambda: None)
     assert _common._frame_constructor() == "arrays"
     monkeypatch.setattr(pd.DataFrame, "_from_arrays", other, raising=False)
     assert _common._frame_constructor() == "public"

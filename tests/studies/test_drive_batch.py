@@ -527,6 +527,10 @@ def test_default_efficiency_sweep_runs_on_the_cores_threads(monkeypatch):
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
         pooled = efficiency_vs_mu(base, mu, loads, executor=pool, progress=False)
     assert woken == []  # no helper of the core's is used
+    # one case to simulate, or none: no helper to wake
+    efficiency_vs_mu(base, [0.1], [10.0], progress=False)
+    efficiency_vs_mu(base, [1.01 * cot], [10.0, 50.0], progress=False)
+    assert woken == []
     assert list(default["simulated"]) == [True] * 6 + [False] * 3 + [True] * 6
     for frame in (serial, pooled):
         pd.testing.assert_frame_equal(default.drop(columns="wall_time"),

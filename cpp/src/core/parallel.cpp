@@ -1,6 +1,6 @@
 #include "leadscrew/core/parallel.hpp"
 
-#include <unistd.h>
+#include <pthread.h>
 
 #include <algorithm>
 #include <atomic>
@@ -36,11 +36,9 @@ void cpu_relax() noexcept {
 // until the process ends (a joinable std::thread must not be destroyed).
 class HelperPool {
  public:
-  HelperPool() : owner_(::getpid()) {}
+  HelperPool() = default;
   HelperPool(const HelperPool&) = delete;
   HelperPool& operator=(const HelperPool&) = delete;
-
-  pid_t owner() const noexcept { return owner_; }
 
   // Claims the pool for one call (false: another call has it, perhaps an
   // outer call on this same thread); release() gives it back.
@@ -99,6 +97,8 @@ class HelperPool {
   // The pool's threads, min(wanted, its size) of them (as many as the system
   // starts); requires state_.
   std::size_t grow(int wanted) noexcept {
+    // One per hardware thread (the studies' default_workers counts the cores
+    // of the process's affinity, never more): more are started per call.
     const std::size_t size = std::max(1u, std::thread::hardware_concurrency());
     const std::size_t needed = std::min(static_cast<std::size_t>(std::max(wanted, 0)), size);
     try {
@@ -150,7 +150,6 @@ class HelperPool {
     }
   }
 
-  const pid_t owner_;
   std::atomic<bool> in_use_{false};
   std::mutex state_;
   std::condition_variable wake_;      // a new job (generation_ changed)
@@ -168,26 +167,37 @@ class HelperPool {
 };
 
 std::atomic<HelperPool*> process_pool{nullptr};
-std::mutex pool_creation;
+std::atomic<bool> pool_being_built{false};
+
+// In the child of a fork(): none of the parent's helper threads followed, so
+// the child must not wait for them. It forgets the parent's pool (left as it
+// is: its mutexes may have been copied locked) and builds its own at first
+// use.
+void forget_pool_in_child() noexcept {
+  process_pool.store(nullptr, std::memory_order_relaxed);
+  pool_being_built.store(false, std::memory_order_relaxed);
+}
 
 // This process's pool, built at first use; null if another thread is
-// building it just now. After fork() the parent's pool (whose threads did
-// not follow into the child) is left as it is, and the child builds its own.
+// building it just now (the caller then starts threads of its own).
 HelperPool* pool_of_this_process() noexcept {
   HelperPool* pool = process_pool.load(std::memory_order_acquire);
-  const pid_t process = ::getpid();
-  if (pool != nullptr && pool->owner() == process) return pool;
-  // try_lock: the mutex may have been copied locked into a forked child.
-  std::unique_lock<std::mutex> lock(pool_creation, std::try_to_lock);
-  if (!lock.owns_lock()) return nullptr;
+  if (pool != nullptr) return pool;
+  if (pool_being_built.exchange(true, std::memory_order_acq_rel)) return nullptr;
   pool = process_pool.load(std::memory_order_acquire);
-  if (pool != nullptr && pool->owner() == process) return pool;
-  try {
-    pool = new HelperPool();
-  } catch (const std::bad_alloc&) {
-    return nullptr;
+  if (pool == nullptr) {
+    static const bool fork_handler_registered =
+        ::pthread_atfork(nullptr, nullptr, forget_pool_in_child) == 0;
+    if (fork_handler_registered) {  // without it a forked child could hang: no pool then
+      try {
+        pool = new HelperPool();
+        process_pool.store(pool, std::memory_order_release);
+      } catch (const std::bad_alloc&) {
+        pool = nullptr;
+      }
+    }
   }
-  process_pool.store(pool, std::memory_order_release);
+  pool_being_built.store(false, std::memory_order_release);
   return pool;
 }
 

@@ -137,9 +137,12 @@ class SerialExecutor(concurrent.futures.Executor):
 
 
 def default_workers() -> int:
-    """Number of workers of the default thread pool: one per core this process
-    may run on (its CPU affinity where the system has one, else
-    ``os.cpu_count()``), at least 1."""
+    """Number of workers of the default thread pool.
+
+    Returns:
+        One per core this process may run on (its CPU affinity where the
+        system has one, else ``os.cpu_count()``), at least 1.
+    """
     if _HAS_AFFINITY:  # ~0.4 us, where os.cpu_count() reads /sys (~7 us)
         return max(1, len(os.sched_getaffinity(0)))
     return max(1, os.cpu_count() or 1)

@@ -162,11 +162,6 @@ def efficiency_vs_mu(
     scene = as_scene(scene)
     mus = check_grid("mu", mu, allow_zero=True)
     forces = check_grid("loads", loads)
-    if executor is None and len(mus) * len(forces) > 1:
-        # The batch below runs on the core's helper threads: wake them now, so
-        # that they wait for it spinning while this thread prepares it (at
-        # most _WAKE_SECONDS) instead of taking 30-50 us to wake when it starts.
-        _core.wake_helpers(default_workers(), _WAKE_SECONDS)
     speed = check_positive("speed", speed)
     t_end = check_positive("t_end", t_end)
     if window is None:
@@ -179,15 +174,24 @@ def efficiency_vs_mu(
         raise ValueError(f"window = {window!r} is invalid: must satisfy 0 <= start < end <= "
                          f"t_end = {t_end:g}")
     thread = scene.thread
-    batch = _efficiency_batch(scene, speed, t_end, (start, end),
-                              dict(simulate_options, rtol=rtol, atol=atol))
     count = len(mus) * len(forces)
-    mu_column = np.repeat(mus, len(forces))
-    load_column = np.tile(forces, len(mus))
     # leadscrew.efficiency and is_drivable, elementwise over mu (one call each)
     closed_form = np.repeat(_core.efficiency_array(thread, mus), len(forces))
     drivable = np.repeat(_core.is_drivable_array(thread, mus), len(forces))
     simulated = np.flatnonzero(drivable)
+    # A SerialExecutor (exactly that class, not shut down) runs nothing but
+    # what the calling thread would: the default path's calls, on one worker.
+    serial = type(executor) is SerialExecutor and not executor.is_shutdown
+    workers = 1 if serial else max(1, min(default_workers(), len(simulated)))
+    if executor is None and workers > 1:
+        # The batch below runs on the core's helper threads: wake them now, so
+        # that they wait for it spinning while this thread prepares it (at
+        # most _WAKE_SECONDS) instead of taking 30-50 us to wake when it starts.
+        _core.wake_helpers(workers, _WAKE_SECONDS)
+    batch = _efficiency_batch(scene, speed, t_end, (start, end),
+                              dict(simulate_options, rtol=rtol, atol=atol))
+    mu_column = np.repeat(mus, len(forces))
+    load_column = np.tile(forces, len(mus))
     # A case that is not simulated: no torque moves the load, eta = 0.
     columns: Dict[str, Any] = {
         "efficiency": np.zeros(count), "window_change": np.zeros(count),
@@ -195,13 +199,9 @@ def efficiency_vs_mu(
         "friction_loss": np.zeros(count), "load_speed": np.zeros(count),
         "wall_time": np.zeros(count)}
     errors = np.full(count, None, dtype=object)
-    # A SerialExecutor (exactly that class, not shut down) runs nothing but
-    # what the calling thread would: the default path's calls, on one worker.
-    serial = type(executor) is SerialExecutor and not executor.is_shutdown
     if executor is None or serial:
         # The thread pool is in the core (one batch call per range); serial:
         # the same calls on the calling thread alone.
-        workers = 1 if serial else default_workers()
         cases = np.column_stack([mu_column[simulated], load_column[simulated]])
         chunks = run_batches(lambda rows: _efficiency_chunk(cases[rows.start:rows.stop], batch,
                                                             workers),

@@ -30,7 +30,12 @@ using ParallelWork = void (*)(void* context) noexcept;
 // Python threads each running a batch, or a nested call) or when more are
 // wanted than it keeps (one per hardware thread), the rest are started for
 // this call as std::threads and joined. After a fork() the child, which has
-// none of the parent's helpers, builds its own pool.
+// none of the parent's helpers, builds its own pool (a pthread_atfork
+// handler makes it forget the parent's).
+//
+// The helpers stay until the process ends, so after a call with threads > 1
+// the process has more than one thread: Python 3.12 and later then warn
+// (DeprecationWarning) at os.fork(), as for any threaded extension.
 void run_in_parallel(int threads, ParallelWork work, void* context) noexcept;
 
 // The same for a callable: work() on each of `threads` threads.
@@ -50,8 +55,9 @@ void run_in_parallel(int threads, Work& work) noexcept {
 // batch). Spinning costs CPU time on those cores, until the job or the time
 // comes. InvalidArgument unless threads >= 1 and 0 <= seconds <=
 // kMaxAlertSeconds; threads == 1 or seconds == 0 wakes none.
-inline constexpr double kMaxAlertSeconds = 0.01;
 void wake_helpers(int threads, double seconds);
+// The longest alert wake_helpers takes [s].
+inline constexpr double kMaxAlertSeconds = 0.01;
 
 // Helper threads the process's pool has started so far (for tests).
 int pooled_helper_count() noexcept;

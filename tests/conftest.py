@@ -1,7 +1,5 @@
 import os
 import pathlib
-import shutil
-import subprocess
 import sys
 
 import pytest
@@ -17,16 +15,7 @@ def native_tests_build(tmp_path_factory):
     """The built CMake project tests/cpp (native checks of the core: LCP
     allocation and paths, run_in_parallel), in a temporary directory or in
     $LEADSCREW_NATIVE_BUILD_DIR, reused across sessions."""
-    cmake = shutil.which("cmake")
-    assert cmake, "cmake is needed to build tests/cpp (pip install cmake)"
+    from helpers.cmake_project import built, configured
+
     build = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR") or str(tmp_path_factory.mktemp("native"))
-    configure = [cmake, "-S", str(NATIVE_TESTS), "-B", build, "-DCMAKE_BUILD_TYPE=Release"]
-    if shutil.which("ninja"):
-        configure += ["-G", "Ninja"]
-    if not (pathlib.Path(build) / "CMakeCache.txt").exists():
-        subprocess.run(configure, check=True, capture_output=True, text=True)
-    done = subprocess.run(
-        [cmake, "--build", build, "--parallel", "2"], capture_output=True, text=True
-    )
-    assert done.returncode == 0, done.stdout + done.stderr
-    return pathlib.Path(build)
+    return built(configured(NATIVE_TESTS, build))

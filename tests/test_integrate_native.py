@@ -12,12 +12,12 @@ $LEADSCREW_NATIVE_BUILD_DIR/integrate, reused across sessions."""
 import os
 import pathlib
 import re
-import shutil
 import subprocess
 
 import pytest
 
 import leadscrew.integrate as li
+from helpers.cmake_project import built, configured
 
 SOURCE = pathlib.Path(__file__).resolve().parent.parent / "benchmarks" / "integrate"
 
@@ -25,23 +25,13 @@ SOURCE = pathlib.Path(__file__).resolve().parent.parent / "benchmarks" / "integr
 @pytest.fixture(scope="session")
 def native_build(tmp_path_factory):
     """The configured build directory of benchmarks/integrate."""
-    cmake = shutil.which("cmake")
-    assert cmake, "cmake is needed to build benchmarks/integrate (pip install cmake)"
     shared = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR")
-    build = pathlib.Path(shared) / "integrate" if shared else tmp_path_factory.mktemp("integrate")
-    if not (build / "CMakeCache.txt").exists():
-        configure = [cmake, "-S", str(SOURCE), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release"]
-        if shutil.which("ninja"):
-            configure += ["-G", "Ninja"]
-        subprocess.run(configure, check=True, capture_output=True, text=True)
-    return build
+    return configured(SOURCE, pathlib.Path(shared) / "integrate" if shared
+                      else tmp_path_factory.mktemp("integrate"))
 
 
 def build_and_run(build, target):
-    done = subprocess.run(
-        [shutil.which("cmake"), "--build", str(build), "--target", target, "--parallel", "2"],
-        capture_output=True, text=True)
-    assert done.returncode == 0, done.stdout + done.stderr
+    built(build, target)
     return subprocess.run([str(build / target)], capture_output=True, text=True, timeout=120)
 
 

@@ -410,7 +410,6 @@ def test_two_python_threads_run_batches_on_workers_at_once():
     assert 1 <= _core.pooled_helper_count() <= max(1, os.cpu_count() or 1)
 
 
-@pytest.mark.skipif(not hasattr(os, "fork"), reason="os.fork is POSIX only")
 def test_a_forked_child_runs_a_batch_on_workers():
     """A process forked after a batch ran on the core's helper threads (as
     multiprocessing's fork start method does) has none of those threads: its

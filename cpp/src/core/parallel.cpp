@@ -242,7 +242,8 @@ void wake_helpers(int threads, double seconds) {
 }
 
 int pooled_helper_count() noexcept {
-  HelperPool* pool = pool_of_this_process();
+  // Asks only: a process that never ran a job has no pool (and gets none).
+  HelperPool* pool = process_pool.load(std::memory_order_acquire);
   return pool == nullptr ? 0 : pool->size();
 }
 

@@ -155,9 +155,10 @@ def frame_of(columns: Dict[str, Any]):
     the Python around a sweep of 150 microsecond simulations). Here the
     columns of one dtype are stacked into one 2-D block and the frame is
     made of the blocks: with pandas >= 3 by
-    ``pandas.api.internals.create_dataframe_from_blocks`` (~14 us), with
-    older pandas by its internal ``DataFrame._from_arrays``, which groups
-    the columns itself (~25-40 us); where neither exists with the expected
+    ``pandas.api.internals.create_dataframe_from_blocks`` (22-30 us for
+    the 14 columns, grouping included), with older pandas by its internal
+    ``DataFrame._from_arrays``, which groups the columns itself (41-43 us
+    with pandas 3); where neither exists with the expected
     parameters (checked at import), by the public constructor.
     tests/studies/test_common.py checks that every path gives the same frame.
 

@@ -136,6 +136,9 @@ class SerialExecutor(concurrent.futures.Executor):
         return self._shutdown
 
 
+_HAS_AFFINITY = hasattr(os, "sched_getaffinity")
+
+
 def default_workers() -> int:
     """Number of workers of the default thread pool.
 
@@ -146,9 +149,6 @@ def default_workers() -> int:
     if _HAS_AFFINITY:  # ~0.4 us, where os.cpu_count() reads /sys (~7 us)
         return max(1, len(os.sched_getaffinity(0)))
     return max(1, os.cpu_count() or 1)
-
-
-_HAS_AFFINITY = hasattr(os, "sched_getaffinity")
 
 
 def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float]) -> int:

@@ -7,7 +7,7 @@
 // the 2-core test machine, waking a thread that sleeps in a pool 30-50 us, of
 // which the calling thread does useful work meanwhile. The helpers therefore
 // live in one process-wide pool, asleep between calls, and are never joined:
-// they end with the process.
+// they end with the process. POSIX only (pthread_atfork, below).
 #pragma once
 
 #include <type_traits>

@@ -97,6 +97,44 @@ def test_failed_simulations_are_rows():
     assert frame.loc[0, "efficiency_closed_form"] == ls.efficiency(ls.Thread(1e-3, 20e-3), 0.1)
 
 
+
+@pytest.mark.parametrize("undrivable", [False, True])
+def test_each_case_keeps_its_row_on_every_path(monkeypatch, undrivable):
+    """A failed case among good ones, with and without a case that is not
+    simulated: one batch call on every case (whose measures become the
+    columns as they are) and chunks through an executor (placed row by row)
+    give the same rows, the failure in its own."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from leadscrew.studies import _batch
+
+    run = _batch.DriveBatch.run
+
+    def second_mu_fails(self, values, workers=1):
+        samples, errors, wall_time = run(self, values, workers)
+        failing = np.flatnonzero(np.asarray(values)[:, 0] == MU[2])
+        samples, errors, wall_time = samples.copy(), list(errors), wall_time.copy()
+        samples[failing], wall_time[failing] = np.nan, np.nan
+        for row in failing:
+            errors[row] = "SimulationError: injected"
+        return samples, errors, wall_time
+
+    monkeypatch.setattr(_batch.DriveBatch, "run", second_mu_fails)
+    cot = 1.0 / math.tan(ls.Thread(1e-3, 20e-3).lead_angle)
+    mu = MU[:4] + ([1.01 * cot] if undrivable else [])
+    one_call = efficiency_vs_mu(scene(), mu, LOADS[:2], progress=False)
+    with ThreadPoolExecutor(2) as executor:
+        chunked = efficiency_vs_mu(scene(), mu, LOADS[:2], executor=executor, progress=False)
+    failed = one_call["mu"] == MU[2]
+    assert one_call["error"].tolist() == [
+        "SimulationError: injected" if bad else None for bad in failed]
+    assert one_call.loc[failed, "efficiency"].isna().all()
+    assert (one_call.loc[~failed & one_call["drivable"], "relative_error"] < 1e-6).all()
+    assert list(one_call["simulated"]) == [m < cot for m in one_call["mu"]]
+    numeric = [c for c in one_call.columns if c not in ("wall_time", "error")]
+    assert chunked[numeric].equals(one_call[numeric])
+    assert chunked["error"].tolist() == one_call["error"].tolist()
+
 @pytest.mark.parametrize("progress", [False, True])
 def test_a_serial_executor_runs_the_batch_on_the_calling_thread(rigid, monkeypatch, progress):
     # SerialExecutor: the default path's batch calls with one worker (the

@@ -34,6 +34,11 @@ UNITS = {"mu": "1", "load": "N", "efficiency": "1", "efficiency_closed_form": "1
 # what the study measures from it.
 _CHANNELS = ("work_drive", "friction_loss", "drive_torque", "v_load")
 _WORK, _LOSS, _TORQUE, _SPEED = range(len(_CHANNELS))  # indices into _CHANNELS
+# The two works, next to each other in _CHANNELS: eq. 5.2 takes both at once.
+_WORKS = slice(_WORK, _LOSS + 1)
+# A case's values from its (mu, load): the load is raised, so it acts along
+# -x (loads.axial_force = -load).
+_RAISING = np.array([1.0, -1.0])
 # How long the core's helper threads wait spinning for the sweep's batch [s]
 # (the Python before it takes ~0.1-0.3 ms).
 _WAKE_SECONDS = 0.002
@@ -67,12 +72,12 @@ def _efficiency_chunk(cases: Any, batch: DriveBatch, workers: int = 1) -> Dict[s
     every case of the chunk at once (columns of the samples).
     """
     mu_and_load = np.asarray(cases, dtype=float).reshape(-1, 2)
-    # The load is raised: it acts along -x (loads.axial_force = -load).
-    samples, errors, wall_time = batch.run(mu_and_load * [1.0, -1.0], workers)
-    # Works over the whole window and its two halves (sample 1 to 3, 1 to 2,
-    # 2 to 3), one column each: three windows in one operation.
-    work = samples[:, _WORK, _WINDOW_ENDS] - samples[:, _WORK, _WINDOW_STARTS]
-    loss = samples[:, _LOSS, _WINDOW_ENDS] - samples[:, _LOSS, _WINDOW_STARTS]
+    samples, errors, wall_time = batch.run(mu_and_load * _RAISING, workers)
+    # Both works over the whole window and its two halves (sample 1 to 3, 1
+    # to 2, 2 to 3), one column each: two channels and three windows in one
+    # operation.
+    works = samples[:, _WORKS, _WINDOW_ENDS] - samples[:, _WORKS, _WINDOW_STARTS]
+    work, loss = works[:, _WORK - _WORKS.start], works[:, _LOSS - _WORKS.start]
     eta = (work - loss) / work
     return {"efficiency": eta[:, 0],
             "window_change": np.abs(eta[:, 2] - eta[:, 1]) / np.abs(eta[:, 0]),
@@ -82,6 +87,38 @@ def _efficiency_chunk(cases: Any, batch: DriveBatch, workers: int = 1) -> Dict[s
             "load_speed": samples[:, _SPEED, 3],
             "wall_time": np.asarray(wall_time, dtype=float),
             "error": errors}
+
+
+def _measured_columns(chunks: List[Any], simulated: np.ndarray, count: int
+                      ) -> Tuple[Dict[str, np.ndarray], np.ndarray]:
+    """The measures of all ``count`` cases (one array per name of
+    _MEASURES) and their error column (an object array of None and
+    messages), from the chunks (:class:`~leadscrew.studies._sweep.ChunkOutcome`)
+    over the ``simulated`` ones."""
+    errors = np.empty(count, dtype=object)  # None in every row
+    if len(simulated) == count and len(chunks) == 1 and chunks[0].ok:
+        # The usual sweep: every case simulated, in order, by one call: its
+        # measures are the columns.
+        measures = chunks[0].value
+        if any(measures["error"]):
+            errors[:] = measures["error"]
+        return measures, errors
+    # A case that is not simulated: no torque moves the load, eta = 0.
+    columns = {"efficiency": np.zeros(count), "window_change": np.zeros(count),
+               "drive_torque": np.full(count, np.inf), "work_drive": np.zeros(count),
+               "friction_loss": np.zeros(count), "load_speed": np.zeros(count),
+               "wall_time": np.zeros(count)}
+    for chunk in chunks:
+        rows = simulated[chunk.cases.start:chunk.cases.stop]
+        if chunk.ok:
+            for name in _MEASURES:
+                columns[name][rows] = chunk.value[name]
+            errors[rows] = chunk.value["error"]
+        else:  # the chunk function failed or the executor lost the task
+            for name in _MEASURES:
+                columns[name][rows] = np.nan
+            errors[rows] = chunk.error
+    return columns, errors
 
 
 def efficiency_vs_mu(
@@ -192,17 +229,11 @@ def efficiency_vs_mu(
                               dict(simulate_options, rtol=rtol, atol=atol))
     mu_column = np.repeat(mus, len(forces))
     load_column = np.tile(forces, len(mus))
-    # A case that is not simulated: no torque moves the load, eta = 0.
-    columns: Dict[str, Any] = {
-        "efficiency": np.zeros(count), "window_change": np.zeros(count),
-        "drive_torque": np.full(count, np.inf), "work_drive": np.zeros(count),
-        "friction_loss": np.zeros(count), "load_speed": np.zeros(count),
-        "wall_time": np.zeros(count)}
-    errors = np.full(count, None, dtype=object)
     if executor is None or serial:
         # The thread pool is in the core (one batch call per range); serial:
         # the same calls on the calling thread alone.
-        cases = np.column_stack([mu_column[simulated], load_column[simulated]])
+        cases = np.empty((len(simulated), 2))
+        cases[:, 0], cases[:, 1] = mu_column[simulated], load_column[simulated]
         chunks = run_batches(lambda rows: _efficiency_chunk(cases[rows.start:rows.stop], batch,
                                                             workers),
                              len(cases), workers, progress=progress,
@@ -213,16 +244,7 @@ def efficiency_vs_mu(
                                      load_column[simulated].tolist())),
                             executor=executor, progress=progress,
                             description="efficiency_vs_mu")
-    for chunk in chunks:
-        rows = simulated[chunk.cases.start:chunk.cases.stop]
-        if chunk.ok:
-            for name in _MEASURES:
-                columns[name][rows] = chunk.value[name]
-            errors[rows] = chunk.value["error"]
-        else:  # the chunk function failed or the executor lost the task
-            for name in _MEASURES:
-                columns[name][rows] = np.nan
-            errors[rows] = chunk.error
+    columns, errors = _measured_columns(chunks, simulated, count)
     eta = columns["efficiency"]
     with np.errstate(divide="ignore", invalid="ignore"):
         relative_error = np.where(closed_form > 0, np.abs(eta - closed_form) / closed_form,

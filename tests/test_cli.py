@@ -1,9 +1,11 @@
 """The command line: run, check, study, demo on the shipped scenes; exit codes; files."""
 
 import importlib.util
+import json
 import math
 import os
 import re
+import shlex
 import subprocess
 import sys
 import types
@@ -133,6 +135,20 @@ def test_check_bad_file_is_one_line_exit_2(tmp_path, capsys):
     assert_one_line_error(err, "--pitch apply without SCENE only")
 
 
+def test_check_validates_the_whole_scene_before_printing(tmp_path, capsys):
+    """A scene whose values are each valid but whose model cannot be built
+    (zero load mass on the flexible drive) is not called valid: nothing is
+    printed, and the error names the file, for check as for run."""
+    path = scene_file(tmp_path, "m0", concept="flexible", load={"mass": 0.0})
+    code, out, err = run_main(capsys, "check", path)
+    assert code == 2 and out == ""
+    assert_one_line_error(err, f"{path}: load.mass = 0 is invalid")
+    out_dir = tmp_path / "out"
+    code, out, err = run_main(capsys, "run", path, "-o", out_dir, "--t-end", "0.01")
+    assert code == 2 and out == "" and not out_dir.exists()
+    assert_one_line_error(err, f"{path}: load.mass = 0 is invalid")
+
+
 # --- run --------------------------------------------------------------------------
 
 
@@ -212,6 +228,71 @@ def test_debug_shows_the_traceback(tmp_path):
         cli.main(["run", str(tmp_path / "missing.toml"), "--debug"])
 
 
+def test_run_keeps_a_dotted_scene_name(tmp_path, capsys):
+    """drive_v1.2.toml gives drive_v1.2.csv, not drive_v1.csv (the ".2" is no suffix)."""
+    path = scene_file(tmp_path, "drive_v1.2")
+    out_dir = tmp_path / "out"
+    code, out, err = run_main(capsys, "run", path, "-o", out_dir, "--t-end", "0.05",
+                              "--points", "11")
+    assert code == 0, err
+    assert sorted(p.name for p in out_dir.iterdir()) == ["drive_v1.2.csv", "drive_v1.2.png"]
+    assert f"wrote {out_dir / 'drive_v1.2.csv'}" in out
+    assert len(pd.read_csv(out_dir / "drive_v1.2.csv")) == 11
+
+
+def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
+    path = scene_file(tmp_path)
+    code, out, err = run_main(capsys, "run", path, "-o", tmp_path, "--t-end", "0.2",
+                              "--points", "11", "--integrator", "moreau", "--dt", "1e-4",
+                              "--theta", "1")
+    assert code == 0, err
+    assert "coulomb/moreau" in out
+    frame = pd.read_csv(tmp_path / "scene.csv")
+    scene, t_eval = ls.Scene.from_toml(path), np.linspace(0, 0.2, 11)
+    expected = ls.simulate(scene, 0.2, integrator="moreau", dt=1e-4, theta=1.0, t_eval=t_eval)
+    np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
+    # theta reached the integrator: the default theta = 0.5 gives other numbers.
+    default = ls.simulate(scene, 0.2, integrator="moreau", dt=1e-4, t_eval=t_eval)
+    assert np.abs(frame["u_load"] - default["u_load"]).max() > 1e-9
+
+
+@pytest.mark.parametrize(
+    "argv, fragments",
+    [
+        (["default", "--dt", "1e-4"],
+         ["--dt 0.0001 is invalid with the scene's default integrator event_driven", "moreau"]),
+        (["default", "--theta", "0.5"], ["--theta 0.5 is invalid", "moreau only"]),
+        (["default", "--integrator", "event_driven", "--dt", "1e-3"],
+         ["--dt 0.001 is invalid with --integrator event_driven"]),
+        (["position_holding", "--dt", "1e-3"], ["--dt 0.001", "default integrator cvode_bdf"]),
+        (["default", "--integrator", "moreau", "--rtol", "1e-6"],
+         ["--rtol 1e-06 is invalid with --integrator moreau", "--dt"]),
+        (["default", "--integrator", "moreau", "--atol", "1e-9"], ["--atol 1e-09 is invalid"]),
+        (["default", "--t-end", "-1"], ["--t-end -1 is invalid"]),
+        (["default", "--t-end", "nan"], ["--t-end nan is invalid"]),
+        (["default", "--points", "1"], ["--points 1 is invalid"]),
+        (["missing.toml"], ["no such file"]),
+    ],
+)
+def test_run_refuses_before_creating_the_output_directory(tmp_path, capsys, argv, fragments):
+    """Options the integrator would ignore are errors, and every argument is
+    checked before the output directory is created."""
+    out_dir = tmp_path / "nd" / "sub"
+    code, out, err = run_main(capsys, "run", *argv, "-o", out_dir)
+    assert code == 2 and out == ""
+    assert_one_line_error(err, *fragments)
+    assert not (tmp_path / "nd").exists()
+
+
+def test_run_output_path_that_is_a_file(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    code, out, err = run_main(capsys, "run", "default", "-o", blocker / "sub", "--t-end", "0.01")
+    assert code == 2 and out == ""
+    assert_one_line_error(err, f"-o {blocker / 'sub'}: cannot create the output directory",
+                          "is not a directory")
+
+
 # --- study ------------------------------------------------------------------------
 
 
@@ -278,6 +359,176 @@ def test_study_without_the_studies_module(tmp_path, capsys, monkeypatch):
     code, _, err = run_main(capsys, "study", "stick_slip", "default", "-o", tmp_path)
     assert code == 1
     assert_one_line_error(err, "leadscrew.studies cannot be imported")
+
+
+def fake_study(monkeypatch, **functions):
+    module = types.ModuleType("leadscrew.studies")
+    module.STUDIES = functions
+    monkeypatch.setitem(sys.modules, "leadscrew.studies", module)
+
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+
+
+def test_readme_study_example_runs(tmp_path, capsys, monkeypatch):
+    """The README's `leadscrew study` line, as written, on the real study."""
+    lines = [line for line in README.read_text(encoding="utf-8").splitlines()
+             if line.startswith("leadscrew study ")]
+    assert len(lines) == 1, lines
+    argv = shlex.split(lines[0], comments=True)[1:]
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run_main(capsys, *argv)
+    assert code == 0, err
+    options = dict(a.split("=", 1) for a in argv if "=" in a)
+    name, scene_name, out_dir = argv[1], argv[2], argv[argv.index("-o") + 1]
+    csv = Path(out_dir) / f"{name}_{scene_name}.csv"
+    assert f"wrote {csv}" in out
+    frame = pd.read_csv(tmp_path / csv)
+    mus = [float(v) for v in options["mu"].split(",")]
+    loads = [float(v) for v in options["loads"].split(",")]
+    assert frame["mu"].tolist() == [m for m in mus for _ in loads]
+    assert frame["load"].tolist() == loads * len(mus)
+    assert frame["error"].isna().all() and frame["simulated"].all()
+    # The simulated efficiency is the closed form's (eq. 5.2 at steady state).
+    assert (frame["relative_error"] < 1e-6).all(), frame["relative_error"]
+
+
+def test_study_fails_when_every_case_failed(tmp_path, capsys):
+    """Every case of a real sweep fails at run time (3 steps are too few):
+    exit 1 with the first message, nothing written."""
+    out_dir = tmp_path / "out"
+    code, out, err = run_main(capsys, "study", "efficiency_vs_mu", "default", "mu=0.1,0.2",
+                              "loads=10", "progress=false", "max_steps=3", "-o", out_dir)
+    assert code == 1
+    assert_one_line_error(err, "study 'efficiency_vs_mu' on default: all 2 cases failed",
+                          "the first: SimulationError", "max_steps")
+    assert not out_dir.exists()
+
+
+def test_study_warns_when_some_cases_failed(tmp_path, capsys, monkeypatch):
+    def partly(scene, runs=3):
+        return pd.DataFrame({"case": range(runs),
+                             "error": [None, "SimulationError: at t = 0.5 s:\n boom", None][:runs]})
+
+    def precision(scene):  # work_precision's column is "failure"
+        return pd.DataFrame({"label": ["a", "b"], "failure": [float("nan"), "too many steps"]})
+
+    fake_study(monkeypatch, partly=partly, precision=precision)
+    code, out, err = run_main(capsys, "study", "partly", "default", "-o", tmp_path)
+    assert code == 0
+    assert err == "leadscrew: warning: 1 of 3 cases failed: SimulationError: at t = 0.5 s: boom\n"
+    frame = pd.read_csv(tmp_path / "partly_default.csv")
+    assert frame["error"].notna().tolist() == [False, True, False]
+    code, _, err = run_main(capsys, "study", "partly", "default", "runs=2", "-o", tmp_path)
+    assert code == 0 and "1 of 2 cases failed" in err
+    code, _, err = run_main(capsys, "study", "precision", "default", "-o", tmp_path)
+    assert code == 0 and err == "leadscrew: warning: 1 of 2 cases failed: too many steps\n"
+
+
+@pytest.mark.parametrize(
+    "argv, fragments",
+    [
+        (["efficiency_vs_mu", "thesis_table_5_1"],
+         ["study 'efficiency_vs_mu' needs mu=... loads=...", "speed", "max_steps"]),
+        (["work_precision", "default"], ["study 'work_precision' needs t_end=..."]),
+        (["creep_vs_frequency", "position_holding"], ["needs frequencies=..."]),
+        (["position_holding", "position_holding", "frequncy=10"],
+         ["study 'position_holding' has no option 'frequncy'", "frequency",
+          "leadscrew.simulate's", "integrator", "max_steps"]),
+        (["stick_slip", "default", "t_eval=0,1"], ["has no option 't_eval'"]),
+        (["efficiency_vs_mu", "default", "mu=0.1", "loads=10", "executor=serial"],
+         ["study option executor = 'serial' is invalid", "Python object"]),
+        (["work_precision", "default", "t_end=0.1", "reference=exact"],
+         ["study option reference = 'exact' is invalid"]),
+        (["work_precision", "default", "t_end=0.1", "ax=1"], ["study option ax = 1 is invalid"]),
+    ],
+)
+def test_study_options_are_checked_against_the_real_studies(tmp_path, capsys, argv, fragments):
+    out_dir = tmp_path / "out"
+    code, out, err = run_main(capsys, "study", *argv, "-o", out_dir)
+    assert code == 2 and out == ""
+    assert_one_line_error(err, *fragments)
+    if "it takes" in err:  # the list of options leaves out what the command line cannot give
+        takes = err.split("it takes", 1)[1]
+        assert not re.search(r"\b(executor|ax|reference)\b", takes), takes
+        # simulate()'s scene and times are the study's to set
+        forwarded = takes.split("leadscrew.simulate's", 1)[1] if "simulate" in takes else ""
+        assert not re.search(r"\b(model|t_end|t_eval)\b", forwarded), forwarded
+    assert not out_dir.exists()
+
+
+def test_study_options_that_take_objects(tmp_path, capsys, monkeypatch):
+    def needs_pool(scene, pool, n=2):
+        raise AssertionError("not to be called")
+
+    def maybe_pool(scene, pool=None, callback: "Optional[Callable]" = None, n: "int" = 2):
+        raise AssertionError("not to be called")
+
+    fake_study(monkeypatch, needs_pool=needs_pool, maybe_pool=maybe_pool)
+    code, _, err = run_main(capsys, "study", "maybe_pool", "default", "pool=4", "-o", tmp_path)
+    assert code == 2
+    assert_one_line_error(err, "study option pool = 4 is invalid")
+    code, _, err = run_main(capsys, "study", "maybe_pool", "default", "callback=f", "-o", tmp_path)
+    assert code == 2
+    assert_one_line_error(err, "study option callback = 'f' is invalid")
+    code, _, err = run_main(capsys, "study", "maybe_pool", "default", "m=1", "-o", tmp_path)
+    assert code == 2
+    assert_one_line_error(err, "has no option 'm'; it takes n")
+    # An unannotated required parameter may be anything the study checks.
+    code, _, err = run_main(capsys, "study", "needs_pool", "default", "-o", tmp_path)
+    assert code == 2
+    assert_one_line_error(err, "needs pool=...")
+
+
+def test_study_summary_is_printed_and_written(tmp_path, capsys):
+    """position_holding's verdicts (frame.attrs["summary"]): one line each,
+    with the unit its UNITS tells, and the same numbers in the JSON file."""
+    code, out, err = run_main(capsys, "study", "position_holding", "position_holding",
+                              "cycles=3", "-o", tmp_path)
+    assert code == 0, err
+    expected = ls.studies.position_holding(shipped.load("position_holding"), cycles=3)
+    summary = expected.attrs["summary"]
+    path = tmp_path / "position_holding_position_holding.summary.json"
+    assert f"wrote {path}" in out
+    assert json.loads(path.read_text()) == summary  # all finite here: numbers as they are
+    lines = out.splitlines()
+    assert "summary:" in lines
+    assert "  self_locking: true" in lines
+    creep = summary["dynamic_creep_per_cycle"]
+    assert f"  dynamic_creep_per_cycle: {creep:.6g} m" in lines
+    assert f"  dynamic_separations: {summary['dynamic_separations']}" in lines
+    for key in summary:
+        assert sum(line.startswith(f"  {key}: ") for line in lines) == 1, key
+
+
+def test_study_summary_json_of_special_values(tmp_path, capsys, monkeypatch):
+    def summarized(scene):
+        frame = pd.DataFrame({"creep_per_cycle": [1e-9]})
+        frame.attrs["units"] = {"creep_per_cycle": "m"}
+        frame.attrs["summary_units"] = {"torque": "N*m", "ratio": "1"}
+        frame.attrs["summary"] = {
+            "missing": float("nan"), "unbounded": -math.inf, "count": np.int64(3),
+            "value": np.float64(1.5), "holds": np.bool_(True), "window": (0.1, 0.2),
+            "label": "x", "dynamic_creep_per_cycle": 2e-9, "torque": 0.5, "ratio": 0.25}
+        return frame
+
+    fake_study(monkeypatch, summarized=summarized)
+    path = scene_file(tmp_path, "drive_v1.2")
+    code, out, err = run_main(capsys, "study", "summarized", path, "-o", tmp_path / "out")
+    assert code == 0, err
+    json_path = tmp_path / "out" / "summarized_drive_v1.2.summary.json"
+    text = json_path.read_text()
+    assert "NaN" not in text and "Infinity" not in text
+    assert json.loads(text) == {
+        "missing": None, "unbounded": None, "count": 3, "value": 1.5, "holds": True,
+        "window": [0.1, 0.2], "label": "x", "dynamic_creep_per_cycle": 2e-9, "torque": 0.5,
+        "ratio": 0.25}
+    lines = out.splitlines()
+    for line in ("  missing: nan", "  unbounded: -inf", "  count: 3", "  value: 1.5",
+                 "  holds: true", "  window: 0.1, 0.2", "  label: x",
+                 "  dynamic_creep_per_cycle: 2e-09 m", "  torque: 0.5 N*m", "  ratio: 0.25"):
+        assert line in lines, (line, out)
+    assert (tmp_path / "out" / "summarized_drive_v1.2.csv").is_file()
 
 
 @pytest.mark.parametrize(

@@ -39,3 +39,23 @@ def test_kinds_match_their_closed_forms():
 def test_bad_arguments_raise_value_error(kind, parameters, times, values, message):
     with pytest.raises(ValueError, match=message):
         ls.Excitation(kind, parameters, times, values)
+
+
+def test_parameters_are_read_only_and_match_what_the_core_evaluates():
+    # A scene stores these loads as the dicts of their parameters, and to_toml
+    # writes them: a parameter changed after construction would differ from
+    # what the core evaluates.
+    sine, constant = ls.Sine(3.0, 4.0, 0.5, -1.0), ls.Constant(2.5)
+    for excitation, name in ((sine, "amplitude"), (sine, "omega"), (sine, "phase"),
+                             (sine, "offset"), (constant, "value")):
+        with pytest.raises(AttributeError):
+            setattr(excitation, name, 7.0)
+    times, values = np.array([0.0, 1.0]), np.array([0.0, 10.0])
+    table = ls.Table(times, values)
+    times[1], values[1] = 2.0, -10.0  # the caller's arrays are not the table's
+    assert table.times.tolist() == [0.0, 1.0] and table.values.tolist() == [0.0, 10.0]
+    assert table(0.5) == 5.0
+    with pytest.raises(ValueError, match="read-only"):
+        table.values[1] = 3.0
+    with pytest.raises(AttributeError):
+        table.times = np.array([0.0, 2.0])

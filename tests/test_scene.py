@@ -41,6 +41,8 @@ def test_backlash_section_fills_defaults():
         (dict(screw={"support": "floating"}), "screw.support"),
         (dict(nut={"outer_radius": 5e-3}), "nut.outer_radius"),
         (dict(nut={"position": 0.6}), "nut.position"),
+        (dict(drive="nut", nut={"position": 0.9}), "nut.position"),
+        (dict(drive="nut", nut={"position": 0.5}), "nut.position"),
         (dict(loads={"drive_torque": {"type": "sine", "amplitude": 1.0}}), "loads.drive_torque.omega"),
         (dict(loads={"drive_torque": {"type": "square"}}), "loads.drive_torque.type"),
         (dict(loads={"drive_torque": 1.0, "drive_speed": 2.0}), "loads.drive_speed"),
@@ -156,3 +158,116 @@ def test_schema_documents_every_field():
     for path in ("thread.pitch [m]", "backlash.axial [m]", "loads.drive_torque [N*m]",
                  "screw.support", "overrides.damping_ratio"):
         assert path in text
+
+
+def test_nut_position_is_checked_for_both_drives():
+    # The model takes the nut as the point where the thread force enters the
+    # screw (segments a and L - a): a < screw.length for either drive.
+    for drive, end in (("screw", "drive end"), ("nut", "load end")):
+        with pytest.raises(ValueError) as info:
+            ls.scenes.load("thesis_table_5_1").replace(drive=drive, nut={"position": 0.9})
+        assert str(info.value).startswith(
+            f"nut.position = 0.9 is invalid: must be < screw.length = 0.5 (the nut's distance "
+            f"from the screw's {end}")
+        assert ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": 0.49}))
+
+
+SINE = {"type": "sine", "amplitude": -40e-3, "omega": 4 * math.pi}
+
+
+@pytest.mark.parametrize("loads, message", [
+    ({"drive_torque": {**SINE, "amplitude": [1.0]}},
+     "loads.drive_torque.amplitude = [1.0] is invalid: must be a finite number [N*m]"),
+    ({"drive_torque": {**SINE, "amplitude": {"a": 1}}},
+     "loads.drive_torque.amplitude = {'a': 1} is invalid: must be a finite number [N*m]"),
+    ({"drive_torque": {**SINE, "omega": True}},
+     "loads.drive_torque.omega = True is invalid: must be a finite number [rad/s]"),
+    ({"drive_torque": {**SINE, "phase": float("nan")}},
+     "loads.drive_torque.phase = nan is invalid: must be a finite number [rad]"),
+    ({"drive_torque": {"type": "constant", "value": None}},
+     "loads.drive_torque.value = None is invalid: must be a finite number [N*m]"),
+    ({"axial_force": {"type": "table", "times": [0.0, 1.0], "values": [[1], [2]]}},
+     "loads.axial_force.values[0] = [1] is invalid: must be a finite number [N]"),
+    ({"axial_force": {"type": "table", "times": [0.0, False], "values": [1.0, 2.0]}},
+     "loads.axial_force.times[1] = False is invalid: must be a finite number [s]"),
+    ({"axial_force": {"type": "table", "times": {0.0: 1.0}, "values": [1.0]}},
+     "loads.axial_force.times = {0.0: 1.0} is invalid: must be a list of numbers [s]"),
+    ({"axial_force": {"type": ["table"], "times": [0.0], "values": [1.0]}},
+     "loads.axial_force.type = ['table'] is invalid: must be one of"),
+])
+def test_bad_load_entries_name_the_entry(loads, message):
+    with pytest.raises(ValueError) as info:
+        ls.Scene.from_dict(thesis_scene(loads=loads))
+    assert str(info.value).startswith(message), str(info.value)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("starts, message", [
+    (2**40, "thread.starts = 1099511627776 is invalid: must be an integer in [1, 100]"),
+    (101, "thread.starts = 101 is invalid: must be an integer in [1, 100]"),
+    (float("inf"), "thread.starts = inf is invalid: must be an integer in [1, 100]"),
+    (float("nan"), "thread.starts = nan is invalid: must be an integer in [1, 100]"),
+    (1.5, "thread.starts = 1.5 is invalid: must be an integer in [1, 100]"),
+])
+def test_thread_starts_is_bounded(starts, message):
+    with pytest.raises(ValueError) as info:
+        ls.Scene.from_dict(thesis_scene(thread={"starts": starts}))
+    assert str(info.value) == message
+    assert ls.Scene.from_dict(thesis_scene(thread={"starts": 100})).thread.starts == 100
+
+
+def test_big_integer_in_a_float_field_names_the_key():
+    with pytest.raises(ValueError, match=r"^load\.mass = 1000+ is invalid: must be a finite"):
+        ls.Scene.from_dict(thesis_scene(load={"mass": 10**400}))
+
+
+def test_excitation_objects_are_stored_as_dicts_that_compare_equal():
+    objects = {"drive_torque": ls.Sine(-40e-3, 4 * math.pi, 0.5),
+               "axial_force": ls.Table([0.0, 0.1], [-10.0, -20.0])}
+    dicts = {"drive_torque": {"type": "sine", "amplitude": -40e-3, "omega": 4 * math.pi,
+                              "phase": 0.5},
+             "axial_force": {"type": "table", "times": [0.0, 0.1], "values": [-10.0, -20.0]}}
+    scene = ls.Scene.from_dict(thesis_scene(loads=objects))
+    assert scene == ls.Scene.from_dict(thesis_scene(loads=objects))
+    assert scene == ls.Scene.from_dict(thesis_scene(loads=dicts))
+    assert scene["loads"]["axial_force"] == {"type": "table", "times": [0.0, 0.1],
+                                             "values": [-10.0, -20.0]}
+    constant = ls.Scene.from_dict(thesis_scene(loads={"axial_force": ls.Constant(-10.0)}))
+    assert constant["loads"]["axial_force"] == {"type": "constant", "value": -10.0}
+    assert constant.replace(loads={"axial_force": ls.Constant(-10.0)}) == constant
+
+
+def _without_torque(**changes):
+    d = thesis_scene(**changes)
+    del d["loads"]["drive_torque"]
+    return ls.Scene.from_dict(d)
+
+
+def test_default_drive_torque_is_not_stored():
+    scene = _without_torque()
+    assert scene["loads"] == {"axial_force": -10.0}
+    assert "drive_torque" not in scene.to_dict()["loads"]
+    assert "drive_torque" not in scene.to_toml()
+    # The model applies 0 N*m: the same scene as an explicit 0, and the same motion.
+    explicit = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": 0.0}))
+    assert scene == explicit and explicit == scene
+    assert scene != explicit.replace(loads={"drive_torque": 1e-3})
+    a, b = ls.simulate(scene, 0.05), ls.simulate(explicit, 0.05)
+    assert a.t.tolist() == b.t.tolist() and a["u_load"].tolist() == b["u_load"].tolist()
+
+
+def test_replace_switches_between_torque_and_speed():
+    scene = _without_torque()
+    speed = scene.replace(loads={"drive_speed": 2.0})
+    assert speed["loads"] == {"axial_force": -10.0, "drive_speed": 2.0}
+    back = speed.replace(loads={"drive_speed": None})
+    assert back == scene and back["loads"] == scene["loads"]
+    assert back.replace(loads={"drive_speed": 3.0})["loads"]["drive_speed"] == 3.0
+    torque = speed.replace(loads={"drive_speed": None, "drive_torque": 0.5})
+    assert torque["loads"] == {"axial_force": -10.0, "drive_torque": 0.5}
+    explicit = ls.Scene.from_dict(thesis_scene())
+    switched = explicit.replace(loads={"drive_torque": None, "drive_speed": 2.0})
+    assert switched == speed
+    assert switched.replace(loads={"drive_speed": None, "drive_torque": SINE}) == explicit
+    for changed in (speed, back, torque, switched):
+        changed.model()

@@ -94,6 +94,26 @@ def test_to_toml_comments_units_and_writes_excitation_objects(tmp_path):
     np.testing.assert_array_equal(a["u_load"], b["u_load"])
 
 
+def test_toml_round_trip_of_excitation_objects_gives_an_equal_scene(tmp_path):
+    scene = ls.Scene.from_dict(thesis_scene(loads={
+        "drive_torque": ls.Sine(-0.04, 4 * math.pi, 0.25, 1e-3),
+        "axial_force": ls.Table([0.0, 0.1, 0.3], [0.0, -5.5, 3.0])}))
+    again = ls.Scene.from_toml(write(tmp_path, scene.to_toml()))
+    assert again == scene and again.to_dict() == scene.to_dict()
+    constant = scene.replace(loads={"axial_force": ls.Constant(-10.0)})
+    assert ls.Scene.from_toml(write(tmp_path, constant.to_toml(), "constant.toml")) == constant
+
+
+def test_toml_round_trip_without_a_drive_torque(tmp_path):
+    d = thesis_scene()
+    del d["loads"]["drive_torque"]
+    scene = ls.Scene.from_dict(d)
+    again = ls.Scene.from_toml(write(tmp_path, scene.to_toml()))
+    assert again.to_dict() == scene.to_dict() and "drive_torque" not in again["loads"]
+    # Still a scene whose drive can be switched to speed control.
+    assert "drive_speed" in again.replace(loads={"drive_speed": "2 Hz"})["loads"]
+
+
 def test_to_toml_rejects_a_python_callable():
     scene = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": lambda t: 0.01 * t}))
     with pytest.raises(ValueError, match=r"^loads\.drive_torque = .* cannot be written to TOML"):
@@ -206,6 +226,143 @@ def test_bad_units_name_the_key_and_the_dimension(changes, message):
         scene_with(**changes)
     assert str(info.value).startswith(message)
     assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    "changes, message",
+    [
+        (dict(thread={"pitch": "1,5 mm"}),
+         'thread.pitch = "1,5 mm" is invalid: a comma is not a decimal point here: use a decimal '
+         'point'),
+        (dict(load={"mass": "1,000 kg"}), 'load.mass = "1,000 kg" is invalid: a comma is not a'),
+        (dict(thread={"pitch": "1 mm 2"}),
+         'thread.pitch = "1 mm 2" is invalid: not one number followed by a unit such as '
+         '"1.5 mm": the unit "mm 2" holds the further number \'2\''),
+        (dict(friction={"mu": "2 3"}),
+         'friction.mu = "2 3" is invalid: not one number followed by a unit'),
+        (dict(screw={"length": "0.5 m/2"}), 'screw.length = "0.5 m/2" is invalid: not one number'),
+        (dict(loads={"axial_force": {"type": "table", "times": ["0 s", "1 s 5"],
+                                     "values": [1, 2]}}),
+         'loads.axial_force.times[1] = "1 s 5" is invalid: not one number'),
+        (dict(load={"mass": "kg"}), 'load.mass = "kg" is invalid: not one number'),
+    ],
+)
+def test_unit_strings_hold_exactly_one_number(changes, message):
+    # pint alone reads "1,5 mm" as 15 mm and "1 mm 2" as 2 mm.
+    with pytest.raises(ValueError) as info:
+        scene_with(**changes)
+    assert str(info.value).startswith(message), str(info.value)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("text, unit, expected", [
+    ("1.5 mm", "m", 1.5e-3), ("1.5mm", "m", 1.5e-3), (".5 mm", "m", 5e-4),
+    ("-2e-3 m", "m", -2e-3), ("+3E2 mm", "m", 0.3), ("2 m^-1", "1/m", 2.0),
+    ("2 m**2", "m^2", 2.0), ("2 1/s", "rad/s", 2.0), ("2 1 / s", "rad/s", 2.0),
+    ("0.3", "", 0.3), (" 7 ", "", 7.0),
+])
+def test_one_number_with_exponents_in_the_unit_still_converts(text, unit, expected):
+    assert units.to_si("k", text, unit) == pytest.approx(expected, rel=1e-15, abs=0)
+
+
+@pytest.mark.parametrize(
+    "changes, message",
+    [
+        (dict(loads={"drive_torque": "5 N*m/deg"}),
+         'loads.drive_torque = "5 N*m/deg" is invalid: "5 N*m/deg" is not a torque (N*m): its '
+         'angle part (rad^-1) differs from that of N*m (no angle)'),
+        (dict(overrides={"nut_torsional_stiffness": "100 N*m"}),
+         'overrides.nut_torsional_stiffness = "100 N*m" is invalid: "100 N*m" is not a torsional '
+         'stiffness (N*m/rad): its angle part (no angle) differs from that of N*m/rad (rad^-1)'),
+        (dict(overrides={"screw_torsional_damping": "3 N*m*s"}),
+         'overrides.screw_torsional_damping = "3 N*m*s" is invalid: "3 N*m*s" is not a torsional '
+         'damping coefficient (N*m*s/rad)'),
+        (dict(loads={"axial_force": {"type": "table", "times": [0.0, "0.5 1/Hz"],
+                                     "values": [1, 2]}}),
+         'loads.axial_force.times[1] = "0.5 1/Hz" is invalid: "0.5 1/Hz" is not a time (s)'),
+        (dict(thread={"flank_angle": "30 %"}),
+         'thread.flank_angle = "30 %" is invalid: "30 %" is not an angle (rad): give it in deg, '
+         'rad or turn, or as a plain number of radians'),
+        (dict(initial={"rotor_angle": "2 m/m"}), 'initial.rotor_angle = "2 m/m" is invalid'),
+        (dict(initial={"rotor_speed": "3000 1/min"}),
+         'initial.rotor_speed = "3000 1/min" is invalid: "3000 1/min" is not an angular velocity '
+         'or frequency (rad/s): a rate without an angle is ambiguous except as 1/s'),
+        (dict(load={"mass": "1 kg*rad"}),
+         'load.mass = "1 kg*rad" is invalid: "1 kg*rad" is not a mass (kg): its angle part'),
+    ],
+)
+def test_angle_units_must_match_the_field(changes, message):
+    # pint takes radians as 1: without the check these convert silently
+    # ("5 N*m/deg" to 286.5 N*m, "30 %" to 0.3 rad).
+    with pytest.raises(ValueError) as info:
+        scene_with(**changes)
+    assert str(info.value).startswith(message), str(info.value)
+    assert "\n" not in str(info.value)
+
+
+@pytest.mark.parametrize("changes, section, key, expected", [
+    (dict(thread={"flank_angle": "0.5"}), "thread", "flank_angle", 0.5),
+    (dict(overrides={"screw_torsional_damping": "3 N*m*s/deg"}), "overrides",
+     "screw_torsional_damping", 3 * 180 / math.pi),
+    (dict(initial={"rotor_speed": "2 kHz"}), "initial", "rotor_speed", 4000 * math.pi),
+    (dict(initial={"rotor_speed": "60 rad/min"}), "initial", "rotor_speed", 1.0),
+    (dict(loads={"axial_force": {"type": "sine", "amplitude": 1.0, "omega": "1 turn/s"}}),
+     "loads", "axial_force", {"type": "sine", "amplitude": 1.0, "omega": 2 * math.pi,
+                              "phase": 0.0, "offset": 0.0}),
+])
+def test_matching_angle_units_convert(changes, section, key, expected):
+    assert scene_with(**changes)[section][key] == pytest.approx(expected, rel=1e-15, abs=0)
+
+
+BISTOP = {"axial": 0.2e-3, "contact": "bistop"}
+
+
+@pytest.mark.parametrize("backlash, expected", [
+    ({**BISTOP, "stiffness": "1e7 N/m^1.5"}, 1e7),
+    ({**BISTOP, "stiffness": "1e7 N/mm^1.5"}, 1e7 * 1000**1.5),
+    ({**BISTOP, "stiffness": "3 N/mm^2", "exponent": 2}, 3e6),
+    ({**BISTOP, "stiffness": "3 N/mm^2", "exponent": "2"}, 3e6),
+    ({**BISTOP, "stiffness": "3 N/mm", "exponent": 1.0}, 3e3),
+    ({**BISTOP, "stiffness": "3 kN/mm^1.25", "exponent": 1.25}, 3e3 * 1000**1.25),
+    ({"axial": 0.2e-3, "contact": "cubic", "stiffness": "1e7 N/mm"}, 1e10),
+])
+def test_bistop_stiffness_is_in_newton_per_metre_to_the_exponent(backlash, expected):
+    value = scene_with(backlash=backlash)["backlash"]["stiffness"]
+    assert value == pytest.approx(expected, rel=1e-14, abs=0)
+
+
+@pytest.mark.parametrize("backlash, message", [
+    ({**BISTOP, "stiffness": "1e7 N/mm"},
+     'backlash.stiffness = "1e7 N/mm" is invalid: "1e7 N/mm" is not a \'bistop\' contact '
+     "stiffness (N/m^1.5) (a 'bistop' stiffness is in N/m^exponent, here backlash.exponent = "
+     "1.5)"),
+    ({**BISTOP, "stiffness": "1e7 N/m^1.5", "exponent": 2.0},
+     'backlash.stiffness = "1e7 N/m^1.5" is invalid: "1e7 N/m^1.5" is not a \'bistop\' contact '
+     "stiffness (N/m^2)"),
+    ({**BISTOP, "stiffness": "-1 N/m^1.5"},
+     'backlash.stiffness = "-1 N/m^1.5" (= -1.0 N/m^1.5) is invalid: must be a finite number > '
+     "0 [N/m^1.5]"),
+    ({"axial": 0.2e-3, "contact": "cubic", "stiffness": "1e7 N/m^1.5"},
+     'backlash.stiffness = "1e7 N/m^1.5" is invalid: "1e7 N/m^1.5" is not a stiffness (N/m)'),
+])
+def test_bistop_stiffness_of_another_unit_is_rejected(backlash, message):
+    with pytest.raises(ValueError) as info:
+        scene_with(backlash=backlash)
+    assert str(info.value).startswith(message), str(info.value)
+
+
+@pytest.mark.parametrize("exponent, comment", [(1.5, "N/m^1.5"), (2.0, "N/m^2"), (1.0, "N/m"),
+                                                (1.2345678901234567, "N/m^1.2345678901234567")])
+def test_bistop_stiffness_round_trips_with_its_unit(tmp_path, exponent, comment):
+    scene = scene_with(backlash={**BISTOP, "stiffness": 3.3e7, "exponent": exponent})
+    text = scene.to_toml()
+    assert f"stiffness = 33000000.0  # {comment}\n" in text
+    assert ls.Scene.from_toml(write(tmp_path, text)) == scene
+    # The comment is the unit a string in the file is read in.
+    with_unit = text.replace("stiffness = 33000000.0", f'stiffness = "3.3e7 {comment}"')
+    assert ls.Scene.from_toml(write(tmp_path, with_unit, "unit.toml")) == scene
+    cubic = scene.replace(backlash={"contact": "cubic"}).to_toml()
+    assert "stiffness = 33000000.0  # N/m\n" in cubic
 
 
 def test_every_schema_unit_parses_and_has_a_name():

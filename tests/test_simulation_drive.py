@@ -420,3 +420,61 @@ def test_rattling_flexible_nut_at_tight_tolerance_finishes_within_its_step_bound
     tight = ls.simulate(scene, 0.1, integrator="event_driven", rtol=1e-11, atol=1e-15,
                         t_eval=[0.1])
     assert abs(result["u_load"][-1] - tight["u_load"][-1]) <= 1e-6 * abs(tight["u_load"][-1])
+
+
+# Options: simulate() and the check a sweep makes once before its cases
+# (leadscrew._core.check_drive_options) refuse the same values alike.
+BAD_OPTIONS = [
+    ({"rtol": -1.0}, r"rtol = -1 is invalid"),
+    ({"rtol": 1.0}, r"rtol = 1 is invalid"),
+    ({"atol": 0.0}, r"atol = 0 is invalid"),
+    ({"max_steps": 0}, r"max_steps = 0 is invalid"),
+    ({"max_events": -2}, r"max_events = -2 is invalid"),
+    ({"max_step": -1e-3}, r"max_step = -0.001 is invalid"),
+    ({"first_step": -1e-3}, r"first_step = -0.001 is invalid"),
+    ({"bounce_threshold": -1.0}, r"bounce_threshold = -1 is invalid"),
+    ({"integrator": "euler"}, r"integrator = \"euler\" is invalid"),
+    ({"smooth_integrator": "euler"}, r"smooth_integrator = \"euler\" is invalid"),
+    ({"integrator": "moreau", "dt": 0.0}, r"dt = 0 is invalid"),
+    ({"integrator": "moreau", "theta": 1.5}, r"theta = 1.5 is invalid"),
+    ({"t_eval": [0.05, 0.01]}, r"t_eval\[1\] = 0.01 is invalid"),
+    ({"t_eval": [0.2]}, r"t_eval\[0\] = 0.2 is invalid"),
+]
+
+
+@pytest.mark.parametrize("options, message", BAD_OPTIONS)
+def test_bad_options_are_refused_by_simulate_and_by_the_check_alike(options, message):
+    from leadscrew import _core
+    from leadscrew.studies._batch import _core_arguments
+
+    scene = ls.Scene.from_dict(thesis_scene())
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(scene, 0.1, **options)
+    given = dict(options)
+    t_eval = given.pop("t_eval", [])
+    with pytest.raises(ValueError, match=message):
+        _core.check_drive_options(scene.model(), **_core_arguments(scene, 0.1, t_eval, given))
+
+
+def test_good_options_pass_the_check():
+    from leadscrew import _core
+    from leadscrew.studies._batch import _core_arguments, check_simulate_options
+
+    scene = ls.Scene.from_dict(thesis_scene())
+    for options in ({}, {"integrator": "moreau", "dt": 1e-3, "theta": 1.0},
+                    {"smooth_integrator": "cvode_bdf", "rtol": 1e-6, "max_events": 0}):
+        _core.check_drive_options(scene.model(), **_core_arguments(scene, 0.1, [0.05], options))
+        check_simulate_options(scene, options)
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"rtol": "1e-6"}, r"rtol = '1e-6' is invalid: must be a number"),
+    ({"max_steps": 1.5}, r"max_steps = 1.5 is invalid: must be an integer"),
+    ({"max_events": True}, r"max_events = True is invalid: must be an integer"),
+    ({"integrator": 3}, r"integrator = 3 is invalid"),
+    ({"dt": [1e-3]}, r"dt = \[0.001\] is invalid: must be a number"),
+])
+def test_options_of_the_wrong_kind_name_the_option(options, message):
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.1, **options)
+    assert ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.01, max_steps=1e6).t[-1] == 0.01

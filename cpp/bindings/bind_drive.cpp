@@ -36,6 +36,26 @@ model::DriveSimulationOptions drive_options(double t_end, const std::string& int
   return options;
 }
 
+// Binds m.<name>(drive, t_end, integrator, ..., max_order) as body(drive,
+// options): the keywords of simulate_drive, shared by the calls that take them.
+template <class Body>
+void def_drive_call(py::module_& m, const char* name, Body body, const char* doc) {
+  m.def(
+      name,
+      [body](const model::DriveModel& drive, double t_end, const std::string& integrator,
+             const std::string& smooth_integrator, double rtol, double atol, double dt,
+             double theta, std::vector<double> t_eval, long max_steps, long max_events,
+             double max_step, double first_step, double bounce_threshold, int max_order) {
+        return body(drive, drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt,
+                                         theta, std::move(t_eval), max_steps, max_events,
+                                         max_step, first_step, bounce_threshold, max_order));
+      },
+      py::arg("drive"), py::arg("t_end"), py::arg("integrator"), py::arg("smooth_integrator"),
+      py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
+      py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"), py::arg("first_step"),
+      py::arg("bounce_threshold"), py::arg("max_order"), doc);
+}
+
 }  // namespace
 
 void bind_drive(py::module_& m) {
@@ -102,23 +122,20 @@ void bind_drive(py::module_& m) {
       .def_property_readonly("parameters", &model::DriveModel::parameters);
 
   m.def("drive_integrators", &model::drive_integrators, py::arg("parameters"));
-  m.def(
-      "simulate_drive",
-      [](const model::DriveModel& drive, double t_end, const std::string& integrator,
-         const std::string& smooth_integrator, double rtol, double atol, double dt, double theta,
-         std::vector<double> t_eval, long max_steps, long max_events, double max_step,
-         double first_step, double bounce_threshold, int max_order) {
-        const model::DriveSimulationOptions options =
-            drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt, theta,
-                          std::move(t_eval), max_steps, max_events, max_step, first_step,
-                          bounce_threshold, max_order);
+  def_drive_call(
+      m, "simulate_drive",
+      [](const model::DriveModel& drive, const model::DriveSimulationOptions& options) {
         py::gil_scoped_release release;
         return model::simulate(drive, options);
       },
-      py::arg("drive"), py::arg("t_end"), py::arg("integrator"), py::arg("smooth_integrator"),
-      py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
-      py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"), py::arg("first_step"),
-      py::arg("bounce_threshold"), py::arg("max_order"));
+      "Simulate the drive (leadscrew.simulate's drive path).");
+  def_drive_call(
+      m, "check_drive_options",
+      [](const model::DriveModel& drive, const model::DriveSimulationOptions& options) {
+        model::check_simulation_options(drive, options);
+      },
+      "The checks simulate_drive makes of these options before it integrates, without "
+      "simulating: ValueError naming the option, its value and the valid range.");
 
   py::class_<model::DriveBatchResult>(m, "DriveBatchResult",
                                       "What DriveBatch.run gives: samples and failures.")

@@ -3,6 +3,7 @@
 ::
 
     leadscrew run SCENE [-o DIR] [--t-end T] [--integrator NAME] [--format csv|parquet]
+                  [--rtol R] [--atol A] [--dt DT] [--theta THETA] [--points N]
     leadscrew check [SCENE]
     leadscrew study NAME SCENE [-o DIR] [KEY=VALUE ...]
     leadscrew demo [-o DIR]
@@ -10,9 +11,13 @@
 SCENE is a TOML scene file (see :meth:`leadscrew.Scene.from_toml`) or the name
 of a shipped scene (:func:`leadscrew.scenes.available`). Errors print one line
 to stderr and exit with 2 for usage and validation errors (bad arguments, an
-invalid or unreadable scene file, an integrator that does not fit) and 1 for
-failures while running (simulation errors, a study that fails);
-``--debug`` shows the traceback instead.
+invalid or unreadable scene file, an integrator that does not fit, an option
+the integrator would ignore: ``--dt``/``--theta`` without ``moreau``,
+``--rtol``/``--atol`` with it) and 1 for failures while running (simulation
+errors, a study that raises or whose every case failed; some failed cases:
+exit 0 with a warning on stderr); ``--debug`` shows the traceback instead.
+Arguments are checked before anything is simulated, and the output
+directory is created only once there is something to write.
 """
 
 from __future__ import annotations
@@ -21,8 +26,11 @@ import argparse
 import importlib
 import importlib.util
 import inspect
+import json
 import math
+import numbers
 import os
+import re
 import sys
 import time
 from pathlib import Path
@@ -50,20 +58,44 @@ class _Parser(argparse.ArgumentParser):
 # --- scenes -------------------------------------------------------------------
 
 
-def _load_scene(arg: str):
-    """A Scene from a file path or a shipped scene's name, and a short name for outputs."""
+def _load_scene(arg: str) -> Tuple[Any, str, str]:
+    """A scene from a file path or a shipped scene's name, checked whole.
+
+    Args:
+        arg: the SCENE argument.
+
+    Returns:
+        ``(scene, name, source)``: the Scene, a short name for outputs (the
+        file name without its last suffix, or the shipped name) and what
+        messages call it (the path, or the shipped name).
+
+    Raises:
+        ValueError: no such file or shipped scene, or an invalid scene,
+            including one whose model or thread cannot be built (e.g. zero
+            load mass on a flexible nut); the message starts with the source.
+        OSError: the file cannot be read.
+    """
     from . import scenes
     from .scene import Scene
 
     path = Path(arg)
     if path.is_file():
-        return Scene.from_toml(path), path.stem
-    shipped = scenes.available()
-    stem = arg[:-5] if arg.endswith(".toml") else arg
-    if stem in shipped and os.sep not in arg and "/" not in arg:
-        return scenes.load(stem), stem
-    raise UsageError(f"scene {arg!r}: no such file, and not a shipped scene "
-                     f"({', '.join(shipped)})")
+        scene, name, source = Scene.from_toml(path), path.stem, os.fspath(path)
+    else:
+        shipped = scenes.available()
+        stem = arg[:-5] if arg.endswith(".toml") else arg
+        if stem not in shipped or os.sep in arg or "/" in arg:
+            raise UsageError(f"scene {arg!r}: no such file, and not a shipped scene "
+                             f"({', '.join(shipped)})")
+        scene, name, source = scenes.load(stem), stem, stem
+    # Scene validation covers each value; the derived ones (masses,
+    # stiffnesses) are checked when the model is assembled.
+    try:
+        scene.model()
+        scene.thread
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+    return scene, name, source
 
 
 def _rigid_equivalent(scene) -> Tuple[float, float]:
@@ -76,17 +108,21 @@ def _rigid_equivalent(scene) -> Tuple[float, float]:
 # --- check ----------------------------------------------------------------------
 
 
-def _print_thread_verdicts(t, mu: float, flank_angle: float, hand: str = "right") -> None:
+def _thread_verdicts(t, mu: float, flank_angle: float, hand: str = "right") -> List[str]:
+    """The closed-form verdicts on a thread, as lines of text."""
     tan_a = math.tan(t.lead_angle)
-    print(f"thread: lead {t.lead * 1e3:.4g} mm, mean diameter {t.mean_diameter * 1e3:.4g} mm, "
-          f"lead angle {math.degrees(t.lead_angle):.4f} deg, flank angle "
-          f"{math.degrees(flank_angle):g} deg, {hand}-hand")
-    print(f"friction: mu = {mu:g}, mu' = {t.effective_mu(mu):.6g}; "
-          f"bounds tan(alpha) = {tan_a:.6g} < mu' < cot(alpha) = {1.0 / tan_a:.6g}")
-    print(f"self-locking (holds under pure axial load): {'yes' if _thread.is_self_locking(t, mu) else 'no'}")
-    print(f"drivable by a pure torque:                 {'yes' if _thread.is_drivable(t, mu) else 'no'}")
-    print(f"efficiency forward {_thread.efficiency(t, mu):.6g}, "
-          f"back-driving {_thread.efficiency(t, mu, backdrive=True):.6g}")
+    return [
+        f"thread: lead {t.lead * 1e3:.4g} mm, mean diameter {t.mean_diameter * 1e3:.4g} mm, "
+        f"lead angle {math.degrees(t.lead_angle):.4f} deg, flank angle "
+        f"{math.degrees(flank_angle):g} deg, {hand}-hand",
+        f"friction: mu = {mu:g}, mu' = {t.effective_mu(mu):.6g}; "
+        f"bounds tan(alpha) = {tan_a:.6g} < mu' < cot(alpha) = {1.0 / tan_a:.6g}",
+        "self-locking (holds under pure axial load): "
+        f"{'yes' if _thread.is_self_locking(t, mu) else 'no'}",
+        f"drivable by a pure torque:                 {'yes' if _thread.is_drivable(t, mu) else 'no'}",
+        f"efficiency forward {_thread.efficiency(t, mu):.6g}, "
+        f"back-driving {_thread.efficiency(t, mu, backdrive=True):.6g}",
+    ]
 
 
 def jamming_margins(t, mu: float, rotating_inertia: float, translating_mass: float) -> Dict[str, Any]:
@@ -132,39 +168,50 @@ _DERIVED_UNITS = {
 }
 
 
-def _check_scene(arg: str) -> int:
-    scene, name = _load_scene(arg)
+def _scene_report(name: str, scene) -> List[str]:
+    """What ``check SCENE`` prints, computed whole before anything is printed."""
     d = scene.to_dict()
-    print(f"scene {name}: valid, {scene!r}")
-    _print_thread_verdicts(scene.thread, d["friction"]["mu"], d["thread"]["flank_angle"],
-                           d["thread"]["hand"])
+    lines = [f"scene {name}: valid, {scene!r}"]
+    lines += _thread_verdicts(scene.thread, d["friction"]["mu"], d["thread"]["flank_angle"],
+                              d["thread"]["hand"])
     J, m = _rigid_equivalent(scene)
     rotating, translating = (("rotor + screw", "nut + load") if d["drive"] == "screw"
                              else ("rotor + nut", "screw + load"))
     other = m - d["load"]["mass"]
-    print(f"rigid drive: J = {rotating} = {J:.6g} kg*m^2, m = {translating} = {m:.6g} kg"
-          + ("" if d["concept"] == "rigid" else f" (rigid equivalent of the {d['concept']} model)"))
+    lines.append(f"rigid drive: J = {rotating} = {J:.6g} kg*m^2, m = {translating} = {m:.6g} kg"
+                 + ("" if d["concept"] == "rigid"
+                    else f" (rigid equivalent of the {d['concept']} model)"))
     jm = jamming_margins(scene.thread, d["friction"]["mu"], J, m)
-    print("dynamic jamming (Painleve paradox, rigid drive):")
-    print(f"  m r^2 tan a (mu' - tan a) = {jm['lhs1']:.6g} >= J (1 + mu' tan a) = {jm['rhs1']:.6g}: "
-          f"{'YES, jams' if jm['jams1'] else 'no'}"
-          + (f" (jams from m = {jm['mass1']:.6g} kg, load mass {jm['mass1'] - other:.6g} kg)"
-             if math.isfinite(jm["mass1"]) else " (mu' <= tan a: never)"))
-    print(f"  J cot a (mu' - cot a) = {jm['lhs2']:.6g} >= m r^2 (1 + mu' cot a) = {jm['rhs2']:.6g}: "
-          f"{'YES, jams' if jm['jams2'] else 'no'}"
-          + (f" (jams from J = {jm['inertia2']:.6g} kg*m^2)" if math.isfinite(jm["inertia2"])
-             else " (mu' <= cot a: never)"))
-    print("derived:")
+    lines.append("dynamic jamming (Painleve paradox, rigid drive):")
+    lines.append(f"  m r^2 tan a (mu' - tan a) = {jm['lhs1']:.6g} >= J (1 + mu' tan a) = "
+                 f"{jm['rhs1']:.6g}: {'YES, jams' if jm['jams1'] else 'no'}"
+                 + (f" (jams from m = {jm['mass1']:.6g} kg, load mass {jm['mass1'] - other:.6g} kg)"
+                    if math.isfinite(jm["mass1"]) else " (mu' <= tan a: never)"))
+    lines.append(f"  J cot a (mu' - cot a) = {jm['lhs2']:.6g} >= m r^2 (1 + mu' cot a) = "
+                 f"{jm['rhs2']:.6g}: {'YES, jams' if jm['jams2'] else 'no'}"
+                 + (f" (jams from J = {jm['inertia2']:.6g} kg*m^2)" if math.isfinite(jm["inertia2"])
+                    else " (mu' <= cot a: never)"))
+    lines.append("derived:")
     for key, value in scene.derived().items():
         note = (" (follows the nut position, eq. 4.24)" if value == 0.0
                 and key in ("screw_axial_stiffness", "screw_torsional_stiffness") else "")
-        print(f"  {key} = {value:.6g} {_DERIVED_UNITS.get(key, '')}{note}")
+        lines.append(f"  {key} = {value:.6g} {_DERIVED_UNITS.get(key, '')}{note}")
     springs = scene.model().springs
     if springs:
-        print(f"springs of the {d['concept']} model (at the start):")
+        lines.append(f"springs of the {d['concept']} model (at the start):")
         for spring in springs:
-            print(f"  {spring['name']}: stiffness {spring['stiffness']:.6g}, "
-                  f"damping {spring['damping']:.6g}")
+            lines.append(f"  {spring['name']}: stiffness {spring['stiffness']:.6g}, "
+                         f"damping {spring['damping']:.6g}")
+    return lines
+
+
+def _check_scene(arg: str) -> int:
+    scene, name, source = _load_scene(arg)
+    try:  # nothing is printed, "valid" least of all, before all of it is known
+        lines = _scene_report(name, scene)
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+    print("\n".join(lines))
     return 0
 
 
@@ -182,7 +229,7 @@ def _check(args: argparse.Namespace) -> int:
     flank = 0.0 if args.flank_angle_deg is None else math.radians(args.flank_angle_deg)
     mu = 0.3 if args.mu is None else args.mu
     t = _thread.Thread(pitch, diameter, starts, flank)
-    _print_thread_verdicts(t, mu, flank)
+    print("\n".join(_thread_verdicts(t, mu, flank)))
     if args.load is not None:
         print(f"torque to raise {args.load:g} N: {_thread.raise_torque(t, mu, args.load):.6g} N*m, "
               f"to lower: {_thread.lower_torque(t, mu, args.load):.6g} N*m")
@@ -246,6 +293,27 @@ def _plot_energy(result, title: str):
     return figure
 
 
+def _check_output_dir(path: str) -> None:
+    """Refuse an output directory that cannot be created, without creating it.
+
+    Commands check this before they simulate and create the directory only
+    once there is something to write, so that a failed command leaves nothing.
+
+    Raises:
+        UsageError: ``path`` or its first existing ancestor is not a writable
+            directory.
+    """
+    out = Path(path)
+    # The first existing ancestor (bounded by the path's depth).
+    existing = next((p for p in (out, *out.absolute().parents) if p.exists()), None)
+    if existing is None or not existing.is_dir():
+        raise UsageError(f"-o {path}: cannot create the output directory "
+                         f"({existing} is not a directory)")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise UsageError(f"-o {path}: cannot create the output directory "
+                         f"({existing} is not writable)")
+
+
 def _output_dir(path: str) -> Path:
     out = Path(path)
     try:
@@ -255,16 +323,53 @@ def _output_dir(path: str) -> Path:
     return out
 
 
+def _output_file(out: Path, name: str, suffix: str) -> Path:
+    """``out/name.suffix``: the suffix appended, never replacing a dotted
+    part of the name (``drive_v1.2`` gives ``drive_v1.2.csv``)."""
+    return out / f"{name}.{suffix}"
+
+
+def _check_sampling(t_end: float, points: int) -> None:
+    if not (math.isfinite(t_end) and t_end > 0):
+        raise UsageError(f"--t-end {t_end:g} is invalid: must be a time > 0 [s]")
+    if points < 0 or points == 1:
+        raise UsageError(f"--points {points} is invalid: must be 0 (every step) or >= 2")
+
+
+def _check_integrator_options(scene, args: argparse.Namespace) -> None:
+    """Refuse options the integrator that runs would ignore.
+
+    ``--dt`` and ``--theta`` are parameters of the fixed-step ``moreau``
+    scheme only; ``--rtol`` and ``--atol`` of the others only.
+
+    Raises:
+        UsageError: naming the option, its value and the integrator.
+    """
+    from . import _core
+
+    if args.integrator is not None:
+        integrator, which = args.integrator, f"--integrator {args.integrator}"
+    else:  # the scene's default: the first of the integrators that fit it
+        integrator = _core.drive_integrators(scene.model().parameters)[0]
+        which = f"the scene's default integrator {integrator}"
+    if integrator == "moreau":
+        ignored = [("--rtol", args.rtol), ("--atol", args.atol)]
+        why = "moreau is a fixed-step scheme without error control (set its step with --dt)"
+    else:
+        ignored = [("--dt", args.dt), ("--theta", args.theta)]
+        why = "it applies to --integrator moreau only"
+    for flag, value in ignored:
+        if value is not None:
+            raise UsageError(f"{flag} {value:g} is invalid with {which}: {why}")
+
+
 def _simulate(scene, t_end: float = DEFAULT_T_END, points: int = DEFAULT_POINTS, **options):
     """Simulate with the command line's checks; options with value None are left out."""
     import numpy as np
 
     from .simulation import simulate
 
-    if not (math.isfinite(t_end) and t_end > 0):
-        raise UsageError(f"--t-end {t_end:g} is invalid: must be a time > 0 [s]")
-    if points < 0 or points == 1:
-        raise UsageError(f"--points {points} is invalid: must be 0 (every step) or >= 2")
+    _check_sampling(t_end, points)
     t_eval = np.linspace(0.0, t_end, points) if points else None
     options = {k: v for k, v in options.items() if v is not None}
     return simulate(scene, t_end, t_eval=t_eval, **options)
@@ -277,13 +382,12 @@ def _summary(name: str, scene, result, t_end: float) -> str:
             f"{stats['wall_time'] * 1e3:.3g} ms; u_load(t_end) = {result['u_load'][-1] * 1e3:.6g} mm")
 
 
-def _write_series(result, path_stem: Path, fmt: str) -> Path:
+def _write_series(result, out: Path, name: str, fmt: str) -> Path:
     frame = result.to_frame()
+    path = _output_file(out, name, fmt)
     if fmt == "parquet":
-        path = path_stem.with_suffix(".parquet")
         frame.to_parquet(path, index=False)
     else:
-        path = path_stem.with_suffix(".csv")
         frame.to_csv(path, index=False)
     return path
 
@@ -295,14 +399,18 @@ def _require_parquet(fmt: str) -> None:
 
 
 def _run(args: argparse.Namespace) -> int:
+    # Every argument is checked before anything runs or is created.
     _require_parquet(args.format)
-    scene, name = _load_scene(args.scene)
-    out = _output_dir(args.output)
+    _check_sampling(args.t_end, args.points)
+    _check_output_dir(args.output)
+    scene, name, _ = _load_scene(args.scene)
+    _check_integrator_options(scene, args)
     result = _simulate(scene, args.t_end, args.points, integrator=args.integrator,
-                       rtol=args.rtol, atol=args.atol, dt=args.dt)
+                       rtol=args.rtol, atol=args.atol, dt=args.dt, theta=args.theta)
+    out = _output_dir(args.output)
     print(_summary(name, scene, result, args.t_end))
-    series = _write_series(result, out / name, args.format)
-    figure = out / f"{name}.png"
+    series = _write_series(result, out, name, args.format)
+    figure = _output_file(out, name, "png")
     _plot_time_series(result, f"{name}: {scene!r}").savefig(figure, dpi=110)
     print(f"wrote {series}")
     print(f"wrote {figure}")
@@ -319,11 +427,11 @@ def _demo(args: argparse.Namespace) -> int:
     _check_scene(name)
     result = _simulate(scene)
     print(_summary(name, scene, result, DEFAULT_T_END))
-    written = [_write_series(result, out / name, "csv")]
-    figures = ((f"{name}.png", _plot_time_series), (f"{name}_energy.png", _plot_energy))
+    written = [_write_series(result, out, name, "csv")]
+    figures = ((name, _plot_time_series), (f"{name}_energy", _plot_energy))
     for filename, plot in figures:
-        plot(result, f"{name}: {scene!r}").savefig(out / filename, dpi=110)
-        written.append(out / filename)
+        written.append(_output_file(out, filename, "png"))
+        plot(result, f"{name}: {scene!r}").savefig(written[-1], dpi=110)
     for path in written:
         print(f"wrote {path}")
     return 0
@@ -374,6 +482,180 @@ def _import_studies():
         raise StudyFailed(f"the studies module leadscrew.studies cannot be imported: {error}") from None
 
 
+#: Study parameters that take Python objects (an executor, matplotlib Axes, a
+#: reference callable or Result): never from the command line.
+_OBJECT_OPTIONS = frozenset({"executor", "ax", "reference"})
+
+#: Type names an option's annotation may use for its value to come from text
+#: (TOML numbers, booleans, strings, arrays, inline tables).
+_TEXT_TYPES = frozenset({"Optional", "Union", "None", "NoneType", "float", "int", "str", "bool",
+                         "Sequence", "List", "list", "Tuple", "tuple", "Dict", "dict",
+                         "Mapping", "Any", "object"})
+
+#: simulate()'s parameters a study sets itself (the scene, its times).
+_SIMULATE_OWN = frozenset({"model", "t_end", "t_eval"})
+
+
+def _from_text(parameter: inspect.Parameter) -> bool:
+    """Whether a study parameter's value can be written on the command line.
+
+    Annotated: every type name in the annotation is a plain data type
+    (numbers, strings, booleans, sequences, dicts). Not annotated: the
+    default is such a value, or there is none (a required value).
+    """
+    if parameter.name in _OBJECT_OPTIONS:
+        return False
+    annotation = parameter.annotation
+    if annotation is inspect.Parameter.empty:
+        default = parameter.default
+        return default is inspect.Parameter.empty or isinstance(
+            default, (bool, int, float, str, list, tuple, dict))
+    text = annotation if isinstance(annotation, str) else inspect.formatannotation(annotation)
+    names = re.findall(r"[A-Za-z_][A-Za-z_0-9.]*", text)
+    return all(name.rsplit(".", 1)[-1] in _TEXT_TYPES for name in names)
+
+
+def _simulate_parameters() -> Dict[str, inspect.Parameter]:
+    from .simulation import simulate
+
+    return {name: parameter for name, parameter in inspect.signature(simulate).parameters.items()
+            if name not in _SIMULATE_OWN}
+
+
+def _check_study_options(name: str, function, options: Dict[str, Any]) -> None:
+    """Check the KEY=VALUE options against what the study takes.
+
+    A study takes its own parameters (all but the first, the scene) and, if
+    it passes ``**simulate_options`` on, :func:`leadscrew.simulate`'s
+    keywords but ``model``, ``t_end`` and ``t_eval``.
+
+    Raises:
+        UsageError: an option the study does not take (listing those it
+            does), one that takes a Python object (executor, ax, reference),
+            or a required one not given (listing them).
+    """
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):  # builtins without a signature: let the call decide
+        return
+    parameters = list(signature.parameters.values())[1:]
+    own = {p.name: p for p in parameters if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
+    forwards = any(p.kind is p.VAR_KEYWORD for p in parameters)
+    extra = ({k: v for k, v in _simulate_parameters().items() if k not in own} if forwards
+             else {})
+    accepted = {**own, **extra}
+    texts = [k for k, p in own.items() if _from_text(p)]
+    takes = ", ".join(texts) or "no options"
+    if extra:
+        takes += " and leadscrew.simulate's " + ", ".join(k for k, p in extra.items()
+                                                            if _from_text(p))
+    for key in options:
+        if key not in accepted:
+            raise UsageError(f"study {name!r} has no option {key!r}; it takes {takes}")
+        if not _from_text(accepted[key]):
+            raise UsageError(f"study option {key} = {options[key]!r} is invalid: {key} takes a "
+                             "Python object, which the command line cannot give (leave it out "
+                             "for the default)")
+    missing = [k for k, p in own.items() if p.default is p.empty and k not in options]
+    objects = [k for k in missing if not _from_text(own[k])]
+    if objects:
+        raise UsageError(f"study {name!r} cannot run from the command line: it needs "
+                         f"{', '.join(objects)}, a Python object")
+    if missing:
+        raise UsageError(f"study {name!r} needs {' '.join(k + '=...' for k in missing)} "
+                         f"(KEY=VALUE after SCENE); it takes {takes}")
+
+
+#: Columns in which a study reports the failure of a case (None: it ran).
+_FAILURE_COLUMNS = ("error", "failure")
+
+
+def _failure_message(value: Any) -> str:
+    """A failure cell as one line ("" where the case ran: None, NaN, False, "")."""
+    import pandas as pd
+
+    if value is None or (pd.api.types.is_scalar(value) and pd.isna(value)):
+        return ""
+    if pd.api.types.is_bool(value) and not value:  # False, also numpy's
+        return ""
+    return " ".join(str(value).split())
+
+
+def _failures(frame) -> Tuple[int, str]:
+    """How many rows of a study's frame failed, and the first message.
+
+    A row failed if one of its columns ``error`` or ``failure`` (work_precision)
+    holds a message.
+    """
+    columns = [c for c in _FAILURE_COLUMNS if c in frame.columns]
+    count, first = 0, ""
+    for values in zip(*(frame[c].tolist() for c in columns)):
+        messages = [m for m in map(_failure_message, values) if m]
+        if messages:
+            count += 1
+            first = first or messages[0]
+    return count, first
+
+
+def _json_value(value: Any) -> Any:
+    """A summary value as JSON data: NaN and infinities become null."""
+    import numpy as np
+
+    if isinstance(value, np.generic):
+        value = value.item()
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        number = float(value)
+        return number if math.isfinite(number) else None
+    if isinstance(value, dict):
+        return {str(k): _json_value(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
+        return [_json_value(v) for v in (value.tolist() if hasattr(value, "tolist") else value)]
+    return str(value)
+
+
+def _summary_unit(key: str, frame, module_units: Dict[str, str]) -> str:
+    """The unit of a summary entry, as far as the study tells: the frame's
+    ``attrs["summary_units"]``; else the unit of the column it sums up (its
+    own name, or without a ``static_``/``dynamic_`` prefix: ``dynamic_creep_per_cycle``
+    as ``creep_per_cycle``) in ``attrs["units"]`` or the study module's
+    ``UNITS``. None ("") for labels, ratios ("1") and keys the study does not
+    describe."""
+    own = frame.attrs.get("summary_units") or {}
+    if key in own:
+        unit = own[key]
+        return "" if unit in (None, "", "1") else str(unit)
+    units = {**module_units, **(frame.attrs.get("units") or {})}
+    for prefix in ("", "static_", "dynamic_"):
+        name = key[len(prefix):]
+        if key.startswith(prefix) and units.get(name) not in (None, "", "1"):
+            return str(units[name])
+    return ""
+
+
+def _summary_text(value: Any, unit: str = "") -> str:
+    """A summary value for the terminal (NaN stays visible), with its unit."""
+    import numpy as np
+
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        text = str(int(value))
+    elif isinstance(value, numbers.Real):
+        text = f"{float(value):.6g}"
+    elif isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
+        text = ", ".join(_summary_text(v) for v in (value.tolist() if hasattr(value, "tolist")
+                                                     else value))
+    else:
+        return str(value)
+    return f"{text} {unit}" if unit else text
+
+
 def _study(args: argparse.Namespace) -> int:
     studies = _import_studies()
     registry = getattr(studies, "STUDIES", None)
@@ -384,36 +666,46 @@ def _study(args: argparse.Namespace) -> int:
                          f"{', '.join(sorted(registry))}")
     function = registry[args.name]
     options = _study_options(args.options)
-    try:
-        signature = inspect.signature(function)
-    except (TypeError, ValueError):  # builtins without a signature: let the call decide
-        signature = None
-    if signature is not None:
-        parameters = list(signature.parameters.values())
-        takes_any = any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters)
-        names = [p.name for p in parameters[1:]
-                 if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
-        unknown = [k for k in options if k not in names]
-        if unknown and not takes_any:
-            raise UsageError(f"study {args.name!r} has no option {unknown[0]!r}; it takes "
-                             f"{', '.join(names) or 'no options'}")
-    scene, scene_name = _load_scene(args.scene)
-    out = _output_dir(args.output)
+    _check_study_options(args.name, function, options)
+    _check_output_dir(args.output)
+    scene, scene_name, _ = _load_scene(args.scene)
     start = time.perf_counter()
     frame = function(scene, **options)
     elapsed = time.perf_counter() - start
     if not hasattr(frame, "to_csv"):
         raise StudyFailed(f"study {args.name!r} returned {type(frame).__name__}, not a DataFrame")
-    path = out / f"{args.name}_{scene_name}.csv"
+    failed, first = _failures(frame)
+    if failed and failed == len(frame):
+        raise StudyFailed(f"study {args.name!r} on {scene_name}: all {failed} cases failed; "
+                          f"the first: {first}")
+    out = _output_dir(args.output)
+    stem = f"{args.name}_{scene_name}"
+    path = _output_file(out, stem, "csv")
     default_index = type(frame.index).__name__ == "RangeIndex" and frame.index.name is None
     # Columns holding arrays (time series per row) do not fit a CSV cell.
     arrays = [c for c in frame.columns
               if frame[c].map(lambda v: hasattr(v, "__len__") and not isinstance(v, str)).any()]
     frame.drop(columns=arrays).to_csv(path, index=not default_index)
+    written = [path]
+    summary = frame.attrs.get("summary") or {}
     print(f"{args.name} on {scene_name}: {len(frame)} rows in {elapsed:.3g} s")
+    if summary:
+        module_units = getattr(inspect.getmodule(function), "UNITS", None) or {}
+        print("summary:")
+        for key, value in summary.items():
+            unit = _summary_unit(str(key), frame, module_units)
+            print(f"  {key}: {_summary_text(value, unit)}")
+        written.append(_output_file(out, stem, "summary.json"))
+        with open(written[-1], "w", encoding="utf-8") as stream:
+            json.dump(_json_value(dict(summary)), stream, indent=2, allow_nan=False)
+            stream.write("\n")
     if arrays:
         print(f"left out of the CSV (a time series per row): {', '.join(map(str, arrays))}")
-    print(f"wrote {path}")
+    for path in written:
+        print(f"wrote {path}")
+    if failed:
+        print(f"leadscrew: warning: {failed} of {len(frame)} cases failed: {first}",
+              file=sys.stderr)
     return 0
 
 
@@ -426,9 +718,15 @@ def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--integrator", default=None,
                         help="integrator (default: the scene's; event_driven, moreau, "
                              "cvode_bdf, cvode_adams, dopri5, ...)")
-    parser.add_argument("--rtol", type=float, default=None, help="relative tolerance")
-    parser.add_argument("--atol", type=float, default=None, help="absolute tolerance")
-    parser.add_argument("--dt", type=float, default=None, help="fixed step of 'moreau' [s]")
+    parser.add_argument("--rtol", type=float, default=None,
+                        help="relative tolerance (not with --integrator moreau)")
+    parser.add_argument("--atol", type=float, default=None,
+                        help="absolute tolerance [SI] (not with --integrator moreau)")
+    parser.add_argument("--dt", type=float, default=None,
+                        help="fixed step of --integrator moreau [s] (refused with the others)")
+    parser.add_argument("--theta", type=float, default=None,
+                        help="theta of --integrator moreau, in [0, 1] (default 0.5; refused "
+                             "with the others)")
     parser.add_argument("--points", type=int, default=DEFAULT_POINTS,
                         help=f"output points, evenly spaced over [0, t_end] (default "
                              f"{DEFAULT_POINTS}); 0 writes every integrator step and event")
@@ -469,7 +767,21 @@ def _parser() -> argparse.ArgumentParser:
     check.add_argument("--load", type=float, default=None, help="axial load [N] for the torques")
     check.set_defaults(func=_check)
 
-    study = command("study", help="run a design study of leadscrew.studies, write its table")
+    study = command(
+        "study", help="run a design study of leadscrew.studies, write its table",
+        description="Run a study of leadscrew.studies on SCENE and write its table to "
+        "DIR/NAME_SCENE.csv. A study's scalar verdicts (its summary: position_holding, "
+        "stick_slip, min_holding_preload, ...) are printed, one 'key: value unit' line each, "
+        "and written to DIR/NAME_SCENE.summary.json (NaN and infinities as null). Options are "
+        "the study's parameters and, for studies that pass them on, leadscrew.simulate's "
+        "keywords (integrator, max_steps, ...; not t_eval); executor, ax and reference take "
+        "Python objects and cannot be given here. Exit codes: 0 success (also when some cases "
+        "failed: a warning 'k of N cases failed: <first message>' goes to stderr and each "
+        "row's error column says why), 1 when every case failed or the study failed while "
+        "running, 2 for usage errors (unknown or missing options, an invalid scene or "
+        "option value).",
+        epilog="example: leadscrew study efficiency_vs_mu thesis_table_5_1 mu=0.1,0.2,0.3 "
+        "loads=10,50 progress=false -o out")
     study.add_argument("name", metavar="NAME", help="the study (leadscrew.studies.STUDIES)")
     study.add_argument("scene", metavar="SCENE")
     study.add_argument("options", metavar="KEY=VALUE", nargs="*",

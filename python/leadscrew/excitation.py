@@ -4,6 +4,11 @@ A load argument accepts a :class:`Constant`, :class:`Sine` or :class:`Table`
 (evaluated inside the C++ core), a plain number (a constant), or any Python
 callable ``f(t) -> float`` (the slow, general fallback: the core calls back
 into Python at every evaluation).
+
+The parameters of a :class:`Constant`, :class:`Sine` or :class:`Table` are
+read-only (a Table's arrays are not writeable): the core evaluates the values
+given to the constructor, and a scene stores these loads as the dicts of
+their parameters (see :mod:`leadscrew.scene`).
 """
 
 from __future__ import annotations
@@ -31,7 +36,12 @@ class Constant(_core.Excitation):
 
     def __init__(self, value: float):
         super().__init__("constant", [float(value)])
-        self.value = float(value)
+        self._value = float(value)
+
+    @property
+    def value(self) -> float:
+        """The load (read-only)."""
+        return self._value
 
     def __repr__(self) -> str:
         return f"Constant({self.value!r})"
@@ -55,10 +65,27 @@ class Sine(_core.Excitation):
 
     def __init__(self, amplitude: float, omega: float, phase: float = 0.0, offset: float = 0.0):
         super().__init__("sine", [float(amplitude), float(omega), float(phase), float(offset)])
-        self.amplitude = float(amplitude)
-        self.omega = float(omega)
-        self.phase = float(phase)
-        self.offset = float(offset)
+        self._parameters = (float(amplitude), float(omega), float(phase), float(offset))
+
+    @property
+    def amplitude(self) -> float:
+        """Amplitude (read-only)."""
+        return self._parameters[0]
+
+    @property
+    def omega(self) -> float:
+        """Angular frequency [rad/s] (read-only)."""
+        return self._parameters[1]
+
+    @property
+    def phase(self) -> float:
+        """Phase [rad] (read-only)."""
+        return self._parameters[2]
+
+    @property
+    def offset(self) -> float:
+        """Constant part (read-only)."""
+        return self._parameters[3]
 
     def __repr__(self) -> str:
         return (f"Sine(amplitude={self.amplitude!r}, omega={self.omega!r}, "
@@ -83,11 +110,24 @@ class Table(_core.Excitation):
     """
 
     def __init__(self, times: Sequence[float], values: Sequence[float]):
-        times = np.asarray(times, dtype=float).ravel()
-        values = np.asarray(values, dtype=float).ravel()
+        # Own copies, not writeable: the core holds the values given here.
+        times = np.array(times, dtype=float).ravel()
+        values = np.array(values, dtype=float).ravel()
         super().__init__("table", [], times.tolist(), values.tolist())
-        self.times = times
-        self.values = values
+        times.flags.writeable = False
+        values.flags.writeable = False
+        self._times = times
+        self._values = values
+
+    @property
+    def times(self) -> np.ndarray:
+        """The times [s] (a read-only array)."""
+        return self._times
+
+    @property
+    def values(self) -> np.ndarray:
+        """The load values (a read-only array)."""
+        return self._values
 
     def __repr__(self) -> str:
         return f"Table(times={self.times.tolist()!r}, values={self.values.tolist()!r})"

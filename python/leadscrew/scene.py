@@ -4,7 +4,11 @@
 keys, missing required keys and out-of-range values raise ``ValueError``
 naming the key path, e.g. ``backlash.axial``), fills the documented defaults,
 and keeps only the sections the scene needs. ``Scene.to_dict()`` returns the
-complete dict, which ``from_dict`` accepts again unchanged.
+complete dict, which ``from_dict`` accepts again unchanged (defaults filled,
+except the drive torque: without ``loads.drive_torque`` and
+``loads.drive_speed`` the model applies 0 N*m, and the scene keeps the key
+absent; loads given as :class:`~leadscrew.Constant`, :class:`~leadscrew.Sine`
+or :class:`~leadscrew.Table` are kept as their ``{"type": ...}`` dicts).
 ``Scene.from_toml(path)`` and ``Scene.to_toml(path)`` read and write the same
 structure as a TOML file.
 
@@ -22,6 +26,7 @@ import math
 import numbers
 import os
 import sys
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Optional, Tuple
 
@@ -64,8 +69,8 @@ SCHEMA: Dict[str, Any] = {
     "thread": {
         "pitch": Field("axial distance between neighbouring flanks", "m", None, **POSITIVE),
         "mean_diameter": Field("mean (pitch) diameter d_m = 2 r_m", "m", None, **POSITIVE),
-        "starts": Field("number of thread starts (lead = starts * pitch)", "", 1, kind="int",
-                        low=1),
+        "starts": Field("number of thread starts (lead = starts * pitch), 1 to 100 (lead "
+                        "screws have up to about 16)", "", 1, kind="int", low=1, high=100),
         "flank_angle": Field("included thread angle beta: 0 square, 29 deg Acme, 30 deg ISO "
                              "trapezoidal", "rad", 0.0, low=0.0, high=math.pi, high_open=True),
         "hand": Field("thread hand", "", "right", kind="choice", choices=("right", "left")),
@@ -89,10 +94,11 @@ SCHEMA: Dict[str, Any] = {
                          choices=("exact", "bistop", "cubic")),
         "restitution": Field("Newton restitution coefficient of flank impacts ('exact')", "",
                              0.0, low=0.0, high=1.0),
-        "stiffness": Field("contact stiffness of 'bistop' (N/m^exponent) and 'cubic' (N/m) "
-                           "(default: the nut's axial stiffness E_M A_M / l_M, for 'bistop' "
-                           "scaled to d_0^(1 - exponent) so that both give the same force at "
-                           "the penetration d_0)", "N/m", OPTIONAL,
+        "stiffness": Field("contact stiffness k of 'bistop' in N/m^exponent (a string is "
+                           "converted to that unit: \"1e7 N/mm^1.5\" for exponent 1.5) and of "
+                           "'cubic' in N/m (default: the nut's axial stiffness E_M A_M / l_M, "
+                           "for 'bistop' scaled to d_0^(1 - exponent) so that both give the "
+                           "same force at the penetration d_0)", "N/m", OPTIONAL,
                            **POSITIVE),
         "exponent": Field("force exponent of 'bistop': F = k d^e", "", 1.5, low=1.0),
         "damping": Field("maximum contact damping of 'bistop' and 'cubic' (default: "
@@ -121,7 +127,10 @@ SCHEMA: Dict[str, Any] = {
         "poisson": Field("Poisson's ratio nu_M", "", 0.3, low=-1.0, high=0.5, low_open=True),
         "density": Field("density", "kg/m^3", 1400.0, **POSITIVE),
         "position": Field("initial distance a_0 of the nut from the screw's drive end "
-                          "(drive='screw') or load end (drive='nut')", "m", 0.1, **POSITIVE),
+                          "(drive='screw') or load end (drive='nut'), < screw.length for both "
+                          "drives: the model takes the nut as the point where the thread force "
+                          "enters the screw (screw segments a and L - a, eq. 4.24; nut.length "
+                          "sets only the nut's mass and stiffness)", "m", 0.1, **POSITIVE),
     },
     "rotor": {
         "inertia": Field("rotor inertia about the screw axis", "kg*m^2", 1e-5, **POSITIVE),
@@ -159,7 +168,8 @@ SCHEMA: Dict[str, Any] = {
     "loads": {
         "drive_torque": Field("motor torque on the rotor about +x: a number, "
                               "{'type': 'sine'|'constant'|'table', ...} or an Excitation or "
-                              "callable (default 0 unless drive_speed is given)", "N*m",
+                              "callable (default 0 unless drive_speed is given; the default is "
+                              "applied in the model, not stored in the scene)", "N*m",
                               OPTIONAL, kind="load"),
         "drive_speed": Field("instead of drive_torque: a speed-controlled motor prescribing "
                              "the rotor's angular velocity; the torque it takes is reported",
@@ -201,39 +211,83 @@ _LOAD_TYPES = {"constant": ("value",), "sine": ("amplitude", "omega", "phase", "
 _LOAD_ENTRY_UNITS = {"value": None, "amplitude": None, "offset": None, "values": None,
                      "omega": "rad/s", "phase": "rad", "times": "s"}
 
-# A field whose unit depends on another field of its section.
-_UNIT_BY_CHOICE = {("friction", "k_v"): ("law", {"arctan_acceleration": "s^2/m"})}
+# Fields whose unit depends on other fields of their section (checked after them).
+_UNIT_DEPENDS_ON = {("friction", "k_v"): ("law",),
+                    ("backlash", "stiffness"): ("contact", "exponent")}
 
 
-def _field_unit(section: str, key: str, f: Field, so_far: Dict[str, Any]) -> str:
-    rule = _UNIT_BY_CHOICE.get((section, key))
-    if rule is None:
-        return f.unit
-    choice, units = rule
-    return units.get(so_far.get(choice), f.unit)
+def _power_text(exponent: float) -> str:
+    """An exponent as unit text that parses back to the same float."""
+    return str(int(exponent)) if float(exponent).is_integer() else repr(float(exponent))
+
+
+def _field_unit(section: str, key: str, f: Field, values: Dict[str, Any]) -> str:
+    """The unit of a field, given the (checked) values of its section: k_v is
+    in s^2/m for 'arctan_acceleration', a 'bistop' stiffness in N/m^exponent."""
+    if (section, key) == ("friction", "k_v") and values.get("law") == "arctan_acceleration":
+        return "s^2/m"
+    if (section, key) == ("backlash", "stiffness") and values.get("contact") == "bistop":
+        exponent = values.get("exponent", SCHEMA["backlash"]["exponent"].default)
+        return "N/m" if exponent == 1.0 else f"N/m^{_power_text(exponent)}"
+    return f.unit
 
 
 def _load_entry_to_si(path: str, key: str, entry: Any, unit: str):
-    """Unit strings in a load table converted: numbers and lists of them."""
+    """An entry of a load table as float(s) in its unit: a number or a list of
+    numbers, each a real number (not a bool) or a string with a unit.
+
+    Raises:
+        ValueError: naming ``path.key`` (or ``path.key[i]``), the value and
+            what is allowed.
+    """
     entry_unit = _LOAD_ENTRY_UNITS[key] or unit
     if key in ("times", "values"):
-        if isinstance(entry, (str, bytes)) or not hasattr(entry, "__iter__"):
+        items = entry.tolist() if hasattr(entry, "tolist") else entry
+        if isinstance(items, (str, bytes, dict, set, frozenset)) or not isinstance(
+                items, Iterable):
             _fail(f"{path}.{key}", entry, "a list of numbers" + (f" [{entry_unit}]" if entry_unit
                                                                   else ""))
-        return [_as_float(to_si(f"{path}.{key}[{i}]", x, entry_unit))
-                for i, x in enumerate(entry)]
-    return _as_float(to_si(f"{path}.{key}", entry, entry_unit))
+        return [_load_number(f"{path}.{key}[{i}]", x, entry_unit) for i, x in enumerate(items)]
+    return _load_number(f"{path}.{key}", entry, entry_unit)
 
 
-def _as_float(value: Any) -> Any:
-    """Numbers (numpy scalars too) as float; anything else is left for the checks."""
-    if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        return float(value)
-    return value
+def _load_number(path: str, value: Any, unit: str) -> float:
+    """One number of a load table: a finite real number (numpy scalars too,
+    not a bool) or a string with a unit, as float in ``unit``."""
+    number = to_si(path, value, unit)
+    if (isinstance(number, bool) or not isinstance(number, numbers.Real)
+            or not math.isfinite(number)):
+        shown = _Converted(value, number, unit) if isinstance(value, str) else value
+        _fail(path, shown, "a finite number" + (f" [{unit}] or a string with a unit such as "
+                                                f"{_UNIT_EXAMPLES.get(unit, '...')}" if unit
+                                                else ""))
+    return float(number)
+
+
+# Examples of unit strings for the messages of load entries.
+_UNIT_EXAMPLES = {"N": '"-10 N"', "N*m": '"40 N*mm"', "rad/s": '"2 Hz"', "rad": '"90 deg"',
+                  "s": '"250 ms"'}
+
+
+def _excitation_spec(value: Any) -> Optional[Dict[str, Any]]:
+    """The ``{type = ...}`` dict of a Constant, Sine or Table (None for
+    anything else): a scene stores these loads as dicts, which compare equal
+    by value and round-trip through TOML."""
+    if isinstance(value, Constant):
+        return {"type": "constant", "value": value.value}
+    if isinstance(value, Sine):
+        return {"type": "sine", "amplitude": value.amplitude, "omega": value.omega,
+                "phase": value.phase, "offset": value.offset}
+    if isinstance(value, Table):
+        return {"type": "table", "times": value.times.tolist(), "values": value.values.tolist()}
+    return None
 
 
 def _check_load(path: str, value: Any, unit: str = ""):
-    if isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
+    spec = _excitation_spec(value)
+    if spec is not None:
+        value = spec
+    elif isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
         return value
     value = to_si(path, value, unit)
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
@@ -242,7 +296,7 @@ def _check_load(path: str, value: Any, unit: str = ""):
         return float(value)
     if isinstance(value, dict):
         kind = value.get("type")
-        if kind not in _LOAD_TYPES:
+        if not isinstance(kind, str) or kind not in _LOAD_TYPES:
             _fail(f"{path}.type", kind, "one of " + ", ".join(repr(k) for k in _LOAD_TYPES))
         allowed = _LOAD_TYPES[kind]
         for key in value:
@@ -279,7 +333,10 @@ def _make_excitation(spec):
     return spec
 
 
-def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None):
+def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None,
+                 name: Optional[str] = None):
+    """A field's value checked and converted to ``unit`` (default: the
+    field's); ``name`` says what it measures in unit messages."""
     unit = f.unit if unit is None else unit
     if f.kind == "choice":
         if value not in f.choices:
@@ -288,20 +345,26 @@ def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None):
     if f.kind == "load":
         return _check_load(path, value, unit)
     given = value
-    value = to_si(path, value, unit)
+    value = to_si(path, value, unit, name)
     shown = _Converted(given, value, unit) if isinstance(given, str) else value
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         _fail(path, shown, "a number" if f.kind == "float" else "an integer")
     if f.kind == "int":
-        if int(value) != value:
-            _fail(path, shown, f"an integer >= {f.low:g}")
+        if not (math.isfinite(value) and int(value) == value):
+            _fail(path, shown, _range_text(f).replace("a finite number", "an integer"))
         value = int(value)
     else:
-        value = float(value)
+        try:
+            value = float(value)
+        except OverflowError:  # an int beyond the float range
+            _fail(path, shown, _range_text(f))
     above = value > f.low if f.low_open else value >= f.low
     below = value < f.high if f.high_open else value <= f.high
     if not (math.isfinite(value) and above and below):
-        _fail(path, shown, _range_text(f) + (f" [{unit}]" if unit and shown is not value else ""))
+        allowed = _range_text(f)
+        if f.kind == "int":
+            allowed = allowed.replace("a finite number", "an integer")
+        _fail(path, shown, allowed + (f" [{unit}]" if unit and shown is not value else ""))
     return value
 
 
@@ -323,15 +386,26 @@ def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]
             raise ValueError(f"{path}.{key} is not a known key; {path} takes "
                              f"{', '.join(schema)}")
     out = {}
-    for key, f in schema.items():
+    # A field whose unit depends on others is checked after them.
+    for key in sorted(schema, key=lambda k: (path, k) in _UNIT_DEPENDS_ON):
+        f = schema[key]
         sub = f"{path}.{key}"
         if key in given and given[key] is not None:
-            out[key] = _check_field(sub, f, given[key], _field_unit(path, key, f, out))
+            unit = _field_unit(path, key, f, out)
+            bistop = unit != f.unit and (path, key) == ("backlash", "stiffness")
+            try:
+                out[key] = _check_field(sub, f, given[key], unit,
+                                        "a 'bistop' contact stiffness" if bistop else None)
+            except ValueError as error:
+                if not bistop:
+                    raise
+                raise ValueError(f"{error} (a 'bistop' stiffness is in N/m^exponent, here "
+                                 f"backlash.exponent = {out['exponent']!r})") from None
         elif f.default is None:
             raise ValueError(f"{sub} is missing: {f.doc}" + (f" [{f.unit}]" if f.unit else ""))
         elif f.default is not OPTIONAL:
             out[key] = f.default
-    return out
+    return {key: out[key] for key in schema if key in out}
 
 
 def _check_section_names(d: Dict[str, Any]) -> None:
@@ -437,7 +511,9 @@ class Scene:
         :meth:`from_toml` reads the file back to an equal scene (floats are
         written with ``repr``, which round-trips exactly). Loads given as
         :class:`~leadscrew.Constant`, :class:`~leadscrew.Sine` or
-        :class:`~leadscrew.Table` are written as their ``{type = ...}`` tables.
+        :class:`~leadscrew.Table` are stored, and written, as their
+        ``{type = ...}`` tables. An absent drive torque (the default 0) stays
+        absent.
 
         Args:
             path: the file to write (UTF-8); None only returns the text.
@@ -521,7 +597,23 @@ class Scene:
                 f"{self._data['friction']['law']} mu={self._data['friction']['mu']:g}{play}>")
 
     def __eq__(self, other) -> bool:
-        return isinstance(other, Scene) and self._data == other._data
+        """Equal data, an absent drive torque counting as its default 0 (both
+        build the same model). Loads given as Constant, Sine or Table objects
+        are stored as their dicts and so compare by value; a bare C++
+        Excitation or a callable compares by identity."""
+        return isinstance(other, Scene) and _effective(self._data) == _effective(other._data)
+
+
+# The drive torque of a scene that gives neither drive_torque nor drive_speed.
+_DEFAULT_DRIVE_TORQUE = 0.0
+
+
+def _effective(data: Dict[str, Any]) -> Dict[str, Any]:
+    """The scene data with the default drive torque filled in (for comparing)."""
+    loads = data["loads"]
+    if "drive_torque" in loads or "drive_speed" in loads:
+        return data
+    return {**data, "loads": {**loads, "drive_torque": _DEFAULT_DRIVE_TORQUE}}
 
 
 def _check_consistency(data: Dict[str, Any]) -> None:
@@ -529,14 +621,17 @@ def _check_consistency(data: Dict[str, Any]) -> None:
     if "drive_torque" in loads and "drive_speed" in loads:
         raise ValueError("loads.drive_speed = {!r} is invalid: give either loads.drive_torque "
                          "or loads.drive_speed, not both".format(loads["drive_speed"]))
-    if "drive_torque" not in loads and "drive_speed" not in loads:
-        loads["drive_torque"] = 0.0
+    # Without either the drive torque is 0, applied by _core_parameters: it is
+    # not stored, so replace(loads={"drive_speed": w}) switches to speed.
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
-    if data["drive"] == "screw" and data["nut"]["position"] >= data["screw"]["length"]:
+    # Both drives: the nut is a point on the screw at a in (0, L) (schema doc).
+    if data["nut"]["position"] >= data["screw"]["length"]:
+        end = "drive end" if data["drive"] == "screw" else "load end"
         _fail("nut.position", data["nut"]["position"],
-              f"< screw.length = {data['screw']['length']:g}")
+              f"< screw.length = {data['screw']['length']:g} (the nut's distance from the "
+              f"screw's {end} for drive = {data['drive']!r})")
     play = data["initial"]["play_position"]
     backlash = data.get("backlash")
     half = backlash["axial"] / 2 if backlash else 0.0
@@ -648,7 +743,7 @@ def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
         p.speed_controlled = True
         p.drive_speed = _make_excitation(loads["drive_speed"])
     else:
-        p.drive_torque = _make_excitation(loads["drive_torque"])
+        p.drive_torque = _make_excitation(loads.get("drive_torque", _DEFAULT_DRIVE_TORQUE))
     p.axial_force = _make_excitation(loads["axial_force"])
     init = data["initial"]
     p.rotor_angle, p.rotor_speed, p.play_position = (init["rotor_angle"], init["rotor_speed"],
@@ -713,13 +808,9 @@ def _load_table(path: str, value: Any) -> Any:
     if isinstance(value, dict) or (isinstance(value, numbers.Real)
                                    and not isinstance(value, bool)):
         return value
-    if isinstance(value, Constant):
-        return {"type": "constant", "value": value.value}
-    if isinstance(value, Sine):
-        return {"type": "sine", "amplitude": value.amplitude, "omega": value.omega,
-                "phase": value.phase, "offset": value.offset}
-    if isinstance(value, Table):
-        return {"type": "table", "times": value.times.tolist(), "values": value.values.tolist()}
+    spec = _excitation_spec(value)  # stored as dicts already; kept for safety
+    if spec is not None:
+        return spec
     raise ValueError(f"{path} = {value!r} cannot be written to TOML: a load in a scene file "
                      "is a number or a table {type = \"constant\" | \"sine\" | \"table\", ...}")
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+import numbers
 from typing import NamedTuple, Optional, Sequence
 
 import numpy as np
@@ -142,21 +144,51 @@ def _check_scene_friction(scene: Scene, friction: Optional[str]) -> None:
                          f"scene's friction.law (it is {scene['friction']['law']!r})")
 
 
+def _real(name: str, value) -> float:
+    """``value`` as a float, if it is a real number (not a bool or a string:
+    the core checks the range, this only the kind, naming the option)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} = {value!r} is invalid: must be a number")
+    return float(value)
+
+
+def _whole(name: str, value) -> int:
+    """``value`` as an int, if it is a whole number (``1e6`` is; 1.5 is not)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or \
+            not math.isfinite(value) or value != int(value):
+        raise ValueError(f"{name} = {value!r} is invalid: must be an integer")
+    return int(value)
+
+
+def _name(name: str, value) -> str:
+    if value is not None and not isinstance(value, str):
+        raise ValueError(f"{name} = {value!r} is invalid: must be the name of an integrator "
+                         "or None")
+    return value or ""
+
+
 def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval,
                      max_steps, max_events, max_step, first_step, bounce_threshold,
                      max_order) -> dict:
     """The core's drive-simulation keywords from :func:`simulate`'s (None:
     the default; ``integrator`` None or ``""``: the core's default per model;
     ``t_eval`` a list of floats). Shared with
-    :class:`leadscrew.studies._batch.DriveBatch`."""
-    return {"t_end": float(t_end), "integrator": integrator or "",
-            "smooth_integrator": smooth_integrator or "", "rtol": float(rtol),
-            "atol": float(atol), "dt": 1e-4 if dt is None else float(dt), "theta": float(theta),
-            "t_eval": t_eval, "max_steps": int(max_steps),
-            "max_events": int(max_events), "max_step": 0.0 if max_step is None else float(max_step),
-            "first_step": 0.0 if first_step is None else float(first_step),
-            "bounce_threshold": float(bounce_threshold),
-            "max_order": 0 if max_order is None else int(max_order)}
+    :class:`leadscrew.studies._batch.DriveBatch`.
+
+    Raises:
+        ValueError: a value of the wrong kind (a string for a number, 1.5
+            steps), naming the option; the core checks the ranges.
+    """
+    return {"t_end": _real("t_end", t_end), "integrator": _name("integrator", integrator),
+            "smooth_integrator": _name("smooth_integrator", smooth_integrator),
+            "rtol": _real("rtol", rtol), "atol": _real("atol", atol),
+            "dt": 1e-4 if dt is None else _real("dt", dt), "theta": _real("theta", theta),
+            "t_eval": t_eval, "max_steps": _whole("max_steps", max_steps),
+            "max_events": _whole("max_events", max_events),
+            "max_step": 0.0 if max_step is None else _real("max_step", max_step),
+            "first_step": 0.0 if first_step is None else _real("first_step", first_step),
+            "bounce_threshold": _real("bounce_threshold", bounce_threshold),
+            "max_order": 0 if max_order is None else _whole("max_order", max_order)}
 
 
 def simulate(

@@ -4,15 +4,29 @@ A scene field holds a plain number in its SI unit or a string with a unit,
 which :func:`to_si` converts with `pint <https://pint.readthedocs.io>`_ to
 that unit; a string of another dimension is rejected with the field's key path.
 
+A string is exactly one number (``"1.5"``, ``"-2e-3"``, ``".5"``) followed by
+an optional unit expression (``"mm"``, ``"N*m/deg"``, ``"N/m^1.5"``, ``"1/s"``).
+Numbers inside the unit other than exponents and a leading ``1/`` are
+rejected (``"1 mm 2"``, ``"2 3"``: pint would multiply them), and so is a
+decimal comma (``"1,5 mm"``: pint would read 15 mm).
+
 Angles and frequencies:
 
-- Radians are dimensionless: an angle field (``rad``) takes ``"30 deg"``,
-  ``"0.5 rad"`` or a plain number (radians); ``"1 turn"`` is 2 pi rad.
+- Radians are dimensionless to pint, but not here: the power of the angle in
+  the given unit must be that of the field's unit. A torque field (``N*m``)
+  rejects ``"5 N*m/deg"``, a torsional stiffness (``N*m/rad``) rejects
+  ``"100 N*m"`` and takes ``"11.3 N*m/deg"``, a time field rejects ``"0.5 1/Hz"``.
+- An angle field (``rad``) takes ``"30 deg"``, ``"0.5 rad"``, ``"1 turn"`` (2 pi
+  rad) or a plain number (radians, also as a string such as ``"0.5"``), but not
+  ``"30 %"``.
 - ``Hz`` means cycles per second (1 Hz = 1 turn/s = 2 pi rad/s): an angular
   velocity or angular frequency field (``rad/s``, e.g. a sine's ``omega``)
   given ``"2 Hz"`` takes 2 * 2 pi = 12.566 rad/s, as ``"120 rpm"`` does;
-  ``"2 rad/s"`` and ``"2 1/s"`` stay 2 rad/s. (Plain pint would read ``"2 Hz"``
-  as 2 rad/s; this module's registry redefines ``hertz`` as ``turn / second``.)
+  ``"2 rad/s"`` and ``"2 1/s"`` stay 2 rad/s (``1/s`` is the one unit without
+  an angle such a field takes; ``"3000 1/min"`` is rejected, as it often
+  means rpm: write ``"3000 rpm"`` or ``"3000 rad/min"``). (Plain pint would
+  read ``"2 Hz"`` as 2 rad/s; this module's registry redefines ``hertz`` as
+  ``turn / second``.)
 - A dimensionless field (a friction coefficient, a ratio) takes plain numbers,
   numeric strings (``"0.3"``) and ``"30 %"``, but not angles.
 
@@ -23,8 +37,9 @@ never pay for it.
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
-from typing import Any
+from typing import Any, Optional
 
 __all__ = ["to_si", "parse_unit", "dimension_name"]
 
@@ -56,6 +71,13 @@ def _registry():
     registry = pint.UnitRegistry(on_redefinition="ignore")
     # Hz is a cycle per second here, so "2 Hz" in a rad/s field is 4 pi rad/s.
     registry.define("hertz = turn / second = Hz")
+    # pint caches the root units of its definitions when it builds the
+    # registry: without a rebuild "Hz" would keep 1/s as its root units and
+    # lose the angle that the checks below compare.
+    registry._build_cache()
+    hertz = registry.Quantity(1.0, "Hz").to_root_units()
+    if dict(hertz.units._units).get("radian", 0) != 1:  # pragma: no cover - a pint change
+        raise RuntimeError("leadscrew.units: pint did not take Hz = turn / second")
     return registry
 
 
@@ -101,39 +123,94 @@ def _quoted(text: str) -> str:
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
 
 
-def to_si(path: str, value: Any, unit: str) -> Any:
+# One number, then an optional unit expression (parsed by pint on its own).
+_NUMBER = re.compile(r"\s*([+-]?(?:(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan))"
+                     r"\s*(.*?)\s*$", re.IGNORECASE | re.DOTALL)
+# Numbers a unit expression may hold: exponents ("m^2", "m**-1", "m^(1.5)")
+# and the 1 of "1/s".
+_EXPONENT = re.compile(r"(?:\^|\*\*)\s*\(?\s*[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*\)?")
+_ONE_OVER = re.compile(r"(?<![\w.])1\s*/")
+_STRAY_NUMBER = re.compile(r"(?<![\w.])(?:\d+\.?\d*|\.\d+)")
+
+
+def _split_number(prefix: str, value: str):
+    """Split ``value`` into its one number and its unit text.
+
+    Args:
+        prefix: the start of messages (key path and value).
+        value: the string, e.g. ``"1.5 mm"``.
+
+    Returns:
+        ``(number, unit)``: a float and the unit text (``""``: no unit).
+
+    Raises:
+        ValueError: a comma, no leading number, or a further number in the unit.
+    """
+    example = 'such as "1.5 mm"'
+    if "," in value:
+        raise ValueError(f'{prefix}a comma is not a decimal point here: use a decimal point '
+                         f'and no thousands separators ({example})')
+    match = _NUMBER.fullmatch(value)
+    if match is None:
+        raise ValueError(f"{prefix}not one number followed by a unit {example}")
+    number, unit = match.group(1), match.group(2)
+    if unit:
+        stray = _STRAY_NUMBER.search(_ONE_OVER.sub("/", _EXPONENT.sub("", unit)))
+        if stray is not None:
+            raise ValueError(f"{prefix}not one number followed by a unit {example}: the unit "
+                             f"{_quoted(unit)} holds the further number {stray.group(0)!r}")
+    return float(number), unit
+
+
+def _angle_text(exponent: float) -> str:
+    return "no angle" if exponent == 0 else f"rad^{exponent:g}"
+
+
+def to_si(path: str, value: Any, unit: str, name: Optional[str] = None) -> Any:
     """Convert a string with a unit to a number in ``unit``; other values pass.
 
     Args:
         path: the key path for messages, e.g. ``"thread.pitch"``.
         value: a string such as ``"1 mm"`` (anything else is returned unchanged).
         unit: the field's SI unit, e.g. ``"m"``, ``"N*m/rad"``, ``""``.
+        name: what the field measures, for messages (e.g. ``"a 'bistop'
+            contact stiffness"``); None: :func:`dimension_name` of ``unit``.
 
     Returns:
         The value in ``unit`` (float), or ``value`` itself if it is not a string.
 
     Raises:
-        ValueError: the string does not parse, or its dimension is not that of
-            ``unit``, e.g. ``thread.pitch = "3 N" is invalid: "3 N" is not a
-            length (m)``.
+        ValueError: the string is not one number with an optional unit (a
+            decimal comma, a second number), the unit does not parse, or its
+            dimension (with the power of the angle, see the module doc) is not
+            that of ``unit``, e.g. ``thread.pitch = "3 N" is invalid: "3 N" is
+            not a length (m)``; the number is not finite.
     """
     if not isinstance(value, str):
         return value
     prefix = f"{path} = {_quoted(value)} is invalid: "
+    number, given_unit = _split_number(prefix, value)
     registry = _registry()
     try:
-        quantity = registry.Quantity(value.strip())
+        quantity = registry.Quantity(number, given_unit) if given_unit else \
+            registry.Quantity(number)
     except Exception as error:  # pint raises several unrelated types
-        raise ValueError(f"{prefix}not a number with a unit such as \"1 mm\" ({error})") from None
-    if not isinstance(quantity, registry.Quantity):
-        raise ValueError(f"{prefix}not a number with a unit such as \"1 mm\"")
-    expected = f"{dimension_name(unit)} ({unit})" if unit else dimension_name(unit)
-    if not unit and not quantity.unitless and _is_angle(str(quantity.units)):
+        raise ValueError(f"{prefix}not a number with a unit such as \"1 mm\" ({error})") \
+            from None
+    if name is None:
+        name = dimension_name(unit)
+    expected = name if not unit or name.startswith("a quantity in") else f"{name} ({unit})"
+    given_angle = _radian_exponent(given_unit) if given_unit else 0
+    if not unit and given_angle != 0:
         raise ValueError(f"{prefix}{_quoted(value)} is an angle, not {expected}")
     try:
         magnitude = quantity.to(parse_unit(unit)).magnitude
     except Exception:
         raise ValueError(f"{prefix}{_quoted(value)} is not {expected}") from None
+    field_angle = _radian_exponent(unit)
+    if given_unit and given_angle != field_angle:
+        _check_angle_free_rate(prefix, value, given_unit, unit, expected, given_angle,
+                               field_angle)
     try:
         number = float(magnitude)
     except (TypeError, ValueError):
@@ -141,3 +218,26 @@ def to_si(path: str, value: Any, unit: str) -> Any:
     if not math.isfinite(number):
         raise ValueError(f"{prefix}not finite")
     return number
+
+
+def _check_angle_free_rate(prefix: str, value: str, given_unit: str, unit: str, expected: str,
+                           given_angle: float, field_angle: float) -> None:
+    """Accept a unit whose angle power differs from the field's only as the
+    documented ``1/s`` in an angular velocity field; otherwise raise."""
+    registry = _registry()
+    rate = _signature(unit) == _signature("rad/s")
+    if rate and given_angle == 0:
+        factor = registry.Quantity(1.0, given_unit).to("1/s").magnitude
+        if factor == 1.0:
+            return  # "2 1/s" is 2 rad/s
+        raise ValueError(f"{prefix}{_quoted(value)} is not {expected}: a rate without an "
+                         "angle is ambiguous except as 1/s (= rad/s); write the turns as rpm or "
+                         "Hz, or the radians as rad/min, rad/s")
+    if rate:
+        hint = "give it in rad/s, Hz (turns per second), rpm or 1/s (= rad/s)"
+    elif parse_unit(unit).dimensionless:
+        hint = "give it in deg, rad or turn, or as a plain number of radians"
+    else:
+        hint = (f"its angle part ({_angle_text(given_angle)}) differs from that of {unit} "
+                f"({_angle_text(field_angle)})")
+    raise ValueError(f"{prefix}{_quoted(value)} is not {expected}: {hint}")

@@ -245,7 +245,8 @@ class DriveEquations:
         # ---- loads --------------------------------------------------------------------
         loads = d["loads"]
         self.speed_controlled = "drive_speed" in loads
-        self.torque = None if self.speed_controlled else _Load(loads["drive_torque"],
+        # A scene that gives no drive torque has none (the core's default 0).
+        self.torque = None if self.speed_controlled else _Load(loads.get("drive_torque", 0.0),
                                                                "loads.drive_torque")
         self.speed = _Load(loads["drive_speed"], "loads.drive_speed") \
             if self.speed_controlled else None

@@ -32,7 +32,7 @@ def test_frame_of_keeps_order_dtypes_and_none():
     frame = frame_of(given)
     check_frame(frame, given)
     pd.testing.assert_frame_equal(frame, _common._public_frame_of(
-        _common._labels(tuple(given)), list(given.values())))
+        _common._labels(tuple(given)), list(given.values())), check_exact=True)
 
 
 # The ways frame_of can build a frame with the pandas the tests run with
@@ -54,11 +54,12 @@ def test_every_way_gives_the_same_frame(monkeypatch, path):
                                         list(columns().values()))
     monkeypatch.setattr(_common, "_CONSTRUCTOR", path)
     check_frame(frame_of(columns()), columns())
-    pd.testing.assert_frame_equal(frame_of(columns()), expected)
+    pd.testing.assert_frame_equal(frame_of(columns()), expected, check_exact=True)
     # a dtype the blocks path leaves to the public constructor, and no rows
     dates = {"t": np.array(["2026-11-22", "2026-11-23"], dtype="datetime64[ns]"),
              "x": np.arange(2.0)}
-    pd.testing.assert_frame_equal(frame_of(dates), pd.DataFrame(dates), check_column_type=False)
+    pd.testing.assert_frame_equal(frame_of(dates), pd.DataFrame(dates), check_column_type=False,
+                                  check_exact=True)
     pairs = np.empty(2, dtype=object)
     pairs[:] = [[1, 2], (3, 4)]  # cells that are sequences stay cells
     assert frame_of({"pair": pairs, "x": np.arange(2.0)})["pair"].tolist() == [[1, 2], (3, 4)]

@@ -95,3 +95,12 @@ def test_bad_arguments():
         compare_concepts(scene, points=1)
     with pytest.raises(ValueError, match="t_end"):
         compare_concepts(scene, t_end=-1.0)
+    # Simulate options: checked once per concept before the runs (not a
+    # row of the same message per concept).
+    with pytest.raises(ValueError, match="rtol = -1 is invalid"):
+        compare_concepts(scene, rtol=-1.0, progress=False)
+    with pytest.raises(ValueError, match=r"integrator = \"moreau\" is invalid for backlash"):
+        compare_concepts(scene.replace(backlash={"axial": 1e-4, "contact": "bistop"}),
+                         integrator="moreau", progress=False)
+    with pytest.raises(TypeError, match="bogus"):
+        compare_concepts(scene, bogus=1, progress=False)

@@ -113,7 +113,8 @@ def test_map_agrees_with_the_line_sweeps(by_backlash, by_frequency):
     assert list(frame["backlash"]) == [1e-4, 2e-4, 5e-4] * 2
     at_20 = frame[frame["frequency"] == 20.0].drop(columns="wall_time").reset_index(drop=True)
     line = by_backlash[by_backlash["backlash"].isin([1e-4, 2e-4, 5e-4])]
-    pd.testing.assert_frame_equal(at_20, line.drop(columns="wall_time").reset_index(drop=True))
+    pd.testing.assert_frame_equal(at_20, line.drop(columns="wall_time").reset_index(drop=True),
+                                  check_exact=True)
     at_2e4 = frame[frame["backlash"] == 2e-4]
     line = by_frequency[by_frequency["frequency"].isin([10.0, 20.0])]
     np.testing.assert_array_equal(at_2e4["creep_per_cycle"], line["creep_per_cycle"])
@@ -155,3 +156,10 @@ def test_bad_scenes_and_arguments():
         creep_vs_backlash(holding_scene(), [1e-4], cycles=1)
     with pytest.raises(ValueError, match="amplitude"):
         creep_map(holding_scene(), [10.0], [1e-4], amplitude=-3.0)
+    # Simulate options: checked once, before the cases run.
+    with pytest.raises(ValueError, match="rtol = nan is invalid"):
+        creep_vs_frequency(holding_scene(), [10.0, 20.0], rtol=float("nan"), progress=False)
+    with pytest.raises(ValueError, match="max_steps = 0 is invalid"):
+        creep_map(holding_scene(), [10.0], [1e-4, 2e-4], max_steps=0, progress=False)
+    with pytest.raises(TypeError, match="bogus"):
+        creep_vs_backlash(holding_scene(), [1e-4], bogus=True, progress=False)

@@ -269,10 +269,17 @@ def test_efficiency_options_are_checked_before_the_sweep():
         efficiency_vs_mu(scene(), [0.1], [10.0], t_eval=[0.1], progress=False)
     with pytest.raises(ValueError, match="friction.law"):
         efficiency_vs_mu(scene(), [0.1], [10.0], friction="arctan_velocity", progress=False)
-    # A value the core checks per case (as leadscrew.simulate would) fails each row.
-    frame = efficiency_vs_mu(scene(), [0.1, 0.2], [10.0], rtol=-1.0, progress=False)
-    assert list(frame["error"]) == ["ValueError: rtol = -1 is invalid: must be a finite "
-                                    "number in (0, 1)"] * 2
+    # Values the core would refuse in every case alike: refused once, before
+    # any case runs (the batch checks them as simulate() would).
+    for options, message in [({"rtol": -1.0}, r"rtol = -1 is invalid: must be a finite "
+                                               r"number in \(0, 1\)"),
+                             ({"integrator": "nope"}, r"integrator = \"nope\" is invalid"),
+                             ({"smooth_integrator": "euler"}, "smooth_integrator"),
+                             ({"max_steps": 1.5}, "max_steps = 1.5 is invalid"),
+                             ({"atol": "tight"}, "atol = 'tight' is invalid"),
+                             ({"max_events": -1}, "max_events = -1 is invalid")]:
+        with pytest.raises(ValueError, match=message):
+            efficiency_vs_mu(scene(), [0.1, 0.2], [10.0], progress=False, **options)
 
 
 @pytest.mark.parametrize("chunk_size", [None, 1, 7, 1000])
@@ -293,7 +300,7 @@ def test_efficiency_is_the_same_for_every_executor_and_chunking(chunk_size, monk
         for executor in (SerialExecutor(), ChunkingSerialExecutor(), pool, None):
             frame = efficiency_vs_mu(scene(), mu, loads, executor=executor, progress=False)
             pd.testing.assert_frame_equal(frame.drop(columns="wall_time"),
-                                          reference.drop(columns="wall_time"))
+                                          reference.drop(columns="wall_time"), check_exact=True)
 
 
 def test_run_chunks_gives_chunks_in_order_and_failures_per_chunk():
@@ -533,13 +540,14 @@ def test_default_efficiency_sweep_runs_on_the_cores_threads(monkeypatch):
     assert list(default["simulated"]) == [True] * 6 + [False] * 3 + [True] * 6
     for frame in (serial, pooled):
         pd.testing.assert_frame_equal(default.drop(columns="wall_time"),
-                                      frame.drop(columns="wall_time"))
-    # A failing option fails every simulated row alike, on every path.
-    failing = [efficiency_vs_mu(base, mu, loads, executor=executor, rtol=-1.0, progress=False)
+                                      frame.drop(columns="wall_time"), check_exact=True)
+    # A step bound too small for any case fails every simulated row alike, on
+    # every path (the options themselves are valid: the cases run).
+    failing = [efficiency_vs_mu(base, mu, loads, executor=executor, max_steps=3, progress=False)
                for executor in (None, SerialExecutor())]
-    assert failing[0]["error"].str.startswith("ValueError: rtol = -1").sum() == 12
+    assert failing[0]["error"].str.startswith("SimulationError").sum() == 12
     pd.testing.assert_frame_equal(failing[0].drop(columns="wall_time"),
-                                  failing[1].drop(columns="wall_time"))
+                                  failing[1].drop(columns="wall_time"), check_exact=True)
 
 
 def test_default_efficiency_sweep_with_a_progress_bar(monkeypatch, capsys):
@@ -553,4 +561,4 @@ def test_default_efficiency_sweep_with_a_progress_bar(monkeypatch, capsys):
     shown = efficiency_vs_mu(scene(), mu, loads, progress=True)
     assert "efficiency_vs_mu" in capsys.readouterr().err
     pd.testing.assert_frame_equal(shown.drop(columns="wall_time"),
-                                  quiet.drop(columns="wall_time"))
+                                  quiet.drop(columns="wall_time"), check_exact=True)

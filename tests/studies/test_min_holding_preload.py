@@ -24,15 +24,16 @@ def holding_scene(torque=5e-3, **changes):
                                            **changes))
 
 
-def quasi_static_preload(torque, direction=-1.0):
+def quasi_static_preload(torque, direction=-1.0, offset=0.0):
     """Closed form for the rigid drive: stuck, the load rests and the flank
-    carries the applied force exactly, so the smallest force P - A must keep
-    the flank loaded and hold the torque with the power-screw torques
-    (right hand: a positive torque moves the load along -x)."""
+    carries the applied force exactly, so the smallest force along the
+    preload, P + direction offset - A, must keep the flank loaded and hold
+    the torque with the power-screw torques (right hand: a positive torque
+    moves the load along -x)."""
     thread = ls.Thread(1e-3, 20e-3)
     lowers = (torque > 0) == (direction < 0)
     per_newton = (ls.lower_torque if lowers else ls.raise_torque)(thread, 0.3, 1.0)
-    return AMPLITUDE + abs(torque) / per_newton
+    return max(0.0, AMPLITUDE - direction * offset + abs(torque) / per_newton)
 
 
 @pytest.fixture(scope="module")
@@ -112,6 +113,32 @@ def test_an_upper_guess_that_fails_is_expanded():
     assert s["bracket_low"] < quasi_static_preload(5e-3) <= s["bracket_high"] * (1 + 1e-12)
 
 
+@pytest.mark.parametrize("offset", [-10.0, 4.0])
+def test_the_excitations_offset_adds_to_the_preload(offset):
+    """An offset along the preload (direction -1: offset < 0) does part of
+    its work, one against it needs more: the search and the closed form
+    agree."""
+    frame = min_holding_preload(holding_scene(), dict(EXCITATION, offset=offset),
+                                creep_limit=0.0, progress=False)
+    s = frame.attrs["summary"]
+    expected = quasi_static_preload(5e-3, offset=offset)
+    assert expected == pytest.approx(quasi_static_preload(5e-3) + offset, rel=1e-12)
+    assert s["quasi_static_preload"] == pytest.approx(expected, rel=1e-12)
+    assert s["found"] and s["converged"]
+    # The search's first point is the closed form itself (half the default
+    # upper end): exactly on the friction limit it may go either way.
+    assert s["bracket_low"] <= expected <= s["bracket_high"] * (1 + 1e-12)
+
+
+def test_an_offset_that_holds_alone_needs_no_preload():
+    frame = min_holding_preload(holding_scene(torque=0.0), dict(EXCITATION, offset=-40.0),
+                                creep_limit=0.0, progress=False)
+    s = frame.attrs["summary"]
+    assert s["quasi_static_preload"] == 0.0
+    assert s["found"] and s["min_preload"] == 0.0  # the first evaluation, preload 0, holds
+    assert frame["holds"].iloc[0] and frame["preload"].iloc[0] == 0.0
+
+
 def test_columns_units_and_plot(exact):
     units = exact.attrs["units"]
     assert set(units) == set(exact.columns)
@@ -134,6 +161,18 @@ def test_bad_scenes_and_arguments():
         min_holding_preload(holding_scene(), EXCITATION, direction=0.5)
     with pytest.raises(ValueError, match="creep_limit"):
         min_holding_preload(holding_scene(), EXCITATION, creep_limit=-1.0)
+    with pytest.raises(ValueError, match="direction = True is invalid"):
+        min_holding_preload(holding_scene(), EXCITATION, direction=True)
+    # Checked once, before any case runs (not a row of errors per preload).
+    for kwargs, match in [({"cycles": 0}, "cycles = 0 is invalid"),
+                          ({"settle_cycles": -1}, "settle_cycles = -1 is invalid"),
+                          ({"points_per_cycle": 2}, "points_per_cycle = 2 is invalid"),
+                          ({"rtol": float("nan")}, "rtol = nan is invalid"),
+                          ({"integrator": "euler"}, r"integrator = \"euler\" is invalid")]:
+        with pytest.raises(ValueError, match=match):
+            min_holding_preload(holding_scene(), EXCITATION, progress=False, **kwargs)
+    with pytest.raises(TypeError, match="frequncy"):
+        min_holding_preload(holding_scene(), EXCITATION, progress=False, frequncy=3.0)
 
 
 def test_the_simulated_excitation_keeps_the_users_omega_bit_for_bit(monkeypatch):

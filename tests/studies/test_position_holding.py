@@ -117,6 +117,46 @@ def test_static_band_closed_form():
         static_holding_band(holding_scene(), math.inf)
 
 
+@pytest.mark.parametrize("contact", ["bistop", "cubic"])
+def test_a_penalty_contact_counts_its_flights(contact):
+    """A penalty contact has no flank states (no events to 'open'): its
+    separations are the flights that begin on the output times, at least
+    one per half cycle as with the exact contact (12 in 6 cycles)."""
+    scene = holding_scene(backlash={"axial": CLEARANCE, "contact": contact})
+    out = cycle_response(alternating_scene(scene, 30.0, 20.0), 20.0, cycles=6,
+                         points_per_cycle=200, series=True)
+    assert 0.1 < out["flight_fraction"] < 0.5
+    assert out["separations"] >= 2 * 6 - 1
+    in_flight = out["result"]["gap"] > 1e-6 * CLEARANCE
+    assert out["separations"] == sum(1 for before, now in zip(in_flight, in_flight[1:])
+                                     if now and not before)
+
+
+def test_the_two_runs_go_to_an_executor(held):
+    import concurrent.futures
+
+    with concurrent.futures.ThreadPoolExecutor(2) as pool:
+        pooled = position_holding(holding_scene(), amplitude=30.0, frequency=20.0,
+                                  executor=pool, progress=False)
+    columns = [c for c in held.columns]
+    assert pooled[columns].equals(held[columns])
+    summary = {k: v for k, v in pooled.attrs["summary"].items()}
+    assert summary == held.attrs["summary"]
+
+
+def test_amplitude_and_frequency_come_from_the_scenes_sine(held):
+    sine = {"type": "sine", "amplitude": -30.0, "omega": 2 * math.pi * 20.0}
+    from_scene = position_holding(holding_scene().replace(loads={"axial_force": sine}),
+                                  progress=False)
+    s = from_scene.attrs["summary"]
+    assert s["excitation_from"] == "scene"
+    assert s["amplitude"] == 30.0 and s["frequency"] == pytest.approx(20.0, rel=1e-15)
+    assert held.attrs["summary"]["excitation_from"] == "arguments"
+    defaults = position_holding(holding_scene(), cycles=2, progress=False).attrs["summary"]
+    assert defaults["excitation_from"] == "defaults"
+    assert (defaults["amplitude"], defaults["frequency"]) == (30.0, 20.0)
+
+
 def test_cycle_response_and_alternating_scene():
     scene = alternating_scene(holding_scene(), 30.0, 20.0, offset=-40.0, on_flank=True)
     assert scene["initial"]["play_position"] == CLEARANCE / 2  # -x force, nut drive: upper
@@ -156,3 +196,10 @@ def test_bad_scenes_and_arguments():
         position_holding(holding_scene(), amplitude=0.0)
     with pytest.raises(ValueError, match="frequency"):
         position_holding(holding_scene(), frequency=-1.0)
+    # Checked before either run: one message, not a failure of the first run.
+    with pytest.raises(ValueError, match="rtol = -1 is invalid"):
+        position_holding(holding_scene(), rtol=-1.0, progress=False)
+    with pytest.raises(ValueError, match="cycles = 1 is invalid"):
+        position_holding(holding_scene(), cycles=1, settle_cycles=1, progress=False)
+    with pytest.raises(TypeError, match="frequncy"):
+        position_holding(holding_scene(), frequncy=10.0, progress=False)

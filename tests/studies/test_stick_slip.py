@@ -90,3 +90,20 @@ def test_bad_arguments(t_end):
         stick_slip("thesis", t_end=1.0)
     with pytest.raises(ValueError, match="phase"):
         stick_slip_phases(ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.1).to_frame())
+
+
+def test_the_simulation_runs_on_an_executor(frame):
+    import concurrent.futures
+
+    scene = ls.Scene.from_dict(thesis_scene(rotor={"inertia": 1e-6}))
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        pooled = stick_slip(scene, t_end=2.0, rtol=1e-12, atol=1e-14, executor=pool,
+                            progress=False)
+    assert pooled.drop(columns="phase").equals(frame.drop(columns="phase"))
+    assert pooled["phase"].tolist() == frame["phase"].tolist()
+    summary = dict(pooled.attrs["summary"], wall_time=None)
+    assert summary == dict(frame.attrs["summary"], wall_time=None)
+    # the run's own exception comes back from the executor
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        with pytest.raises(ls.SimulationError):
+            stick_slip(scene, t_end=2.0, executor=pool, max_steps=3)

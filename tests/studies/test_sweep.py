@@ -127,7 +127,7 @@ def test_scenes_with_excitation_objects_and_frames_pickle():
     np.testing.assert_array_equal(result["u_load"], a["u_load"])
     frame = efficiency_vs_mu(scene, [0.1], [10.0], progress=False)
     restored = pickle.loads(pickle.dumps(frame))
-    pd.testing.assert_frame_equal(restored, frame)
+    pd.testing.assert_frame_equal(restored, frame, check_exact=True)
     assert restored.attrs == frame.attrs
 
 
@@ -159,7 +159,7 @@ def test_serial_threaded_and_dask_agree():
             processes = sweeps(client.get_executor())
     for other in (threaded, default, in_process, processes):
         for ours, theirs in zip(serial, other):
-            pd.testing.assert_frame_equal(ours, theirs)
+            pd.testing.assert_frame_equal(ours, theirs, check_exact=True)
     assert serial[0]["error"].isna().all() and serial[1]["error"].isna().all()
 
 
@@ -281,3 +281,110 @@ def test_run_batches_keeps_going_after_a_failed_call(monkeypatch):
     assert outcomes[1].value is None and outcomes[1].elapsed == 0.0
     single = run_batches(fail_on_the_second, 8, workers=3, progress=False)
     assert [o.cases for o in single] == [range(0, 8)] and single[0].ok
+
+
+def test_run_batches_refuses_a_worker_count_below_one():
+    # A first range of no cases would never end the sweep.
+    for workers in (0, -1, 1.5, True):
+        with pytest.raises(ValueError, match=r"workers = .* is invalid: must be an integer >= 1"):
+            run_batches(lambda cases: len(cases), 4, workers=workers, progress=True)
+
+
+# Executors with more workers than this machine has cores, and interrupts.
+
+def test_executor_workers_are_the_executors_own():
+    with concurrent.futures.ThreadPoolExecutor(16) as pool:
+        assert _sweep.executor_workers(pool) == 16
+    assert _sweep.executor_workers(None) == default_workers()
+    assert _sweep.executor_workers(SerialExecutor()) == default_workers()
+
+    class Client:  # what a Dask client's executor tells: its workers' threads
+        def __init__(self, threads):
+            self.threads = threads
+
+        def nthreads(self):
+            return self.threads
+
+    class ClientExecutor(SerialExecutor):
+        def __init__(self, threads):
+            super().__init__()
+            self._client = Client(threads)
+
+    assert _sweep.executor_workers(ClientExecutor({"a": 3, "b": 4})) == 7
+    assert _sweep.executor_workers(ClientExecutor({})) == default_workers()  # none yet
+
+
+def test_a_large_pool_gets_chunks_for_all_its_workers(monkeypatch):
+    """A caller's 8-thread pool runs 8 chunks at once even where the machine
+    (here: pretended) has one core: the chunks in flight follow the pool."""
+    import threading
+
+    monkeypatch.setattr(_sweep, "default_workers", lambda: 1)
+    lock, running, peak = threading.Lock(), [0], [0]
+
+    def slow_chunk(cases):
+        with lock:
+            running[0] += 1
+            peak[0] = max(peak[0], running[0])
+        time.sleep(0.05)
+        with lock:
+            running[0] -= 1
+        return cases
+
+    with concurrent.futures.ThreadPoolExecutor(8) as pool:
+        outcomes = run_chunks(slow_chunk, range(64), executor=pool, progress=False)
+    assert [case for o in outcomes for case in o.value] == list(range(64))
+    assert peak[0] == 8  # with the machine's count: 2 chunks in flight
+
+
+def interrupt_at_three(case):
+    if case == 3:
+        raise KeyboardInterrupt
+    return case
+
+
+@pytest.mark.parametrize("chunk_size", [1, None])
+def test_an_interrupt_stops_a_serial_sweep_at_once(chunk_size):
+    ran = []
+    with pytest.raises(KeyboardInterrupt):
+        run_cases(lambda case: ran.append(case) or interrupt_at_three(case), range(40),
+                  executor=SerialExecutor(), progress=False, chunk_size=chunk_size)
+    assert ran == [0, 1, 2, 3]
+
+
+def test_an_interrupt_cancels_the_chunks_queued_on_the_callers_executor():
+    """Ctrl-C while the caller's one-thread pool runs the first of three
+    chunks: the two queued behind it never run, and the pool stays usable."""
+    import signal
+    import threading
+
+    all_sent, release, ran = threading.Event(), threading.Event(), []
+
+    class Pool(concurrent.futures.ThreadPoolExecutor):
+        sent = 0
+
+        def submit(self, fn, /, *args, **kwargs):
+            future = super().submit(fn, *args, **kwargs)
+            self.sent += 1
+            if self.sent == 3:
+                all_sent.set()
+            return future
+
+    def chunk(cases):
+        if cases[0] == 0:
+            # SIGINT once every chunk is queued: the main thread then waits
+            # for this one (an interrupt inside submit() is another matter)
+            all_sent.wait(10.0)
+            os.kill(os.getpid(), signal.SIGINT)
+            release.wait(10.0)
+        ran.extend(cases)
+        return cases
+
+    with Pool(1) as pool:
+        try:
+            with pytest.raises(KeyboardInterrupt):
+                run_chunks(chunk, range(6), executor=pool, progress=False, chunk_size=2)
+        finally:
+            release.set()
+        assert pool.submit(len, [1]).result(timeout=10.0) == 1
+    assert ran == [0, 1]

@@ -121,6 +121,10 @@ DriveBatch::DriveBatch(DriveParameters base, const std::vector<std::string>& par
     throw InvalidArgument("channels = [] is invalid: must name at least one channel");
   if (options_.output.t_eval.empty())
     throw InvalidArgument("t_eval = [] is invalid: a batch samples its channels at given times");
+  // Once here rather than in every case alike. The cases change scalar
+  // fields only, never what the options depend on (concept, friction law,
+  // contact); the base model checks the base parameters as well.
+  check_simulation_options(DriveModel(base_), options_);
 }
 
 DriveBatchResult DriveBatch::run(const Eigen::Ref<const BatchValues>& values,

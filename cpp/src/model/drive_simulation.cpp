@@ -11,6 +11,8 @@
 #include "leadscrew/friction/flank_lcp.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
+#include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/integrate/simulation_result.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
 #include "leadscrew/model/drive_rigid.hpp"
 
@@ -1346,8 +1348,7 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   return smooth;
 }
 
-integrate::SimulationResult simulate(const DriveModel& model,
-                                     const DriveSimulationOptions& options) {
+void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
   const std::vector<std::string>& allowed = drive_integrators(p);
   // "" is the model's default, the first that fits.
@@ -1362,6 +1363,26 @@ integrate::SimulationResult simulate(const DriveModel& model,
     throw InvalidArgument("integrator = \"moreau\" is invalid for backlash.contact = \"" +
                           backlash_contact_name(p.backlash) + "\": a penalty contact needs an ODE integrator (the stepping scheme "
                           "handles exact flank contacts)");
+  integrate::validate_output_request(options.output, 0.0);
+  if (options.max_events < 0)
+    throw InvalidArgument("max_events = " + std::to_string(options.max_events) +
+                          " is invalid: must be an integer >= 0");
+  if (integrator == "moreau") {  // what simulate_moreau checks
+    require_positive("dt", options.dt);
+    require_in_range("theta", options.theta, 0.0, 1.0);
+    return;
+  }
+  if (!options.smooth_integrator.empty())
+    require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
+  integrate::validate_options(options.integrator_options);
+}
+
+integrate::SimulationResult simulate(const DriveModel& model,
+                                     const DriveSimulationOptions& options) {
+  check_simulation_options(model, options);
+  const DriveParameters& p = model.parameters();
+  const std::vector<std::string>& allowed = drive_integrators(p);
+  const std::string& integrator = options.integrator.empty() ? allowed.front() : options.integrator;
 
   StateLayout layout(model);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(layout.size());

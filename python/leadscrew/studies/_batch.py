@@ -25,7 +25,7 @@ from ..scene import Scene
 from ..simulation import _check_scene_friction, _drive_arguments, simulate
 from ._common import check_count
 
-__all__ = ["DriveBatch"]
+__all__ = ["DriveBatch", "check_simulate_options"]
 
 # The exception a failure kind of the core stands for (the name its message
 # carries, as a per-case simulate() call would have raised it).
@@ -64,6 +64,27 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
                             a["max_steps"], a["max_events"],
                             a["max_step"], a["first_step"], a["bounce_threshold"],
                             a["max_order"])
+
+
+def check_simulate_options(scene: Scene, options: Dict[str, Any]) -> None:
+    """Check :func:`leadscrew.simulate`'s keywords for a study's simulations
+    of ``scene``, once, before they run (otherwise every case fails alike and
+    the sweep returns rows of the same message).
+
+    Args:
+        scene: the scene the cases vary (their concept, friction law and
+            backlash contact decide which integrators fit).
+        options: the keywords (``rtol``, ``integrator``, ``max_steps``, ...;
+            not ``t_eval``, which the study sets).
+
+    Raises:
+        TypeError: an unknown keyword.
+        ValueError: a value of the wrong kind or out of range, or an
+            integrator that does not fit the scene (naming the option, the
+            value and what is valid).
+    """
+    arguments = _core_arguments(scene, 1.0, [], options)
+    _core.check_drive_options(scene.model(), **arguments)
 
 
 class DriveBatch:

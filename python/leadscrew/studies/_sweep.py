@@ -51,8 +51,8 @@ from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
 
 __all__ = ["Outcome", "ChunkOutcome", "SerialExecutor", "run_cases", "run_chunks",
-           "run_batches", "default_workers", "guided_size", "MIN_CHUNK_SECONDS",
-           "PROGRESS_SECONDS"]
+           "run_batches", "default_workers", "executor_workers", "guided_size",
+           "MIN_CHUNK_SECONDS", "PROGRESS_SECONDS"]
 
 # Least work per chunk once the cost of a case is known [s]: the Python
 # around a chunk (submission, future, the chunk function's own work) takes
@@ -109,7 +109,12 @@ class ChunkOutcome:
 
 
 class SerialExecutor(concurrent.futures.Executor):
-    """An executor that runs each submitted call at once in the calling thread."""
+    """An executor that runs each submitted call at once in the calling thread.
+
+    An exception of the call goes into its future, as a pool's would; a
+    KeyboardInterrupt or SystemExit (not an ``Exception``) propagates from
+    :meth:`submit` at once, so Ctrl-C stops a serial sweep where it is.
+    """
 
     def __init__(self):
         self._shutdown = False
@@ -122,7 +127,7 @@ class SerialExecutor(concurrent.futures.Executor):
         future: concurrent.futures.Future = concurrent.futures.Future()
         try:
             future.set_result(fn(*args, **kwargs))
-        except BaseException as error:  # the future carries it, as a pool's would
+        except Exception as error:  # the future carries it, as a pool's would
             future.set_exception(error)
         return future
 
@@ -151,6 +156,37 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
+def executor_workers(executor: Optional[concurrent.futures.Executor]) -> int:
+    """How many calls ``executor`` runs at once, as far as it tells.
+
+    Args:
+        executor: None (the default thread pool), a thread or process pool
+            (its ``max_workers``), a Dask client's executor (the threads of
+            the client's workers now), or any other executor.
+
+    Returns:
+        That count, at least 1; :func:`default_workers` for None, for an
+        executor that does not tell, and for a Dask cluster without
+        workers yet.
+    """
+    if executor is None:
+        return default_workers()
+    # concurrent.futures' pools keep max_workers as _max_workers (since 3.2)
+    count = getattr(executor, "_max_workers", None)
+    if isinstance(count, int) and not isinstance(count, bool) and count >= 1:
+        return count
+    client = getattr(executor, "_client", None)  # distributed.cfexecutor.ClientExecutor
+    nthreads = getattr(client, "nthreads", None)
+    if callable(nthreads):
+        try:
+            total = sum(nthreads().values())
+        except Exception:  # a closed client, or another object of that name
+            total = 0
+        if isinstance(total, int) and total >= 1:
+            return total
+    return default_workers()
+
+
 def guided_size(remaining: int, workers: int, seconds_per_case: Optional[float]) -> int:
     """Cases in the next chunk of a sweep (guided self-scheduling).
 
@@ -177,6 +213,12 @@ def _check_chunk_size(chunk_size: Optional[int]) -> None:
     if chunk_size is not None and (isinstance(chunk_size, bool)
                                    or not isinstance(chunk_size, int) or chunk_size < 1):
         raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
+
+
+def _check_workers(workers: Any) -> int:
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"workers = {workers!r} is invalid: must be an integer >= 1")
+    return workers
 
 
 def _describe(error: BaseException) -> str:
@@ -253,6 +295,9 @@ def run_chunks(
             a process pool, :class:`SerialExecutor`, or a Dask client's
             ``client.get_executor()``). Default: a thread pool over
             :func:`default_workers` workers, shut down before returning.
+            Up to two chunks per worker of it (:func:`executor_workers`)
+            are in flight at once; on KeyboardInterrupt those not started
+            are cancelled.
         progress: show a tqdm progress bar over the finished cases.
         description: the progress bar's label.
         chunk_size: cases per chunk, >= 1 (default: guided self-scheduling,
@@ -271,7 +316,9 @@ def run_chunks(
     count = len(cases)
     if not count:
         return []
-    workers = default_workers()
+    # The executor's own worker count: a 16-thread pool or a Dask cluster of
+    # many cores gets chunks for all of them in flight.
+    workers = executor_workers(executor)
     # Fixed chunks are all sent at once; guided ones as the sweep goes, at
     # most two per worker in flight (one running, one queued: a worker that
     # finishes a chunk starts the next at once, while the calling thread
@@ -324,6 +371,9 @@ def run_chunks(
     except BaseException:  # e.g. KeyboardInterrupt: drop what has not started
         if owned:
             executor.shutdown(wait=True, cancel_futures=True)
+        else:  # the caller's executor stays up; its queued chunks of this sweep go
+            for future in in_flight:
+                future.cancel()
         raise
     if owned:  # every chunk is done: the threads only exit, nothing to wait for
         executor.shutdown(wait=False)
@@ -358,7 +408,11 @@ def run_batches(
         One :class:`ChunkOutcome` per call, in order; the ranges cover every
         case once. A call that raised has ``error`` set and ``value`` None
         (the later ranges still run).
+
+    Raises:
+        ValueError: ``workers`` is not an integer >= 1.
     """
+    workers = _check_workers(workers)
     if count <= 0:
         return []
     outcomes: List[ChunkOutcome] = []

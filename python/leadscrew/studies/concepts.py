@@ -17,6 +17,7 @@ import pandas as pd
 
 from ..simulation import simulate
 from ._common import annotate, axes, as_scene, check_count, check_positive, numeric_or_nan
+from ._batch import check_simulate_options
 from ._sweep import run_cases
 
 __all__ = ["CONCEPTS", "compare_concepts", "plot_compare_concepts"]
@@ -71,7 +72,9 @@ def compare_concepts(
         ``u_load`` [m] as arrays (None for a failed run).
 
     Raises:
-        ValueError: invalid scene, concept or argument.
+        ValueError: invalid scene, concept or argument (also a simulate option,
+            checked once for each concept before the runs).
+        TypeError: an unknown keyword in ``simulate_options``.
     """
     scene = as_scene(scene)
     concepts = list(concepts)
@@ -88,6 +91,13 @@ def compare_concepts(
     points = check_count("points", points, 2)
     t_eval = np.linspace(0.0, t_end, points)
     options = dict(simulate_options, rtol=rtol, atol=atol)
+    for name in concepts:
+        try:
+            concept_scene = scene.replace(concept=name)
+            concept_scene.model()
+        except ValueError:  # that concept's model is invalid: its row says why
+            continue
+        check_simulate_options(concept_scene, options)
     function = functools.partial(_run_concept, scene=scene, t_end=t_end, t_eval=t_eval,
                                  options=options)
     outcomes = run_cases(function, concepts, executor=executor, progress=progress,

@@ -17,10 +17,11 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
-from ._common import (annotate, as_scene, axes, check_count, check_grid, check_positive,
+from ._common import (annotate, as_scene, axes, check_grid, check_positive,
                       numeric_or_nan)
+from ._batch import check_simulate_options
 from ._sweep import run_cases
-from .holding import _constant_torque, alternating_scene, cycle_response
+from .holding import _constant_torque, alternating_scene, check_cycles, cycle_response
 
 __all__ = ["creep_vs_frequency", "creep_vs_backlash", "creep_map", "plot_creep",
            "plot_creep_map"]
@@ -45,13 +46,16 @@ def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float, cycle
            settle_cycles: int, points_per_cycle: int, rtol: float, atol: float, executor,
            progress: bool, description: str, options: Dict[str, Any]) -> pd.DataFrame:
     amplitude = check_positive("amplitude", amplitude)
-    settle_cycles = check_count("settle_cycles", settle_cycles, 0)
-    cycles = check_count("cycles", cycles, settle_cycles + 1)
-    points_per_cycle = check_count("points_per_cycle", points_per_cycle, 4)
+    cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
+                                                           points_per_cycle)
     _constant_torque(scene)
+    options = dict(options, rtol=rtol, atol=atol)
+    if pairs:  # every case has the first one's friction law and contact
+        check_simulate_options(alternating_scene(scene, amplitude, pairs[0][0],
+                                                 backlash=pairs[0][1]), options)
     function = functools.partial(_creep_case, scene=scene, amplitude=amplitude, cycles=cycles,
                                  settle_cycles=settle_cycles, points_per_cycle=points_per_cycle,
-                                 options=dict(options, rtol=rtol, atol=atol))
+                                 options=options)
     outcomes = run_cases(function, pairs, executor=executor, progress=progress,
                          description=description)
     rows = []
@@ -97,7 +101,9 @@ _COMMON_ARGS = """
         ``attrs["units"]`` maps columns to units.
 
     Raises:
-        ValueError: invalid scene (no constant drive torque) or arguments."""
+        ValueError: invalid scene (no constant drive torque) or arguments (the
+            simulate options too: checked once, before the cases run).
+        TypeError: an unknown keyword in ``simulate_options``."""
 
 
 def creep_vs_frequency(scene: Any, frequencies: Sequence[float], amplitude: float = 30.0,

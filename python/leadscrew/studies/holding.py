@@ -38,7 +38,8 @@ from ..simulation import simulate
 from ..thread import is_self_locking, lower_torque, raise_torque
 from ._common import (annotate, as_scene, axes, check_count, check_finite, check_positive,
                       numeric_or_nan)
-from ._sweep import run_cases
+from ._batch import check_simulate_options
+from ._sweep import SerialExecutor, run_cases
 
 __all__ = [
     "cycle_response",
@@ -53,6 +54,9 @@ __all__ = [
 #: Share of the clearance below which a gap is not a flight: the core's
 #: plastic-bounce resolution (kPlasticHeight), far above a closed flank's drift.
 FLIGHT_RESOLUTION = 1e-6
+
+# Backlash contacts modelled by a spring (no open/closed flank states).
+_PENALTY_CONTACTS = ("bistop", "cubic")
 
 UNITS = {
     "t": "s", "axial_force_static": "N", "u_load_static": "m", "axial_force_dynamic": "N",
@@ -71,7 +75,7 @@ def _constant_torque(scene: Scene) -> float:
     if "drive_speed" in loads:
         raise ValueError("loads.drive_speed is invalid for a position-holding study: the "
                          "drive must be torque-controlled (loads.drive_torque, constant)")
-    torque = loads["drive_torque"]
+    torque = loads.get("drive_torque", 0.0)  # none given: no torque
     if isinstance(torque, numbers.Real):
         return float(torque)
     if isinstance(torque, dict) and torque.get("type") == "constant":
@@ -178,6 +182,21 @@ def _alternating(scene: Scene, amplitude: float, omega: float, offset: float,
     return scene.replace(**changes)
 
 
+def check_cycles(cycles: Any, settle_cycles: Any, points_per_cycle: Any) -> Tuple[int, int, int]:
+    """The cycle counts of :func:`cycle_response`, checked: ``(cycles,
+    settle_cycles, points_per_cycle)`` as ints (the sweeps check them once,
+    before their cases run).
+
+    Raises:
+        ValueError: settle_cycles < 0, cycles <= settle_cycles or
+            points_per_cycle < 4 (or not integers).
+    """
+    settle_cycles = check_count("settle_cycles", settle_cycles, 0)
+    cycles = check_count("cycles", cycles, settle_cycles + 1)
+    points_per_cycle = check_count("points_per_cycle", points_per_cycle, 4)
+    return cycles, settle_cycles, points_per_cycle
+
+
 def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: int = 1,
                    points_per_cycle: int = 100, series: bool = False,
                    **simulate_options: Any) -> Dict[str, Any]:
@@ -204,7 +223,9 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         creep (for the rigid drive, back on its flank at every boundary, both
         agree). ``max_displacement`` [m]: max |u_load(t) - u_load(0)|
         on the output times; ``separations`` [1]: flank openings (events to
-        'open'); ``flight_fraction`` [1]: share of output times with the nut
+        'open'; for a penalty contact, ``bistop`` or ``cubic``, which has no
+        flank states, the output times at which a flight begins);
+        ``flight_fraction`` [1]: share of output times with the nut
         off both flanks (gap > 1e-6 of the clearance, the resolution below which
         the core treats a bounce as plastic; a closed flank drifts by ~1e-12
         m); ``wall_time`` [s, C++]; ``steps``, ``events`` [1].
@@ -214,9 +235,8 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         SimulationError, JammingError: the simulation failed.
     """
     frequency = check_positive("frequency", frequency)
-    settle_cycles = check_count("settle_cycles", settle_cycles, 0)
-    cycles = check_count("cycles", cycles, settle_cycles + 1)
-    points_per_cycle = check_count("points_per_cycle", points_per_cycle, 4)
+    cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
+                                                           points_per_cycle)
     t_end = cycles / frequency
     t_eval = np.linspace(0.0, t_end, cycles * points_per_cycle + 1)
     result = simulate(scene, t_end, t_eval=t_eval, **simulate_options)
@@ -228,16 +248,22 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
     thread = scene.thread
     turn = float(np.dot(k, angle - angle.mean()) / np.dot(k, k))
     creep = -thread.hand_sign * thread.lead_per_radian * turn
+    separations = sum(1 for event in result.events if event.kind.endswith(_OPEN))
     if "gap" in result:
         clearance = scene["backlash"]["axial"]
-        flight = (float(np.mean(result["gap"] > FLIGHT_RESOLUTION * clearance))
-                  if clearance > 0 else 0.0)
+        in_flight = (result["gap"] > FLIGHT_RESOLUTION * clearance if clearance > 0
+                     else np.zeros(len(t_eval), dtype=bool))
+        flight = float(np.mean(in_flight))
+        if scene["backlash"]["contact"] in _PENALTY_CONTACTS:
+            # A penalty contact has no flank states, hence no events to
+            # 'open': count the output times at which a flight begins.
+            separations = int(np.count_nonzero(in_flight[1:] & ~in_flight[:-1]))
     else:
         flight = 0.0
     out = {
         "creep_per_cycle": creep,
         "max_displacement": float(np.max(np.abs(u - u[0]))),
-        "separations": sum(1 for event in result.events if event.kind.endswith(_OPEN)),
+        "separations": separations,
         "flight_fraction": flight,
         "wall_time": float(result.stats["wall_time"]),
         "steps": int(result.stats["steps"]),
@@ -251,14 +277,16 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
 
 def position_holding(
     scene: Any,
-    amplitude: float = 30.0,
-    frequency: float = 20.0,
+    amplitude: Optional[float] = None,
+    frequency: Optional[float] = None,
     static_force: Optional[float] = None,
     cycles: int = 8,
     settle_cycles: int = 1,
     points_per_cycle: int = 200,
     rtol: float = 1e-8,
     atol: float = 1e-10,
+    executor=None,
+    progress: bool = True,
     **simulate_options: Any,
 ) -> pd.DataFrame:
     """Static against dynamic position holding (thesis Fig. 5.4).
@@ -266,20 +294,27 @@ def position_holding(
     Two runs of the scene, both with its (constant) drive torque and the nut
     starting in the middle of the backlash: under the static axial force
     ``static_force``, and under the alternating axial force
-    ``amplitude sin(2 pi f t)`` without static part. The two simulations run
-    one after the other in the calling thread (each takes milliseconds).
+    ``amplitude sin(2 pi f t)`` without static part.
 
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant
             ``loads.drive_torque`` and, for flight, a backlash section.
-        amplitude: amplitude of the alternating axial force [N], > 0.
-        frequency: its frequency [Hz], > 0.
+        amplitude: amplitude of the alternating axial force [N], > 0
+            (default: that of the scene's axial force if it is a sine, else
+            30 N; ``attrs["summary"]`` says which was used).
+        frequency: its frequency [Hz], > 0 (default: the scene's sine's,
+            else 20 Hz).
         static_force: static axial force along +x [N] (default ``-amplitude``:
             the alternating force's peak, held statically).
         cycles: excitation cycles simulated (both runs last cycles / f).
         settle_cycles: cycles before the creep fit.
         points_per_cycle: output points per cycle.
         rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        executor: a :class:`concurrent.futures.Executor` on which the two
+            runs go, at once (default: the calling thread, one after the
+            other: each takes milliseconds; a Dask client's executor runs
+            them on the cluster).
+        progress: accepted as by every study; two runs show no bar.
         **simulate_options: passed on to :func:`leadscrew.simulate`.
 
     Returns:
@@ -295,25 +330,46 @@ def position_holding(
         ``dynamic_creep_per_cycle``, ``dynamic_max_displacement`` [m],
         ``dynamic_separations`` [1], ``dynamic_flight_fraction`` [1] (see
         :func:`cycle_response`), ``amplitude`` [N], ``frequency`` [Hz],
-        ``static_force`` [N].
+        ``excitation_from`` (``"arguments"``; ``"scene"`` or ``"defaults"``
+        if amplitude or frequency was not given), ``static_force`` [N].
 
     Raises:
         ValueError: invalid scene or arguments (a time-varying or
             speed-controlled drive).
+        TypeError: an unknown keyword in ``simulate_options``.
         SimulationError, JammingError: a simulation failed.
     """
     scene = as_scene(scene)
     torque = _constant_torque(scene)
+    try:
+        scene_sine: Optional[Dict[str, float]] = _sine_parameters(scene["loads"]["axial_force"])
+    except ValueError:  # a constant or a table: no excitation to take
+        scene_sine = None
+    from_scene = scene_sine is not None and scene_sine["amplitude"] != 0.0 and \
+        scene_sine["omega"] > 0.0
+    excitation_from = "arguments"
+    if amplitude is None or frequency is None:
+        excitation_from = "scene" if from_scene else "defaults"
+    if amplitude is None:
+        amplitude = abs(scene_sine["amplitude"]) if from_scene else 30.0
+    if frequency is None:
+        frequency = scene_sine["omega"] / (2.0 * math.pi) if from_scene else 20.0
     amplitude = check_positive("amplitude", amplitude)
     frequency = check_positive("frequency", frequency)
     static_force = -amplitude if static_force is None else check_finite("static_force",
                                                                          static_force)
+    cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
+                                                           points_per_cycle)
     options = dict(simulate_options, rtol=rtol, atol=atol)
+    check_simulate_options(scene, options)
     centred = scene.replace(initial={"play_position": 0.0})
-    static = cycle_response(centred.replace(loads={"axial_force": static_force}), frequency,
-                            cycles, settle_cycles, points_per_cycle, series=True, **options)
-    dynamic = cycle_response(alternating_scene(scene, amplitude, frequency), frequency, cycles,
-                             settle_cycles, points_per_cycle, series=True, **options)
+    runs = [centred.replace(loads={"axial_force": static_force}),
+            alternating_scene(scene, amplitude, frequency)]
+    executor = SerialExecutor() if executor is None else executor
+    # Each future's result() raises its run's own exception (SimulationError, ...).
+    futures = [executor.submit(cycle_response, run, frequency, cycles, settle_cycles,
+                               points_per_cycle, series=True, **options) for run in runs]
+    static, dynamic = (future.result() for future in futures)
     s, d = static["result"], dynamic["result"]
     frame = pd.DataFrame({
         "t": static["t"],
@@ -342,6 +398,7 @@ def position_holding(
         dynamic_flight_fraction=dynamic["flight_fraction"],
         amplitude=amplitude,
         frequency=frequency,
+        excitation_from=excitation_from,
         static_force=static_force,
     )
 
@@ -434,11 +491,12 @@ def min_holding_preload(
     holding (its row carries the message).
 
     For the rigid concept the answer has a closed form: stuck, the load is at
-    rest, so the flank carries exactly the applied force; it stays loaded iff
-    preload >= amplitude, and the stuck flank holds the torque M iff M stays
-    inside :func:`static_holding_band` of the smallest force,
-    preload - amplitude. ``attrs["summary"]["quasi_static_preload"]`` reports
-    that value.
+    rest, so the flank carries exactly the applied force, whose smallest
+    value along ``direction`` is preload + direction * offset - |amplitude|;
+    the flank stays loaded iff that is >= 0, and the stuck flank holds the
+    torque M iff M stays inside :func:`static_holding_band` of that force.
+    The smallest such preload, max(0, |amplitude| - direction * offset +
+    |M| / band edge), is ``attrs["summary"]["quasi_static_preload"]``.
 
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a backlash
@@ -449,7 +507,8 @@ def min_holding_preload(
         creep_limit: largest admissible |creep per cycle| [m], >= 0.
         direction: +1 or -1, the preload's direction along x.
         upper: a preload [N] expected to hold (default twice the quasi-static
-            preload); doubled up to 10 times until it holds.
+            preload, or |amplitude| where that is 0); doubled up to 10 times
+            until it holds.
         tolerance: relative width of the final bracket, > 0.
         max_iterations: bound on the search rounds, >= 1.
         points_per_round: preloads evaluated per round, >= 1.
@@ -474,6 +533,7 @@ def min_holding_preload(
     Raises:
         ValueError: invalid scene or arguments, or a thread that is not
             self-locking (a preload then drives it back instead of holding it).
+        TypeError: an unknown keyword in ``simulate_options``.
     """
     scene = as_scene(scene)
     if not is_self_locking(scene.thread, scene["friction"]["mu"]):
@@ -489,7 +549,7 @@ def min_holding_preload(
         raise ValueError(f"excitation = {excitation!r} is invalid: needs amplitude != 0 and "
                          "omega > 0")
     creep_limit = check_positive("creep_limit", creep_limit, allow_zero=True)
-    if direction not in (1, -1, 1.0, -1.0):
+    if isinstance(direction, bool) or direction not in (1, -1, 1.0, -1.0):
         raise ValueError(f"direction = {direction!r} is invalid: must be +1 or -1")
     tolerance = check_positive("tolerance", tolerance)
     max_iterations = check_count("max_iterations", max_iterations, 1)
@@ -500,11 +560,16 @@ def min_holding_preload(
     low_per_newton, high_per_newton = static_holding_band(scene, float(direction))
     edge = high_per_newton if torque > 0 else -low_per_newton
     torque_share = abs(torque) / edge if torque != 0.0 else 0.0
-    quasi_static = amplitude + torque_share
+    # The smallest flank force, preload + direction offset - |A|, must carry
+    # the torque's share.
+    quasi_static = max(0.0, amplitude - float(direction) * sine["offset"] + torque_share)
     if upper is None:
-        upper = 2.0 * quasi_static
+        upper = 2.0 * quasi_static if quasi_static > 0.0 else amplitude
     upper = check_positive("upper", upper)
+    cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
+                                                           points_per_cycle)
     options = dict(simulate_options, rtol=rtol, atol=atol)
+    check_simulate_options(scene, options)
     case = functools.partial(_preload_case, scene=scene, sine=sine, direction=float(direction),
                              cycles=cycles, settle_cycles=settle_cycles,
                              points_per_cycle=points_per_cycle, options=options)

@@ -88,7 +88,7 @@ def stick_slip_phases(frame: pd.DataFrame) -> pd.DataFrame:
 
 
 def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float = 1e-10,
-               **simulate_options: Any) -> pd.DataFrame:
+               executor=None, progress: bool = True, **simulate_options: Any) -> pd.DataFrame:
     """Load position and stick/slip phases of one simulation (thesis Fig. 5.1).
 
     Run it on the scene of load case (5.1): the rigid Table 5.1 drive with
@@ -100,6 +100,10 @@ def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float =
             (Coulomb) or regularized friction law.
         t_end: simulated time [s], > 0.
         rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        executor: a :class:`concurrent.futures.Executor` to run the
+            simulation on (e.g. a Dask client's, to run it on a cluster;
+            default: the calling thread).
+        progress: accepted as by every study; one simulation shows no bar.
         **simulate_options: passed on to :func:`leadscrew.simulate`
             (``integrator``, ``t_eval``, ...). Without ``t_eval`` the series
             holds every step and, twice, every event time, so the phases
@@ -122,7 +126,11 @@ def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float =
     """
     scene = as_scene(scene)
     t_end = check_positive("t_end", t_end)
-    result = simulate(scene, t_end, rtol=rtol, atol=atol, **simulate_options)
+    if executor is None:
+        result = simulate(scene, t_end, rtol=rtol, atol=atol, **simulate_options)
+    else:  # result() raises the simulation's own exception
+        result = executor.submit(simulate, scene, t_end, rtol=rtol, atol=atol,
+                                 **simulate_options).result()
     columns = {"t": result.t}
     for name in _CHANNELS + (("gap",) if "gap" in result else ()):
         columns[name] = result[name]

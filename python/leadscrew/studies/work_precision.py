@@ -193,6 +193,31 @@ def _check_t_eval(t_eval, t_end: float) -> Optional[np.ndarray]:
     return times
 
 
+# The kind of each configuration value (simulate checks the ranges).
+_NAME_KEYS = ("friction", "integrator", "smooth_integrator")
+_WHOLE_KEYS = ("max_steps", "max_events")
+
+
+def _check_kinds(index: int, entry: Dict[str, object]) -> None:
+    """Each value of configurations[index] is of its key's kind: a name (or
+    None), a whole number or a real number (not a bool or a string), so that
+    labels and the frame can show it; ValueError naming the entry."""
+    for key, value in entry.items():
+        if key in _NAME_KEYS:
+            ok = value is None or isinstance(value, str)
+            kind = "a name (a string) or None"
+        elif isinstance(value, bool) or not isinstance(value, numbers.Real):
+            ok, kind = False, "a number"
+        elif key in _WHOLE_KEYS:
+            ok = math.isfinite(value) and value == int(value)
+            kind = "an integer"
+        else:
+            ok, kind = True, "a number"
+        if not ok:
+            raise ValueError(f"configurations[{index}]: {key} = {value!r} is invalid: must be "
+                             f"{kind}")
+
+
 def _check_configurations(model, configurations) -> List[Dict[str, object]]:
     if configurations is None:
         configurations = default_configurations(model)
@@ -208,6 +233,7 @@ def _check_configurations(model, configurations) -> List[Dict[str, object]]:
             raise ValueError(f"configurations[{i}] has the unknown key {unknown[0]!r}; allowed "
                              f"keys are {', '.join(CONFIGURATION_KEYS)}")
         entry = dict(configuration)
+        _check_kinds(i, entry)
         friction = entry.get("friction")
         if friction is None:
             friction = model["friction"]["law"] if isinstance(model, Scene) else "coulomb"

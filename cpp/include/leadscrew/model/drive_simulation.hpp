@@ -30,6 +30,13 @@ struct DriveSimulationOptions {
 // Integrators that fit a model (the first is the default).
 const std::vector<std::string>& drive_integrators(const DriveParameters& parameters);
 
+// Every check simulate() makes of its options before it integrates (the
+// integrator fits the model's friction law and contact, tolerances, step
+// controls and bounds, output times), without simulating: a sweep checks
+// them once instead of failing every case alike. InvalidArgument naming the
+// option, its value and the valid range.
+void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options);
+
 integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options);
 

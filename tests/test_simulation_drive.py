@@ -478,3 +478,42 @@ def test_options_of_the_wrong_kind_name_the_option(options, message):
     with pytest.raises(ValueError, match=message):
         ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.1, **options)
     assert ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.01, max_steps=1e6).t[-1] == 0.01
+
+
+# A trial state off the screw is retried, not the end of the run (OutsideDomain).
+
+
+@pytest.mark.parametrize("torque", [0.0, 1e-12])
+@pytest.mark.parametrize("force", [10.0, 30.0, 49.9, 50.0, 70.0, -50.0])
+def test_flight_without_torque_lands_on_the_penalty_flank(torque, force):
+    """Without drive torque the rotor, the screw and the nut's rotation stay
+    exactly at rest in the first flight, which is then a parabola: BDF's
+    error estimate vanishes, its step grew past the whole flight, and the
+    Newton iterate of the step into the bistop flank (outdated Jacobian)
+    put the nut 0.29 m off its place. That trial state raised "the nut
+    reached the end of the screw" at t = 4.6 ms (force 50 N) instead of
+    being retried with a smaller step."""
+    scene = ls.scenes.load("position_holding")
+    t_eval = np.linspace(0.0, 0.05, 51)
+    r = ls.simulate(scene.replace(loads={"drive_torque": torque, "axial_force": force}), 0.05,
+                    t_eval=t_eval)
+    # A torque that the integrator resolves (its torsional ringing is above
+    # atol) takes controlled steps through the flight: the same motion.
+    near = ls.simulate(scene.replace(loads={"drive_torque": 1e-9, "axial_force": force}), 0.05,
+                       t_eval=t_eval)
+    np.testing.assert_allclose(r["u_load"], near["u_load"], rtol=1e-5, atol=1e-10)
+    half = 0.5 * scene["backlash"]["axial"]
+    assert np.all(np.abs(r["u_load"]) < 2.0 * half)  # on the flank, 0.1 mm away
+    assert np.sign(force) * r["u_load"][-1] > half    # pressed into it, held (self-locking)
+
+
+def test_a_newton_iterate_off_the_screw_does_not_end_the_run():
+    """0.5 N m winds the nut to the end of the screw, which it reaches at
+    t = 0.42608 s (rk_verner6 and cvode_bdf agree). cvode_bdf stopped at
+    t = 0.021 s instead, at the first flank contact: a Newton iterate had
+    the nut 0.68 m beyond the end."""
+    scene = ls.scenes.load("position_holding").replace(
+        loads={"drive_torque": 0.5, "axial_force": 0.0})
+    with pytest.raises(ls.SimulationError, match="the nut reached the end of the screw") as error:
+        ls.simulate(scene, 2.0)
+    assert 0.426 < error.value.time < 0.4265

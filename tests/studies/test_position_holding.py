@@ -203,3 +203,18 @@ def test_bad_scenes_and_arguments():
         position_holding(holding_scene(), cycles=1, settle_cycles=1, progress=False)
     with pytest.raises(TypeError, match="frequncy"):
         position_holding(holding_scene(), frequncy=10.0, progress=False)
+
+
+def test_position_holding_of_the_bistop_scene_without_torque():
+    """The shipped scene (flexible, bistop, arctan_velocity) without drive
+    torque: the static run (a constant -50 N) stopped at t = 4.8 ms, "the
+    nut reached the end of the screw" (a Newton iterate at 0.55 m)."""
+    scene = ls.scenes.load("position_holding").replace(loads={"drive_torque": 0.0})
+    s = position_holding(scene, amplitude=50.0, progress=False).attrs["summary"]
+    assert s["self_locking"] and s["holds_statically"]
+    clearance = scene["backlash"]["axial"]
+    # Onto the flank (half the play, a few um penetration and bounce) and held:
+    # without torque only the arctan law's own slow slip, below a nanometre.
+    assert clearance / 2 < s["static_max_displacement"] < clearance
+    assert abs(s["static_creep_per_cycle"]) < 1e-9
+    assert abs(s["dynamic_creep_per_cycle"]) < 1e-9

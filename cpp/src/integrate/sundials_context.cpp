@@ -208,13 +208,15 @@ void CallbackBridge::clear_call() noexcept {
 void CallbackBridge::clear_all() noexcept {
   clear_call();
   nonfinite_rhs_ = 0;
+  outside_ = nullptr;
+  outside_rhs_ = 0;
   nonfinite_root_ = false;
 }
 
 void CallbackBridge::rethrow_pending() {
-  if (pending_) {
-    std::exception_ptr e = pending_;
-    pending_ = nullptr;
+  std::exception_ptr e = pending_ ? pending_ : outside_;
+  if (e) {
+    pending_ = outside_ = nullptr;
     std::rethrow_exception(e);
   }
 }
@@ -236,6 +238,10 @@ int CallbackBridge::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_dat
   try {
     double* f = N_VGetArrayPointer(ydot);
     self->system->rhs(t, N_VGetArrayPointer(y), f);
+    if (self->outside_ && t > self->outside_t_) {  // got past the failed trial
+      self->outside_ = nullptr;
+      self->outside_rhs_ = 0;
+    }
     if (!all_finite(f, self->size)) {
       if (self->nonfinite_rhs_ == 0 && !self->nonfinite_root_) self->nonfinite_t_ = t;
       ++self->nonfinite_rhs_;
@@ -243,6 +249,11 @@ int CallbackBridge::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_dat
       return self->nonfinite_rhs_ < nonfinite_limit ? 1 : -1;
     }
     return 0;
+  } catch (const OutsideDomain&) {
+    // A trial state off the model's domain: retried with a smaller step.
+    if (!self->outside_) self->outside_t_ = t;
+    self->outside_ = std::current_exception();
+    return ++self->outside_rhs_ < outside_limit ? 1 : -1;
   } catch (...) {
     self->pending_ = std::current_exception();
     return -1;  // unrecoverable: the solver returns, the exception is rethrown

@@ -133,11 +133,11 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   const double a = model_.nut_position(q.data());
   const bool screw_springs = p.concept == Concept::flexible;
   if (screw_springs && (!(a > 0.0) || (p.drive == DrivenPart::screw && !(a < p.screw_length)))) {
-    throw SimulationError(t,
-                          "the nut reached the end of the screw (nut position " +
-                              format_value(a) + " m on a screw of length " +
-                              format_value(p.screw_length) + " m)",
-                          "shorten t_end, change the loads or place the nut elsewhere");
+    throw OutsideDomain(t,
+                        "the nut reached the end of the screw (nut position " +
+                            format_value(a) + " m on a screw of length " +
+                            format_value(p.screw_length) + " m)",
+                        "shorten t_end, change the loads or place the nut elsewhere");
   }
   for (const Spring& s : model_.springs()) {
     const double x = q[s.first] - (s.second >= 0 ? q[s.second] : 0.0);

@@ -32,6 +32,16 @@ class SimulationError : public std::runtime_error {
   std::string reason_;
 };
 
+// A state outside the model's domain (the nut off the screw). Thrown by a
+// right-hand side it may be a trial state of a step that overshot (an
+// implicit method's predictor or Newton iterate): the SUNDIALS integrators
+// retry with a smaller step, as for a non-finite right-hand side, and raise
+// it only if they give up there.
+class OutsideDomain : public SimulationError {
+ public:
+  using SimulationError::SimulationError;
+};
+
 // A self-locking drive that jams dynamically: no consistent flank-contact mode
 // exists (Painleve paradox). Never continued with a trajectory.
 class JammingError : public SimulationError {

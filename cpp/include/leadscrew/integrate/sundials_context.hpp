@@ -102,10 +102,18 @@ class SolverMemory {
 // nonfinite_limit such values since the last (re)start the failure becomes
 // unrecoverable: a model that is undefined beyond some time would otherwise
 // be approached in ever smaller steps until max_steps is exhausted.
+// An OutsideDomain exception from the right-hand side (a state off the model's
+// domain) is recoverable too: a trial state of an overshooting step, such as
+// an implicit method's Newton iterate with an outdated Jacobian, is no reason
+// to stop. A retry ends before the failed trial's time T; outside_limit
+// failures before the solver gets past T mean that the solution itself
+// reaches the boundary of the domain there: the failure becomes
+// unrecoverable and the OutsideDomain error is rethrown.
 class CallbackBridge {
  public:
   static constexpr int message_capacity = 512;
   static constexpr int nonfinite_limit = 64;
+  static constexpr int outside_limit = 4;
 
   OdeSystem* system = nullptr;
   void* owner = nullptr;  // the integrator (for callbacks that need more than the system)
@@ -117,7 +125,8 @@ class CallbackBridge {
   void clear_call() noexcept;
   // At a (re)start: also forgets the non-finite values seen so far.
   void clear_all() noexcept;
-  // Rethrows an exception the system threw during the last solver call.
+  // Rethrows an exception the system threw during the last solver call, or
+  // the last OutsideDomain error if the solver has not got past it.
   void rethrow_pending();
   // A sentence on the non-finite values the system produced (empty: none).
   std::string nonfinite_report() const;
@@ -131,6 +140,9 @@ class CallbackBridge {
 
  private:
   std::exception_ptr pending_;
+  std::exception_ptr outside_;  // the last OutsideDomain (null: none, or got past it)
+  double outside_t_ = 0.0;      // the time of the first of them (T above)
+  int outside_rhs_ = 0;         // OutsideDomain failures before getting past T
   int nonfinite_rhs_ = 0;   // count since the last (re)start
   bool nonfinite_root_ = false;
   double nonfinite_t_ = 0.0;  // time of the first one

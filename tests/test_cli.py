@@ -572,3 +572,46 @@ def test_python_m_leadscrew_and_console_script(tmp_path):
     done = subprocess.run([str(script), "--help"], capture_output=True, text=True, env=env,
                           timeout=120)
     assert done.returncode == 0 and "run" in done.stdout and "study" in done.stdout
+
+
+def test_run_max_steps_reaches_the_integrator(tmp_path, capsys):
+    path = scene_file(tmp_path)
+    code, out, err = run_main(capsys, "run", path, "-o", tmp_path, "--t-end", "0.2",
+                              "--max-steps", "3")
+    assert code == 1 and "max_steps" in err and "= 3" in err and "Traceback" not in err
+    assert not (tmp_path / "scene.csv").exists()
+    code, out, err = run_main(capsys, "run", path, "-o", tmp_path, "--t-end", "0.2",
+                              "--points", "11", "--max-steps", "100000")
+    assert code == 0, err
+    code, out, err = run_main(capsys, "run", path, "-o", tmp_path, "--max-steps", "0")
+    assert code == 2 and "max_steps = 0 is invalid" in err
+
+
+def header_commands():
+    """The commands the shipped scene files advertise in their headers."""
+    import re
+    from pathlib import Path
+
+    folder = Path(shipped.__file__).parent
+    commands = []
+    for path in sorted(folder.glob("*.toml")):
+        for line in path.read_text().splitlines():
+            match = re.match(r"#\s+leadscrew (run|check) (\S+)((?: --?[a-z-]+ \S+)*)", line)
+            if match:
+                commands.append([match.group(1), match.group(2)] + match.group(3).split())
+    return commands
+
+
+@pytest.mark.parametrize("argv", header_commands(), ids=" ".join)
+def test_the_commands_in_the_scene_headers_run(tmp_path, capsys, argv):
+    """What a scene file tells its reader to run runs (the position-holding
+    drive, rattling in its play, takes its second in ~0.65 million steps at
+    the tolerances its header gives)."""
+    code, out, err = run_main(capsys, *argv, *(["-o", tmp_path] if argv[0] == "run" else []))
+    assert code == 0, err
+    if argv[0] == "run":
+        assert (tmp_path / f"{argv[1]}.csv").exists()
+
+
+def test_every_scene_header_advertises_a_command():
+    assert {argv[1] for argv in header_commands()} == set(shipped.available())

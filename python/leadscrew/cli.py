@@ -406,7 +406,8 @@ def _run(args: argparse.Namespace) -> int:
     scene, name, _ = _load_scene(args.scene)
     _check_integrator_options(scene, args)
     result = _simulate(scene, args.t_end, args.points, integrator=args.integrator,
-                       rtol=args.rtol, atol=args.atol, dt=args.dt, theta=args.theta)
+                       rtol=args.rtol, atol=args.atol, dt=args.dt, theta=args.theta,
+                       max_steps=args.max_steps)
     out = _output_dir(args.output)
     print(_summary(name, scene, result, args.t_end))
     series = _write_series(result, out, name, args.format)
@@ -727,6 +728,9 @@ def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--theta", type=float, default=None,
                         help="theta of --integrator moreau, in [0, 1] (default 0.5; refused "
                              "with the others)")
+    parser.add_argument("--max-steps", type=int, default=None,
+                        help="bound on integrator steps (default 1000000; a lightly damped "
+                             "drive rattling in its play may need more)")
     parser.add_argument("--points", type=int, default=DEFAULT_POINTS,
                         help=f"output points, evenly spaced over [0, t_end] (default "
                              f"{DEFAULT_POINTS}); 0 writes every integrator step and event")

@@ -5,8 +5,11 @@
 - ``thesis_table_5_1``: the thesis's Table 5.1 drive with load case (5.1),
   F = -10 N, M = -40 sin(4 pi t) N*mm, mu = 0.3, flexible screw and nut.
 - ``position_holding``: the thesis's section 5.2 case: the same drive with
-  0.2 mm axial play, no preload, no drive torque, a 50 N, 20 Hz alternating
-  axial force.
+  0.2 mm axial play (a BISTOP penalty contact), no axial preload, a static
+  5 N*mm drive torque that only the thread holds, and a 50 N, 20 Hz
+  alternating axial force; flexible screw and nut with the arctan friction
+  law, like the thesis's Adams model. In flight across the play the torque
+  turns the screw and the load creeps.
 
 Each file states in its comments where every value comes from. Use them as
 templates: ``leadscrew.scenes.path(name)`` is the file.

@@ -105,3 +105,28 @@ def test_crossing_back_after_a_restart_with_a_long_step(method, x0):
     roots, t = roots_until(integrator, 1.0 + 3.0 * T)
     assert t == 1.0 + 3.0 * T
     check_roots([(t_root - 1.0, d) for t_root, d in roots], x0)
+
+
+@pytest.mark.parametrize("method", RK_ENGINES)
+def test_crossing_back_from_a_guarded_zero(method):
+    # The drive's event-driven scheme gives a root function that is exactly
+    # 0 the value -+1e-200 on the side not yet crossed (RootGuard,
+    # event_driven.cpp). Against its value at the step's end (4e-4 here) the
+    # secant stayed at the start: the bracket shrank by half a tolerance per
+    # iteration, and Illinois's halving would need some 600 iterations to
+    # make up the 190 orders of magnitude; after 60 the step's end was
+    # returned as the root (a rigid nut's flight off a flank and back within
+    # one step: the impact 1.3 ms late, the nut 0.27 um inside the flank).
+    # There the play (1e-4 m) stayed exactly on the flank for the first part
+    # of the flight, below its ulp: here the guarded zero for 1e-6 s.
+    def guarded_gap(t, y):
+        return np.array([-1e-200 if t < 1e-6 else y[0]])
+
+    integrator = leadscrew._core.integrate.make_integrator(method, rtol=1e-8, atol=1e-12,
+                                                           first_step=2.0 * T)
+    integrator.initialize(leadscrew._core.integrate.PythonOdeSystem(rhs, 2, guarded_gap, 1),
+                          0.0, np.array([0.0, 0.0]))
+    roots, t = roots_until(integrator, 3.0 * T)
+    assert t == 3.0 * T
+    assert len(roots) == 1 and roots[0][1] == 1, roots
+    assert roots[0][0] == pytest.approx(return_time(0.0), abs=1e-9)

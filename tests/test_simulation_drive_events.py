@@ -359,3 +359,74 @@ def test_a_closed_flank_never_pulls(friction):
     # unbooked at an event shows as a jump (the zeroed slip: 4.6e-6).
     work = np.max(np.abs(result["work_drive"])) + np.max(np.abs(result["work_axial"]))
     assert np.max(np.abs(result["energy_residual"])) <= 1e-7 * work
+
+
+# --- a flight that starts on its flank -------------------------------------------
+# alternating_scene(on_flank=True) starts the nut on the flank the static force
+# presses it against. At t = 0 the springs are relaxed: the drive torque alone
+# pulls the thread off that flank (the initial mode is open), and within about
+# a nanosecond the load's damper turns the flight back onto it. The flight is
+# far below a ulp of the play; where the integrator saw it 1 ulp beyond the
+# flank before the turn (offsets -100 ... -115 N with 5 N mm), the touch below
+# resolution restored the state as it was, beyond the flank: the flank root
+# started on the crossed side, and the nut ran through the flank, the load
+# 7.9 m off after 0.4 s, with no event and no error.
+
+def flight_from_the_flank(concept, torque, offset):
+    from leadscrew.studies.holding import alternating_scene
+    base = ls.scenes.load("thesis_table_5_1").replace(
+        concept=concept, backlash={"axial": 2e-4},
+        loads={"drive_torque": torque, "axial_force": 0.0})
+    return alternating_scene(base, 30.0, 20.0, offset=offset, on_flank=True)
+
+
+@pytest.mark.parametrize("offset", [-50.0, -100.0, -105.0, -110.0, -115.0, -150.0, 100.0])
+@pytest.mark.parametrize("torque", [0.0, 5e-3, -5e-3])
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut", "flexible"])
+def test_a_flight_from_its_flank_never_passes_through_it(concept, torque, offset):
+    from leadscrew.studies.holding import cycle_response
+    out = cycle_response(flight_from_the_flank(concept, torque, offset), 20.0, 8, series=True)
+    result = out["result"]
+    # |offset| > 30 N: the force never reverses, the nut stays on its flank
+    # up to a closed flank's drift (3.3e-8 m seen) and the self-locking
+    # thread holds (creep 2.4e-11 m per cycle; the runaway: 1.2e-4 m).
+    assert np.min(result["gap"]) >= -1e-3 * 2e-4, np.min(result["gap"])
+    assert np.max(np.abs(result["u_load"])) <= 1e-4
+    assert abs(out["creep_per_cycle"]) <= 1e-9
+
+
+@pytest.mark.parametrize("t_eval", [True, False], ids=["t_eval", "every_step"])
+@pytest.mark.parametrize("offset", [-100.0, -110.0, -150.0])
+def test_the_flight_from_its_flank_ends_on_it(offset, t_eval):
+    """The flexible nut's flight of the first nanosecond ends with a contact on
+    the flank it left, whatever the output times."""
+    t_end = 0.4
+    times = np.linspace(0.0, t_end, 801) if t_eval else None
+    result = ls.simulate(flight_from_the_flank("flexible_nut", 5e-3, offset), t_end,
+                         t_eval=times)
+    kinds = [e.kind for e in result.events]
+    assert kinds == ["impact on the upper flank, open->upper flank slip+",
+                     "upper flank slip+->upper flank stick"], result.events
+    assert result.events[0].time < 1e-8
+    assert np.min(result["gap"]) >= -1e-3 * 2e-4
+    assert np.max(np.abs(result["u_load"])) <= 1e-4
+
+
+@pytest.mark.parametrize("torque, offset, impact", [(5e-3, -30.0, 0.0131509),
+                                                     (-5e-3, 30.0, 0.0381509)])
+def test_a_rigid_flight_within_one_step_is_located(torque, offset, impact):
+    # The flank opens at 12.28 ms (N = 0 near the force's crest) and the nut flies
+    # 1.2 nm off it for 0.87 ms, within one Verner step of 2.2 ms. The impact
+    # root starts at RootGuard's -+1e-200, and its location stalled at the
+    # step's start: the impact came at the step's end, 14.47 ms, with the nut
+    # 0.27 um inside the flank (every-step output; t_eval hid the state).
+    # The mirror case: the other flank, half a period later.
+    scene = flight_from_the_flank("rigid", torque, offset)
+    every_step = ls.simulate(scene, 0.05)
+    sampled = ls.simulate(scene, 0.05, t_eval=np.linspace(0.0, 0.05, 501))
+    assert np.min(every_step["gap"]) >= -1e-12
+    impacts = [e for e in every_step.events if e.kind.startswith("impact")]
+    assert impacts and abs(impacts[0].time - impact) < 1e-6, impacts
+    assert len(every_step.events) == len(sampled.events)
+    for ours, theirs in zip(every_step.events, sampled.events):
+        assert ours.kind == theirs.kind and abs(ours.time - theirs.time) <= 1e-9, (ours, theirs)

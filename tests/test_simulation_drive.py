@@ -473,11 +473,17 @@ def test_good_options_pass_the_check():
     ({"max_events": True}, r"max_events = True is invalid: must be an integer"),
     ({"integrator": 3}, r"integrator = 3 is invalid"),
     ({"dt": [1e-3]}, r"dt = \[0.001\] is invalid: must be a number"),
+    ({"max_steps": 10 ** 400}, r"max_steps = 1000.* is invalid: must be an integer of at most"),
+    ({"max_order": 2 ** 40}, r"max_order = 1099511627776 is invalid"),
+    ({"rtol": 10 ** 400}, r"rtol = 1000.* is invalid: must be a finite number"),
 ])
 def test_options_of_the_wrong_kind_name_the_option(options, message):
     with pytest.raises(ValueError, match=message):
         ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.1, **options)
     assert ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.01, max_steps=1e6).t[-1] == 0.01
+    # numpy numbers and 0-d arrays are numbers
+    assert ls.simulate(ls.Scene.from_dict(thesis_scene()), np.array(0.01),
+                       max_steps=np.int64(10 ** 6), rtol=np.float32(1e-6)).t[-1] == 0.01
 
 
 # A trial state off the screw is retried, not the end of the run (OutsideDomain).

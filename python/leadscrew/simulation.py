@@ -144,19 +144,34 @@ def _check_scene_friction(scene: Scene, friction: Optional[str]) -> None:
                          f"scene's friction.law (it is {scene['friction']['law']!r})")
 
 
+def _scalar(value):
+    """A 0-d array as its number (``np.array(1.0)`` is a number here)."""
+    return value.item() if isinstance(value, np.ndarray) and value.ndim == 0 else value
+
+
 def _real(name: str, value) -> float:
     """``value`` as a float, if it is a real number (not a bool or a string:
     the core checks the range, this only the kind, naming the option)."""
+    value = _scalar(value)
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError(f"{name} = {value!r} is invalid: must be a number")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an int beyond a float
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number") from None
 
 
-def _whole(name: str, value) -> int:
-    """``value`` as an int, if it is a whole number (``1e6`` is; 1.5 is not)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real) or \
-            not math.isfinite(value) or value != int(value):
+def _whole(name: str, value, limit: int = 2 ** 63 - 1) -> int:
+    """``value`` as an int, if it is a whole number (``1e6`` is; 1.5 is not)
+    of at most ``limit`` in magnitude (the core's integer)."""
+    value = _scalar(value)
+    whole = isinstance(value, numbers.Integral) or (
+        isinstance(value, numbers.Real) and math.isfinite(value) and value == int(value))
+    if isinstance(value, bool) or not whole:
         raise ValueError(f"{name} = {value!r} is invalid: must be an integer")
+    if abs(int(value)) > limit:
+        raise ValueError(f"{name} = {value!r} is invalid: must be an integer of at most "
+                         f"{limit} in magnitude")
     return int(value)
 
 
@@ -188,7 +203,7 @@ def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta
             "max_step": 0.0 if max_step is None else _real("max_step", max_step),
             "first_step": 0.0 if first_step is None else _real("first_step", first_step),
             "bounce_threshold": _real("bounce_threshold", bounce_threshold),
-            "max_order": 0 if max_order is None else _whole("max_order", max_order)}
+            "max_order": 0 if max_order is None else _whole("max_order", max_order, 2 ** 31 - 1)}
 
 
 def simulate(

@@ -288,6 +288,7 @@ def test_run_batches_refuses_a_worker_count_below_one():
     for workers in (0, -1, 1.5, True):
         with pytest.raises(ValueError, match=r"workers = .* is invalid: must be an integer >= 1"):
             run_batches(lambda cases: len(cases), 4, workers=workers, progress=True)
+    assert run_batches(lambda cases: len(cases), 4, workers=np.int64(2), progress=False)[0].ok
 
 
 # Executors with more workers than this machine has cores, and interrupts.

@@ -322,3 +322,15 @@ def test_result_reference_without_the_compared_times():
     with pytest.raises(ValueError, match="reference.*channel 'x'"):
         studies.work_precision(block(), 1.0, [{"rtol": 1e-6}], reference=reference,
                                quantity="x", repeats=1)
+
+
+def test_configuration_values_simulate_takes_as_none():
+    """dt, max_step and first_step default to None in simulate: a
+    configuration may say so."""
+    frame = studies.work_precision(block(), 1.0, [{"integrator": "event_driven",
+                                                   "max_step": None, "first_step": None},
+                                                  {"integrator": "moreau", "dt": None}],
+                                   repeats=1)
+    assert len(frame) == 2 and (frame["failure"] == "").all(), frame["failure"].tolist()
+    assert frame["label"].str.endswith("defaults").all(), frame["label"].tolist()
+

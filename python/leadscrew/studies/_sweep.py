@@ -44,6 +44,7 @@ from __future__ import annotations
 import concurrent.futures
 import functools
 import math
+import numbers
 import os
 import threading
 import time
@@ -216,9 +217,9 @@ def _check_chunk_size(chunk_size: Optional[int]) -> None:
 
 
 def _check_workers(workers: Any) -> int:
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+    if isinstance(workers, bool) or not isinstance(workers, numbers.Integral) or workers < 1:
         raise ValueError(f"workers = {workers!r} is invalid: must be an integer >= 1")
-    return workers
+    return int(workers)
 
 
 def _describe(error: BaseException) -> str:

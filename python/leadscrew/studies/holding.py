@@ -371,7 +371,12 @@ def position_holding(
     # Each future's result() raises its run's own exception (SimulationError, ...).
     futures = [executor.submit(cycle_response, run, frequency, cycles, settle_cycles,
                                points_per_cycle, series=True, **options) for run in runs]
-    static, dynamic = (future.result() for future in futures)
+    try:
+        static, dynamic = [future.result() for future in futures]
+    except BaseException:  # one run failed: the other is not waited for
+        for future in futures:
+            future.cancel()
+        raise
     s, d = static["result"], dynamic["result"]
     frame = pd.DataFrame({
         "t": static["t"],

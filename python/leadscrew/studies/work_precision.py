@@ -196,6 +196,7 @@ def _check_t_eval(t_eval, t_end: float) -> Optional[np.ndarray]:
 # The kind of each configuration value (simulate checks the ranges).
 _NAME_KEYS = ("friction", "integrator", "smooth_integrator")
 _WHOLE_KEYS = ("max_steps", "max_events")
+_OPTIONAL_KEYS = ("dt", "max_step", "first_step")  # None: simulate's default
 
 
 def _check_kinds(index: int, entry: Dict[str, object]) -> None:
@@ -206,6 +207,8 @@ def _check_kinds(index: int, entry: Dict[str, object]) -> None:
         if key in _NAME_KEYS:
             ok = value is None or isinstance(value, str)
             kind = "a name (a string) or None"
+        elif key in _OPTIONAL_KEYS and value is None:
+            ok, kind = True, ""
         elif isinstance(value, bool) or not isinstance(value, numbers.Real):
             ok, kind = False, "a number"
         elif key in _WHOLE_KEYS:
@@ -305,7 +308,7 @@ def _label(entry: Dict[str, object]) -> str:
     friction = entry["friction"]
     integrator = entry.get("integrator") or "default"
     gain = f" k_V={entry['k_v']:g}" if "k_v" in entry else ""
-    knob = f"dt={entry['dt']:g}" if "dt" in entry else (
+    knob = f"dt={entry['dt']:g}" if entry.get("dt") is not None else (
         f"rtol={entry['rtol']:g}" if "rtol" in entry else "defaults")
     return f"{friction}{gain} {integrator} {knob}"
 

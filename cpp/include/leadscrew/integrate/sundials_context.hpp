@@ -126,7 +126,7 @@ class CallbackBridge {
   // At a (re)start: also forgets the non-finite values seen so far.
   void clear_all() noexcept;
   // Rethrows an exception the system threw during the last solver call, or
-  // the last OutsideDomain error if the solver has not got past it.
+  // the OutsideDomain error that made it unrecoverable.
   void rethrow_pending();
   // A sentence on the non-finite values the system produced (empty: none).
   std::string nonfinite_report() const;
@@ -143,6 +143,7 @@ class CallbackBridge {
   std::exception_ptr outside_;  // the last OutsideDomain (null: none, or got past it)
   double outside_t_ = 0.0;      // the time of the first of them (T above)
   int outside_rhs_ = 0;         // OutsideDomain failures before getting past T
+  bool outside_fatal_ = false;  // the last of them made the call unrecoverable
   int nonfinite_rhs_ = 0;   // count since the last (re)start
   bool nonfinite_root_ = false;
   double nonfinite_t_ = 0.0;  // time of the first one

@@ -110,3 +110,11 @@ def test_annotate_converts_missing_errors_unless_told_they_are_checked():
     checked = annotate(frame_of(columns()), {"mu": "1"}, errors_checked=True, speed=2.0)
     assert checked["error"].tolist()[:3] == [None, None, columns()["error"][2]]
     assert checked.attrs["summary"] == {"speed": 2.0}
+
+
+def test_annotate_keeps_the_units_of_the_summary_it_stores():
+    frame = annotate(frame_of(columns()), {"mu": "1"}, errors_checked=True,
+                     summary_units={"speed": "rad/s", "other": "m"}, speed=2.0, label="a")
+    assert frame.attrs["summary"] == {"speed": 2.0, "label": "a"}
+    assert frame.attrs["summary_units"] == {"speed": "rad/s"}
+    assert "summary_units" not in annotate(frame_of(columns()), {}, speed=1.0).attrs

@@ -186,3 +186,11 @@ def test_the_simulated_excitation_keeps_the_users_omega_bit_for_bit(monkeypatch)
     sine = {"amplitude": 30.0, "omega": omega, "phase": 0.0, "offset": 0.0}
     holding._preload_case(40.0, holding_scene(), sine, -1.0, 2, 1, 20, {})
     assert seen == [omega]
+
+
+def test_every_number_of_the_summary_has_its_unit(exact):
+    summary, units = exact.attrs["summary"], exact.attrs["summary_units"]
+    labels = {key for key, value in summary.items() if isinstance(value, bool)}
+    assert labels == {"converged", "found"}
+    assert set(units) == set(summary) - labels
+    assert units["min_preload"] == "N" and units["creep_limit"] == "m"

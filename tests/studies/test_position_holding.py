@@ -218,3 +218,11 @@ def test_position_holding_of_the_bistop_scene_without_torque():
     assert clearance / 2 < s["static_max_displacement"] < clearance
     assert abs(s["static_creep_per_cycle"]) < 1e-9
     assert abs(s["dynamic_creep_per_cycle"]) < 1e-9
+
+
+def test_every_number_of_the_summary_has_its_unit(held):
+    summary, units = held.attrs["summary"], held.attrs["summary_units"]
+    labels = {key for key, value in summary.items() if isinstance(value, (bool, str))}
+    assert labels == {"self_locking", "holds_statically", "excitation_from"}
+    assert set(units) == set(summary) - labels
+    assert units["holding_torque"] == "N*m" and units["frequency"] == "Hz"

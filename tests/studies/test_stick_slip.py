@@ -107,3 +107,8 @@ def test_the_simulation_runs_on_an_executor(frame):
     with concurrent.futures.ThreadPoolExecutor(1) as pool:
         with pytest.raises(ls.SimulationError):
             stick_slip(scene, t_end=2.0, executor=pool, max_steps=3)
+
+
+def test_every_number_of_the_summary_has_its_unit(frame):
+    assert set(frame.attrs["summary_units"]) == set(frame.attrs["summary"])
+    assert frame.attrs["summary_units"]["u_final"] == "m"

@@ -226,7 +226,8 @@ def _public_frame_of(names, arrays):
 _ERROR_TYPES = {type(None), str}
 
 
-def annotate(frame, units: Dict[str, str], errors_checked: bool = False, **summary: Any):
+def annotate(frame, units: Dict[str, str], errors_checked: bool = False,
+             summary_units: Optional[Dict[str, str]] = None, **summary: Any):
     """Attach units and a summary to a study's frame.
 
     Args:
@@ -237,6 +238,9 @@ def annotate(frame, units: Dict[str, str], errors_checked: bool = False, **summa
             as an object column of None and messages only; otherwise it is
             converted here so that it is (NaN from a frame built of rows
             becomes None).
+        summary_units: summary key -> SI unit, stored as
+            ``attrs["summary_units"]`` for the keys of ``summary`` (the
+            command line prints them next to the values).
         **summary: scalars stored as ``attrs["summary"]``.
 
     Returns:
@@ -257,6 +261,9 @@ def annotate(frame, units: Dict[str, str], errors_checked: bool = False, **summa
     frame.attrs["units"] = {column: units[column] for column in names if column in units}
     if summary:
         frame.attrs["summary"] = dict(summary)
+        if summary_units:
+            frame.attrs["summary_units"] = {key: summary_units[key] for key in summary
+                                            if key in summary_units}
     return frame
 
 

@@ -69,8 +69,9 @@ def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float, cycle
         rows.append(row)
     columns = ["frequency", "backlash", "creep_per_cycle", "creep_rate", "max_displacement",
                "separations", "flight_fraction", "wall_time", "steps", "error"]
-    return annotate(pd.DataFrame(rows, columns=columns), UNITS, amplitude=amplitude,
-                    cycles=cycles, settle_cycles=settle_cycles)
+    return annotate(pd.DataFrame(rows, columns=columns), UNITS,
+                    summary_units={"amplitude": "N", "cycles": "1", "settle_cycles": "1"},
+                    amplitude=amplitude, cycles=cycles, settle_cycles=settle_cycles)
 
 
 def _scene_backlash(scene) -> float:

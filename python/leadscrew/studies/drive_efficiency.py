@@ -258,7 +258,9 @@ def efficiency_vs_mu(
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
         "error": errors})
     # errors: an object array of None and the messages of failed cases
-    return annotate(frame, UNITS, errors_checked=True, speed=speed, window=(start, end))
+    return annotate(frame, UNITS, errors_checked=True,
+                    summary_units={"speed": "rad/s", "window": "s"}, speed=speed,
+                    window=(start, end))
 
 
 def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):

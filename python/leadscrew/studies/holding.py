@@ -55,6 +55,16 @@ __all__ = [
 #: plastic-bounce resolution (kPlasticHeight), far above a closed flank's drift.
 FLIGHT_RESOLUTION = 1e-6
 
+# Units of the summaries (attrs["summary_units"]).
+SUMMARY_UNITS = {
+    "holding_torque": "N*m", "static_band_low": "N*m", "static_band_high": "N*m",
+    "static_creep_per_cycle": "m", "static_max_displacement": "m",
+    "dynamic_creep_per_cycle": "m", "dynamic_max_displacement": "m",
+    "dynamic_separations": "1", "dynamic_flight_fraction": "1", "amplitude": "N",
+    "frequency": "Hz", "static_force": "N", "min_preload": "N", "bracket_low": "N",
+    "bracket_high": "N", "iterations": "1", "quasi_static_preload": "N",
+    "creep_limit": "m"}
+
 # Backlash contacts modelled by a spring (no open/closed flank states).
 _PENALTY_CONTACTS = ("bistop", "cubic")
 
@@ -391,7 +401,7 @@ def position_holding(
     self_locking = bool(is_self_locking(scene.thread, scene["friction"]["mu"]))
     band = static_holding_band(scene, static_force)
     return annotate(
-        frame, UNITS,
+        frame, UNITS, summary_units=SUMMARY_UNITS,
         self_locking=self_locking,
         holding_torque=torque,
         static_band_low=float(band[0]),
@@ -631,7 +641,7 @@ def min_holding_preload(
     found = bool(low_holds or high_holds)
     frame = pd.DataFrame(rows)
     return annotate(
-        frame, UNITS,
+        frame, UNITS, summary_units=SUMMARY_UNITS,
         min_preload=float(high) if found else float("nan"),
         bracket_low=float(low) if not low_holds else 0.0,
         bracket_high=float(high) if found else float("nan"),

@@ -30,6 +30,10 @@ UNITS = {
 }
 
 
+# Units of the summary (attrs["summary_units"]).
+SUMMARY_UNITS = {"stick_phases": "1", "slip_phases": "1", "stick_fraction": "1", "events": "1",
+                 "u_final": "m", "wall_time": "s"}
+
 def _labels(frame: pd.DataFrame) -> np.ndarray:
     """Phase of each sample: 'stick', 'slip+', 'slip-' or (with backlash) 'open'."""
     stick = frame["stick"].to_numpy() == 1.0
@@ -140,7 +144,7 @@ def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float =
     stick_time = float(phases.loc[phases["phase"] == "stick", "duration"].sum())
     span = float(frame["t"].iloc[-1] - frame["t"].iloc[0])
     return annotate(
-        frame, UNITS,
+        frame, UNITS, summary_units=SUMMARY_UNITS,
         stick_phases=int((phases["phase"] == "stick").sum()),
         slip_phases=int(phases["phase"].isin(["slip+", "slip-"]).sum()),
         stick_fraction=stick_time / span if span > 0 else float("nan"),

@@ -523,3 +523,22 @@ def test_a_newton_iterate_off_the_screw_does_not_end_the_run():
     with pytest.raises(ls.SimulationError, match="the nut reached the end of the screw") as error:
         ls.simulate(scene, 2.0)
     assert 0.426 < error.value.time < 0.4265
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+def test_the_nut_runs_off_the_far_end_of_the_screw_as_an_error(drive):
+    """Wound to the far end of the flexible screw the nut leaves it, whichever
+    part is driven (the nut drive's far end was not checked: the run went on
+    with the nut beyond the screw)."""
+    scene = ls.scenes.load("thesis_table_5_1").replace(
+        drive=drive, nut={"position": 0.49},
+        loads={"drive_torque": 0.5 if drive == "nut" else -0.5, "axial_force": 0.0})
+    with pytest.raises(ls.SimulationError,
+                       match=r"the nut reached the end of the screw \(nut position 0\.5\d* m "
+                             r"on a screw of length 0\.5 m\)") as error:
+        ls.simulate(scene, 1.0)
+    assert 0.0 < error.value.time < 1.0
+    with pytest.raises(ValueError, match="nut.position = 0.5 is invalid: must be < screw.length"):
+        params = ls.scenes.load("thesis_table_5_1").replace(drive=drive).model().parameters
+        params.nut_position = 0.5
+        ls._core.DriveModel(params)

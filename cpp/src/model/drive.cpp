@@ -230,7 +230,7 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
       require_positive("screw torsional rigidity G I_p", p_.screw_torsional_rigidity);
     require_positive("screw.length", p_.screw_length);
     require_positive("nut.position", p_.nut_position);
-    if (p_.drive == DrivenPart::screw && !(p_.nut_position < p_.screw_length))
+    if (!(p_.nut_position < p_.screw_length))
       throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
                             " is invalid: must be < screw.length = " +
                             format_value(p_.screw_length));

@@ -132,7 +132,9 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
 
   const double a = model_.nut_position(q.data());
   const bool screw_springs = p.concept == Concept::flexible;
-  if (screw_springs && (!(a > 0.0) || (p.drive == DrivenPart::screw && !(a < p.screw_length)))) {
+  // Either drive: the nut is a point of the screw in (0, L) (the scene checks
+  // the initial position alike); beyond an end it is off the screw.
+  if (screw_springs && !(a > 0.0 && a < p.screw_length)) {
     throw OutsideDomain(t,
                         "the nut reached the end of the screw (nut position " +
                             format_value(a) + " m on a screw of length " +

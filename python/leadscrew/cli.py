@@ -89,10 +89,9 @@ def _load_scene(arg: str) -> Tuple[Any, str, str]:
                              f"({', '.join(shipped)})")
         scene, name, source = scenes.load(stem), stem, stem
     # Scene validation covers each value; the derived ones (masses,
-    # stiffnesses) are checked when the model is assembled.
+    # stiffnesses) and the thread are checked when the model is assembled.
     try:
         scene.model()
-        scene.thread
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
     return scene, name, source
@@ -364,12 +363,12 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
 
 
 def _simulate(scene, t_end: float = DEFAULT_T_END, points: int = DEFAULT_POINTS, **options):
-    """Simulate with the command line's checks; options with value None are left out."""
+    """Simulate (the caller checked t_end and points); options with value None
+    are left out."""
     import numpy as np
 
     from .simulation import simulate
 
-    _check_sampling(t_end, points)
     t_eval = np.linspace(0.0, t_end, points) if points else None
     options = {k: v for k, v in options.items() if v is not None}
     return simulate(scene, t_end, t_eval=t_eval, **options)

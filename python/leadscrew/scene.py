@@ -211,9 +211,9 @@ _LOAD_TYPES = {"constant": ("value",), "sine": ("amplitude", "omega", "phase", "
 _LOAD_ENTRY_UNITS = {"value": None, "amplitude": None, "offset": None, "values": None,
                      "omega": "rad/s", "phase": "rad", "times": "s"}
 
-# Fields whose unit depends on other fields of their section (checked after them).
-_UNIT_DEPENDS_ON = {("friction", "k_v"): ("law",),
-                    ("backlash", "stiffness"): ("contact", "exponent")}
+# Fields whose unit depends on other fields of their section (checked after
+# them; _field_unit says on which).
+_UNIT_DEPENDS_ON = frozenset({("friction", "k_v"), ("backlash", "stiffness")})
 
 
 def _power_text(exponent: float) -> str:
@@ -808,9 +808,6 @@ def _load_table(path: str, value: Any) -> Any:
     if isinstance(value, dict) or (isinstance(value, numbers.Real)
                                    and not isinstance(value, bool)):
         return value
-    spec = _excitation_spec(value)  # stored as dicts already; kept for safety
-    if spec is not None:
-        return spec
     raise ValueError(f"{path} = {value!r} cannot be written to TOML: a load in a scene file "
                      "is a number or a table {type = \"constant\" | \"sine\" | \"table\", ...}")
 

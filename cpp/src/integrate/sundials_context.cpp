@@ -210,17 +210,17 @@ void CallbackBridge::clear_all() noexcept {
   nonfinite_rhs_ = 0;
   outside_ = nullptr;
   outside_rhs_ = 0;
-  outside_fatal_ = false;
   nonfinite_root_ = false;
 }
 
 void CallbackBridge::rethrow_pending() {
   // An OutsideDomain only when it ended the call (outside_limit reached): a
   // retried one is no reason for a failure of another kind (max_steps, ...).
-  std::exception_ptr e = pending_ ? pending_ : (outside_fatal_ ? outside_ : nullptr);
+  std::exception_ptr e =
+      pending_ ? pending_ : (outside_rhs_ >= outside_limit ? outside_ : nullptr);
   if (e) {
     pending_ = outside_ = nullptr;
-    outside_fatal_ = false;
+    outside_rhs_ = 0;
     std::rethrow_exception(e);
   }
 }
@@ -257,9 +257,7 @@ int CallbackBridge::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_dat
     // A trial state off the model's domain: retried with a smaller step.
     if (!self->outside_) self->outside_t_ = t;
     self->outside_ = std::current_exception();
-    if (++self->outside_rhs_ < outside_limit) return 1;
-    self->outside_fatal_ = true;
-    return -1;
+    return ++self->outside_rhs_ < outside_limit ? 1 : -1;
   } catch (...) {
     self->pending_ = std::current_exception();
     return -1;  // unrecoverable: the solver returns, the exception is rethrown

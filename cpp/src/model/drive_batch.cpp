@@ -121,9 +121,10 @@ DriveBatch::DriveBatch(DriveParameters base, const std::vector<std::string>& par
     throw InvalidArgument("channels = [] is invalid: must name at least one channel");
   if (options_.output.t_eval.empty())
     throw InvalidArgument("t_eval = [] is invalid: a batch samples its channels at given times");
-  // Once here rather than in every case alike. The cases change scalar
-  // fields only, never what the options depend on (concept, friction law,
-  // contact); the base model checks the base parameters as well.
+  // Refused here what would fail every case alike (each case's simulate()
+  // checks again: a scalar field may still change what fits, e.g. exact
+  // backlash of zero clearance is the thread without play). Building the
+  // base model checks the base parameters as well.
   check_simulation_options(DriveModel(base_), options_);
 }
 

@@ -44,12 +44,13 @@ from __future__ import annotations
 import concurrent.futures
 import functools
 import math
-import numbers
 import os
 import threading
 import time
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
+
+from ._common import check_count
 
 __all__ = ["Outcome", "ChunkOutcome", "SerialExecutor", "run_cases", "run_chunks",
            "run_batches", "default_workers", "executor_workers", "guided_size",
@@ -214,12 +215,6 @@ def _check_chunk_size(chunk_size: Optional[int]) -> None:
     if chunk_size is not None and (isinstance(chunk_size, bool)
                                    or not isinstance(chunk_size, int) or chunk_size < 1):
         raise ValueError(f"chunk_size = {chunk_size!r} is invalid: must be an integer >= 1")
-
-
-def _check_workers(workers: Any) -> int:
-    if isinstance(workers, bool) or not isinstance(workers, numbers.Integral) or workers < 1:
-        raise ValueError(f"workers = {workers!r} is invalid: must be an integer >= 1")
-    return int(workers)
 
 
 def _describe(error: BaseException) -> str:
@@ -413,7 +408,7 @@ def run_batches(
     Raises:
         ValueError: ``workers`` is not an integer >= 1.
     """
-    workers = _check_workers(workers)
+    workers = check_count("workers", workers, 1)
     if count <= 0:
         return []
     outcomes: List[ChunkOutcome] = []

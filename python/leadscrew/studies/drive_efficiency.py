@@ -34,8 +34,9 @@ UNITS = {"mu": "1", "load": "N", "efficiency": "1", "efficiency_closed_form": "1
 # what the study measures from it.
 _CHANNELS = ("work_drive", "friction_loss", "drive_torque", "v_load")
 _WORK, _LOSS, _TORQUE, _SPEED = range(len(_CHANNELS))  # indices into _CHANNELS
-# The two works, next to each other in _CHANNELS: eq. 5.2 takes both at once.
+# The two works, first in _CHANNELS: eq. 5.2 takes both at once.
 _WORKS = slice(_WORK, _LOSS + 1)
+assert _WORKS.start == 0  # works[:, _WORK] and works[:, _LOSS] below
 # A case's values from its (mu, load): the load is raised, so it acts along
 # -x (loads.axial_force = -load).
 _RAISING = np.array([1.0, -1.0])
@@ -77,7 +78,7 @@ def _efficiency_chunk(cases: Any, batch: DriveBatch, workers: int = 1) -> Dict[s
     # to 2, 2 to 3), one column each: two channels and three windows in one
     # operation.
     works = samples[:, _WORKS, _WINDOW_ENDS] - samples[:, _WORKS, _WINDOW_STARTS]
-    work, loss = works[:, _WORK - _WORKS.start], works[:, _LOSS - _WORKS.start]
+    work, loss = works[:, _WORK], works[:, _LOSS]
     eta = (work - loss) / work
     return {"efficiency": eta[:, 0],
             "window_change": np.abs(eta[:, 2] - eta[:, 1]) / np.abs(eta[:, 0]),

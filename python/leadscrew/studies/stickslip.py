@@ -34,6 +34,7 @@ UNITS = {
 SUMMARY_UNITS = {"stick_phases": "1", "slip_phases": "1", "stick_fraction": "1", "events": "1",
                  "u_final": "m", "wall_time": "s"}
 
+
 def _labels(frame: pd.DataFrame) -> np.ndarray:
     """Phase of each sample: 'stick', 'slip+', 'slip-' or (with backlash) 'open'."""
     stick = frame["stick"].to_numpy() == 1.0

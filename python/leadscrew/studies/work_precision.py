@@ -25,7 +25,7 @@ from .. import _core
 from ..errors import SimulationError
 from ..models import FrictionBlock
 from ..scene import Scene
-from ..simulation import Result, simulate
+from ..simulation import Result, _real, _whole, simulate
 from ._common import check_count, numeric_or_nan
 
 __all__ = [
@@ -201,24 +201,18 @@ _OPTIONAL_KEYS = ("dt", "max_step", "first_step")  # None: simulate's default
 
 def _check_kinds(index: int, entry: Dict[str, object]) -> None:
     """Each value of configurations[index] is of its key's kind: a name (or
-    None), a whole number or a real number (not a bool or a string), so that
-    labels and the frame can show it; ValueError naming the entry."""
+    None), a whole number or a real number (simulate's own kind checks), so
+    that labels and the frame can show it; ValueError naming the entry."""
     for key, value in entry.items():
+        name = f"configurations[{index}]: {key}"
         if key in _NAME_KEYS:
-            ok = value is None or isinstance(value, str)
-            kind = "a name (a string) or None"
-        elif key in _OPTIONAL_KEYS and value is None:
-            ok, kind = True, ""
-        elif isinstance(value, bool) or not isinstance(value, numbers.Real):
-            ok, kind = False, "a number"
+            if value is not None and not isinstance(value, str):
+                raise ValueError(f"{name} = {value!r} is invalid: must be a name (a string) "
+                                 "or None")
         elif key in _WHOLE_KEYS:
-            ok = math.isfinite(value) and value == int(value)
-            kind = "an integer"
-        else:
-            ok, kind = True, "a number"
-        if not ok:
-            raise ValueError(f"configurations[{index}]: {key} = {value!r} is invalid: must be "
-                             f"{kind}")
+            _whole(name, value)
+        elif not (key in _OPTIONAL_KEYS and value is None):
+            _real(name, value)
 
 
 def _check_configurations(model, configurations) -> List[Dict[str, object]]:

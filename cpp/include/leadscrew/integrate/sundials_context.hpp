@@ -143,7 +143,6 @@ class CallbackBridge {
   std::exception_ptr outside_;  // the last OutsideDomain (null: none, or got past it)
   double outside_t_ = 0.0;      // the time of the first of them (T above)
   int outside_rhs_ = 0;         // OutsideDomain failures before getting past T
-  bool outside_fatal_ = false;  // the last of them made the call unrecoverable
   int nonfinite_rhs_ = 0;   // count since the last (re)start
   bool nonfinite_root_ = false;
   double nonfinite_t_ = 0.0;  // time of the first one

@@ -30,11 +30,14 @@ struct DriveSimulationOptions {
 // Integrators that fit a model (the first is the default).
 const std::vector<std::string>& drive_integrators(const DriveParameters& parameters);
 
-// Every check simulate() makes of its options before it integrates (the
-// integrator fits the model's friction law and contact, tolerances, step
-// controls and bounds, output times), without simulating: a sweep checks
-// them once instead of failing every case alike. InvalidArgument naming the
-// option, its value and the valid range.
+// The checks simulate() makes of its options before it integrates, without
+// simulating (the integrator fits the model's friction law and contact;
+// tolerances, step controls and bounds; output times; Moreau's dt and
+// theta): a sweep refuses up front what would fail every case alike.
+// InvalidArgument naming the option, its value and the valid range. Not
+// covered: what the chosen ODE method checks as it is built (max_order of
+// a one-step method, CVODE's order range) and Moreau's step count against
+// max_steps; those still fail per simulation.
 void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options);
 
 integrate::SimulationResult simulate(const DriveModel& model,

@@ -1,5 +1,6 @@
 """The command line: run, check, study, demo on the shipped scenes; exit codes; files."""
 
+import functools
 import importlib.util
 import json
 import math
@@ -482,7 +483,8 @@ def test_study_options_that_take_objects(tmp_path, capsys, monkeypatch):
 
 def test_study_summary_is_printed_and_written(tmp_path, capsys):
     """position_holding's verdicts (frame.attrs["summary"]): one line each,
-    with the unit its UNITS tells, and the same numbers in the JSON file."""
+    with the unit its attrs["summary_units"] tells, and the same numbers in
+    the JSON file."""
     code, out, err = run_main(capsys, "study", "position_holding", "position_holding",
                               "cycles=3", "-o", tmp_path)
     assert code == 0, err
@@ -505,11 +507,15 @@ def test_study_summary_json_of_special_values(tmp_path, capsys, monkeypatch):
     def summarized(scene):
         frame = pd.DataFrame({"creep_per_cycle": [1e-9]})
         frame.attrs["units"] = {"creep_per_cycle": "m"}
-        frame.attrs["summary_units"] = {"torque": "N*m", "ratio": "1"}
+        frame.attrs["summary_units"] = {"torque": "N*m", "ratio": "1",
+                                        "dynamic_creep_per_cycle": "m"}
+        # creep_per_cycle is named as a column with a unit, but the units of
+        # a summary are those of summary_units only (no guess from columns).
         frame.attrs["summary"] = {
             "missing": float("nan"), "unbounded": -math.inf, "count": np.int64(3),
             "value": np.float64(1.5), "holds": np.bool_(True), "window": (0.1, 0.2),
-            "label": "x", "dynamic_creep_per_cycle": 2e-9, "torque": 0.5, "ratio": 0.25}
+            "label": "x", "dynamic_creep_per_cycle": 2e-9, "torque": 0.5, "ratio": 0.25,
+            "creep_per_cycle": 3e-9}
         return frame
 
     fake_study(monkeypatch, summarized=summarized)
@@ -522,13 +528,70 @@ def test_study_summary_json_of_special_values(tmp_path, capsys, monkeypatch):
     assert json.loads(text) == {
         "missing": None, "unbounded": None, "count": 3, "value": 1.5, "holds": True,
         "window": [0.1, 0.2], "label": "x", "dynamic_creep_per_cycle": 2e-9, "torque": 0.5,
-        "ratio": 0.25}
+        "ratio": 0.25, "creep_per_cycle": 3e-9}
     lines = out.splitlines()
     for line in ("  missing: nan", "  unbounded: -inf", "  count: 3", "  value: 1.5",
                  "  holds: true", "  window: 0.1, 0.2", "  label: x",
-                 "  dynamic_creep_per_cycle: 2e-09 m", "  torque: 0.5 N*m", "  ratio: 0.25"):
+                 "  dynamic_creep_per_cycle: 2e-09 m", "  torque: 0.5 N*m", "  ratio: 0.25",
+                 "  creep_per_cycle: 3e-09"):
         assert line in lines, (line, out)
     assert (tmp_path / "out" / "summarized_drive_v1.2.csv").is_file()
+
+
+# Each study of leadscrew.studies.STUDIES on a tiny grid (a few ms each): its
+# scene file's changes to the thesis scene and its KEY=VALUE options.
+_HOLDING = {"backlash": {"axial": 2e-4}, "loads": {"drive_torque": 5e-3, "axial_force": 0.0}}
+_HOLDING_RUNS = ["cycles=2", "points_per_cycle=10"]
+TINY_STUDIES = {
+    "work_precision": ({}, ["t_end=0.05", "repeats=1",
+                            'configurations=[{integrator="event_driven", rtol=1e-6}]']),
+    "stick_slip": ({}, ["t_end=0.1"]),
+    "compare_concepts": ({}, ["t_end=0.02", "points=11"]),
+    "position_holding": (_HOLDING, ["amplitude=30", "frequency=20", *_HOLDING_RUNS]),
+    "creep_vs_frequency": (_HOLDING, ["frequencies=20", *_HOLDING_RUNS]),
+    "creep_vs_backlash": (_HOLDING, ["backlash=2e-4", *_HOLDING_RUNS]),
+    "creep_map": (_HOLDING, ["frequencies=20", "backlash=2e-4", *_HOLDING_RUNS]),
+    "min_holding_preload": (_HOLDING, [
+        f'excitation={{type="sine", amplitude=30.0, omega={2 * math.pi * 20}}}',
+        "max_iterations=3", *_HOLDING_RUNS]),
+    "efficiency_vs_mu": ({}, ["mu=0.3", "loads=10"]),
+}
+
+
+def test_every_study_has_a_tiny_case():
+    assert set(TINY_STUDIES) == set(ls.studies.STUDIES)
+
+
+@pytest.mark.parametrize("name", sorted(TINY_STUDIES))
+def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys, monkeypatch,
+                                                               name):
+    """Every summary entry but the labels (booleans, strings) has its unit in
+    the frame's attrs["summary_units"] ("1" for counts and ratios), which is
+    where leadscrew study takes the units it prints from."""
+    study, frames = ls.studies.STUDIES[name], []
+
+    @functools.wraps(study)  # the command line checks the options against its signature
+    def recorded(*args, **kwargs):
+        frames.append(study(*args, **kwargs))
+        return frames[-1]
+
+    monkeypatch.setitem(ls.studies.STUDIES, name, recorded)
+    changes, options = TINY_STUDIES[name]
+    path = scene_file(tmp_path, **changes)
+    code, out, err = run_main(capsys, "study", name, path, *options, "progress=false",
+                              "-o", tmp_path / "out")
+    assert code == 0 and err == "", err
+    (frame,) = frames
+    assert not cli._failures(frame)[0]
+    summary = frame.attrs.get("summary") or {}
+    units = frame.attrs.get("summary_units") or {}
+    labels = {key for key, value in summary.items() if isinstance(value, (bool, np.bool_, str))}
+    assert set(units) == set(summary) - labels
+    lines = out.splitlines()
+    for key, value in summary.items():
+        unit = units.get(key, "1")
+        line = f"  {key}: {cli._summary_text(value)}" + ("" if unit in ("", "1") else f" {unit}")
+        assert line in lines, (line, out)
 
 
 @pytest.mark.parametrize(

@@ -182,6 +182,11 @@ def test_callable_and_table_loads_agree_with_sine():
         (lambda: ls.simulate(block(6.0), 1.0, integrator="dopri5"), "integrator"),
         (lambda: ls.simulate(block(6.0), 1.0, friction="arctan_velocity", integrator="moreau"), "integrator"),
         (lambda: ls.simulate(block(6.0), 1.0, integrator="moreau", dt=-1e-3), "dt"),
+        # 1 s of steps of 1 ms: 1000 steps, more than max_steps
+        (lambda: ls.simulate(block(6.0), 1.0, integrator="moreau", dt=1e-3, max_steps=999),
+         "needs 1000 steps, more than max_steps = 999"),
+        (lambda: ls.simulate(block(6.0), 1.0, friction="arctan_velocity", integrator="dopri5",
+                             max_order=3), "max_order = 3 is invalid: must be 0 for dopri5"),
         (lambda: ls.simulate(block(6.0), 1.0, friction="arctan_velocity", k_v=0.0), "k_v"),
         (lambda: ls.simulate(block(6.0), 1.0, t_eval=[0.5, 0.2]), "t_eval"),
         (lambda: ls.Sine(float("inf"), 1.0), "amplitude"),

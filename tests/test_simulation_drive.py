@@ -437,6 +437,18 @@ BAD_OPTIONS = [
     ({"smooth_integrator": "euler"}, r"smooth_integrator = \"euler\" is invalid"),
     ({"integrator": "moreau", "dt": 0.0}, r"dt = 0 is invalid"),
     ({"integrator": "moreau", "theta": 1.5}, r"theta = 1.5 is invalid"),
+    # Moreau's fixed steps count against max_steps (0.1 s / 1e-4 s = 1000).
+    ({"integrator": "moreau", "dt": 1e-4, "max_steps": 999},
+     r"dt = 0.0001 is invalid: needs 1000 steps, more than max_steps = 999"),
+    ({"integrator": "moreau", "max_steps": 0}, r"max_steps = 0 is invalid"),
+    # The limits of the ODE method that runs between events: the rigid
+    # concept's default is the one-step rk_verner6, which has no order to set.
+    ({"max_order": 3}, r"max_order = 3 is invalid: must be 0 for rk_verner6 .*"
+                       r"integrator \"event_driven\" runs \"rk_verner6\""),
+    ({"smooth_integrator": "dopri5", "max_order": 4}, r"max_order = 4 is invalid: must be 0 "
+                                                      r"for dopri5"),
+    ({"smooth_integrator": "cvode_bdf", "max_order": 6},
+     r"max_order = 6 is invalid: must be 0 \(default\) or 1..5 for cvode_bdf"),
     ({"t_eval": [0.05, 0.01]}, r"t_eval\[1\] = 0.01 is invalid"),
     ({"t_eval": [0.2]}, r"t_eval\[0\] = 0.2 is invalid"),
 ]
@@ -462,9 +474,12 @@ def test_good_options_pass_the_check():
 
     scene = ls.Scene.from_dict(thesis_scene())
     for options in ({}, {"integrator": "moreau", "dt": 1e-3, "theta": 1.0},
-                    {"smooth_integrator": "cvode_bdf", "rtol": 1e-6, "max_events": 0}):
+                    # exactly the 100 steps of 0.1 s
+                    {"integrator": "moreau", "dt": 1e-3, "max_steps": 100},
+                    {"smooth_integrator": "cvode_bdf", "rtol": 1e-6, "max_events": 0},
+                    {"smooth_integrator": "cvode_adams", "max_order": 12}):
         _core.check_drive_options(scene.model(), **_core_arguments(scene, 0.1, [0.05], options))
-        check_simulate_options(scene, options)
+        check_simulate_options(scene, options, 0.1)
 
 
 @pytest.mark.parametrize("options, message", [
@@ -484,6 +499,72 @@ def test_options_of_the_wrong_kind_name_the_option(options, message):
     # numpy numbers and 0-d arrays are numbers
     assert ls.simulate(ls.Scene.from_dict(thesis_scene()), np.array(0.01),
                        max_steps=np.int64(10 ** 6), rtol=np.float32(1e-6)).t[-1] == 0.01
+
+
+def block_or_scene(kind):
+    if kind == "block":
+        return ls.FrictionBlock(1.0, 0.3, force=ls.Sine(6.0, 4 * math.pi))
+    return ls.Scene.from_dict(thesis_scene())
+
+
+@pytest.mark.parametrize("kind", ["block", "scene"])
+@pytest.mark.parametrize("options, message", [
+    ({"rtol": True}, r"rtol = True is invalid: must be a number"),
+    ({"max_events": False}, r"max_events = False is invalid: must be an integer"),
+    ({"t_end": "0.1"}, r"t_end = '0.1' is invalid: must be a number"),
+    ({"dt": "1e-3", "integrator": "moreau"}, r"dt = '1e-3' is invalid: must be a number"),
+    ({"max_steps": 1.5}, r"max_steps = 1.5 is invalid: must be an integer"),
+    ({"max_order": 2.5}, r"max_order = 2.5 is invalid: must be an integer"),
+    ({"integrator": 3}, r"integrator = 3 is invalid: must be the name of an integrator"),
+])
+def test_a_block_and_a_scene_refuse_options_of_the_wrong_kind_alike(kind, options, message):
+    """The same kind checks for both models (a bool, a string, a fraction of
+    a step was converted with float()/int() for a FrictionBlock and ran)."""
+    arguments = {"t_end": 0.1, **options}
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(block_or_scene(kind), **arguments)
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"k_v": True, "friction": "arctan_velocity"}, r"k_v = True is invalid: must be a number"),
+    ({"friction": True}, r"friction = True is invalid: must be the name of a friction law"),
+])
+def test_a_block_refuses_its_own_options_of_the_wrong_kind(options, message):
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(block_or_scene("block"), 0.1, **options)
+
+
+def test_a_block_takes_whole_floats_numpy_numbers_and_0d_arrays_as_before():
+    block = block_or_scene("block")
+    plain = ls.simulate(block, 0.5, rtol=1e-6, max_steps=10 ** 6, max_order=3,
+                        friction="arctan_velocity")
+    same = ls.simulate(block, np.array(0.5), rtol=np.float64(1e-6), max_steps=1e6,
+                       max_order=np.int32(3), friction="arctan_velocity")
+    np.testing.assert_array_equal(same.t, plain.t)
+    np.testing.assert_array_equal(same["u"], plain["u"])
+
+
+def test_options_the_model_would_ignore_are_refused():
+    """A Scene carries its friction law's gain (friction.k_v); a FrictionBlock
+    has no smooth phases inside an event-driven drive nor flank impacts: a
+    value that would be ignored is an error, one that repeats the scene's
+    is not."""
+    scene = ls.Scene.from_dict(thesis_scene(friction={"law": "arctan_velocity", "mu": 0.3,
+                                                      "k_v": 50.0}))
+    with pytest.raises(ValueError, match=r"k_v = 10.0 is invalid for a Scene: set the "
+                                         r"scene's friction.k_v \(it is 50.0\)"):
+        ls.simulate(scene, 0.01, k_v=10.0)
+    repeated = ls.simulate(scene, 0.01, k_v=50.0, t_eval=[0.01])
+    np.testing.assert_array_equal(repeated["u_load"],
+                                  ls.simulate(scene, 0.01, t_eval=[0.01])["u_load"])
+    block = block_or_scene("block")
+    for name, value in (("smooth_integrator", "cvode_bdf"), ("bounce_threshold", 1e-3)):
+        with pytest.raises(ValueError, match=f"{name} = .* is invalid for a FrictionBlock"):
+            ls.simulate(block, 0.1, **{name: value})
+    # The batch's keywords are simulate's: the same refusal before any case.
+    from leadscrew.studies import efficiency_vs_mu
+    with pytest.raises(ValueError, match="k_v = 10.0 is invalid for a Scene"):
+        efficiency_vs_mu(scene, [0.1], [10.0], k_v=10.0, progress=False)
 
 
 # A trial state off the screw is retried, not the end of the run (OutsideDomain).

@@ -492,9 +492,6 @@ _TEXT_TYPES = frozenset({"Optional", "Union", "None", "NoneType", "float", "int"
                          "Sequence", "List", "list", "Tuple", "tuple", "Dict", "dict",
                          "Mapping", "Any", "object"})
 
-#: simulate()'s parameters a study sets itself (the scene, its times).
-_SIMULATE_OWN = frozenset({"model", "t_end", "t_eval"})
-
 
 def _from_text(parameter: inspect.Parameter) -> bool:
     """Whether a study parameter's value can be written on the command line.
@@ -515,13 +512,6 @@ def _from_text(parameter: inspect.Parameter) -> bool:
     return all(name.rsplit(".", 1)[-1] in _TEXT_TYPES for name in names)
 
 
-def _simulate_parameters() -> Dict[str, inspect.Parameter]:
-    from .simulation import simulate
-
-    return {name: parameter for name, parameter in inspect.signature(simulate).parameters.items()
-            if name not in _SIMULATE_OWN}
-
-
 def _check_study_options(name: str, function, options: Dict[str, Any]) -> None:
     """Check the KEY=VALUE options against what the study takes.
 
@@ -534,6 +524,8 @@ def _check_study_options(name: str, function, options: Dict[str, Any]) -> None:
             does), one that takes a Python object (executor, ax, reference),
             or a required one not given (listing them).
     """
+    from .simulation import _OPTIONS as simulate_options
+
     try:
         signature = inspect.signature(function)
     except (TypeError, ValueError):  # builtins without a signature: let the call decide
@@ -541,8 +533,7 @@ def _check_study_options(name: str, function, options: Dict[str, Any]) -> None:
     parameters = list(signature.parameters.values())[1:]
     own = {p.name: p for p in parameters if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
     forwards = any(p.kind is p.VAR_KEYWORD for p in parameters)
-    extra = ({k: v for k, v in _simulate_parameters().items() if k not in own} if forwards
-             else {})
+    extra = ({k: v for k, v in simulate_options.items() if k not in own} if forwards else {})
     accepted = {**own, **extra}
     texts = [k for k, p in own.items() if _from_text(p)]
     takes = ", ".join(texts) or "no options"
@@ -617,23 +608,12 @@ def _json_value(value: Any) -> Any:
     return str(value)
 
 
-def _summary_unit(key: str, frame, module_units: Dict[str, str]) -> str:
-    """The unit of a summary entry, as far as the study tells: the frame's
-    ``attrs["summary_units"]``; else the unit of the column it sums up (its
-    own name, or without a ``static_``/``dynamic_`` prefix: ``dynamic_creep_per_cycle``
-    as ``creep_per_cycle``) in ``attrs["units"]`` or the study module's
-    ``UNITS``. None ("") for labels, ratios ("1") and keys the study does not
-    describe."""
-    own = frame.attrs.get("summary_units") or {}
-    if key in own:
-        unit = own[key]
-        return "" if unit in (None, "", "1") else str(unit)
-    units = {**module_units, **(frame.attrs.get("units") or {})}
-    for prefix in ("", "static_", "dynamic_"):
-        name = key[len(prefix):]
-        if key.startswith(prefix) and units.get(name) not in (None, "", "1"):
-            return str(units[name])
-    return ""
+def _summary_unit(key: str, frame) -> str:
+    """The unit of a summary entry: the frame's ``attrs["summary_units"]``,
+    which every study sets for its numbers; "" for ratios ("1") and for keys
+    it leaves out (labels: booleans, strings)."""
+    unit = (frame.attrs.get("summary_units") or {}).get(key)
+    return "" if unit in (None, "", "1") else str(unit)
 
 
 def _summary_text(value: Any, unit: str = "") -> str:
@@ -690,11 +670,9 @@ def _study(args: argparse.Namespace) -> int:
     summary = frame.attrs.get("summary") or {}
     print(f"{args.name} on {scene_name}: {len(frame)} rows in {elapsed:.3g} s")
     if summary:
-        module_units = getattr(inspect.getmodule(function), "UNITS", None) or {}
         print("summary:")
         for key, value in summary.items():
-            unit = _summary_unit(str(key), frame, module_units)
-            print(f"  {key}: {_summary_text(value, unit)}")
+            print(f"  {key}: {_summary_text(value, _summary_unit(str(key), frame))}")
         written.append(_output_file(out, stem, "summary.json"))
         with open(written[-1], "w", encoding="utf-8") as stream:
             json.dump(_json_value(dict(summary)), stream, indent=2, allow_nan=False)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import inspect
 import math
 import numbers
 from typing import NamedTuple, Optional, Sequence
@@ -137,11 +138,24 @@ def _restore_result(t, channels, data, events, stats, integrator, friction) -> R
     return result
 
 
-def _check_scene_friction(scene: Scene, friction: Optional[str]) -> None:
-    """A Scene carries its friction law: ``friction`` may only repeat it."""
+def _check_scene_friction(scene: Scene, friction: Optional[str], k_v=None) -> None:
+    """A Scene carries its friction law and gain: ``friction`` and ``k_v``
+    may only repeat them (another value would be ignored)."""
     if friction is not None and friction != scene["friction"]["law"]:
         raise ValueError(f"friction = {friction!r} is invalid for a Scene: set the "
                          f"scene's friction.law (it is {scene['friction']['law']!r})")
+    if k_v is not None and k_v != scene["friction"]["k_v"]:
+        raise ValueError(f"k_v = {k_v!r} is invalid for a Scene: set the scene's friction.k_v "
+                         f"(it is {scene['friction']['k_v']!r})")
+
+
+def _check_block_options(**options) -> None:
+    """Options only a Scene's simulation takes must be None for a FrictionBlock
+    (a value would be ignored)."""
+    for name, value in options.items():
+        if value is not None:
+            raise ValueError(f"{name} = {value!r} is invalid for a FrictionBlock: only a "
+                             "Scene's simulation takes it")
 
 
 def _scalar(value):
@@ -175,11 +189,32 @@ def _whole(name: str, value, limit: int = 2 ** 63 - 1) -> int:
     return int(value)
 
 
-def _name(name: str, value) -> str:
+def _name(name: str, value, what: str = "an integrator") -> str:
+    """``value`` if it is a string (the core checks the name); None as ``""``."""
     if value is not None and not isinstance(value, str):
-        raise ValueError(f"{name} = {value!r} is invalid: must be the name of an integrator "
-                         "or None")
+        raise ValueError(f"{name} = {value!r} is invalid: must be the name of {what} or None")
     return value or ""
+
+
+def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, theta, t_eval,
+                      max_steps, max_events, max_step, first_step, max_order) -> dict:
+    """The keywords the core's block and drive simulations share, from
+    :func:`simulate`'s (None: the default; ``dt`` None: ``default_dt``, which
+    differs between the models; ``integrator`` None: ``""``; ``t_eval`` a
+    list of floats).
+
+    Raises:
+        ValueError: a value of the wrong kind (a string for a number, 1.5
+            steps), naming the option; the core checks the ranges.
+    """
+    return {"t_end": _real("t_end", t_end), "integrator": _name("integrator", integrator),
+            "rtol": _real("rtol", rtol), "atol": _real("atol", atol),
+            "dt": default_dt if dt is None else _real("dt", dt), "theta": _real("theta", theta),
+            "t_eval": t_eval, "max_steps": _whole("max_steps", max_steps),
+            "max_events": _whole("max_events", max_events),
+            "max_step": 0.0 if max_step is None else _real("max_step", max_step),
+            "first_step": 0.0 if first_step is None else _real("first_step", first_step),
+            "max_order": 0 if max_order is None else _whole("max_order", max_order, 2 ** 31 - 1)}
 
 
 def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval,
@@ -194,16 +229,12 @@ def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta
         ValueError: a value of the wrong kind (a string for a number, 1.5
             steps), naming the option; the core checks the ranges.
     """
-    return {"t_end": _real("t_end", t_end), "integrator": _name("integrator", integrator),
-            "smooth_integrator": _name("smooth_integrator", smooth_integrator),
-            "rtol": _real("rtol", rtol), "atol": _real("atol", atol),
-            "dt": 1e-4 if dt is None else _real("dt", dt), "theta": _real("theta", theta),
-            "t_eval": t_eval, "max_steps": _whole("max_steps", max_steps),
-            "max_events": _whole("max_events", max_events),
-            "max_step": 0.0 if max_step is None else _real("max_step", max_step),
-            "first_step": 0.0 if first_step is None else _real("first_step", first_step),
-            "bounce_threshold": _real("bounce_threshold", bounce_threshold),
-            "max_order": 0 if max_order is None else _whole("max_order", max_order, 2 ** 31 - 1)}
+    arguments = _shared_arguments(1e-4, t_end, integrator, rtol, atol, dt, theta, t_eval,
+                                  max_steps, max_events, max_step, first_step, max_order)
+    arguments["smooth_integrator"] = _name("smooth_integrator", smooth_integrator)
+    arguments["bounce_threshold"] = (1e-6 if bounce_threshold is None
+                                     else _real("bounce_threshold", bounce_threshold))
+    return arguments
 
 
 def simulate(
@@ -215,14 +246,14 @@ def simulate(
     atol: float = 1e-10,
     dt: Optional[float] = None,
     t_eval: Optional[Sequence[float]] = None,
-    k_v: float = 100.0,
+    k_v: Optional[float] = None,
     theta: float = 0.5,
     max_steps: int = 1_000_000,
     max_events: int = 100_000,
     max_step: Optional[float] = None,
     first_step: Optional[float] = None,
     smooth_integrator: Optional[str] = None,
-    bounce_threshold: float = 1e-6,
+    bounce_threshold: Optional[float] = None,
     max_order: Optional[int] = None,
 ) -> Result:
     """Simulate a model from t = 0 to ``t_end``.
@@ -238,18 +269,22 @@ def simulate(
             ``"cvode_bdf"`` (default), ``"cvode_adams"``, ``"dopri5"``, ...
             (a Scene with exact backlash and a regularized law: ``"event_driven"``).
         rtol, atol: integration tolerances (ODE and event-driven integrators).
-        dt: fixed step [s] of ``"moreau"`` (default 1e-3).
+        dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,
+            1e-4 for a Scene).
         t_eval: output times [s]; default: every step and event.
-        k_v: regularization gain k_V of the arctan laws [s/m or s^2/m].
+        k_v: for a FrictionBlock: regularization gain k_V of the arctan laws
+            [s/m or s^2/m] (default 100). A Scene carries its own
+            (``friction.k_v``): k_v may only repeat it.
         theta: theta of the Moreau-Jean scheme, in [0, 1].
-        max_steps: bound on integrator steps.
+        max_steps: bound on integrator steps; for ``"moreau"`` on its fixed
+            steps (t_end / dt), refused before the run starts if too small.
         max_events: bound on events (Zeno or chattering raise instead of hanging).
         max_step, first_step: optional step-size controls [s].
-        smooth_integrator: the ODE integrator inside ``"event_driven"`` for a
-            Scene (default ``"rk_verner6"`` for the rigid concept,
-            ``"cvode_bdf"`` for the flexible ones).
-        bounce_threshold: a flank impact slower than this [m/s] is plastic
-            (exact backlash).
+        smooth_integrator: for a Scene only: the ODE integrator inside
+            ``"event_driven"`` (default ``"rk_verner6"`` for the rigid
+            concept, ``"cvode_bdf"`` for the flexible ones).
+        bounce_threshold: for a Scene only: a flank impact slower than this
+            [m/s] is plastic (exact backlash; default 1e-6).
         max_order: highest order of the CVODE methods (default: BDF 5,
             Adams 12; for the flexible drive models with a regularized
             friction law at rtol >= 1e-9, BDF 3: faster and robust with their
@@ -265,20 +300,33 @@ def simulate(
     """
     t_eval_list = [] if t_eval is None else np.asarray(t_eval, dtype=float).ravel().tolist()
     if isinstance(model, _core.FrictionBlock):
-        friction = "coulomb" if friction is None else friction
+        # The kinds are checked as for a Scene; the core validates the names
+        # (listing the allowed ones) and the values.
+        friction = "coulomb" if friction is None else _name("friction", friction,
+                                                            "a friction law")
+        arguments = _shared_arguments(1e-3, t_end, integrator, rtol, atol, dt, theta,
+                                      t_eval_list, max_steps, max_events, max_step, first_step,
+                                      max_order)
         if integrator is None:  # the core lists the fitting integrators, default first
-            integrator = _core.block_integrators(friction)[0]
-        # The core validates the names (listing the allowed ones) and values.
+            arguments["integrator"] = _core.block_integrators(friction)[0]
+        _check_block_options(smooth_integrator=smooth_integrator,
+                             bounce_threshold=bounce_threshold)
         return Result(_core.simulate_block(
-            model, float(t_end), friction, integrator, float(k_v), float(rtol), float(atol),
-            1e-3 if dt is None else float(dt), float(theta), t_eval_list, int(max_steps),
-            int(max_events), 0.0 if max_step is None else float(max_step),
-            0.0 if first_step is None else float(first_step),
-            0 if max_order is None else int(max_order)))
+            model, friction=friction, k_v=100.0 if k_v is None else _real("k_v", k_v),
+            **arguments))
     if isinstance(model, Scene):
-        _check_scene_friction(model, friction)
+        _check_scene_friction(model, friction, k_v)
         # integrator None: the core takes the model's default
         return Result(_core.simulate_drive(model.model(), **_drive_arguments(
             t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
             max_events, max_step, first_step, bounce_threshold, max_order)))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
+
+
+# simulate's options: its parameters but the model and the times, which a
+# study or a DriveBatch sets itself (the command line's study options and the
+# batch's keywords are these).
+_OPTIONS = {name: parameter for name, parameter in inspect.signature(simulate).parameters.items()
+            if name not in ("model", "t_end", "t_eval")}
+# Their defaults (what simulate takes for an option left out).
+_OPTION_DEFAULTS = {name: parameter.default for name, parameter in _OPTIONS.items()}

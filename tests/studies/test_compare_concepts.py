@@ -102,5 +102,9 @@ def test_bad_arguments():
     with pytest.raises(ValueError, match=r"integrator = \"moreau\" is invalid for backlash"):
         compare_concepts(scene.replace(backlash={"axial": 1e-4, "contact": "bistop"}),
                          integrator="moreau", progress=False)
+    # Moreau's fixed steps over the study's t_end count against max_steps.
+    with pytest.raises(ValueError, match="needs 100 steps, more than max_steps = 99"):
+        compare_concepts(scene, t_end=0.1, integrator="moreau", dt=1e-3, max_steps=99,
+                         progress=False)
     with pytest.raises(TypeError, match="bogus"):
         compare_concepts(scene, bogus=1, progress=False)

@@ -277,7 +277,13 @@ def test_efficiency_options_are_checked_before_the_sweep():
                              ({"smooth_integrator": "euler"}, "smooth_integrator"),
                              ({"max_steps": 1.5}, "max_steps = 1.5 is invalid"),
                              ({"atol": "tight"}, "atol = 'tight' is invalid"),
-                             ({"max_events": -1}, "max_events = -1 is invalid")]:
+                             ({"max_events": -1}, "max_events = -1 is invalid"),
+                             # the limits of the method between events (rigid:
+                             # the one-step rk_verner6) and Moreau's step count
+                             ({"max_order": 3}, "max_order = 3 is invalid: must be 0 for "
+                                                "rk_verner6"),
+                             ({"integrator": "moreau", "dt": 1e-3, "max_steps": 10},
+                              "needs 200 steps, more than max_steps = 10")]:
         with pytest.raises(ValueError, match=message):
             efficiency_vs_mu(scene(), [0.1, 0.2], [10.0], progress=False, **options)
 

@@ -83,6 +83,10 @@ int ArkodeErkIntegrator::order(Method method) {
 
 ArkodeErkIntegrator::ArkodeErkIntegrator(Method method, const IntegratorOptions& options)
     : SundialsIntegrator(method_name(method), options, false), method_(method) {
+  check_options(method, options);
+}
+
+void ArkodeErkIntegrator::check_options(Method method, const IntegratorOptions& options) {
   check_fixed_order(options, method_name(method), order(method));
 }
 

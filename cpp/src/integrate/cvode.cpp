@@ -115,6 +115,10 @@ SUNLinearSolver make_block_solver(int n, int quadratures, SUNContext context) {
 
 CvodeIntegrator::CvodeIntegrator(Method method, const IntegratorOptions& options)
     : SundialsIntegrator(method_name(method), options, method == Method::bdf), method_(method) {
+  check_options(method, options);
+}
+
+void CvodeIntegrator::check_options(Method method, const IntegratorOptions& options) {
   const int highest = method == Method::bdf ? 5 : 12;
   if (options.max_order < 0 || options.max_order > highest)
     throw InvalidArgument("max_order = " + std::to_string(options.max_order) +

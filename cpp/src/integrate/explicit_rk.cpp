@@ -88,7 +88,12 @@ ButcherTableau checked_tableau(ButcherTableau tableau) {
 ExplicitRungeKutta::ExplicitRungeKutta(const ButcherTableau& tableau,
                                        const IntegratorOptions& options)
     : tableau_(tableau), options_(options), s_(tableau.stages) {
-  check_fixed_order(options, tableau_.name, tableau_.order);
+  check_options(tableau_, options);
+}
+
+void ExplicitRungeKutta::check_options(const ButcherTableau& tableau,
+                                       const IntegratorOptions& options) {
+  check_fixed_order(options, tableau.name, tableau.order);
 }
 
 void ExplicitRungeKutta::fail(const std::string& flag, const std::string& meaning,

@@ -2,24 +2,40 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 
 namespace leadscrew::integrate {
 
-SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
-                                 const Eigen::Ref<const Eigen::VectorXd>& y0,
-                                 const OutputRequest& output, const MoreauOptions& options) {
-  validate_output_request(output, t0);
+namespace {
+
+// Steps of dt over span, the last one shortened (a span within rounding of a
+// multiple of dt takes that multiple, not one more sliver of a step).
+double step_count_of(double span, double dt) { return std::ceil(span / dt * (1.0 - 1e-12)); }
+
+}  // namespace
+
+void check_moreau_options(double span, const MoreauOptions& options) {
   require_positive("dt", options.dt);
   require_in_range("theta", options.theta, 0.0, 1.0);
-  const double span = output.t_end - t0;
-  const double step_count = std::ceil(span / options.dt * (1.0 - 1e-12));
+  if (options.max_steps < 1)
+    throw InvalidArgument("max_steps = " + std::to_string(options.max_steps) +
+                          " is invalid: must be an integer >= 1");
+  const double step_count = step_count_of(span, options.dt);
   if (step_count > static_cast<double>(options.max_steps))
     throw InvalidArgument("dt = " + format_value(options.dt) + " is invalid: needs " +
                           format_value(step_count) + " steps, more than max_steps = " +
                           std::to_string(options.max_steps));
+}
+
+SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
+                                 const Eigen::Ref<const Eigen::VectorXd>& y0,
+                                 const OutputRequest& output, const MoreauOptions& options) {
+  validate_output_request(output, t0);
+  check_moreau_options(output.t_end - t0, options);
+  const double step_count = step_count_of(output.t_end - t0, options.dt);
   const auto wall_start = std::chrono::steady_clock::now();
 
   const int n = system.size();

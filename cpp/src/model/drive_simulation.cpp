@@ -588,20 +588,14 @@ class DriveHybrid final : public integrate::HybridSystem {
     const double half = 0.5 * p_.clearance;
     const int beyond = dynamics_.play() > half ? 1 : (dynamics_.play() < -half ? -1 : 0);
     if (beyond == 0) return;
-    const Eigen::VectorXd& w = model_.play_gradient();
-    CoordinateVector direction = model_.mass().cwiseInverse();
-    if (p_.speed_controlled) direction[model_.rotor()] = 0.0;
-    direction = direction.cwiseProduct(w);
-    const double metric = w.dot(direction);
+    const PlayDirection direction = play_direction();
     const double kinetic_before = dynamics_.kinetic_energy();
-    const double rate = dynamics_.play_rate();
-    if (beyond * rate > 0.0) v_ -= direction * (rate / metric);
+    if (beyond * dynamics_.play_rate() > 0.0) stop_play(t, direction);
     // The play sums several coordinates: where rounding leaves it beyond the
     // flank, aim inside by as much, then twice as much, and so on.
     double target = beyond * half, shift = 0.0;
     for (int attempt = 0; attempt < 16; ++attempt) {
-      q_ += direction * ((target - dynamics_.play()) / metric);
-      dynamics_.set_state(t, q_, v_);
+      move_play_to(t, direction, target);
       const double excess = beyond * dynamics_.play() - half;
       if (!(excess > 0.0)) break;
       shift = std::max(2.0 * shift, excess);
@@ -610,6 +604,36 @@ class DriveHybrid final : public integrate::HybridSystem {
     impact_loss_ += kinetic_before - dynamics_.kinetic_energy();
     layout_.compress(q_, v_, y);
     set(t, y);
+  }
+
+  // The direction in which an impact and put_back_inside move the
+  // coordinates to change the play: M^-1 grad e (the least kinetic energy
+  // for a given play rate), with a speed-controlled rotor held at its
+  // imposed speed; and the metric grad e . M^-1 grad e.
+  struct PlayDirection {
+    CoordinateVector along;
+    double metric;
+  };
+  PlayDirection play_direction() const {
+    const Eigen::VectorXd& w = model_.play_gradient();
+    CoordinateVector along = model_.mass().cwiseInverse();
+    if (p_.speed_controlled) along[model_.rotor()] = 0.0;
+    along = along.cwiseProduct(w);
+    return {along, w.dot(along)};
+  }
+
+  // Moves the positions along `direction` until the play is `target` (to
+  // round-off), the state set.
+  void move_play_to(double t, const PlayDirection& direction, double target) {
+    q_ += direction.along * ((target - dynamics_.play()) / direction.metric);
+    dynamics_.set_state(t, q_, v_);
+  }
+
+  // Takes the play rate out of the velocities along `direction` (a plastic
+  // frictionless touch), the state set.
+  void stop_play(double t, const PlayDirection& direction) {
+    v_ -= direction.along * (dynamics_.play_rate() / direction.metric);
+    dynamics_.set_state(t, q_, v_);
   }
 
   // How far beyond a flank a free flight starts (a closed flank's drift where
@@ -1105,23 +1129,15 @@ class DriveHybrid final : public integrate::HybridSystem {
   // An exact flank closes: Newton's impact law with Coulomb friction on the
   // impulses. Returns true if the impact ends with zero slip.
   bool flank_impact(double t, int flank) {
-    const double half = 0.5 * p_.clearance;
-    const Eigen::VectorXd& w = model_.play_gradient();
-    CoordinateVector weight = model_.mass().cwiseInverse();
-    if (p_.speed_controlled) weight[model_.rotor()] = 0.0;
-    const double metric = w.dot(weight.cwiseProduct(w));
+    const PlayDirection direction = play_direction();
     // Place the play exactly on the flank (the root is located to round-off).
-    const double target = flank > 0 ? -half : half;
-    q_ += weight.cwiseProduct(w) * ((target - dynamics_.play()) / metric);
-    dynamics_.set_state(t, q_, v_);
+    move_play_to(t, direction, flank > 0 ? -0.5 * p_.clearance : 0.5 * p_.clearance);
     const double kinetic_before = dynamics_.kinetic_energy();
     const CoordinateVector v_before = v_;
     auto close_flank = [&]() {
       // Plastic, grazing or too weak to fly: the flank stays closed with zero
       // normal velocity (the closed flank opens again at once if it cannot push).
-      const double rate = dynamics_.play_rate();
-      v_ -= weight.cwiseProduct(w) * (rate / metric);
-      dynamics_.set_state(t, q_, v_);
+      stop_play(t, direction);
       mode_.contact = ThreadContact::closed;
       mode_.flank = flank;
     };
@@ -1435,11 +1451,42 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   return smooth;
 }
 
+namespace {
+
+// The integrator simulate() runs ("" in the options: the model's default).
+const std::string& chosen_integrator(const DriveParameters& p,
+                                     const DriveSimulationOptions& options) {
+  return options.integrator.empty() ? drive_integrators(p).front() : options.integrator;
+}
+
+// The ODE method of the smooth phases: the integrator itself, or inside
+// "event_driven" the smooth_integrator option (default: our Verner 6(5)
+// with exact event location for the rigid concept, an order of magnitude
+// cheaper than CVODE; BDF for the stiff flexible ones. CVODE used to lose
+// flank events of a rattling nut, 3 to 8 of 36 at rtol 1e-12; with
+// handle_event's touch below resolution it finds the same ones:
+// tests/test_integrate_flank_events.py).
+std::string ode_method(const DriveParameters& p, const std::string& integrator,
+                       const DriveSimulationOptions& options) {
+  if (integrator != "event_driven") return integrator;
+  if (!options.smooth_integrator.empty()) return options.smooth_integrator;
+  return p.concept == Concept::rigid ? "rk_verner6" : "cvode_bdf";
+}
+
+integrate::MoreauOptions moreau_options(const DriveSimulationOptions& options) {
+  integrate::MoreauOptions moreau;
+  moreau.dt = options.dt;
+  moreau.theta = options.theta;
+  moreau.max_steps = options.integrator_options.max_steps;
+  return moreau;
+}
+
+}  // namespace
+
 void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
   const std::vector<std::string>& allowed = drive_integrators(p);
-  // "" is the model's default, the first that fits.
-  const std::string& integrator = options.integrator.empty() ? allowed.front() : options.integrator;
+  const std::string& integrator = chosen_integrator(p, options);
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,
                    "friction.law = \"" + friction_law_name(p.friction) + "\"" +
@@ -1454,22 +1501,32 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   if (options.max_events < 0)
     throw InvalidArgument("max_events = " + std::to_string(options.max_events) +
                           " is invalid: must be an integer >= 0");
-  if (integrator == "moreau") {  // what simulate_moreau checks
-    require_positive("dt", options.dt);
-    require_in_range("theta", options.theta, 0.0, 1.0);
+  if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
+    integrate::check_moreau_options(options.output.t_end, moreau_options(options));
     return;
   }
   if (!options.smooth_integrator.empty())
     require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
-  integrate::validate_options(options.integrator_options);
+  // What make_integrator checks as the smooth phases start, the method's
+  // own limits included (max_order of a one-step method, CVODE's orders).
+  const std::string method = ode_method(p, integrator, options);
+  if (method == integrator) {
+    integrate::check_method_options(method, options.integrator_options);
+    return;
+  }
+  try {
+    integrate::check_method_options(method, options.integrator_options);
+  } catch (const InvalidArgument& e) {  // name the method the user did not name
+    throw InvalidArgument(std::string(e.what()) + "; integrator \"event_driven\" runs \"" +
+                          method + "\" between events here (smooth_integrator chooses another)");
+  }
 }
 
 integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   check_simulation_options(model, options);
   const DriveParameters& p = model.parameters();
-  const std::vector<std::string>& allowed = drive_integrators(p);
-  const std::string& integrator = options.integrator.empty() ? allowed.front() : options.integrator;
+  const std::string& integrator = chosen_integrator(p, options);
 
   StateLayout layout(model);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(layout.size());
@@ -1481,11 +1538,8 @@ integrate::SimulationResult simulate(const DriveModel& model,
   if (integrator == "moreau") {
     DriveMoreau system(model);
     system.initialize(0.0, y0.data());
-    integrate::MoreauOptions moreau;
-    moreau.dt = options.dt;
-    moreau.theta = options.theta;
     integrate::SimulationResult result =
-        integrate::simulate_moreau(system, 0.0, y0, options.output, moreau);
+        integrate::simulate_moreau(system, 0.0, y0, options.output, moreau_options(options));
     result.friction = friction_law_name(p.friction);
     return result;
   }
@@ -1495,17 +1549,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
   integrate::EventDrivenOptions driver;
   driver.integrator_options = options.integrator_options;
   driver.max_events = options.max_events;
-  if (integrator == "event_driven") {
-    // Rigid: our Verner 6(5) with exact event location, an order of
-    // magnitude cheaper than CVODE. (CVODE used to lose flank events of a
-    // rattling nut, 3 to 8 of 36 at rtol 1e-12; with handle_event's touch
-    // below resolution it finds the same ones: tests/test_integrate_flank_events.py.)
-    driver.integrator = !options.smooth_integrator.empty() ? options.smooth_integrator
-                        : p.concept == Concept::rigid      ? "rk_verner6"
-                                                           : "cvode_bdf";
-  } else {
-    driver.integrator = integrator;
-  }
+  driver.integrator = ode_method(p, integrator, options);
   // The regularized friction laws are stiff near zero slip, and with the
   // flexible models' lightly damped modes BDF above order 3 is not stable
   // enough there: capped at 3 it was faster in every case measured

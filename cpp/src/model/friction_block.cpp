@@ -531,6 +531,7 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
     integrate::MoreauOptions moreau;
     moreau.dt = options.dt;
     moreau.theta = options.theta;
+    moreau.max_steps = options.integrator_options.max_steps;
     result = integrate::simulate_moreau(system, 0.0, y0, options.output, moreau);
   } else {
     integrate::EventDrivenOptions driver;

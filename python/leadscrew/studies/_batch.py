@@ -14,7 +14,6 @@ message"``), and its samples are NaN.
 
 from __future__ import annotations
 
-import inspect
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -22,7 +21,7 @@ import numpy as np
 from .. import _core
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
-from ..simulation import _check_scene_friction, _drive_arguments, simulate
+from ..simulation import _OPTION_DEFAULTS, _check_scene_friction, _drive_arguments
 from ._common import check_count
 
 __all__ = ["DriveBatch", "check_simulate_options"]
@@ -33,12 +32,6 @@ _EXCEPTION_NAMES = {"invalid_argument": ValueError.__name__,
                     "simulation": SimulationError.__name__,
                     "jamming": JammingError.__name__,
                     "other": RuntimeError.__name__}
-
-# simulate's keywords with their defaults, but those the batch sets itself.
-_SIMULATE_DEFAULTS = {name: parameter.default
-                      for name, parameter in inspect.signature(simulate).parameters.items()
-                      if parameter.default is not inspect.Parameter.empty and
-                      name != "t_eval"}
 
 
 def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
@@ -52,12 +45,12 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
     """
     # A lookup rather than inspect's Signature.bind (~15 us: a tenth of the
     # Python around a fast sweep).
-    unknown = [name for name in options if name not in _SIMULATE_DEFAULTS]
+    unknown = [name for name in options if name not in _OPTION_DEFAULTS]
     if unknown:
         raise TypeError(f"got an unexpected keyword argument {unknown[0]!r} (the options are "
                         f"those of leadscrew.simulate, but t_eval)")
-    a = dict(_SIMULATE_DEFAULTS, **options)
-    _check_scene_friction(scene, a["friction"])
+    a = dict(_OPTION_DEFAULTS, **options)
+    _check_scene_friction(scene, a["friction"], a["k_v"])
 
     return _drive_arguments(t_end, a["integrator"], a["smooth_integrator"], a["rtol"], a["atol"],
                             a["dt"], a["theta"], np.asarray(t_eval, dtype=float).ravel().tolist(),
@@ -66,7 +59,7 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
                             a["max_order"])
 
 
-def check_simulate_options(scene: Scene, options: Dict[str, Any]) -> None:
+def check_simulate_options(scene: Scene, options: Dict[str, Any], t_end: float) -> None:
     """Check :func:`leadscrew.simulate`'s keywords for a study's simulations
     of ``scene``, once, before they run (otherwise every case fails alike and
     the sweep returns rows of the same message).
@@ -76,6 +69,9 @@ def check_simulate_options(scene: Scene, options: Dict[str, Any]) -> None:
             backlash contact decide which integrators fit).
         options: the keywords (``rtol``, ``integrator``, ``max_steps``, ...;
             not ``t_eval``, which the study sets).
+        t_end: the shortest case's end time [s], > 0 (Moreau's fixed steps
+            over it are counted against ``max_steps``: a case too long for
+            them fails on its own, but one this short fails in every case).
 
     Raises:
         TypeError: an unknown keyword.
@@ -83,7 +79,7 @@ def check_simulate_options(scene: Scene, options: Dict[str, Any]) -> None:
             integrator that does not fit the scene (naming the option, the
             value and what is valid).
     """
-    arguments = _core_arguments(scene, 1.0, [], options)
+    arguments = _core_arguments(scene, t_end, [], options)
     _core.check_drive_options(scene.model(), **arguments)
 
 

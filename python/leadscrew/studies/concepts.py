@@ -97,7 +97,7 @@ def compare_concepts(
             concept_scene.model()
         except ValueError:  # that concept's model is invalid: its row says why
             continue
-        check_simulate_options(concept_scene, options)
+        check_simulate_options(concept_scene, options, t_end)
     function = functools.partial(_run_concept, scene=scene, t_end=t_end, t_eval=t_eval,
                                  options=options)
     outcomes = run_cases(function, concepts, executor=executor, progress=progress,

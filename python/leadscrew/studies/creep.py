@@ -52,7 +52,8 @@ def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float, cycle
     options = dict(options, rtol=rtol, atol=atol)
     if pairs:  # every case has the first one's friction law and contact
         check_simulate_options(alternating_scene(scene, amplitude, pairs[0][0],
-                                                 backlash=pairs[0][1]), options)
+                                                 backlash=pairs[0][1]), options,
+                               cycles / max(frequency for frequency, _ in pairs))
     function = functools.partial(_creep_case, scene=scene, amplitude=amplitude, cycles=cycles,
                                  settle_cycles=settle_cycles, points_per_cycle=points_per_cycle,
                                  options=options)

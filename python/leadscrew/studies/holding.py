@@ -373,7 +373,7 @@ def position_holding(
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     options = dict(simulate_options, rtol=rtol, atol=atol)
-    check_simulate_options(scene, options)
+    check_simulate_options(scene, options, cycles / frequency)
     centred = scene.replace(initial={"play_position": 0.0})
     runs = [centred.replace(loads={"axial_force": static_force}),
             alternating_scene(scene, amplitude, frequency)]
@@ -586,7 +586,7 @@ def min_holding_preload(
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     options = dict(simulate_options, rtol=rtol, atol=atol)
-    check_simulate_options(scene, options)
+    check_simulate_options(scene, options, cycles / (sine["omega"] / (2.0 * math.pi)))
     case = functools.partial(_preload_case, scene=scene, sine=sine, direction=float(direction),
                              cycles=cycles, settle_cycles=settle_cycles,
                              points_per_cycle=points_per_cycle, options=options)

@@ -22,6 +22,8 @@ class ArkodeErkIntegrator final : public sundials::SundialsIntegrator {
   enum class Method { dopri5, verner6 };
   // Throws InvalidArgument for options the method cannot honour (max_order).
   ArkodeErkIntegrator(Method method, const IntegratorOptions& options);
+  // The constructor's checks of `options` for `method`, without building it.
+  static void check_options(Method method, const IntegratorOptions& options);
   // Classical order of the propagated solution.
   static int order(Method method);
 

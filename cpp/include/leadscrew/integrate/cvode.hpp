@@ -20,6 +20,8 @@ class CvodeIntegrator final : public sundials::SundialsIntegrator {
   // Throws InvalidArgument for options the method cannot honour (fixed_step,
   // max_order above 5 for BDF / 12 for Adams).
   CvodeIntegrator(Method method, const IntegratorOptions& options);
+  // The constructor's checks of `options` for `method`, without building it.
+  static void check_options(Method method, const IntegratorOptions& options);
   // CVODE returns output at a time behind its last step from the Nordsieck
   // array, the polynomial of the current order (CV_NORMAL past tout).
   bool interpolates_output() const override { return true; }

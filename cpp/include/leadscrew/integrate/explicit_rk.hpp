@@ -88,6 +88,8 @@ class ExplicitRungeKutta final : public Integrator {
   // methods' factories, dopri5_tableau() and verner6_tableau(), check theirs
   // once when they build them, not per integrator).
   ExplicitRungeKutta(const ButcherTableau& tableau, const IntegratorOptions& options);
+  // The constructor's checks of `options` for `tableau`, without building it.
+  static void check_options(const ButcherTableau& tableau, const IntegratorOptions& options);
 
   std::string name() const override { return tableau_.name; }
   void initialize(OdeSystem& system, double t0,

@@ -28,8 +28,13 @@ class TimeSteppingSystem {
 struct MoreauOptions {
   double dt = 1e-3;
   double theta = 0.5;
-  long max_steps = 100000000;
+  long max_steps = 1000000;  // as IntegratorOptions: the steps t_end / dt may take
 };
+
+// The checks simulate_moreau makes of its options for a run over `span`
+// (t_end - t0 >= 0) before it steps: dt > 0, theta in [0, 1], max_steps >= 1
+// and at most max_steps steps. Throws InvalidArgument naming the option.
+void check_moreau_options(double span, const MoreauOptions& options);
 
 // Steps of exactly dt (the last one shortened to land on t_end). Output at
 // every step, or at t_eval by linear interpolation of the step ends (the

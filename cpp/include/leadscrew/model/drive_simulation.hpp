@@ -31,13 +31,12 @@ struct DriveSimulationOptions {
 const std::vector<std::string>& drive_integrators(const DriveParameters& parameters);
 
 // The checks simulate() makes of its options before it integrates, without
-// simulating (the integrator fits the model's friction law and contact;
-// tolerances, step controls and bounds; output times; Moreau's dt and
-// theta): a sweep refuses up front what would fail every case alike.
-// InvalidArgument naming the option, its value and the valid range. Not
-// covered: what the chosen ODE method checks as it is built (max_order of
-// a one-step method, CVODE's order range) and Moreau's step count against
-// max_steps; those still fail per simulation.
+// simulating: the integrator fits the model's friction law and contact;
+// tolerances, step controls and bounds, with the limits of the ODE method
+// that will run (max_order of a one-step method, CVODE's order range);
+// output times; Moreau's dt, theta and step count against max_steps. A sweep
+// refuses up front what would fail every case alike. InvalidArgument naming
+// the option, its value and the valid range.
 void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options);
 
 integrate::SimulationResult simulate(const DriveModel& model,

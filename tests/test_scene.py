@@ -161,15 +161,23 @@ def test_schema_documents_every_field():
 
 
 def test_nut_position_is_checked_for_both_drives():
-    # The model takes the nut as the point where the thread force enters the
-    # screw (segments a and L - a): a < screw.length for either drive.
+    # The model takes the nut's centre as the point where the thread force
+    # enters the screw (segments a and L - a), the whole nut on the screw:
+    # nut.length / 2 < a < screw.length - nut.length / 2 for either drive.
     for drive, end in (("screw", "drive end"), ("nut", "load end")):
-        with pytest.raises(ValueError) as info:
-            ls.scenes.load("thesis_table_5_1").replace(drive=drive, nut={"position": 0.9})
-        assert str(info.value).startswith(
-            f"nut.position = 0.9 is invalid: must be < screw.length = 0.5 (the nut's distance "
-            f"from the screw's {end}")
-        assert ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": 0.49}))
+        for position in (0.9, 0.495, 0.01, 0.002):
+            with pytest.raises(ValueError) as info:
+                ls.scenes.load("thesis_table_5_1").replace(drive=drive,
+                                                           nut={"position": position})
+            assert str(info.value).startswith(
+                f"nut.position = {position} is invalid: must be in (nut.length / 2, "
+                f"screw.length - nut.length / 2) = (0.01, 0.49) (the distance of the nut's "
+                f"centre from the screw's {end}")
+        for position in (0.4899, 0.0101):
+            assert ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": position}))
+        # the bounds follow the nut's length
+        assert ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": 0.495,
+                                                                 "length": 8e-3}))
 
 
 SINE = {"type": "sine", "amplitude": -40e-3, "omega": 4 * math.pi}

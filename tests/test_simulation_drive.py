@@ -435,6 +435,10 @@ BAD_OPTIONS = [
     ({"bounce_threshold": -1.0}, r"bounce_threshold = -1 is invalid"),
     ({"integrator": "euler"}, r"integrator = \"euler\" is invalid"),
     ({"smooth_integrator": "euler"}, r"smooth_integrator = \"euler\" is invalid"),
+    # it would be ignored: only event_driven has smooth phases between events
+    ({"integrator": "moreau", "smooth_integrator": "cvode_bdf"},
+     r"smooth_integrator = \"cvode_bdf\" is invalid with integrator = \"moreau\": only "
+     r"\"event_driven\" takes one"),
     ({"integrator": "moreau", "dt": 0.0}, r"dt = 0 is invalid"),
     ({"integrator": "moreau", "theta": 1.5}, r"theta = 1.5 is invalid"),
     # Moreau's fixed steps count against max_steps (0.1 s / 1e-4 s = 1000).
@@ -542,6 +546,9 @@ def test_a_block_takes_whole_floats_numpy_numbers_and_0d_arrays_as_before():
                        max_order=np.int32(3), friction="arctan_velocity")
     np.testing.assert_array_equal(same.t, plain.t)
     np.testing.assert_array_equal(same["u"], plain["u"])
+    # integrator "" is the default, as for a Scene
+    default = ls.simulate(block, 0.5, integrator="", t_eval=[0.5])
+    np.testing.assert_array_equal(default["u"], ls.simulate(block, 0.5, t_eval=[0.5])["u"])
 
 
 def test_options_the_model_would_ignore_are_refused():
@@ -595,31 +602,67 @@ def test_flight_without_torque_lands_on_the_penalty_flank(torque, force):
 
 
 def test_a_newton_iterate_off_the_screw_does_not_end_the_run():
-    """0.5 N m winds the nut to the end of the screw, which it reaches at
-    t = 0.42608 s (rk_verner6 and cvode_bdf agree). cvode_bdf stopped at
+    """0.5 N m winds the nut to the end of the screw: its end reaches the
+    screw's (centre at nut.length / 2 = 10 mm) at t = 0.404234 s
+    (rk_verner6 and cvode_bdf agree to 1e-13 s). cvode_bdf stopped at
     t = 0.021 s instead, at the first flank contact: a Newton iterate had
     the nut 0.68 m beyond the end."""
     scene = ls.scenes.load("position_holding").replace(
         loads={"drive_torque": 0.5, "axial_force": 0.0})
-    with pytest.raises(ls.SimulationError, match="the nut reached the end of the screw") as error:
+    with pytest.raises(ls.SimulationError, match=r"the nut reached the end of the screw "
+                                                 r"\(nut position 0\.0(099999|100000)\d* m") as error:
         ls.simulate(scene, 2.0)
-    assert 0.426 < error.value.time < 0.4265
+    assert 0.40423 < error.value.time < 0.40424
+    with pytest.raises(ls.SimulationError) as other:
+        ls.simulate(scene, 2.0, integrator="rk_verner6")
+    assert abs(other.value.time - error.value.time) < 1e-9
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+def test_the_nut_wound_to_the_near_end_ends_the_run_there(drive):
+    """Toward the near end the screw's stiffness grows as 1/a (eq. 4.24): the
+    nut drive's run used to grind to max_steps (CV_TOO_MUCH_WORK at 0.054 s,
+    after 4.5 s of steps) instead of ending. It ends where the nut's end
+    reaches the screw's, with the time and the place."""
+    scene = ls.scenes.load("thesis_table_5_1").replace(
+        drive=drive, nut={"position": 0.02},
+        loads={"drive_torque": -0.5 if drive == "nut" else 0.5, "axial_force": 0.0})
+    with pytest.raises(ls.SimulationError,
+                       match=r"the nut reached the end of the screw \(nut position "
+                             r"0\.0(099999|100000)\d* m") as error:
+        ls.simulate(scene, 1.0)
+    assert 0.0 < error.value.time < 0.2
+    with pytest.raises(ValueError, match=r"nut.position = 0.01 is invalid: must be in "
+                                         r"\(nut.length / 2, screw.length - nut.length / 2\)"):
+        scene.replace(nut={"position": 0.01})
 
 
 @pytest.mark.parametrize("drive", ["screw", "nut"])
 def test_the_nut_runs_off_the_far_end_of_the_screw_as_an_error(drive):
     """Wound to the far end of the flexible screw the nut leaves it, whichever
     part is driven (the nut drive's far end was not checked: the run went on
-    with the nut beyond the screw)."""
+    with the nut beyond the screw). The run ends where the nut's end reaches
+    the screw's: its centre nut.length / 2 = 10 mm from it."""
     scene = ls.scenes.load("thesis_table_5_1").replace(
-        drive=drive, nut={"position": 0.49},
+        drive=drive, nut={"position": 0.47},
         loads={"drive_torque": 0.5 if drive == "nut" else -0.5, "axial_force": 0.0})
     with pytest.raises(ls.SimulationError,
-                       match=r"the nut reached the end of the screw \(nut position 0\.5\d* m "
-                             r"on a screw of length 0\.5 m\)") as error:
+                       match=r"the nut reached the end of the screw \(nut position "
+                             r"0\.4(899999|900000)\d* m on a screw of length 0\.5 m, nut length "
+                             r"0\.02 m\)") as error:
         ls.simulate(scene, 1.0)
     assert 0.0 < error.value.time < 1.0
+    # Moreau's steps stop at the first step that starts beyond it.
+    with pytest.raises(ls.SimulationError, match="the nut reached the end of the screw") as moreau:
+        ls.simulate(scene, 1.0, integrator="moreau", dt=1e-4)
+    assert error.value.time <= moreau.value.time < error.value.time + 0.01
+    params = ls.scenes.load("thesis_table_5_1").replace(drive=drive).model().parameters
     with pytest.raises(ValueError, match="nut.position = 0.5 is invalid: must be < screw.length"):
-        params = ls.scenes.load("thesis_table_5_1").replace(drive=drive).model().parameters
         params.nut_position = 0.5
         ls._core.DriveModel(params)
+    for position in (0.495, 0.005):
+        with pytest.raises(ValueError, match=rf"nut.position = {position} is invalid: must be in "
+                                             r"\(nut.length / 2, screw.length - nut.length / 2\) "
+                                             r"= \(0.01, 0.49\): the whole nut on the screw"):
+            params.nut_position = position
+            ls._core.DriveModel(params)

@@ -126,11 +126,14 @@ SCHEMA: Dict[str, Any] = {
         "youngs_modulus": Field("Young's modulus E_M", "Pa", 2e9, **POSITIVE),
         "poisson": Field("Poisson's ratio nu_M", "", 0.3, low=-1.0, high=0.5, low_open=True),
         "density": Field("density", "kg/m^3", 1400.0, **POSITIVE),
-        "position": Field("initial distance a_0 of the nut from the screw's drive end "
-                          "(drive='screw') or load end (drive='nut'), < screw.length for both "
-                          "drives: the model takes the nut as the point where the thread force "
-                          "enters the screw (screw segments a and L - a, eq. 4.24; nut.length "
-                          "sets only the nut's mass and stiffness)", "m", 0.1, **POSITIVE),
+        "position": Field("initial distance a_0 of the nut's centre from the screw's drive "
+                          "end (drive='screw') or load end (drive='nut'), in (nut.length / 2, "
+                          "screw.length - nut.length / 2) for both drives: the whole nut on the "
+                          "screw. The model takes the nut's centre as the point where the "
+                          "thread force enters the screw (screw segments a and L - a, eq. 4.24); "
+                          "nut.length sets the nut's mass and stiffness, and a run of the "
+                          "flexible concept ends (SimulationError) where the nut's end reaches "
+                          "the screw's", "m", 0.1, **POSITIVE),
     },
     "rotor": {
         "inertia": Field("rotor inertia about the screw axis", "kg*m^2", 1e-5, **POSITIVE),
@@ -626,12 +629,17 @@ def _check_consistency(data: Dict[str, Any]) -> None:
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
-    # Both drives: the nut is a point on the screw at a in (0, L) (schema doc).
-    if data["nut"]["position"] >= data["screw"]["length"]:
+    # Both drives: the nut's centre is at a from the screw's drive (or load)
+    # end, the whole nut on the screw: a in (l_n / 2, L - l_n / 2) (schema
+    # doc; the flexible screw's run ends where the nut's end reaches the
+    # screw's).
+    half, length = data["nut"]["length"] / 2, data["screw"]["length"]
+    if not half < data["nut"]["position"] < length - half:
         end = "drive end" if data["drive"] == "screw" else "load end"
         _fail("nut.position", data["nut"]["position"],
-              f"< screw.length = {data['screw']['length']:g} (the nut's distance from the "
-              f"screw's {end} for drive = {data['drive']!r})")
+              f"in (nut.length / 2, screw.length - nut.length / 2) = ({half:g}, "
+              f"{length - half:g}) (the distance of the nut's centre from the screw's {end} "
+              f"for drive = {data['drive']!r}: the whole nut on the screw)")
     play = data["initial"]["play_position"]
     backlash = data.get("backlash")
     half = backlash["axial"] / 2 if backlash else 0.0
@@ -732,6 +740,7 @@ def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
     p.load_mass = data["load"]["mass"]
     p.screw_length = data["screw"]["length"]
     p.nut_position = data["nut"]["position"]
+    p.nut_length = data["nut"]["length"]
     p.support = data["screw"]["support"]
     over = data["overrides"]
     p.damping_ratio = over["damping_ratio"]

@@ -307,7 +307,7 @@ def simulate(
         arguments = _shared_arguments(1e-3, t_end, integrator, rtol, atol, dt, theta,
                                       t_eval_list, max_steps, max_events, max_step, first_step,
                                       max_order)
-        if integrator is None:  # the core lists the fitting integrators, default first
+        if not arguments["integrator"]:  # None or "": the core lists those that fit, default first
             arguments["integrator"] = _core.block_integrators(friction)[0]
         _check_block_options(smooth_integrator=smooth_integrator,
                              bounce_threshold=bounce_threshold)

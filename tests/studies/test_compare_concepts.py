@@ -102,6 +102,13 @@ def test_bad_arguments():
     with pytest.raises(ValueError, match=r"integrator = \"moreau\" is invalid for backlash"):
         compare_concepts(scene.replace(backlash={"axial": 1e-4, "contact": "bistop"}),
                          integrator="moreau", progress=False)
+    # An option that only some concepts refuse fails their rows only: the
+    # rigid concept's default method between events is one-step (no order).
+    frame = compare_concepts(scene, t_end=0.02, points=5, max_order=3, progress=False)
+    errors = frame.set_index("concept")["error"]
+    assert errors["rigid"].startswith("ValueError: max_order = 3 is invalid: must be 0 for "
+                                      "rk_verner6")
+    assert errors["flexible_nut"] is None and errors["flexible"] is None
     # Moreau's fixed steps over the study's t_end count against max_steps.
     with pytest.raises(ValueError, match="needs 100 steps, more than max_steps = 99"):
         compare_concepts(scene, t_end=0.1, integrator="moreau", dt=1e-3, max_steps=99,

@@ -29,6 +29,7 @@ const std::vector<ScalarField>& scalar_fields() {
       LEADSCREW_FIELD(screw_torsional_rigidity),
       LEADSCREW_FIELD(screw_length),
       LEADSCREW_FIELD(nut_position),
+      LEADSCREW_FIELD(nut_length),
       LEADSCREW_FIELD(screw_axial_stiffness),
       LEADSCREW_FIELD(screw_torsional_stiffness),
       LEADSCREW_FIELD(nut_axial_stiffness),
@@ -234,6 +235,13 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
       throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
                             " is invalid: must be < screw.length = " +
                             format_value(p_.screw_length));
+    require_positive("nut.length", p_.nut_length);
+    if (!(screw_end_margin(p_.nut_position) > 0.0))
+      throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
+                            " is invalid: must be in (nut.length / 2, screw.length - nut.length "
+                            "/ 2) = (" + format_value(0.5 * p_.nut_length) + ", " +
+                            format_value(p_.screw_length - 0.5 * p_.nut_length) +
+                            "): the whole nut on the screw");
   }
   require_nonnegative("overrides.damping_ratio", p_.damping_ratio);
   for (Spring& s : springs_) {
@@ -299,6 +307,11 @@ double DriveModel::nut_position(const double* q) const {
   double a = p_.nut_position;
   for (int i = 0; i < coordinate_count(); ++i) a += position_gradient_[i] * q[i];
   return a;
+}
+
+double DriveModel::screw_end_margin(double nut_position) const noexcept {
+  const double half = 0.5 * p_.nut_length;
+  return std::min(nut_position - half, p_.screw_length - half - nut_position);
 }
 
 double DriveModel::spring_stiffness(const Spring& s, double a, double* derivative) const {

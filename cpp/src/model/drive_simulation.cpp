@@ -201,6 +201,19 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
               energy[kDampingLoss] + energy[kContactLoss] + impact_loss);
 }
 
+// The flexible screw's stiffness grows as 1/a toward an end (eq. 4.24): a
+// run that winds the nut there would take ever smaller steps (CVODE ground to
+// max_steps within a millimetre of the end) instead of ending. It ends where
+// the nut's end reaches the screw's (DriveModel::screw_end_margin).
+[[noreturn]] void nut_left_the_screw(const DriveParameters& p, double t, double nut_position) {
+  throw SimulationError(t,
+                        "the nut reached the end of the screw (nut position " +
+                            format_value(nut_position) + " m on a screw of length " +
+                            format_value(p.screw_length) + " m, nut length " +
+                            format_value(p.nut_length) + " m)",
+                        "shorten t_end, change the loads or place the nut elsewhere");
+}
+
 class DriveHybrid final : public integrate::HybridSystem {
  public:
   DriveHybrid(const DriveModel& model, double bounce_threshold, double t_end,
@@ -222,7 +235,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   }
 
   int size() const override { return layout_.size(); }
-  int root_count() const override { return 4; }
+  // g0..g3: friction and flank events (see roots); g4: the nut's end at the
+  // flexible screw's end.
+  int root_count() const override { return 5; }
   // The work and loss integrals close the state; f does not depend on them.
   int quadrature_count() const override { return kEnergyCount; }
 
@@ -257,7 +272,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   }
 
   void roots(double t, const double* y, double* g) override {
-    g[0] = g[1] = g[2] = g[3] = 1.0;
+    g[0] = g[1] = g[2] = g[3] = g[4] = 1.0;
     if (rigid_) {
       if (mode_.friction == FrictionMode::none) return;
       const RigidSolution s = solve_rigid(t, y);
@@ -274,6 +289,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       return;
     }
     set(t, y);
+    if (p_.concept == Concept::flexible) g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
     const bool active = mode_.contact != ThreadContact::open;
     // A closed flank is watched for its normal force falling through zero
     // whatever the friction (a frictionless one too: it must open).
@@ -343,6 +359,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     const bool open = mode_.contact == ThreadContact::open;
     directions[2] = open ? 1 : 0;
     directions[3] = open ? -1 : 0;
+    directions[4] = -1;  // the nut reaches an end of the screw
     if (watch_fold()) directions[2] = directions[3] = -1;  // both fall towards jamming
   }
 
@@ -392,6 +409,10 @@ class DriveHybrid final : public integrate::HybridSystem {
   }
 
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
+    if (root_info[4] != 0) {
+      set(t, y);
+      nut_left_the_screw(p_, t, model_.nut_position(q_.data()));
+    }
     const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
                            root_info[0] != 0;
     std::string kind = change_mode(t, y, root_info);
@@ -1245,6 +1266,10 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   void step(double t, double h, double theta, const double* y, double* y_next) override {
     const int n = model_.coordinate_count();
     layout_.expand(t, y, q_, v_);
+    if (p_.concept == Concept::flexible) {  // as the event-driven scheme's root g4
+      const double a = model_.nut_position(q_.data());
+      if (!(model_.screw_end_margin(a) > 0.0)) nut_left_the_screw(p_, t, a);
+    }
     const CoordinateVector q0 = q_, v0 = v_;
     dynamics_.set_state(t + theta * h, q_, v_);
     const double play0 = dynamics_.play();
@@ -1501,6 +1526,10 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   if (options.max_events < 0)
     throw InvalidArgument("max_events = " + std::to_string(options.max_events) +
                           " is invalid: must be an integer >= 0");
+  if (!options.smooth_integrator.empty() && integrator != "event_driven")
+    throw InvalidArgument("smooth_integrator = \"" + options.smooth_integrator +
+                          "\" is invalid with integrator = \"" + integrator +
+                          "\": only \"event_driven\" takes one (the method between its events)");
   if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
     integrate::check_moreau_options(options.output.t_end, moreau_options(options));
     return;
@@ -1509,14 +1538,15 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
     require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
   // What make_integrator checks as the smooth phases start, the method's
   // own limits included (max_order of a one-step method, CVODE's orders).
+  integrate::validate_options(options.integrator_options);
   const std::string method = ode_method(p, integrator, options);
-  if (method == integrator) {
+  if (method == integrator || !options.smooth_integrator.empty()) {  // a method the user named
     integrate::check_method_options(method, options.integrator_options);
     return;
   }
   try {
     integrate::check_method_options(method, options.integrator_options);
-  } catch (const InvalidArgument& e) {  // name the method the user did not name
+  } catch (const InvalidArgument& e) {  // the default method's limits: say which it is
     throw InvalidArgument(std::string(e.what()) + "; integrator \"event_driven\" runs \"" +
                           method + "\" between events here (smooth_integrator chooses another)");
   }

@@ -41,7 +41,8 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
 
     Raises:
         TypeError: an unknown keyword (or ``t_eval``, which the batch sets).
-        ValueError: ``friction`` differs from the scene's law.
+        ValueError: ``friction`` or ``k_v`` differs from the scene's
+            (``friction.law``, ``friction.k_v``).
     """
     # A lookup rather than inspect's Signature.bind (~15 us: a tenth of the
     # Python around a fast sweep).
@@ -106,9 +107,9 @@ class DriveBatch:
 
     Raises:
         TypeError: an unknown keyword.
-        ValueError: the scene's model is invalid, ``friction`` is not the
-            scene's law, or a parameter name is unknown (the message lists
-            those allowed).
+        ValueError: the scene's model is invalid, ``friction`` or ``k_v``
+            is not the scene's (``friction.law``, ``friction.k_v``), or a
+            parameter name is unknown (the message lists those allowed).
 
     A DriveBatch pickles (as its scene and arguments; a process-based executor
     rebuilds the core parameters once per task).

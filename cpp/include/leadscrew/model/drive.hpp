@@ -73,6 +73,9 @@ struct DriveParameters {
   double screw_torsional_rigidity = 0.0;
   double screw_length = 0.5;
   double nut_position = 0.1;
+  // The nut's length: its centre a keeps the whole nut on the screw while
+  // nut_length / 2 < a < screw_length - nut_length / 2 (screw_end_margin).
+  double nut_length = 0.02;
   ScrewSupport support = ScrewSupport::both_ends;
   double screw_axial_stiffness = 0.0;      // > 0: constant override
   double screw_torsional_stiffness = 0.0;  // > 0: constant override
@@ -148,6 +151,10 @@ class DriveModel {
 
   // Stiffness of a spring at nut position a, and its derivative d k / d a.
   double spring_stiffness(const Spring& s, double nut_position, double* derivative) const;
+  // How far the nut's nearer end is inside the flexible screw's nearer end
+  // [m] with its centre at nut_position: > 0 while the whole nut is on the
+  // screw (the start must be; a run ends where it reaches 0).
+  double screw_end_margin(double nut_position) const noexcept;
   double nut_position(const double* q) const;
 
  private:

@@ -91,18 +91,14 @@ void validate_options(const IntegratorOptions& options) {
   require_nonnegative("max_step", options.max_step);
   require_nonnegative("first_step", options.first_step);
   require_nonnegative("fixed_step", options.fixed_step);
-  if (options.max_steps < 1)
-    throw InvalidArgument("max_steps = " + std::to_string(options.max_steps) +
-                          " is invalid: must be an integer >= 1");
+  check_max_steps(options.max_steps);
   if (options.max_order < 0)
     throw InvalidArgument("max_order = " + std::to_string(options.max_order) +
                           " is invalid: must be 0 (the method's default) or a positive order");
 }
 
-void check_method_options(const std::string& name, const IntegratorOptions& options) {
-  const Method& method = method_named(name);
-  validate_options(options);
-  method.check(options);
+void check_method_limits(const std::string& name, const IntegratorOptions& options) {
+  method_named(name).check(options);
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name,

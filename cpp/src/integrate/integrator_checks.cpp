@@ -54,6 +54,12 @@ void check_stop_time(double t_out, double t_stop) {
                           " is invalid: must be >= t_out = " + format_value(t_out));
 }
 
+void check_max_steps(long max_steps) {
+  if (max_steps < 1)
+    throw InvalidArgument("max_steps = " + std::to_string(max_steps) +
+                          " is invalid: must be an integer >= 1");
+}
+
 void check_fixed_order(const IntegratorOptions& options, const std::string& method, int order) {
   if (options.max_order != 0)
     throw InvalidArgument("max_order = " + std::to_string(options.max_order) +

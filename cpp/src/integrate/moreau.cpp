@@ -6,36 +6,29 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/integrate/integrator_checks.hpp"
 
 namespace leadscrew::integrate {
 
-namespace {
-
-// Steps of dt over span, the last one shortened (a span within rounding of a
-// multiple of dt takes that multiple, not one more sliver of a step).
-double step_count_of(double span, double dt) { return std::ceil(span / dt * (1.0 - 1e-12)); }
-
-}  // namespace
-
-void check_moreau_options(double span, const MoreauOptions& options) {
+long check_moreau_options(double span, const MoreauOptions& options) {
   require_positive("dt", options.dt);
   require_in_range("theta", options.theta, 0.0, 1.0);
-  if (options.max_steps < 1)
-    throw InvalidArgument("max_steps = " + std::to_string(options.max_steps) +
-                          " is invalid: must be an integer >= 1");
-  const double step_count = step_count_of(span, options.dt);
+  check_max_steps(options.max_steps);
+  // A span within rounding of a multiple of dt takes that multiple, not one
+  // more sliver of a step.
+  const double step_count = std::ceil(span / options.dt * (1.0 - 1e-12));
   if (step_count > static_cast<double>(options.max_steps))
     throw InvalidArgument("dt = " + format_value(options.dt) + " is invalid: needs " +
                           format_value(step_count) + " steps, more than max_steps = " +
                           std::to_string(options.max_steps));
+  return static_cast<long>(step_count);
 }
 
 SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
                                  const Eigen::Ref<const Eigen::VectorXd>& y0,
                                  const OutputRequest& output, const MoreauOptions& options) {
   validate_output_request(output, t0);
-  check_moreau_options(output.t_end - t0, options);
-  const double step_count = step_count_of(output.t_end - t0, options.dt);
+  const long steps = check_moreau_options(output.t_end - t0, options);
   const auto wall_start = std::chrono::steady_clock::now();
 
   const int n = system.size();
@@ -47,7 +40,7 @@ SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
   std::vector<double> values(channel_count), previous_values(channel_count),
       interpolated(channel_count);
   const bool every_step = output.t_eval.empty();
-  result.reserve(every_step ? static_cast<std::size_t>(step_count) + 1 : output.t_eval.size());
+  result.reserve(every_step ? static_cast<std::size_t>(steps) + 1 : output.t_eval.size());
 
   std::size_t next_eval = 0;
   const std::size_t eval_count = output.t_eval.size();
@@ -58,7 +51,6 @@ SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
     ++next_eval;
   }
 
-  const long steps = static_cast<long>(step_count);
   double t = t0;
   for (long k = 0; k < steps; ++k) {
     const double t_next = (k + 1 == steps) ? output.t_end : t0 + (k + 1) * options.dt;

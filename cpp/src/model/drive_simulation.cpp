@@ -1540,13 +1540,11 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   // own limits included (max_order of a one-step method, CVODE's orders).
   integrate::validate_options(options.integrator_options);
   const std::string method = ode_method(p, integrator, options);
-  if (method == integrator || !options.smooth_integrator.empty()) {  // a method the user named
-    integrate::check_method_options(method, options.integrator_options);
-    return;
-  }
   try {
-    integrate::check_method_options(method, options.integrator_options);
-  } catch (const InvalidArgument& e) {  // the default method's limits: say which it is
+    integrate::check_method_limits(method, options.integrator_options);
+  } catch (const InvalidArgument& e) {
+    if (method == integrator || !options.smooth_integrator.empty()) throw;  // the user named it
+    // The default method between events: say which it is.
     throw InvalidArgument(std::string(e.what()) + "; integrator \"event_driven\" runs \"" +
                           method + "\" between events here (smooth_integrator chooses another)");
   }

@@ -38,6 +38,10 @@ void check_output_time(double t_out, double t);
 // advance_to_output's stop: t_stop >= t_out. Throws InvalidArgument.
 void check_stop_time(double t_out, double t_stop);
 
+// A bound on steps: max_steps >= 1 (the ODE methods' and Moreau's).
+// Throws InvalidArgument.
+void check_max_steps(long max_steps);
+
 // A one-step method of fixed order takes no max_order (it must be 0).
 // Throws InvalidArgument naming the method and its order.
 void check_fixed_order(const IntegratorOptions& options, const std::string& method, int order);

@@ -33,8 +33,9 @@ struct MoreauOptions {
 
 // The checks simulate_moreau makes of its options for a run over `span`
 // (t_end - t0 >= 0) before it steps: dt > 0, theta in [0, 1], max_steps >= 1
-// and at most max_steps steps. Throws InvalidArgument naming the option.
-void check_moreau_options(double span, const MoreauOptions& options);
+// and at most max_steps steps. Returns the step count (the last step
+// shortened to land on t_end). Throws InvalidArgument naming the option.
+long check_moreau_options(double span, const MoreauOptions& options);
 
 // Steps of exactly dt (the last one shortened to land on t_end). Output at
 // every step, or at t_eval by linear interpolation of the step ends (the

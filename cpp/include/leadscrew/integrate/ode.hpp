@@ -140,10 +140,10 @@ const std::vector<std::string>& integrator_names();
 // max_order are checked by the method).
 void validate_options(const IntegratorOptions& options);
 
-// Every check make_integrator(name, options) makes, without building the
-// method: the name, validate_options and the method's own limits (max_order
-// of a one-step method, CVODE's order range, fixed_step only for the
-// explicit Runge-Kutta methods). Throws InvalidArgument as make_integrator.
-void check_method_options(const std::string& name, const IntegratorOptions& options);
+// The checks make_integrator(name, options) makes beyond validate_options,
+// without building the method: the name and the method's own limits
+// (max_order of a one-step method, CVODE's order range, fixed_step only for
+// the explicit Runge-Kutta methods). Throws InvalidArgument as make_integrator.
+void check_method_limits(const std::string& name, const IntegratorOptions& options);
 
 }  // namespace leadscrew::integrate

@@ -15,18 +15,26 @@ passed as executor (Python threads sending chunks, for both):
   (Table 5.1 drive, exact backlash, 5 N mm held torque, 30 N alternating force
   at 5-50 Hz, backlash 0.05-0.5 mm, 6 cycles each).
 
-For each: wall time serial and threaded (the minimum over --repeats
+For each: wall time serial and threaded (the median over --repeats
 interleaved runs; --cheap-repeats for the rigid efficiency sweep, which takes
-milliseconds), the default path's speed-up (of the minima, and of the
-medians), the process's CPU time over wall time in the threaded run (2.0:
-both cores were ours), the time per simulation in the sweep against a single
+milliseconds), the default path's speed-up (the median over the repeats of
+the ratio of a serial run to the threaded run right after it, which sees the
+same host: this VM's speed drifts by tens of percent within seconds; with
+the range of those ratios and the ratio of the minima beside it), the
+process's CPU time over wall time in the fastest threaded run (2.0: both
+cores were ours), the time per simulation in the sweep against a single
 simulation of one case run alone (the minimum over many repeats; for
 efficiency_vs_mu one C++ batch call of one case with its measures, the path
 the sweep takes), the share of the serial time spent inside the C++ core
 (its own wall-time measurement; the rest holds the GIL: with w workers the
 threaded time is at least max(Python part, total / w), so the speed-up can
-reach w while the Python share stays below 1 - 1/w), and the load average
-before and after (other work on the machine slows the threaded runs first).
+reach w while the Python share stays below 1 - 1/w), the sum of the cases'
+own clocks in the threaded run over that in the serial run before it (the
+median over the repeats: 1.0 means each case ran as fast beside another as
+alone, so the speed-up is the worker count but for the serial Python and
+the imbalance at the end; above 1, the cores gave each case less while both
+were busy), and the load average before and after (other work on the
+machine slows the threaded runs first).
 Before and after the sweeps it also times two threads each running one
 C++ batch with no Python in between (two Python threads, and the batch's own
 two workers): that speed-up is what the machine's cores give at the time
@@ -122,26 +130,40 @@ def core_scaling(repeats=5, cases=1000):
 
 def run(name, sweep, case_function, case, n, repeats):
     """Serial, the default path (executor=None) and a reused thread pool,
-    interleaved; the minimum of each."""
+    interleaved, each repeat a serial run right before its threaded one."""
     single = single_case_time(case_function, case)
-    serial, threaded, pooled = [], [], []
+    serial, threaded, pooled, core, clocks = [], [], [], [], []
     with concurrent.futures.ThreadPoolExecutor(default_workers()) as pool:
         for _ in range(repeats):
             wall, cpu, frame = timed(lambda: sweep(SerialExecutor()))
             serial.append((wall, cpu))
-            wall, cpu, _ = timed(lambda: sweep(None))
+            serial_clocks = float(np.nansum(frame["wall_time"]))
+            core.append(serial_clocks / wall)
+            wall, cpu, threaded_frame = timed(lambda: sweep(None))
             threaded.append((wall, cpu))
+            threaded_clocks = float(np.nansum(threaded_frame["wall_time"]))
+            # (no case simulated: no ratio)
+            clocks.append(threaded_clocks / serial_clocks if serial_clocks > 0 else np.nan)
             wall, cpu, _ = timed(lambda: sweep(pool))
             pooled.append((wall, cpu))
-    core = float(np.nansum(frame["wall_time"]))
-    median_speedup = (np.median([w for w, _ in serial]) / np.median([w for w, _ in threaded]))
-    serial, threaded, pooled = min(serial), min(threaded), min(pooled)
+    serial_walls = np.array([w for w, _ in serial])
+    threaded_walls = np.array([w for w, _ in threaded])
+    # This VM's speed drifts by tens of percent over seconds (README): a
+    # serial run and the threaded run right after it see the same host, so
+    # the speed-up is the median of those pairs' ratios; the ratio of the
+    # two minima is shown beside it.
+    paired = serial_walls / threaded_walls
+    fastest = min(threaded)
     return {
-        "name": name, "n": n, "serial": serial[0], "threaded": threaded[0],
-        "pooled": pooled[0], "speedup": serial[0] / threaded[0],
-        "median_speedup": median_speedup,
-        "parallelism": threaded[1] / threaded[0], "per_sim": threaded[0] / n,
-        "single": single, "core_share": core / serial[0],
+        "name": name, "n": n, "serial": float(np.median(serial_walls)),
+        "threaded": float(np.median(threaded_walls)),
+        "pooled": float(np.median([w for w, _ in pooled])),
+        "speedup": float(np.median(paired)),
+        "speedup_range": (float(paired.min()), float(paired.max())),
+        "min_speedup": float(serial_walls.min() / threaded_walls.min()),
+        "parallelism": fastest[1] / fastest[0], "per_sim": float(np.median(threaded_walls)) / n,
+        "single": single, "core_share": float(np.median(core)),
+        "case_clocks": float(np.median(clocks)),
         "failed": int(frame["error"].notna().sum()), "target": TARGETS.get(name.split(" ")[0]),
     }
 
@@ -221,18 +243,21 @@ def main():
           f"{scaling_before[0]:.2f}x before, {scaling_after[0]:.2f}x after (two Python "
           f"threads); {scaling_before[1]:.2f}x, {scaling_after[1]:.2f}x (the batch's own two "
           f"workers)")
-    print(f"minimum of {args.repeats} runs per column ({args.cheap_repeats} for the rigid "
-          f"efficiency sweep; but the speed-up of medians)\n")
-    print("| sweep | sims | serial [s] | threads [s] | speed-up | speed-up of medians | "
+    print(f"medians of {args.repeats} interleaved runs per column ({args.cheap_repeats} for "
+          f"the rigid efficiency sweep); speed-up: the median of the ratios serial / "
+          f"threads of each repeat's two runs (their range), and the ratio of the minima\n")
+    print("| sweep | sims | serial [s] | threads [s] | speed-up (range) | speed-up of minima | "
           "CPU / wall, threads | target [s] | per sim, threads [ms] | single sim [ms] | "
-          "C++ share of serial | failed |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+          "C++ share of serial | case clocks, threads / serial | failed |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         target = f"< {r['target']:g}" if r["target"] else ""
+        low, high = r["speedup_range"]
         print(f"| {r['name']} | {r['n']} | {r['serial']:.4f} | {r['threaded']:.4f} | "
-              f"{r['speedup']:.2f}x | {r['median_speedup']:.2f}x | {r['parallelism']:.2f} | "
-              f"{target} | {r['per_sim'] * 1e3:.3f} | {r['single'] * 1e3:.3f} | "
-              f"{r['core_share']:.0%} | {r['failed']} |")
+              f"{r['speedup']:.2f}x ({low:.2f}-{high:.2f}) | {r['min_speedup']:.2f}x | "
+              f"{r['parallelism']:.2f} | {target} | {r['per_sim'] * 1e3:.3f} | "
+              f"{r['single'] * 1e3:.3f} | {r['core_share']:.0%} | {r['case_clocks']:.2f} | "
+              f"{r['failed']} |")
     print("\n(threads: the default, executor=None: the C++ batch's own threads for "
           "efficiency_vs_mu, a new thread pool per call for creep_map; a reused "
           "ThreadPoolExecutor passed as executor gave "

@@ -65,14 +65,18 @@ def test_speed_controlled_drive_needs_the_closed_form_torques():
 def holding_scene(pitch, diameter, mu, beta, torque, force):
     """A rigid drive whose rotating inertia equals m r^2: then
     Delta = J + m p^2 > 0 for every lead angle and mu' (docs/physics/rigid_drive.md),
-    so the static bounds are not masked by dynamic jamming."""
+    so the static bounds are not masked by dynamic jamming. The screw is 6 m
+    long with the nut in its middle: the 50 g load of the fastest cases
+    travels up to ~2.5 m in 0.05 s (a run ends where the nut leaves the
+    screw), and the rotating screw's inertia is set, so its length does not
+    enter the dynamics."""
     load, nut, screw_inertia = 0.05, 1e-6, 1e-9
     radius = diameter / 2
     return ls.Scene.from_dict({
         "thread": {"pitch": pitch, "mean_diameter": diameter, "flank_angle": beta},
         "friction": {"law": "coulomb", "mu": mu},
-        "screw": {"radius": radius},
-        "nut": {"outer_radius": diameter},
+        "screw": {"radius": radius, "length": 6.0},
+        "nut": {"outer_radius": diameter, "position": 3.0},
         "rotor": {"inertia": (load + nut) * radius**2 - screw_inertia},
         "load": {"mass": load},
         "overrides": {"nut_mass": nut, "screw_inertia": screw_inertia},
@@ -666,3 +670,67 @@ def test_the_nut_runs_off_the_far_end_of_the_screw_as_an_error(drive):
                                              r"= \(0.01, 0.49\): the whole nut on the screw"):
             params.nut_position = position
             ls._core.DriveModel(params)
+
+
+def _run_off_time(scene, integrator=None, **options):
+    """The time of the SimulationError that ends a run off the screw."""
+    if integrator is not None:
+        options["integrator"] = integrator
+    with pytest.raises(ls.SimulationError, match=r"the nut reached the end of the screw \(nut "
+                                                 r"position ") as error:
+        ls.simulate(scene, 10.0, **options)
+    return error.value.time
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut"])
+def test_every_concept_ends_where_the_nut_leaves_the_screw(concept, drive):
+    """The screw has the scene's length for every concept, not only for the
+    flexible one: a speed-controlled drive (|omega| = 100 rad/s, no axial load)
+    moves the nut along the screw at lead_per_radian * omega, so its end
+    reaches the screw's end after d / (lead_per_radian * omega), d from its
+    centre's start to nut.length / 2 before that end. The rigid drive's thread
+    is a kinematic constraint: that time holds to the root's resolution; the
+    flexible nut's springs lag by far less than 1e-3 of it. The direction: the
+    rotor's forward turn moves the load along -h x; the load moves with the
+    nut (drive = "screw") or with the screw (drive = "nut")."""
+    # Turned so that the nut heads for the near end, 20 mm away: 1.26 s.
+    omega, start = (100.0 if drive == "screw" else -100.0), 0.03
+    scene = ls.Scene.from_dict(thesis_scene(
+        concept=concept, drive=drive, nut={"position": start},
+        loads={"drive_torque": None, "drive_speed": omega, "axial_force": 0.0},
+        initial={"rotor_speed": omega}))
+    thread = scene.thread
+    nut_speed = -thread.hand_sign * thread.lead_per_radian * omega * (1 if drive == "screw" else -1)
+    half = 0.5 * scene["nut"]["length"]
+    distance = start - half if nut_speed < 0 else scene["screw"]["length"] - half - start
+    expected = distance / abs(nut_speed)
+    assert distance == pytest.approx(0.02)
+    event_driven = _run_off_time(scene)
+    tolerance = 1e-9 if concept == "rigid" else 1e-3 * expected
+    assert event_driven == pytest.approx(expected, abs=tolerance)
+    # Moreau-Jean checks at the start of every step: it ends within one step.
+    dt = 1e-3
+    moreau = _run_off_time(scene, "moreau", dt=dt)
+    assert event_driven - 1e-9 <= moreau <= event_driven + dt + 1e-9
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+def test_the_one_degree_of_freedom_path_ends_where_the_nut_leaves_the_screw(drive):
+    """The torque-driven rigid drive runs on its own one-degree-of-freedom
+    path (RigidDriveModes): it watches the screw's end too. Without friction
+    and under a constant torque the load's displacement is c t^2 exactly; c
+    from a run that ends before the nut leaves gives the time it does."""
+    torque, start = 0.05, 0.03
+    scene = ls.Scene.from_dict(thesis_scene(
+        drive=drive, nut={"position": start}, friction={"mu": 0.0},
+        loads={"drive_torque": torque, "axial_force": 0.0}))
+    early = ls.simulate(scene, 0.01, rtol=1e-12, atol=1e-14)
+    curvature = early["u_load"][-1] / early.t[-1] ** 2
+    nut_per_load = 1.0 if drive == "screw" else -1.0
+    half = 0.5 * scene["nut"]["length"]
+    distance = (start - half if nut_per_load * curvature < 0
+                else scene["screw"]["length"] - half - start)
+    expected = math.sqrt(distance / abs(curvature))
+    assert expected > 0.01
+    assert _run_off_time(scene, rtol=1e-12, atol=1e-14) == pytest.approx(expected, rel=1e-9)

@@ -34,8 +34,12 @@ MIXED_LOADS = {
 
 
 def rigid_scene(drive="screw", hand="right", flank_angle=0.0, **changes):
-    """The thesis drive with the reference's inertias (rotor 1e-6 kg m^2)."""
+    """The thesis drive with the reference's inertias (rotor 1e-6 kg m^2), the
+    nut in the middle of its 0.5 m screw: the nut-driven screw travels up to
+    0.12 m in 2 s under the mixed loads (a run ends where the nut leaves the
+    screw; the rigid concept's dynamics do not depend on where the nut is)."""
     thread = {"pitch": 1e-3, "mean_diameter": 20e-3, "hand": hand, "flank_angle": flank_angle}
+    changes["nut"] = {"position": 0.25, **changes.get("nut", {})}
     return thesis_scene(drive=drive, thread=thread, rotor={"inertia": 1e-6}, **changes)
 
 

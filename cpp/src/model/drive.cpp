@@ -229,20 +229,21 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
     if (p_.screw_axial_stiffness <= 0.0) require_positive("screw axial rigidity E A", p_.screw_axial_rigidity);
     if (p_.screw_torsional_stiffness <= 0.0)
       require_positive("screw torsional rigidity G I_p", p_.screw_torsional_rigidity);
-    require_positive("screw.length", p_.screw_length);
-    require_positive("nut.position", p_.nut_position);
-    if (!(p_.nut_position < p_.screw_length))
-      throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
-                            " is invalid: must be < screw.length = " +
-                            format_value(p_.screw_length));
-    require_positive("nut.length", p_.nut_length);
-    if (!(screw_end_margin(p_.nut_position) > 0.0))
-      throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
-                            " is invalid: must be in (nut.length / 2, screw.length - nut.length "
-                            "/ 2) = (" + format_value(0.5 * p_.nut_length) + ", " +
-                            format_value(p_.screw_length - 0.5 * p_.nut_length) +
-                            "): the whole nut on the screw");
   }
+  // The whole nut on the screw, for every concept (a run ends where it leaves).
+  require_positive("screw.length", p_.screw_length);
+  require_positive("nut.position", p_.nut_position);
+  if (!(p_.nut_position < p_.screw_length))
+    throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
+                          " is invalid: must be < screw.length = " +
+                          format_value(p_.screw_length));
+  require_positive("nut.length", p_.nut_length);
+  if (!(screw_end_margin(p_.nut_position) > 0.0))
+    throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
+                          " is invalid: must be in (nut.length / 2, screw.length - nut.length "
+                          "/ 2) = (" + format_value(0.5 * p_.nut_length) + ", " +
+                          format_value(p_.screw_length - 0.5 * p_.nut_length) +
+                          "): the whole nut on the screw");
   require_nonnegative("overrides.damping_ratio", p_.damping_ratio);
   for (Spring& s : springs_) {
     double derivative = 0.0;

@@ -201,10 +201,12 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
               energy[kDampingLoss] + energy[kContactLoss] + impact_loss);
 }
 
-// The flexible screw's stiffness grows as 1/a toward an end (eq. 4.24): a
-// run that winds the nut there would take ever smaller steps (CVODE ground to
-// max_steps within a millimetre of the end) instead of ending. It ends where
-// the nut's end reaches the screw's (DriveModel::screw_end_margin).
+// A run ends where the nut's end reaches the screw's
+// (DriveModel::screw_end_margin), for every concept: beyond it the thread no
+// longer holds the nut, and the results would describe a drive that does not
+// exist. The flexible screw needs it besides: its stiffness grows as 1/a
+// toward an end (eq. 4.24), and a run that wound the nut there took ever
+// smaller steps (CVODE ground to max_steps within a millimetre of the end).
 [[noreturn]] void nut_left_the_screw(const DriveParameters& p, double t, double nut_position) {
   throw SimulationError(t,
                         "the nut reached the end of the screw (nut position " +
@@ -236,7 +238,7 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   int size() const override { return layout_.size(); }
   // g0..g3: friction and flank events (see roots); g4: the nut's end at the
-  // flexible screw's end.
+  // screw's end, for every concept (the scene gives every screw its length).
   int root_count() const override { return 5; }
   // The work and loss integrals close the state; f does not depend on them.
   int quadrature_count() const override { return kEnergyCount; }
@@ -274,6 +276,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   void roots(double t, const double* y, double* g) override {
     g[0] = g[1] = g[2] = g[3] = g[4] = 1.0;
     if (rigid_) {
+      layout_.expand(t, y, q_, v_);  // for the nut's position alone
+      g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
       if (mode_.friction == FrictionMode::none) return;
       const RigidSolution s = solve_rigid(t, y);
       const double mu = model_.effective_mu();
@@ -289,7 +293,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       return;
     }
     set(t, y);
-    if (p_.concept == Concept::flexible) g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
+    g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
     const bool active = mode_.contact != ThreadContact::open;
     // A closed flank is watched for its normal force falling through zero
     // whatever the friction (a frictionless one too: it must open).
@@ -1266,7 +1270,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   void step(double t, double h, double theta, const double* y, double* y_next) override {
     const int n = model_.coordinate_count();
     layout_.expand(t, y, q_, v_);
-    if (p_.concept == Concept::flexible) {  // as the event-driven scheme's root g4
+    {  // as the event-driven scheme's root g4, for every concept
       const double a = model_.nut_position(q_.data());
       if (!(model_.screw_end_margin(a) > 0.0)) nut_left_the_screw(p_, t, a);
     }

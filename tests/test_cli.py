@@ -168,6 +168,20 @@ def test_run_writes_series_and_figure(tmp_path, capsys):
         np.testing.assert_allclose(frame[name], expected[name], rtol=1e-15, atol=0)
 
 
+@pytest.mark.parametrize("name", ["default", "thesis_table_5_1", "position_holding"])
+def test_run_every_shipped_scene(tmp_path, capsys, name):
+    """run on each shipped scene (a short run: position_holding's arctan law
+    with k_v = 1e6 s/m takes about a million BDF steps per simulated second)
+    writes its series and figure, and the series is simulate's."""
+    code, out, err = run_main(capsys, "run", name, "-o", tmp_path, "--t-end", "0.05",
+                              "--points", "11")
+    assert code == 0 and err == ""
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"{name}.csv", f"{name}.png"]
+    frame = pd.read_csv(tmp_path / f"{name}.csv")
+    expected = ls.simulate(shipped.load(name), 0.05, t_eval=np.linspace(0, 0.05, 11))
+    np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
+
+
 def test_run_a_scene_file_with_options(tmp_path, capsys):
     path = scene_file(tmp_path, friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 100.0})
     out_dir = tmp_path / "new" / "dir"

@@ -656,7 +656,7 @@ def test_the_nut_runs_off_the_far_end_of_the_screw_as_an_error(drive):
                              r"0\.02 m\)") as error:
         ls.simulate(scene, 1.0)
     assert 0.0 < error.value.time < 1.0
-    # Moreau's steps stop at the first step that starts beyond it.
+    # Moreau's steps stop at the end of the first step that ends beyond it.
     with pytest.raises(ls.SimulationError, match="the nut reached the end of the screw") as moreau:
         ls.simulate(scene, 1.0, integrator="moreau", dt=1e-4)
     assert error.value.time <= moreau.value.time < error.value.time + 0.01
@@ -682,9 +682,10 @@ def _run_off_time(scene, integrator=None, **options):
     return error.value.time
 
 
+@pytest.mark.parametrize("end", ["near", "far"])
 @pytest.mark.parametrize("drive", ["screw", "nut"])
 @pytest.mark.parametrize("concept", ["rigid", "flexible_nut"])
-def test_every_concept_ends_where_the_nut_leaves_the_screw(concept, drive):
+def test_every_concept_ends_where_the_nut_leaves_the_screw(concept, drive, end):
     """The screw has the scene's length for every concept, not only for the
     flexible one: a speed-controlled drive (|omega| = 100 rad/s, no axial load)
     moves the nut along the screw at lead_per_radian * omega, so its end
@@ -694,8 +695,10 @@ def test_every_concept_ends_where_the_nut_leaves_the_screw(concept, drive):
     flexible nut's springs lag by far less than 1e-3 of it. The direction: the
     rotor's forward turn moves the load along -h x; the load moves with the
     nut (drive = "screw") or with the screw (drive = "nut")."""
-    # Turned so that the nut heads for the near end, 20 mm away: 1.26 s.
-    omega, start = (100.0 if drive == "screw" else -100.0), 0.03
+    # Turned so that the nut heads for the chosen end, 20 mm away: 1.26 s.
+    toward_near = 1.0 if end == "near" else -1.0
+    omega = 100.0 * toward_near * (1.0 if drive == "screw" else -1.0)
+    start = 0.03 if end == "near" else 0.47
     scene = ls.Scene.from_dict(thesis_scene(
         concept=concept, drive=drive, nut={"position": start},
         loads={"drive_torque": None, "drive_speed": omega, "axial_force": 0.0},
@@ -709,10 +712,14 @@ def test_every_concept_ends_where_the_nut_leaves_the_screw(concept, drive):
     event_driven = _run_off_time(scene)
     tolerance = 1e-9 if concept == "rigid" else 1e-3 * expected
     assert event_driven == pytest.approx(expected, abs=tolerance)
-    # Moreau-Jean checks at the start of every step: it ends within one step.
+    assert (nut_speed < 0) == (end == "near")
+    # Moreau-Jean checks at the end of every step: it ends within one step,
+    # the last one included (a run whose end is just past the event).
     dt = 1e-3
     moreau = _run_off_time(scene, "moreau", dt=dt)
     assert event_driven - 1e-9 <= moreau <= event_driven + dt + 1e-9
+    with pytest.raises(ls.SimulationError, match="the nut reached the end of the screw"):
+        ls.simulate(scene, moreau, integrator="moreau", dt=dt)
 
 
 @pytest.mark.parametrize("drive", ["screw", "nut"])

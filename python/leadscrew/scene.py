@@ -131,9 +131,9 @@ SCHEMA: Dict[str, Any] = {
                           "screw.length - nut.length / 2) for both drives: the whole nut on the "
                           "screw. The model takes the nut's centre as the point where the "
                           "thread force enters the screw (screw segments a and L - a, eq. 4.24); "
-                          "nut.length sets the nut's mass and stiffness, and a run of the "
-                          "flexible concept ends (SimulationError) where the nut's end reaches "
-                          "the screw's", "m", 0.1, **POSITIVE),
+                          "nut.length sets the nut's mass and stiffness, and a run of any "
+                          "concept ends (SimulationError) where the nut's end reaches the "
+                          "screw's", "m", 0.1, **POSITIVE),
     },
     "rotor": {
         "inertia": Field("rotor inertia about the screw axis", "kg*m^2", 1e-5, **POSITIVE),
@@ -631,7 +631,7 @@ def _check_consistency(data: Dict[str, Any]) -> None:
               f"> screw.radius = {data['screw']['radius']:g}")
     # Both drives: the nut's centre is at a from the screw's drive (or load)
     # end, the whole nut on the screw: a in (l_n / 2, L - l_n / 2) (schema
-    # doc; the flexible screw's run ends where the nut's end reaches the
+    # doc; a run of any concept ends where the nut's end reaches the
     # screw's).
     half, length = data["nut"]["length"] / 2, data["screw"]["length"]
     if not half < data["nut"]["position"] < length - half:

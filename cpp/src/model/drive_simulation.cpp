@@ -1270,10 +1270,6 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   void step(double t, double h, double theta, const double* y, double* y_next) override {
     const int n = model_.coordinate_count();
     layout_.expand(t, y, q_, v_);
-    {  // as the event-driven scheme's root g4, for every concept
-      const double a = model_.nut_position(q_.data());
-      if (!(model_.screw_end_margin(a) > 0.0)) nut_left_the_screw(p_, t, a);
-    }
     const CoordinateVector q0 = q_, v0 = v_;
     dynamics_.set_state(t + theta * h, q_, v_);
     const double play0 = dynamics_.play();
@@ -1361,6 +1357,12 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     const int offset = layout_.energy_offset();
     for (int e = 0; e < kEnergyCount; ++e) y_next[offset + e] = y[offset + e];
     layout_.expand(t + h, y_next, q_, v_);
+    // The event-driven scheme's root g4, for every concept: the run ends at
+    // the end of the first step that takes the nut's end past the screw's
+    // (checked at each step's end, so the last step's end is checked too; the
+    // start is the model's checked initial position).
+    const double nut_end = model_.nut_position(q_.data());
+    if (!(model_.screw_end_margin(nut_end) > 0.0)) nut_left_the_screw(p_, t + h, nut_end);
     double* energy = y_next + offset;
     const double motor = p_.speed_controlled ? impulses.rotor * v_theta[model_.rotor()]
                                              : p_.drive_torque(t + theta * h) *

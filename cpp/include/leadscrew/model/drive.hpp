@@ -151,7 +151,7 @@ class DriveModel {
 
   // Stiffness of a spring at nut position a, and its derivative d k / d a.
   double spring_stiffness(const Spring& s, double nut_position, double* derivative) const;
-  // How far the nut's nearer end is inside the flexible screw's nearer end
+  // How far the nut's nearer end is inside the screw's nearer end
   // [m] with its centre at nut_position: > 0 while the whole nut is on the
   // screw (the start must be; a run ends where it reaches 0).
   double screw_end_margin(double nut_position) const noexcept;

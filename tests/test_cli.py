@@ -328,9 +328,7 @@ def fake_studies(monkeypatch):
     def not_a_frame(scene):
         return [1, 2, 3]
 
-    module = types.ModuleType("leadscrew.studies")
-    module.STUDIES = {"sweep_mu": sweep_mu, "broken": broken, "not_a_frame": not_a_frame}
-    monkeypatch.setitem(sys.modules, "leadscrew.studies", module)
+    fake_study(monkeypatch, sweep_mu=sweep_mu, broken=broken, not_a_frame=not_a_frame)
     return calls
 
 
@@ -666,9 +664,6 @@ def test_run_max_steps_reaches_the_integrator(tmp_path, capsys):
 
 def header_commands():
     """The commands the shipped scene files advertise in their headers."""
-    import re
-    from pathlib import Path
-
     folder = Path(shipped.__file__).parent
     commands = []
     for path in sorted(folder.glob("*.toml")):

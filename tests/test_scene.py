@@ -174,10 +174,12 @@ def test_nut_position_is_checked_for_both_drives():
                 f"screw.length - nut.length / 2) = (0.01, 0.49) (the distance of the nut's "
                 f"centre from the screw's {end}")
         for position in (0.4899, 0.0101):
-            assert ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": position}))
+            scene = ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": position}))
+            assert scene["nut"]["position"] == position
         # the bounds follow the nut's length
-        assert ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": 0.495,
-                                                                 "length": 8e-3}))
+        scene = ls.Scene.from_dict(thesis_scene(drive=drive, nut={"position": 0.495,
+                                                                  "length": 8e-3}))
+        assert scene["nut"]["position"] == 0.495
 
 
 SINE = {"type": "sine", "amplitude": -40e-3, "omega": 4 * math.pi}

@@ -503,6 +503,10 @@ def test_good_options_pass_the_check():
 def test_options_of_the_wrong_kind_name_the_option(options, message):
     with pytest.raises(ValueError, match=message):
         ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.1, **options)
+
+
+def test_options_of_the_right_kind_in_other_types():
+    """A whole float is a count; numpy numbers and 0-d arrays are numbers."""
     assert ls.simulate(ls.Scene.from_dict(thesis_scene()), 0.01, max_steps=1e6).t[-1] == 0.01
     # numpy numbers and 0-d arrays are numbers
     assert ls.simulate(ls.Scene.from_dict(thesis_scene()), np.array(0.01),

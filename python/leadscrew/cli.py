@@ -562,12 +562,10 @@ _FAILURE_COLUMNS = ("error", "failure")
 
 
 def _failure_message(value: Any) -> str:
-    """A failure cell as one line ("" where the case ran: None, NaN, False, "")."""
+    """A failure cell as one line ("" where the case ran: None, NaN, "")."""
     import pandas as pd
 
     if value is None or (pd.api.types.is_scalar(value) and pd.isna(value)):
-        return ""
-    if pd.api.types.is_bool(value) and not value:  # False, also numpy's
         return ""
     return " ".join(str(value).split())
 

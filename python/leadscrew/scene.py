@@ -201,11 +201,12 @@ def _fail(path: str, value: Any, allowed: str) -> None:
 def _range_text(f: Field) -> str:
     lo = "(" if f.low_open else "["
     hi = ")" if f.high_open else "]"
+    number = "an integer" if f.kind == "int" else "a finite number"
     if f.low == -math.inf and f.high == math.inf:
-        return "a finite number"
+        return number
     if f.high == math.inf:
-        return f"a finite number {'>' if f.low_open else '>='} {f.low:g}"
-    return f"a finite number in {lo}{f.low:g}, {f.high:g}{hi}"
+        return f"{number} {'>' if f.low_open else '>='} {f.low:g}"
+    return f"{number} in {lo}{f.low:g}, {f.high:g}{hi}"
 
 
 _LOAD_TYPES = {"constant": ("value",), "sine": ("amplitude", "omega", "phase", "offset"),
@@ -288,9 +289,9 @@ def _excitation_spec(value: Any) -> Optional[Dict[str, Any]]:
 
 def _check_load(path: str, value: Any, unit: str = ""):
     spec = _excitation_spec(value)
-    if spec is not None:
-        value = spec
-    elif isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
+    if spec is not None:  # the core checked the object as it was built
+        return spec
+    if isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
         return value
     value = to_si(path, value, unit)
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
@@ -354,7 +355,7 @@ def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None,
         _fail(path, shown, "a number" if f.kind == "float" else "an integer")
     if f.kind == "int":
         if not (math.isfinite(value) and int(value) == value):
-            _fail(path, shown, _range_text(f).replace("a finite number", "an integer"))
+            _fail(path, shown, _range_text(f))
         value = int(value)
     else:
         try:
@@ -364,10 +365,7 @@ def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None,
     above = value > f.low if f.low_open else value >= f.low
     below = value < f.high if f.high_open else value <= f.high
     if not (math.isfinite(value) and above and below):
-        allowed = _range_text(f)
-        if f.kind == "int":
-            allowed = allowed.replace("a finite number", "an integer")
-        _fail(path, shown, allowed + (f" [{unit}]" if unit and shown is not value else ""))
+        _fail(path, shown, _range_text(f) + (f" [{unit}]" if unit and shown is not value else ""))
     return value
 
 

@@ -315,6 +315,12 @@ double DriveModel::screw_end_margin(double nut_position) const noexcept {
   return std::min(nut_position - half, p_.screw_length - half - nut_position);
 }
 
+std::string DriveModel::nut_off_screw(double nut_position) const {
+  return "the nut reached the end of the screw (nut position " + format_value(nut_position) +
+         " m on a screw of length " + format_value(p_.screw_length) + " m, nut length " +
+         format_value(p_.nut_length) + " m)";
+}
+
 double DriveModel::spring_stiffness(const Spring& s, double a, double* derivative) const {
   *derivative = 0.0;
   switch (s.law) {

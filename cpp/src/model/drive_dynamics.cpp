@@ -135,11 +135,7 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   // Either drive: the nut is a point of the screw in (0, L) (the scene checks
   // the initial position alike); beyond an end it is off the screw.
   if (screw_springs && !(a > 0.0 && a < p.screw_length)) {
-    throw OutsideDomain(t,
-                        "the nut reached the end of the screw (nut position " +
-                            format_value(a) + " m on a screw of length " +
-                            format_value(p.screw_length) + " m)",
-                        "shorten t_end, change the loads or place the nut elsewhere");
+    throw OutsideDomain(t, model_.nut_off_screw(a), DriveModel::kNutOffScrewHint);
   }
   for (const Spring& s : model_.springs()) {
     const double x = q[s.first] - (s.second >= 0 ? q[s.second] : 0.0);

@@ -207,13 +207,8 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
 // exist. The flexible screw needs it besides: its stiffness grows as 1/a
 // toward an end (eq. 4.24), and a run that wound the nut there took ever
 // smaller steps (CVODE ground to max_steps within a millimetre of the end).
-[[noreturn]] void nut_left_the_screw(const DriveParameters& p, double t, double nut_position) {
-  throw SimulationError(t,
-                        "the nut reached the end of the screw (nut position " +
-                            format_value(nut_position) + " m on a screw of length " +
-                            format_value(p.screw_length) + " m, nut length " +
-                            format_value(p.nut_length) + " m)",
-                        "shorten t_end, change the loads or place the nut elsewhere");
+[[noreturn]] void nut_left_the_screw(const DriveModel& model, double t, double nut_position) {
+  throw SimulationError(t, model.nut_off_screw(nut_position), DriveModel::kNutOffScrewHint);
 }
 
 class DriveHybrid final : public integrate::HybridSystem {
@@ -415,7 +410,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override {
     if (root_info[4] != 0) {
       set(t, y);
-      nut_left_the_screw(p_, t, model_.nut_position(q_.data()));
+      nut_left_the_screw(model_, t, model_.nut_position(q_.data()));
     }
     const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
                            root_info[0] != 0;
@@ -1362,7 +1357,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     // (checked at each step's end, so the last step's end is checked too; the
     // start is the model's checked initial position).
     const double nut_end = model_.nut_position(q_.data());
-    if (!(model_.screw_end_margin(nut_end) > 0.0)) nut_left_the_screw(p_, t + h, nut_end);
+    if (!(model_.screw_end_margin(nut_end) > 0.0)) nut_left_the_screw(model_, t + h, nut_end);
     double* energy = y_next + offset;
     const double motor = p_.speed_controlled ? impulses.rotor * v_theta[model_.rotor()]
                                              : p_.drive_torque(t + theta * h) *
@@ -1505,11 +1500,7 @@ std::string ode_method(const DriveParameters& p, const std::string& integrator,
 }
 
 integrate::MoreauOptions moreau_options(const DriveSimulationOptions& options) {
-  integrate::MoreauOptions moreau;
-  moreau.dt = options.dt;
-  moreau.theta = options.theta;
-  moreau.max_steps = options.integrator_options.max_steps;
-  return moreau;
+  return {options.dt, options.theta, options.integrator_options.max_steps};
 }
 
 }  // namespace

@@ -528,10 +528,8 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
   integrate::SimulationResult result;
   if (options.friction == FrictionLaw::coulomb && options.integrator == "moreau") {
     MoreauBlock system(block);
-    integrate::MoreauOptions moreau;
-    moreau.dt = options.dt;
-    moreau.theta = options.theta;
-    moreau.max_steps = options.integrator_options.max_steps;
+    const integrate::MoreauOptions moreau{options.dt, options.theta,
+                                          options.integrator_options.max_steps};
     result = integrate::simulate_moreau(system, 0.0, y0, options.output, moreau);
   } else {
     integrate::EventDrivenOptions driver;

@@ -34,9 +34,9 @@ UNITS = {"mu": "1", "load": "N", "efficiency": "1", "efficiency_closed_form": "1
 # what the study measures from it.
 _CHANNELS = ("work_drive", "friction_loss", "drive_torque", "v_load")
 _WORK, _LOSS, _TORQUE, _SPEED = range(len(_CHANNELS))  # indices into _CHANNELS
-# The two works, first in _CHANNELS: eq. 5.2 takes both at once.
+# The two works, first in _CHANNELS (so works[:, _WORK] and works[:, _LOSS]
+# below index them): eq. 5.2 takes both at once.
 _WORKS = slice(_WORK, _LOSS + 1)
-assert _WORKS.start == 0  # works[:, _WORK] and works[:, _LOSS] below
 # A case's values from its (mu, load): the load is raised, so it acts along
 # -x (loads.axial_force = -load).
 _RAISING = np.array([1.0, -1.0])

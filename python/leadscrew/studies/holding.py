@@ -33,13 +33,13 @@ import numpy as np
 import pandas as pd
 
 from ..excitation import Constant, Sine
-from ..scene import Scene
+from ..scene import _DEFAULT_DRIVE_TORQUE, Scene
 from ..simulation import simulate
 from ..thread import is_self_locking, lower_torque, raise_torque
 from ._common import (annotate, as_scene, axes, check_count, check_finite, check_positive,
                       numeric_or_nan)
 from ._batch import check_simulate_options
-from ._sweep import SerialExecutor, run_cases
+from ._sweep import run_cases
 
 __all__ = [
     "cycle_response",
@@ -85,7 +85,7 @@ def _constant_torque(scene: Scene) -> float:
     if "drive_speed" in loads:
         raise ValueError("loads.drive_speed is invalid for a position-holding study: the "
                          "drive must be torque-controlled (loads.drive_torque, constant)")
-    torque = loads.get("drive_torque", 0.0)  # none given: no torque
+    torque = loads.get("drive_torque", _DEFAULT_DRIVE_TORQUE)
     if isinstance(torque, numbers.Real):
         return float(torque)
     if isinstance(torque, dict) and torque.get("type") == "constant":
@@ -377,16 +377,20 @@ def position_holding(
     centred = scene.replace(initial={"play_position": 0.0})
     runs = [centred.replace(loads={"axial_force": static_force}),
             alternating_scene(scene, amplitude, frequency)]
-    executor = SerialExecutor() if executor is None else executor
-    # Each future's result() raises its run's own exception (SimulationError, ...).
-    futures = [executor.submit(cycle_response, run, frequency, cycles, settle_cycles,
-                               points_per_cycle, series=True, **options) for run in runs]
-    try:
-        static, dynamic = [future.result() for future in futures]
-    except BaseException:  # one run failed: the other is not waited for
-        for future in futures:
-            future.cancel()
-        raise
+    arguments = (frequency, cycles, settle_cycles, points_per_cycle)
+    if executor is None:  # in turn: a failed static run ends the study
+        static, dynamic = [cycle_response(run, *arguments, series=True, **options)
+                           for run in runs]
+    else:
+        # Each future's result() raises its run's own exception (SimulationError, ...).
+        futures = [executor.submit(cycle_response, run, *arguments, series=True, **options)
+                   for run in runs]
+        try:
+            static, dynamic = [future.result() for future in futures]
+        except BaseException:  # one run failed: the other is not waited for
+            for future in futures:
+                future.cancel()
+            raise
     s, d = static["result"], dynamic["result"]
     frame = pd.DataFrame({
         "t": static["t"],

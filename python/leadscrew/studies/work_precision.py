@@ -202,7 +202,8 @@ _OPTIONAL_KEYS = ("dt", "max_step", "first_step")  # None: simulate's default
 def _check_kinds(index: int, entry: Dict[str, object]) -> None:
     """Each value of configurations[index] is of its key's kind: a name (or
     None), a whole number or a real number (simulate's own kind checks), so
-    that labels and the frame can show it; ValueError naming the entry."""
+    that labels and the frame can show it; numbers are stored as int and
+    float. ValueError naming the entry."""
     for key, value in entry.items():
         name = f"configurations[{index}]: {key}"
         if key in _NAME_KEYS:
@@ -210,9 +211,9 @@ def _check_kinds(index: int, entry: Dict[str, object]) -> None:
                 raise ValueError(f"{name} = {value!r} is invalid: must be a name (a string) "
                                  "or None")
         elif key in _WHOLE_KEYS:
-            _whole(name, value)
+            entry[key] = _whole(name, value)
         elif not (key in _OPTIONAL_KEYS and value is None):
-            _real(name, value)
+            entry[key] = _real(name, value)
 
 
 def _check_configurations(model, configurations) -> List[Dict[str, object]]:
@@ -248,10 +249,8 @@ def _check_configurations(model, configurations) -> List[Dict[str, object]]:
                 raise ValueError(f"configurations[{i}]: {misplaced[0]} = {entry[misplaced[0]]!r} "
                                  f"is invalid with integrator {integrator!r}: only 'moreau' "
                                  "takes dt and theta")
-            if "rtol" in entry and "atol" not in entry:
-                rtol = entry["rtol"]
-                if isinstance(rtol, numbers.Real) and not isinstance(rtol, bool):
-                    entry["atol"] = ATOL_PER_RTOL * float(rtol)
+            if "rtol" in entry and "atol" not in entry:  # (a float: _check_kinds)
+                entry["atol"] = ATOL_PER_RTOL * entry["rtol"]
         if "k_v" in entry and friction not in _REGULARIZED:
             raise ValueError(f"configurations[{i}]: k_v = {entry['k_v']!r} is invalid with "
                              f"friction {friction!r}: only {', '.join(_REGULARIZED)} take k_v")

@@ -155,6 +155,11 @@ class DriveModel {
   // [m] with its centre at nut_position: > 0 while the whole nut is on the
   // screw (the start must be; a run ends where it reaches 0).
   double screw_end_margin(double nut_position) const noexcept;
+  // What an error says where the nut leaves the screw (the end of a run, or a
+  // trial state off the model's domain), and its hint.
+  std::string nut_off_screw(double nut_position) const;
+  static constexpr const char* kNutOffScrewHint =
+      "shorten t_end, change the loads or place the nut elsewhere";
   double nut_position(const double* q) const;
 
  private:

@@ -384,7 +384,14 @@ def test_bouncing_nut_never_passes_a_flank(restitution, concept):
             # little energy at e = 1, Kane and Levinson's paradox: not asserted.)
             assert np.all(np.diff(r["impact_loss"]) >= -1e-15)
         if restitution == 1.0 and mu == 0.0:
-            assert np.max(np.abs(r["impact_loss"])) <= 1e-12  # elastic, frictionless
+            # Elastic and frictionless: the impacts lose nothing, but a bounce
+            # too weak to rise above the flight resolution (1e-6 of the
+            # play) is closed plastically, and its normal velocity's energy
+            # is booked as impact loss (it went missing from the account,
+            # issue 17's reproduction 9). The flexible nut rattles on its
+            # flank in 3214 such touches: 3e-5 of the work.
+            bound = 1e-12 if concept == "rigid" else 1e-4 * np.max(np.abs(r["work_axial"]))
+            assert np.max(np.abs(r["impact_loss"])) <= bound
 
 
 def test_flexible_regularized_drive_at_loose_tolerance():

@@ -22,6 +22,12 @@ void raise_with_attributes(PyObject* type, const SimulationError& e) {
 }
 }  // namespace
 
+void PythonMonitor::report(double t) {
+  py::gil_scoped_acquire gil;
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  if (!progress_.is_none()) progress_(t);
+}
+
 void bind_core(py::module_& m) {
   // SimulationError derives from RuntimeError; JammingError from SimulationError.
   simulation_error_type = PyErr_NewException("leadscrew._core.SimulationError",

@@ -21,8 +21,9 @@ model::DriveSimulationOptions drive_options(double t_end, const std::string& int
                                             double atol, double dt, double theta,
                                             std::vector<double> t_eval, long max_steps,
                                             long max_events, double max_step, double first_step,
-                                            double bounce_threshold, int max_order) {
+                                            double bounce_threshold, int max_order, bool check) {
   model::DriveSimulationOptions options;
+  options.check = check;
   options.integrator = integrator;
   options.smooth_integrator = smooth_integrator;
   options.integrator_options =
@@ -45,15 +46,19 @@ void def_drive_call(py::module_& m, const char* name, Body body, const char* doc
       [body](const model::DriveModel& drive, double t_end, const std::string& integrator,
              const std::string& smooth_integrator, double rtol, double atol, double dt,
              double theta, std::vector<double> t_eval, long max_steps, long max_events,
-             double max_step, double first_step, double bounce_threshold, int max_order) {
-        return body(drive, drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt,
-                                         theta, std::move(t_eval), max_steps, max_events,
-                                         max_step, first_step, bounce_threshold, max_order));
+             double max_step, double first_step, double bounce_threshold, int max_order,
+             bool check, py::object progress) {
+        return body(drive,
+                    drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt, theta,
+                                  std::move(t_eval), max_steps, max_events, max_step,
+                                  first_step, bounce_threshold, max_order, check),
+                    std::move(progress));
       },
       py::arg("drive"), py::arg("t_end"), py::arg("integrator"), py::arg("smooth_integrator"),
       py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
       py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"), py::arg("first_step"),
-      py::arg("bounce_threshold"), py::arg("max_order"), doc);
+      py::arg("bounce_threshold"), py::arg("max_order"), py::arg("check") = true,
+      py::arg("progress") = py::none(), doc);
 }
 
 }  // namespace
@@ -124,16 +129,20 @@ void bind_drive(py::module_& m) {
   m.def("drive_integrators", &model::drive_integrators, py::arg("parameters"));
   def_drive_call(
       m, "simulate_drive",
-      [](const model::DriveModel& drive, const model::DriveSimulationOptions& options) {
+      [](const model::DriveModel& drive, const model::DriveSimulationOptions& options,
+         py::object progress) {
+        PythonMonitor monitor(std::move(progress));
+        MonitorScope scope(&monitor);
         py::gil_scoped_release release;
         return model::simulate(drive, options);
       },
-      "Simulate the drive (leadscrew.simulate's drive path).");
+      "Simulate the drive (leadscrew.simulate's drive path); progress: None or a callable "
+      "of the simulated time, called about every 0.1 s of wall time (Ctrl-C is checked "
+      "there too).");
   def_drive_call(
       m, "check_drive_options",
-      [](const model::DriveModel& drive, const model::DriveSimulationOptions& options) {
-        model::check_simulation_options(drive, options);
-      },
+      [](const model::DriveModel& drive, const model::DriveSimulationOptions& options,
+         const py::object&) { model::check_simulation_options(drive, options); },
       "The checks simulate_drive makes of these options before it integrates, without "
       "simulating: ValueError naming the option, its value and the valid range.");
 
@@ -175,18 +184,19 @@ void bind_drive(py::module_& m) {
                        double rtol, double atol, double dt, double theta,
                        std::vector<double> t_eval, long max_steps, long max_events,
                        double max_step, double first_step, double bounce_threshold,
-                       int max_order) {
+                       int max_order, bool check) {
              return model::DriveBatch(
                  std::move(base), parameters, std::move(channels),
                  drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt, theta,
                                std::move(t_eval), max_steps, max_events, max_step,
-                               first_step, bounce_threshold, max_order));
+                               first_step, bounce_threshold, max_order, check));
            }),
            py::arg("base"), py::arg("parameters"), py::arg("channels"), py::arg("t_end"),
            py::arg("integrator"), py::arg("smooth_integrator"), py::arg("rtol"),
            py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
            py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
            py::arg("first_step"), py::arg("bounce_threshold"), py::arg("max_order"),
+           py::arg("check") = true,
            "base: DriveParameters; parameters: the fields each case sets (numeric "
            "DriveParameters attributes; drive_torque, drive_speed, axial_force as "
            "constants); channels: the result channels to sample at t_eval; the rest as "

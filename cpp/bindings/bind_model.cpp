@@ -87,7 +87,23 @@ void bind_model(py::module_& m) {
         return stats_dict(r.stats);
       })
       .def_readonly("integrator", &integrate::SimulationResult::integrator)
-      .def_readonly("friction", &integrate::SimulationResult::friction);
+      .def_readonly("friction", &integrate::SimulationResult::friction)
+      .def_property_readonly("checks", [](const integrate::SimulationResult& r) {
+        py::dict out;
+        for (const auto& c : r.checks) {
+          py::dict entry;
+          entry["what"] = c.what;
+          entry["applies"] = c.applies;
+          entry["passed"] = c.passed;
+          entry["value"] = c.value;
+          entry["bound"] = c.bound;
+          entry["margin"] = c.bound - c.value;
+          entry["time"] = c.time;
+          entry["unit"] = c.unit;
+          out[py::str(c.name)] = entry;
+        }
+        return out;
+      });
 
   py::class_<model::FrictionBlock>(m, "FrictionBlock")
       .def(py::init([](double mass, double mu, double g, py::handle force, double u0, double v0) {
@@ -112,8 +128,9 @@ void bind_model(py::module_& m) {
       [](const model::FrictionBlock& block, double t_end, const std::string& friction,
          const std::string& integrator, double k_v, double rtol, double atol, double dt,
          double theta, std::vector<double> t_eval, long max_steps, long max_events,
-         double max_step, double first_step, int max_order) {
+         double max_step, double first_step, int max_order, bool check, py::object progress) {
         model::BlockSimulationOptions options;
+        options.check = check;
         options.friction = parse_friction_law(friction);
         options.integrator = integrator;
         options.k_v = k_v;
@@ -124,6 +141,8 @@ void bind_model(py::module_& m) {
         options.max_events = max_events;
         options.output.t_end = t_end;
         options.output.t_eval = std::move(t_eval);
+        PythonMonitor monitor(std::move(progress));
+        MonitorScope scope(&monitor);
         // A Python callable load re-acquires the GIL itself.
         py::gil_scoped_release release;
         return model::simulate(block, options);
@@ -131,7 +150,8 @@ void bind_model(py::module_& m) {
       py::arg("block"), py::arg("t_end"), py::arg("friction"), py::arg("integrator"),
       py::arg("k_v"), py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"),
       py::arg("t_eval"), py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
-      py::arg("first_step"), py::arg("max_order"));
+      py::arg("first_step"), py::arg("max_order"), py::arg("check") = true,
+      py::arg("progress") = py::none());
 }
 
 }  // namespace leadscrew::bindings

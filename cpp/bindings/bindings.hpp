@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "leadscrew/core/run_monitor.hpp"
 #include "leadscrew/excitation/excitation.hpp"
 #include "leadscrew/integrate/ode.hpp"
 
@@ -27,5 +28,18 @@ integrate::IntegratorOptions integrator_options(double rtol, double atol, long m
 // of t) into an Excitation; `name` goes into the error message.
 Excitation to_excitation(pybind11::handle value, const std::string& name);
 void bind_integrate(pybind11::module_& m);  // ODE integrators (submodule "integrate")
+
+// The monitor of a simulation called from Python (core/run_monitor.hpp):
+// every report checks for Ctrl-C (KeyboardInterrupt ends the run) and passes
+// the simulated time to `progress` unless it is None. Made and destroyed
+// with the GIL held; report() takes it.
+class PythonMonitor final : public RunMonitor {
+ public:
+  explicit PythonMonitor(pybind11::object progress) : progress_(std::move(progress)) {}
+  void report(double t) override;
+
+ private:
+  pybind11::object progress_;
+};
 
 }  // namespace leadscrew::bindings

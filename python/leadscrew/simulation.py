@@ -44,16 +44,18 @@ class Result:
     double it). A pickled Result carries the converted values.
     """
 
-    __slots__ = ("_core", "_t", "_channels", "_data", "_events", "_stats", "_names", "_rows")
+    __slots__ = ("_core", "_t", "_channels", "_data", "_events", "_stats", "_names", "_rows",
+                 "_checks")
 
     def __init__(self, core_result):
         self._core = core_result
         self._t = self._channels = self._data = self._events = self._stats = self._names = None
+        self._checks = None
         self._rows = {}  # channels converted one by one (before the whole matrix)
 
     def __reduce__(self):
         state = (self.t, self.channels, self._matrix(), self.events, self.stats,
-                 self.integrator, self.friction)
+                 self.integrator, self.friction, self.checks)
         return (_restore_result, state)
 
     @property
@@ -73,6 +75,16 @@ class Result:
         if self._events is None:
             self._events = [Event(time, kind) for time, kind in self._core.events]
         return self._events
+
+    @property
+    def checks(self) -> dict:
+        """The invariants the run was checked for: name -> dict with
+        ``what``, ``applies``, ``passed``, ``value`` (the worst seen),
+        ``bound``, ``margin`` (bound - value), ``time`` [s] where the worst
+        was seen and ``unit`` (docs/physics/result_checks.md)."""
+        if self._checks is None:
+            self._checks = self._core.checks
+        return self._checks
 
     @property
     def stats(self) -> dict:
@@ -131,10 +143,12 @@ class Result:
                 f"{len(self.events)} events, {self.stats['wall_time'] * 1e6:.0f} us>")
 
 
-def _restore_result(t, channels, data, events, stats, integrator, friction) -> Result:
+def _restore_result(t, channels, data, events, stats, integrator, friction,
+                    checks=None) -> Result:
     result = Result(None)
     result._t, result._channels, result._data = t, channels, data
     result._events, result._stats, result._names = events, stats, (integrator, friction)
+    result._checks = checks
     return result
 
 
@@ -189,6 +203,39 @@ def _whole(name: str, value, limit: int = 2 ** 63 - 1) -> int:
     return int(value)
 
 
+class _progress_bar:
+    """A tqdm bar over the simulated time [0, t_end] while a run lasts, or
+    nothing (``show`` False); the context value is the core's progress
+    callback of the simulated time (None without a bar)."""
+
+    def __init__(self, show, t_end: float):
+        self._bar = None
+        if _flag("progress", show):
+            from tqdm.auto import tqdm
+
+            self._bar = tqdm(total=t_end, unit="s", desc="simulate", leave=False,
+                             bar_format="{desc}: {percentage:3.0f}%|{bar}| t = {n:.4g} s of "
+                                        "{total:.4g} s [{elapsed}<{remaining}]")
+
+    def _report(self, t: float) -> None:
+        self._bar.update(t - self._bar.n)
+
+    def __enter__(self):
+        return self._report if self._bar is not None else None
+
+    def __exit__(self, *exc) -> None:
+        if self._bar is not None:
+            self._bar.close()
+
+
+def _flag(name: str, value) -> bool:
+    """``value`` if it is a bool (or numpy's), naming the option otherwise."""
+    value = _scalar(value)
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} = {value!r} is invalid: must be True or False")
+    return bool(value)
+
+
 def _name(name: str, value, what: str = "an integrator") -> str:
     """``value`` if it is a string (the core checks the name); None as ``""``."""
     if value is not None and not isinstance(value, str):
@@ -219,7 +266,7 @@ def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, thet
 
 def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval,
                      max_steps, max_events, max_step, first_step, bounce_threshold,
-                     max_order) -> dict:
+                     max_order, check=True) -> dict:
     """The core's drive-simulation keywords from :func:`simulate`'s (None:
     the default; ``integrator`` None or ``""``: the core's default per model;
     ``t_eval`` a list of floats). Shared with
@@ -234,6 +281,7 @@ def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta
     arguments["smooth_integrator"] = _name("smooth_integrator", smooth_integrator)
     arguments["bounce_threshold"] = (1e-6 if bounce_threshold is None
                                      else _real("bounce_threshold", bounce_threshold))
+    arguments["check"] = _flag("check", check)
     return arguments
 
 
@@ -255,6 +303,8 @@ def simulate(
     smooth_integrator: Optional[str] = None,
     bounce_threshold: Optional[float] = None,
     max_order: Optional[int] = None,
+    check: bool = True,
+    progress: bool = False,
 ) -> Result:
     """Simulate a model from t = 0 to ``t_end``.
 
@@ -289,6 +339,16 @@ def simulate(
             Adams 12; for the flexible drive models with a regularized
             friction law at rtol >= 1e-9, BDF 3: faster and robust with their
             lightly damped stiff modes and the law's stiffness near zero slip).
+        check: check the result's physics before returning it (every
+            channel finite, events within the run, friction never doing
+            positive work, Coulomb's cone, the energy account within the
+            integration tolerances; docs/physics/result_checks.md) and raise
+            SimulationError naming the invariant that fails. ``False``
+            returns the result unchecked (``Result.checks`` still reports).
+        progress: show a progress bar over the simulated time (tqdm; it
+            updates about every 0.1 s of wall time). Whether or not it is
+            shown, Ctrl-C interrupts a run within that time with
+            ``KeyboardInterrupt``, the process left usable.
 
     Returns:
         A :class:`Result`.
@@ -296,7 +356,9 @@ def simulate(
     Raises:
         ValueError: bad input or an integrator that does not fit the friction law
             (the message lists those that do).
-        SimulationError: the integrator or the LCP failed (time and reason).
+        SimulationError: the integrator or the LCP failed, or the result
+            fails a check of its physics (time and reason).
+        JammingError: the drive jams dynamically (a SimulationError).
     """
     t_eval_list = [] if t_eval is None else np.asarray(t_eval, dtype=float).ravel().tolist()
     if isinstance(model, _core.FrictionBlock):
@@ -311,22 +373,26 @@ def simulate(
             arguments["integrator"] = _core.block_integrators(friction)[0]
         _check_block_options(smooth_integrator=smooth_integrator,
                              bounce_threshold=bounce_threshold)
-        return Result(_core.simulate_block(
-            model, friction=friction, k_v=100.0 if k_v is None else _real("k_v", k_v),
-            **arguments))
+        with _progress_bar(progress, arguments["t_end"]) as report:
+            return Result(_core.simulate_block(
+                model, friction=friction, k_v=100.0 if k_v is None else _real("k_v", k_v),
+                check=_flag("check", check), progress=report, **arguments))
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
         # integrator None: the core takes the model's default
-        return Result(_core.simulate_drive(model.model(), **_drive_arguments(
+        arguments = _drive_arguments(
             t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
-            max_events, max_step, first_step, bounce_threshold, max_order)))
+            max_events, max_step, first_step, bounce_threshold, max_order, check)
+        with _progress_bar(progress, arguments["t_end"]) as report:
+            return Result(_core.simulate_drive(model.model(), progress=report, **arguments))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
 
 # simulate's options: its parameters but the model and the times, which a
 # study or a DriveBatch sets itself (the command line's study options and the
 # batch's keywords are these).
+# (progress is the display of one run: a study shows its own over its cases.)
 _OPTIONS = {name: parameter for name, parameter in inspect.signature(simulate).parameters.items()
-            if name not in ("model", "t_end", "t_eval")}
+            if name not in ("model", "t_end", "t_eval", "progress")}
 # Their defaults (what simulate takes for an option left out).
 _OPTION_DEFAULTS = {name: parameter.default for name, parameter in _OPTIONS.items()}

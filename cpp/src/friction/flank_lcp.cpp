@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <cmath>
 
 namespace leadscrew::friction {
 
@@ -35,6 +36,36 @@ FlankLcpResult solve_flank_lcp(double c, double d, double alpha, double beta, do
   // where x+ = 0.
   const double positive_part = z[0] > 0.0 ? 0.0 : std::max(w[0], 0.0);
   result.slip_acceleration = positive_part - z[1];
+  result.consistent = sigma * result.normal_force >= 0.0;
+  return result;
+}
+
+FlankLcpResult solve_flank_prescribed_slip(double c, bool slip_zero, double alpha, double beta,
+                                           double mu, int sigma, double motor0, double motor1) {
+  FlankLcpResult result;
+  result.status = lcp::Status::solved;
+  const double reserve = mu * sigma;  // lambda_T = -+ reserve lambda_N at the cone's edges
+  if (!slip_zero) {
+    // Slip in the direction c gives: lambda_T = -s mu sigma (beta + alpha lambda_T).
+    const double s = c > 0.0 ? 1.0 : -1.0;
+    const double coupling = 1.0 + s * reserve * alpha;
+    if (!(coupling > 0.0)) return result;  // the friction force would drive its own normal force
+    result.friction_force = -s * reserve * beta / coupling;
+    result.normal_force = beta + alpha * result.friction_force;
+    result.slip_acceleration = c;
+    result.consistent = sigma * result.normal_force >= 0.0;
+    return result;
+  }
+  // Stick: the cone |lambda_T| <= mu sigma (beta + alpha lambda_T) is the
+  // interval between its two edges (each a linear equation in lambda_T).
+  const double upper_coupling = 1.0 - reserve * alpha, lower_coupling = 1.0 + reserve * alpha;
+  if (!(upper_coupling > 0.0) || !(lower_coupling > 0.0) || !(sigma * beta >= 0.0)) return result;
+  const double high = reserve * beta / upper_coupling, low = -reserve * beta / lower_coupling;
+  double friction = motor1 != 0.0 ? -motor0 / motor1 : 0.0;
+  if (!std::isfinite(friction)) friction = 0.0;
+  result.friction_force = std::min(high, std::max(low, friction));
+  result.normal_force = beta + alpha * result.friction_force;
+  result.slip_acceleration = 0.0;
   result.consistent = sigma * result.normal_force >= 0.0;
   return result;
 }

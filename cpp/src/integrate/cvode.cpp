@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdlib>
 #include <limits>
 #include <memory>
 
@@ -173,6 +172,9 @@ void CvodeIntegrator::create_solver(double t0) {
     check_setup(CVodeSetMaxStep(mem, options_.max_step), "CVodeSetMaxStep");
   if (options_.first_step > 0.0)
     check_setup(CVodeSetInitStep(mem, options_.first_step), "CVodeSetInitStep");
+  if (options_.max_nonlinear_iterations > 0)
+    check_setup(CVodeSetMaxNonlinIters(mem, options_.max_nonlinear_iterations),
+                "CVodeSetMaxNonlinIters");
   // "t + h = t" warnings would only fill the message buffer.
   check_setup(CVodeSetMaxHnilWarns(mem, -1), "CVodeSetMaxHnilWarns");
   if (bridge_.root_count > 0) {

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/run_monitor.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/integrator_checks.hpp"
 #include "leadscrew/integrate/rk_stage_kernels.hpp"
@@ -365,6 +366,7 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
   // Bounded: every pass either accepts a step (at most max_steps in total) or
   // rejects one (at most rejection_limit in a row, nonfinite_limit in all).
   for (;;) {
+    poll_monitor(t_);
     if (stats_.steps >= options_.max_steps)
       fail("RK_TOO_MUCH_WORK",
            "the total number of internal steps reached max_steps = " +
@@ -619,13 +621,29 @@ void ExplicitRungeKutta::locate_root() {
   // two tolerances of Newton's root. Kept inside the bracket, Illinois when
   // Newton leaves it, is for another function, or takes too long. Usually
   // two evaluations of phi.
+  // Safeguard: where an iteration does not halve the bracket twice in a row
+  // (a function that starts on its surface at +-1e-200 pins the secant to
+  // that end, and the bracket shrank by half a tolerance per iteration: a
+  // slip that reversed 7 ns into a 0.28 ms step was located at the step's
+  // end, and friction did positive work for the whole step), the next point
+  // is the dense bracket's far end widened by its width, then bisection: the
+  // bracket then halves at least every other iteration, and the loop's
+  // bound (far above the ~2 log2(h / tolerance) this needs) is never reached
+  // with a bracket wider than the tolerance (checked: an error, never an
+  // event at the wrong time).
+  const double dense_far = hi + std::max(hi - lo, tolerance);
+  bool dense_far_tried = false;
   reset_bracket();
   std::copy_n(y_new_, n_, y_);    // the state at hi
   std::copy_n(k_, n_, k_trial_);  // stage 1: f(t_n, y_n)
   double tau = tau_dense;
   double previous_tau = -1.0, previous_g = 0.0;
   constexpr int newton_iterations = 8;
-  for (int iteration = 0; iteration < root_iterations && hi - lo > tolerance; ++iteration) {
+  constexpr int exact_iterations = 400;
+  int stalled = 0;
+  double last_width = hi - lo;
+  bool converged = false;
+  for (int iteration = 0; iteration < exact_iterations && hi - lo > tolerance; ++iteration) {
     tau = clamp(tau);
     if (!stages(t_n, y_start_, tau, k_trial_, y_trial_))
       fail("RK_RHSFUNC_FAIL",
@@ -644,7 +662,10 @@ void ExplicitRungeKutta::locate_root() {
                                      : slope;
       if (local_slope != 0.0 && std::isfinite(local_slope)) {
         const double correction = -g_tau / local_slope;
-        if (hi_moved && std::fabs(correction) <= 2.0 * tolerance) break;  // converged
+        if (hi_moved && std::fabs(correction) <= 2.0 * tolerance) {  // converged
+          converged = true;
+          break;
+        }
         const double newton = tau + correction + tolerance;
         if (newton > lo && newton < hi) next = newton;
       }
@@ -653,8 +674,22 @@ void ExplicitRungeKutta::locate_root() {
     previous_g = g_tau;
     if (earliest != active) previous_tau = -1.0;  // that secant would mix two functions
     active = earliest;
+    const double width = hi - lo;
+    stalled = width > 0.5 * last_width ? stalled + 1 : 0;
+    last_width = width;
+    if (stalled >= 2) {
+      next = !dense_far_tried && dense_far > lo && dense_far < hi ? dense_far : 0.5 * (lo + hi);
+      dense_far_tried = true;
+      stalled = 0;
+      previous_tau = -1.0;  // a secant through the last point would pull back to the end
+    }
     tau = next;
   }
+  if (!converged && hi - lo > tolerance)
+    fail("RK_ROOT_FAIL",
+         "an event could not be located: the bracket of its root function is still " +
+             std::to_string(hi - lo) + " s wide",
+         "tighten rtol and atol, and please report the scene");
 
   // The root: the bracket end where g has changed sign (or is 0).
   for (int i = 0; i < m_; ++i)

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/run_monitor.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/integrator_checks.hpp"
 
@@ -35,6 +36,7 @@ SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
   Eigen::VectorXd y = y0, y_next(n);
   SimulationResult result;
   result.integrator = "moreau";
+  result.interpolated = !output.t_eval.empty();
   result.channel_names = system.channel_names();
   const std::size_t channel_count = result.channel_names.size();
   std::vector<double> values(channel_count), previous_values(channel_count),
@@ -53,6 +55,7 @@ SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
 
   double t = t0;
   for (long k = 0; k < steps; ++k) {
+    poll_monitor(t);
     const double t_next = (k + 1 == steps) ? output.t_end : t0 + (k + 1) * options.dt;
     system.step(t, t_next - t, options.theta, y.data(), y_next.data());
     for (int i = 0; i < n; ++i)

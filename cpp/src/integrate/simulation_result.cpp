@@ -27,6 +27,20 @@ int SimulationResult::channel_index(const std::string& name) const {
   return -1;
 }
 
+void enforce_checks(const SimulationResult& result) {
+  for (const InvariantCheck& check : result.checks) {
+    if (!check.applies || check.passed) continue;
+    const std::string unit = *check.unit ? std::string(" ") + check.unit : std::string();
+    throw SimulationError(
+        check.time,
+        std::string("the result fails its check '") + check.name + "' (" + check.what +
+            "): " + format_value(check.value) + unit + " against the bound " +
+            format_value(check.bound) + unit,
+        "the run did not resolve the scene (tighten rtol/atol or dt) or met a defect; "
+        "check=False returns the result unchecked, and please report the scene");
+  }
+}
+
 void validate_output_request(const OutputRequest& request, double t0) {
   require_finite("t_end", request.t_end);
   if (!(request.t_end > t0))

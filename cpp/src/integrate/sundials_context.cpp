@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/run_monitor.hpp"
 #include "leadscrew/integrate/integrator_checks.hpp"
 
 namespace leadscrew::integrate::sundials {
@@ -241,6 +242,7 @@ int CallbackBridge::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_dat
   auto* self = static_cast<CallbackBridge*>(user_data);
   try {
     double* f = N_VGetArrayPointer(ydot);
+    poll_monitor(t);
     self->system->rhs(t, N_VGetArrayPointer(y), f);
     if (self->outside_ && t > self->outside_t_) {  // got past the failed trial
       self->outside_ = nullptr;

@@ -119,6 +119,21 @@ DriveDynamics::DriveDynamics(const DriveModel& model) : model_(model) {
     delassus_nt_ -= w_n[r] * w_t[r] / inverse_mass_[r];
   }
   painleve_possible_ = model.effective_mu() * std::abs(delassus_nt_) >= delassus_nn_;
+  if (model.parameters().speed_controlled) {
+    // The slip's response to a tangential force with the flank and the rotor
+    // held: W_T . x with M x = W_T + B lambda, C x = 0. Zero (to round-off of
+    // the unconstrained W_T M^-1 W_T) when those constraints fix every velocity.
+    const int n = model.coordinate_count();
+    ColumnMatrix B = ColumnMatrix::Zero(n, 2);
+    B.col(0) = normal;
+    B(model.rotor(), 1) = 1.0;
+    const ConstraintMatrix C = B.transpose();
+    CoordinateVector x;
+    SmallVector lambda;
+    const CoordinateVector force = tangent;
+    if (solve_constrained(inverse_mass_, force, B, C, SmallVector::Zero(2), x, lambda))
+      slip_prescribed_ = std::abs(tangent.dot(x)) <= 1e-12 * tangent.dot(w_t);
+  }
 }
 
 void DriveDynamics::set_state(double t, const CoordinateVector& q, const CoordinateVector& v) {
@@ -162,6 +177,8 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   play_ = p.play_position + model_.play_gradient().dot(q);
   play_rate_ = model_.play_gradient().dot(v);
   slip_ = model_.tangent_direction().dot(v);
+  slip_noise_ = 64.0 * std::numeric_limits<double>::epsilon() *
+                model_.tangent_direction().cwiseProduct(v).cwiseAbs().sum();
   penalty_force();
 }
 
@@ -248,9 +265,9 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
   const bool stick = spec.friction == FrictionMode::stick;
 
-  auto evaluate = [&](double kappa, ModeSolution& out) {
+  auto evaluate = [&](double kappa, double given_tangential, ModeSolution& out) {
     CoordinateVector f = forces_;
-    f += spec.given_tangential * tangent;
+    f += given_tangential * tangent;
     double normal_force = 0.0;
     if (spec.contact == ThreadContact::penalty) {
       normal_force = penalty_normal_;
@@ -291,50 +308,91 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       out.friction_force = -kappa * std::abs(normal_force);
     else
       out.friction_force = 0.0;
-    out.friction_force += spec.given_tangential;
+    out.friction_force += given_tangential;
     out.motor_torque = p.speed_controlled ? lambda[rotor_row] : applied_torque_;
     out.slip_acceleration = tangent.dot(out.acceleration);
   };
 
   ModeSolution solution;
+  if (stick && slip_prescribed_ && normal_multiplier) {
+    // The stick row would repeat the others (every velocity is fixed): the
+    // friction force is statically indeterminate, chosen as
+    // prescribed_slip_decision does.
+    ModeSpec base = spec;
+    base.friction = FrictionMode::none;
+    const friction::FlankLcpResult decision = prescribed_slip_decision(
+        base, spec.contact == ThreadContact::closed ? spec.sigma : 0);
+    base.given_tangential = decision.friction_force;
+    solution = solve(base);
+    return solution;
+  }
   if (spec.friction == FrictionMode::regularized_acceleration &&
       spec.contact == ThreadContact::bilateral && painleve_possible_)
     return solve_acceleration_law(spec);
   if (spec.friction != FrictionMode::regularized_acceleration ||
       spec.contact == ThreadContact::open) {
-    evaluate(friction_factor(spec, 0.0), solution);
+    evaluate(friction_factor(spec, 0.0), spec.given_tangential, solution);
     return solution;
   }
   // Eq. (3.15) on the flank: kappa depends on the slip acceleration it
-  // produces. h(x) = slip acceleration(kappa(x)) - x falls in x; its root lies
-  // between the slip accelerations at kappa = +mu' and -mu'.
-  const double mu = model_.effective_mu();
-  ModeSolution low, high;
-  evaluate(mu, low);
-  evaluate(-mu, high);
-  if (!low.regular || !high.regular) {
+  // produces. With the friction force T as the unknown (the law's kappa set
+  // to 0 and T given), the solution is affine in T: normal force N_0 +
+  // alpha T, slip acceleration x_0 + d T, accelerations a_0 + T (a_1 - a_0).
+  // The law T = -kappa(x) m with m = sigma N (a flank's multiplier) or |N|
+  // (a penalty flank's given force) is one smooth scalar equation
+  //   Phi(T) = T + kappa(x_0 + d T) m(T) = 0,
+  // solved by Newton to round-off, safeguarded by bisection on a bracket:
+  // |T| = |kappa| m < mu' (|N_0| + |alpha| |T|) bounds it by
+  // mu' |N_0| / (1 - mu' |alpha|). (An Illinois iteration on x that the
+  // rhs ran before stopped at 4e-16 of the bracket's slip accelerations,
+  // 1e-7 relative to a small root: CVODE's difference-quotient Jacobian of
+  // that noise failed Newton at every step, 225,000 failures in 0.2 s.)
+  ModeSolution zero, unit;
+  evaluate(0.0, spec.given_tangential, zero);
+  evaluate(0.0, spec.given_tangential + 1.0, unit);
+  if (!zero.regular || !unit.regular) {
     solution.regular = false;
     return solution;
   }
-  double x_low = std::min(low.slip_acceleration, high.slip_acceleration);
-  double x_high = std::max(low.slip_acceleration, high.slip_acceleration);
-  auto h = [&](double x) {
-    evaluate(friction_factor(spec, x), solution);
-    return solution.slip_acceleration - x;
+  const double mu = model_.effective_mu();
+  const bool penalty = spec.contact == ThreadContact::penalty;
+  const double n0 = zero.normal_force, alpha = unit.normal_force - n0;
+  const double x0 = zero.slip_acceleration, d = unit.slip_acceleration - x0;
+  const double k_v = model_.parameters().k_v;
+  auto multiplier = [&](double T) { return penalty ? std::abs(n0) : spec.sigma * (n0 + alpha * T); };
+  auto phi = [&](double T) {
+    return T + kTwoOverPi * mu * std::atan(k_v * (x0 + d * T)) * multiplier(T);
   };
-  IllinoisBracket bracket{x_low, x_high, h(x_low), h(x_high)};
-  const double scale = std::max({std::abs(x_low), std::abs(x_high), 1e-300});
-  for (int iteration = 0; iteration < 300 && solution.regular; ++iteration) {
-    if (bracket.f_low == 0.0) return (void)h(bracket.low), solution;
-    if (bracket.f_high == 0.0) return (void)h(bracket.high), solution;
-    const double x = bracket.next();
-    const double hx = h(x);
-    if (bracket.high - bracket.low <= 4e-16 * scale || hx == 0.0) return solution;
-    bracket.update(x, hx, (hx > 0.0) == (bracket.f_low > 0.0));
+  if (!(mu * std::abs(alpha) < 1.0) || !(d >= 0.0))
+    throw SimulationError(t_, "eq. (3.15) has no unique friction force here (mu' |dN/dT| = " +
+                                  format_value(mu * std::abs(alpha)) + ")",
+                          "lower friction.mu or use arctan_velocity");
+  const double bound = mu * std::abs(n0) / (1.0 - mu * std::abs(alpha));
+  double low = -bound, high = bound, T = 0.0;
+  double value = phi(T);
+  for (int iteration = 0; iteration < 200 && value != 0.0; ++iteration) {
+    (value < 0.0 ? low : high) = T;
+    const double x = x0 + d * T;
+    const double u = k_v * x;
+    const double slope = 1.0 + kTwoOverPi * mu *
+                                   (k_v * d / (1.0 + u * u) * multiplier(T) +
+                                    std::atan(u) * (penalty ? 0.0 : spec.sigma * alpha));
+    double next = slope > 0.0 ? T - value / slope : 0.5 * (low + high);
+    if (!(next > low && next < high)) next = 0.5 * (low + high);
+    if (std::abs(next - T) <= 4.0 * std::numeric_limits<double>::epsilon() * std::abs(T) ||
+        high - low <= 4.0 * std::numeric_limits<double>::epsilon() * bound) {
+      T = next;
+      break;
+    }
+    T = next;
+    value = phi(T);
   }
-  if (solution.regular)
-    throw SimulationError(t_, "the slip acceleration of eq. (3.15) did not converge",
-                          "lower friction.k_v or use arctan_velocity");
+  solution = zero;
+  solution.acceleration = zero.acceleration + T * (unit.acceleration - zero.acceleration);
+  solution.normal_force = n0 + alpha * T;
+  solution.friction_force = zero.friction_force + T;
+  solution.motor_torque = zero.motor_torque + T * (unit.motor_torque - zero.motor_torque);
+  solution.slip_acceleration = x0 + d * T;
   return solution;
 }
 
@@ -426,6 +484,27 @@ ModeSolution DriveDynamics::solve_acceleration_law(const ModeSpec& spec) {
   return solution;
 }
 
+friction::FlankLcpResult DriveDynamics::prescribed_slip_decision(const ModeSpec& base,
+                                                                 int sigma) {
+  ModeSpec spec = base;
+  spec.given_tangential = 0.0;
+  const ModeSolution without = solve(spec);
+  spec.given_tangential = 1.0;
+  const ModeSolution unit = solve(spec);
+  friction::FlankLcpResult result;
+  if (!without.regular || !unit.regular) return result;
+  // The prescribed slip acceleration; zero within the round-off of its terms.
+  const double c = without.slip_acceleration;
+  const double noise = 64.0 * std::numeric_limits<double>::epsilon() *
+                       model_.tangent_direction().cwiseProduct(without.acceleration).cwiseAbs().sum();
+  // sigma 0: the thread without play, whose normal force takes either sign
+  // (the one it has without friction; friction within the cone keeps it).
+  if (sigma == 0) sigma = without.normal_force >= 0.0 ? 1 : -1;
+  return friction::solve_flank_prescribed_slip(
+      c, std::abs(c) <= noise, unit.normal_force - without.normal_force, without.normal_force,
+      model_.effective_mu(), sigma, without.motor_torque, unit.motor_torque - without.motor_torque);
+}
+
 ModeSolution DriveDynamics::solve_with_forces(const ModeSpec& spec,
                                              const CoordinateVector& forces) {
   const CoordinateVector own = forces_;
@@ -474,8 +553,8 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
 }
 
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
-                           double& normal_impulse, double& tangential_impulse, bool& sticks,
-                           lcp::Workspace& workspace, const lcp::Options& options) {
+                           Impulses& impulses, lcp::Workspace& workspace,
+                           const lcp::Options& options) {
   const DriveParameters& p = model_.parameters();
   const int n = model_.coordinate_count();
   const Eigen::VectorXd& normal = model_.normal_direction();
@@ -484,6 +563,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   // controlled) with Newton's law W_N (v + dv) = -e W_N v. The post-impact
   // slip velocity and both impulses are affine in P_T: two solves give the
   // maps, and the flank LCP on the impulse level decides stick or slip.
+  double rotor_impulse = 0.0;
   auto jump = [&](double given_tangential, CoordinateVector& change, double& impulse) {
     const int nc = 1 + (p.speed_controlled ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
@@ -500,24 +580,40 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
     SmallVector lambda;
     if (!solve_constrained(inverse_mass_, f, B, C, r, change, lambda)) return false;
     impulse = lambda[0];
+    rotor_impulse = p.speed_controlled ? lambda[1] : 0.0;
     return true;
   };
   CoordinateVector without, unit;
   double beta = 0.0, unit_normal = 0.0;
-  if (!jump(0.0, without, beta) || !jump(1.0, unit, unit_normal)) return false;
+  if (!jump(0.0, without, beta)) return false;
+  const double rotor_without = rotor_impulse;
+  if (!jump(1.0, unit, unit_normal)) return false;
   const double c = tangent.dot(v + without);
   const double d = tangent.dot(unit - without);
   const double alpha = unit_normal - beta;
-  const friction::FlankLcpResult r = solve_flank_lcp_scaled(
-      c, d, alpha, beta, model_.effective_mu(), sigma, workspace, options);
+  friction::FlankLcpResult r;
+  if (slip_prescribed_) {
+    // The motor and Newton's law fix the velocities after the impact: their
+    // slip c decides (friction::solve_flank_prescribed_slip on the impulses).
+    const CoordinateVector after = v + without;
+    const double noise = 64.0 * std::numeric_limits<double>::epsilon() *
+                         tangent.cwiseProduct(after).cwiseAbs().sum();
+    r = friction::solve_flank_prescribed_slip(c, std::abs(c) <= noise, alpha, beta,
+                                              model_.effective_mu(), sigma, rotor_without,
+                                              rotor_impulse - rotor_without);
+  } else {
+    r = solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigma, workspace,
+                               options);
+  }
   if (!r.consistent) return false;
   CoordinateVector change;
   double impulse = 0.0;
   if (!jump(r.friction_force, change, impulse)) return false;
   v += change;
-  normal_impulse = impulse;
-  tangential_impulse = r.friction_force;
-  sticks = r.slip_acceleration == 0.0;  // the new slip velocity, exactly 0 in the stick basis
+  impulses.normal = impulse;
+  impulses.tangential = r.friction_force;
+  impulses.rotor = rotor_impulse;
+  impulses.sticks = r.slip_acceleration == 0.0;  // the new slip velocity, exactly 0 in the stick basis
   return true;
 }
 

@@ -1,5 +1,8 @@
 #include "leadscrew/model/friction_block.hpp"
 
+#include "leadscrew/model/result_checks.hpp"
+#include "leadscrew/model/simulation_checks.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -522,6 +525,12 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
     require_choice("integrator", options.integrator, allowed,
                    "friction = \"" + friction_law_name(options.friction) + "\"");
   if (options.friction != FrictionLaw::coulomb) require_positive("k_v", options.k_v);
+  if (options.integrator == "moreau") {
+    integrate::validate_output_request(options.output, 0.0);
+    check_step_resolves_loads(options.dt, options.output.t_end, {&block.force});
+  } else {
+    check_meaningful_tolerances(options.integrator_options);
+  }
 
   Eigen::VectorXd y0(kStateSize);
   y0 << block.initial_position, block.initial_velocity, 0.0, 0.0;
@@ -549,6 +558,23 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
     }
   }
   result.friction = friction_law_name(options.friction);
+  ResultCheckSpec spec;
+  spec.slip = "v";
+  spec.friction_sign = -1.0;  // lambda_T opposes the block: m u'' = F - lambda_T
+  spec.work = {"work_force"};
+  spec.stored = {"kinetic"};
+  spec.losses = {"friction_loss"};
+  spec.t_end = options.output.t_end;
+  spec.cone_mu = options.friction == FrictionLaw::coulomb ? block.mu : -1.0;
+  spec.friction_dissipates = options.friction != FrictionLaw::arctan_acceleration;
+  spec.slip_resolution = options.integrator_options.atol;  // the slip is the state's velocity
+  spec.time_stepping = options.integrator == "moreau";
+  spec.rtol = options.integrator_options.rtol;
+  spec.atol = options.integrator_options.atol;
+  spec.momentum_factor = std::sqrt(2.0 * block.mass);
+  spec.quadratures = kStateSize - 2;
+  check_result(spec, result);
+  if (options.check) integrate::enforce_checks(result);
   return result;
 }
 

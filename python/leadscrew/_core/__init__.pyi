@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'drive_integrators', 'efficiency', 'integrate', 'is_drivable', 'is_self_locking', 'lcp', 'lower_torque', 'raise_torque', 'simulate_block', 'simulate_drive']
+__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'drive_integrators', 'efficiency', 'efficiency_array', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive', 'wake_helpers']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -117,12 +117,17 @@ class Excitation:
         ...
 class SimulationResult:
     def channel(self, name: str) -> typing.Any:
-        """One channel as a new array, or None if there is no such channel."""
+        """
+        One channel as a new array, or None if there is no such channel.
+        """
     @property
     def channel_names(self) -> list[str]:
         ...
     @property
     def channels(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def checks(self) -> dict:
         ...
     @property
     def events(self) -> list:
@@ -267,16 +272,16 @@ class DriveParameters:
     def nut_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def nut_mass(self) -> float:
-        ...
-    @nut_mass.setter
-    def nut_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
     def nut_length(self) -> float:
         ...
     @nut_length.setter
     def nut_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_mass(self) -> float:
+        ...
+    @nut_mass.setter
+    def nut_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def nut_position(self) -> float:
@@ -437,7 +442,7 @@ class DriveBatch:
     """
     Simulations of one drive that differ in a few scalar parameters (immutable).
     """
-    def __init__(self, base: DriveParameters, parameters: collections.abc.Sequence[str], channels: collections.abc.Sequence[str], t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> None:
+    def __init__(self, base: DriveParameters, parameters: collections.abc.Sequence[str], channels: collections.abc.Sequence[str], t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True) -> None:
         """
         base: DriveParameters; parameters: the fields each case sets (numeric DriveParameters attributes; drive_torque, drive_speed, axial_force as constants); channels: the result channels to sample at t_eval; the rest as simulate_drive (integrator "": each case's default). ValueError for a bad request.
         """
@@ -453,7 +458,7 @@ class DriveBatch:
         ...
 def block_integrators(arg0: str) -> list[str]:
     ...
-def check_drive_options(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> None:
+def check_drive_options(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> None:
     """
     The checks simulate_drive makes of these options before it integrates, without simulating: ValueError naming the option, its value and the valid range.
     """
@@ -461,25 +466,37 @@ def drive_integrators(parameters: DriveParameters) -> list[str]:
     ...
 def efficiency(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0, backdrive: bool = False) -> float:
     ...
-def efficiency_array(thread: Thread, mu: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.float64]:
-    ...
+def efficiency_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); ValueError for a negative or non-finite m.
+    """
 def is_drivable(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex) -> bool:
     ...
-def is_drivable_array(thread: Thread, mu: numpy.typing.ArrayLike) -> numpy.typing.NDArray[numpy.bool_]:
-    ...
+def is_drivable_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    is_drivable(thread, m) for each m of the array mu [1]; ValueError for a negative or non-finite m.
+    """
 def is_self_locking(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex) -> bool:
     ...
 def lower_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
     ...
 def pooled_helper_count() -> int:
-    ...
+    """
+    Helper threads the process's pool has started so far (the batch's workers
+    beyond the calling thread; asleep between calls).
+    """
 def raise_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
     ...
-def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.SupportsIndex, friction: str, integrator: str, k_v: typing.SupportsFloat | typing.SupportsIndex, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> SimulationResult:
+def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.SupportsIndex, friction: str, integrator: str, k_v: typing.SupportsFloat | typing.SupportsIndex, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     ...
-def simulate_drive(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> SimulationResult:
+def simulate_drive(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     """
-    Simulate the drive (leadscrew.simulate's drive path).
+    Simulate the drive (leadscrew.simulate's drive path); progress: None or a callable of the simulated time, called about every 0.1 s of wall time (Ctrl-C is checked there too).
     """
 def wake_helpers(threads: typing.SupportsInt | typing.SupportsIndex, seconds: typing.SupportsFloat | typing.SupportsIndex) -> None:
-    ...
+    """
+    Announce a batch on `threads` threads within `seconds` [s] (at most 0.01):
+    up to threads - 1 helper threads wake now and wait for it spinning, so that
+    it starts on all of them at once. ValueError for threads < 1 or seconds
+    outside [0, 0.01].
+    """

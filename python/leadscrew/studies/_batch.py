@@ -57,7 +57,7 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
                             a["dt"], a["theta"], np.asarray(t_eval, dtype=float).ravel().tolist(),
                             a["max_steps"], a["max_events"],
                             a["max_step"], a["first_step"], a["bounce_threshold"],
-                            a["max_order"])
+                            a["max_order"], a["check"])
 
 
 def check_simulate_options(scene: Scene, options: Dict[str, Any], t_end: float) -> None:

@@ -41,4 +41,17 @@ struct FlankLcpResult {
 FlankLcpResult solve_flank_lcp(double c, double d, double alpha, double beta, double mu,
                                int sigma, lcp::Workspace& workspace, const lcp::Options& options);
 
+// The same decision where the slip is prescribed (d = 0): a speed-controlled
+// motor on the rigid thread without play, or on a closed flank, fixes every
+// velocity, so the friction force no longer changes the slip acceleration
+// (or velocity) c. Then c decides: slip against friction at the cone's edge
+// where c != 0; where c = 0 the friction force is statically indeterminate
+// (the motor and the thread share the load), and of the forces the cone
+// admits the one is taken that leaves the motor the least to carry:
+// |motor| minimal with motor = motor0 + motor1 lambda_T (the thread holds
+// what its friction can; a self-locking thread holds an axial load with no
+// motor torque). `slip_zero` says c counts as 0 (within its round-off).
+FlankLcpResult solve_flank_prescribed_slip(double c, bool slip_zero, double alpha, double beta,
+                                           double mu, int sigma, double motor0, double motor1);
+
 }  // namespace leadscrew::friction

@@ -58,6 +58,10 @@ struct IntegratorOptions {
   long max_steps = 1000000;  // total internal steps before SimulationError
   int max_order = 0;         // 0: the method's default (CVODE BDF 5, Adams 12)
   double fixed_step = 0.0;   // > 0: fixed step size where the method supports it
+  // Newton iterations per implicit step before a convergence failure (CVODE;
+  // 0: its default, 3). Set by a model whose right-hand side is strongly
+  // nonlinear on its fast scales (the drive with eq. 3.15's law).
+  int max_nonlinear_iterations = 0;
 };
 
 struct IntegratorStats {

@@ -24,6 +24,20 @@ struct SimulationStats {
   double wall_time = 0.0;         // [s], measured inside C++
 };
 
+// One invariant a result was checked for (model/result_checks.hpp): the
+// worst value the run showed against its bound, and when.
+// (Static strings: a run's checks allocate nothing but their vector.)
+struct InvariantCheck {
+  const char* name = "";   // e.g. "energy_balance", "friction_power"
+  const char* what = "";   // what it checks, one line
+  bool applies = true;     // false: not a property of this model or law (not checked)
+  bool passed = true;
+  double value = 0.0;      // the worst value seen (the invariant's own unit)
+  double bound = 0.0;      // what the run allows
+  double time = 0.0;       // [s] where the worst value occurred
+  const char* unit = "";   // of value and bound
+};
+
 struct SimulationResult {
   std::vector<double> time;
   std::vector<std::string> channel_names;
@@ -35,6 +49,11 @@ struct SimulationResult {
   SimulationStats stats;
   std::string integrator;
   std::string friction;
+  // The invariants checked at the end of the run (empty: not checked).
+  std::vector<InvariantCheck> checks;
+  // The output points interpolate between the scheme's own (Moreau-Jean at
+  // requested times): products of channels there are not the scheme's.
+  bool interpolated = false;
 
   std::size_t channel_count() const noexcept { return channel_names.size(); }
   std::size_t point_count() const noexcept { return time.size(); }
@@ -47,6 +66,10 @@ struct SimulationResult {
   // Index of the channel called `name`, or -1.
   int channel_index(const std::string& name) const;
 };
+
+// Throws SimulationError naming the first check that failed (its invariant,
+// time, size and bound); nothing if all passed.
+void enforce_checks(const SimulationResult& result);
 
 // When to record output: at the given times, or (empty) at every step and
 // event of the integrator.

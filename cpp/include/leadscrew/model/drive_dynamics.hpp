@@ -131,10 +131,15 @@ class DriveDynamics {
   // stick or slip of the impulses decided by the flank LCP. `sticks` is the
   // LCP's verdict (zero post-impact slip), taken from its basis: a sliding
   // impact has |P_T| = mu' |P_N| exactly, so comparing the impulses would let
-  // round-off decide. Returns false if no consistent frictional impact exists.
-  bool impact(int sigma, double restitution, CoordinateVector& v, double& normal_impulse,
-              double& tangential_impulse, bool& sticks, lcp::Workspace& workspace,
-              const lcp::Options& options);
+  // round-off decide. `rotor` is the speed-controlled motor's impulse (its
+  // work at the held speed is rotor times that speed). Returns false if no
+  // consistent frictional impact exists.
+  struct Impulses {
+    double normal = 0.0, tangential = 0.0, rotor = 0.0;
+    bool sticks = false;
+  };
+  bool impact(int sigma, double restitution, CoordinateVector& v, Impulses& impulses,
+              lcp::Workspace& workspace, const lcp::Options& options);
 
   double time() const noexcept { return t_; }
   const CoordinateVector& q() const noexcept { return q_; }
@@ -142,6 +147,9 @@ class DriveDynamics {
   double play() const noexcept { return play_; }             // e [m]
   double play_rate() const noexcept { return play_rate_; }   // e' [m/s]
   double slip_velocity() const noexcept { return slip_; }    // gamma_T [m/s]
+  // The round-off of slip_velocity() at the state set: a slip velocity this
+  // small has no reliable sign (64 ulp of the sum |W_T,i v_i| it cancels).
+  double slip_noise() const noexcept { return slip_noise_; }
   double penalty_normal_force() const noexcept { return penalty_normal_; }
   double elastic_energy() const noexcept { return elastic_; }
   // Potential of the penalty flanks at the state last set: evaluated on request
@@ -170,10 +178,25 @@ class DriveDynamics {
     return delassus_nn_ - sigma * kappa * delassus_nt_;
   }
   double delassus_normal() const noexcept { return delassus_nn_; }
+  // -G_NT / G_NN: the change of the flank normal force per unit friction
+  // force with the masses alone (the speed-controlled rotor held).
+  double coupling() const noexcept { return -delassus_nt_ / delassus_nn_; }
   // mu' |G_NT| >= G_NN: only then can both signs of the flank normal force be
   // consistent in slip. M and the thread directions are constant, so this is
   // a property of the model, computed once.
   bool painleve_possible() const noexcept { return painleve_possible_; }
+  // True if the flank's constraint and the speed-controlled rotor fix every
+  // velocity (the rigid drive's two coordinates): the slip is then
+  // prescribed by the motor, and friction no longer changes it
+  // (friction::solve_flank_prescribed_slip decides stick or slip). A
+  // property of the model, computed once.
+  bool slip_prescribed() const noexcept { return slip_prescribed_; }
+  // The flank's stick or slip at zero slip velocity where the slip is
+  // prescribed (slip_prescribed), from the mode `base` without friction at
+  // the state set: its slip acceleration decides, and in stick the friction
+  // force leaves the motor the least torque. sigma: the closed flank's sign,
+  // or 0 for the thread without play (either sign).
+  friction::FlankLcpResult prescribed_slip_decision(const ModeSpec& base, int sigma);
 
  private:
   void penalty_force();
@@ -182,13 +205,14 @@ class DriveDynamics {
   const DriveModel& model_;
   double t_ = 0.0;
   CoordinateVector q_, v_, forces_, inverse_mass_;
-  double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0;
+  double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0, slip_noise_ = 0.0;
   double penalty_normal_ = 0.0, elastic_ = 0.0;
   double penetration_[2] = {0.0, 0.0};  // of the upper and the lower penalty flank (0: none)
   double damping_power_ = 0.0, contact_loss_power_ = 0.0;
   double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;
   bool painleve_possible_ = false;
+  bool slip_prescribed_ = false;
 };
 
 }  // namespace leadscrew::model

@@ -25,6 +25,9 @@ struct DriveSimulationOptions {
   // stays closed (ends an infinite sequence of ever smaller bounces).
   double bounce_threshold = 1e-6;
   integrate::OutputRequest output;
+  // Check the result's physics (model/result_checks.hpp) and raise
+  // SimulationError where it fails; false: result.checks only reports.
+  bool check = true;
 };
 
 // Integrators that fit a model (the first is the default).

@@ -40,6 +40,9 @@ struct BlockSimulationOptions {
   double theta = 0.5;  // moreau
   long max_events = 100000;
   integrate::OutputRequest output;
+  // Check the result's physics (model/result_checks.hpp) and raise
+  // SimulationError where it fails; false: result.checks only reports.
+  bool check = true;
 };
 
 // Integrators that fit a friction law (the first is the default).

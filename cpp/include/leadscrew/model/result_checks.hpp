@@ -1,0 +1,78 @@
+// The physics every simulation's result must show, checked at the end of
+// the run (the drive's and the friction block's simulate): a result either
+// passes these checks or the run raises SimulationError naming the invariant
+// (integrate::enforce_checks). The bounds are derived in
+// docs/physics/result_checks.md:
+//   finite          every channel and output time is a finite number;
+//   event_times     every event lies in [0, t_end], in order;
+//   friction_power  friction never does positive work: lambda_T gamma_T <=
+//                   |lambda_T| times the slip velocity the integrator
+//                   resolves (its atol through |W_T|) plus round-off, at
+//                   every output point (not for eq. 3.15's law, which
+//                   opposes the slip acceleration by construction);
+//   friction_loss   the friction loss never falls by more than its
+//                   integration error;
+//   friction_cone   |lambda_T| <= mu' |lambda_N| within round-off and the
+//                   root location (exact Coulomb only);
+//   energy_balance  |energy_residual| within the integrator's tolerances
+//                   carried through the energy: K (rtol E + atol G), with E
+//                   the run's largest energy flow and G the energy's
+//                   gradient bound over the state (momenta, spring forces,
+//                   one per work or loss integral); for Moreau-Jean time
+//                   stepping, which dissipates by construction, the energy
+//                   it creates (-energy_residual) within 1e-3 of E.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "leadscrew/integrate/simulation_result.hpp"
+
+namespace leadscrew::model {
+
+// What a friction contact's result is checked against: its channels, its
+// law and the integration that produced it.
+struct ResultCheckSpec {
+  std::string slip = "slip_velocity";
+  std::string friction = "friction_force";
+  // +1: the friction channel is the force on the body whose slip velocity
+  // the slip channel is (the drive's screw); -1: its reaction (the block's
+  // lambda_T in m u'' = F - lambda_T).
+  double friction_sign = 1.0;
+  std::string normal = "normal_force";
+  std::string friction_loss = "friction_loss";
+  std::string residual = "energy_residual";
+  // Channels of the energy account: work put in (either sign), energy
+  // stored (kinetic, elastic) and losses (>= 0).
+  std::vector<std::string> work, stored, losses;
+  double t_end = 0.0;
+  // mu' of a set-valued law (exact Coulomb): the cone is checked; < 0: not.
+  double cone_mu = -1.0;
+  // false for eq. (3.15), whose friction may push (its energy balance is
+  // checked only).
+  bool friction_dissipates = true;
+  // The slip velocity the integrator resolves [m/s]: |W_T| atol.
+  double slip_resolution = 0.0;
+  // Moreau-Jean time stepping: a dissipative account (see above).
+  bool time_stepping = false;
+  double rtol = 0.0, atol = 0.0;
+  // Bounds of the energy's gradient over the state: sum_i |M_i v_i| <=
+  // momentum_factor sqrt(kinetic), sum |k x| <= force_factor sqrt(elastic).
+  double momentum_factor = 0.0, force_factor = 0.0;
+  int quadratures = 0;  // work and loss integrals in the state (atol each)
+};
+
+// The safety factor K of energy_balance: the largest ratio of
+// |energy_residual| to rtol E + atol G measured over the test suite and
+// 10,000 random scenes, times ten (docs/physics/result_checks.md).
+constexpr double kEnergyToleranceFactor = 1e3;
+// The force resolution at an event's located root, relative to the run's
+// largest friction and flank forces (friction_power, friction_cone).
+constexpr double kForceResolution = 1e-8;
+// The share of the run's largest energy flow Moreau-Jean may create.
+constexpr double kTimeSteppingCreation = 1e-3;
+
+// Fills result.checks. Does not throw (integrate::enforce_checks does).
+void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& result);
+
+}  // namespace leadscrew::model

@@ -1,0 +1,252 @@
+#include "leadscrew/model/result_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace leadscrew::model {
+
+namespace {
+
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+
+// Channel k of the result at point i (point-major storage), or 0 if absent.
+class Channels {
+ public:
+  explicit Channels(const integrate::SimulationResult& r) : r_(r), stride_(r.channel_count()) {}
+  int index(const std::string& name) const { return r_.channel_index(name); }
+  double at(int k, std::size_t i) const {
+    return k < 0 ? 0.0 : r_.values[i * stride_ + static_cast<std::size_t>(k)];
+  }
+  std::size_t points() const { return r_.point_count(); }
+
+ private:
+  const integrate::SimulationResult& r_;
+  std::size_t stride_;
+};
+
+integrate::InvariantCheck make_check(const char* name, const char* what, const char* unit) {
+  integrate::InvariantCheck c;
+  c.name = name;
+  c.what = what;
+  c.unit = unit;
+  return c;
+}
+
+// Keeps the worst excess (value - bound) of an invariant value <= bound.
+struct Worst {
+  integrate::InvariantCheck& check;
+  bool seen = false;
+  double excess = 0.0;
+  void offer(double value, double bound, double t) {
+    const double e = value - bound;
+    if (!seen || e > excess || std::isnan(value)) {
+      seen = true;
+      excess = e;
+      check.value = value;
+      check.bound = bound;
+      check.time = t;
+    }
+    if (!(value <= bound)) check.passed = false;
+  }
+};
+
+}  // namespace
+
+void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& result) {
+  std::vector<integrate::InvariantCheck>& checks = result.checks;
+  checks.clear();
+  checks.reserve(6);
+  const Channels ch(result);
+  const std::size_t n = ch.points();
+  const std::size_t channels = result.channel_count();
+
+  // finite: every value and time.
+  {
+    integrate::InvariantCheck c =
+        make_check("finite", "every channel and output time is a finite number", "");
+    for (std::size_t i = 0; i < n && c.passed; ++i) {
+      bool ok = std::isfinite(result.time[i]);
+      for (std::size_t k = 0; k < channels && ok; ++k)
+        ok = std::isfinite(result.values[i * channels + k]);
+      if (!ok) {
+        c.passed = false;
+        c.value = 1.0;
+        c.time = std::isfinite(result.time[i]) ? result.time[i] : 0.0;
+        c.bound = static_cast<double>(i);  // the output point (value 1: not finite)
+      }
+    }
+    checks.push_back(c);
+    if (!checks.back().passed) return;  // the others would compare NaNs
+  }
+
+  // event_times: within [0, t_end], in order.
+  {
+    integrate::InvariantCheck c =
+        make_check("event_times", "every event lies in [0, t_end], in order", "s");
+    double previous = 0.0;
+    c.bound = spec.t_end;
+    for (const integrate::Event& e : result.events) {
+      if (!(e.time >= previous && e.time <= spec.t_end)) {
+        c.passed = false;
+        c.value = e.time;
+        c.time = std::isfinite(e.time) ? e.time : 0.0;
+        break;
+      }
+      previous = e.time;
+    }
+    checks.push_back(c);
+  }
+
+  const int slip = ch.index(spec.slip), friction = ch.index(spec.friction),
+            normal = ch.index(spec.normal);
+  double max_slip = 0.0, max_friction = 0.0, max_normal = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    max_slip = std::max(max_slip, std::abs(ch.at(slip, i)));
+    max_friction = std::max(max_friction, std::abs(ch.at(friction, i)));
+    max_normal = std::max(max_normal, std::abs(ch.at(normal, i)));
+  }
+  // The forces' resolution: the values just before an event are those at
+  // its located root, where the root function (a normal force, the cone's
+  // margin) has just changed sign; with the stiff springs of the flexible
+  // drives a flank force moves fast there (1e5 N/s and more), and what the
+  // root's time tolerance leaves of it is a small fraction of the run's
+  // force scale (kForceResolution of it).
+  const double force_resolution =
+      kForceResolution * (max_friction + std::max(spec.cone_mu, 1.0) * max_normal);
+  // The slip velocity below which its sign is not resolved: the
+  // integrator's tolerances on the velocities through |W_T| (atol, and rtol
+  // of the largest slip), and round-off (time stepping: the step's slip is
+  // its LCP's, exact up to round-off).
+  const double slip_band =
+      spec.time_stepping ? 64.0 * kEpsilon * max_slip
+                         : spec.slip_resolution + (spec.rtol + 64.0 * kEpsilon) * max_slip;
+  // The root location's time resolution (CVODE's 100 ulp of the time; our
+  // Runge-Kutta engines locate to 4 ulp): the slip velocity just before a
+  // slip's end is its rate times that, on either side of zero.
+  const double time_resolution = 128.0 * kEpsilon * spec.t_end;
+  auto slip_rate = [&](std::size_t i) {
+    double rate = 0.0;
+    for (const std::size_t j : {i == 0 ? i : i - 1, i + 1 < n ? i + 1 : i}) {
+      const double dt = std::abs(result.time[j] - result.time[i]);
+      if (dt > 0.0) rate = std::max(rate, std::abs(ch.at(slip, j) - ch.at(slip, i)) / dt);
+    }
+    return rate;
+  };
+
+  // friction_power: lambda_T gamma_T <= |lambda_T| slip_band.
+  {
+    integrate::InvariantCheck c = make_check(
+        "friction_power",
+        "friction never does positive work: friction_force * slip_velocity <= |friction_force| "
+        "times the slip velocity the integration resolves",
+        "W");
+    // Interpolated between time steps, a force and a slip velocity come
+    // from two steps: their product is not the scheme's (each step's friction
+    // impulse opposes that step's slip exactly, by its LCP).
+    c.applies = spec.friction_dissipates && !(spec.time_stepping && result.interpolated);
+    if (c.applies) {
+      Worst worst{c};
+      for (std::size_t i = 0; i < n; ++i) {
+        const double f = spec.friction_sign * ch.at(friction, i);
+        const double v = ch.at(slip, i);
+        const double band =
+            slip_band + (spec.time_stepping ? 0.0 : slip_rate(i) * time_resolution);
+        worst.offer(f * v, std::abs(f) * band + std::abs(v) * force_resolution, result.time[i]);
+      }
+    }
+    checks.push_back(c);
+  }
+
+  // Energy scales: the largest energy flow E and the gradient bound G.
+  const int residual = ch.index(spec.residual);
+  double energy = 0.0, gradient = 0.0, max_loss = 0.0;
+  {
+    std::vector<int> work, stored, losses;
+    for (const auto& name : spec.work) work.push_back(ch.index(name));
+    for (const auto& name : spec.stored) stored.push_back(ch.index(name));
+    for (const auto& name : spec.losses) losses.push_back(ch.index(name));
+    const int kinetic = ch.index("kinetic"), elastic = ch.index("elastic");
+    const int friction_loss = ch.index(spec.friction_loss);
+    for (std::size_t i = 0; i < n; ++i) {
+      double flow = 0.0;
+      for (int k : work) flow += std::abs(ch.at(k, i));
+      for (int k : stored) flow += std::abs(ch.at(k, i));
+      for (int k : losses) flow += std::abs(ch.at(k, i));
+      energy = std::max(energy, flow);
+      const double g = spec.momentum_factor * std::sqrt(std::max(0.0, ch.at(kinetic, i))) +
+                       spec.force_factor * std::sqrt(std::max(0.0, ch.at(elastic, i)));
+      gradient = std::max(gradient, g);
+      max_loss = std::max(max_loss, std::abs(ch.at(friction_loss, i)));
+    }
+    gradient += spec.quadratures;
+  }
+  const double integration_error =
+      kEnergyToleranceFactor *
+      (std::max(spec.rtol, 64.0 * kEpsilon) * energy + spec.atol * gradient);
+
+  // friction_loss: never falls by more than its integration error (and what
+  // friction may push within the slip band over the run).
+  {
+    integrate::InvariantCheck c = make_check(
+        "friction_loss", "the friction loss never falls (beyond its integration error)", "J");
+    c.applies = spec.friction_dissipates;
+    if (c.applies) {
+      const int loss = ch.index(spec.friction_loss);
+      const double tolerance =
+          spec.time_stepping
+              ? 64.0 * kEpsilon * max_loss
+              : kEnergyToleranceFactor * (std::max(spec.rtol, 64.0 * kEpsilon) * max_loss +
+                                          spec.atol) +
+                    max_friction * slip_band * spec.t_end;
+      Worst worst{c};
+      double highest = -std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < n; ++i) {
+        const double value = ch.at(loss, i);
+        highest = std::max(highest, value);
+        worst.offer(highest - value, tolerance, result.time[i]);
+      }
+    }
+    checks.push_back(c);
+  }
+
+  // friction_cone: |lambda_T| <= mu' |lambda_N| (exact Coulomb).
+  {
+    integrate::InvariantCheck c = make_check(
+        "friction_cone", "|friction_force| <= mu' |normal_force| (Coulomb's cone)", "N");
+    c.applies = spec.cone_mu >= 0.0 && !(spec.time_stepping && result.interpolated);
+    if (c.applies) {
+      Worst worst{c};
+      for (std::size_t i = 0; i < n; ++i) {
+        const double f = std::abs(ch.at(friction, i));
+        const double limit = spec.cone_mu * std::abs(ch.at(normal, i));
+        // Round-off, and the root location of a stick phase's end (its
+        // margin has just changed sign there): force_resolution.
+        worst.offer(f - limit, force_resolution, result.time[i]);
+      }
+    }
+    checks.push_back(c);
+  }
+
+  // energy_balance.
+  {
+    integrate::InvariantCheck c = make_check(
+        "energy_balance",
+        spec.time_stepping
+            ? "the energy account creates no energy beyond 1e-3 of the run's largest energy "
+              "flow (Moreau-Jean dissipates by construction)"
+            : "|energy_residual| within the integration tolerances carried through the energy",
+        "J");
+    Worst worst{c};
+    const double bound =
+        spec.time_stepping ? kTimeSteppingCreation * energy + 64.0 * kEpsilon * energy
+                           : integration_error;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double r = ch.at(residual, i);
+      worst.offer(spec.time_stepping ? -r : std::abs(r), bound, result.time[i]);
+    }
+    checks.push_back(c);
+  }
+}
+
+}  // namespace leadscrew::model

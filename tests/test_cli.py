@@ -367,6 +367,45 @@ def test_study_errors(tmp_path, capsys, monkeypatch, argv, code, fragments):
     assert_one_line_error(err, *fragments)
 
 
+@pytest.mark.parametrize("order", [
+    ["mu=0.1,0.3", "label=abc", "-o", "{out}", "t-end=0.2"],
+    ["-o", "{out}", "mu=0.1,0.3", "label=abc", "t-end=0.2"],
+    ["mu=0.1,0.3", "-o", "{out}", "label=abc", "t-end=0.2"],
+])
+def test_study_options_stand_before_or_after_o(tmp_path, capsys, monkeypatch, order):
+    """KEY=VALUE options after -o DIR are options like those before it (the
+    README's example writes progress=false before -o; a user writes it after)."""
+    calls = fake_studies(monkeypatch)
+    argv = [item.format(out=tmp_path) for item in order]
+    code, out, err = run_main(capsys, "study", "sweep_mu", "default", *argv)
+    assert code == 0, err
+    (_, mu, label, t_end), = calls
+    assert (mu, label, t_end) == ([0.1, 0.3], "abc", 0.2)
+    assert (tmp_path / "sweep_mu_default.csv").is_file()
+
+
+@pytest.mark.parametrize("argv, fragments", [
+    (["study", "sweep_mu", "default", "-o", "{out}", "--bogus"],
+     ["unrecognized arguments: --bogus", "leadscrew study --help"]),
+    (["run", "default", "extra", "-o", "{out}"], ["unrecognized arguments: extra"]),
+    (["study", "sweep_mu", "default", "-o", "{out}", "novalue"], ["novalue", "KEY=VALUE"]),
+])
+def test_arguments_no_command_takes_are_one_line_usage_errors(tmp_path, capsys, monkeypatch,
+                                                              argv, fragments):
+    calls = fake_studies(monkeypatch)
+    code, out, err = run_main(capsys, *[item.format(out=tmp_path) for item in argv])
+    assert code == 2 and out == "" and calls == []
+    assert_one_line_error(err, *fragments)
+    assert not any(tmp_path.iterdir())
+
+
+def test_version(capsys):
+    code, out, err = run_main(capsys, "--version")
+    assert code == 0 and err == ""
+    assert out == f"leadscrew {ls.__version__}\n"
+    assert re.fullmatch(r"\d+\.\d+\.\d+\S*", ls.__version__)
+
+
 def test_study_without_the_studies_module(tmp_path, capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, "leadscrew.studies", None)  # import fails
     code, _, err = run_main(capsys, "study", "stick_slip", "default", "-o", tmp_path)

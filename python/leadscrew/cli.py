@@ -7,6 +7,7 @@
     leadscrew check [SCENE]
     leadscrew study NAME SCENE [-o DIR] [KEY=VALUE ...]
     leadscrew demo [-o DIR]
+    leadscrew --version
 
 SCENE is a TOML scene file (see :meth:`leadscrew.Scene.from_toml`) or the name
 of a shipped scene (:func:`leadscrew.scenes.available`). Errors print one line
@@ -36,6 +37,7 @@ import time
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
+from . import __version__
 from . import thread as _thread
 
 __all__ = ["main"]
@@ -717,6 +719,8 @@ def _parser() -> argparse.ArgumentParser:
                      "scene file or the name of a shipped scene (default, thesis_table_5_1, "
                      "position_holding).")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
+    parser.add_argument("--version", action="version", version=f"leadscrew {__version__}",
+                        help="print the version and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def command(name: str, **kwargs) -> argparse.ArgumentParser:
@@ -766,7 +770,8 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("scene", metavar="SCENE")
     study.add_argument("options", metavar="KEY=VALUE", nargs="*",
                        help="options of the study, values in TOML syntax or comma-separated "
-                            "lists, e.g. frequencies=5,10,20 progress=false")
+                            "lists, e.g. frequencies=5,10,20 progress=false (before or after "
+                            "-o DIR)")
     study.add_argument("-o", "--output", default=".", help="output directory (default .)")
     study.set_defaults(func=_study)
 
@@ -775,6 +780,25 @@ def _parser() -> argparse.ArgumentParser:
                       help="output directory (default leadscrew-demo)")
     demo.set_defaults(func=_demo)
     return parser
+
+
+def _parse(argv: List[str]) -> argparse.Namespace:
+    """The parsed command line. ``study``'s KEY=VALUE options may stand
+    anywhere after SCENE, also after ``-o DIR`` (argparse alone takes a
+    positional list in one piece and would refuse the rest).
+
+    Raises:
+        UsageError: an argument no command takes.
+    """
+    args, extra = _parser().parse_known_args(argv)
+    if args.command == "study":
+        options = [item for item in extra if not item.startswith("-")]
+        args.options += options
+        extra = [item for item in extra if item.startswith("-")]
+    if extra:
+        raise UsageError(f"unrecognized arguments: {' '.join(extra)} (see 'leadscrew "
+                         f"{args.command} --help')")
+    return args
 
 
 def _is_input_error(error: BaseException) -> bool:
@@ -797,7 +821,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     debug = "--debug" in argv
     try:
-        args = _parser().parse_args(argv)
+        args = _parse(argv)
         return args.func(args)
     except SystemExit as stop:  # --help
         return stop.code if isinstance(stop.code, int) else 0

@@ -136,6 +136,31 @@ def test_check_bad_file_is_one_line_exit_2(tmp_path, capsys):
     assert_one_line_error(err, "--pitch apply without SCENE only")
 
 
+@pytest.mark.parametrize("command", ["check", "run", "study"])
+def test_a_directory_or_an_empty_file_as_scene_says_so(tmp_path, capsys, monkeypatch, command):
+    calls = fake_studies(monkeypatch)
+    folder = tmp_path / "scenes"
+    folder.mkdir()
+    empty = tmp_path / "empty.toml"
+    empty.write_text("")
+    out_dir = tmp_path / "out"
+    for scene, fragments in ((folder, [f"{folder}: is a directory, not a scene file"]),
+                             (empty, [f"{empty}: the file is empty", "[thread], [friction]"])):
+        argv = {"check": ["check", scene], "run": ["run", scene, "-o", out_dir],
+                "study": ["study", "sweep_mu", scene, "-o", out_dir]}[command]
+        code, out, err = run_main(capsys, *argv)
+        assert code == 2 and out == ""
+        assert_one_line_error(err, *fragments)
+    assert calls == [] and not out_dir.exists()
+
+
+def test_a_directory_named_like_a_shipped_scene_does_not_hide_it(tmp_path, capsys, monkeypatch):
+    (tmp_path / "default").mkdir()
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run_main(capsys, "check", "default")
+    assert code == 0 and err == "" and out.startswith("scene default: valid")
+
+
 def test_check_validates_the_whole_scene_before_printing(tmp_path, capsys):
     """A scene whose values are each valid but whose model cannot be built
     (zero load mass on the flexible drive) is not called valid: nothing is

@@ -81,12 +81,15 @@ def _load_scene(arg: str) -> Tuple[Any, str, str]:
     from .scene import Scene
 
     path = Path(arg)
-    if path.is_file():
+    shipped = scenes.available()
+    stem = arg[:-5] if arg.endswith(".toml") else arg
+    is_shipped = stem in shipped and os.sep not in arg and "/" not in arg
+    # A directory is not a scene (Scene.from_toml says so), unless its name
+    # is that of a shipped scene.
+    if path.is_file() or (path.is_dir() and not is_shipped):
         scene, name, source = Scene.from_toml(path), path.stem, os.fspath(path)
     else:
-        shipped = scenes.available()
-        stem = arg[:-5] if arg.endswith(".toml") else arg
-        if stem not in shipped or os.sep in arg or "/" in arg:
+        if not is_shipped:
             raise UsageError(f"scene {arg!r}: no such file, and not a shipped scene "
                              f"({', '.join(shipped)})")
         scene, name, source = scenes.load(stem), stem, stem

@@ -497,11 +497,20 @@ class Scene:
 
         Raises:
             OSError: the file cannot be read.
-            ValueError: a TOML syntax error (the message gives the file, line
-                and column) or an invalid scene (as :meth:`from_dict`: unknown
-                key, missing section or key, wrong dimension, value out of
-                range; the message gives the file and the key path).
+            ValueError: ``path`` is a directory, the file is empty (or holds
+                only comments), a TOML syntax error (the message gives the
+                file, line and column) or an invalid scene (as
+                :meth:`from_dict`: unknown key, missing section or key, wrong
+                dimension, value out of range; the message gives the file and
+                the key path).
         """
+        if os.path.isdir(path):
+            files = sorted(entry.name for entry in os.scandir(path)
+                           if entry.name.endswith(".toml") and entry.is_file())
+            hint = (f"; it holds {', '.join(files[:5])}{', ...' if len(files) > 5 else ''}"
+                    if files else "; it holds no .toml file")
+            raise ValueError(f"{os.fspath(path)}: is a directory, not a scene file (a TOML "
+                             f"file){hint}")
         with open(path, "rb") as stream:
             raw = stream.read()
         return cls(_from_toml_text(raw, os.fspath(path))._data)
@@ -785,6 +794,11 @@ def _from_toml_text(raw: bytes, source: str) -> Scene:
         d = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{source}: TOML syntax error: {error}") from None
+    if not d:
+        what = "is empty" if not text.strip() else "holds no keys (only comments)"
+        raise ValueError(f"{source}: the file {what}: a scene file needs at least the "
+                         f"sections {', '.join(f'[{k}]' for k in _REQUIRED_SECTIONS)} "
+                         "(leadscrew.scene.describe_schema() lists every field)")
     try:
         return Scene.from_dict(d)
     except ValueError as error:

@@ -37,6 +37,16 @@ def assert_one_line_error(err, *fragments):
     assert "Traceback" not in err
 
 
+def read_series(path):
+    """The time series a run (or demo) wrote: its row of units, under the
+    names, is each column's SI unit; then the data."""
+    units = pd.read_csv(path, nrows=1, dtype=str, keep_default_na=False).iloc[0].to_dict()
+    frame = pd.read_csv(path, skiprows=[1])
+    assert units == {name: ls.units.channel_unit(name) for name in frame.columns}
+    assert units["t"] == "s" and units["u_load"] == "m" and units["stick"] == ""
+    return frame
+
+
 def scene_file(tmp_path, name="scene", **changes):
     path = tmp_path / f"{name}.toml"
     ls.Scene.from_dict(thesis_scene(**changes)).to_toml(path)
@@ -185,7 +195,7 @@ def test_run_writes_series_and_figure(tmp_path, capsys):
     csv, png = tmp_path / "default.csv", tmp_path / "default.png"
     assert f"wrote {csv}" in out and f"wrote {png}" in out
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
-    frame = pd.read_csv(csv)
+    frame = read_series(csv)
     expected = ls.simulate(shipped.load("default"), 0.5, t_eval=np.linspace(0, 0.5, 101))
     assert list(frame.columns) == ["t"] + expected.channels
     np.testing.assert_array_equal(frame["t"], expected.t)
@@ -202,7 +212,7 @@ def test_run_every_shipped_scene(tmp_path, capsys, name):
                               "--points", "11")
     assert code == 0 and err == ""
     assert sorted(p.name for p in tmp_path.iterdir()) == [f"{name}.csv", f"{name}.png"]
-    frame = pd.read_csv(tmp_path / f"{name}.csv")
+    frame = read_series(tmp_path / f"{name}.csv")
     expected = ls.simulate(shipped.load(name), 0.05, t_eval=np.linspace(0, 0.05, 11))
     np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
 
@@ -213,7 +223,7 @@ def test_run_a_scene_file_with_options(tmp_path, capsys):
     code, out, _ = run_main(capsys, "run", path, "-o", out_dir, "--t-end", "0.2",
                             "--integrator", "cvode_adams", "--rtol", "1e-6", "--points", "0")
     assert code == 0 and "arctan_velocity/cvode_adams" in out
-    frame = pd.read_csv(out_dir / "scene.csv")
+    frame = read_series(out_dir / "scene.csv")
     assert len(frame) > 10 and frame["t"].iloc[-1] == pytest.approx(0.2, rel=1e-12)
     assert (out_dir / "scene.png").is_file()
 
@@ -259,6 +269,14 @@ def test_parquet_format(tmp_path, capsys):
     frame = pd.read_parquet(tmp_path / "default.parquet")
     expected = ls.simulate(shipped.load("default"), 0.2, t_eval=np.linspace(0, 0.2, 11))
     np.testing.assert_array_equal(frame["u_load"], expected["u_load"])
+    # The units: in each field's metadata, and as the frame's attrs.
+    import pyarrow.parquet as pq
+
+    schema = pq.read_schema(tmp_path / "default.parquet")
+    units = expected.units()
+    assert schema.names == list(units)
+    assert {f.name: f.metadata[b"unit"].decode() for f in schema} == units
+    assert frame.attrs["units"] == units
 
 
 def test_debug_shows_the_traceback(tmp_path):
@@ -277,7 +295,7 @@ def test_run_keeps_a_dotted_scene_name(tmp_path, capsys):
     assert code == 0, err
     assert sorted(p.name for p in out_dir.iterdir()) == ["drive_v1.2.csv", "drive_v1.2.png"]
     assert f"wrote {out_dir / 'drive_v1.2.csv'}" in out
-    assert len(pd.read_csv(out_dir / "drive_v1.2.csv")) == 11
+    assert len(read_series(out_dir / "drive_v1.2.csv")) == 11
 
 
 def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
@@ -287,7 +305,7 @@ def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
                               "--theta", "1")
     assert code == 0, err
     assert "coulomb/moreau" in out
-    frame = pd.read_csv(tmp_path / "scene.csv")
+    frame = read_series(tmp_path / "scene.csv")
     scene, t_eval = ls.Scene.from_toml(path), np.linspace(0, 0.2, 11)
     expected = ls.simulate(scene, 0.2, integrator="moreau", dt=1e-4, theta=1.0, t_eval=t_eval)
     np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
@@ -691,7 +709,7 @@ def test_demo_writes_its_figures(tmp_path, capsys):
         assert path.is_file() and path.stat().st_size > 1000, name
         assert f"wrote {path}" in out
     assert "scene default: valid" in out and "dynamic jamming" in out
-    frame = pd.read_csv(tmp_path / "demo" / "default.csv")
+    frame = read_series(tmp_path / "demo" / "default.csv")
     assert len(frame) == cli.DEFAULT_POINTS and frame["t"].iloc[-1] == cli.DEFAULT_T_END
 
 

@@ -387,12 +387,32 @@ def _summary(name: str, scene, result, t_end: float) -> str:
 
 
 def _write_series(result, out: Path, name: str, fmt: str) -> Path:
+    """Write the time series with the unit of every column.
+
+    CSV: the row of names, then a row of units (SI, ``""`` for the flag
+    ``stick``), then the data (pandas reads the data with
+    ``read_csv(path, skiprows=[1])``, names and units with ``header=[0, 1]``).
+    Parquet: each field's metadata ``unit``, and the frame's
+    ``attrs["units"]`` (which ``pandas.read_parquet`` restores).
+    """
     frame = result.to_frame()
+    units = frame.attrs["units"]
     path = _output_file(out, name, fmt)
     if fmt == "parquet":
-        frame.to_parquet(path, index=False)
+        import pyarrow as pa
+
+        schema = pa.Schema.from_pandas(frame, preserve_index=False)
+        schema = pa.schema([field.with_metadata({"unit": units[field.name]})
+                            for field in schema], metadata=schema.metadata)
+        frame.to_parquet(path, index=False, schema=schema)
     else:
-        frame.to_csv(path, index=False)
+        import csv
+
+        with open(path, "w", encoding="utf-8", newline="") as stream:
+            writer = csv.writer(stream, lineterminator="\n")
+            writer.writerow(frame.columns)
+            writer.writerow(units[column] for column in frame.columns)
+            frame.to_csv(stream, index=False, header=False, lineterminator="\n")
     return path
 
 

@@ -32,6 +32,10 @@ Angles and frequencies:
 
 The registry is built on first use (about 0.5 s), so scenes of plain numbers
 never pay for it.
+
+:func:`channel_unit` gives the SI unit of a result channel from its name (the
+one table of them: :meth:`leadscrew.Result.to_frame`, the command line's CSV
+and Parquet files use it).
 """
 
 from __future__ import annotations
@@ -41,7 +45,7 @@ import re
 from functools import lru_cache
 from typing import Any, Optional
 
-__all__ = ["to_si", "parse_unit", "dimension_name"]
+__all__ = ["to_si", "parse_unit", "dimension_name", "channel_unit"]
 
 # Dimension names for the messages, by a reference unit of each dimension.
 _DIMENSION_NAMES = (
@@ -241,3 +245,49 @@ def _check_angle_free_rate(prefix: str, value: str, given_unit: str, unit: str, 
         hint = (f"its angle part ({_angle_text(given_angle)}) differs from that of {unit} "
                 f"({_angle_text(field_angle)})")
     raise ValueError(f"{prefix}{_quoted(value)} is not {expected}: {hint}")
+
+
+# --- units of result channels -------------------------------------------------
+
+# Channels named in full (the friction block's and the drive's, see
+# cpp/src/model/friction_block.cpp and drive_simulation.cpp), by unit.
+_CHANNELS_BY_UNIT = {
+    "s": ("t",),
+    "m": ("u", "gap", "play"),
+    "m/s": ("v", "slip_velocity"),
+    "m/s^2": ("acceleration",),
+    "N": ("force", "axial_force", "normal_force", "friction_force"),
+    "N*m": ("drive_torque",),
+    "J": ("work_drive", "work_axial", "work_force", "friction_loss", "damping_loss",
+          "contact_loss", "impact_loss", "kinetic", "elastic", "energy_residual"),
+    "": ("stick",),  # a flag: 1 stick, 0 slip
+}
+_CHANNEL_UNITS = {name: unit for unit, names in _CHANNELS_BY_UNIT.items() for name in names}
+# A body's coordinate and velocity channels, <prefix>_<body>: u_nut, omega_drive.
+_COORDINATE_UNITS = {"u": "m", "v": "m/s", "phi": "rad", "omega": "rad/s"}
+_BODIES = ("rotor", "drive", "screw", "nut", "load")
+
+
+def channel_unit(name: str) -> str:
+    """The SI unit of a result channel (or of the time ``"t"``), from its name.
+
+    Args:
+        name: a channel name of :class:`leadscrew.Result` (``"u_load"``,
+            ``"omega_screw"``, ``"friction_loss"``, ...) or ``"t"``.
+
+    Returns:
+        The unit as text: ``"s"``, ``"m"``, ``"m/s"``, ``"m/s^2"``, ``"rad"``,
+        ``"rad/s"``, ``"N"``, ``"N*m"``, ``"J"``, or ``""`` for a flag
+        (``stick``: 1 while the flank sticks).
+
+    Raises:
+        KeyError: a name no model writes (a new channel needs its unit here).
+    """
+    unit = _CHANNEL_UNITS.get(name)
+    if unit is not None:
+        return unit
+    prefix, _, body = name.partition("_")
+    if body in _BODIES and prefix in _COORDINATE_UNITS:
+        return _COORDINATE_UNITS[prefix]
+    raise KeyError(f"channel {name!r} has no unit: leadscrew.units.channel_unit knows "
+                   f"{', '.join(_CHANNEL_UNITS)} and <u|v|phi|omega>_<{'|'.join(_BODIES)}>")

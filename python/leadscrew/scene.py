@@ -31,8 +31,9 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, Optional, Tuple
 
 from . import _core
-from .excitation import Constant, Sine, Table
-from .units import to_si
+from .excitation import Constant, Sine, Table, check_load_unit, checked_callable
+from .thread import Thread
+from .units import to_si, what_it_takes
 
 __all__ = ["Scene", "SCHEMA", "describe_schema"]
 
@@ -262,15 +263,8 @@ def _load_number(path: str, value: Any, unit: str) -> float:
     if (isinstance(number, bool) or not isinstance(number, numbers.Real)
             or not math.isfinite(number)):
         shown = _Converted(value, number, unit) if isinstance(value, str) else value
-        _fail(path, shown, "a finite number" + (f" [{unit}] or a string with a unit such as "
-                                                f"{_UNIT_EXAMPLES.get(unit, '...')}" if unit
-                                                else ""))
+        _fail(path, shown, what_it_takes(unit, "a finite number"))
     return float(number)
-
-
-# Examples of unit strings for the messages of load entries.
-_UNIT_EXAMPLES = {"N": '"-10 N"', "N*m": '"40 N*mm"', "rad/s": '"2 Hz"', "rad": '"90 deg"',
-                  "s": '"250 ms"'}
 
 
 def _excitation_spec(value: Any) -> Optional[Dict[str, Any]]:
@@ -290,6 +284,7 @@ def _excitation_spec(value: Any) -> Optional[Dict[str, Any]]:
 def _check_load(path: str, value: Any, unit: str = ""):
     spec = _excitation_spec(value)
     if spec is not None:  # the core checked the object as it was built
+        check_load_unit(path, value, unit)
         return spec
     if isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
         return value
@@ -325,8 +320,9 @@ def _check_load(path: str, value: Any, unit: str = ""):
           "or a callable f(t)")
 
 
-def _make_excitation(spec):
-    """An Excitation (or callable or number) from a validated load value."""
+def _make_excitation(spec, path: str = "", unit: str = ""):
+    """An Excitation (or number, or checked callable) from a validated load
+    value; ``path`` and ``unit`` name a Python callable's load in its errors."""
     if isinstance(spec, dict):
         kind = spec["type"]
         if kind == "constant":
@@ -334,6 +330,8 @@ def _make_excitation(spec):
         if kind == "sine":
             return Sine(spec["amplitude"], spec["omega"], spec["phase"], spec["offset"])
         return Table(spec["times"], spec["values"])
+    if callable(spec) and not isinstance(spec, _core.Excitation):
+        return checked_callable(path, spec, unit)
     return spec
 
 
@@ -597,7 +595,7 @@ class Scene:
         return _core.DriveModel(_core_parameters(self._data))
 
     @property
-    def thread(self) -> "_core.Thread":
+    def thread(self) -> Thread:
         return _thread(self._data)
 
     def __repr__(self) -> str:
@@ -716,9 +714,9 @@ def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
     return d
 
 
-def _thread(data: Dict[str, Any]) -> "_core.Thread":
+def _thread(data: Dict[str, Any]) -> Thread:
     t = data["thread"]
-    return _core.Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
+    return Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
                         t["hand"])
 
 
@@ -755,12 +753,11 @@ def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
                 "nut_torsional_damping"):
         setattr(p, key, over.get(key, -1.0))
     loads = data["loads"]
-    if "drive_speed" in loads:
-        p.speed_controlled = True
-        p.drive_speed = _make_excitation(loads["drive_speed"])
-    else:
-        p.drive_torque = _make_excitation(loads.get("drive_torque", _DEFAULT_DRIVE_TORQUE))
-    p.axial_force = _make_excitation(loads["axial_force"])
+    given = "drive_speed" if "drive_speed" in loads else "drive_torque"
+    p.speed_controlled = given == "drive_speed"
+    for key in (given, "axial_force"):
+        setattr(p, key, _make_excitation(loads.get(key, _DEFAULT_DRIVE_TORQUE), f"loads.{key}",
+                                         SCHEMA["loads"][key].unit))
     init = data["initial"]
     p.rotor_angle, p.rotor_speed, p.play_position = (init["rotor_angle"], init["rotor_speed"],
                                                      init["play_position"])

@@ -41,11 +41,13 @@ and Parquet files use it).
 from __future__ import annotations
 
 import math
+import numbers
 import re
 from functools import lru_cache
-from typing import Any, Optional
+from typing import Any, Optional, Sequence, Tuple
 
-__all__ = ["to_si", "parse_unit", "dimension_name", "channel_unit"]
+__all__ = ["to_si", "parse_unit", "dimension_name", "quantity", "load_quantity",
+           "channel_unit"]
 
 # Dimension names for the messages, by a reference unit of each dimension.
 _DIMENSION_NAMES = (
@@ -245,6 +247,94 @@ def _check_angle_free_rate(prefix: str, value: str, given_unit: str, unit: str, 
         hint = (f"its angle part ({_angle_text(given_angle)}) differs from that of {unit} "
                 f"({_angle_text(field_angle)})")
     raise ValueError(f"{prefix}{_quoted(value)} is not {expected}: {hint}")
+
+
+# --- parameters of Python objects -----------------------------------------------
+
+# Examples of strings with a unit, for messages.
+_UNIT_EXAMPLES = {"m": '"2 mm"', "N": '"-10 N"', "N*m": '"40 N*mm"', "rad/s": '"2 Hz"',
+                  "rad": '"90 deg"', "s": '"250 ms"', "kg": '"2 kg"', "m/s": '"5 mm/s"',
+                  "m/s^2": '"9.81 m/s^2"'}
+
+
+def what_it_takes(unit: str, number: str = "a number") -> str:
+    """What a numeric value in ``unit`` may be, for messages: ``a number [m] or
+    a string with a unit such as "2 mm"`` (``number`` alone without a unit)."""
+    if not unit:
+        return number
+    return (f"{number} [{unit}] or a string with a unit such as "
+            f"{_UNIT_EXAMPLES.get(unit, _quoted('1 ' + unit))}")
+
+
+def quantity(name: str, value: Any, unit: str) -> float:
+    """A numeric parameter of a Python object (a Thread, a load, a
+    FrictionBlock, a closed-form function) as a float in ``unit``.
+
+    The range is left to the core, which checks it and names the parameter.
+
+    Args:
+        name: the parameter's name for messages, e.g. ``"pitch"``.
+        value: a real number (in ``unit``) or a string with a unit, converted
+            by :func:`to_si`.
+        unit: the parameter's SI unit (``""``: a plain number).
+
+    Returns:
+        The value in ``unit`` (NaN and infinities pass: the core refuses them
+        naming the parameter).
+
+    Raises:
+        ValueError: a string of another dimension (as :func:`to_si`), a bool,
+            or a value that is no real number, e.g. ``pitch = None is invalid:
+            must be a number [m] or a string with a unit such as "2 mm"``.
+    """
+    if value.__class__ is float:
+        return value
+    number = to_si(name, value, unit)
+    if isinstance(number, bool) or not isinstance(number, numbers.Real):
+        raise ValueError(f"{name} = {value!r} is invalid: must be {what_it_takes(unit)}")
+    try:
+        return float(number)
+    except OverflowError:  # an int beyond a float
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number") from None
+
+
+def load_quantity(name: str, value: Any, units: Sequence[str]) -> Tuple[float, str]:
+    """A value of a load (a Sine's amplitude, a Table's value) whose unit is
+    that of the parameter it will drive: a number, or a string in one of
+    ``units``.
+
+    Args:
+        name: the parameter's name for messages (``"amplitude"``, ``"values[2]"``).
+        value: a real number or a string with a unit.
+        units: the units a load may have (``"N"``, ``"N*m"``, ``"rad/s"``).
+
+    Returns:
+        ``(number, unit)``: the value in the first of ``units`` whose dimension
+        the string has (``""`` for a plain number).
+
+    Raises:
+        ValueError: as :func:`quantity`; a string of none of these dimensions.
+    """
+    if not isinstance(value, str):
+        return quantity(name, value, ""), ""
+    for unit in units:
+        try:
+            return to_si(name, value, unit), unit
+        except ValueError:
+            continue
+    # Not one of them: the message of a string that does not parse at all,
+    # or the list of what a load takes.
+    prefix = f"{name} = {_quoted(value)} is invalid: "
+    number, given_unit = _split_number(prefix, value)
+    try:
+        parse_unit(given_unit)
+    except ValueError as error:
+        raise ValueError(f"{prefix}{error}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"{prefix}not finite")
+    names = [f"{dimension_name(unit)} ({unit})" for unit in units]
+    raise ValueError(f"{prefix}{_quoted(value)} is not {', '.join(names[:-1])} or {names[-1]} "
+                     "(the loads' units)")
 
 
 # --- units of result channels -------------------------------------------------

@@ -56,6 +56,9 @@ def _load_values(named: Sequence[Tuple[str, Any]]) -> Tuple[List[float], str]:
         ValueError: naming the value that is no number, is of another
             dimension, or has another unit than an earlier one.
     """
+    values = [value for _, value in named]
+    if all(value.__class__ is float for value in values):  # SI floats: nothing to convert
+        return values, ""
     values, unit, first = [], "", ""
     for name, value in named:
         number, given = load_quantity(name, value, LOAD_UNITS)
@@ -150,7 +153,10 @@ class Constant(_core.Excitation):
     """
 
     def __init__(self, value: Number):
-        (number,), self._unit = _load_values([("value", value)])
+        if value.__class__ is float:  # SI: nothing to convert (the core checks it)
+            number, self._unit = value, ""
+        else:
+            (number,), self._unit = _load_values([("value", value)])
         super().__init__("constant", [number])
         self._value = number
 
@@ -189,10 +195,14 @@ class Sine(_core.Excitation):
 
     def __init__(self, amplitude: Number, omega: Number, phase: Number = 0.0,
                  offset: Number = 0.0):
-        (amplitude, offset), self._unit = _load_values([("amplitude", amplitude),
-                                                        ("offset", offset)])
-        parameters = (amplitude, quantity("omega", omega, "rad/s"),
-                      quantity("phase", phase, "rad"), offset)
+        parameters = (amplitude, omega, phase, offset)
+        if all(value.__class__ is float for value in parameters):  # SI: nothing to convert
+            self._unit = ""
+        else:
+            (amplitude, offset), self._unit = _load_values([("amplitude", amplitude),
+                                                            ("offset", offset)])
+            parameters = (amplitude, quantity("omega", omega, "rad/s"),
+                          quantity("phase", phase, "rad"), offset)
         super().__init__("sine", list(parameters))
         self._parameters = parameters
 

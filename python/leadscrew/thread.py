@@ -46,6 +46,15 @@ dimension, raises ValueError naming the parameter.
                          _starts(starts), quantity("flank_angle", flank_angle, "rad"),
                          _hand(hand))
 
+    @classmethod
+    def _validated(cls, pitch: float, mean_diameter: float, starts: int, flank_angle: float,
+                   hand: str) -> "Thread":
+        """A Thread of values a scene has validated (SI floats, an int, a
+        hand name): without this class's conversions."""
+        thread = cls.__new__(cls)
+        _core.Thread.__init__(thread, pitch, mean_diameter, starts, flank_angle, hand)
+        return thread
+
     def __reduce__(self):
         return (Thread, (self.pitch, self.mean_diameter, self.starts, self.flank_angle,
                          self.hand))
@@ -53,6 +62,8 @@ dimension, raises ValueError naming the parameter.
 
 def _starts(value: Any) -> int:
     """The number of starts as an int (the core checks >= 1)."""
+    if value.__class__ is int:
+        return value
     number = quantity("starts", value, "")
     if not (number == number and abs(number) < 2 ** 31 and number == int(number)):
         raise ValueError(f"starts = {value!r} is invalid: must be an integer >= 1")
@@ -61,7 +72,7 @@ def _starts(value: Any) -> int:
 
 def _hand(value: Any) -> str:
     """The hand as text (the core checks the name)."""
-    if not isinstance(value, str):
+    if value.__class__ is not str and not isinstance(value, str):
         raise ValueError(f'hand = {value!r} is invalid: must be one of "right", "left"')
     return value
 

@@ -37,6 +37,16 @@ def assert_one_line_error(err, *fragments):
     assert "Traceback" not in err
 
 
+def read_series(path):
+    """The time series a run (or demo) wrote: its row of units, under the
+    names, is each column's SI unit; then the data."""
+    units = pd.read_csv(path, nrows=1, dtype=str, keep_default_na=False).iloc[0].to_dict()
+    frame = pd.read_csv(path, skiprows=[1])
+    assert units == {name: ls.units.channel_unit(name) for name in frame.columns}
+    assert units["t"] == "s" and units["u_load"] == "m" and units["stick"] == ""
+    return frame
+
+
 def scene_file(tmp_path, name="scene", **changes):
     path = tmp_path / f"{name}.toml"
     ls.Scene.from_dict(thesis_scene(**changes)).to_toml(path)
@@ -136,6 +146,31 @@ def test_check_bad_file_is_one_line_exit_2(tmp_path, capsys):
     assert_one_line_error(err, "--pitch apply without SCENE only")
 
 
+@pytest.mark.parametrize("command", ["check", "run", "study"])
+def test_a_directory_or_an_empty_file_as_scene_says_so(tmp_path, capsys, monkeypatch, command):
+    calls = fake_studies(monkeypatch)
+    folder = tmp_path / "scenes"
+    folder.mkdir()
+    empty = tmp_path / "empty.toml"
+    empty.write_text("")
+    out_dir = tmp_path / "out"
+    for scene, fragments in ((folder, [f"{folder}: is a directory, not a scene file"]),
+                             (empty, [f"{empty}: the file is empty", "[thread], [friction]"])):
+        argv = {"check": ["check", scene], "run": ["run", scene, "-o", out_dir],
+                "study": ["study", "sweep_mu", scene, "-o", out_dir]}[command]
+        code, out, err = run_main(capsys, *argv)
+        assert code == 2 and out == ""
+        assert_one_line_error(err, *fragments)
+    assert calls == [] and not out_dir.exists()
+
+
+def test_a_directory_named_like_a_shipped_scene_does_not_hide_it(tmp_path, capsys, monkeypatch):
+    (tmp_path / "default").mkdir()
+    monkeypatch.chdir(tmp_path)
+    code, out, err = run_main(capsys, "check", "default")
+    assert code == 0 and err == "" and out.startswith("scene default: valid")
+
+
 def test_check_validates_the_whole_scene_before_printing(tmp_path, capsys):
     """A scene whose values are each valid but whose model cannot be built
     (zero load mass on the flexible drive) is not called valid: nothing is
@@ -160,7 +195,7 @@ def test_run_writes_series_and_figure(tmp_path, capsys):
     csv, png = tmp_path / "default.csv", tmp_path / "default.png"
     assert f"wrote {csv}" in out and f"wrote {png}" in out
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
-    frame = pd.read_csv(csv)
+    frame = read_series(csv)
     expected = ls.simulate(shipped.load("default"), 0.5, t_eval=np.linspace(0, 0.5, 101))
     assert list(frame.columns) == ["t"] + expected.channels
     np.testing.assert_array_equal(frame["t"], expected.t)
@@ -177,7 +212,7 @@ def test_run_every_shipped_scene(tmp_path, capsys, name):
                               "--points", "11")
     assert code == 0 and err == ""
     assert sorted(p.name for p in tmp_path.iterdir()) == [f"{name}.csv", f"{name}.png"]
-    frame = pd.read_csv(tmp_path / f"{name}.csv")
+    frame = read_series(tmp_path / f"{name}.csv")
     expected = ls.simulate(shipped.load(name), 0.05, t_eval=np.linspace(0, 0.05, 11))
     np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
 
@@ -188,7 +223,7 @@ def test_run_a_scene_file_with_options(tmp_path, capsys):
     code, out, _ = run_main(capsys, "run", path, "-o", out_dir, "--t-end", "0.2",
                             "--integrator", "cvode_adams", "--rtol", "1e-6", "--points", "0")
     assert code == 0 and "arctan_velocity/cvode_adams" in out
-    frame = pd.read_csv(out_dir / "scene.csv")
+    frame = read_series(out_dir / "scene.csv")
     assert len(frame) > 10 and frame["t"].iloc[-1] == pytest.approx(0.2, rel=1e-12)
     assert (out_dir / "scene.png").is_file()
 
@@ -234,6 +269,14 @@ def test_parquet_format(tmp_path, capsys):
     frame = pd.read_parquet(tmp_path / "default.parquet")
     expected = ls.simulate(shipped.load("default"), 0.2, t_eval=np.linspace(0, 0.2, 11))
     np.testing.assert_array_equal(frame["u_load"], expected["u_load"])
+    # The units: in each field's metadata, and as the frame's attrs.
+    import pyarrow.parquet as pq
+
+    schema = pq.read_schema(tmp_path / "default.parquet")
+    units = expected.units()
+    assert schema.names == list(units)
+    assert {f.name: f.metadata[b"unit"].decode() for f in schema} == units
+    assert frame.attrs["units"] == units
 
 
 def test_debug_shows_the_traceback(tmp_path):
@@ -252,7 +295,7 @@ def test_run_keeps_a_dotted_scene_name(tmp_path, capsys):
     assert code == 0, err
     assert sorted(p.name for p in out_dir.iterdir()) == ["drive_v1.2.csv", "drive_v1.2.png"]
     assert f"wrote {out_dir / 'drive_v1.2.csv'}" in out
-    assert len(pd.read_csv(out_dir / "drive_v1.2.csv")) == 11
+    assert len(read_series(out_dir / "drive_v1.2.csv")) == 11
 
 
 def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
@@ -262,7 +305,7 @@ def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
                               "--theta", "1")
     assert code == 0, err
     assert "coulomb/moreau" in out
-    frame = pd.read_csv(tmp_path / "scene.csv")
+    frame = read_series(tmp_path / "scene.csv")
     scene, t_eval = ls.Scene.from_toml(path), np.linspace(0, 0.2, 11)
     expected = ls.simulate(scene, 0.2, integrator="moreau", dt=1e-4, theta=1.0, t_eval=t_eval)
     np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
@@ -365,6 +408,45 @@ def test_study_errors(tmp_path, capsys, monkeypatch, argv, code, fragments):
     got, _, err = run_main(capsys, *argv, "-o", tmp_path)
     assert got == code
     assert_one_line_error(err, *fragments)
+
+
+@pytest.mark.parametrize("order", [
+    ["mu=0.1,0.3", "label=abc", "-o", "{out}", "t-end=0.2"],
+    ["-o", "{out}", "mu=0.1,0.3", "label=abc", "t-end=0.2"],
+    ["mu=0.1,0.3", "-o", "{out}", "label=abc", "t-end=0.2"],
+])
+def test_study_options_stand_before_or_after_o(tmp_path, capsys, monkeypatch, order):
+    """KEY=VALUE options after -o DIR are options like those before it (the
+    README's example writes progress=false before -o; a user writes it after)."""
+    calls = fake_studies(monkeypatch)
+    argv = [item.format(out=tmp_path) for item in order]
+    code, out, err = run_main(capsys, "study", "sweep_mu", "default", *argv)
+    assert code == 0, err
+    (_, mu, label, t_end), = calls
+    assert (mu, label, t_end) == ([0.1, 0.3], "abc", 0.2)
+    assert (tmp_path / "sweep_mu_default.csv").is_file()
+
+
+@pytest.mark.parametrize("argv, fragments", [
+    (["study", "sweep_mu", "default", "-o", "{out}", "--bogus"],
+     ["unrecognized arguments: --bogus", "leadscrew study --help"]),
+    (["run", "default", "extra", "-o", "{out}"], ["unrecognized arguments: extra"]),
+    (["study", "sweep_mu", "default", "-o", "{out}", "novalue"], ["novalue", "KEY=VALUE"]),
+])
+def test_arguments_no_command_takes_are_one_line_usage_errors(tmp_path, capsys, monkeypatch,
+                                                              argv, fragments):
+    calls = fake_studies(monkeypatch)
+    code, out, err = run_main(capsys, *[item.format(out=tmp_path) for item in argv])
+    assert code == 2 and out == "" and calls == []
+    assert_one_line_error(err, *fragments)
+    assert not any(tmp_path.iterdir())
+
+
+def test_version(capsys):
+    code, out, err = run_main(capsys, "--version")
+    assert code == 0 and err == ""
+    assert out == f"leadscrew {ls.__version__}\n"
+    assert re.fullmatch(r"\d+\.\d+\.\d+\S*", ls.__version__)
 
 
 def test_study_without_the_studies_module(tmp_path, capsys, monkeypatch):
@@ -627,7 +709,7 @@ def test_demo_writes_its_figures(tmp_path, capsys):
         assert path.is_file() and path.stat().st_size > 1000, name
         assert f"wrote {path}" in out
     assert "scene default: valid" in out and "dynamic jamming" in out
-    frame = pd.read_csv(tmp_path / "demo" / "default.csv")
+    frame = read_series(tmp_path / "demo" / "default.csv")
     assert len(frame) == cli.DEFAULT_POINTS and frame["t"].iloc[-1] == cli.DEFAULT_T_END
 
 

@@ -59,3 +59,114 @@ def test_parameters_are_read_only_and_match_what_the_core_evaluates():
         table.values[1] = 3.0
     with pytest.raises(AttributeError):
         table.times = np.array([0.0, 2.0])
+
+
+# --- unit strings, as in a scene -----------------------------------------------------
+
+
+@pytest.mark.parametrize("given, expected, unit", [
+    (lambda: ls.Constant("-10 N"), ls.Constant(-10.0), "N"),
+    (lambda: ls.Constant("40 N*mm"), ls.Constant(0.04), "N*m"),
+    (lambda: ls.Constant("120 rpm"), ls.Constant(4 * math.pi), "rad/s"),
+    (lambda: ls.Sine("50 N", 94.2), ls.Sine(50.0, 94.2), "N"),
+    (lambda: ls.Sine("50 N", "15 Hz", "90 deg", "-1 kN"),
+     ls.Sine(50.0, 30 * math.pi, math.pi / 2, -1000.0), "N"),
+    (lambda: ls.Sine(5.0, "2 Hz", offset="1 N"), ls.Sine(5.0, 4 * math.pi, 0.0, 1.0), "N"),
+    (lambda: ls.Table(["0 s", "250 ms"], ["0 N*mm", "40 N*mm"]), ls.Table([0, 0.25], [0, 0.04]),
+     "N*m"),
+    (lambda: ls.Table([0.0, 1.0], [0.0, 5.0]), ls.Table([0.0, 1.0], [0.0, 5.0]), ""),
+])
+def test_loads_take_unit_strings(given, expected, unit):
+    load = given()
+    assert load.unit == unit and expected.unit == ""
+    t = np.linspace(0.0, 1.0, 11)
+    np.testing.assert_allclose(load(t), expected(t), rtol=1e-15, atol=1e-15)
+    # repr, pickle and copies keep the unit
+    import pickle
+
+    for copy in (pickle.loads(pickle.dumps(load)), eval("ls." + repr(load))):  # noqa: S307
+        assert type(copy) is type(load) and copy.unit == unit
+        np.testing.assert_array_equal(copy(t), load(t))
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: ls.Sine("50 kg", 94.2),
+     'amplitude = "50 kg" is invalid: "50 kg" is not a force (N), a torque (N*m) or an '
+     "angular velocity or frequency (rad/s) (the loads' units)"),
+    (lambda: ls.Sine("50 N", "3 m"), 'omega = "3 m" is invalid: "3 m" is not an angular'),
+    (lambda: ls.Sine("50 N", 94.2, offset="1 N*m"),
+     'offset = "1 N*m" is invalid: a torque (N*m), but amplitude is a force (N): the values '
+     "of one load share their unit"),
+    (lambda: ls.Sine(None, 1.0), "amplitude = None is invalid: must be a number"),
+    (lambda: ls.Sine(1.0, "fast"), 'omega = "fast" is invalid: not one number'),
+    (lambda: ls.Sine(1.0, 2.0, phase=True), "phase = True is invalid: must be a number [rad]"),
+    (lambda: ls.Constant("1,5 N"), 'value = "1,5 N" is invalid: a comma'),
+    (lambda: ls.Constant(10**400), "value = 1000"),
+    (lambda: ls.Table([0, "1 N"], [0, 1]), 'times[1] = "1 N" is invalid: "1 N" is not a time'),
+    (lambda: ls.Table([0, 1], ["0 N", "1 N*m"]), 'values[1] = "1 N*m" is invalid: a torque'),
+    (lambda: ls.Table([0, 1], 5), "values = 5 is invalid: must be a sequence of numbers"),
+    (lambda: ls.Table([0, 1], [0, None]), "values[1] = None is invalid: must be a number"),
+])
+def test_bad_load_parameters_are_named(call, message):
+    with pytest.raises(ValueError) as info:
+        call()
+    assert str(info.value).startswith(message), str(info.value)
+
+
+# --- Python callables --------------------------------------------------------------
+
+
+@pytest.mark.parametrize("returned", ["x", None, True, np.array([1.0]), [1.0], 1j])
+def test_a_callable_load_that_returns_no_number_is_named(returned):
+    def sensor(t):
+        return returned if t > 0.01 else 1.0
+
+    block = ls.FrictionBlock(1.0, 0.3, force=sensor)
+    with pytest.raises(ValueError) as info:
+        ls.simulate(block, 0.1)
+    text = str(info.value)
+    assert text.startswith("force = <function ") and "sensor" in text, text
+    assert f"it returned {returned!r}, not a number [N]" in text
+    t = float(text.split("at t = ")[1].split(" s")[0])
+    assert 0.01 < t <= 0.1
+    from helpers.scenes import thesis_scene
+
+    scene = ls.Scene.from_dict(thesis_scene(loads={"axial_force": sensor}))
+    with pytest.raises(ValueError, match=r"^loads\.axial_force = <function .*sensor.* is "
+                                         r"invalid: at t = .* s it returned .*, not a number "
+                                         r"\[N\]"):
+        ls.simulate(scene, 0.1)
+    speed = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": None, "drive_speed": sensor}))
+    with pytest.raises(ValueError, match=r"^loads\.drive_speed = .* not a number \[rad/s\]"):
+        ls.simulate(speed, 0.1)
+
+
+def test_a_callable_load_returns_numbers_of_any_real_type():
+    """ints and numpy scalars are numbers; the result equals a float's."""
+    def as_float(t):
+        return 2.0 if t < 0.5 else -3.0
+
+    reference = ls.simulate(ls.FrictionBlock(1.0, 0.3, force=as_float), 1.0)
+    for kind in (int, np.float32, np.int64, np.float64):
+        r = ls.simulate(ls.FrictionBlock(1.0, 0.3, force=lambda t: kind(as_float(t))), 1.0)
+        np.testing.assert_array_equal(r["u"], reference["u"])
+
+
+def test_the_core_names_the_load_of_a_callable_returning_nan():
+    from helpers.scenes import thesis_scene
+
+    scene = ls.Scene.from_dict(thesis_scene(loads={"axial_force": lambda t: math.nan}))
+    with pytest.raises(ls.SimulationError, match=r"<lambda> \(loads\.axial_force\) at 0x.* "
+                                                 r"returned nan"):
+        ls.simulate(scene, 0.1)
+
+
+def test_a_scene_keeps_the_callable_it_was_given():
+    from helpers.scenes import thesis_scene
+
+    def force(t):
+        return -10.0
+
+    scene = ls.Scene.from_dict(thesis_scene(loads={"axial_force": force}))
+    assert scene["loads"]["axial_force"] is force
+    assert ls.simulate(scene, 0.05)["axial_force"][-1] == -10.0

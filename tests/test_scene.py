@@ -1,6 +1,7 @@
 """Scene validation: key paths, defaults, round trip, derived parameters."""
 
 import math
+import re
 
 import pytest
 
@@ -281,3 +282,24 @@ def test_replace_switches_between_torque_and_speed():
     assert switched.replace(loads={"drive_speed": None, "drive_torque": SINE}) == explicit
     for changed in (speed, back, torque, switched):
         changed.model()
+
+
+def test_loads_given_as_objects_with_units():
+    """A Sine with units is the same load as its dict; a load whose unit is
+    not that of its key is refused, naming the key."""
+    base = thesis_scene(loads={"axial_force": {"type": "constant", "value": -10.0}})
+    with_units = ls.Scene.from_dict(thesis_scene(loads={
+        "drive_torque": ls.Sine("-40 N*mm", "2 Hz"), "axial_force": ls.Constant("-10 N")}))
+    assert with_units == ls.Scene.from_dict(base)
+    speed = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": None,
+                                                   "drive_speed": ls.Table([0, 1], ["0 rpm",
+                                                                                    "60 rpm"])}))
+    assert speed["loads"]["drive_speed"]["values"] == [0.0, 2 * math.pi]
+    for key, load, message in (
+            ("axial_force", ls.Sine("50 N*m", 1.0), "its values are a torque (N*m), not a force"),
+            ("drive_torque", ls.Constant("5 N"), "its values are a force (N), not a torque"),
+            ("drive_speed", ls.Table([0, 1], ["0 N", "1 N"]), "not an angular velocity")):
+        loads = {key: load, **({"drive_torque": None} if key == "drive_speed" else {})}
+        with pytest.raises(ValueError, match=rf"^loads\.{key} = .* is invalid: .*"
+                                             rf"{re.escape(message)}"):
+            ls.Scene.from_dict(thesis_scene(loads=loads))

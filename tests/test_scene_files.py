@@ -443,6 +443,33 @@ def test_missing_file_and_binary_file(tmp_path):
         ls.Scene.from_toml(path)
 
 
+@pytest.mark.parametrize("text, what", [
+    ("", "is empty"),
+    ("\n  \n", "is empty"),
+    ("# a scene to come\n\n", "holds no keys (only comments)"),
+])
+def test_an_empty_file_is_called_empty(tmp_path, text, what):
+    path = write(tmp_path, text)
+    with pytest.raises(ValueError) as info:
+        ls.Scene.from_toml(path)
+    assert str(info.value) == (f"{path}: the file {what}: a scene file needs at least the "
+                               "sections [thread], [friction] (leadscrew.scene.describe_schema() "
+                               "lists every field)")
+
+
+def test_a_directory_is_called_a_directory(tmp_path):
+    with pytest.raises(ValueError) as info:
+        ls.Scene.from_toml(tmp_path)
+    assert str(info.value) == (f"{tmp_path}: is a directory, not a scene file (a TOML file); "
+                               "it holds no .toml file")
+    write(tmp_path, GOOD, "b.toml")
+    write(tmp_path, GOOD, "a.toml")
+    (tmp_path / "c.toml").mkdir()
+    with pytest.raises(ValueError, match=r"is a directory, not a scene file \(a TOML file\); "
+                                         r"it holds a\.toml, b\.toml$"):
+        ls.Scene.from_toml(tmp_path)
+
+
 # --- shipped scenes ---------------------------------------------------------------
 
 

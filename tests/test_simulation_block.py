@@ -214,3 +214,36 @@ def test_callable_errors_propagate():
     with pytest.raises(ls.SimulationError, match="nan"):
         ls.simulate(ls.FrictionBlock(1.0, 0.3, force=lambda t: float("nan")), 1.0,
                     friction="arctan_velocity")
+
+
+def test_friction_block_takes_unit_strings():
+    given = ls.FrictionBlock("1 kg", "0.3", g="10 m/s^2", force=ls.Sine("6 N", "2 Hz"),
+                             initial_position="5 mm", initial_velocity="-2 mm/s")
+    plain = ls.FrictionBlock(1.0, 0.3, g=10.0, force=ls.Sine(6.0, 4 * math.pi),
+                             initial_position=0.005, initial_velocity=-0.002)
+    assert (given.mass, given.mu, given.g) == (plain.mass, plain.mu, plain.g)
+    np.testing.assert_array_equal(ls.simulate(given, 0.5)["u"], ls.simulate(plain, 0.5)["u"])
+    assert ls.FrictionBlock(1.0, 0.3, force="-2 N").force(0.0) == -2.0
+    import pickle
+
+    again = pickle.loads(pickle.dumps(given))
+    assert repr(again) == repr(given)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: ls.FrictionBlock("1 m", 0.3), 'mass = "1 m" is invalid: "1 m" is not a mass (kg)'),
+    (lambda: ls.FrictionBlock(1.0, None), "mu = None is invalid: must be a number"),
+    (lambda: ls.FrictionBlock(1.0, 0.3, g="9.81 m/s"), 'g = "9.81 m/s" is invalid'),
+    (lambda: ls.FrictionBlock(1.0, 0.3, force="6 N*m"),
+     'force = "6 N*m" is invalid: "6 N*m" is not a force (N)'),
+    (lambda: ls.FrictionBlock(1.0, 0.3, force=ls.Sine("6 N*m", 1.0)),
+     "force = Sine(amplitude='6.0 N*m', omega=1.0, phase=0.0, offset='0.0 N*m') is invalid: its "
+     "values are a torque (N*m), not a force (N)"),
+    (lambda: ls.FrictionBlock(1.0, 0.3, force=ls.Constant("2 rad/s")), "force = Constant("),
+    (lambda: ls.FrictionBlock(1.0, 0.3, initial_velocity="1 rad/s"),
+     'initial_velocity = "1 rad/s" is invalid'),
+])
+def test_friction_block_names_a_bad_parameter(call, message):
+    with pytest.raises(ValueError) as info:
+        call()
+    assert str(info.value).startswith(message), str(info.value)

@@ -213,3 +213,71 @@ def test_thread_pickles():
     t = ls.Thread(0.003, 0.02, 2, 0.5, "left")
     u = pickle.loads(pickle.dumps(t))
     assert (u.pitch, u.mean_diameter, u.starts, u.flank_angle, u.hand) == (0.003, 0.02, 2, 0.5, "left")
+
+
+# --- unit strings and messages without internals ----------------------------------------
+
+
+def test_thread_takes_unit_strings():
+    t = ls.Thread(pitch="2 mm", mean_diameter="9 mm", starts="2", flank_angle="30 deg",
+                  hand="left")
+    assert isinstance(t, ls.Thread)
+    assert (t.pitch, t.starts, t.hand) == (0.002, 2, "left")
+    assert t.mean_diameter == pytest.approx(0.009, rel=1e-15)
+    assert t.flank_angle == pytest.approx(math.radians(30), rel=1e-15)
+    import pickle
+
+    again = pickle.loads(pickle.dumps(t))
+    assert type(again) is ls.Thread and repr(again) == repr(t)
+    scene = ls.Scene.from_dict({"thread": {"pitch": "2 mm", "mean_diameter": "9 mm"},
+                                "friction": {"mu": 0.1}})
+    assert isinstance(scene.thread, ls.Thread)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(pitch="2 N", mean_diameter=0.01), 'pitch = "2 N" is invalid: "2 N" is not a length (m)'),
+    (dict(pitch=None, mean_diameter=0.01),
+     'pitch = None is invalid: must be a number [m] or a string with a unit such as "2 mm"'),
+    (dict(pitch=1e-3, mean_diameter="wide"), 'mean_diameter = "wide" is invalid'),
+    (dict(pitch=1e-3, mean_diameter=0.01, starts=1.5),
+     "starts = 1.5 is invalid: must be an integer >= 1"),
+    (dict(pitch=1e-3, mean_diameter=0.01, starts=True), "starts = True is invalid"),
+    (dict(pitch=1e-3, mean_diameter=0.01, flank_angle="30 %"), 'flank_angle = "30 %" is invalid'),
+    (dict(pitch=1e-3, mean_diameter=0.01, hand=1),
+     'hand = 1 is invalid: must be one of "right", "left"'),
+    (dict(pitch=10**400, mean_diameter=0.01), "pitch = 1000"),
+])
+def test_bad_thread_parameters_are_named_without_a_constructor_dump(kwargs, message):
+    with pytest.raises(ValueError) as info:
+        ls.Thread(**kwargs)
+    assert str(info.value).startswith(message), str(info.value)
+    assert "incompatible" not in str(info.value)
+
+
+def test_closed_forms_take_unit_strings():
+    t = ls.Thread(0.003, 0.02, flank_angle=math.radians(30))
+    assert ls.raise_torque(t, "0.3", "1 kN", "10 %", "25 mm") == \
+        ls.raise_torque(t, 0.3, 1000.0, 0.1, 0.025)
+    assert ls.lower_torque(t, "30 %", "100 N") == ls.lower_torque(t, 0.3, 100.0)
+    assert ls.efficiency(t, "0.3", collar_mu="0.1", collar_diameter="25 mm",
+                         backdrive=True) == ls.efficiency(t, 0.3, 0.1, 0.025, True)
+    assert ls.is_self_locking(t, "0.3") is ls.is_self_locking(t, 0.3)
+    assert ls.is_drivable(t, "30 %") is ls.is_drivable(t, 0.3)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda t: ls.raise_torque(t, "0.3", "100 N*m"), 'load = "100 N*m" is invalid: '
+                                                     '"100 N*m" is not a force (N)'),
+    (lambda t: ls.lower_torque(t, "0.3 m", 1.0), 'mu = "0.3 m" is invalid'),
+    (lambda t: ls.efficiency(t, 0.3, collar_diameter="2 N"), 'collar_diameter = "2 N"'),
+    (lambda t: ls.efficiency(t, 0.3, backdrive="yes"),
+     "backdrive = 'yes' is invalid: must be True or False"),
+    (lambda t: ls.is_self_locking(t, None), "mu = None is invalid: must be a number"),
+    (lambda t: ls.is_drivable(t, [0.3]), "mu = [0.3] is invalid: must be a number"),
+    (lambda t: ls.raise_torque("Tr 10x2", 0.3, 1.0),
+     "thread = 'Tr 10x2' is invalid: must be a leadscrew.Thread"),
+])
+def test_closed_forms_name_a_bad_parameter(call, message):
+    with pytest.raises(ValueError) as info:
+        call(ls.Thread(0.003, 0.02))
+    assert str(info.value).startswith(message), str(info.value)

@@ -3,7 +3,7 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
-from . import lcp, scenes, studies, units
+from . import integrate, lcp, scene, scenes, studies, units
 from .errors import JammingError, SimulationError
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
@@ -38,7 +38,9 @@ __all__ = [
     "Event",
     "SimulationError",
     "JammingError",
+    "integrate",
     "lcp",
+    "scene",
     "scenes",
     "studies",
     "units",

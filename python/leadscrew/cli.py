@@ -7,6 +7,7 @@
     leadscrew check [SCENE]
     leadscrew study NAME SCENE [-o DIR] [KEY=VALUE ...]
     leadscrew demo [-o DIR]
+    leadscrew --version
 
 SCENE is a TOML scene file (see :meth:`leadscrew.Scene.from_toml`) or the name
 of a shipped scene (:func:`leadscrew.scenes.available`). Errors print one line
@@ -36,6 +37,7 @@ import time
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
+from . import __version__
 from . import thread as _thread
 
 __all__ = ["main"]
@@ -79,12 +81,15 @@ def _load_scene(arg: str) -> Tuple[Any, str, str]:
     from .scene import Scene
 
     path = Path(arg)
-    if path.is_file():
+    shipped = scenes.available()
+    stem = arg[:-5] if arg.endswith(".toml") else arg
+    is_shipped = stem in shipped and os.sep not in arg and "/" not in arg
+    # A directory is not a scene (Scene.from_toml says so), unless its name
+    # is that of a shipped scene.
+    if path.is_file() or (path.is_dir() and not is_shipped):
         scene, name, source = Scene.from_toml(path), path.stem, os.fspath(path)
     else:
-        shipped = scenes.available()
-        stem = arg[:-5] if arg.endswith(".toml") else arg
-        if stem not in shipped or os.sep in arg or "/" in arg:
+        if not is_shipped:
             raise UsageError(f"scene {arg!r}: no such file, and not a shipped scene "
                              f"({', '.join(shipped)})")
         scene, name, source = scenes.load(stem), stem, stem
@@ -382,12 +387,32 @@ def _summary(name: str, scene, result, t_end: float) -> str:
 
 
 def _write_series(result, out: Path, name: str, fmt: str) -> Path:
+    """Write the time series with the unit of every column.
+
+    CSV: the row of names, then a row of units (SI, ``""`` for the flag
+    ``stick``), then the data (pandas reads the data with
+    ``read_csv(path, skiprows=[1])``, names and units with ``header=[0, 1]``).
+    Parquet: each field's metadata ``unit``, and the frame's
+    ``attrs["units"]`` (which ``pandas.read_parquet`` restores).
+    """
     frame = result.to_frame()
+    units = frame.attrs["units"]
     path = _output_file(out, name, fmt)
     if fmt == "parquet":
-        frame.to_parquet(path, index=False)
+        import pyarrow as pa
+
+        schema = pa.Schema.from_pandas(frame, preserve_index=False)
+        schema = pa.schema([field.with_metadata({"unit": units[field.name]})
+                            for field in schema], metadata=schema.metadata)
+        frame.to_parquet(path, index=False, schema=schema)
     else:
-        frame.to_csv(path, index=False)
+        import csv
+
+        with open(path, "w", encoding="utf-8", newline="") as stream:
+            writer = csv.writer(stream, lineterminator="\n")
+            writer.writerow(frame.columns)
+            writer.writerow(units[column] for column in frame.columns)
+            frame.to_csv(stream, index=False, header=False, lineterminator="\n")
     return path
 
 
@@ -717,6 +742,8 @@ def _parser() -> argparse.ArgumentParser:
                      "scene file or the name of a shipped scene (default, thesis_table_5_1, "
                      "position_holding).")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
+    parser.add_argument("--version", action="version", version=f"leadscrew {__version__}",
+                        help="print the version and exit")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def command(name: str, **kwargs) -> argparse.ArgumentParser:
@@ -766,7 +793,8 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("scene", metavar="SCENE")
     study.add_argument("options", metavar="KEY=VALUE", nargs="*",
                        help="options of the study, values in TOML syntax or comma-separated "
-                            "lists, e.g. frequencies=5,10,20 progress=false")
+                            "lists, e.g. frequencies=5,10,20 progress=false (before or after "
+                            "-o DIR)")
     study.add_argument("-o", "--output", default=".", help="output directory (default .)")
     study.set_defaults(func=_study)
 
@@ -775,6 +803,25 @@ def _parser() -> argparse.ArgumentParser:
                       help="output directory (default leadscrew-demo)")
     demo.set_defaults(func=_demo)
     return parser
+
+
+def _parse(argv: List[str]) -> argparse.Namespace:
+    """The parsed command line. ``study``'s KEY=VALUE options may stand
+    anywhere after SCENE, also after ``-o DIR`` (argparse alone takes a
+    positional list in one piece and would refuse the rest).
+
+    Raises:
+        UsageError: an argument no command takes.
+    """
+    args, extra = _parser().parse_known_args(argv)
+    if args.command == "study":
+        options = [item for item in extra if not item.startswith("-")]
+        args.options += options
+        extra = [item for item in extra if item.startswith("-")]
+    if extra:
+        raise UsageError(f"unrecognized arguments: {' '.join(extra)} (see 'leadscrew "
+                         f"{args.command} --help')")
+    return args
 
 
 def _is_input_error(error: BaseException) -> bool:
@@ -797,7 +844,7 @@ def main(argv: Optional[List[str]] = None) -> int:
     argv = sys.argv[1:] if argv is None else list(argv)
     debug = "--debug" in argv
     try:
-        args = _parser().parse_args(argv)
+        args = _parse(argv)
         return args.func(args)
     except SystemExit as stop:  # --help
         return stop.code if isinstance(stop.code, int) else 0

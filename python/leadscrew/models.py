@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 from . import _core
+from .excitation import check_load_unit, checked_callable
+from .units import quantity
 
 __all__ = ["FrictionBlock"]
 
@@ -22,13 +24,28 @@ class FrictionBlock(_core.FrictionBlock):
         initial_position: u(0) [m].
         initial_velocity: u'(0) [m/s].
 
+    Numbers may be strings with units (``mass="2 kg"``, ``g="9.81 m/s^2"``,
+    ``force="6 N"``, ``force=ls.Sine("6 N", "2 Hz")``).
+
     Raises:
-        ValueError: a parameter is out of range (the message names it).
+        ValueError: a parameter is out of range, not a number or of the
+            wrong dimension (a force in N*m); a callable force that returns
+            no number when it is called (the message names the parameter).
     """
 
     def __init__(self, mass: float, mu: float, g: float = 9.81, force=0.0,
                  initial_position: float = 0.0, initial_velocity: float = 0.0):
-        super().__init__(mass, mu, g, force, initial_position, initial_velocity)
+        if isinstance(force, str):
+            force_value = quantity("force", force, "N")
+        elif callable(force) and not isinstance(force, _core.Excitation):
+            force_value = checked_callable("force", force, "N")
+        else:
+            check_load_unit("force", force, "N")
+            force_value = force
+        super().__init__(quantity("mass", mass, "kg"), quantity("mu", mu, ""),
+                         quantity("g", g, "m/s^2"), force_value,
+                         quantity("initial_position", initial_position, "m"),
+                         quantity("initial_velocity", initial_velocity, "m/s"))
         self._force_argument = force
 
     def __repr__(self) -> str:

@@ -17,6 +17,16 @@ given as a string with a unit (``"1 mm"``, ``"210 GPa"``, ``"2 Hz"``, ``"30
 deg"``), converted to the field's unit by :func:`leadscrew.units.to_si` (Hz is
 cycles per second: ``"2 Hz"`` is 4 pi rad/s). :func:`describe_schema` prints
 the documentation of every field with its unit and default.
+
+``Scene.derived()`` and ``Scene.model()`` check what the inputs give: every
+mass, inertia, rigidity and stiffness finite and positive, the lead angle
+within 1e-6 <= tan(alpha) <= 1e6, every part's natural angular frequency on
+its spring at most 1e12 rad/s, and the core's own checks of the assembled
+model. A quantity out of range raises ``ValueError`` naming the input(s)
+that made it so (those whose default, or for a required field the thesis
+drive's value, ends the problem), the value and why, e.g. ``nut.outer_radius
+= 1e+300 is invalid: with it the nut's mass (...) comes to inf kg: must be a
+finite number > 0 (or set overrides.nut_mass)``.
 """
 
 from __future__ import annotations
@@ -31,8 +41,9 @@ from dataclasses import dataclass
 from typing import Any, Callable, Dict, Optional, Tuple
 
 from . import _core
-from .excitation import Constant, Sine, Table
-from .units import to_si
+from .excitation import Constant, Sine, Table, check_load_unit, checked_callable
+from .thread import Thread
+from .units import to_si, what_it_takes
 
 __all__ = ["Scene", "SCHEMA", "describe_schema"]
 
@@ -56,6 +67,14 @@ class Field:
 OPTIONAL = object()  # the field may be absent (derived or unused)
 POSITIVE = dict(low=0.0, low_open=True)
 NONNEGATIVE = dict(low=0.0)
+# Sane physical ranges of material data (beyond them a part is no solid the
+# models describe, and the derived stiffnesses and masses leave what the
+# integrators resolve).
+MODULUS = dict(low=1e4, high=1e13)
+DENSITY = dict(low=1.0, high=1e5)
+_MODULUS_RANGE_DOC = (", in [1e4, 1e13] Pa: from soft foams and elastomers (about 1e5 Pa) "
+                      "to beyond diamond (1.2e12 Pa)")
+_DENSITY_RANGE_DOC = ", in [1, 1e5] kg/m^3: from aerogels to beyond osmium (22,590 kg/m^3)"
 
 SCHEMA: Dict[str, Any] = {
     "concept": Field("model concept of thesis section 4.1: 'rigid' (4.1.1, one degree of "
@@ -68,7 +87,10 @@ SCHEMA: Dict[str, Any] = {
                    choices=("screw", "nut")),
     "thread": {
         "pitch": Field("axial distance between neighbouring flanks", "m", None, **POSITIVE),
-        "mean_diameter": Field("mean (pitch) diameter d_m = 2 r_m", "m", None, **POSITIVE),
+        "mean_diameter": Field("mean (pitch) diameter d_m = 2 r_m; with the lead, 1e-6 <= "
+                               "tan(alpha) = lead / (pi d_m) <= 1e6 (Scene.derived and "
+                               "Scene.model check it: a flatter or steeper thread leaves "
+                               "what the models resolve)", "m", None, **POSITIVE),
         "starts": Field("number of thread starts (lead = starts * pitch), 1 to 100 (lead "
                         "screws have up to about 16)", "", 1, kind="int", low=1, high=100),
         "flank_angle": Field("included thread angle beta: 0 square, 29 deg Acme, 30 deg ISO "
@@ -100,7 +122,8 @@ SCHEMA: Dict[str, Any] = {
                            "for 'bistop' scaled to d_0^(1 - exponent) so that both give the "
                            "same force at the penetration d_0)", "N/m", OPTIONAL,
                            **POSITIVE),
-        "exponent": Field("force exponent of 'bistop': F = k d^e", "", 1.5, low=1.0),
+        "exponent": Field("force exponent of 'bistop': F = k d^e, in [1, 10]", "", 1.5,
+                          low=1.0, high=10.0),
         "damping": Field("maximum contact damping of 'bistop' and 'cubic' (default: "
                          "critical damping of the contact stiffness with the translating mass)",
                          "N*s/m", OPTIONAL, **NONNEGATIVE),
@@ -110,10 +133,11 @@ SCHEMA: Dict[str, Any] = {
     "screw": {
         "radius": Field("screw radius (solid cylinder)", "m", 10e-3, **POSITIVE),
         "length": Field("screw length between its supports", "m", 0.5, **POSITIVE),
-        "youngs_modulus": Field("Young's modulus E_S", "Pa", 210e9, **POSITIVE),
+        "youngs_modulus": Field("Young's modulus E_S" + _MODULUS_RANGE_DOC, "Pa", 210e9,
+                                **MODULUS),
         "poisson": Field("Poisson's ratio nu_S (G = E / (2 (1 + nu)))", "", 0.3, low=-1.0,
                          high=0.5, low_open=True),
-        "density": Field("density", "kg/m^3", 7850.0, **POSITIVE),
+        "density": Field("density" + _DENSITY_RANGE_DOC, "kg/m^3", 7850.0, **DENSITY),
         "support": Field("axial support of a screw-driven screw: 'both_ends' (k = EA/a + "
                          "EA/(L - a), eq. 4.24) or 'drive_end' (k = EA/a); a is the nut's "
                          "distance from the drive end", "", "both_ends", kind="choice",
@@ -123,9 +147,10 @@ SCHEMA: Dict[str, Any] = {
         "outer_radius": Field("outer radius of the nut (hollow cylinder; inner radius = screw "
                               "radius)", "m", 12e-3, **POSITIVE),
         "length": Field("nut length l_nM", "m", 20e-3, **POSITIVE),
-        "youngs_modulus": Field("Young's modulus E_M", "Pa", 2e9, **POSITIVE),
+        "youngs_modulus": Field("Young's modulus E_M" + _MODULUS_RANGE_DOC, "Pa", 2e9,
+                                **MODULUS),
         "poisson": Field("Poisson's ratio nu_M", "", 0.3, low=-1.0, high=0.5, low_open=True),
-        "density": Field("density", "kg/m^3", 1400.0, **POSITIVE),
+        "density": Field("density" + _DENSITY_RANGE_DOC, "kg/m^3", 1400.0, **DENSITY),
         "position": Field("initial distance a_0 of the nut's centre from the screw's drive "
                           "end (drive='screw') or load end (drive='nut'), in (nut.length / 2, "
                           "screw.length - nut.length / 2) for both drives: the whole nut on the "
@@ -158,9 +183,11 @@ SCHEMA: Dict[str, Any] = {
         "nut_torsional_stiffness": Field("nut torsional stiffness (replaces G I_p / l)",
                                          "N*m/rad", OPTIONAL, **POSITIVE),
         "damping_ratio": Field("damping ratio zeta of every spring, c = 2 zeta sqrt(k m) with "
-                               "m the larger mass (or inertia) of the two bodies it connects",
-                               "", 0.05,
-                               **NONNEGATIVE),
+                               "m the larger mass (or inertia) of the two bodies it connects, "
+                               "at most 10 (zeta > 1 is overdamped already; a larger one would "
+                               "make damping time scales no integrator resolves: set the "
+                               "damping coefficients below instead)", "", 0.05, low=0.0,
+                               high=10.0),
         "screw_axial_damping": Field("screw axial damping", "N*s/m", OPTIONAL, **NONNEGATIVE),
         "screw_torsional_damping": Field("screw torsional damping", "N*m*s/rad", OPTIONAL,
                                          **NONNEGATIVE),
@@ -259,18 +286,23 @@ def _load_number(path: str, value: Any, unit: str) -> float:
     """One number of a load table: a finite real number (numpy scalars too,
     not a bool) or a string with a unit, as float in ``unit``."""
     number = to_si(path, value, unit)
-    if (isinstance(number, bool) or not isinstance(number, numbers.Real)
-            or not math.isfinite(number)):
+    finite = None if isinstance(number, bool) else _finite_float(number)
+    if finite is None:
         shown = _Converted(value, number, unit) if isinstance(value, str) else value
-        _fail(path, shown, "a finite number" + (f" [{unit}] or a string with a unit such as "
-                                                f"{_UNIT_EXAMPLES.get(unit, '...')}" if unit
-                                                else ""))
-    return float(number)
+        _fail(path, shown, what_it_takes(unit, "a finite number"))
+    return finite
 
 
-# Examples of unit strings for the messages of load entries.
-_UNIT_EXAMPLES = {"N": '"-10 N"', "N*m": '"40 N*mm"', "rad/s": '"2 Hz"', "rad": '"90 deg"',
-                  "s": '"250 ms"'}
+def _finite_float(value: Any) -> Optional[float]:
+    """A real number as a finite float; None for anything else (NaN, inf, an
+    int beyond the float range, no real number)."""
+    if not isinstance(value, numbers.Real):
+        return None
+    try:
+        number = float(value)
+    except OverflowError:
+        return None
+    return number if math.isfinite(number) else None
 
 
 def _excitation_spec(value: Any) -> Optional[Dict[str, Any]]:
@@ -290,14 +322,16 @@ def _excitation_spec(value: Any) -> Optional[Dict[str, Any]]:
 def _check_load(path: str, value: Any, unit: str = ""):
     spec = _excitation_spec(value)
     if spec is not None:  # the core checked the object as it was built
+        check_load_unit(path, value, unit)
         return spec
     if isinstance(value, _core.Excitation) or (callable(value) and not isinstance(value, dict)):
         return value
     value = to_si(path, value, unit)
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
-        if not math.isfinite(value):
+        number = _finite_float(value)
+        if number is None:
             _fail(path, value, "finite")
-        return float(value)
+        return number
     if isinstance(value, dict):
         kind = value.get("type")
         if not isinstance(kind, str) or kind not in _LOAD_TYPES:
@@ -325,8 +359,9 @@ def _check_load(path: str, value: Any, unit: str = ""):
           "or a callable f(t)")
 
 
-def _make_excitation(spec):
-    """An Excitation (or callable or number) from a validated load value."""
+def _make_excitation(spec, key: str = ""):
+    """An Excitation (or number, or checked callable) from a validated load
+    value; ``key`` (of ``loads``) names a Python callable's load in its errors."""
     if isinstance(spec, dict):
         kind = spec["type"]
         if kind == "constant":
@@ -334,6 +369,8 @@ def _make_excitation(spec):
         if kind == "sine":
             return Sine(spec["amplitude"], spec["omega"], spec["phase"], spec["offset"])
         return Table(spec["times"], spec["values"])
+    if spec.__class__ is not float and callable(spec) and not isinstance(spec, _core.Excitation):
+        return checked_callable(f"loads.{key}", spec, SCHEMA["loads"][key].unit)
     return spec
 
 
@@ -354,7 +391,8 @@ def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None,
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         _fail(path, shown, "a number" if f.kind == "float" else "an integer")
     if f.kind == "int":
-        if not (math.isfinite(value) and int(value) == value):
+        if not (isinstance(value, numbers.Integral)
+                or (math.isfinite(value) and int(value) == value)):
             _fail(path, shown, _range_text(f))
         value = int(value)
     else:
@@ -364,7 +402,7 @@ def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None,
             _fail(path, shown, _range_text(f))
     above = value > f.low if f.low_open else value >= f.low
     below = value < f.high if f.high_open else value <= f.high
-    if not (math.isfinite(value) and above and below):
+    if not ((f.kind == "int" or math.isfinite(value)) and above and below):
         _fail(path, shown, _range_text(f) + (f" [{unit}]" if unit and shown is not value else ""))
     return value
 
@@ -497,11 +535,20 @@ class Scene:
 
         Raises:
             OSError: the file cannot be read.
-            ValueError: a TOML syntax error (the message gives the file, line
-                and column) or an invalid scene (as :meth:`from_dict`: unknown
-                key, missing section or key, wrong dimension, value out of
-                range; the message gives the file and the key path).
+            ValueError: ``path`` is a directory, the file is empty (or holds
+                only comments), a TOML syntax error (the message gives the
+                file, line and column) or an invalid scene (as
+                :meth:`from_dict`: unknown key, missing section or key, wrong
+                dimension, value out of range; the message gives the file and
+                the key path).
         """
+        if os.path.isdir(path):
+            files = sorted(entry.name for entry in os.scandir(path)
+                           if entry.name.endswith(".toml") and entry.is_file())
+            hint = (f"; it holds {', '.join(files[:5])}{', ...' if len(files) > 5 else ''}"
+                    if files else "; it holds no .toml file")
+            raise ValueError(f"{os.fspath(path)}: is a directory, not a scene file (a TOML "
+                             f"file){hint}")
         with open(path, "rb") as stream:
             raw = stream.read()
         return cls(_from_toml_text(raw, os.fspath(path))._data)
@@ -574,7 +621,16 @@ class Scene:
             dict with masses [kg], inertias [kg*m^2], rigidities E A [N] and
             G I_p [N*m^2], stiffnesses [N/m, N*m/rad] (0 for a screw stiffness
             that follows the nut position) and, with backlash, the contact
-            stiffness, damping and penetration defaults.
+            stiffness, damping and penetration defaults; each finite and
+            in range.
+
+        Raises:
+            ValueError: a derived quantity is not finite, zero where it must
+                be positive, or the lead angle out of range (tan(alpha) in
+                [1e-6, 1e6]); the message names the input(s) that made it so
+                (``nut.density = 5e-324 is invalid: with it the nut's mass
+                (...) comes to 0.0 kg: must be a finite number > 0 (or set
+                overrides.nut_mass)``).
         """
         return _derived(self._data)
 
@@ -582,13 +638,15 @@ class Scene:
         """The assembled C++ model: coordinates, masses, springs, degrees of freedom.
 
         Raises:
-            ValueError: a derived value is out of range (e.g. zero load mass on
-                a flexible part).
+            ValueError: a derived value is out of range (as :meth:`derived`,
+                or as the core checks it, e.g. zero load mass on a flexible
+                part, a spring's damping that is not finite); the message
+                names the input(s) that made it so.
         """
-        return _core.DriveModel(_core_parameters(self._data))
+        return _model(self._data)
 
     @property
-    def thread(self) -> "_core.Thread":
+    def thread(self) -> Thread:
         return _thread(self._data)
 
     def __repr__(self) -> str:
@@ -637,12 +695,14 @@ def _check_consistency(data: Dict[str, Any]) -> None:
         _fail("nut.position", data["nut"]["position"],
               f"in (nut.length / 2, screw.length - nut.length / 2) = ({half:g}, "
               f"{length - half:g}) (the distance of the nut's centre from the screw's {end} "
-              f"for drive = {data['drive']!r}: the whole nut on the screw)")
+              f"for drive = {data['drive']!r}: the whole nut on the screw; nut.length = "
+              f"{data['nut']['length']!r}, screw.length = {length!r})")
     play = data["initial"]["play_position"]
     backlash = data.get("backlash")
     half = backlash["axial"] / 2 if backlash else 0.0
     if abs(play) > half:
-        _fail("initial.play_position", play, f"within +-backlash.axial / 2 = +-{half:g}")
+        _fail("initial.play_position", play, f"within +-backlash.axial / 2 = +-{half:g}"
+              + (f" (backlash.axial = {backlash['axial']!r})" if backlash else " (no backlash)"))
 
 
 def describe_schema() -> str:
@@ -664,23 +724,39 @@ def describe_schema() -> str:
 
 
 def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
+    """:func:`_derived_values`, each checked (:func:`_check_derived`).
+
+    Raises:
+        ValueError: a derived quantity is out of range, naming the inputs
+            that made it so.
+    """
+    return _check_derived(data)
+
+
+def _derived_values(data: Dict[str, Any]) -> Dict[str, Any]:
     """Masses, inertias, rigidities and stiffnesses from geometry and material
-    (thesis eq. 4.17, 4.18, 4.24; polar moments for torsion), overrides applied."""
+    (thesis eq. 4.17, 4.18, 4.24; polar moments for torsion), overrides applied.
+
+    The arithmetic never raises (no ``**`` of floats, which raises
+    OverflowError): a value beyond the float range comes out as inf or 0,
+    which :func:`_check_derived` refuses, naming the input.
+    """
     screw, nut, over = data["screw"], data["nut"], data["overrides"]
     r_s, r_o = screw["radius"], nut["outer_radius"]
     g_s = screw["youngs_modulus"] / (2.0 * (1.0 + screw["poisson"]))
     g_n = nut["youngs_modulus"] / (2.0 * (1.0 + nut["poisson"]))
-    area_s = math.pi * r_s ** 2
-    polar_s = math.pi * r_s ** 4 / 2.0
-    area_n = math.pi * (r_o ** 2 - r_s ** 2)
-    polar_n = math.pi * (r_o ** 4 - r_s ** 4) / 2.0
+    r_s2, r_o2 = r_s * r_s, r_o * r_o
+    area_s = math.pi * r_s2
+    polar_s = math.pi * r_s2 * r_s2 / 2.0
+    area_n = math.pi * (r_o2 - r_s2)
+    polar_n = math.pi * (r_o2 * r_o2 - r_s2 * r_s2) / 2.0
     screw_mass = over.get("screw_mass", screw["density"] * area_s * screw["length"])
     nut_mass = over.get("nut_mass", nut["density"] * area_n * nut["length"])
     d = {
         "screw_mass": screw_mass,
-        "screw_inertia": over.get("screw_inertia", 0.5 * screw_mass * r_s ** 2),
+        "screw_inertia": over.get("screw_inertia", 0.5 * screw_mass * r_s2),
         "nut_mass": nut_mass,
-        "nut_inertia": over.get("nut_inertia", 0.5 * nut_mass * (r_o ** 2 + r_s ** 2)),
+        "nut_inertia": over.get("nut_inertia", 0.5 * nut_mass * (r_o2 + r_s2)),
         "screw_axial_rigidity": screw["youngs_modulus"] * area_s,
         "screw_torsional_rigidity": g_s * polar_s,
         "nut_axial_stiffness": over.get("nut_axial_stiffness",
@@ -698,29 +774,302 @@ def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
         # A 'bistop' stiffness is in N/m^exponent: match the nut's spring force
         # k_nut d_0 at the reference penetration d_0.
         exponent = backlash["exponent"] if backlash["contact"] == "bistop" else 1.0
-        k = backlash.get("stiffness", linear * depth ** (1.0 - exponent))
+        k = backlash.get("stiffness", linear * _power(depth, 1.0 - exponent))
         d["contact_stiffness"] = k
         # Critical damping of the contact's linear-equivalent stiffness at d_0.
-        equivalent = k * depth ** (exponent - 1.0)
+        equivalent = k * _power(depth, exponent - 1.0)
         d["contact_damping"] = backlash.get("damping", 2.0 * math.sqrt(equivalent * translating))
         d["contact_penetration"] = depth
     return d
 
 
-def _thread(data: Dict[str, Any]) -> "_core.Thread":
+def _power(base: float, exponent: float) -> float:
+    """``base ** exponent`` for base > 0, inf where it overflows (instead of
+    Python's OverflowError)."""
+    try:
+        return base ** exponent
+    except OverflowError:
+        return math.inf
+
+
+def _thread_quantities(data: Dict[str, Any]) -> Dict[str, float]:
+    """What the thread's inputs give the model: tan(lead angle) = lead /
+    (pi d_m) and mu' = mu / cos(beta / 2) (checked, not part of derived())."""
     t = data["thread"]
-    return _core.Thread(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
+    return {"tan_lead_angle": t["starts"] * t["pitch"] / (math.pi * t["mean_diameter"]),
+            "effective_mu": data["friction"]["mu"] / math.cos(0.5 * t["flank_angle"])}
+
+
+# The quantities derived from a scene's inputs, and what each must be: its
+# key (in derived() or _thread_quantities), its text for messages, unit,
+# range and the override that replaces it. _check_derived refuses a scene
+# whose quantity is out of range, naming the inputs that made it so.
+_TAN_LEAD_ANGLE_RANGE = (1e-6, 1e6)
+# Derived values that may be 0: a screw stiffness that follows the nut (no
+# override), no contact damping.
+_MAY_BE_ZERO = frozenset({"screw_axial_stiffness", "screw_torsional_stiffness",
+                          "contact_damping"})
+
+
+@dataclass(frozen=True)
+class _Quantity:
+    key: str
+    text: str
+    unit: str
+    low: float = 0.0
+    low_open: bool = True
+    high: float = math.inf
+    override: str = ""
+
+    def problem(self, value: float) -> Optional[str]:
+        """None if ``value`` is in range, else what it must be."""
+        above = value > self.low if self.low_open else value >= self.low
+        if math.isfinite(value) and above and value <= self.high:
+            return None
+        if self.high < math.inf:
+            return f"in [{self.low:g}, {self.high:g}]"
+        return f"a finite number {'>' if self.low_open else '>='} {self.low:g}"
+
+
+_QUANTITIES = (
+    _Quantity("tan_lead_angle", "the tangent of the lead angle (thread.starts * thread.pitch / "
+              "(pi thread.mean_diameter))", "", low=_TAN_LEAD_ANGLE_RANGE[0], low_open=False,
+              high=_TAN_LEAD_ANGLE_RANGE[1]),
+    _Quantity("effective_mu", "the effective friction coefficient (friction.mu / "
+              "cos(thread.flank_angle / 2))", "", low_open=False),
+    _Quantity("screw_mass", "the screw's mass (screw.density * pi screw.radius^2 * "
+              "screw.length)", "kg", override="overrides.screw_mass"),
+    _Quantity("screw_inertia", "the screw's polar inertia (screw mass * screw.radius^2 / 2)",
+              "kg*m^2", override="overrides.screw_inertia"),
+    _Quantity("nut_mass", "the nut's mass (nut.density * pi (nut.outer_radius^2 - "
+              "screw.radius^2) * nut.length)", "kg", override="overrides.nut_mass"),
+    _Quantity("nut_inertia", "the nut's polar inertia (nut mass * (nut.outer_radius^2 + "
+              "screw.radius^2) / 2)", "kg*m^2", override="overrides.nut_inertia"),
+    _Quantity("screw_axial_rigidity", "the screw's axial rigidity (screw.youngs_modulus * pi "
+              "screw.radius^2)", "N", override="overrides.screw_axial_stiffness"),
+    _Quantity("screw_torsional_rigidity", "the screw's torsional rigidity (G I_p = "
+              "screw.youngs_modulus / (2 (1 + screw.poisson)) * pi screw.radius^4 / 2)",
+              "N*m^2", override="overrides.screw_torsional_stiffness"),
+    _Quantity("nut_axial_stiffness", "the nut's axial stiffness (nut.youngs_modulus * pi "
+              "(nut.outer_radius^2 - screw.radius^2) / nut.length)", "N/m",
+              override="overrides.nut_axial_stiffness"),
+    _Quantity("nut_torsional_stiffness", "the nut's torsional stiffness (G I_p / nut.length)",
+              "N*m/rad", override="overrides.nut_torsional_stiffness"),
+    _Quantity("screw_axial_stiffness", "overrides.screw_axial_stiffness (0: it follows the "
+              "nut's position)", "N/m", low_open=False),
+    _Quantity("screw_torsional_stiffness", "overrides.screw_torsional_stiffness (0: it "
+              "follows the nut's position)", "N*m/rad", low_open=False),
+    _Quantity("contact_stiffness", "the flank contact stiffness (default: the nut's axial "
+              "stiffness at backlash.penetration)", "N/m^exponent",
+              override="backlash.stiffness"),
+    _Quantity("contact_damping", "the flank contact damping (default: critical, of the "
+              "contact stiffness and the translating mass)", "N*s/m", low_open=False,
+              override="backlash.damping"),
+    _Quantity("contact_penetration", "the penetration of full contact damping "
+              "(backlash.penetration, default backlash.axial / 100)", "m",
+              override="backlash.penetration"),
+)
+
+
+def _quantity_values(data: Dict[str, Any]) -> Dict[str, float]:
+    return {**_thread_quantities(data), **_derived_values(data)}
+
+
+def _check_derived(data: Dict[str, Any]) -> Dict[str, Any]:
+    """Refuse a scene whose derived quantities are out of range (not finite,
+    zero, a lead angle the model cannot resolve), naming the inputs that made
+    them so (see :func:`_blamed`). Scene.derived() and Scene.model() check.
+
+    Returns:
+        The derived values (:func:`_derived_values`).
+
+    Raises:
+        ValueError: e.g. ``nut.density = 5e-324 is invalid: with it the nut's
+            mass, ... comes to 0 kg: must be a finite number > 0 (or set
+            overrides.nut_mass)``.
+    """
+    values = _derived_values(data)
+    thread = _thread_quantities(data)
+    if _in_range(values, thread):  # the common case, at a fraction of the loop below
+        return values
+    values = {**thread, **values}
+    for quantity in _QUANTITIES:
+        value = values.get(quantity.key)
+        if value is None or quantity.problem(value) is None:
+            continue
+
+        def still_bad(changed: Dict[str, Any], quantity=quantity) -> bool:
+            value = _quantity_values(changed).get(quantity.key)
+            return value is not None and quantity.problem(value) is not None
+
+        hint = f" (or set {quantity.override})" if quantity.override else ""
+        unit = f" {quantity.unit}" if quantity.unit else ""
+        raise _blamed(data, still_bad, f"{quantity.text} comes to {value!r}{unit}: must be "
+                                       f"{quantity.problem(value)}{hint}")
+    raise AssertionError("_in_range and _QUANTITIES disagree")  # pragma: no cover
+
+
+def _in_range(values: Dict[str, float], thread: Dict[str, float]) -> bool:
+    """Whether every quantity of :data:`_QUANTITIES` is in its range (the
+    same verdict as their ``problem``, written out for speed)."""
+    low, high = _TAN_LEAD_ANGLE_RANGE
+    inf = math.inf
+    if not (low <= thread["tan_lead_angle"] <= high and 0.0 <= thread["effective_mu"] < inf):
+        return False
+    for key, value in values.items():
+        if not 0.0 < value < inf and not (value == 0.0 and key in _MAY_BE_ZERO):
+            return False
+    return True
+
+
+def _model(data: Dict[str, Any]) -> "_core.DriveModel":
+    """The core's model of a scene, its springs checked (:func:`_spring_problem`).
+
+    A ValueError of the core that names an internal quantity (a spring's
+    damping, a part's mass) names the scene's inputs that made it so instead
+    (see :func:`_blamed`); one that names a key of the scene stays as it is.
+    """
+    derived = _derived(data)  # ValueError naming the inputs itself
+    try:
+        model = _core.DriveModel(_core_parameters(data, derived))
+    except ValueError as error:
+        message = str(error)
+        name, _, rest = message.partition(" = ")
+        if name in _FIELD_PATHS:  # the core names a key of the scene itself
+            raise
+        value, _, why = rest.partition(" is invalid: ")
+        raise _blamed(data, _model_is_bad, f"the model's {name} comes to {value}: {why}" if why
+                      else f"the model cannot be built: {message}") from None
+    why = _spring_problem(derived, model)
+    if why is not None:
+        raise _blamed(data, _model_is_bad, why)
+    return model
+
+
+def _model_is_bad(data: Dict[str, Any]) -> bool:
+    """Whether the scene ``data`` has no model (:func:`_model`'s checks)."""
+    try:
+        derived = _derived(data)
+        model = _core.DriveModel(_core_parameters(data, derived))
+    except ValueError:
+        return True
+    return _spring_problem(derived, model) is not None
+
+
+# The highest natural angular frequency of a part on its own spring: a part
+# stiffer for its mass than this is rigid to any drive, and beyond what the
+# integrators resolve (the runs ended in a wrong message, "the nut reached the
+# end of the screw", or NaN).
+_MAX_NATURAL_FREQUENCY = 1e12  # rad/s
+
+
+def _spring_problem(derived: Dict[str, Any], model: "_core.DriveModel") -> Optional[str]:
+    """None, or what is wrong with a spring of ``model``: its part's natural
+    angular frequency sqrt(k / m) (m the part's mass or polar inertia from
+    ``derived``, k the spring's stiffness at the start) is not finite or
+    above :data:`_MAX_NATURAL_FREQUENCY`."""
+    for spring in model.springs:  # none in the rigid concept
+        part, kind = spring["name"].split(" ")
+        inertia = "mass" if kind == "axial" else "inertia"
+        omega = math.sqrt(spring["stiffness"] / derived[f"{part}_{inertia}"])
+        if not omega <= _MAX_NATURAL_FREQUENCY:
+            return (f"the {part}'s {kind} natural frequency sqrt(stiffness / {part} {inertia}) "
+                    f"comes to {omega!r} rad/s: must be at most {_MAX_NATURAL_FREQUENCY:g} "
+                    f"rad/s (a part this stiff for its {inertia} is rigid to any drive; a "
+                    "concept that takes it as rigid models it)")
+    return None
+
+
+# The key paths of the numeric fields, and the value each is set back to
+# when _blamed asks whether it made a quantity go wrong: its default, absent
+# for an optional one (derived again), or for a required one the thesis's
+# Table 5.1 drive's (pitch 1 mm, d_m 20 mm, mu 0.3; play 0.1 mm).
+_FIELD_PATHS = frozenset(f"{section}.{key}" for section, entry in SCHEMA.items()
+                         if isinstance(entry, dict) for key in entry)
+_ABSENT = object()
+_REFERENCE_VALUES = {"thread.pitch": 1e-3, "thread.mean_diameter": 20e-3, "friction.mu": 0.3,
+                     "backlash.axial": 1e-4}
+
+
+def _reference_value(section: str, key: str, f: Field) -> Any:
+    if f.default is OPTIONAL:
+        return _ABSENT
+    if f.default is None:
+        return _REFERENCE_VALUES[f"{section}.{key}"]
+    return f.default
+
+
+def _changed(data: Dict[str, Any], paths) -> Dict[str, Any]:
+    """``data`` with the fields ``paths`` set back to their reference values."""
+    out = dict(data)
+    for path in paths:
+        section, key = path.split(".")
+        values = out[section] = dict(out[section])
+        value = _reference_value(section, key, SCHEMA[section][key])
+        if value is _ABSENT:
+            values.pop(key, None)
+        else:
+            values[key] = value
+    return out
+
+
+def _blamed(data: Dict[str, Any], still_bad: Callable[[Dict[str, Any]], bool],
+            why: str) -> ValueError:
+    """The ValueError for a problem ``why`` of a scene's derived quantities,
+    naming the inputs that caused it.
+
+    An input caused it if setting it back to its reference value (default,
+    absent, or the thesis drive's for a required field) ends the problem
+    (``still_bad`` false). If no single input does, the smallest set found
+    by setting all back and then restoring one by one while the problem
+    stays away is named (together); if even setting all back leaves it, all
+    numeric inputs that differ from their references are named.
+    """
+    candidates = []
+    for section, entry in SCHEMA.items():
+        if isinstance(entry, Field) or section not in data:
+            continue
+        for key, f in entry.items():
+            if f.kind not in ("float", "int") or key not in data[section]:
+                continue
+            if data[section][key] != _reference_value(section, key, f):
+                candidates.append(f"{section}.{key}")
+    culprits = [path for path in candidates if not still_bad(_changed(data, [path]))]
+    together = not culprits
+    if together:
+        culprits = list(candidates)
+        if not still_bad(_changed(data, culprits)):
+            for path in list(culprits):
+                fewer = [p for p in culprits if p != path]
+                if not still_bad(_changed(data, fewer)):
+                    culprits = fewer
+    shown = [f"{path} = {_field_value(data, path)!r}" for path in culprits] or ["the scene"]
+    if len(shown) == 1:
+        return ValueError(f"{shown[0]} is invalid: with it {why}")
+    joined = (" and " if together else " or ").join(shown)
+    verb = "are invalid together" if together else "is invalid"
+    return ValueError(f"{joined} {verb}: with {'them' if together else 'it'} {why}")
+
+
+def _field_value(data: Dict[str, Any], path: str) -> Any:
+    section, key = path.split(".")
+    return data[section][key]
+
+
+def _thread(data: Dict[str, Any]) -> Thread:
+    t = data["thread"]
+    return Thread._validated(t["pitch"], t["mean_diameter"], t["starts"], t["flank_angle"],
                         t["hand"])
 
 
-def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
+def _core_parameters(data: Dict[str, Any], d: Dict[str, Any]) -> "_core.DriveParameters":
+    """The core's parameters of a scene, ``d`` its derived values."""
     p = _core.DriveParameters()
     p.concept = data["concept"]
     p.drive = data["drive"]
     p.thread = _thread(data)
     f = data["friction"]
     p.friction, p.mu, p.k_v = f["law"], f["mu"], f["k_v"]
-    d = _derived(data)
     for key in ("screw_mass", "screw_inertia", "nut_mass", "nut_inertia",
                 "screw_axial_rigidity", "screw_torsional_rigidity", "nut_axial_stiffness",
                 "nut_torsional_stiffness", "screw_axial_stiffness", "screw_torsional_stiffness"):
@@ -746,12 +1095,10 @@ def _core_parameters(data: Dict[str, Any]) -> "_core.DriveParameters":
                 "nut_torsional_damping"):
         setattr(p, key, over.get(key, -1.0))
     loads = data["loads"]
-    if "drive_speed" in loads:
-        p.speed_controlled = True
-        p.drive_speed = _make_excitation(loads["drive_speed"])
-    else:
-        p.drive_torque = _make_excitation(loads.get("drive_torque", _DEFAULT_DRIVE_TORQUE))
-    p.axial_force = _make_excitation(loads["axial_force"])
+    given = "drive_speed" if "drive_speed" in loads else "drive_torque"
+    p.speed_controlled = given == "drive_speed"
+    for key in (given, "axial_force"):
+        setattr(p, key, _make_excitation(loads.get(key, _DEFAULT_DRIVE_TORQUE), key))
     init = data["initial"]
     p.rotor_angle, p.rotor_speed, p.play_position = (init["rotor_angle"], init["rotor_speed"],
                                                      init["play_position"])
@@ -785,6 +1132,11 @@ def _from_toml_text(raw: bytes, source: str) -> Scene:
         d = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ValueError(f"{source}: TOML syntax error: {error}") from None
+    if not d:
+        what = "is empty" if not text.strip() else "holds no keys (only comments)"
+        raise ValueError(f"{source}: the file {what}: a scene file needs at least the "
+                         f"sections {', '.join(f'[{k}]' for k in _REQUIRED_SECTIONS)} "
+                         "(leadscrew.scene.describe_schema() lists every field)")
     try:
         return Scene.from_dict(d)
     except ValueError as error:

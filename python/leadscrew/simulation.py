@@ -12,6 +12,7 @@ import numpy as np
 from . import _core
 from .models import FrictionBlock
 from .scene import Scene
+from .units import channel_unit
 
 __all__ = ["simulate", "Result", "Event"]
 
@@ -35,8 +36,11 @@ class Result:
             ``wall_time`` [s, measured inside C++].
         integrator, friction: what ran.
 
-    ``result[name]`` gives a channel as a numpy array; ``result.channels``
-    lists the names; :meth:`to_frame` gives a pandas DataFrame.
+    ``result[name]`` gives a channel as a numpy array (``result["t"]`` the
+    times, as every channel; ``"t" in result`` holds, though ``t`` is the
+    time axis and not in ``result.channels``, which lists the names);
+    :meth:`units` gives their SI units; :meth:`to_frame` gives a pandas
+    DataFrame.
 
     Every attribute is converted from the core's result on first use and
     kept: a caller that reads ``t`` and one channel pays for those alone
@@ -122,20 +126,37 @@ class Result:
                 return row
         elif name in self.channels:
             return self._matrix()[self.channels.index(name)]
-        raise KeyError(f"no channel {name!r}; channels are {self.channels}")
+        if name == "t":
+            return self.t
+        raise KeyError(f"no channel {name!r}; channels are {['t'] + list(self.channels)}")
 
     def __contains__(self, name: str) -> bool:
-        return name in self.channels
+        return name == "t" or name in self.channels
 
     def keys(self):
         return list(self.channels)
 
+    def units(self) -> dict:
+        """The SI unit of ``t`` and of every channel, in the frame's order.
+
+        Returns:
+            dict name -> unit text (``"s"``, ``"m"``, ``"rad/s"``, ``"N*m"``,
+            ``"J"``, ...; ``""`` for the flag ``stick``), see
+            :func:`leadscrew.units.channel_unit`.
+        """
+        return {name: channel_unit(name) for name in ["t", *self.channels]}
+
     def to_frame(self):
-        """The time series as a pandas DataFrame with a column ``t``."""
+        """The time series as a pandas DataFrame with a column ``t``.
+
+        ``frame.attrs["units"]`` holds the SI unit of every column (as
+        :meth:`units`).
+        """
         import pandas as pd
 
         frame = pd.DataFrame(self._matrix().T, columns=self.channels)
         frame.insert(0, "t", self.t)
+        frame.attrs["units"] = self.units()
         return frame
 
     def __repr__(self) -> str:

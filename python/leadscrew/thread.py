@@ -1,6 +1,10 @@
 """Thread geometry and the closed-form mechanics of a power screw.
 
 All quantities are SI: lengths in m, angles in rad, forces in N, torques in N*m.
+Every numeric parameter may instead be a string with a unit (``"2 mm"``,
+``"30 deg"``, ``"100 N"``), converted by :func:`leadscrew.units.to_si` as in a
+scene; a wrong dimension or a value that is no number raises ``ValueError``
+naming the parameter.
 The effective friction coefficient of a thread with included flank angle beta is
 mu' = mu / cos(beta / 2). The bounds tan(alpha) < mu' < cot(alpha) of static
 position holding and drivability are eq. (3.5), (3.7), (3.8) of the thesis.
@@ -8,8 +12,10 @@ position holding and drivability are eq. (3.5), (3.7), (3.8) of the thesis.
 
 from __future__ import annotations
 
+from typing import Any, Union
+
 from . import _core
-from ._core import Thread
+from .units import quantity
 
 __all__ = [
     "Thread",
@@ -21,12 +27,68 @@ __all__ = [
 ]
 
 
+Number = Union[float, str]
+
+
+class Thread(_core.Thread):
+    # The core's docstring (Args, Raises) and what this class adds.
+    __doc__ = (_core.Thread.__doc__.strip() + """
+
+Lengths and the angle may be strings with units: ``Thread("2 mm", "9 mm",
+flank_angle="30 deg")``; a value that is no number, or a string of another
+dimension, raises ValueError naming the parameter.
+""")
+
+    def __init__(self, pitch: Number, mean_diameter: Number, starts: int = 1,
+                 flank_angle: Number = 0.0, hand: str = "right"):
+        super().__init__(quantity("pitch", pitch, "m"),
+                         quantity("mean_diameter", mean_diameter, "m"),
+                         _starts(starts), quantity("flank_angle", flank_angle, "rad"),
+                         _hand(hand))
+
+    @classmethod
+    def _validated(cls, pitch: float, mean_diameter: float, starts: int, flank_angle: float,
+                   hand: str) -> "Thread":
+        """A Thread of values a scene has validated (SI floats, an int, a
+        hand name): without this class's conversions."""
+        thread = cls.__new__(cls)
+        _core.Thread.__init__(thread, pitch, mean_diameter, starts, flank_angle, hand)
+        return thread
+
+    def __reduce__(self):
+        return (Thread, (self.pitch, self.mean_diameter, self.starts, self.flank_angle,
+                         self.hand))
+
+
+def _starts(value: Any) -> int:
+    """The number of starts as an int (the core checks >= 1)."""
+    if value.__class__ is int:
+        return value
+    number = quantity("starts", value, "")
+    if not (number == number and abs(number) < 2 ** 31 and number == int(number)):
+        raise ValueError(f"starts = {value!r} is invalid: must be an integer >= 1")
+    return int(number)
+
+
+def _hand(value: Any) -> str:
+    """The hand as text (the core checks the name)."""
+    if value.__class__ is not str and not isinstance(value, str):
+        raise ValueError(f'hand = {value!r} is invalid: must be one of "right", "left"')
+    return value
+
+
+def _checked_thread(thread: Any) -> "_core.Thread":
+    if not isinstance(thread, _core.Thread):
+        raise ValueError(f"thread = {thread!r} is invalid: must be a leadscrew.Thread")
+    return thread
+
+
 def raise_torque(
     thread: Thread,
-    mu: float,
-    load: float,
-    collar_mu: float = 0.0,
-    collar_diameter: float = 0.0,
+    mu: Number,
+    load: Number,
+    collar_mu: Number = 0.0,
+    collar_diameter: Number = 0.0,
 ) -> float:
     """Torque to move an axial load against its direction (to "raise" it).
 
@@ -44,17 +106,20 @@ def raise_torque(
         (mu' >= cot(alpha), see :func:`is_drivable`).
 
     Raises:
-        ValueError: a value is negative or not finite.
+        ValueError: a value is negative, not finite, or not a number (or a
+            string with a unit of its dimension); the message names it.
     """
-    return _core.raise_torque(thread, mu, load, collar_mu, collar_diameter)
+    return _core.raise_torque(_checked_thread(thread), quantity("mu", mu, ""),
+                              quantity("load", load, "N"), quantity("collar_mu", collar_mu, ""),
+                              quantity("collar_diameter", collar_diameter, "m"))
 
 
 def lower_torque(
     thread: Thread,
-    mu: float,
-    load: float,
-    collar_mu: float = 0.0,
-    collar_diameter: float = 0.0,
+    mu: Number,
+    load: Number,
+    collar_mu: Number = 0.0,
+    collar_diameter: Number = 0.0,
 ) -> float:
     """Torque to move an axial load with its direction (to "lower" it).
 
@@ -72,16 +137,19 @@ def lower_torque(
         (it has to be held back), positive where the thread is self-locking.
 
     Raises:
-        ValueError: a value is negative or not finite.
+        ValueError: a value is negative, not finite, or not a number (or a
+            string with a unit of its dimension); the message names it.
     """
-    return _core.lower_torque(thread, mu, load, collar_mu, collar_diameter)
+    return _core.lower_torque(_checked_thread(thread), quantity("mu", mu, ""),
+                              quantity("load", load, "N"), quantity("collar_mu", collar_mu, ""),
+                              quantity("collar_diameter", collar_diameter, "m"))
 
 
 def efficiency(
     thread: Thread,
-    mu: float,
-    collar_mu: float = 0.0,
-    collar_diameter: float = 0.0,
+    mu: Number,
+    collar_mu: Number = 0.0,
+    collar_diameter: Number = 0.0,
     backdrive: bool = False,
 ) -> float:
     """Efficiency of the thread (and collar), independent of the load.
@@ -102,12 +170,17 @@ def efficiency(
         cannot be driven. Back-driving: <= 0 where the thread is self-locking.
 
     Raises:
-        ValueError: a value is negative or not finite.
+        ValueError: a value is negative, not finite, or not a number (or a
+            string with a unit of its dimension); the message names it.
     """
-    return _core.efficiency(thread, mu, collar_mu, collar_diameter, backdrive)
+    if backdrive not in (True, False):
+        raise ValueError(f"backdrive = {backdrive!r} is invalid: must be True or False")
+    return _core.efficiency(_checked_thread(thread), quantity("mu", mu, ""),
+                            quantity("collar_mu", collar_mu, ""),
+                            quantity("collar_diameter", collar_diameter, "m"), bool(backdrive))
 
 
-def is_self_locking(thread: Thread, mu: float) -> bool:
+def is_self_locking(thread: Thread, mu: Number) -> bool:
     """Static position holding under a pure axial load: tan(alpha) < mu' (eq. 3.5).
 
     Args:
@@ -118,12 +191,12 @@ def is_self_locking(thread: Thread, mu: float) -> bool:
         True if a pure axial load cannot turn the thread.
 
     Raises:
-        ValueError: mu is negative or not finite.
+        ValueError: mu is negative, not finite or not a number.
     """
-    return _core.is_self_locking(thread, mu)
+    return _core.is_self_locking(_checked_thread(thread), quantity("mu", mu, ""))
 
 
-def is_drivable(thread: Thread, mu: float) -> bool:
+def is_drivable(thread: Thread, mu: Number) -> bool:
     """A pure drive torque can turn the thread: mu' < cot(alpha) (eq. 3.7).
 
     Args:
@@ -134,6 +207,6 @@ def is_drivable(thread: Thread, mu: float) -> bool:
         True if a torque alone can drive the thread.
 
     Raises:
-        ValueError: mu is negative or not finite.
+        ValueError: mu is negative, not finite or not a number.
     """
-    return _core.is_drivable(thread, mu)
+    return _core.is_drivable(_checked_thread(thread), quantity("mu", mu, ""))

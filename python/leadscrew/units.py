@@ -32,16 +32,22 @@ Angles and frequencies:
 
 The registry is built on first use (about 0.5 s), so scenes of plain numbers
 never pay for it.
+
+:func:`channel_unit` gives the SI unit of a result channel from its name (the
+one table of them: :meth:`leadscrew.Result.to_frame`, the command line's CSV
+and Parquet files use it).
 """
 
 from __future__ import annotations
 
 import math
+import numbers
 import re
 from functools import lru_cache
-from typing import Any, Optional
+from typing import Any, Optional, Sequence, Tuple
 
-__all__ = ["to_si", "parse_unit", "dimension_name"]
+__all__ = ["to_si", "parse_unit", "dimension_name", "quantity", "load_quantity",
+           "channel_unit"]
 
 # Dimension names for the messages, by a reference unit of each dimension.
 _DIMENSION_NAMES = (
@@ -241,3 +247,137 @@ def _check_angle_free_rate(prefix: str, value: str, given_unit: str, unit: str, 
         hint = (f"its angle part ({_angle_text(given_angle)}) differs from that of {unit} "
                 f"({_angle_text(field_angle)})")
     raise ValueError(f"{prefix}{_quoted(value)} is not {expected}: {hint}")
+
+
+# --- parameters of Python objects -----------------------------------------------
+
+# Examples of strings with a unit, for messages.
+_UNIT_EXAMPLES = {"m": '"2 mm"', "N": '"-10 N"', "N*m": '"40 N*mm"', "rad/s": '"2 Hz"',
+                  "rad": '"90 deg"', "s": '"250 ms"', "kg": '"2 kg"', "m/s": '"5 mm/s"',
+                  "m/s^2": '"9.81 m/s^2"'}
+
+
+def what_it_takes(unit: str, number: str = "a number") -> str:
+    """What a numeric value in ``unit`` may be, for messages: ``a number [m] or
+    a string with a unit such as "2 mm"`` (``number`` alone without a unit)."""
+    if not unit:
+        return number
+    return (f"{number} [{unit}] or a string with a unit such as "
+            f"{_UNIT_EXAMPLES.get(unit, _quoted('1 ' + unit))}")
+
+
+def quantity(name: str, value: Any, unit: str) -> float:
+    """A numeric parameter of a Python object (a Thread, a load, a
+    FrictionBlock, a closed-form function) as a float in ``unit``.
+
+    The range is left to the core, which checks it and names the parameter.
+
+    Args:
+        name: the parameter's name for messages, e.g. ``"pitch"``.
+        value: a real number (in ``unit``) or a string with a unit, converted
+            by :func:`to_si`.
+        unit: the parameter's SI unit (``""``: a plain number).
+
+    Returns:
+        The value in ``unit`` (NaN and infinities pass: the core refuses them
+        naming the parameter).
+
+    Raises:
+        ValueError: a string of another dimension (as :func:`to_si`), a bool,
+            or a value that is no real number, e.g. ``pitch = None is invalid:
+            must be a number [m] or a string with a unit such as "2 mm"``.
+    """
+    if value.__class__ is float:
+        return value
+    number = to_si(name, value, unit)
+    if isinstance(number, bool) or not isinstance(number, numbers.Real):
+        raise ValueError(f"{name} = {value!r} is invalid: must be {what_it_takes(unit)}")
+    try:
+        return float(number)
+    except OverflowError:  # an int beyond a float
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number") from None
+
+
+def load_quantity(name: str, value: Any, units: Sequence[str]) -> Tuple[float, str]:
+    """A value of a load (a Sine's amplitude, a Table's value) whose unit is
+    that of the parameter it will drive: a number, or a string in one of
+    ``units``.
+
+    Args:
+        name: the parameter's name for messages (``"amplitude"``, ``"values[2]"``).
+        value: a real number or a string with a unit.
+        units: the units a load may have (``"N"``, ``"N*m"``, ``"rad/s"``).
+
+    Returns:
+        ``(number, unit)``: the value in the first of ``units`` whose dimension
+        the string has (``""`` for a plain number).
+
+    Raises:
+        ValueError: as :func:`quantity`; a string of none of these dimensions.
+    """
+    if not isinstance(value, str):
+        return quantity(name, value, ""), ""
+    for unit in units:
+        try:
+            return to_si(name, value, unit), unit
+        except ValueError:
+            continue
+    # Not one of them: the message of a string that does not parse at all,
+    # or the list of what a load takes.
+    prefix = f"{name} = {_quoted(value)} is invalid: "
+    number, given_unit = _split_number(prefix, value)
+    try:
+        parse_unit(given_unit)
+    except ValueError as error:
+        raise ValueError(f"{prefix}{error}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"{prefix}not finite")
+    names = [f"{dimension_name(unit)} ({unit})" for unit in units]
+    raise ValueError(f"{prefix}{_quoted(value)} is not {', '.join(names[:-1])} or {names[-1]} "
+                     "(the loads' units)")
+
+
+# --- units of result channels -------------------------------------------------
+
+# Channels named in full (the friction block's and the drive's, see
+# cpp/src/model/friction_block.cpp and drive_simulation.cpp), by unit.
+_CHANNELS_BY_UNIT = {
+    "s": ("t",),
+    "m": ("u", "gap", "play"),
+    "m/s": ("v", "slip_velocity"),
+    "m/s^2": ("acceleration",),
+    "N": ("force", "axial_force", "normal_force", "friction_force"),
+    "N*m": ("drive_torque",),
+    "J": ("work_drive", "work_axial", "work_force", "friction_loss", "damping_loss",
+          "contact_loss", "impact_loss", "kinetic", "elastic", "energy_residual"),
+    "": ("stick",),  # a flag: 1 stick, 0 slip
+}
+_CHANNEL_UNITS = {name: unit for unit, names in _CHANNELS_BY_UNIT.items() for name in names}
+# A body's coordinate and velocity channels, <prefix>_<body>: u_nut, omega_drive.
+_COORDINATE_UNITS = {"u": "m", "v": "m/s", "phi": "rad", "omega": "rad/s"}
+_BODIES = ("rotor", "drive", "screw", "nut", "load")
+
+
+def channel_unit(name: str) -> str:
+    """The SI unit of a result channel (or of the time ``"t"``), from its name.
+
+    Args:
+        name: a channel name of :class:`leadscrew.Result` (``"u_load"``,
+            ``"omega_screw"``, ``"friction_loss"``, ...) or ``"t"``.
+
+    Returns:
+        The unit as text: ``"s"``, ``"m"``, ``"m/s"``, ``"m/s^2"``, ``"rad"``,
+        ``"rad/s"``, ``"N"``, ``"N*m"``, ``"J"``, or ``""`` for a flag
+        (``stick``: 1 while the flank sticks).
+
+    Raises:
+        KeyError: a name no model writes (a new channel needs its unit here).
+    """
+    unit = _CHANNEL_UNITS.get(name)
+    if unit is not None:
+        return unit
+    prefix, _, body = name.partition("_")
+    if body in _BODIES and prefix in _COORDINATE_UNITS:
+        return _COORDINATE_UNITS[prefix]
+    raise KeyError(f"channel {name!r} has no unit: leadscrew.units.channel_unit knows "
+                   f"{', '.join(_CHANNEL_UNITS)} and <u|v|phi|omega>_<{'|'.join(_BODIES)}>")

@@ -1,0 +1,85 @@
+"""leadscrew.units.channel_unit: the unit of every channel any model writes,
+and Result's units (its frame's attrs, r["t"])."""
+
+import itertools
+
+import numpy as np
+import pytest
+
+import leadscrew as ls
+from helpers.scenes import thesis_scene
+
+# Every channel layout of the drive: each concept and drive, with and without
+# play (the play adds gap and play; the flexible parts their coordinates).
+LAYOUTS = [dict(concept=concept, drive=drive, backlash=backlash)
+           for concept, drive, backlash in itertools.product(
+               ("rigid", "flexible_nut", "flexible"), ("screw", "nut"),
+               (None, {"axial": 1e-4, "contact": "exact"}))]
+
+
+def drive_result(layout):
+    return ls.simulate(ls.Scene.from_dict(thesis_scene(**layout)), 1e-3)
+
+
+def block_result():
+    return ls.simulate(ls.FrictionBlock(1.0, 0.3, force=ls.Sine(6.0, 4.0)), 0.01)
+
+
+@pytest.mark.parametrize("layout", LAYOUTS,
+                         ids=[f"{d['concept']}-{d['drive']}-{'play' if d['backlash'] else 'no_play'}"
+                              for d in LAYOUTS])
+def test_every_drive_channel_has_its_unit(layout):
+    r = drive_result(layout)
+    units = r.units()
+    assert list(units) == ["t"] + r.channels
+    assert units == {name: ls.units.channel_unit(name) for name in units}
+    frame = r.to_frame()
+    assert frame.attrs["units"] == units and list(frame.columns) == list(units)
+
+
+def test_every_block_channel_has_its_unit():
+    r = block_result()
+    assert r.units() == {
+        "t": "s", "u": "m", "v": "m/s", "acceleration": "m/s^2", "friction_force": "N",
+        "normal_force": "N", "force": "N", "stick": "", "work_force": "J",
+        "friction_loss": "J", "kinetic": "J", "energy_residual": "J"}
+
+
+@pytest.mark.parametrize("name, unit", [
+    ("t", "s"), ("u_load", "m"), ("v_load", "m/s"), ("phi_drive", "rad"),
+    ("omega_drive", "rad/s"), ("u_nut", "m"), ("omega_screw", "rad/s"), ("phi_nut", "rad"),
+    ("drive_torque", "N*m"), ("axial_force", "N"), ("normal_force", "N"),
+    ("friction_force", "N"), ("slip_velocity", "m/s"), ("stick", ""), ("gap", "m"),
+    ("play", "m"), ("work_drive", "J"), ("impact_loss", "J"), ("energy_residual", "J"),
+])
+def test_channel_units_by_name(name, unit):
+    assert ls.units.channel_unit(name) == unit
+
+
+@pytest.mark.parametrize("name", ["x", "u_", "u_gearbox", "omega", "phi", "torque", "U_load",
+                                  "work", "stick_", ""])
+def test_an_unknown_channel_has_no_unit(name):
+    with pytest.raises(KeyError, match=f"channel {name!r} has no unit"):
+        ls.units.channel_unit(name)
+
+
+def test_a_result_frame_with_an_unknown_channel_fails():
+    """A channel a new model writes without a unit here is an error, not an
+    empty unit."""
+    r = block_result()
+    r._channels = r.channels[:-1] + ["new_channel"]
+    with pytest.raises(KeyError, match="'new_channel' has no unit"):
+        r.to_frame()
+
+
+@pytest.mark.parametrize("make", [block_result, lambda: drive_result({})])
+def test_t_is_read_like_a_channel(make):
+    r = make()
+    assert "t" in r and "t" not in r.channels
+    t = r["t"]
+    assert t is r.t and t[0] == 0.0 and len(t) > 2
+    np.testing.assert_array_equal(r.to_frame()["t"].to_numpy(), t)
+    fresh = make()
+    np.testing.assert_array_equal(fresh["t"], t)  # before any other conversion
+    with pytest.raises(KeyError, match=r"no channel 'w'; channels are \['t', "):
+        fresh["w"]

@@ -182,6 +182,20 @@ def test_run_every_shipped_scene(tmp_path, capsys, name):
     np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
 
 
+@pytest.mark.parametrize("name", shipped.available())
+def test_every_shipped_scene_runs_with_the_cli_defaults(tmp_path, capsys, name):
+    """leadscrew run NAME without options (t_end 1 s, simulate's tolerances,
+    max_steps 1e6): position_holding ended in CV_TOO_MUCH_WORK at 0.867 s
+    (1.15 million steps per simulated second; 0.64 million since its
+    flank is softer, see the scene file)."""
+    code, out, err = run_main(capsys, "run", name, "-o", tmp_path)
+    assert code == 0 and err == "", err
+    frame = pd.read_csv(tmp_path / f"{name}.csv")
+    assert len(frame) == cli.DEFAULT_POINTS and frame["t"].iloc[-1] == cli.DEFAULT_T_END
+    assert np.isfinite(frame.to_numpy()).all()
+    assert (tmp_path / f"{name}.png").stat().st_size > 10_000
+
+
 def test_run_a_scene_file_with_options(tmp_path, capsys):
     path = scene_file(tmp_path, friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 100.0})
     out_dir = tmp_path / "new" / "dir"

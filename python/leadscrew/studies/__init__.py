@@ -5,6 +5,23 @@ pandas DataFrame and draw a diagram (thesis chapters 3 and 5).
 notebooks look studies up there). Sweeps take ``executor=`` (any
 ``concurrent.futures.Executor``; default a thread pool over all cores, the
 C++ core releasing the GIL) and ``progress=`` (a tqdm bar).
+
+One rule for the loads of every study: the scene's own loads are the
+default, and a study argument that gives an excitation overrides them.
+``stick_slip``, ``compare_concepts`` and ``work_precision`` run the scene's
+loads as they are; ``position_holding`` and the creep studies take the
+amplitude (and, where they do not sweep it, the frequency) of the scene's
+alternating axial force, a sine ``loads.axial_force`` (30 N and 20 Hz for a
+scene without one), unless ``amplitude=`` / ``frequency=`` give them;
+``min_holding_preload`` takes the whole sine (amplitude, omega, phase,
+offset) unless ``excitation=`` gives one; ``efficiency_vs_mu`` replaces the
+loads by its definition (a speed-controlled motor raising each of its
+``loads``). Where a study may take its excitation from either,
+``attrs["summary"]["excitation_from"]`` says where it came from:
+``"arguments"``, ``"scene"`` or ``"defaults"``.
+
+Each study has a ``plot_...`` function drawing its figure from the frame it
+returned (``leadscrew study`` writes it as a PNG beside the CSV).
 """
 
 from . import concepts as _concepts

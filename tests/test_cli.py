@@ -620,6 +620,52 @@ def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys,
         assert line in lines, (line, out)
 
 
+@pytest.mark.parametrize("name", sorted(TINY_STUDIES))
+def test_every_study_writes_its_figure_beside_its_csv(tmp_path, capsys, name):
+    """leadscrew study wrote no figure: each study's plot (studies.PLOTS) goes
+    to NAME_SCENE.png beside NAME_SCENE.csv, also for a sweep of one value."""
+    changes, options = TINY_STUDIES[name]
+    path = scene_file(tmp_path, "drive", **changes)
+    code, out, err = run_main(capsys, "study", name, path, *options, "progress=false",
+                              "-o", tmp_path / "out")
+    assert code == 0 and err == "", err
+    png = tmp_path / "out" / f"{name}_drive.png"
+    assert f"wrote {png}" in out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+    assert (tmp_path / "out" / f"{name}_drive.csv").is_file()
+    assert set(ls.studies.PLOTS) == set(ls.studies.STUDIES)
+
+
+def test_a_study_without_a_figure_writes_none(tmp_path, capsys, monkeypatch):
+    def bare(scene):
+        return pd.DataFrame({"x": [1.0]})
+
+    fake_study(monkeypatch, bare=bare)
+    code, out, err = run_main(capsys, "study", "bare", scene_file(tmp_path), "-o", tmp_path)
+    assert code == 0, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bare_scene.csv", "scene.toml"]
+
+
+def test_min_preload_not_found_names_the_range(tmp_path, capsys, monkeypatch):
+    """A min_holding_preload that finds no preload printed 'min_preload: nan N'."""
+    import leadscrew.studies.holding as holding
+
+    monkeypatch.setattr(holding, "_preload_case", lambda preload, *args, **kwargs: {
+        "creep_per_cycle": 1e-6, "separations": 0, "flight_fraction": 0.0,
+        "max_displacement": 0.0, "wall_time": 0.0})
+    changes, options = TINY_STUDIES["min_holding_preload"]
+    code, out, err = run_main(capsys, "study", "min_holding_preload",
+                              scene_file(tmp_path, **changes), *options, "upper=10",
+                              "progress=false", "-o", tmp_path)
+    assert code == 0, err
+    lines = out.splitlines()
+    assert "  min_preload: not found in [0, 10240] N" in lines
+    assert "  bracket_high: nan N" in lines and "nan N" not in "\n".join(
+        line for line in lines if line.startswith("  min_preload"))
+    summary = json.loads((tmp_path / "min_holding_preload_scene.summary.json").read_text())
+    assert summary["min_preload"] == "not found in [0, 10240] N" and summary["found"] is False
+
+
 @pytest.mark.parametrize(
     "text, value",
     [("5,10,20", [5, 10, 20]), ("[5, 10.5]", [5, 10.5]), ("0.5", 0.5), ("true", True),

@@ -192,3 +192,14 @@ def test_the_excitation_is_the_scenes_unless_an_argument_gives_it(by_frequency):
     np.testing.assert_array_equal(frame["creep_per_cycle"], expected["creep_per_cycle"])
     assert creep_map(loud, [20.0], [2e-4], cycles=3,
                      progress=False).attrs["summary"]["amplitude"] == 10.0
+
+
+def test_a_sweep_of_one_value_is_drawn_against_the_parameter_given(by_frequency):
+    one = by_frequency.iloc[:1]
+    with pytest.raises(ValueError, match="or give x"):
+        plot_creep(one)
+    ax = plot_creep(one, x="frequency")
+    assert ax.get_xlabel() == "frequency [Hz]" and len(ax.lines[0].get_xdata()) == 1
+    assert plot_creep(one, x="backlash").get_xlabel() == "backlash [mm]"
+    with pytest.raises(ValueError, match="x = 'mu' is invalid"):
+        plot_creep(one, x="mu")

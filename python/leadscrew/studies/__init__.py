@@ -24,6 +24,10 @@ Each study has a ``plot_...`` function drawing its figure from the frame it
 returned (``leadscrew study`` writes it as a PNG beside the CSV).
 """
 
+import functools
+import pathlib
+from typing import Optional
+
 from . import concepts as _concepts
 from . import creep as _creep
 from . import drive_efficiency as _drive_efficiency
@@ -55,6 +59,51 @@ from .work_precision import (
     work_precision,
 )
 
+#: Each study's figure: a function ``plot(frame, ax)`` drawing the frame
+#: the study returned (``leadscrew study`` writes it beside the CSV).
+PLOTS = {
+    "work_precision": plot_work_precision,
+    "stick_slip": plot_stick_slip,
+    "compare_concepts": plot_compare_concepts,
+    "position_holding": plot_position_holding,
+    "creep_vs_frequency": functools.partial(plot_creep, x="frequency"),
+    "creep_vs_backlash": functools.partial(plot_creep, x="backlash"),
+    "creep_map": plot_creep_map,
+    "min_holding_preload": plot_min_holding_preload,
+    "efficiency_vs_mu": plot_efficiency_vs_mu,
+}
+
+
+def save_figure(name: str, frame, path, title: Optional[str] = None,
+                dpi: int = 110) -> Optional[pathlib.Path]:
+    """Draw a study's figure (:data:`PLOTS`) and write it to ``path``.
+
+    The figure is a :class:`matplotlib.figure.Figure` of its own, written by
+    matplotlib's Agg renderer: no pyplot state, no display needed.
+
+    Args:
+        name: the study's name in :data:`STUDIES`.
+        frame: the DataFrame the study returned.
+        path: the file to write; its suffix picks the format (``.png``).
+        title: the figure's title (default none).
+        dpi: resolution [dots per inch].
+
+    Returns:
+        The path written, or None for a study without a figure in :data:`PLOTS`.
+    """
+    plot = PLOTS.get(name)
+    if plot is None:
+        return None
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(8.0, 5.0), layout="constrained")
+    plot(frame, ax=figure.subplots())
+    if title:
+        figure.suptitle(title, fontsize="medium")
+    figure.savefig(path, dpi=dpi)
+    return pathlib.Path(path)
+
+
 STUDIES = {
     "work_precision": work_precision,
     "stick_slip": stick_slip,
@@ -69,6 +118,8 @@ STUDIES = {
 
 __all__ = [
     "STUDIES",
+    "PLOTS",
+    "save_figure",
     "SerialExecutor",
     *_work_precision_module.__all__,
     *_stickslip.__all__,

@@ -204,7 +204,8 @@ def _quantity_label(quantity: str) -> str:
     return f"|{quantity.replace('_', ' ')}| [{unit}]"
 
 
-def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optional[Any] = None):
+def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optional[Any] = None,
+               x: Optional[str] = None):
     """Draw |creep per cycle| (or another measure) against the swept
     parameter, frequency or backlash (Fig. 5.5a or b).
 
@@ -213,19 +214,26 @@ def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optio
         quantity: the column to draw: ``creep_per_cycle`` (drawn in magnitude),
             ``creep_rate`` or ``max_displacement``.
         ax: a matplotlib Axes (default: a new figure's).
+        x: the swept parameter, ``"frequency"`` or ``"backlash"`` (default:
+            the one that varies in the frame; give it for a sweep of one
+            value).
 
     Returns:
         The Axes.
 
     Raises:
-        ValueError: neither or both parameters vary, or an unknown quantity.
+        ValueError: without ``x``, neither or both parameters vary; an
+            unknown ``x`` or quantity.
     """
     label = _quantity_label(quantity)
-    varying = [c for c in ("frequency", "backlash") if frame[c].nunique() > 1]
-    if len(varying) != 1:
-        raise ValueError("frame is invalid: exactly one of frequency and backlash must vary "
-                         "(use plot_creep_map for a map)")
-    x = varying[0]
+    if x is None:
+        varying = [c for c in ("frequency", "backlash") if frame[c].nunique() > 1]
+        if len(varying) != 1:
+            raise ValueError("frame is invalid: exactly one of frequency and backlash must "
+                             "vary (use plot_creep_map for a map, or give x)")
+        x = varying[0]
+    elif x not in ("frequency", "backlash"):
+        raise ValueError(f"x = {x!r} is invalid: must be 'frequency' or 'backlash'")
     ax = axes(ax)
     scale = 1e3 if x == "backlash" else 1.0
     ax.plot(frame[x] * scale, np.abs(frame[quantity]) * 1e6, "o-")

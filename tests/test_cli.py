@@ -196,6 +196,28 @@ def test_every_shipped_scene_runs_with_the_cli_defaults(tmp_path, capsys, name):
     assert (tmp_path / f"{name}.png").stat().st_size > 10_000
 
 
+@pytest.mark.parametrize("study", ["position_holding", "min_holding_preload", "stick_slip"])
+def test_the_studies_of_the_position_holding_scene_run_with_their_defaults(tmp_path, capsys,
+                                                                          study):
+    """The studies for the shipped position_holding scene, with its
+    excitation (the studies' rule) and their defaults: min_holding_preload
+    takes the scene's sine; stick_slip's 2 s take 1.3 million steps, its
+    max_steps is 1e6 per simulated second."""
+    code, out, err = run_main(capsys, "study", study, "position_holding", "progress=false",
+                              "-o", tmp_path)
+    assert code == 0 and err == "", err
+    assert (tmp_path / f"{study}_position_holding.png").stat().st_size > 10_000
+    frame = pd.read_csv(tmp_path / f"{study}_position_holding.csv")
+    if study == "min_holding_preload":
+        summary = json.loads((tmp_path / f"{study}_position_holding.summary.json").read_text())
+        assert summary["found"] and summary["monotonic"] and summary["bracket_verified"]
+        assert summary["excitation_from"] == "scene" and summary["amplitude"] == 50.0
+        # the flexible drive's answer lies above the rigid closed form, within 1 %
+        assert 1.0 < summary["min_preload"] / summary["quasi_static_preload"] < 1.01
+    else:
+        assert frame["t"].iloc[-1] == pytest.approx(0.4 if study == "position_holding" else 2.0)
+
+
 def test_run_a_scene_file_with_options(tmp_path, capsys):
     path = scene_file(tmp_path, friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 100.0})
     out_dir = tmp_path / "new" / "dir"

@@ -275,8 +275,8 @@ def _open_flank(result, backlash: Dict[str, Any]) -> np.ndarray:
 
     An exact contact has flank states: the nut is in flight where the state
     the last event at or before the output time left is 'open' (before the
-    first event, the state that event left; without events, the gap as for
-    a penalty contact). Its ``gap`` channel is no verdict: a closed flank
+    first event, the state that event left; without events, the state at
+    t = 0 throughout, told by the gap there as for a penalty contact). Its ``gap`` channel is no verdict: a closed flank
     drifts with the integration error, by more than a flight's resolution
     (+3.6e-9 m of a 0.1 mm play, 36 times 1e-6 of it, on a flexible nut
     within 0.27 s at rtol 1e-8). A penalty contact (``bistop``, ``cubic``)
@@ -286,10 +286,13 @@ def _open_flank(result, backlash: Dict[str, Any]) -> np.ndarray:
     t, clearance = result.t, backlash["axial"]
     if clearance <= 0:
         return np.zeros(len(t), dtype=bool)
+    in_flight = result["gap"] > FLIGHT_RESOLUTION * clearance
+    if backlash["contact"] in _PENALTY_CONTACTS:
+        return in_flight
     changes = [(event.time, event.kind.rsplit("->", 1)) for event in result.events
                if "->" in event.kind]
-    if backlash["contact"] in _PENALTY_CONTACTS or not changes:
-        return result["gap"] > FLIGHT_RESOLUTION * clearance
+    if not changes:  # the state of t = 0 throughout, before any drift
+        return np.full(len(t), in_flight[0])
     # the states: before the first change, then after each
     states = [changes[0][1][0].rsplit(", ", 1)[-1]] + [after for _, (_, after) in changes]
     is_open = np.array([state == "open" for state in states])

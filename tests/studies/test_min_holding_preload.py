@@ -341,3 +341,24 @@ def test_the_excitation_defaults_to_the_scenes_sine():
     assert other["amplitude"] == 20.0 and other["excitation_from"] == "arguments"
     with pytest.raises(ValueError, match="excitation is missing"):
         min_holding_preload(holding_scene())  # a constant axial force
+
+
+def test_a_closed_flanks_drifting_gap_is_no_flight(monkeypatch):
+    """A flexible drive ramped onto its flank stays closed without a single
+    event, while its gap drifts with the integration error beyond the flight
+    resolution (1e-6 of the play): that drift was counted as flight, so
+    1600 N 'separated' under a 30 N excitation."""
+    import leadscrew.studies.holding as holding
+
+    runs = []
+    response = holding.cycle_response
+    monkeypatch.setattr(holding, "cycle_response", lambda *args, **kwargs: runs.append(
+        response(*args, series=True, **kwargs)) or runs[-1])
+    scene = holding_scene(concept="flexible")
+    sine = {"amplitude": AMPLITUDE, "omega": EXCITATION["omega"], "phase": 0.0, "offset": 0.0}
+    out = holding._preload_case(1600.0, scene, sine, -1.0, 4, 1, 100,
+                                {"rtol": 1e-8, "atol": 1e-10}, ramp_cycles=2)
+    result = runs[0]["result"]
+    assert result.events == []
+    assert result["gap"][200:].max() > holding.FLIGHT_RESOLUTION * 2e-4  # the drift
+    assert out["separations"] == 0 and out["flight_fraction"] == 0.0

@@ -196,24 +196,31 @@ def test_every_shipped_scene_runs_with_the_cli_defaults(tmp_path, capsys, name):
     assert (tmp_path / f"{name}.png").stat().st_size > 10_000
 
 
-@pytest.mark.parametrize("study", ["position_holding", "min_holding_preload", "stick_slip"])
-def test_the_studies_of_the_position_holding_scene_run_with_their_defaults(tmp_path, capsys,
-                                                                          study):
-    """The studies for the shipped position_holding scene, with its
-    excitation (the studies' rule) and their defaults: min_holding_preload
-    takes the scene's sine; stick_slip's 2 s take 1.3 million steps, its
-    max_steps is 1e6 per simulated second."""
-    code, out, err = run_main(capsys, "study", study, "position_holding", "progress=false",
-                              "-o", tmp_path)
+@pytest.mark.parametrize("scene, study", [
+    ("position_holding", "position_holding"), ("position_holding", "min_holding_preload"),
+    ("position_holding", "stick_slip"), ("thesis_table_5_1", "stick_slip"),
+    ("thesis_table_5_1", "compare_concepts"), ("default", "stick_slip"),
+    ("default", "compare_concepts")])
+def test_the_studies_of_each_shipped_scene_run_with_their_defaults(tmp_path, capsys, scene,
+                                                                  study):
+    """The studies that need no more than a scene, on each shipped scene
+    made for them, with their defaults (the position_holding scene's
+    excitation: the studies' rule): min_holding_preload takes the scene's
+    sine; stick_slip's 2 s of the position_holding scene take 1.3 million
+    steps (its max_steps: 1e6 per simulated second)."""
+    code, out, err = run_main(capsys, "study", study, scene, "progress=false", "-o", tmp_path)
     assert code == 0 and err == "", err
-    assert (tmp_path / f"{study}_position_holding.png").stat().st_size > 10_000
-    frame = pd.read_csv(tmp_path / f"{study}_position_holding.csv")
+    stem = tmp_path / f"{study}_{scene}"
+    assert stem.with_suffix(".png").stat().st_size > 10_000
+    frame = pd.read_csv(stem.with_suffix(".csv"))
     if study == "min_holding_preload":
-        summary = json.loads((tmp_path / f"{study}_position_holding.summary.json").read_text())
+        summary = json.loads(stem.with_suffix(".summary.json").read_text())
         assert summary["found"] and summary["monotonic"] and summary["bracket_verified"]
         assert summary["excitation_from"] == "scene" and summary["amplitude"] == 50.0
         # the flexible drive's answer lies above the rigid closed form, within 1 %
         assert 1.0 < summary["min_preload"] / summary["quasi_static_preload"] < 1.01
+    elif study == "compare_concepts":
+        assert len(frame) == 3
     else:
         assert frame["t"].iloc[-1] == pytest.approx(0.4 if study == "position_holding" else 2.0)
 

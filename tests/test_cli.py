@@ -217,6 +217,49 @@ def test_run_every_shipped_scene(tmp_path, capsys, name):
     np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
 
 
+@pytest.mark.parametrize("name", shipped.available())
+def test_every_shipped_scene_runs_with_the_cli_defaults(tmp_path, capsys, name):
+    """leadscrew run NAME without options (t_end 1 s, simulate's tolerances,
+    max_steps 1e6): position_holding ended in CV_TOO_MUCH_WORK at 0.867 s
+    (1.15 million steps per simulated second; 0.64 million since its
+    flank is softer, see the scene file)."""
+    code, out, err = run_main(capsys, "run", name, "-o", tmp_path)
+    assert code == 0 and err == "", err
+    frame = pd.read_csv(tmp_path / f"{name}.csv")
+    assert len(frame) == cli.DEFAULT_POINTS and frame["t"].iloc[-1] == cli.DEFAULT_T_END
+    assert np.isfinite(frame.to_numpy()).all()
+    assert (tmp_path / f"{name}.png").stat().st_size > 10_000
+
+
+@pytest.mark.parametrize("scene, study", [
+    ("position_holding", "position_holding"), ("position_holding", "min_holding_preload"),
+    ("position_holding", "stick_slip"), ("thesis_table_5_1", "stick_slip"),
+    ("thesis_table_5_1", "compare_concepts"), ("default", "stick_slip"),
+    ("default", "compare_concepts")])
+def test_the_studies_of_each_shipped_scene_run_with_their_defaults(tmp_path, capsys, scene,
+                                                                  study):
+    """The studies that need no more than a scene, on each shipped scene
+    made for them, with their defaults (the position_holding scene's
+    excitation: the studies' rule): min_holding_preload takes the scene's
+    sine; stick_slip's 2 s of the position_holding scene take 1.3 million
+    steps (its max_steps: 1e6 per simulated second)."""
+    code, out, err = run_main(capsys, "study", study, scene, "progress=false", "-o", tmp_path)
+    assert code == 0 and err == "", err
+    stem = tmp_path / f"{study}_{scene}"
+    assert stem.with_suffix(".png").stat().st_size > 10_000
+    frame = pd.read_csv(stem.with_suffix(".csv"))
+    if study == "min_holding_preload":
+        summary = json.loads(stem.with_suffix(".summary.json").read_text())
+        assert summary["found"] and summary["monotonic"] and summary["bracket_verified"]
+        assert summary["excitation_from"] == "scene" and summary["amplitude"] == 50.0
+        # the flexible drive's answer lies above the rigid closed form, within 1 %
+        assert 1.0 < summary["min_preload"] / summary["quasi_static_preload"] < 1.01
+    elif study == "compare_concepts":
+        assert len(frame) == 3
+    else:
+        assert frame["t"].iloc[-1] == pytest.approx(0.4 if study == "position_holding" else 2.0)
+
+
 def test_run_a_scene_file_with_options(tmp_path, capsys):
     path = scene_file(tmp_path, friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 100.0})
     out_dir = tmp_path / "new" / "dir"
@@ -686,6 +729,52 @@ def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys,
         unit = units.get(key, "1")
         line = f"  {key}: {cli._summary_text(value)}" + ("" if unit in ("", "1") else f" {unit}")
         assert line in lines, (line, out)
+
+
+@pytest.mark.parametrize("name", sorted(TINY_STUDIES))
+def test_every_study_writes_its_figure_beside_its_csv(tmp_path, capsys, name):
+    """leadscrew study wrote no figure: each study's plot (studies.PLOTS) goes
+    to NAME_SCENE.png beside NAME_SCENE.csv, also for a sweep of one value."""
+    changes, options = TINY_STUDIES[name]
+    path = scene_file(tmp_path, "drive", **changes)
+    code, out, err = run_main(capsys, "study", name, path, *options, "progress=false",
+                              "-o", tmp_path / "out")
+    assert code == 0 and err == "", err
+    png = tmp_path / "out" / f"{name}_drive.png"
+    assert f"wrote {png}" in out
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+    assert (tmp_path / "out" / f"{name}_drive.csv").is_file()
+    assert set(ls.studies.PLOTS) == set(ls.studies.STUDIES)
+
+
+def test_a_study_without_a_figure_writes_none(tmp_path, capsys, monkeypatch):
+    def bare(scene):
+        return pd.DataFrame({"x": [1.0]})
+
+    fake_study(monkeypatch, bare=bare)
+    code, out, err = run_main(capsys, "study", "bare", scene_file(tmp_path), "-o", tmp_path)
+    assert code == 0, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bare_scene.csv", "scene.toml"]
+
+
+def test_min_preload_not_found_names_the_range(tmp_path, capsys, monkeypatch):
+    """A min_holding_preload that finds no preload printed 'min_preload: nan N'."""
+    import leadscrew.studies.holding as holding
+
+    monkeypatch.setattr(holding, "_preload_case", lambda preload, *args, **kwargs: {
+        "creep_per_cycle": 1e-6, "separations": 0, "flight_fraction": 0.0,
+        "max_displacement": 0.0, "wall_time": 0.0})
+    changes, options = TINY_STUDIES["min_holding_preload"]
+    code, out, err = run_main(capsys, "study", "min_holding_preload",
+                              scene_file(tmp_path, **changes), *options, "upper=10",
+                              "progress=false", "-o", tmp_path)
+    assert code == 0, err
+    lines = out.splitlines()
+    assert "  min_preload: not found in [0, 10240] N" in lines
+    assert "  bracket_high: nan N" in lines and "nan N" not in "\n".join(
+        line for line in lines if line.startswith("  min_preload"))
+    summary = json.loads((tmp_path / "min_holding_preload_scene.summary.json").read_text())
+    assert summary["min_preload"] == "not found in [0, 10240] N" and summary["found"] is False
 
 
 @pytest.mark.parametrize(

@@ -700,6 +700,12 @@ def _study(args: argparse.Namespace) -> int:
         with open(written[-1], "w", encoding="utf-8") as stream:
             json.dump(_json_value(dict(summary)), stream, indent=2, allow_nan=False)
             stream.write("\n")
+    # The study's figure (leadscrew.studies.PLOTS) beside its CSV, if it has one.
+    save_figure = getattr(studies, "save_figure", None)
+    figure = save_figure and save_figure(args.name, frame, _output_file(out, stem, "png"),
+                                         f"{args.name} on {scene_name}")
+    if figure:
+        written.append(figure)
     if arrays:
         print(f"left out of the CSV (a time series per row): {', '.join(map(str, arrays))}")
     for path in written:

@@ -124,7 +124,8 @@ def test_columns_units_and_plots(by_backlash, by_frequency):
     units = by_backlash.attrs["units"]
     assert set(units) == set(by_backlash.columns)
     assert units["creep_per_cycle"] == "m" and units["frequency"] == "Hz"
-    assert by_backlash.attrs["summary"] == {"amplitude": 30.0, "cycles": 6, "settle_cycles": 1}
+    assert by_backlash.attrs["summary"] == {"amplitude": 30.0, "cycles": 6, "settle_cycles": 1,
+                                            "excitation_from": "defaults"}
     ax = plot_creep(by_backlash)
     assert ax.get_xlabel() == "backlash [mm]"
     ax = plot_creep(by_frequency, quantity="max_displacement")
@@ -163,3 +164,42 @@ def test_bad_scenes_and_arguments():
         creep_map(holding_scene(), [10.0], [1e-4, 2e-4], max_steps=0, progress=False)
     with pytest.raises(TypeError, match="bogus"):
         creep_vs_backlash(holding_scene(), [1e-4], bogus=True, progress=False)
+
+
+def test_the_excitation_is_the_scenes_unless_an_argument_gives_it(by_frequency):
+    """One rule for every study: the scene's sine is the default (its
+    amplitude, and its frequency where the study does not sweep it), an
+    argument overrides; without a sine, 30 N and 20 Hz."""
+    sine = {"type": "sine", "amplitude": -30.0, "omega": 2 * np.pi * 20.0}
+    scene = holding_scene().replace(loads={"axial_force": sine})
+    from_scene = creep_vs_frequency(scene, FREQUENCIES, progress=False)
+    assert from_scene.attrs["summary"]["excitation_from"] == "scene"
+    assert from_scene.attrs["summary"]["amplitude"] == 30.0
+    assert by_frequency.attrs["summary"]["excitation_from"] == "defaults"
+    measures = ["creep_per_cycle", "max_displacement", "separations", "flight_fraction"]
+    pd.testing.assert_frame_equal(from_scene[measures], by_frequency[measures])
+    # 30 N of the scene, not 10 N: the argument overrides the scene's amplitude.
+    loud = scene.replace(loads={"axial_force": dict(sine, amplitude=10.0, omega=2 * np.pi * 5)})
+    given = creep_vs_frequency(loud, [20.0], amplitude=30.0, progress=False)
+    assert given.attrs["summary"]["excitation_from"] == "arguments"
+    assert given["creep_per_cycle"].iloc[0] == by_frequency["creep_per_cycle"].iloc[2]
+    # creep_vs_backlash takes the scene's frequency (5 Hz) and amplitude (10 N).
+    frame = creep_vs_backlash(loud, [2e-4], cycles=3, progress=False)
+    assert list(frame["frequency"]) == [pytest.approx(5.0, rel=1e-15)]
+    assert frame.attrs["summary"]["amplitude"] == 10.0
+    expected = creep_vs_backlash(holding_scene(), [2e-4], frequency=5.0, amplitude=10.0,
+                                 cycles=3, progress=False)
+    np.testing.assert_array_equal(frame["creep_per_cycle"], expected["creep_per_cycle"])
+    assert creep_map(loud, [20.0], [2e-4], cycles=3,
+                     progress=False).attrs["summary"]["amplitude"] == 10.0
+
+
+def test_a_sweep_of_one_value_is_drawn_against_the_parameter_given(by_frequency):
+    one = by_frequency.iloc[:1]
+    with pytest.raises(ValueError, match="or give x"):
+        plot_creep(one)
+    ax = plot_creep(one, x="frequency")
+    assert ax.get_xlabel() == "frequency [Hz]" and len(ax.lines[0].get_xdata()) == 1
+    assert plot_creep(one, x="backlash").get_xlabel() == "backlash [mm]"
+    with pytest.raises(ValueError, match="x = 'mu' is invalid"):
+        plot_creep(one, x="mu")

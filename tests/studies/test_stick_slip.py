@@ -112,3 +112,41 @@ def test_the_simulation_runs_on_an_executor(frame):
 def test_every_number_of_the_summary_has_its_unit(frame):
     assert set(frame.attrs["summary_units"]) == set(frame.attrs["summary"])
     assert frame.attrs["summary_units"]["u_final"] == "m"
+
+
+def test_the_series_has_the_requested_points_and_the_phases_stay_exact(frame):
+    """stick_slip wrote every integrator step (a flexible drive: 187,235
+    rows, 36.7 MB for 1 s); it samples ``points`` times (default 2001, as
+    leadscrew run), and its phases still start and end at the events."""
+    scene = ls.Scene.from_dict(thesis_scene(rotor={"inertia": 1e-6}))
+    sampled = stick_slip(scene, t_end=2.0, points=101, rtol=1e-12, atol=1e-14)
+    assert len(sampled) == 101
+    np.testing.assert_array_equal(sampled["t"], np.linspace(0.0, 2.0, 101))
+    phases, exact = stick_slip_phases(sampled), stick_slip_phases(frame)
+    assert len(phases) == len(exact) == 16
+    assert (phases["phase"] == exact["phase"]).all()
+    np.testing.assert_allclose(phases[["start", "end"]], exact[["start", "end"]], atol=1e-9)
+    assert sampled.attrs["summary"]["stick_phases"] == frame.attrs["summary"]["stick_phases"]
+    assert len(frame) == 2001  # the default
+    every = stick_slip(scene, t_end=2.0, points=0)  # every step, every event twice
+    assert every["t"].duplicated().sum() == len(every.attrs["events"]) == 15
+    with pytest.raises(ValueError, match="points = 1 is invalid"):
+        stick_slip(scene, t_end=1.0, points=1)
+    with pytest.raises(ValueError, match="points = -2 is invalid"):
+        stick_slip(scene, t_end=1.0, points=-2)
+    with pytest.raises(ValueError, match="points = 11 is invalid with t_eval"):
+        stick_slip(scene, t_end=1.0, points=11, t_eval=[0.0, 1.0])
+    assert len(stick_slip(scene, t_end=1.0, t_eval=[0.0, 0.5, 1.0])) == 3
+
+
+def test_a_flexible_drive_writes_its_points_not_its_steps():
+    """The shipped thesis drive (flexible screw and nut) takes tens of
+    thousands of steps for 0.2 s; the frame holds the 2001 points."""
+    scene = ls.scenes.load("thesis_table_5_1")
+    frame = stick_slip(scene, t_end=0.2)
+    assert len(frame) == 2001 and frame["t"].iloc[-1] == 0.2
+    phases = stick_slip_phases(frame)
+    assert phases["start"].iloc[0] == 0.0 and phases["end"].iloc[-1] == 0.2
+    assert (phases["duration"] > 0).all()
+    events = [time for time, kind in frame.attrs["events"] if "->" in kind]
+    assert np.isin(phases["start"].iloc[1:], events).all()  # the phases change at events

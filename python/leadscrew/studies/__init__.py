@@ -5,7 +5,28 @@ pandas DataFrame and draw a diagram (thesis chapters 3 and 5).
 notebooks look studies up there). Sweeps take ``executor=`` (any
 ``concurrent.futures.Executor``; default a thread pool over all cores, the
 C++ core releasing the GIL) and ``progress=`` (a tqdm bar).
+
+One rule for the loads of every study: the scene's own loads are the
+default, and a study argument that gives an excitation overrides them.
+``stick_slip``, ``compare_concepts`` and ``work_precision`` run the scene's
+loads as they are; ``position_holding`` and the creep studies take the
+amplitude (and, where they do not sweep it, the frequency) of the scene's
+alternating axial force, a sine ``loads.axial_force`` (30 N and 20 Hz for a
+scene without one), unless ``amplitude=`` / ``frequency=`` give them;
+``min_holding_preload`` takes the whole sine (amplitude, omega, phase,
+offset) unless ``excitation=`` gives one; ``efficiency_vs_mu`` replaces the
+loads by its definition (a speed-controlled motor raising each of its
+``loads``). Where a study may take its excitation from either,
+``attrs["summary"]["excitation_from"]`` says where it came from:
+``"arguments"``, ``"scene"`` or ``"defaults"``.
+
+Each study has a ``plot_...`` function drawing its figure from the frame it
+returned (``leadscrew study`` writes it as a PNG beside the CSV).
 """
+
+import functools
+import pathlib
+from typing import Optional
 
 from . import concepts as _concepts
 from . import creep as _creep
@@ -38,6 +59,51 @@ from .work_precision import (
     work_precision,
 )
 
+#: Each study's figure: a function ``plot(frame, ax)`` drawing the frame
+#: the study returned (``leadscrew study`` writes it beside the CSV).
+PLOTS = {
+    "work_precision": plot_work_precision,
+    "stick_slip": plot_stick_slip,
+    "compare_concepts": plot_compare_concepts,
+    "position_holding": plot_position_holding,
+    "creep_vs_frequency": functools.partial(plot_creep, x="frequency"),
+    "creep_vs_backlash": functools.partial(plot_creep, x="backlash"),
+    "creep_map": plot_creep_map,
+    "min_holding_preload": plot_min_holding_preload,
+    "efficiency_vs_mu": plot_efficiency_vs_mu,
+}
+
+
+def save_figure(name: str, frame, path, title: Optional[str] = None,
+                dpi: int = 110) -> Optional[pathlib.Path]:
+    """Draw a study's figure (:data:`PLOTS`) and write it to ``path``.
+
+    The figure is a :class:`matplotlib.figure.Figure` of its own, written by
+    matplotlib's Agg renderer: no pyplot state, no display needed.
+
+    Args:
+        name: the study's name in :data:`STUDIES`.
+        frame: the DataFrame the study returned.
+        path: the file to write; its suffix picks the format (``.png``).
+        title: the figure's title (default none).
+        dpi: resolution [dots per inch].
+
+    Returns:
+        The path written, or None for a study without a figure in :data:`PLOTS`.
+    """
+    plot = PLOTS.get(name)
+    if plot is None:
+        return None
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(8.0, 5.0), layout="constrained")
+    plot(frame, ax=figure.subplots())
+    if title:
+        figure.suptitle(title, fontsize="medium")
+    figure.savefig(path, dpi=dpi)
+    return pathlib.Path(path)
+
+
 STUDIES = {
     "work_precision": work_precision,
     "stick_slip": stick_slip,
@@ -52,6 +118,8 @@ STUDIES = {
 
 __all__ = [
     "STUDIES",
+    "PLOTS",
+    "save_figure",
     "SerialExecutor",
     *_work_precision_module.__all__,
     *_stickslip.__all__,

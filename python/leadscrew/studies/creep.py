@@ -17,11 +17,11 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
-from ._common import (annotate, as_scene, axes, check_grid, check_positive,
-                      numeric_or_nan)
+from ._common import annotate, as_scene, axes, check_grid, numeric_or_nan
 from ._batch import check_simulate_options
 from ._sweep import run_cases
-from .holding import _constant_torque, alternating_scene, check_cycles, cycle_response
+from .holding import (_alternating_excitation, _constant_torque, alternating_scene,
+                      check_cycles, cycle_response)
 
 __all__ = ["creep_vs_frequency", "creep_vs_backlash", "creep_map", "plot_creep",
            "plot_creep_map"]
@@ -42,10 +42,10 @@ def _creep_case(case: Tuple[float, float], scene, amplitude: float, cycles: int,
     return cycle_response(excited, frequency, cycles, settle_cycles, points_per_cycle, **options)
 
 
-def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float, cycles: int,
-           settle_cycles: int, points_per_cycle: int, rtol: float, atol: float, executor,
-           progress: bool, description: str, options: Dict[str, Any]) -> pd.DataFrame:
-    amplitude = check_positive("amplitude", amplitude)
+def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float,
+           excitation_from: str, cycles: int, settle_cycles: int, points_per_cycle: int,
+           rtol: float, atol: float, executor, progress: bool, description: str,
+           options: Dict[str, Any]) -> pd.DataFrame:
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     _constant_torque(scene)
@@ -72,7 +72,8 @@ def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float, cycle
                "separations", "flight_fraction", "wall_time", "steps", "error"]
     return annotate(pd.DataFrame(rows, columns=columns), UNITS,
                     summary_units={"amplitude": "N", "cycles": "1", "settle_cycles": "1"},
-                    amplitude=amplitude, cycles=cycles, settle_cycles=settle_cycles)
+                    amplitude=amplitude, cycles=cycles, settle_cycles=settle_cycles,
+                    excitation_from=excitation_from)
 
 
 def _scene_backlash(scene) -> float:
@@ -82,8 +83,20 @@ def _scene_backlash(scene) -> float:
     return float(scene["backlash"]["axial"])
 
 
+_EXCITATION = """
+
+    The excitation follows the rule of every study (:mod:`leadscrew.studies`):
+    an argument given overrides, the scene's own load is the default: here
+    the amplitude (and frequency) of the scene's ``loads.axial_force`` if it
+    is a sine (not its phase and offset: the force is purely alternating),
+    else 30 N (and 20 Hz). ``attrs["summary"]["excitation_from"]`` says
+    which: ``"arguments"``, ``"scene"`` or ``"defaults"``.
+
+    Args:"""
+
 _COMMON_ARGS = """
-        amplitude: amplitude of the alternating axial force [N], > 0.
+        amplitude: amplitude of the alternating axial force [N], > 0
+            (default: the scene's sine's, else 30 N).
         cycles: cycles per run, > settle_cycles.
         settle_cycles: cycles before the creep fit, >= 0.
         points_per_cycle: output points per cycle, >= 4.
@@ -100,7 +113,9 @@ _COMMON_ARGS = """
         ``max_displacement`` [m], ``separations`` [1], ``flight_fraction``
         [1], ``wall_time`` [s, C++], ``steps`` [1] and ``error`` (None, or
         the message of a failed case, whose numbers are NaN).
-        ``attrs["units"]`` maps columns to units.
+        ``attrs["units"]`` maps columns to units; ``attrs["summary"]``:
+        ``amplitude`` [N], ``cycles``, ``settle_cycles`` [1],
+        ``excitation_from``.
 
     Raises:
         ValueError: invalid scene (no constant drive torque) or arguments (the
@@ -108,64 +123,67 @@ _COMMON_ARGS = """
         TypeError: an unknown keyword in ``simulate_options``."""
 
 
-def creep_vs_frequency(scene: Any, frequencies: Sequence[float], amplitude: float = 30.0,
-                       cycles: int = 6, settle_cycles: int = 1, points_per_cycle: int = 100,
-                       rtol: float = 1e-8, atol: float = 1e-10, executor=None,
-                       progress: bool = True, **simulate_options: Any) -> pd.DataFrame:
+def creep_vs_frequency(scene: Any, frequencies: Sequence[float],
+                       amplitude: Optional[float] = None, cycles: int = 6,
+                       settle_cycles: int = 1, points_per_cycle: int = 100, rtol: float = 1e-8,
+                       atol: float = 1e-10, executor=None, progress: bool = True,
+                       **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
     backlash = _scene_backlash(scene)
     pairs = [(float(f), backlash) for f in check_grid("frequencies", frequencies)]
-    return _sweep(scene, pairs, amplitude, cycles, settle_cycles, points_per_cycle, rtol, atol,
-                  executor, progress, "creep_vs_frequency", simulate_options)
+    # The frequencies are the sweep's: only the amplitude may come from the scene.
+    amplitude, _, excitation_from = _alternating_excitation(scene, amplitude, pairs[0][0])
+    return _sweep(scene, pairs, amplitude, excitation_from, cycles, settle_cycles,
+                  points_per_cycle, rtol, atol, executor, progress, "creep_vs_frequency",
+                  simulate_options)
 
 
 creep_vs_frequency.__doc__ = """Creep per cycle and largest displacement against the
-    excitation frequency (thesis Fig. 5.5a), at the scene's backlash.
-
-    Args:
+    excitation frequency (thesis Fig. 5.5a), at the scene's backlash.""" + _EXCITATION + """
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a backlash
             section and a constant drive torque.
         frequencies: excitation frequencies [Hz], > 0.""" + _COMMON_ARGS
 
 
-def creep_vs_backlash(scene: Any, backlash: Sequence[float], frequency: float = 20.0,
-                      amplitude: float = 30.0, cycles: int = 6, settle_cycles: int = 1,
-                      points_per_cycle: int = 100, rtol: float = 1e-8, atol: float = 1e-10,
-                      executor=None, progress: bool = True,
+def creep_vs_backlash(scene: Any, backlash: Sequence[float], frequency: Optional[float] = None,
+                      amplitude: Optional[float] = None, cycles: int = 6,
+                      settle_cycles: int = 1, points_per_cycle: int = 100, rtol: float = 1e-8,
+                      atol: float = 1e-10, executor=None, progress: bool = True,
                       **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
-    frequency = check_positive("frequency", frequency)
+    amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)
     pairs = [(frequency, float(c)) for c in check_grid("backlash", backlash)]
-    return _sweep(scene, pairs, amplitude, cycles, settle_cycles, points_per_cycle, rtol, atol,
-                  executor, progress, "creep_vs_backlash", simulate_options)
+    return _sweep(scene, pairs, amplitude, excitation_from, cycles, settle_cycles,
+                  points_per_cycle, rtol, atol, executor, progress, "creep_vs_backlash",
+                  simulate_options)
 
 
 creep_vs_backlash.__doc__ = """Creep per cycle and largest displacement against the
-    axial backlash (thesis Fig. 5.5b), at one frequency.
-
-    Args:
+    axial backlash (thesis Fig. 5.5b), at one frequency.""" + _EXCITATION + """
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant
             drive torque; its backlash section (contact law, restitution,
             ...) is kept, or an exact one added, with ``axial`` replaced.
         backlash: total axial clearances [m], > 0.
-        frequency: excitation frequency [Hz], > 0.""" + _COMMON_ARGS
+        frequency: excitation frequency [Hz], > 0 (default: the scene's
+            sine's, else 20 Hz).""" + _COMMON_ARGS
 
 
 def creep_map(scene: Any, frequencies: Sequence[float], backlash: Sequence[float],
-              amplitude: float = 30.0, cycles: int = 6, settle_cycles: int = 1,
+              amplitude: Optional[float] = None, cycles: int = 6, settle_cycles: int = 1,
               points_per_cycle: int = 100, rtol: float = 1e-8, atol: float = 1e-10,
               executor=None, progress: bool = True, **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
     frequencies = check_grid("frequencies", frequencies)
     clearances = check_grid("backlash", backlash)
     pairs = [(float(f), float(c)) for f in frequencies for c in clearances]
-    return _sweep(scene, pairs, amplitude, cycles, settle_cycles, points_per_cycle, rtol, atol,
-                  executor, progress, "creep_map", simulate_options)
+    amplitude, _, excitation_from = _alternating_excitation(scene, amplitude, pairs[0][0])
+    return _sweep(scene, pairs, amplitude, excitation_from, cycles, settle_cycles,
+                  points_per_cycle, rtol, atol, executor, progress, "creep_map",
+                  simulate_options)
 
 
-creep_map.__doc__ = """Creep over every pair of frequency and backlash (Fig. 5.5, both axes).
-
-    Args:
+creep_map.__doc__ = """Creep over every pair of frequency and backlash (Fig. 5.5,
+    both axes).""" + _EXCITATION + """
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant
             drive torque (its backlash section kept, ``axial`` replaced).
         frequencies: excitation frequencies [Hz], > 0.
@@ -186,7 +204,8 @@ def _quantity_label(quantity: str) -> str:
     return f"|{quantity.replace('_', ' ')}| [{unit}]"
 
 
-def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optional[Any] = None):
+def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optional[Any] = None,
+               x: Optional[str] = None):
     """Draw |creep per cycle| (or another measure) against the swept
     parameter, frequency or backlash (Fig. 5.5a or b).
 
@@ -195,19 +214,26 @@ def plot_creep(frame: pd.DataFrame, quantity: str = "creep_per_cycle", ax: Optio
         quantity: the column to draw: ``creep_per_cycle`` (drawn in magnitude),
             ``creep_rate`` or ``max_displacement``.
         ax: a matplotlib Axes (default: a new figure's).
+        x: the swept parameter, ``"frequency"`` or ``"backlash"`` (default:
+            the one that varies in the frame; give it for a sweep of one
+            value).
 
     Returns:
         The Axes.
 
     Raises:
-        ValueError: neither or both parameters vary, or an unknown quantity.
+        ValueError: without ``x``, neither or both parameters vary; an
+            unknown ``x`` or quantity.
     """
     label = _quantity_label(quantity)
-    varying = [c for c in ("frequency", "backlash") if frame[c].nunique() > 1]
-    if len(varying) != 1:
-        raise ValueError("frame is invalid: exactly one of frequency and backlash must vary "
-                         "(use plot_creep_map for a map)")
-    x = varying[0]
+    if x is None:
+        varying = [c for c in ("frequency", "backlash") if frame[c].nunique() > 1]
+        if len(varying) != 1:
+            raise ValueError("frame is invalid: exactly one of frequency and backlash must "
+                             "vary (use plot_creep_map for a map, or give x)")
+        x = varying[0]
+    elif x not in ("frequency", "backlash"):
+        raise ValueError(f"x = {x!r} is invalid: must be 'frequency' or 'backlash'")
     ax = axes(ax)
     scale = 1e3 if x == "backlash" else 1.0
     ax.plot(frame[x] * scale, np.abs(frame[quantity]) * 1e6, "o-")

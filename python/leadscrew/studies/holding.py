@@ -27,6 +27,7 @@ from __future__ import annotations
 import functools
 import math
 import numbers
+import warnings
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
@@ -63,10 +64,14 @@ SUMMARY_UNITS = {
     "dynamic_separations": "1", "dynamic_flight_fraction": "1", "amplitude": "N",
     "frequency": "Hz", "static_force": "N", "min_preload": "N", "bracket_low": "N",
     "bracket_high": "N", "iterations": "1", "quasi_static_preload": "N",
-    "creep_limit": "m"}
+    "creep_limit": "m", "ramp_cycles": "1", "settle_cycles": "1", "judged_cycles": "1"}
 
 # Backlash contacts modelled by a spring (no open/closed flank states).
 _PENALTY_CONTACTS = ("bistop", "cubic")
+
+# Where a nut "on the flank" of a penalty contact starts: this share of the
+# half play short of it (see _alternating).
+_PENALTY_INSIDE = 1e-3
 
 UNITS = {
     "t": "s", "axial_force_static": "N", "u_load_static": "m", "axial_force_dynamic": "N",
@@ -94,6 +99,56 @@ def _constant_torque(scene: Scene) -> float:
         return float(torque.value)
     raise ValueError(f"loads.drive_torque = {torque!r} is invalid for a position-holding "
                      "study: must be constant (the torque held by the thread)")
+
+
+#: The alternating axial force of a study whose scene has no sine to take
+#: (and whose arguments give none): amplitude [N], frequency [Hz].
+FALLBACK_AMPLITUDE, FALLBACK_FREQUENCY = 30.0, 20.0
+
+
+def _scene_sine(scene: Scene) -> Optional[Dict[str, float]]:
+    """The scene's alternating axial force: ``loads.axial_force`` as the dict
+    ``{"amplitude", "omega", "phase", "offset"}`` [N, rad/s, rad, N] if it is
+    a sine with amplitude != 0 and omega > 0, else None (a constant, a table
+    or a callable: nothing alternating to take)."""
+    try:
+        sine = _sine_parameters(scene["loads"]["axial_force"])
+    except ValueError:
+        return None
+    return sine if sine["amplitude"] != 0.0 and sine["omega"] > 0.0 else None
+
+
+def _alternating_excitation(scene: Scene, amplitude: Optional[float],
+                           frequency: Optional[float]) -> Tuple[float, float, str]:
+    """The studies' one rule for the alternating axial force: an argument
+    given overrides, the scene's sine (:func:`_scene_sine`) is the default,
+    and without one the fallback 30 N, 20 Hz.
+
+    Args:
+        scene: the study's scene.
+        amplitude: the amplitude argument [N] (None: not given).
+        frequency: the frequency argument [Hz] (None: not given).
+
+    Returns:
+        ``(amplitude, frequency, excitation_from)``: |amplitude| [N] > 0,
+        frequency [Hz] > 0, and ``"arguments"`` (both given), ``"scene"``
+        (one or both from the scene's sine) or ``"defaults"`` (from the
+        fallback).
+
+    Raises:
+        ValueError: an argument that is not a finite number > 0.
+    """
+    sine = _scene_sine(scene)
+    excitation_from = "arguments"
+    if amplitude is None or frequency is None:
+        excitation_from = "scene" if sine is not None else "defaults"
+    if amplitude is None:
+        amplitude = abs(sine["amplitude"]) if sine is not None else FALLBACK_AMPLITUDE
+    if frequency is None:
+        frequency = (sine["omega"] / (2.0 * math.pi) if sine is not None
+                     else FALLBACK_FREQUENCY)
+    return (check_positive("amplitude", amplitude), check_positive("frequency", frequency),
+            excitation_from)
 
 
 def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
@@ -152,7 +207,9 @@ def alternating_scene(scene: Scene, amplitude: float, frequency: float, offset: 
         offset: static axial force (preload) along +x [N].
         backlash: if given, the total axial clearance [m] replacing the scene's.
         on_flank: start with the nut on the flank the static force presses it
-            against (else centred in the backlash, as in thesis Fig. 5.4).
+            against (a penalty contact's: 1e-3 of the half play short of
+            it, where its contact starts right) (else centred in the
+            backlash, as in thesis Fig. 5.4).
         phase: phase of the sine [rad].
 
     Returns:
@@ -187,7 +244,12 @@ def _alternating(scene: Scene, amplitude: float, omega: float, offset: float,
         # = "screw") lowers the play coordinate e = u_screw - u_nut - h p dphi,
         # the screw (drive = "nut") raises it (docs/physics/drive_models.md).
         side = -1.0 if scene["drive"] == "screw" else 1.0
-        play = side * math.copysign(0.5 * clearance, offset)
+        contact = scene["backlash"]["contact"] if "backlash" in scene else "exact"
+        # A penalty flank touched at exactly zero penetration carries no
+        # friction in the core (issue 17, defect 11: a self-locking drive
+        # back-drives); a thousandth of the half play inside it works.
+        inside = 1.0 - _PENALTY_INSIDE if contact in _PENALTY_CONTACTS else 1.0
+        play = side * math.copysign(0.5 * clearance * inside, offset)
     changes["initial"] = {"play_position": play}
     return scene.replace(**changes)
 
@@ -207,8 +269,40 @@ def check_cycles(cycles: Any, settle_cycles: Any, points_per_cycle: Any) -> Tupl
     return cycles, settle_cycles, points_per_cycle
 
 
+def _open_flank(result, backlash: Dict[str, Any]) -> np.ndarray:
+    """Whether the nut is off both flanks at each output time of a run with
+    backlash.
+
+    An exact contact has flank states: the nut is in flight where the state
+    the last event at or before the output time left is 'open' (before the
+    first event, the state that event left; without events, the state at
+    t = 0 throughout, told by the gap there as for a penalty contact). Its
+    ``gap`` channel is no verdict: a closed flank drifts with the
+    integration error, by more than a flight's resolution (+3.6e-9 m of a
+    0.1 mm play, 36 times 1e-6 of it, on a flexible nut within 0.27 s at
+    rtol 1e-8). A penalty contact (``bistop``, ``cubic``) has no states: in
+    flight where the gap exceeds :data:`FLIGHT_RESOLUTION` of the clearance
+    (below it the core takes a bounce to be plastic).
+    """
+    t, clearance = result.t, backlash["axial"]
+    if clearance <= 0:
+        return np.zeros(len(t), dtype=bool)
+    in_flight = result["gap"] > FLIGHT_RESOLUTION * clearance
+    if backlash["contact"] in _PENALTY_CONTACTS:
+        return in_flight
+    changes = [(event.time, event.kind.rsplit("->", 1)) for event in result.events
+               if "->" in event.kind]
+    if not changes:  # the state of t = 0 throughout, before any drift
+        return np.full(len(t), in_flight[0])
+    # the states: before the first change, then after each
+    states = [changes[0][1][0].rsplit(", ", 1)[-1]] + [after for _, (_, after) in changes]
+    is_open = np.array([state == "open" for state in states])
+    times = np.array([time for time, _ in changes])
+    return is_open[np.searchsorted(times, t, side="right")]
+
+
 def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: int = 1,
-                   points_per_cycle: int = 100, series: bool = False,
+                   points_per_cycle: int = 100, series: bool = False, judged_from: int = 0,
                    **simulate_options: Any) -> Dict[str, Any]:
     """Simulate whole excitation cycles and measure creep and flight.
 
@@ -219,6 +313,9 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         settle_cycles: cycles left out of the creep fit, >= 0.
         points_per_cycle: output points per cycle, >= 4.
         series: also return the time series (``t``, ``result``).
+        judged_from: the first cycle of the window in which the flank
+            openings, the flight and the displacement are measured, in
+            [0, cycles) (default 0: the whole run).
         **simulate_options: passed on to :func:`leadscrew.simulate`.
 
     Returns:
@@ -231,16 +328,16 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         rattling in the play puts the load anywhere in it at a cycle boundary,
         so the load position itself would measure that scatter rather than
         creep (for the rigid drive, back on its flank at every boundary, both
-        agree). ``max_displacement`` [m]: max |u_load(t) - u_load(0)|
-        on the output times; ``separations`` [1]: flank openings (events to
-        'open'; for a penalty contact, ``bistop`` or ``cubic``, which has no
-        flank states, the output times at which a flight begins);
-        ``flight_fraction`` [1]: share of output times with the nut
-        off both flanks (gap > 1e-6 of the clearance, the resolution below which
-        the core treats a bounce as plastic; a closed flank drifts with the
-        integration error: gaps of -3.3e-8 m, into the flank, were seen in
-        0.4 s at rtol 1e-8); ``wall_time`` [s, C++]; ``steps``, ``events``
-        [1].
+        agree). In the window from cycle ``judged_from`` on:
+        ``max_displacement`` [m]: max |u_load(t) - u_load(t_0)| on the
+        output times, t_0 the window's start; ``separations`` [1]: flank
+        openings (events to 'open'; for a penalty contact, ``bistop`` or
+        ``cubic``, which has no flank states, the output times at which a
+        flight begins); ``flight_fraction`` [1]: share of output times with
+        the nut off both flanks (an exact contact: its flank state 'open'; a
+        penalty contact: a gap above 1e-6 of the clearance, the resolution
+        below which the core treats a bounce as plastic). ``wall_time`` [s,
+        C++]; ``steps``, ``events`` [1] (of the whole run).
 
     Raises:
         ValueError: invalid arguments.
@@ -249,10 +346,15 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
     frequency = check_positive("frequency", frequency)
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
+    judged_from = check_count("judged_from", judged_from, 0)
+    if judged_from >= cycles:
+        raise ValueError(f"judged_from = {judged_from} is invalid: must be an integer in "
+                         f"[0, cycles = {cycles})")
     t_end = cycles / frequency
     t_eval = np.linspace(0.0, t_end, cycles * points_per_cycle + 1)
     result = simulate(scene, t_end, t_eval=t_eval, **simulate_options)
-    u = result["u_load"]
+    first = judged_from * points_per_cycle  # the window's first output time
+    u = result["u_load"][first:]
     angle = result["phi_drive"][::points_per_cycle][settle_cycles:]
     # Least-squares slope, written out so that equal angles give exactly 0.
     k = np.arange(settle_cycles, cycles + 1, dtype=float)
@@ -260,11 +362,11 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
     thread = scene.thread
     turn = float(np.dot(k, angle - angle.mean()) / np.dot(k, k))
     creep = -thread.hand_sign * thread.lead_per_radian * turn
-    separations = sum(1 for event in result.events if event.kind.endswith(_OPEN))
+    start = t_eval[first]
+    separations = sum(1 for event in result.events
+                      if event.kind.endswith(_OPEN) and event.time >= start)
     if "gap" in result:
-        clearance = scene["backlash"]["axial"]
-        in_flight = (result["gap"] > FLIGHT_RESOLUTION * clearance if clearance > 0
-                     else np.zeros(len(t_eval), dtype=bool))
+        in_flight = _open_flank(result, scene["backlash"])[first:]
         flight = float(np.mean(in_flight))
         if scene["backlash"]["contact"] in _PENALTY_CONTACTS:
             # A penalty contact has no flank states, hence no events to
@@ -308,12 +410,18 @@ def position_holding(
     ``static_force``, and under the alternating axial force
     ``amplitude sin(2 pi f t)`` without static part.
 
+    The excitation follows the rule of every study (:mod:`leadscrew.studies`):
+    an argument given overrides, the scene's own load is the default: here
+    the amplitude and frequency of the scene's ``loads.axial_force`` if it
+    is a sine (not its phase and offset: the force is purely alternating),
+    else 30 N and 20 Hz.
+
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant
             ``loads.drive_torque`` and, for flight, a backlash section.
         amplitude: amplitude of the alternating axial force [N], > 0
             (default: that of the scene's axial force if it is a sine, else
-            30 N; ``attrs["summary"]`` says which was used).
+            30 N; ``attrs["summary"]["excitation_from"]`` says which was used).
         frequency: its frequency [Hz], > 0 (default: the scene's sine's,
             else 20 Hz).
         static_force: static axial force along +x [N] (default ``-amplitude``:
@@ -353,21 +461,7 @@ def position_holding(
     """
     scene = as_scene(scene)
     torque = _constant_torque(scene)
-    try:
-        scene_sine: Optional[Dict[str, float]] = _sine_parameters(scene["loads"]["axial_force"])
-    except ValueError:  # a constant or a table: no excitation to take
-        scene_sine = None
-    from_scene = scene_sine is not None and scene_sine["amplitude"] != 0.0 and \
-        scene_sine["omega"] > 0.0
-    excitation_from = "arguments"
-    if amplitude is None or frequency is None:
-        excitation_from = "scene" if from_scene else "defaults"
-    if amplitude is None:
-        amplitude = abs(scene_sine["amplitude"]) if from_scene else 30.0
-    if frequency is None:
-        frequency = scene_sine["omega"] / (2.0 * math.pi) if from_scene else 20.0
-    amplitude = check_positive("amplitude", amplitude)
-    frequency = check_positive("frequency", frequency)
+    amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)
     static_force = -amplitude if static_force is None else check_finite("static_force",
                                                                          static_force)
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
@@ -471,18 +565,117 @@ def _sine_parameters(excitation: Any) -> Dict[str, float]:
                      "dict {'type': 'sine', 'amplitude', 'omega', 'phase', 'offset'}")
 
 
+#: Excitation cycles over which :func:`min_holding_preload` ramps the loads
+#: of a drive with springs (its default ``ramp_cycles``).
+RAMP_CYCLES = 2
+
+
+#: The ramp's start, a share of the full loads: a ramp from exactly zero
+#: loads made the core take the flank for slipping at t = 1e-9 s from
+#: round-off (a flexible nut then ran away, friction pushing it: issue 17,
+#: defect 2); a thousandth of the loads at once starts a transient a
+#: thousandth of the one without a ramp.
+RAMP_START = 1e-3
+
+
+class _Ramped:
+    """A load that grows smoothly to ``static + amplitude sin(omega t +
+    phase)``: that times r(t) = s + (1 - s) (1 - cos(pi t / ramp_time)) / 2,
+    s = :data:`RAMP_START`, up to ``ramp_time`` [s] (r' = 0 at both ends),
+    and itself after. A Python callable load (module level, so that it
+    pickles for process pools)."""
+
+    __slots__ = ("static", "amplitude", "omega", "phase", "ramp_time")
+
+    def __init__(self, static: float, amplitude: float, omega: float, phase: float,
+                 ramp_time: float):
+        self.static, self.amplitude, self.omega = float(static), float(amplitude), float(omega)
+        self.phase, self.ramp_time = float(phase), float(ramp_time)
+
+    def __call__(self, t: float) -> float:
+        value = self.static + self.amplitude * math.sin(self.omega * t + self.phase)
+        if t >= self.ramp_time:
+            return value
+        rise = 0.5 * (1.0 - math.cos(math.pi * t / self.ramp_time))
+        return (RAMP_START + (1.0 - RAMP_START) * rise) * value
+
+    def __reduce__(self):
+        return (_Ramped, (self.static, self.amplitude, self.omega, self.phase, self.ramp_time))
+
+    def __repr__(self) -> str:
+        return (f"_Ramped(static={self.static!r}, amplitude={self.amplitude!r}, "
+                f"omega={self.omega!r}, phase={self.phase!r}, ramp_time={self.ramp_time!r})")
+
+
 def _preload_case(preload: float, scene: Scene, sine: Dict[str, float], direction: float,
                   cycles: int, settle_cycles: int, points_per_cycle: int,
-                  options: Dict[str, Any]) -> Dict[str, Any]:
-    loaded = _alternating(scene, sine["amplitude"], sine["omega"],
-                          sine["offset"] + direction * preload, None, True, sine["phase"])
-    return cycle_response(loaded, sine["omega"] / (2.0 * math.pi), cycles, settle_cycles,
-                          points_per_cycle, **options)
+                  options: Dict[str, Any], ramp_cycles: int = 0) -> Dict[str, Any]:
+    """One preload of :func:`min_holding_preload`: the nut on the loaded
+    flank, ``ramp_cycles`` cycles of ramped loads (none: the full loads from
+    t = 0), then ``cycles`` cycles of which those after ``settle_cycles`` are
+    judged."""
+    static = sine["offset"] + direction * preload
+    loaded = _alternating(scene, sine["amplitude"], sine["omega"], static, None, True,
+                          sine["phase"])
+    frequency = sine["omega"] / (2.0 * math.pi)
+    if ramp_cycles:
+        # Every load ramped alike: the ramp passes through scaled copies of
+        # the full loading, each holding iff the full one holds quasi-statically.
+        ramp_time = ramp_cycles / frequency
+        loads: Dict[str, Any] = {"axial_force": _Ramped(
+            static, sine["amplitude"], sine["omega"], sine["phase"], ramp_time)}
+        torque = _constant_torque(scene)
+        if torque != 0.0:
+            loads["drive_torque"] = _Ramped(torque, 0.0, sine["omega"], 0.0, ramp_time)
+        loaded = loaded.replace(loads=loads)
+    judged_from = ramp_cycles + settle_cycles
+    return cycle_response(loaded, frequency, ramp_cycles + cycles, judged_from,
+                          points_per_cycle, judged_from=judged_from, **options)
+
+
+def _cycles(count: int, kind: str = "") -> str:
+    """``"1 settle cycle"``, ``"2 settle cycles"``."""
+    return f"{count} {kind}cycle{'' if count == 1 else 's'}"
+
+
+def _has_springs(scene: Scene) -> bool:
+    """Whether a drive at rest on its flank still has springs to pre-deflect
+    under load: a flexible concept, or a penalty flank contact."""
+    return scene["concept"] != "rigid" or scene["backlash"]["contact"] in _PENALTY_CONTACTS
+
+
+def _bracket_report(rows: List[Dict[str, Any]], found: bool, low: float, high: float,
+                    low_holds: bool) -> Tuple[bool, bool, str]:
+    """Whether the bracket's ends were simulated with the verdicts they
+    stand for (``high`` held, ``low`` failed; 0 held if ``low_holds``),
+    whether every evaluated preload agrees with one threshold, and a text
+    saying either (the contradicting pair if not)."""
+    verdicts: Dict[float, List[bool]] = {}
+    for row in rows:
+        verdicts.setdefault(row["preload"], []).append(row["holds"])
+    holding = [p for p, v in verdicts.items() if all(v)]
+    failing = [p for p, v in verdicts.items() if not any(v)]
+    mixed = [p for p, v in verdicts.items() if any(v) and not all(v)]
+    if not found:
+        verified = False
+    elif low_holds:
+        verified = 0.0 in holding
+    else:
+        verified = high in holding and low in failing
+    monotonic = not mixed and (not holding or not failing or max(failing) < min(holding))
+    if monotonic:
+        text = f"all {len(rows)} evaluated preloads agree with one threshold"
+    elif mixed:
+        text = f"NOT monotonic: {mixed[0]:.6g} N both held and failed"
+    else:
+        text = (f"NOT monotonic: {min(holding):.6g} N held but {max(failing):.6g} N "
+                "failed")
+    return verified, monotonic, text
 
 
 def min_holding_preload(
     scene: Any,
-    excitation: Any,
+    excitation: Any = None,
     creep_limit: float = 1e-9,
     direction: float = -1.0,
     upper: Optional[float] = None,
@@ -492,6 +685,7 @@ def min_holding_preload(
     cycles: int = 4,
     settle_cycles: int = 1,
     points_per_cycle: int = 100,
+    ramp_cycles: Optional[int] = None,
     rtol: float = 1e-8,
     atol: float = 1e-10,
     executor=None,
@@ -501,15 +695,33 @@ def min_holding_preload(
     """Smallest static axial preload that holds the position under an alternating force.
 
     The axial force is ``direction * preload + excitation(t)``; the nut starts
-    on the flank the preload presses it against. A preload *holds* if in the
-    simulated cycles the flank never separates (no event to 'open' and no
-    output time with the nut off its flank) and |creep per cycle| <=
+    at rest on the flank the preload presses it against. A drive with
+    springs (a flexible concept, or a penalty flank contact) would start with
+    them relaxed, and the loads applied at once would set them ringing: the
+    start-up, not the preload, then decides (a flexible nut needed 15.0 N
+    started so, against 13.3 N quasi-statically). Its loads (preload,
+    excitation, drive torque) are ramped instead, all by one smooth factor
+    from 1e-3 (:data:`RAMP_START`) to 1 over ``ramp_cycles`` cycles, so that
+    the run passes through scaled copies of the full loading, each in static
+    equilibrium if the full one is, to the state of the drive under its
+    preload. The core has no initial spring deflections to start there at
+    once. A rigid drive on its flank needs no ramp: at rest it is in that
+    state from t = 0.
+
+    After the ramp, ``settle_cycles`` cycles let the transient settle, and
+    the following cycles are judged: a preload *holds* if there the flank
+    never separates (no event to 'open' and no output time with the nut off
+    its flank; an exact contact's flank state decides, not its gap, which
+    drifts with the integration error) and |creep per cycle| <=
     ``creep_limit`` (:func:`cycle_response`). Holding is taken to be monotonic
     in the preload; the search bisects (or, with ``points_per_round`` = n > 1,
     evaluates n evenly spaced preloads per round on the executor) until the
     bracket is narrower than ``tolerance`` times its upper end or
     ``max_iterations`` rounds have run. A simulation that fails counts as not
-    holding (its row carries the message).
+    holding (its row carries the message). The answer is then checked: the
+    bracket's ends were simulated with their verdicts (``bracket_verified``)
+    and every evaluated preload agrees with one threshold (``monotonic``; a
+    RuntimeWarning if not); ``decided_by`` says how the answer was found.
 
     For the rigid concept the answer has a closed form: stuck, the load is at
     rest, so the flank carries exactly the applied force, whose smallest
@@ -517,14 +729,22 @@ def min_holding_preload(
     the flank stays loaded iff that is >= 0, and the stuck flank holds the
     torque M iff M stays inside :func:`static_holding_band` of that force.
     The smallest such preload, max(0, |amplitude| - direction * offset +
-    |M| / band edge), is ``attrs["summary"]["quasi_static_preload"]``.
+    |M| / band edge), is ``attrs["summary"]["quasi_static_preload"]``; it is
+    also the flexible drives' answer for an excitation slow and small
+    against their springs.
+
+    The excitation follows the rule of every study (:mod:`leadscrew.studies`):
+    an argument given overrides, the scene's own load is the default: here
+    the scene's ``loads.axial_force`` if it is a sine, whole (amplitude,
+    omega, phase and its offset, a static part of the axial force).
 
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a backlash
             section, a constant drive torque and a self-locking thread.
         excitation: the alternating axial force: a :class:`~leadscrew.Sine` or
             a dict ``{"type": "sine", "amplitude", "omega", "phase",
-            "offset"}`` [N, rad/s, rad, N]; its frequency sets the cycles.
+            "offset"}`` [N, rad/s, rad, N]; its frequency sets the cycles
+            (default: the scene's ``loads.axial_force`` if it is a sine).
         creep_limit: largest admissible |creep per cycle| [m], >= 0.
         direction: +1 or -1, the preload's direction along x.
         upper: a preload [N] expected to hold (default twice the quasi-static
@@ -533,7 +753,15 @@ def min_holding_preload(
         tolerance: relative width of the final bracket, > 0.
         max_iterations: bound on the search rounds, >= 1.
         points_per_round: preloads evaluated per round, >= 1.
-        cycles, settle_cycles, points_per_cycle: as :func:`cycle_response`.
+        cycles: cycles after the ramp, > settle_cycles; those after the
+            first ``settle_cycles`` are judged.
+        settle_cycles: cycles after the ramp left for the transient to
+            settle, >= 0.
+        points_per_cycle: output points per cycle, >= 4.
+        ramp_cycles: cycles over which the loads grow from zero, >= 0; it
+            must be long against the drive's slowest mode on a closed flank
+            (default: 2 for a drive with springs, 0 for a rigid drive with an
+            exact contact).
         rtol, atol: integration tolerances (relative [1], absolute [SI]).
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores).
@@ -544,16 +772,23 @@ def min_holding_preload(
         DataFrame with one row per evaluated preload, in evaluation order:
         ``iteration`` [1], ``preload`` [N], ``holds``, ``separated``,
         ``separations`` [1], ``creep_per_cycle`` [m], ``max_displacement``
-        [m], ``flight_fraction`` [1], ``wall_time`` [s], ``error``.
-        ``attrs["summary"]``: ``min_preload`` [N] (the bracket's upper end:
-        the smallest preload seen to hold; NaN with ``found`` False if none
-        held), ``bracket_low``, ``bracket_high`` [N], ``iterations``,
-        ``converged``, ``found``, ``quasi_static_preload`` [N], ``amplitude``
-        [N], ``frequency`` [Hz], ``creep_limit`` [m].
+        [m], ``flight_fraction`` [1] (those four in the judged cycles),
+        ``wall_time`` [s], ``error``. ``attrs["summary"]``: ``min_preload``
+        [N] (the bracket's upper end: the smallest preload seen to hold; if
+        none held, the text ``"not found in [0, P] N"``, P the largest
+        preload evaluated), ``bracket_low``, ``bracket_high`` [N] (NaN if not
+        found), ``iterations``, ``converged``, ``found``,
+        ``bracket_verified``, ``monotonic``, ``decided_by`` (how the answer
+        was found: the bracket, its verdicts, the start and the judged
+        cycles), ``quasi_static_preload`` [N], ``amplitude`` [N],
+        ``frequency`` [Hz], ``creep_limit`` [m], ``ramp_cycles``,
+        ``settle_cycles``, ``judged_cycles`` [1], ``excitation_from``
+        (``"arguments"`` or ``"scene"``).
 
     Raises:
-        ValueError: invalid scene or arguments, or a thread that is not
-            self-locking (a preload then drives it back instead of holding it).
+        ValueError: invalid scene or arguments, no excitation (neither given
+            nor a sine in the scene), or a thread that is not self-locking
+            (a preload then drives it back instead of holding it).
         TypeError: an unknown keyword in ``simulate_options``.
     """
     scene = as_scene(scene)
@@ -565,7 +800,16 @@ def min_holding_preload(
         raise ValueError("scene.backlash is missing: the flank can only separate across a "
                          "backlash; add a backlash section")
     torque = _constant_torque(scene)
-    sine = _sine_parameters(excitation)
+    excitation_from = "arguments"
+    if excitation is None:
+        sine = _scene_sine(scene)
+        if sine is None:
+            raise ValueError("excitation is missing: the scene's loads.axial_force is not an "
+                             "alternating sine; give excitation={'type': 'sine', "
+                             "'amplitude': ..., 'omega': ...}")
+        excitation_from = "scene"
+    else:
+        sine = _sine_parameters(excitation)
     if sine["amplitude"] == 0.0 or sine["omega"] <= 0.0:
         raise ValueError(f"excitation = {excitation!r} is invalid: needs amplitude != 0 and "
                          "omega > 0")
@@ -575,6 +819,9 @@ def min_holding_preload(
     tolerance = check_positive("tolerance", tolerance)
     max_iterations = check_count("max_iterations", max_iterations, 1)
     points_per_round = check_count("points_per_round", points_per_round, 1)
+    if ramp_cycles is None:
+        ramp_cycles = RAMP_CYCLES if _has_springs(scene) else 0
+    ramp_cycles = check_count("ramp_cycles", ramp_cycles, 0)
     amplitude = abs(sine["amplitude"])
     # Self-locking: the band per newton of force contains 0; the torque needs
     # the force |M| / (band edge on its side).
@@ -589,11 +836,13 @@ def min_holding_preload(
     upper = check_positive("upper", upper)
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
+    frequency = sine["omega"] / (2.0 * math.pi)
     options = dict(simulate_options, rtol=rtol, atol=atol)
-    check_simulate_options(scene, options, cycles / (sine["omega"] / (2.0 * math.pi)))
+    check_simulate_options(scene, options, (ramp_cycles + cycles) / frequency)
     case = functools.partial(_preload_case, scene=scene, sine=sine, direction=float(direction),
                              cycles=cycles, settle_cycles=settle_cycles,
-                             points_per_cycle=points_per_cycle, options=options)
+                             points_per_cycle=points_per_cycle, options=options,
+                             ramp_cycles=ramp_cycles)
     rows: List[Dict[str, Any]] = []
 
     def evaluate(preloads, iteration):
@@ -643,19 +892,53 @@ def min_holding_preload(
             if failing:
                 low = max(failing)
     found = bool(low_holds or high_holds)
+    if low_holds:
+        low = 0.0
+    elif not found:
+        low = high  # every preload evaluated failed, the largest too
+    converged = bool(found and (low_holds or high - low <= tolerance * high))
+    verified, monotonic, agreement = _bracket_report(rows, found, low, high, low_holds)
+    judged = cycles - settle_cycles
+    start = (f"the loads ramped from zero over {_cycles(ramp_cycles)}" if ramp_cycles else
+             "the nut at rest on the loaded flank from t = 0")
+    run = (f"each run: {start}, {_cycles(settle_cycles, 'settle ')}, then "
+           f"{_cycles(judged, 'judged ')} at {frequency:.6g} Hz")
+    if low_holds:
+        decision = "preload 0 N held: no preload needed"
+    elif found:
+        width = (high - low) / high
+        decision = (f"bisection: {high:.6g} N held and {low:.6g} N failed (bracket "
+                    f"{width:.2g} of its upper end{'' if converged else ', not converged'}; "
+                    f"{'both simulated' if verified else 'NOT both simulated'})")
+    else:
+        decision = f"no preload up to {high:.6g} N held"
+    decided_by = f"{decision}; {agreement}; {run}"
+    if not monotonic:
+        warnings.warn(f"min_holding_preload: {agreement}: the answer {high:.6g} N assumes "
+                      "that holding is monotonic in the preload", RuntimeWarning, stacklevel=2)
+    units = dict(SUMMARY_UNITS)
+    if not found:
+        units.pop("min_preload")  # a text
     frame = pd.DataFrame(rows)
     return annotate(
-        frame, UNITS, summary_units=SUMMARY_UNITS,
-        min_preload=float(high) if found else float("nan"),
-        bracket_low=float(low) if not low_holds else 0.0,
+        frame, UNITS, summary_units=units,
+        min_preload=float(high) if found else f"not found in [0, {high:.6g}] N",
+        bracket_low=float(low),
         bracket_high=float(high) if found else float("nan"),
         iterations=iterations,
-        converged=bool(found and (low_holds or high - low <= tolerance * high)),
+        converged=converged,
         found=found,
+        bracket_verified=verified,
+        monotonic=monotonic,
+        decided_by=decided_by,
         quasi_static_preload=float(quasi_static),
         amplitude=amplitude,
-        frequency=sine["omega"] / (2.0 * math.pi),
+        frequency=frequency,
         creep_limit=creep_limit,
+        ramp_cycles=ramp_cycles,
+        settle_cycles=settle_cycles,
+        judged_cycles=judged,
+        excitation_from=excitation_from,
     )
 
 

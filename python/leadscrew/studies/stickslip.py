@@ -9,13 +9,14 @@ in steps with pauses, the pattern Fig. 5.1 shows for the rigid concept.
 
 from __future__ import annotations
 
-from typing import Any, Optional
+import math
+from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
 import pandas as pd
 
 from ..simulation import simulate
-from ._common import annotate, axes, as_scene, check_positive
+from ._common import annotate, axes, as_scene, check_count, check_positive
 
 __all__ = ["stick_slip", "stick_slip_phases", "plot_stick_slip"]
 
@@ -29,6 +30,16 @@ UNITS = {
     "start": "s", "end": "s", "duration": "s",
 }
 
+
+#: Output points of a run when neither ``points`` nor ``t_eval`` is given
+#: (as ``leadscrew run``'s default).
+DEFAULT_POINTS = 2001
+
+#: The default bound on integrator steps per simulated second (simulate's
+#: max_steps holds for a whole run of any length): the default 2 s of the
+#: shipped position_holding scene, a flexible drive rattling in its play,
+#: take 1.3 million steps.
+STEPS_PER_SECOND = 1_000_000
 
 # Units of the summary (attrs["summary_units"]).
 SUMMARY_UNITS = {"stick_phases": "1", "slip_phases": "1", "stick_fraction": "1", "events": "1",
@@ -62,8 +73,49 @@ def _labels(frame: pd.DataFrame) -> np.ndarray:
     return labels
 
 
+def _phase_of_mode(mode: str) -> Optional[str]:
+    """The phase a mode of an event's kind stands for ('upper flank stick'
+    -> 'stick'); None for the modes of a regularized law or a penalty contact
+    ('free', 'regularized'), which do not say."""
+    if mode == "open":
+        return "open"
+    for phase in ("stick", "slip+", "slip-"):
+        if mode.endswith(phase):
+            return phase
+    return None
+
+
+def _event_phases(events: Sequence[Tuple[float, str]], start: float,
+                  end: float) -> Optional[List[list]]:
+    """The phases ``[phase, start, end]`` between the mode changes of a run
+    (the events' kinds, ``'[what, ]before->after'``), or None if there are
+    none or a mode does not name a phase."""
+    changes = [(time, kind.rsplit("->", 1)) for time, kind in events
+               if "->" in kind and start <= time <= end]
+    if not changes:
+        return None
+    first = _phase_of_mode(changes[0][1][0].rsplit(", ", 1)[-1])
+    phases = [_phase_of_mode(after) for _, (_, after) in changes]
+    if first is None or None in phases:
+        return None
+    rows = [[first, start, start]]
+    for (time, _), phase in zip(changes, phases):
+        rows[-1][2] = time
+        if phase != rows[-1][0]:
+            rows.append([phase, time, time])
+    rows[-1][2] = end
+    return [row for row in rows if row[2] > row[1]]
+
+
 def stick_slip_phases(frame: pd.DataFrame) -> pd.DataFrame:
     """The stick and slip phases of a :func:`stick_slip` time series.
+
+    With the run's events (``attrs["events"]``, which :func:`stick_slip`
+    sets) the phases start and end at the events, exactly, whatever the
+    output times; without them, or for a law whose modes do not name the
+    phases (a regularized law: no stick), they change between the output
+    times whose ``phase`` labels differ (exactly at the events if the series
+    holds every event time twice: ``points=0``).
 
     Args:
         frame: the DataFrame :func:`stick_slip` returned.
@@ -79,40 +131,50 @@ def stick_slip_phases(frame: pd.DataFrame) -> pd.DataFrame:
         raise ValueError("frame is invalid: must be the output of stick_slip (columns t, phase)")
     t = frame["t"].to_numpy()
     labels = frame["phase"].to_numpy()
-    rows = []
-    for i in range(len(t) - 1):
-        if t[i + 1] <= t[i]:
-            continue  # the two samples of one event
-        if rows and rows[-1][0] == labels[i] and rows[-1][2] == t[i]:
-            rows[-1][2] = t[i + 1]
-        else:
-            rows.append([labels[i], t[i], t[i + 1]])
+    rows = (_event_phases(frame.attrs["events"], t[0], t[-1]) if "events" in frame.attrs
+            and len(t) > 1 else None)
+    if rows is None:
+        rows = []
+        for i in range(len(t) - 1):
+            if t[i + 1] <= t[i]:
+                continue  # the two samples of one event
+            if rows and rows[-1][0] == labels[i] and rows[-1][2] == t[i]:
+                rows[-1][2] = t[i + 1]
+            else:
+                rows.append([labels[i], t[i], t[i + 1]])
     phases = pd.DataFrame(rows, columns=["phase", "start", "end"])
     phases["duration"] = phases["end"] - phases["start"]
     return annotate(phases, UNITS)
 
 
-def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float = 1e-10,
-               executor=None, progress: bool = True, **simulate_options: Any) -> pd.DataFrame:
+def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
+               rtol: float = 1e-8, atol: float = 1e-10, executor=None, progress: bool = True,
+               **simulate_options: Any) -> pd.DataFrame:
     """Load position and stick/slip phases of one simulation (thesis Fig. 5.1).
 
     Run it on the scene of load case (5.1): the rigid Table 5.1 drive with
     ``loads.drive_torque = {"type": "sine", "amplitude": -0.04, "omega": 4 pi}``
-    and ``loads.axial_force = -10``.
+    and ``loads.axial_force = -10``. The loads are the scene's, as they are
+    (the rule of every study, :mod:`leadscrew.studies`).
 
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict) with an exact
             (Coulomb) or regularized friction law.
         t_end: simulated time [s], > 0.
+        points: output points, evenly spaced over [0, t_end], >= 2 (default
+            2001, as ``leadscrew run``; not with ``t_eval``); 0 writes every
+            integrator step and, twice, every event time (the shipped
+            flexible thesis drive: 45,623 rows for 1 s). The phases start and
+            end at the events either way (:func:`stick_slip_phases`).
         rtol, atol: integration tolerances (relative [1], absolute [SI]).
         executor: a :class:`concurrent.futures.Executor` to run the
             simulation on (e.g. a Dask client's, to run it on a cluster;
             default: the calling thread).
         progress: accepted as by every study; one simulation shows no bar.
         **simulate_options: passed on to :func:`leadscrew.simulate`
-            (``integrator``, ``t_eval``, ...). Without ``t_eval`` the series
-            holds every step and, twice, every event time, so the phases
-            start and end exactly at the events.
+            (``integrator``, ``t_eval`` instead of ``points``, ...;
+            ``max_steps`` defaults to 1e6 per simulated second, at least
+            1e6).
 
     Returns:
         DataFrame with columns ``t`` [s], ``u_load`` [m], ``v_load`` [m/s],
@@ -120,7 +182,8 @@ def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float =
         ``axial_force`` [N], ``normal_force`` [N], ``friction_force`` [N],
         ``slip_velocity`` [m/s], ``stick`` [1], ``gap`` [m] (with backlash)
         and ``phase`` ('stick', 'slip+', 'slip-', 'open'). ``attrs["units"]``
-        maps columns to units; ``attrs["summary"]`` holds ``stick_phases``
+        maps columns to units; ``attrs["events"]`` lists the run's events as
+        ``(time [s], kind)``; ``attrs["summary"]`` holds ``stick_phases``
         (number of stick phases), ``slip_phases``, ``stick_fraction`` (time
         in stick / t_end), ``events`` (number of mode changes), ``u_final``
         [m] and ``wall_time`` [s, inside the C++ core].
@@ -131,6 +194,16 @@ def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float =
     """
     scene = as_scene(scene)
     t_end = check_positive("t_end", t_end)
+    if points is not None and "t_eval" in simulate_options:
+        raise ValueError(f"points = {points!r} is invalid with t_eval: give one of them")
+    if "t_eval" not in simulate_options:
+        points = DEFAULT_POINTS if points is None else check_count("points", points, 0)
+        if points == 1:
+            raise ValueError("points = 1 is invalid: must be 0 (every step and event) or >= 2")
+        if points:
+            simulate_options["t_eval"] = np.linspace(0.0, t_end, points)
+    simulate_options.setdefault("max_steps", min(math.ceil(STEPS_PER_SECOND * max(t_end, 1.0)),
+                                                 2 ** 62))
     if executor is None:
         result = simulate(scene, t_end, rtol=rtol, atol=atol, **simulate_options)
     else:  # result() raises the simulation's own exception
@@ -141,6 +214,7 @@ def stick_slip(scene: Any, t_end: float = 2.0, rtol: float = 1e-8, atol: float =
         columns[name] = result[name]
     frame = pd.DataFrame(columns)
     frame["phase"] = _labels(frame)
+    frame.attrs["events"] = [(event.time, event.kind) for event in result.events]
     phases = stick_slip_phases(frame)
     stick_time = float(phases.loc[phases["phase"] == "stick", "duration"].sum())
     span = float(frame["t"].iloc[-1] - frame["t"].iloc[0])

@@ -543,7 +543,11 @@ def plot_work_precision(frame, ax=None, time: str = "wall_time", error: str = "e
     ax.set_ylabel(("max" if error == "error_max" else "final-time") + " error of "
                   + str(frame.attrs.get("quantity", "u")))
     ax.grid(True, which="both", linewidth=0.3)
-    ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0),
-              borderaxespad=0.0)
+    if len(usable):
+        ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0),
+                  borderaxespad=0.0)
+    else:  # every configuration failed or was exact: nothing to draw on log axes
+        ax.text(0.5, 0.5, "no configuration with a finite error > 0", ha="center",
+                va="center", transform=ax.transAxes)
     ax.set_title("work-precision: error against run time")
     return ax

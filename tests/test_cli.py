@@ -225,7 +225,7 @@ def test_every_shipped_scene_runs_with_the_cli_defaults(tmp_path, capsys, name):
     flank is softer, see the scene file)."""
     code, out, err = run_main(capsys, "run", name, "-o", tmp_path)
     assert code == 0 and err == "", err
-    frame = pd.read_csv(tmp_path / f"{name}.csv")
+    frame = pd.read_csv(tmp_path / f"{name}.csv", skiprows=[1])  # row 1: the units
     assert len(frame) == cli.DEFAULT_POINTS and frame["t"].iloc[-1] == cli.DEFAULT_T_END
     assert np.isfinite(frame.to_numpy()).all()
     assert (tmp_path / f"{name}.png").stat().st_size > 10_000

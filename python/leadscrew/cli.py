@@ -376,7 +376,9 @@ def _simulate(scene, t_end: float = DEFAULT_T_END, points: int = DEFAULT_POINTS,
 
     t_eval = np.linspace(0.0, t_end, points) if points else None
     options = {k: v for k, v in options.items() if v is not None}
-    return simulate(scene, t_end, t_eval=t_eval, **options)
+    # A progress bar where someone watches (a terminal); Ctrl-C stops the
+    # run either way.
+    return simulate(scene, t_end, t_eval=t_eval, progress=sys.stderr.isatty(), **options)
 
 
 def _summary(name: str, scene, result, t_end: float) -> str:

@@ -66,9 +66,9 @@ struct ResultCheckSpec {
 // |energy_residual| to rtol E + atol G measured over the test suite and
 // 10,000 random scenes, times ten (docs/physics/result_checks.md).
 constexpr double kEnergyToleranceFactor = 1e3;
-// The force resolution at an event's located root, relative to the run's
-// largest friction and flank forces (friction_power, friction_cone).
-constexpr double kForceResolution = 1e-8;
+// The forces' round-off, relative to the run's largest friction and flank
+// forces (friction_power, friction_cone).
+constexpr double kForceResolution = 1e-12;
 // The share of the run's largest energy flow Moreau-Jean may create.
 constexpr double kTimeSteppingCreation = 1e-3;
 

@@ -633,7 +633,12 @@ def run_case(case: dict) -> dict:
         out["message"] = f"{type(error).__name__}: {error}"
         out["traceback"] = traceback.format_exc(limit=-4)
     else:
-        report = check_result(result, scene.to_dict(), options)
+        try:
+            report = check_result(result, scene.to_dict(), options)
+        except Exception as error:  # noqa: BLE001 - a result the checker cannot read
+            report = {"checker": {"ok": False, "value": 0.0, "bound": 0.0, "time": None,
+                                  "detail": f"the checker raised {type(error).__name__}: "
+                                            f"{error}"}}
         failed = [name for name, entry in report.items() if not entry["ok"]]
         out["invariants"] = failed
         out["report"] = {name: report[name] for name in failed}
@@ -724,7 +729,10 @@ def run_isolated(cases_: Iterable[Tuple[int, dict]], timeout: float = 10.0,
 
 
 def prepare_parent() -> None:
-    """Import leadscrew and build its unit registry (the children inherit both)."""
+    """Import leadscrew and the checker and build the unit registry: the
+    children inherit them (and all run the same checker, even if its file
+    changes during a long run)."""
+    import helpers.result_invariants  # noqa: F401
     import leadscrew as ls
 
     ls.units.to_si("warm-up", "1 mm", "m")

@@ -1,0 +1,336 @@
+"""An independent check of a drive simulation's result from its channels alone.
+
+:func:`check_result` takes a :class:`leadscrew.Result` (or anything with
+``t``, ``events``, ``channels``, ``integrator`` and item access to the
+channels), the scene as ``Scene.to_dict()`` gives it (SI numbers) and the
+options ``simulate`` was called with, and returns one entry per invariant::
+
+    {name: {"ok": bool, "value": worst measured value, "bound": its bound,
+            "time": where the worst value is [s] (None if not a point),
+            "detail": a one-line text}}
+
+It does not use the simulator's own checks (``Result.checks``, once it has
+them): it is a second net, written from the channel definitions in
+``docs/physics/drive_models.md`` ("Energy account") and the README's
+conventions.
+
+Scales: F_ref = max(max |friction_force|, mu' max |normal_force|) [N] and
+v_ref = max |slip_velocity| [m/s] over the output points; the force scale of
+the drive F_sys = max(F_ref, max |normal_force|, max |axial_force|,
+max |drive_torque| / r_m) [N] (r_m the mean radius of the thread: a run
+whose flanks carry round-off forces only, free flight in the play from the
+start, still has the loads' scale). A force below FORCE_FLOOR = 1e-9 N is
+round-off wherever it appears: below any load a lead-screw drive carries,
+and above the flank forces of runs whose thread carries nothing (free flight
+or an unloaded speed-controlled drive: 1e-51 to 1e-11 N seen, of either
+sign). The energy scale E_ref [J] is the largest of
+max_t (|work_drive| + |work_axial|), max_t (kinetic + elastic) and max_t of
+the sum of the four losses, at least 1e-15 J (a drive that never moves has
+round-off energies only). rtol is the one given to simulate (default 1e-8).
+
+The invariants and their tolerances (the constants below; "observed" refers
+to the valid random scenes of ``helpers.scene_fuzz`` on the code of 2026-12:
+distributions from about 500 runs, gaps and violations from two runs of
+10,000 cases; event-driven and ODE integrators unless said otherwise):
+
+- ``finite``: every channel and output time finite. Exact: NaN or an
+  infinity is never a tolerance matter.
+- ``time_axis``: output times non-decreasing (an event's time appears
+  twice), in [0, t_end], the last one at the end of the run (``t_end``, or
+  the last of ``t_eval``) to 1e-9 t_end: a run that stops early must raise,
+  not return.
+- ``event_times``: every event time finite and in [0, t_end]. Exact: an
+  event is a root located inside the run.
+- ``friction_power``: friction_force * slip_velocity <= 1e-6 F_ref v_ref +
+  (1e-9 m/s F_sys + 1e-9 N v_ref) + 1e-9 E_ref / t_end at every output
+  point. At a stick/slip event the slip velocity is a root located to
+  round-off, in stick the drives report zero slip
+  (docs/physics/drive_models.md, "Stick at exactly zero slip"); the 1e-9 m/s
+  floor covers a drive that only ever creeps at round-off speed (Moreau-Jean
+  in stick: 1e-20 m/s), the force floors a run whose flanks carry round-off
+  forces only, the energy term a power that books less than 1e-9 E_ref over
+  the run. Observed: at most 3e-12 F_ref v_ref in 95 % of the runs, then
+  violations from 1e-2 F_ref v_ref up (a gap of ten decades). Not for
+  ``arctan_acceleration``: eq. (3.15) opposes the slip *acceleration* and
+  lets friction do positive work by construction (its energy balance is
+  checked).
+- ``friction_loss`` (not for ``arctan_acceleration``) and ``other_losses``
+  (damping_loss, contact_loss, impact_loss): a loss never falls between two
+  output points, nor lies below zero, by more than max(1e-5, 1e3 rtol) E_ref
+  + 1e-15 J (Moreau-Jean: 1e-5 E_ref). They are integrals of non-negative
+  rates, but computed as quadratures whose Runge-Kutta weights have both
+  signs (dopri5 has a negative one) or interpolated at output times (CVODE):
+  a spike of the rate (a penalty contact closing) can make the quadrature
+  dip by its local error. Observed: up to 3.6e-6 E_ref at rtol 1e-8 (a
+  penalty contact); a loss falling by more is booked wrongly.
+- ``friction_cone`` (every law): |friction_force| <= mu' |normal_force|
+  (1 + 1e-6) + 1e-9 F_sys + 1e-9 N, mu' = mu / cos(flank_angle / 2): the
+  arctan laws stay inside too (|(2/pi) atan| < 1). In slip the two sides are
+  equal to round-off, a stick phase leaves the cone at a root located to the
+  integrator's resolution; mu = 0 leaves round-off friction (5e-14 N against
+  5e-3 N). An excursion from the cone shorter than an integrator step that
+  the simulator misses (README, "Limits") is reported: it is a violation all
+  the same. Observed: at most 3.7e-12 F_ref in 95 % of the Coulomb runs,
+  violations from 4e-2 F_ref up; the arctan laws 0.
+- ``friction_law``: ``coulomb``: where the drive slips (``stick`` = 0 and
+  |slip_velocity| above the friction_power's velocity tolerance, 1e-6 v_ref +
+  1e-9 m/s) friction is on the cone: |friction_force| >= mu' |normal_force|
+  (1 - 1e-6) - 1e-9 F_sys - 1e-9 N (with the cone: equal; its direction
+  is the friction_power check's). ``arctan_velocity``: friction_force = -(2/pi)
+  mu' atan(k_V slip_velocity) |normal_force| (eq. 3.16) to 1e-6 F_ref (+ the
+  cone's floor). Observed: 2.5e-12 F_ref (Coulomb) and 2.2e-14 F_ref
+  (arctan) in 95 % of the runs, violations at 0.2 to 1 F_ref (a penalty flank
+  with no friction, issue 17's reproduction 11). Not for
+  ``arctan_acceleration``: its law needs the slip acceleration, which is no
+  channel.
+- ``energy_balance``: event-driven and ODE integrators: |energy_residual| <=
+  min(1e-2, max(1e-4, 1e4 rtol)) E_ref + 1e-15 J. The residual sums
+  quadratures of a state the integrator controls to rtol per step; over the
+  up to 1e5 steps of a run the global error reaches many local ones, and
+  E_ref is a peak, not the energy that flowed through the drive (an
+  oscillating motor). Observed: median 1e-7 E_ref, 95 % below 2e-3 E_ref
+  (all rtol). Where a residual above the bound shrinks as rtol falls (stiff
+  penalty contacts: 0.22 E_ref at rtol 7e-9, 5e-5 at 1e-12) the result is
+  not accurate to its tolerance; where it stays (a booking defect: issue 17's
+  reproductions 8 and 9, 5e-4 to 4e-2 of the work) it is wrong at any. This
+  single-run bound does not see a booking defect below 1e-4 E_ref (observed:
+  residuals of 1.1e-5 to 4.4e-5 E_ref that stay at rtol 1e-12), which needs
+  a second run at a tighter rtol. Moreau-Jean (``integrator="moreau"``): its
+  numerical dissipation shows as a positive residual, which is allowed;
+  energy created shows as a negative one: residual >= -(1e-3 E_ref + 1e-15
+  J). Observed: 90 % of the Moreau runs create less than 1.1e-3 E_ref; the
+  rest up to 5.5e-2 (issue 17, reproduction 10: a step that does not resolve
+  the scene).
+- ``flank_penetration`` (exact play only): gap >= -bound, the flanks are
+  unilateral. Event-driven: bound 1e-3 c_a (the simulator's own
+  ``kFlankTolerance``, drive_simulation.cpp; observed at most 1e-5 c_a).
+  Moreau-Jean keeps the flanks at the velocity level, so a contact closes
+  one step late: bound min(c_a, 1e-3 c_a + 3 dt max |d play / dt|), the
+  latter from the output points (observed: up to 2.9 steps of it; beyond
+  that the load falls through the thread, issue 17's reproduction 6: 1.3e3
+  c_a), but never the whole clearance beyond a flank.
+
+``checker`` is no invariant: :func:`helpers.scene_fuzz.run_case` reports a
+result this checker could not read (it raised) under that name.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, Optional
+
+import numpy as np
+
+__all__ = ["check_result", "failed", "INVARIANTS"]
+
+INVARIANTS = ("finite", "time_axis", "event_times", "friction_power", "friction_loss",
+              "other_losses", "friction_cone", "friction_law", "energy_balance",
+              "flank_penetration", "checker")
+
+END_REL = 1e-9              # of t_end: where the output ends
+POWER_REL = 1e-6            # of F_ref v_ref: friction power
+POWER_FLOOR = 1e-9          # m/s, times F_sys: friction power
+POWER_ENERGY_REL = 1e-9     # of E_ref / t_end: friction power
+CONE_REL = 1e-6             # of mu' |N|: friction cone
+CONE_FLOOR = 1e-9           # of F_sys: friction cone and law
+FORCE_FLOOR = 1e-9          # N: friction cone and law; times v_ref: friction power
+LAW_REL = 1e-6              # of F_ref: eq. (3.16)
+LOSS_REL = (1e-5, 1e3)      # (floor, factor of rtol), of E_ref: a loss's fall
+ENERGY_REL = (1e-4, 1e4, 1e-2)  # (floor, factor of rtol, cap), of E_ref: |residual|
+MOREAU_CREATION_REL = 1e-3  # of E_ref: -residual of Moreau-Jean
+ENERGY_FLOOR = 1e-15        # J
+FLANK_REL = 1e-3            # of the clearance: play beyond a flank
+MOREAU_FLANK_STEPS = 3.0    # steps of the largest play rate: Moreau-Jean's play beyond a flank
+DEFAULT_RTOL = 1e-8         # simulate's
+
+
+def _entry(ok: bool, value: float, bound: float, when: Optional[float], detail: str) -> dict:
+    return {"ok": bool(ok), "value": float(value), "bound": float(bound),
+            "time": None if when is None else float(when), "detail": detail}
+
+
+def failed(report: Dict[str, dict]) -> list:
+    """The names of the invariants a report says were violated."""
+    return [name for name, entry in report.items() if not entry["ok"]]
+
+
+def _number(options: dict, name: str, default: float) -> float:
+    value = options.get(name)
+    return default if value is None else float(value)
+
+
+def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
+    """Check a returned drive result (module docstring).
+
+    Args:
+        result: the Result.
+        scene: the scene as ``Scene.to_dict()`` (SI numbers).
+        options: ``simulate``'s keywords, ``t_end`` among them.
+
+    Returns:
+        ``{invariant: entry}`` for every invariant that applies.
+    """
+    report: Dict[str, dict] = {}
+    t_end = float(options["t_end"])
+    t = np.asarray(result.t, dtype=float)
+    ch = {name: np.asarray(result[name], dtype=float) for name in result.channels}
+    law = scene["friction"]["law"]
+    integrator = result.integrator
+    moreau = integrator == "moreau"
+
+    # finite
+    bad = [name for name, x in ch.items() if not np.all(np.isfinite(x))]
+    if not np.all(np.isfinite(t)):
+        bad.insert(0, "t")
+    report["finite"] = _entry(not bad, len(bad), 0, None,
+                              "non-finite values in " + ", ".join(bad) if bad else "all finite")
+    if bad:
+        return report  # the other checks would only repeat it
+
+    # time axis
+    problems = []
+    if len(t) == 0:
+        problems.append("no output point")
+    else:
+        if np.any(np.diff(t) < 0):
+            i = int(np.argmin(np.diff(t)))
+            problems.append(f"time falls at t = {t[i]:.6g} s")
+        if t[0] < 0 or t[-1] > t_end * (1 + END_REL):
+            problems.append(f"times [{t[0]:.6g}, {t[-1]:.6g}] s beyond [0, {t_end:.6g}] s")
+        t_eval = options.get("t_eval")
+        end = float(max(t_eval)) if t_eval is not None and len(t_eval) else t_end
+        if abs(t[-1] - end) > END_REL * t_end:
+            problems.append(f"the output ends at t = {t[-1]!r} s, not at {end!r} s")
+    report["time_axis"] = _entry(not problems, len(problems), 0, None,
+                                 "; ".join(problems) or "ordered, within the run, to its end")
+    if len(t) == 0:
+        return report
+
+    # event times
+    times = [event.time for event in result.events]
+    outside = [x for x in times if not (math.isfinite(x) and 0.0 <= x <= t_end)]
+    report["event_times"] = _entry(
+        not outside, len(outside), 0, outside[0] if outside else None,
+        f"{len(outside)} event(s) outside [0, {t_end:.6g}] s, first at {outside[0]!r} s"
+        if outside else f"{len(times)} event(s) within the run")
+
+    mu = float(scene["friction"]["mu"])
+    mu_eff = mu / math.cos(float(scene["thread"]["flank_angle"]) / 2)
+    force, normal, slip = ch["friction_force"], ch["normal_force"], ch["slip_velocity"]
+    f_ref = max(float(np.max(np.abs(force))), mu_eff * float(np.max(np.abs(normal))))
+    n_ref = float(np.max(np.abs(normal)))
+    radius = float(scene["thread"]["mean_diameter"]) / 2
+    torque = float(np.max(np.abs(ch["drive_torque"])))
+    f_sys = max(f_ref, n_ref, float(np.max(np.abs(ch["axial_force"]))),
+                torque / radius if radius > 0 else 0.0)
+    v_ref = float(np.max(np.abs(slip)))
+    losses = ("friction_loss", "damping_loss", "contact_loss", "impact_loss")
+    e_ref = max(float(np.max(np.abs(ch["work_drive"]) + np.abs(ch["work_axial"]))),
+                float(np.max(ch["kinetic"] + ch["elastic"])),
+                float(np.max(sum(ch[name] for name in losses))), ENERGY_FLOOR)
+    rtol = 0.0 if moreau else _number(options, "rtol", DEFAULT_RTOL)
+    loss_tol = max(LOSS_REL[0], LOSS_REL[1] * rtol) * e_ref + ENERGY_FLOOR
+
+    # friction power and friction loss
+    if law != "arctan_acceleration":
+        power = force * slip
+        i = int(np.argmax(power))
+        bound = (f_ref * POWER_REL * v_ref + f_sys * POWER_FLOOR + FORCE_FLOOR * v_ref
+                 + POWER_ENERGY_REL * e_ref / t_end)
+        report["friction_power"] = _entry(
+            power[i] <= bound, power[i], bound, t[i],
+            f"friction does positive work: {power[i]:.4g} W (friction {force[i]:.4g} N at slip "
+            f"velocity {slip[i]:.4g} m/s) at t = {t[i]:.6g} s, bound {bound:.3g} W")
+        report["friction_loss"] = _monotone("friction_loss", t, ch["friction_loss"], loss_tol)
+
+    # other losses
+    entries = [_monotone(name, t, ch[name], loss_tol) for name in losses[1:]]
+    worst = max(entries, key=lambda e: e["value"] - e["bound"])
+    report["other_losses"] = worst if not all(e["ok"] for e in entries) else _entry(
+        True, worst["value"], worst["bound"], None, "damping, contact and impact losses grow")
+
+    # friction cone (every law: |kappa| < mu' for the arctan laws too)
+    floor = CONE_FLOOR * f_sys + FORCE_FLOOR
+    excess = np.abs(force) - mu_eff * np.abs(normal) * (1 + CONE_REL)
+    i = int(np.argmax(excess))
+    report["friction_cone"] = _entry(
+        excess[i] <= floor, excess[i], floor, t[i],
+        f"|friction| {abs(force[i]):.6g} N > mu' |normal| = {mu_eff:.4g} * "
+        f"{abs(normal[i]):.6g} N at t = {t[i]:.6g} s (excess {excess[i]:.3g} N, "
+        f"bound {floor:.3g} N)")
+
+    # the friction law where it follows from the channels
+    if law == "coulomb":
+        slipping = (ch["stick"] == 0) & (np.abs(slip) > POWER_REL * v_ref + POWER_FLOOR)
+        short = np.where(slipping, mu_eff * np.abs(normal) * (1 - CONE_REL) - np.abs(force),
+                         -np.inf)
+        i = int(np.argmax(short))
+        report["friction_law"] = _entry(
+            short[i] <= floor, max(float(short[i]), 0.0), floor, t[i],
+            f"slipping at {slip[i]:.4g} m/s with |friction| {abs(force[i]):.6g} N < mu' "
+            f"|normal| = {mu_eff:.4g} * {abs(normal[i]):.6g} N at t = {t[i]:.6g} s (short by "
+            f"{short[i]:.3g} N, bound {floor:.3g} N)")
+    elif law == "arctan_velocity":
+        k_v = float(scene["friction"]["k_v"])
+        expected = -2 / math.pi * mu_eff * np.arctan(k_v * slip) * np.abs(normal)
+        error = np.abs(force - expected)
+        i = int(np.argmax(error))
+        bound = LAW_REL * f_ref + floor
+        report["friction_law"] = _entry(
+            error[i] <= bound, error[i], bound, t[i],
+            f"friction {force[i]:.6g} N where eq. (3.16) gives -(2/pi) mu' atan(k_V "
+            f"{slip[i]:.4g} m/s) |{normal[i]:.6g} N| = {expected[i]:.6g} N at t = {t[i]:.6g} s "
+            f"(bound {bound:.3g} N)")
+
+    # energy balance
+    residual = ch["energy_residual"]
+    if moreau:
+        bound = MOREAU_CREATION_REL * e_ref + ENERGY_FLOOR
+        i = int(np.argmin(residual))
+        report["energy_balance"] = _entry(
+            residual[i] >= -bound, -residual[i], bound, t[i],
+            f"Moreau-Jean creates energy: residual {residual[i]:.4g} J at t = {t[i]:.6g} s "
+            f"(energy scale {e_ref:.4g} J, bound -{bound:.3g} J)")
+    else:
+        relative = min(ENERGY_REL[2], max(ENERGY_REL[0], ENERGY_REL[1] * rtol))
+        bound = relative * e_ref + ENERGY_FLOOR
+        i = int(np.argmax(np.abs(residual)))
+        report["energy_balance"] = _entry(
+            abs(residual[i]) <= bound, abs(residual[i]), bound, t[i],
+            f"energy account off by {residual[i]:.4g} J at t = {t[i]:.6g} s (energy scale "
+            f"{e_ref:.4g} J, bound {bound:.3g} J)")
+
+    # flank penetration (exact play)
+    backlash = scene.get("backlash")
+    if backlash is not None and backlash["contact"] == "exact" and "gap" in ch:
+        clearance = float(backlash["axial"])
+        gap = ch["gap"]
+        bound = FLANK_REL * clearance
+        if moreau:
+            steps = np.diff(t)
+            moving = steps > 0
+            rate = float(np.max(np.abs(np.diff(ch["play"])[moving] / steps[moving]),
+                                initial=0.0))
+            bound = min(clearance, bound + MOREAU_FLANK_STEPS * _number(options, "dt", 1e-4)
+                        * rate)
+        bound += 1e-15
+        i = int(np.argmin(gap))
+        report["flank_penetration"] = _entry(
+            gap[i] >= -bound, -gap[i], bound, t[i],
+            f"the play goes {-gap[i]:.4g} m beyond a flank at t = {t[i]:.6g} s (clearance "
+            f"{clearance:.4g} m, bound {bound:.3g} m)")
+    return report
+
+
+def _monotone(name: str, t: np.ndarray, x: np.ndarray, tol: float) -> dict:
+    """A loss that never falls by more than ``tol`` and never is below -tol."""
+    fall = np.append(-np.diff(x), -np.inf)  # fall[i]: from point i to i + 1
+    i = int(np.argmax(fall))
+    j = int(np.argmin(x))
+    if fall[i] >= -x[j]:
+        worst, where, what = float(fall[i]), t[i + 1], f"falls by {fall[i]:.4g} J"
+    else:
+        worst, where, what = float(-x[j]), t[j], f"is {x[j]:.4g} J"
+    return _entry(worst <= tol, worst, tol, where,
+                  f"{name} {what} at t = {where:.6g} s (bound {tol:.3g} J), ends at "
+                  f"{x[-1]:.4g} J")

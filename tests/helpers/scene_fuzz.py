@@ -80,6 +80,7 @@ OUTCOMES = (
     "value_error_named",      # ValueError naming a key or option the user set
     "value_error_unnamed",    # ValueError naming none of them
     "simulation_error",       # leadscrew.SimulationError (not JammingError)
+    "self_check_raised",      # SimulationError: the result failed simulate's own checks
     "jamming_error",          # leadscrew.JammingError
     "error_time",             # a Simulation/JammingError whose .time is not in [0, t_end]
     "other_exception",        # any other exception type
@@ -89,7 +90,8 @@ OUTCOMES = (
     "check_failed",           # a returned result failing another check
 )
 # The outcomes the issue allows.
-ALLOWED = frozenset({"passed", "value_error_named", "simulation_error", "jamming_error"})
+ALLOWED = frozenset({"passed", "value_error_named", "simulation_error", "self_check_raised",
+                     "jamming_error"})
 FAILURES = tuple(o for o in OUTCOMES if o not in ALLOWED)
 
 HOSTILE_KINDS = ("nan", "inf", "-inf", "negative", "zero", "denormal", "huge", "-huge",
@@ -322,7 +324,15 @@ def _as_unit_strings(r, scene: dict) -> None:
             scene[section][key] = f"{scene[section][key] * factor!r} {unit}"
 
 
-def _options(r, law: str, contact: Optional[str], t_end: float) -> dict:
+def _shortest_sine_period(loads: dict) -> float:
+    """2 pi / omega of the fastest sine load (inf without one)."""
+    periods = [2 * math.pi / load["omega"] for load in loads.values()
+               if isinstance(load, dict) and load.get("type") == "sine" and load.get("omega")]
+    return min(periods, default=math.inf)
+
+
+def _options(r, law: str, contact: Optional[str], t_end: float,
+             shortest_period: float = math.inf) -> dict:
     options = {"t_end": t_end, "max_events": MAX_EVENTS,
                "max_steps": MAX_STEPS_ACCELERATION_LAW if law == "arctan_acceleration"
                else MAX_STEPS}
@@ -335,8 +345,11 @@ def _options(r, law: str, contact: Optional[str], t_end: float) -> dict:
     if integrator is not None:
         options["integrator"] = integrator
     if integrator == "moreau":
-        # At most MAX_STEPS steps (simulate refuses more before it starts).
-        options["dt"] = r.log_uniform(1e-5, min(1e-3, t_end / 10))
+        # At most MAX_STEPS steps (simulate refuses more before it starts),
+        # and four steps per period of a sine load at least (it refuses
+        # fewer: they cannot resolve the load).
+        options["dt"] = r.log_uniform(min(1e-5, shortest_period / 8),
+                                      min(1e-3, t_end / 10, shortest_period / 4))
         if r.chance(0.2):
             options["theta"] = r.uniform(0.5, 1.0)
     else:
@@ -515,7 +528,8 @@ def make_case(case_seed: int, hostile_share: float = 0.15) -> dict:
     if initial:
         scene["initial"] = initial
     contact = backlash["contact"] if backlash else None
-    options = _options(r, scene["friction"]["law"], contact, t_end)
+    options = _options(r, scene["friction"]["law"], contact, t_end,
+                       _shortest_sine_period(scene["loads"]))
     if r.chance(0.05):
         _as_unit_strings(r, scene)
     tags = {"concept": concept, "drive": scene.get("drive", "screw"),
@@ -620,8 +634,9 @@ def run_case(case: dict) -> dict:
     except ls.SimulationError as error:
         jam = isinstance(error, ls.JammingError)
         bad_time = _error_time(error, options.get("t_end"))
+        own_check = "the result fails its check" in str(error)
         out["outcome"] = "error_time" if bad_time else (
-            "jamming_error" if jam else "simulation_error")
+            "jamming_error" if jam else "self_check_raised" if own_check else "simulation_error")
         out["message"] = (f"{type(error).__name__}: {error}"
                           + (f" [{bad_time}]" if bad_time else ""))
     except ValueError as error:
@@ -640,6 +655,11 @@ def run_case(case: dict) -> dict:
                                   "detail": f"the checker raised {type(error).__name__}: "
                                             f"{error}"}}
         failed = [name for name, entry in report.items() if not entry["ok"]]
+        # The simulator's own energy check: the residual over K (rtol E +
+        # atol G), the accumulation factor its bound allows for (K's evidence).
+        energy = getattr(result, "checks", {}).get("energy_balance")
+        if energy and energy["bound"] > 0 and result.integrator != "moreau":
+            out["energy_accumulation"] = 1e3 * energy["value"] / energy["bound"]
         out["invariants"] = failed
         out["report"] = {name: report[name] for name in failed}
         if "finite" in failed:

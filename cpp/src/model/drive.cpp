@@ -126,6 +126,13 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
   if (p_.backlash == BacklashContact::none) {
     p_.clearance = 0.0;
   }
+  // A play below a picometre is below the resolution of the positions it is
+  // the difference of (round-off of coordinates of up to a metre, 1e-16 m).
+  if (p_.clearance > 0.0 && p_.clearance < kSmallestClearance)
+    throw InvalidArgument("backlash.axial = " + format_value(p_.clearance) +
+                          " is invalid: must be 0 (no play) or >= " +
+                          format_value(kSmallestClearance) +
+                          " m (a smaller play is below the resolution of the positions)");
   if (std::abs(p_.play_position) > 0.5 * p_.clearance)
     throw InvalidArgument("initial.play_position = " + format_value(p_.play_position) +
                           " is invalid: must be within +-backlash.axial / 2 = +-" +

@@ -946,7 +946,16 @@ class DriveHybrid final : public integrate::HybridSystem {
     // dt/ds >= S, which stays above zero until the onset: every s beyond
     // (t_end - t) / S_min reaches t_end; S_min is only bounded by the root.
     const double s_end = 1e12 * (t_end_ - t + 1.0) / dynamics_.delassus_normal();
-    const integrate::AdvanceResult step = integrator->advance(s_end, z);
+    integrate::AdvanceResult step;
+    try {
+      step = integrator->advance(s_end, z);
+    } catch (const JammingError&) {
+      throw;
+    } catch (const SimulationError& e) {
+      // The integrator's time is s: report the drive's own, t.
+      throw SimulationError(fold.time(), e.reason(),
+                            "while following the regularized law toward its Painleve regime");
+    }
     if (step.status == integrate::AdvanceStatus::root_found && integrator->root_info()[0] != 0) {
       set(z[0], z.data() + 1);
       solve_current();
@@ -963,7 +972,9 @@ class DriveHybrid final : public integrate::HybridSystem {
    public:
     explicit FoldApproach(DriveHybrid& drive) : drive_(drive) {}
     int size() const override { return drive_.size() + 1; }
+    double time() const { return time_; }  // t of the last right-hand side
     void rhs(double /*s*/, const double* z, double* dz) override {
+      time_ = z[0];
       drive_.rhs(z[0], z + 1, dz + 1);
       const double denominator = branch();
       dz[0] = denominator;
@@ -974,7 +985,10 @@ class DriveHybrid final : public integrate::HybridSystem {
       drive_.set(z[0], z + 1);
       drive_.solve_current();
       const double relative = branch() / drive_.dynamics_.delassus_normal();
-      g[0] = relative;                       // the onset
+      // The onset, within round-off of G_NN: a branch that approaches it
+      // asymptotically in s (reaching it only as t tends to a limit) took a
+      // million steps and ended at an 's' of 1178 'seconds'.
+      g[0] = relative - 64.0 * std::numeric_limits<double>::epsilon();
       g[1] = 2.0 * kFoldWatch - relative;    // the branch recovers
       g[2] = drive_.t_end_ - z[0];           // the end of the simulation
     }
@@ -984,6 +998,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       return drive_.dynamics_.thread_denominator(drive_.sigma_guess_, drive_.current_kappa());
     }
     DriveHybrid& drive_;
+    double time_ = 0.0;
   };
 
   // Eq. (3.15) has `count` consistent flank forces at the state set. For the
@@ -1273,16 +1288,41 @@ class DriveHybrid final : public integrate::HybridSystem {
       return dynamics_.slip_velocity() == 0.0;
     }
     DriveDynamics::Impulses impulses;
-    ++lcp_solves_;
-    if (!dynamics_.impact(flank, p_.restitution, v_, impulses, lcp_workspace_, lcp_options_))
-      jam("no consistent frictional impact");
-    // The speed-controlled motor's impulse does work at its held speed: it
-    // enters the drive's work as well as the impact's loss (booked in the
-    // loss alone, 4 % of the work went missing from the account).
-    const double motor_work = p_.speed_controlled ? impulses.rotor * v_[model_.rotor()] : 0.0;
+    // The impact at restitution e: v_ from before it, and the energy it
+    // dissipates (kinetic energy lost plus the speed-controlled motor's
+    // impulsive work at its held speed).
+    const CoordinateVector v_before = v_;
+    double motor_work = 0.0;
+    auto collide = [&](double e) {
+      v_ = v_before;
+      ++lcp_solves_;
+      if (!dynamics_.impact(flank, e, v_, impulses, lcp_workspace_, lcp_options_))
+        jam("no consistent frictional impact");
+      motor_work = p_.speed_controlled ? impulses.rotor * v_[model_.rotor()] : 0.0;
+      dynamics_.set_state(t, q_, v_);
+      return kinetic_before + motor_work - dynamics_.kinetic_energy();
+    };
+    double dissipated = collide(p_.restitution);
+    const double round_off = 64.0 * std::numeric_limits<double>::epsilon() *
+                             (kinetic_before + std::abs(motor_work));
+    if (dissipated < -round_off) {
+      // Newton's restitution with Coulomb friction can create energy (Kane
+      // and Levinson's paradox: a rigid nut's first impact at e = 0.48 gained
+      // 0.0155 J): the impact takes the largest restitution up to e that
+      // creates none, as an energetic coefficient of restitution would
+      // (Stronge). A plastic frictional impact dissipates (its impulses
+      // solve the LCP of maximal dissipation), so bisection on [0, e] finds it.
+      double low = 0.0, high = p_.restitution;
+      for (int iteration = 0; iteration < 60; ++iteration) {
+        const double middle = 0.5 * (low + high);
+        (collide(middle) >= -round_off ? low : high) = middle;
+      }
+      dissipated = collide(low);
+    }
+    // The motor's work enters the drive's work as well as the impact's loss
+    // (booked in the loss alone, 4 % of the work went missing from the account).
     y[layout_.energy_offset() + kWorkDrive] += motor_work;
-    dynamics_.set_state(t, q_, v_);
-    impact_loss_ += kinetic_before + motor_work - dynamics_.kinetic_energy();
+    impact_loss_ += dissipated;
     const double normal_after = dynamics_.play_rate();
     // Height of the flight the bounce would start: v^2 / (2 |e''|) with the
     // play's acceleration in free flight; see kPlasticHeight.
@@ -1701,6 +1741,13 @@ void check_drive_result(const DriveModel& model, const DriveSimulationOptions& o
   spec.t_end = options.output.t_end;
   spec.cone_mu = p.friction == FrictionLaw::coulomb ? model.effective_mu() : -1.0;
   spec.friction_dissipates = p.friction != FrictionLaw::arctan_acceleration;
+  spec.law = p.friction == FrictionLaw::coulomb           ? ResultCheckSpec::Law::coulomb
+             : p.friction == FrictionLaw::arctan_velocity ? ResultCheckSpec::Law::arctan_velocity
+                                                          : ResultCheckSpec::Law::none;
+  spec.law_mu = model.effective_mu();
+  spec.k_v = p.k_v;
+  spec.clearance = p.backlash == BacklashContact::exact ? p.clearance : 0.0;
+  spec.time_step = time_stepping ? options.dt : 0.0;
   spec.slip_resolution =
       model.tangent_direction().cwiseAbs().sum() * options.integrator_options.atol;
   spec.time_stepping = time_stepping;
@@ -1755,7 +1802,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                                &p.axial_force});
     return;
   }
-  check_meaningful_tolerances(options.integrator_options);
+  check_meaningful_tolerances(options.integrator_options, options.output.t_end);
   if (!options.smooth_integrator.empty())
     require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
   // What make_integrator checks as the smooth phases start, the method's

@@ -525,11 +525,11 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
     require_choice("integrator", options.integrator, allowed,
                    "friction = \"" + friction_law_name(options.friction) + "\"");
   if (options.friction != FrictionLaw::coulomb) require_positive("k_v", options.k_v);
+  integrate::validate_output_request(options.output, 0.0);
   if (options.integrator == "moreau") {
-    integrate::validate_output_request(options.output, 0.0);
     check_step_resolves_loads(options.dt, options.output.t_end, {&block.force});
   } else {
-    check_meaningful_tolerances(options.integrator_options);
+    check_meaningful_tolerances(options.integrator_options, options.output.t_end);
   }
 
   Eigen::VectorXd y0(kStateSize);
@@ -566,6 +566,12 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
   spec.losses = {"friction_loss"};
   spec.t_end = options.output.t_end;
   spec.cone_mu = options.friction == FrictionLaw::coulomb ? block.mu : -1.0;
+  spec.law = options.friction == FrictionLaw::coulomb ? ResultCheckSpec::Law::coulomb
+             : options.friction == FrictionLaw::arctan_velocity
+                 ? ResultCheckSpec::Law::arctan_velocity
+                 : ResultCheckSpec::Law::none;
+  spec.law_mu = block.mu;
+  spec.k_v = options.k_v;
   spec.friction_dissipates = options.friction != FrictionLaw::arctan_acceleration;
   spec.slip_resolution = options.integrator_options.atol;  // the slip is the state's velocity
   spec.time_stepping = options.integrator == "moreau";

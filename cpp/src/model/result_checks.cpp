@@ -1,5 +1,7 @@
 #include "leadscrew/model/result_checks.hpp"
 
+#include "leadscrew/friction/laws.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -56,7 +58,7 @@ struct Worst {
 void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& result) {
   std::vector<integrate::InvariantCheck>& checks = result.checks;
   checks.clear();
-  checks.reserve(6);
+  checks.reserve(9);
   const Channels ch(result);
   const std::size_t n = ch.points();
   const std::size_t channels = result.channel_count();
@@ -236,6 +238,92 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
         const double limit = spec.cone_mu * std::abs(ch.at(normal, i));
         worst.offer(f - limit, force_resolution, result.time[i]);
       }
+    }
+    checks.push_back(c);
+  }
+
+  // losses: damping, contact, impact (the friction loss above).
+  {
+    integrate::InvariantCheck c = make_check(
+        "losses", "the damping, contact and impact losses never fall (beyond their "
+                  "integration error)", "J");
+    Worst worst{c};
+    for (const std::string& name : spec.losses) {
+      if (name == spec.friction_loss) continue;
+      const int k = ch.index(name);
+      if (k < 0) continue;
+      double largest = 0.0;
+      for (std::size_t i = 0; i < n; ++i) largest = std::max(largest, std::abs(ch.at(k, i)));
+      const double tolerance =
+          spec.time_stepping
+              ? 64.0 * kEpsilon * largest
+              : kEnergyToleranceFactor *
+                    (std::max(spec.rtol, 64.0 * kEpsilon) * largest + spec.atol);
+      double highest = -std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < n; ++i) {
+        highest = std::max(highest, ch.at(k, i));
+        worst.offer(highest - ch.at(k, i), tolerance, result.time[i]);
+      }
+    }
+    checks.push_back(c);
+  }
+
+  // friction_law: where the contact slips, the friction force is the law's.
+  {
+    integrate::InvariantCheck c = make_check(
+        "friction_law",
+        "where it slips, the friction force is the law's: on the cone's edge (exact "
+        "Coulomb), -(2/pi) mu' atan(k_V slip_velocity) |normal_force| (eq. 3.16)",
+        "N");
+    c.applies = spec.law != ResultCheckSpec::Law::none &&
+                !(spec.time_stepping && result.interpolated);
+    if (c.applies) {
+      Worst worst{c};
+      const int stick = ch.index(spec.stick);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (at_event_root(i)) continue;
+        const double f = spec.friction_sign * ch.at(friction, i);
+        const double v = ch.at(slip, i);
+        const double normal_force = std::abs(ch.at(normal, i));
+        if (spec.law == ResultCheckSpec::Law::coulomb) {
+          // Slipping: not in stick, and the slip beyond what is resolved.
+          const double band =
+              slip_band + (spec.time_stepping ? 0.0 : slip_rate(i) * time_resolution);
+          if (ch.at(stick, i) != 0.0 || !(std::abs(v) > band)) continue;
+          worst.offer(spec.law_mu * normal_force - std::abs(f), force_resolution,
+                      result.time[i]);
+        } else {
+          const double law =
+              -kTwoOverPi * spec.law_mu * std::atan(spec.k_v * v) * normal_force;
+          worst.offer(std::abs(f - law), force_resolution, result.time[i]);
+        }
+      }
+    }
+    checks.push_back(c);
+  }
+
+  // flank_gap: exact play, the nut never passes a flank.
+  {
+    integrate::InvariantCheck c = make_check(
+        "flank_gap", "the nut never passes a flank of the play (gap >= 0)", "m");
+    const int gap = ch.index("gap");
+    c.applies = spec.clearance > 0.0 && gap >= 0;
+    if (c.applies) {
+      // The free flight's own check (drive_simulation.cpp, kFlankTolerance)
+      // allows 1e-3 of the clearance; Moreau-Jean closes a flank at the
+      // velocity level, up to three steps of the play's motion late.
+      double tolerance = 1e-3 * spec.clearance + 10.0 * spec.atol;
+      if (spec.time_stepping) {
+        const int play = ch.index("play");
+        double rate = 0.0;
+        for (std::size_t i = 1; i < n; ++i) {
+          const double dt = result.time[i] - result.time[i - 1];
+          if (dt > 0.0) rate = std::max(rate, std::abs(ch.at(play, i) - ch.at(play, i - 1)) / dt);
+        }
+        tolerance = std::min(spec.clearance, 1e-3 * spec.clearance + 3.0 * spec.time_step * rate);
+      }
+      Worst worst{c};
+      for (std::size_t i = 0; i < n; ++i) worst.offer(-ch.at(gap, i), tolerance, result.time[i]);
     }
     checks.push_back(c);
   }

@@ -1,6 +1,7 @@
 #include "leadscrew/model/simulation_checks.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -8,8 +9,19 @@
 
 namespace leadscrew::model {
 
-void check_meaningful_tolerances(const integrate::IntegratorOptions& options) {
+void check_meaningful_tolerances(const integrate::IntegratorOptions& options, double t_end) {
   integrate::validate_options(options);  // the ranges first: rtol in (0, 1], atol > 0, ...
+  if (options.max_step > 0.0 && t_end / options.max_step > static_cast<double>(options.max_steps))
+    throw InvalidArgument("max_step = " + format_value(options.max_step) +
+                          " is invalid: reaching t_end = " + format_value(t_end) +
+                          " s takes more steps than max_steps = " +
+                          std::to_string(options.max_steps) + " (must be 0 or >= " +
+                          format_value(t_end / static_cast<double>(options.max_steps)) + " s)");
+  const double resolution = 64.0 * std::numeric_limits<double>::epsilon() * t_end;
+  if (options.first_step > 0.0 && options.first_step < resolution)
+    throw InvalidArgument("first_step = " + format_value(options.first_step) +
+                          " is invalid: must be 0 (the integrator's choice) or >= " +
+                          format_value(resolution) + " s, the time's resolution at t_end");
   if (options.rtol > kLoosestRelativeTolerance)
     throw InvalidArgument("rtol = " + format_value(options.rtol) + " is invalid: must be <= " +
                           format_value(kLoosestRelativeTolerance) +

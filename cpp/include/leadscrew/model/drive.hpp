@@ -41,6 +41,9 @@ enum class DrivenPart { screw, nut };
 enum class ScrewSupport { both_ends, drive_end };
 enum class BacklashContact { none, exact, bistop, cubic };
 
+// The smallest axial play a thread may have besides none [m].
+constexpr double kSmallestClearance = 1e-12;
+
 // Every number resolved (the Python Scene derives masses, inertias,
 // stiffnesses and damping from geometry and material, or takes overrides).
 struct DriveParameters {

@@ -14,6 +14,11 @@
 //                   integration error;
 //   friction_cone   |lambda_T| <= mu' |lambda_N| within round-off and the
 //                   root location (exact Coulomb only);
+//   friction_law    where the contact slips, the friction force is the law's:
+//                   on the cone's edge (exact Coulomb), eq. (3.16);
+//   losses          the damping, contact and impact losses never fall;
+//   flank_gap       exact play: the nut never passes a flank (beyond the
+//                   flight check's tolerance, Moreau-Jean: three steps);
 //   energy_balance  |energy_residual| within the integrator's tolerances
 //                   carried through the energy: K (rtol E + atol G), with E
 //                   the run's largest energy flow and G the energy's
@@ -48,6 +53,16 @@ struct ResultCheckSpec {
   double t_end = 0.0;
   // mu' of a set-valued law (exact Coulomb): the cone is checked; < 0: not.
   double cone_mu = -1.0;
+  // The law the friction channel must follow where it slips: exact Coulomb
+  // on the cone's edge (cone_mu), eq. (3.16) with friction_factor_mu (mu')
+  // and k_v; none: not checked (eq. 3.15 needs the slip acceleration).
+  enum class Law { none, coulomb, arctan_velocity } law = Law::none;
+  double law_mu = 0.0, k_v = 0.0;
+  std::string stick = "stick";
+  // Exact play (the gap channel, >= 0 up to the flight check's tolerance):
+  // its clearance [m], 0 without; Moreau-Jean's step [s] (its flanks close a
+  // step late).
+  double clearance = 0.0, time_step = 0.0;
   // false for eq. (3.15), whose friction may push (its energy balance is
   // checked only).
   bool friction_dissipates = true;

@@ -19,7 +19,10 @@ namespace leadscrew::model {
 constexpr double kLoosestRelativeTolerance = 1e-3;
 constexpr double kLoosestAbsoluteTolerance = 1e-3;
 constexpr double kTightestAbsoluteTolerance = 1e-100;
-void check_meaningful_tolerances(const integrate::IntegratorOptions& options);
+// Also the step controls over a run of t_end: a max_step that needs more
+// than max_steps steps to reach t_end (5e-324 s ended in a NaN time), and a
+// first_step below the time's resolution (64 ulp of t_end).
+void check_meaningful_tolerances(const integrate::IntegratorOptions& options, double t_end);
 
 // A Moreau-Jean step must fit the run (dt <= t_end: a longer step sampled a
 // 50 N sine once, at 1e-16 N) and resolve the loads: at least four steps per

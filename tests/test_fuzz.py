@@ -177,7 +177,8 @@ def test_run_isolated_reports_crashes_and_hangs():
 
 def test_failures_are_the_outcomes_not_allowed():
     assert set(FAILURES) | ALLOWED == set(OUTCOMES)
-    assert ALLOWED == {"passed", "value_error_named", "simulation_error", "jamming_error"}
+    assert ALLOWED == {"passed", "value_error_named", "simulation_error", "self_check_raised",
+                       "jamming_error"}
 
 
 # --- the checker on hand-made results -----------------------------------------

@@ -778,9 +778,16 @@ def _derived_values(data: Dict[str, Any]) -> Dict[str, Any]:
         d["contact_stiffness"] = k
         # Critical damping of the contact's linear-equivalent stiffness at d_0.
         equivalent = k * _power(depth, exponent - 1.0)
-        d["contact_damping"] = backlash.get("damping", 2.0 * math.sqrt(equivalent * translating))
+        d["contact_damping"] = backlash.get("damping", 2.0 * _root(equivalent * translating))
         d["contact_penetration"] = depth
     return d
+
+
+def _root(x: float) -> float:
+    """sqrt(x), NaN where x is negative or NaN (a quantity the checks then
+    name the input of, instead of math's 'domain error': a stiffness that
+    came out negative from an input that is not)."""
+    return math.sqrt(x) if x >= 0.0 else math.nan
 
 
 def _power(base: float, exponent: float) -> float:
@@ -971,7 +978,7 @@ def _spring_problem(derived: Dict[str, Any], model: "_core.DriveModel") -> Optio
     for spring in model.springs:  # none in the rigid concept
         part, kind = spring["name"].split(" ")
         inertia = "mass" if kind == "axial" else "inertia"
-        omega = math.sqrt(spring["stiffness"] / derived[f"{part}_{inertia}"])
+        omega = _root(spring["stiffness"] / derived[f"{part}_{inertia}"])
         if not omega <= _MAX_NATURAL_FREQUENCY:
             return (f"the {part}'s {kind} natural frequency sqrt(stiffness / {part} {inertia}) "
                     f"comes to {omega!r} rad/s: must be at most {_MAX_NATURAL_FREQUENCY:g} "

@@ -575,10 +575,19 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
   spec.friction_dissipates = options.friction != FrictionLaw::arctan_acceleration;
   spec.slip_resolution = options.integrator_options.atol;  // the slip is the state's velocity
   spec.time_stepping = options.integrator == "moreau";
+  spec.time_step = spec.time_stepping ? options.dt : 0.0;
   spec.rtol = options.integrator_options.rtol;
   spec.atol = options.integrator_options.atol;
   spec.momentum_factor = std::sqrt(2.0 * block.mass);
   spec.quadratures = kStateSize - 2;
+  spec.load_forces = {"force"};
+  // The block's length: how far it goes (at least the distance the largest
+  // force moves its mass in the run's time, F t^2 / m).
+  double travel = 0.0;
+  const int position = result.channel_index("u");
+  for (std::size_t i = 0; i < result.point_count(); ++i)
+    travel = std::max(travel, std::abs(result.values[i * result.channel_count() + position]));
+  spec.length_scale = std::max(travel, block.normal_force() * spec.t_end * spec.t_end / block.mass);
   check_result(spec, result);
   if (options.check) integrate::enforce_checks(result);
   return result;

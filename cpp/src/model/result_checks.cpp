@@ -108,9 +108,19 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
     max_friction = std::max(max_friction, std::abs(ch.at(friction, i)));
     max_normal = std::max(max_normal, std::abs(ch.at(normal, i)));
   }
-  // The forces' round-off, relative to the run's largest.
+  // The forces' round-off: relative to the largest forces of the run, and to
+  // the momentum the solves balance them against (a drive whose thread
+  // carries nothing has flank forces of pure round-off, 1e-18 N, from terms
+  // of M v / h of 0.1 N), per step (Moreau-Jean) or per run.
+  const int kinetic_channel = ch.index("kinetic");
+  double max_kinetic = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    max_kinetic = std::max(max_kinetic, ch.at(kinetic_channel, i));
+  const double momentum = spec.momentum_factor * std::sqrt(max_kinetic);
   const double force_resolution =
-      kForceResolution * (max_friction + std::max(spec.cone_mu, 1.0) * max_normal);
+      kForceResolution *
+      (max_friction + std::max(spec.cone_mu, 1.0) * max_normal +
+       momentum / (spec.time_stepping && spec.time_step > 0.0 ? spec.time_step : spec.t_end));
   // The values recorded just before an event are those at its located root,
   // where its root function (a flank normal force, the cone's margin) has
   // just changed sign: by up to its rate times the root's time resolution
@@ -196,9 +206,25 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
     }
     gradient += spec.quadratures;
   }
+  // The energies' round-off: the work of the run's largest force over the
+  // round-off of its longest length (the positions' own resolution; a
+  // stuck drive's round-off creep of 1e-20 m under 586 N books 8e-18 J of
+  // work and nothing else).
+  double force_scale = std::max(max_friction, max_normal);
+  for (const std::string& name : spec.load_forces) {
+    const int k = ch.index(name);
+    for (std::size_t i = 0; i < n; ++i) force_scale = std::max(force_scale, std::abs(ch.at(k, i)));
+  }
+  for (const std::string& name : spec.load_torques) {
+    const int k = ch.index(name);
+    for (std::size_t i = 0; i < n; ++i)
+      force_scale = std::max(force_scale, std::abs(ch.at(k, i)) / spec.lever);
+  }
+  const double energy_round_off = 64.0 * kEpsilon * force_scale * spec.length_scale;
   const double integration_error =
       kEnergyToleranceFactor *
-      (std::max(spec.rtol, 64.0 * kEpsilon) * energy + spec.atol * gradient);
+          (std::max(spec.rtol, 64.0 * kEpsilon) * energy + spec.atol * gradient) +
+      energy_round_off;
 
   // friction_loss: never falls by more than its integration error (and what
   // friction may push within the slip band over the run).
@@ -210,7 +236,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
       const int loss = ch.index(spec.friction_loss);
       const double tolerance =
           spec.time_stepping
-              ? 64.0 * kEpsilon * max_loss
+              ? 64.0 * kEpsilon * max_loss + energy_round_off
               : kEnergyToleranceFactor * (std::max(spec.rtol, 64.0 * kEpsilon) * max_loss +
                                           spec.atol) +
                     max_friction * slip_band * spec.t_end;
@@ -256,7 +282,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
       for (std::size_t i = 0; i < n; ++i) largest = std::max(largest, std::abs(ch.at(k, i)));
       const double tolerance =
           spec.time_stepping
-              ? 64.0 * kEpsilon * largest
+              ? 64.0 * kEpsilon * largest + energy_round_off
               : kEnergyToleranceFactor *
                     (std::max(spec.rtol, 64.0 * kEpsilon) * largest + spec.atol);
       double highest = -std::numeric_limits<double>::infinity();
@@ -311,7 +337,8 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
     if (c.applies) {
       // The free flight's own check (drive_simulation.cpp, kFlankTolerance)
       // allows 1e-3 of the clearance; Moreau-Jean closes a flank at the
-      // velocity level, up to three steps of the play's motion late.
+      // velocity level, up to three steps of the play's motion late (and a
+      // play that drifts beyond that through its flank is a step too long).
       double tolerance = 1e-3 * spec.clearance + 10.0 * spec.atol;
       if (spec.time_stepping) {
         const int play = ch.index("play");
@@ -320,7 +347,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
           const double dt = result.time[i] - result.time[i - 1];
           if (dt > 0.0) rate = std::max(rate, std::abs(ch.at(play, i) - ch.at(play, i - 1)) / dt);
         }
-        tolerance = std::min(spec.clearance, 1e-3 * spec.clearance + 3.0 * spec.time_step * rate);
+        tolerance = std::min(spec.clearance, tolerance + 3.0 * spec.time_step * rate);
       }
       Worst worst{c};
       for (std::size_t i = 0; i < n; ++i) worst.offer(-ch.at(gap, i), tolerance, result.time[i]);
@@ -339,7 +366,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
         "J");
     Worst worst{c};
     const double bound =
-        spec.time_stepping ? kTimeSteppingCreation * energy + 64.0 * kEpsilon * energy
+        spec.time_stepping ? kTimeSteppingCreation * energy + energy_round_off
                            : integration_error;
     for (std::size_t i = 0; i < n; ++i) {
       const double r = ch.at(residual, i);

@@ -75,6 +75,10 @@ struct ResultCheckSpec {
   // momentum_factor sqrt(kinetic), sum |k x| <= force_factor sqrt(elastic).
   double momentum_factor = 0.0, force_factor = 0.0;
   int quadratures = 0;  // work and loss integrals in the state (atol each)
+  // The energies' round-off scale: the channels of the applied forces [N]
+  // and torques [N m] (over `lever` [m]), and the model's longest length [m].
+  std::vector<std::string> load_forces, load_torques;
+  double lever = 1.0, length_scale = 1.0;
 };
 
 // The safety factor K of energy_balance: the largest ratio of

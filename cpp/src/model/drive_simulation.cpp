@@ -9,6 +9,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/friction/flank_lcp.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/integrate/ode.hpp"
@@ -1763,13 +1764,13 @@ void check_drive_result(const DriveModel& model, const DriveSimulationOptions& o
   spec.stored = {"kinetic", "elastic"};
   spec.losses = {"friction_loss", "damping_loss", "contact_loss", "impact_loss"};
   spec.t_end = options.output.t_end;
-  spec.cone_mu = p.friction == FrictionLaw::coulomb ? model.effective_mu() : -1.0;
+  const std::unique_ptr<friction::Law> law = friction::make_law(
+      friction_law_name(p.friction),
+      p.friction == FrictionLaw::coulomb ? friction::LawValues{{"mu", p.mu}}
+                                         : friction::LawValues{{"mu", p.mu}, {"k_v", p.k_v}});
+  spec.law = law.get();
+  spec.coefficient_scale = p.mu > 0.0 ? model.effective_mu() / p.mu : 1.0;
   spec.friction_dissipates = p.friction != FrictionLaw::arctan_acceleration;
-  spec.law = p.friction == FrictionLaw::coulomb           ? ResultCheckSpec::Law::coulomb
-             : p.friction == FrictionLaw::arctan_velocity ? ResultCheckSpec::Law::arctan_velocity
-                                                          : ResultCheckSpec::Law::none;
-  spec.law_mu = model.effective_mu();
-  spec.k_v = p.k_v;
   spec.clearance = p.backlash == BacklashContact::exact ? p.clearance : 0.0;
   spec.time_step = time_stepping ? options.dt : 0.0;
   spec.slip_resolution =

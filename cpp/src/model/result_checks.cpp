@@ -102,6 +102,12 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
 
   const int slip = ch.index(spec.slip), friction = ch.index(spec.friction),
             normal = ch.index(spec.normal);
+  const friction::Resolution resolution =
+      spec.law ? spec.law->resolution() : friction::Resolution::acceleration;
+  const bool set_valued = resolution == friction::Resolution::set_valued;
+  // mu_static' of a set-valued law (its cone), < 0: none.
+  const double cone_mu = set_valued ? spec.law->mu_static() * spec.coefficient_scale : -1.0;
+  const double viscous = spec.law ? spec.law->viscous() : 0.0;
   double max_slip = 0.0, max_friction = 0.0, max_normal = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     max_slip = std::max(max_slip, std::abs(ch.at(slip, i)));
@@ -119,7 +125,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   const double momentum = spec.momentum_factor * std::sqrt(max_kinetic);
   const double force_resolution =
       kForceResolution *
-      (max_friction + std::max(spec.cone_mu, 1.0) * max_normal +
+      (max_friction + std::max(cone_mu, 1.0) * max_normal +
        momentum / (spec.time_stepping && spec.time_step > 0.0 ? spec.time_step : spec.t_end));
   // The values recorded just before an event are those at its located root,
   // where its root function (a flank normal force, the cone's margin) has
@@ -254,14 +260,17 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   // friction_cone: |lambda_T| <= mu' |lambda_N| (exact Coulomb).
   {
     integrate::InvariantCheck c = make_check(
-        "friction_cone", "|friction_force| <= mu' |normal_force| (Coulomb's cone)", "N");
-    c.applies = spec.cone_mu >= 0.0 && !(spec.time_stepping && result.interpolated);
+        "friction_cone",
+        "|friction_force| <= mu_static' |normal_force| + viscous |slip_velocity| (Coulomb's cone)",
+        "N");
+    c.applies = set_valued && !(spec.time_stepping && result.interpolated);
     if (c.applies) {
       Worst worst{c};
       for (std::size_t i = 0; i < n; ++i) {
         if (at_event_root(i)) continue;
         const double f = std::abs(ch.at(friction, i));
-        const double limit = spec.cone_mu * std::abs(ch.at(normal, i));
+        const double limit =
+            cone_mu * std::abs(ch.at(normal, i)) + viscous * std::abs(ch.at(slip, i));
         worst.offer(f - limit, force_resolution, result.time[i]);
       }
     }
@@ -298,11 +307,14 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   {
     integrate::InvariantCheck c = make_check(
         "friction_law",
-        "where it slips, the friction force is the law's: on the cone's edge (exact "
-        "Coulomb), -(2/pi) mu' atan(k_V slip_velocity) |normal_force| (eq. 3.16)",
+        "where it slips, the friction force is the law's: mu(|slip_velocity|)' |normal_force| "
+        "+ viscous |slip_velocity| against the slip (set-valued laws), -kappa(slip_velocity)' "
+        "|normal_force| - viscous slip_velocity (velocity laws, eq. 3.16)",
         "N");
-    c.applies = spec.law != ResultCheckSpec::Law::none &&
-                !(spec.time_stepping && result.interpolated);
+    // (Moreau-Jean's slip friction is the law's at the step's start speed:
+    // checked where the law's slip coefficient is one number.)
+    c.applies = (set_valued || resolution == friction::Resolution::velocity) &&
+                !(spec.time_stepping && (result.interpolated || !spec.law->plain_coulomb()));
     if (c.applies) {
       Worst worst{c};
       const int stick = ch.index(spec.stick);
@@ -311,16 +323,19 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
         const double f = spec.friction_sign * ch.at(friction, i);
         const double v = ch.at(slip, i);
         const double normal_force = std::abs(ch.at(normal, i));
-        if (spec.law == ResultCheckSpec::Law::coulomb) {
+        if (set_valued) {
           // Slipping: not in stick, and the slip beyond what is resolved.
           const double band =
               slip_band + (spec.time_stepping ? 0.0 : slip_rate(i) * time_resolution);
           if (ch.at(stick, i) != 0.0 || !(std::abs(v) > band)) continue;
-          worst.offer(spec.law_mu * normal_force - std::abs(f), force_resolution,
-                      result.time[i]);
+          const double law = spec.law->slip_mu(std::abs(v)) * spec.coefficient_scale *
+                                 normal_force +
+                             viscous * std::abs(v);
+          worst.offer(std::abs(law - std::abs(f)), force_resolution, result.time[i]);
         } else {
           const double law =
-              -kTwoOverPi * spec.law_mu * std::atan(spec.k_v * v) * normal_force;
+              -spec.law->velocity_coefficient(v) * spec.coefficient_scale * normal_force -
+              viscous * v;
           worst.offer(std::abs(f - law), force_resolution, result.time[i]);
         }
       }

@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/simulation_result.hpp"
 
 namespace leadscrew::model {
@@ -51,13 +52,15 @@ struct ResultCheckSpec {
   // stored (kinetic, elastic) and losses (>= 0).
   std::vector<std::string> work, stored, losses;
   double t_end = 0.0;
-  // mu' of a set-valued law (exact Coulomb): the cone is checked; < 0: not.
-  double cone_mu = -1.0;
-  // The law the friction channel must follow where it slips: exact Coulomb
-  // on the cone's edge (cone_mu), eq. (3.16) with friction_factor_mu (mu')
-  // and k_v; none: not checked (eq. 3.15 needs the slip acceleration).
-  enum class Law { none, coulomb, arctan_velocity } law = Law::none;
-  double law_mu = 0.0, k_v = 0.0;
+  // The friction law that ran (its coefficients times coefficient_scale:
+  // the drive's 1 / cos(beta / 2), the flank angle). A set-valued law's cone
+  // |T| <= mu_static' |N| + viscous |gamma| is checked, and where the
+  // contact slips its friction is the law's: mu(|gamma|)' |N| + viscous
+  // |gamma| against the slip (set-valued), -kappa(gamma)' |N| - viscous
+  // gamma (a velocity law); the acceleration law and LuGre are not (their
+  // friction needs the slip acceleration or the bristles, no channels).
+  const friction::Law* law = nullptr;
+  double coefficient_scale = 1.0;
   std::string stick = "stick";
   // Exact play (the gap channel, >= 0 up to the flight check's tolerance):
   // its clearance [m], 0 without; Moreau-Jean's step [s] (its flanks close a

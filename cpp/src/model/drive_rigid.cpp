@@ -71,10 +71,10 @@ namespace {
 // semantics Excitation documents for time_scale() and breakpoints(); nullopt
 // for a callable (time scale 0: no hint).
 std::optional<double> curvature_bound(const Excitation& load) {
+  if (!load.breakpoints().empty()) return 0.0;  // table: linear between its knots
   const double scale = load.time_scale();
   if (std::isinf(scale)) return 0.0;         // constant (or a sine without amplitude)
   if (!(scale > 0.0)) return std::nullopt;   // callable
-  if (!load.breakpoints().empty()) return 0.0;  // table: linear between its knots
   // A sine of period `scale`: its derivative A w cos(w t + phase) has the
   // amplitude |A| w = hypot(f'(0), f'(scale / 4)), its second derivative |A| w^2.
   const double omega = 2.0 * 3.14159265358979323846 / scale;

@@ -66,10 +66,13 @@ class Excitation {
   // the right of a knot); a central difference for a callable.
   double derivative(double t) const;
 
-  // Shortest time over which the function changes shape (a sine's period,
-  // the shortest table interval; +inf for a constant, 0 for a callable, which
-  // gives no hint). Integrators cap their steps by a fraction of it so that
-  // root functions driven by a load cannot change sign twice within a step.
+  // Shortest time over which the function changes shape between its
+  // breakpoints, what an integrator has to resolve there: a sine's period;
+  // +inf for a constant and for a table (linear between its knots, which are
+  // breakpoints: however short an interval, no step straddles it); 0 for a
+  // callable, which gives no hint. Integrators cap their steps by a fraction
+  // of it so that root functions driven by a load cannot change sign twice
+  // within a step.
   double time_scale() const;
 
   // Times at which the function or its first derivative jumps (table knots):

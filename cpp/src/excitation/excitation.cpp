@@ -123,6 +123,34 @@ double Excitation::time_scale() const {
   }
 }
 
+double Excitation::difference_step(double t) { return 1e-6 * std::max(1.0, std::abs(t)); }
+
+std::optional<Excitation::Jump> Excitation::jump_near(double t, double window) const {
+  if (definition_.index() != 3 || !(window > 0.0) || !std::isfinite(t)) return std::nullopt;
+  double low = t - window, high = t + window;
+  double f_low = general_value(low), f_high = general_value(high);
+  const double change = std::abs(f_high - f_low);
+  // Keep the half that changes more: it holds the step if there is one.
+  // 100 halvings: 2 window / 2^100, below a double's resolution of t > 1e-16 s.
+  for (int i = 0; i < 100; ++i) {
+    const double middle = low + 0.5 * (high - low);
+    if (!(middle > low && middle < high)) break;  // adjacent doubles
+    const double f_middle = general_value(middle);
+    if (std::abs(f_middle - f_low) >= std::abs(f_high - f_middle)) {
+      high = middle;
+      f_high = f_middle;
+    } else {
+      low = middle;
+      f_low = f_middle;
+    }
+  }
+  const double size = std::abs(f_high - f_low);
+  const double round_off = 1e3 * std::numeric_limits<double>::epsilon() *
+                           std::max(std::abs(f_low), std::abs(f_high));
+  if (!(size > round_off) || !(size >= 0.5 * change)) return std::nullopt;
+  return Jump{high, f_low, f_high};
+}
+
 double Excitation::derivative(double t) const {
   switch (definition_.index()) {
     case 0:
@@ -140,10 +168,33 @@ double Excitation::derivative(double t) const {
       return (table.values[i] - table.values[i - 1]) / (times[i] - times[i - 1]);
     }
     default: {
-      const double h = 1e-6 * std::max(1.0, std::abs(t));
+      const double h = difference_step(t);
       return (general_value(t + h) - general_value(t - h)) / (2.0 * h);
     }
   }
+}
+
+double Excitation::continuous_derivative(double t, const std::string& name) const {
+  if (definition_.index() != 3) return derivative(t);
+  const double h = difference_step(t);
+  const double before = general_value(t - h), now = general_value(t), after = general_value(t + h);
+  const double left = now - before, right = after - now;
+  // A smooth function changes alike over both halves (they differ by its
+  // curvature times h^2); a step shows in one half alone.
+  if (std::abs(left - right) > 0.5 * (std::abs(left) + std::abs(right))) {
+    if (const std::optional<Jump> jump = jump_near(t, h)) {
+      const std::string& description = std::get<3>(definition_).description;
+      throw SimulationError(
+          jump->time,
+          name + " steps from " + format_value(jump->before) + " to " +
+              format_value(jump->after) + " at t = " + format_value(jump->time) + " s (" +
+              description + "): a step of a prescribed speed is an infinite acceleration",
+          "ramp the change over a time the drive can follow (a table load ramps linearly "
+          "between its knots), or, where the friction law allows it, integrator=\"moreau\", "
+          "which takes the step as an impulse");
+    }
+  }
+  return (after - before) / (2.0 * h);
 }
 
 std::string Excitation::describe() const {

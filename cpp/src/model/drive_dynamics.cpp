@@ -175,7 +175,10 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   axial_force_ = p.axial_force(t);
   forces_[model_.rotor()] += applied_torque_;
   forces_[model_.load()] += axial_force_;
-  rotor_acceleration_ = p.speed_controlled ? p.drive_speed.derivative(t) : 0.0;
+  // A prescribed speed's derivative is taken when a mode is solved (solve):
+  // Moreau-Jean sets states but never needs it, and takes a step of the
+  // speed as an impulse, where a differentiating scheme cannot follow one.
+  rotor_acceleration_ = p.speed_controlled ? std::numeric_limits<double>::quiet_NaN() : 0.0;
 
   play_ = p.play_position + model_.play_gradient().dot(q);
   play_rate_ = model_.play_gradient().dot(v);
@@ -308,6 +311,8 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       rotor_row = row++;
       B(model_.rotor(), rotor_row) = 1.0;
       C(rotor_row, model_.rotor()) = 1.0;
+      if (std::isnan(rotor_acceleration_))
+        rotor_acceleration_ = p.drive_speed.continuous_derivative(t_, "loads.drive_speed");
       r[rotor_row] = rotor_acceleration_;
     }
     SmallVector lambda;

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -66,6 +67,16 @@ class Excitation {
   // the right of a knot); a central difference for a callable.
   double derivative(double t) const;
 
+  // derivative(t) of a load the model differentiates and cannot follow
+  // through a step: a prescribed speed, whose step is an infinite
+  // acceleration. For a callable (the one kind that can step: a table ramps
+  // between knots the integrators stop at) one call more than derivative();
+  // where the difference's three values look like a step, jump_near
+  // confirms it (a smooth extremum or a kink does not pass) and
+  // SimulationError names `name`, the step's time and values, and a ramp,
+  // a table or Moreau-Jean's impulses as what follows it.
+  double continuous_derivative(double t, const std::string& name) const;
+
   // Shortest time over which the function changes shape between its
   // breakpoints, what an integrator has to resolve there: a sine's period;
   // +inf for a constant and for a table (linear between its knots, which are
@@ -74,6 +85,20 @@ class Excitation {
   // of it so that root functions driven by a load cannot change sign twice
   // within a step.
   double time_scale() const;
+
+  // A step of a callable within [t - window, t + window]: where its value
+  // jumps, found by bisection down to adjacent doubles (at most 102 calls),
+  // with the values on either side. A jump keeps its size as the bracket
+  // shrinks; a continuous function's change shrinks with it, however steep
+  // (a ramp over 1e-9 s is no jump). A change smaller than the function's
+  // slope over the window, or within 1000 ulps of its values, is not
+  // reported. nullopt for a constant, a sine and a table (continuous).
+  struct Jump {
+    double time = 0.0;    // the first double after the step
+    double before = 0.0;  // f just before it
+    double after = 0.0;   // f at time
+  };
+  std::optional<Jump> jump_near(double t, double window) const;
 
   // Times at which the function or its first derivative jumps (table knots):
   // integrators restart there to keep their order.
@@ -88,6 +113,8 @@ class Excitation {
     return s.amplitude * excitation::sine(s.omega * t + s.phase) + s.offset;
   }
   double general_value(double t) const;
+  // The half width of a callable's central difference at t.
+  static double difference_step(double t);
 
   std::variant<ConstantExcitation, SineExcitation, TableExcitation, CallableExcitation>
       definition_;

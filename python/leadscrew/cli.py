@@ -34,11 +34,13 @@ import os
 import re
 import sys
 import time
+import warnings
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import __version__
 from . import thread as _thread
+from .errors import StudyWarning
 
 __all__ = ["main"]
 
@@ -502,6 +504,10 @@ def _study_options(items: Sequence[str]) -> Dict[str, Any]:
     return options
 
 
+#: What a study's StudyWarning about its rows that raised says (studies/_common.py).
+_RAISED_ROWS = r"\w+: \d+ of \d+ rows raised and decide nothing"
+
+
 def _import_studies():
     try:
         return importlib.import_module(".studies", __package__)
@@ -675,7 +681,11 @@ def _study(args: argparse.Namespace) -> int:
     _check_output_dir(args.output)
     scene, scene_name, _ = _load_scene(args.scene)
     start = time.perf_counter()
-    frame = function(scene, **options)
+    with warnings.catch_warnings():
+        # The study's warning about its rows that raised: this command's own
+        # (below, once the files are written) says the same.
+        warnings.filterwarnings("ignore", message=_RAISED_ROWS, category=StudyWarning)
+        frame = function(scene, **options)
     elapsed = time.perf_counter() - start
     if not hasattr(frame, "to_csv"):
         raise StudyFailed(f"study {args.name!r} returned {type(frame).__name__}, not a DataFrame")

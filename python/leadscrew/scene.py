@@ -108,7 +108,8 @@ SCHEMA: Dict[str, Any] = {
                      "'arctan_acceleration')", "s/m", 1.0e4, **POSITIVE),
     },
     "backlash": {
-        "axial": Field("total axial clearance c_a of the thread (the nut starts centred)", "m",
+        "axial": Field("total axial clearance c_a of the thread (a relaxed start puts the nut at "
+                       "initial.play_position, by default centred)", "m",
                        None, **NONNEGATIVE),
         "contact": Field("flank contact across the play: 'exact' (unilateral contacts, Newton "
                          "impacts), 'bistop' (Adams BISTOP penalty), 'cubic' (smooth cubic "
@@ -209,9 +210,20 @@ SCHEMA: Dict[str, Any] = {
     "initial": {
         "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),
         "rotor_speed": Field("rotor angular velocity at t = 0; every body moves consistently "
-                             "with the thread, springs relaxed", "rad/s", 0.0),
+                             "with the thread, springs relaxed (state 'relaxed')", "rad/s", 0.0),
         "play_position": Field("axial position of the nut within the backlash, from its "
                                "centre (|value| <= axial / 2)", "m", 0.0),
+        "state": Field("the state at t = 0: 'relaxed' (every spring relaxed, the nut at "
+                       "play_position, every body turning with the thread at rotor_speed) or "
+                       "'equilibrium' (at rest in static equilibrium under the loads at "
+                       "t = 0: the springs deflected, the nut on the flank the loads press it "
+                       "against, a penalty flank penetrated as far as its force takes, the "
+                       "thread stuck with its friction force inside the cone; rotor_speed and "
+                       "play_position 0, a torque-controlled motor; NoEquilibriumError where "
+                       "the loads drive the thread. A regularized law, which carries no "
+                       "friction at rest, starts from that state and slips from it. "
+                       "Scene.initial_state() gives the state)", "", "relaxed", kind="choice",
+                       choices=("relaxed", "equilibrium")),
     },
 }
 
@@ -645,6 +657,33 @@ class Scene:
         """
         return _model(self._data)
 
+    def initial_state(self) -> Dict[str, Any]:
+        """The state the run starts from (``initial.state``), as the core computes it.
+
+        Returns:
+            dict with ``q`` and ``v``: coordinate name -> displacement from
+            the reference configuration (springs relaxed, the nut at
+            ``initial.play_position``) [m or rad] and velocity [m/s or
+            rad/s]; ``play`` [m], the nut's place in the play (0 without
+            backlash); ``normal_force`` and ``friction_force`` [N], the flank
+            forces holding the loads at t = 0 (0 for a relaxed start);
+            ``iterations``, Newton's (0 for a relaxed start).
+
+        Raises:
+            NoEquilibriumError: (a ValueError) ``initial.state`` is
+                ``'equilibrium'`` and the loads at t = 0 drive the thread.
+            ValueError: as :meth:`model`.
+            SimulationError: the equilibrium's solve did not converge.
+        """
+        model = self.model()
+        start = model.initial_state()
+        names = model.coordinate_names
+        return {"q": dict(zip(names, map(float, start["q"]))),
+                "v": dict(zip(names, map(float, start["v"]))),
+                "play": float(start["play"]), "normal_force": float(start["normal_force"]),
+                "friction_force": float(start["friction_force"]),
+                "iterations": int(start["iterations"])}
+
     @property
     def thread(self) -> Thread:
         return _thread(self._data)
@@ -703,6 +742,20 @@ def _check_consistency(data: Dict[str, Any]) -> None:
     if abs(play) > half:
         _fail("initial.play_position", play, f"within +-backlash.axial / 2 = +-{half:g}"
               + (f" (backlash.axial = {backlash['axial']!r})" if backlash else " (no backlash)"))
+    if data["initial"]["state"] == "equilibrium":
+        # The core checks the same (DriveModel); here the scene names it first.
+        equilibrium = " is invalid with initial.state = 'equilibrium': "
+        if "drive_speed" in loads:
+            raise ValueError("initial.state = 'equilibrium' is invalid with loads.drive_speed: "
+                             "the static equilibrium needs a torque-controlled motor "
+                             "(loads.drive_torque)")
+        if data["initial"]["rotor_speed"] != 0.0:
+            raise ValueError(f"initial.rotor_speed = {data['initial']['rotor_speed']!r}"
+                             f"{equilibrium}must be 0 (the drive starts at rest)")
+        if play != 0.0:
+            raise ValueError(f"initial.play_position = {play!r}{equilibrium}must be 0 (the "
+                             "equilibrium puts the nut on the flank the loads press it "
+                             "against)")
 
 
 def describe_schema() -> str:
@@ -1109,6 +1162,7 @@ def _core_parameters(data: Dict[str, Any], d: Dict[str, Any]) -> "_core.DrivePar
     init = data["initial"]
     p.rotor_angle, p.rotor_speed, p.play_position = (init["rotor_angle"], init["rotor_speed"],
                                                      init["play_position"])
+    p.initial_state = init["state"]
     return p
 
 

@@ -211,9 +211,15 @@ def test_scene_configurations():
 def test_failure_is_recorded_or_raised(closed_form):
     configurations = [{"integrator": "event_driven", "rtol": 1e-10, "max_steps": 5},
                       {"integrator": "event_driven", "rtol": 1e-8}]
-    with pytest.warns(RuntimeWarning, match="max_steps"):
+    with pytest.warns(RuntimeWarning, match="max_steps") as caught:
         frame = studies.work_precision(block(), T_END, configurations,
                                        reference=closed_form.position, repeats=1)
+    # One warning, a StudyWarning, counting the configurations that raised.
+    assert [w.category for w in caught] == [ls.StudyWarning]
+    assert "work_precision: 1 of 2 rows raised" in str(caught[0].message)
+    assert frame.attrs["summary"]["raised"] == 1
+    assert frame.attrs["summary"]["raised_reasons"].startswith("1 SimulationError; first: "
+                                                               "SimulationError: ")
     assert "max_steps" in frame["failure"][0] and frame["failure"][1] == ""
     assert np.isnan(frame["error_max"][0]) and np.isnan(frame["wall_time"][0])
     assert frame["error_max"][1] < 1e-9

@@ -15,6 +15,7 @@
 #include "leadscrew/integrate/ode.hpp"
 #include "leadscrew/integrate/simulation_result.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
+#include "leadscrew/model/drive_equilibrium.hpp"
 #include "leadscrew/model/drive_rigid.hpp"
 #include "leadscrew/model/result_checks.hpp"
 #include "leadscrew/model/simulation_checks.hpp"
@@ -1856,9 +1857,8 @@ integrate::SimulationResult simulate(const DriveModel& model,
 
   StateLayout layout(model);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(layout.size());
-  const double speed = p.speed_controlled ? p.drive_speed(0.0) : p.rotor_speed;
-  const Eigen::VectorXd v0 = model.consistent_velocity(speed);
-  CoordinateVector q = CoordinateVector::Zero(model.coordinate_count()), v = v0;
+  const DriveStart start = initial_state(model);  // initial.state: relaxed or in equilibrium
+  const CoordinateVector q = start.q, v = start.v;
   layout.compress(q, v, y0.data());
 
   if (integrator == "moreau") {

@@ -20,6 +20,17 @@ loads by its definition (a speed-controlled motor raising each of its
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
+One rule for cases that raise (a :class:`~leadscrew.JammingError`, a
+:class:`~leadscrew.SimulationError`, ...): the case's row carries the
+message (``error``; work_precision's ``failure``) and decides nothing; every
+study that aggregates rows counts them in ``attrs["summary"]`` (``raised``,
+and ``raised_reasons``: the exception types with their counts and the first
+message, or ``"none"``) and warns with :class:`~leadscrew.StudyWarning`.
+
+The holding and creep studies start every run at rest (their scenes'
+``initial`` section does not decide); :func:`min_holding_preload` starts
+each from the static equilibrium under the loads at t = 0.
+
 Each study has a ``plot_...`` function drawing its figure from the frame it
 returned (``leadscrew study`` writes it as a PNG beside the CSV).
 """

@@ -6,11 +6,14 @@ import functools
 import inspect
 import math
 import numbers
-from typing import Any, Dict, Iterable, Optional
+import sys
+import warnings
+from typing import Any, Dict, Iterable, Optional, Tuple
 
 import numpy as np
 import pandas as pd
 
+from ..errors import StudyWarning
 from ..scene import Scene
 
 __all__ = [
@@ -21,6 +24,7 @@ __all__ = [
     "check_grid",
     "with_loads",
     "annotate",
+    "raised_rows",
     "frame_of",
     "numeric_or_nan",
     "axes",
@@ -227,7 +231,8 @@ _ERROR_TYPES = {type(None), str}
 
 
 def annotate(frame, units: Dict[str, str], errors_checked: bool = False,
-             summary_units: Optional[Dict[str, str]] = None, **summary: Any):
+             summary_units: Optional[Dict[str, str]] = None, study: Optional[str] = None,
+             **summary: Any):
     """Attach units and a summary to a study's frame.
 
     Args:
@@ -241,6 +246,12 @@ def annotate(frame, units: Dict[str, str], errors_checked: bool = False,
         summary_units: summary key -> SI unit, stored as
             ``attrs["summary_units"]`` for the keys of ``summary`` (the
             command line prints them next to the values).
+        study: the name of a study whose rows are cases that may raise
+            (their ``error`` column, work_precision's ``failure``, holds
+            the message): the summary gets ``raised`` [1] and
+            ``raised_reasons`` (:func:`raised_rows`), and where a row
+            raised, a :class:`~leadscrew.StudyWarning` says so (as the
+            command line does). None: a frame of one run, no such rows.
         **summary: scalars stored as ``attrs["summary"]``.
 
     Returns:
@@ -259,12 +270,71 @@ def annotate(frame, units: Dict[str, str], errors_checked: bool = False,
         if errors.dtype != object or not set(map(type, errors.to_numpy())) <= _ERROR_TYPES:
             frame["error"] = errors.astype(object).where(errors.notna(), None)
     frame.attrs["units"] = {column: units[column] for column in names if column in units}
+    if study is not None:
+        count, reasons = raised_rows(frame)
+        summary.update(raised=count, raised_reasons=reasons)
+        summary_units = dict(summary_units or {}, raised="1")
+        if count:
+            warnings.warn(f"{study}: {count} of {len(frame)} rows raised and decide nothing "
+                          f"(their error column says why): {reasons}", StudyWarning,
+                          stacklevel=_caller_level())
     if summary:
         frame.attrs["summary"] = dict(summary)
         if summary_units:
             frame.attrs["summary_units"] = {key: summary_units[key] for key in summary
                                             if key in summary_units}
     return frame
+
+
+#: The columns in which a study's row carries the message of a case that raised.
+FAILURE_COLUMNS = ("error", "failure")
+
+
+def _message(value: Any) -> str:
+    """A failure cell as one line ("" where the case ran: None, NaN, "")."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return ""
+    return " ".join(str(value).split())
+
+
+def raised_rows(frame) -> Tuple[int, str]:
+    """The rows of a study's frame whose case raised, and why.
+
+    A row raised if its ``error`` (or work_precision's ``failure``) column
+    holds a message, ``"ExceptionType: message"``.
+
+    Args:
+        frame: the study's DataFrame.
+
+    Returns:
+        ``(count, reasons)``: the number of such rows, and ``"none"`` or
+        their exception types with counts, most frequent first, and the
+        first message: ``"2 JammingError, 1 SimulationError; first:
+        JammingError: ..."``.
+    """
+    messages = []
+    for column in FAILURE_COLUMNS:
+        if column in frame:
+            messages.extend(m for m in map(_message, frame[column].tolist()) if m)
+    if not messages:
+        return 0, "none"
+    kinds: Dict[str, int] = {}
+    for message in messages:
+        kind = message.split(":", 1)[0]
+        kind = kind if ":" in message and kind.isidentifier() else "error"
+        kinds[kind] = kinds.get(kind, 0) + 1
+    counted = ", ".join(f"{n} {kind}" for kind, n in
+                        sorted(kinds.items(), key=lambda item: (-item[1], item[0])))
+    return len(messages), f"{counted}; first: {messages[0]}"
+
+
+def _caller_level() -> int:
+    """The stacklevel of warnings.warn that points at the first frame outside
+    this package (the user's call of the study)."""
+    level, frame = 2, sys._getframe(2)
+    while frame is not None and frame.f_globals.get("__name__", "").startswith("leadscrew."):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def numeric_or_nan(value: Optional[float]) -> float:

@@ -69,7 +69,10 @@ def compare_concepts(
         and ``rms_diff`` [m] (of u_load against the reference on the common
         times; 0 for the reference), ``u_final`` [m], ``error`` (None, or why
         the run failed: then the numbers are NaN), and the series ``t`` [s] and
-        ``u_load`` [m] as arrays (None for a failed run).
+        ``u_load`` [m] as arrays (None for a failed run). ``attrs["summary"]``:
+        ``raised`` [1] and ``raised_reasons`` (the runs that raised: their
+        count, and their exception types with the first message, or
+        ``"none"``; a :class:`~leadscrew.StudyWarning` names them).
 
     Raises:
         ValueError: invalid scene, concept or argument (also a simulate option
@@ -136,7 +139,7 @@ def compare_concepts(
             "t": None if u is None else t_eval,
             "u_load": u,
         })
-    return annotate(pd.DataFrame(rows), UNITS)
+    return annotate(pd.DataFrame(rows), UNITS, study="compare_concepts")
 
 
 def plot_compare_concepts(frame: pd.DataFrame, ax: Optional[Any] = None):

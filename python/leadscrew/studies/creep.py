@@ -70,7 +70,7 @@ def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float,
         rows.append(row)
     columns = ["frequency", "backlash", "creep_per_cycle", "creep_rate", "max_displacement",
                "separations", "flight_fraction", "wall_time", "steps", "error"]
-    return annotate(pd.DataFrame(rows, columns=columns), UNITS,
+    return annotate(pd.DataFrame(rows, columns=columns), UNITS, study=description,
                     summary_units={"amplitude": "N", "cycles": "1", "settle_cycles": "1"},
                     amplitude=amplitude, cycles=cycles, settle_cycles=settle_cycles,
                     excitation_from=excitation_from)
@@ -115,7 +115,11 @@ _COMMON_ARGS = """
         the message of a failed case, whose numbers are NaN).
         ``attrs["units"]`` maps columns to units; ``attrs["summary"]``:
         ``amplitude`` [N], ``cycles``, ``settle_cycles`` [1],
-        ``excitation_from``.
+        ``excitation_from``, ``raised`` [1] and ``raised_reasons`` (the
+        cases that raised: their count, and their exception types with the
+        first message, or ``"none"``; a :class:`~leadscrew.StudyWarning`
+        names them). Every run starts at rest with its springs relaxed, the
+        nut centred (:func:`~leadscrew.studies.alternating_scene`).
 
     Raises:
         ValueError: invalid scene (no constant drive torque) or arguments (the

@@ -59,7 +59,7 @@ def _efficiency_batch(scene, speed: float, t_end: float, window: Tuple[float, fl
     # forward turn moves the load along -h x (docs/physics/drive_models.md).
     omega = -scene.thread.hand_sign * speed
     running = scene.replace(loads={"drive_torque": None, "drive_speed": omega},
-                            initial={"rotor_speed": omega})
+                            initial={"rotor_speed": omega, "state": "relaxed"})
     start, end = window
     return DriveBatch(running, ("mu", "axial_force"), _CHANNELS, t_end,
                       [0.0, start, 0.5 * (start + end), end], **options)
@@ -191,6 +191,10 @@ def efficiency_vs_mu(
         ``work_drive`` and ``friction_loss`` [J] (over the window),
         ``load_speed`` [m/s], ``wall_time`` [s, C++] and ``error`` (None, or
         the message of a failed simulation, whose numbers are NaN).
+        ``attrs["summary"]``: ``speed`` [rad/s], ``window`` [s], ``raised``
+        [1] and ``raised_reasons`` (the simulations that raised: their
+        count, and their exception types with the first message, or
+        ``"none"``; a :class:`~leadscrew.StudyWarning` names them).
 
     Raises:
         ValueError: invalid scene or arguments (also a ``friction`` option
@@ -259,7 +263,7 @@ def efficiency_vs_mu(
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
         "error": errors})
     # errors: an object array of None and the messages of failed cases
-    return annotate(frame, UNITS, errors_checked=True,
+    return annotate(frame, UNITS, errors_checked=True, study="efficiency_vs_mu",
                     summary_units={"speed": "rad/s", "window": "s"}, speed=speed,
                     window=(start, end))
 

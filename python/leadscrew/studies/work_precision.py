@@ -16,7 +16,6 @@ import numbers
 import statistics
 import sys
 import time
-import warnings
 from typing import Callable, Dict, Iterable, List, Optional, Sequence, Union
 
 import numpy as np
@@ -26,7 +25,7 @@ from ..errors import SimulationError
 from ..models import FrictionBlock
 from ..scene import Scene
 from ..simulation import Result, _real, _whole, simulate
-from ._common import check_count, numeric_or_nan
+from ._common import annotate, check_count, numeric_or_nan
 
 __all__ = [
     "work_precision",
@@ -352,7 +351,8 @@ def work_precision(
         quantity: the compared channel (default ``"u"``; ``"u_load"`` for a Scene).
         on_failure: ``"record"`` (default): a configuration whose run raises
             :class:`~leadscrew.SimulationError` gets a row with NaN errors and
-            times and the message in ``failure`` (and a RuntimeWarning);
+            times and the message in ``failure``, and the summary counts
+            them (one :class:`~leadscrew.StudyWarning` names them);
             ``"raise"``: the error propagates.
         progress: print one line per configuration to stderr.
         ax: a matplotlib Axes to draw the diagram on (see :func:`plot_work_precision`).
@@ -366,8 +366,12 @@ def work_precision(
         m for u]; ``wall_time`` (median, measured inside C++) and
         ``wall_time_python`` (median around the ``simulate`` call) [s];
         ``steps``, ``rhs_evaluations``, ``events``, ``lcp_solves``,
-        ``nonlinear_iterations``; ``failure`` (empty string, or the message).
-        ``frame.attrs`` holds ``reference``, ``quantity``, ``t_end``, ``repeats``.
+        ``nonlinear_iterations``; ``failure`` (empty string, or
+        ``"ExceptionType: message"``). ``frame.attrs`` holds ``reference``,
+        ``quantity``, ``t_end``, ``repeats`` and the ``summary``:
+        ``raised`` [1] and ``raised_reasons`` (the configurations that
+        raised: their count, and their exception types with the first
+        message, or ``"none"``).
 
     Raises:
         ValueError: a bad argument (the message names it), including a bad
@@ -423,11 +427,10 @@ def work_precision(
         except SimulationError as error:
             if on_failure == "raise":
                 raise
-            warnings.warn(f"work_precision: {row['label']} failed: {error}", RuntimeWarning,
-                          stacklevel=2)
             row.update(error_max=math.nan, error_final=math.nan, wall_time=math.nan,
                        wall_time_python=math.nan, steps=0, rhs_evaluations=0, events=0,
-                       lcp_solves=0, nonlinear_iterations=0, failure=str(error))
+                       lcp_solves=0, nonlinear_iterations=0,
+                       failure=f"{type(error).__name__}: {error}")
             rows.append(row)
             if progress:
                 print(f"[{i + 1}/{len(entries)}] {row['label']}: FAILED {error}", file=sys.stderr)
@@ -464,6 +467,8 @@ def work_precision(
 
     frame = pd.DataFrame(rows, columns=list(COLUMNS))
     frame.attrs.update(reference=description, quantity=quantity, t_end=t_end, repeats=repeats)
+    # The configurations that raised: counted in the summary, and a StudyWarning.
+    annotate(frame, {}, errors_checked=True, study="work_precision")
     if ax is not None:
         plot_work_precision(frame, ax=ax)
     return frame

@@ -387,22 +387,25 @@ def test_the_excitation_defaults_to_the_scenes_sine():
         min_holding_preload(holding_scene())  # a constant axial force
 
 
-def test_a_closed_flanks_drifting_gap_is_no_flight(monkeypatch):
-    """A flexible drive ramped onto its flank stays closed without a single
-    event, while its gap drifts with the integration error beyond the flight
-    resolution (1e-6 of the play): that drift was counted as flight, so
-    1600 N 'separated' under a 30 N excitation."""
+def test_a_closed_flanks_drifting_gap_is_no_flight():
+    """A flexible drive ramped onto its flank from relaxed springs (the
+    study's start before the static equilibrium) stays closed without a
+    single event, while its gap drifts with the integration error beyond
+    the flight resolution (1e-6 of the play): that drift was counted as
+    flight, so 1600 N 'separated' under a 30 N excitation. (From the
+    equilibrium the drift stays below the resolution: 1.9e-10 m of 2e-10 m.)"""
     import leadscrew.studies.holding as holding
 
-    runs = []
-    response = holding.cycle_response
-    monkeypatch.setattr(holding, "cycle_response", lambda *args, **kwargs: runs.append(
-        response(*args, series=True, **kwargs)) or runs[-1])
     scene = holding_scene(concept="flexible")
-    sine = {"amplitude": AMPLITUDE, "omega": EXCITATION["omega"], "phase": 0.0, "offset": 0.0}
-    out = holding._preload_case(1600.0, scene, sine, -1.0, 4, 1, 100,
-                                {"rtol": 1e-8, "atol": 1e-10}, ramp_cycles=2)
-    result = runs[0]["result"]
+    static, omega = -1600.0, EXCITATION["omega"]
+    loaded = holding._alternating(scene, AMPLITUDE, omega, static, None, True, 0.0)
+    ramp_time = 2 / FREQUENCY
+    loaded = loaded.replace(loads={
+        "axial_force": holding._Ramped(static, AMPLITUDE, omega, 0.0, ramp_time),
+        "drive_torque": holding._Ramped(5e-3, 0.0, omega, 0.0, ramp_time)})
+    out = holding.cycle_response(loaded, FREQUENCY, 6, 3, 100, series=True, judged_from=3,
+                                 rtol=1e-8, atol=1e-10)
+    result = out["result"]
     assert result.events == []
     assert result["gap"][200:].max() > holding.FLIGHT_RESOLUTION * 2e-4  # the drift
     assert out["separations"] == 0 and out["flight_fraction"] == 0.0
@@ -450,18 +453,37 @@ def test_rows_that_raised_decide_nothing_and_are_reported(monkeypatch):
     assert "2 of 8 evaluated preloads raised and decided nothing" in s["decided_by"]
 
 
-def test_a_round_in_which_every_case_raised_ends_the_search(monkeypatch):
+def test_a_round_that_raised_is_retried_off_its_points(monkeypatch):
+    """The default search's first point is the closed form, exactly on a
+    rigid drive's stick limit, where it may chatter beyond max_events: a
+    round whose every case raised is evaluated once more, a third of its
+    spacing higher, and the search goes on."""
     import leadscrew.studies.holding as holding
 
     monkeypatch.setattr(holding, "_preload_case",
-                        fake_holding(13.0, raising=lambda p: 15.0 <= p < 25.0))
-    with pytest.warns(ls.StudyWarning, match="1 of 3 rows raised"):
+                        fake_holding(13.0, raising=lambda p: p == 20.0))
+    with pytest.warns(ls.StudyWarning, match="1 of .* rows raised"):
         frame = min_holding_preload(holding_scene(), EXCITATION, upper=40.0, progress=False)
     s = frame.attrs["summary"]
-    assert list(frame["preload"]) == [0.0, 40.0, 20.0]  # 20 N raised: nothing to bisect on
+    assert list(frame["preload"][:4]) == [0.0, 40.0, 20.0, pytest.approx(80 / 3)]
+    assert list(frame["iteration"][:4]) == [0, 0, 1, 1]
+    assert s["found"] and s["converged"] and s["raised"] == 1
+    assert s["bracket_low"] < 13.0 <= s["bracket_high"]
+    assert "stopped" not in s["decided_by"]
+
+
+def test_a_round_that_raises_twice_ends_the_search(monkeypatch):
+    import leadscrew.studies.holding as holding
+
+    monkeypatch.setattr(holding, "_preload_case",
+                        fake_holding(13.0, raising=lambda p: 15.0 <= p < 30.0))
+    with pytest.warns(ls.StudyWarning, match="2 of 4 rows raised"):
+        frame = min_holding_preload(holding_scene(), EXCITATION, upper=40.0, progress=False)
+    s = frame.attrs["summary"]
+    assert list(frame["preload"]) == [0.0, 40.0, 20.0, pytest.approx(80 / 3)]
     assert s["found"] and not s["converged"] and s["iterations"] == 1
     assert (s["bracket_low"], s["bracket_high"]) == (0.0, 40.0)
-    assert "stopped in round 1: 20 N raised" in s["decided_by"]
+    assert "stopped in round 1: 20, 26.6667 N raised" in s["decided_by"]
 
 
 def test_every_case_raising_finds_nothing(monkeypatch):
@@ -473,3 +495,34 @@ def test_every_case_raising_finds_nothing(monkeypatch):
     s = frame.attrs["summary"]
     assert not s["found"] and s["raised"] == 12 and frame["holds"].isna().all()
     assert s["min_preload"] == "not found in [0, 30720] N"
+
+
+def test_the_rigid_seat_drive_reports_its_raised_rows():
+    """The review's rigid variant of the seat drive: with the upper end
+    twice the closed form (the default before), every other bisection point
+    is the closed form itself, exactly on the stick limit, where the rigid
+    drive chatters between stick and slip (then JammingError, now more than
+    max_events events). Those rows were counted as 'not held'; they decide
+    nothing now, are counted in the summary and warned about, and the
+    search goes on to the closed form. The default upper end (2.5 times the
+    closed form) never evaluates it."""
+    scene = seat_scene().replace(concept="rigid")
+    excitation = {"type": "sine", "amplitude": 0.01, "omega": 94.25}
+    closed_form = 13.294895419185037
+    with pytest.warns(ls.StudyWarning, match=r"min_holding_preload: 7 of 23 rows raised .*"
+                                             r"7 SimulationError; first: SimulationError: .*"
+                                             r"max_events = 2000"):
+        frame = min_holding_preload(scene, excitation, upper=2 * closed_form, max_events=2000,
+                                    progress=False)
+    s = frame.attrs["summary"]
+    raised = frame[frame["error"].notna()]
+    assert s["raised"] == len(raised) == 7 and raised["holds"].isna().all()
+    assert list(raised["preload"]) == pytest.approx([s["quasi_static_preload"]] * 7, rel=1e-12)
+    assert s["quasi_static_preload"] == pytest.approx(closed_form, rel=1e-12)
+    for summary in (s, min_holding_preload(scene, excitation,
+                                           progress=False).attrs["summary"]):
+        assert summary["found"] and summary["converged"] and summary["bracket_verified"]
+        assert summary["monotonic"]
+        assert summary["bracket_low"] < closed_form <= summary["bracket_high"] * (1 + 1e-12)
+        assert summary["bracket_high"] - summary["bracket_low"] <= 1e-3 * summary["bracket_high"]
+    assert summary["raised"] == 0

@@ -582,6 +582,14 @@ def _sine_parameters(excitation: Any) -> Dict[str, float]:
 RAMP_START = 1e-3
 
 
+#: The default upper end of :func:`min_holding_preload`'s search, a
+#: multiple of the quasi-static preload: 0.4 of it is no dyadic fraction, so
+#: no bisection point falls on the rigid drive's stick limit (with twice it,
+#: every other point did, where the rigid drive chatters between stick and
+#: slip beyond max_events).
+UPPER_FACTOR = 2.5
+
+
 class _Ramped:
     """A load that grows smoothly to ``static + amplitude sin(omega t +
     phase)``: that times r(t) = s + (1 - s) (1 - cos(pi t / ramp_time)) / 2,
@@ -741,14 +749,16 @@ def min_holding_preload(
     times its upper end or ``max_iterations`` rounds have run. A case that
     raises (a :class:`~leadscrew.JammingError`, a
     :class:`~leadscrew.SimulationError`) decides nothing: its row has
-    ``holds`` None and the message in ``error``, the bracket ignores it, a
-    round in which every case raised ends the search (not converged), the
-    summary counts such rows (``raised``, ``raised_reasons``) and a
-    :class:`~leadscrew.StudyWarning` says so. The answer is then checked:
-    the bracket's ends were simulated with their verdicts
-    (``bracket_verified``) and every decided preload agrees with one
-    threshold (``monotonic``; a StudyWarning if not); ``decided_by`` says
-    how the answer was found.
+    ``holds`` None and the message in ``error``, the bracket ignores it,
+    the summary counts such rows (``raised``, ``raised_reasons``) and a
+    :class:`~leadscrew.StudyWarning` says so. A round in which every case
+    raised is evaluated once more a third of its spacing higher (a point
+    exactly on a rigid drive's stick limit may chatter between stick and
+    slip beyond ``max_events``); if those raise too, the search ends (not
+    converged). The answer is then checked: the bracket's ends were
+    simulated with their verdicts (``bracket_verified``) and every decided
+    preload agrees with one threshold (``monotonic``; a StudyWarning if
+    not); ``decided_by`` says how the answer was found.
 
     For the rigid concept the answer has a closed form: stuck, the load is at
     rest, so the flank carries exactly the applied force, whose smallest
@@ -777,8 +787,10 @@ def min_holding_preload(
             (default: the scene's ``loads.axial_force`` if it is a sine).
         creep_limit: largest admissible |creep per cycle| [m], >= 0.
         direction: +1 or -1, the preload's direction along x.
-        upper: a preload [N] expected to hold (default twice the quasi-static
-            preload, or |amplitude| where that is 0); doubled up to 10 times
+        upper: a preload [N] expected to hold (default 2.5 times the
+            quasi-static preload, or |amplitude| where that is 0: at 0.4 of
+            the bracket, no bisection point is the quasi-static preload, on
+            which a rigid drive's stick limit lies); doubled up to 10 times
             until it holds.
         tolerance: relative width of the final bracket, > 0.
         max_iterations: bound on the search rounds, >= 1.
@@ -863,7 +875,7 @@ def min_holding_preload(
     # the torque's share.
     quasi_static = max(0.0, amplitude - float(direction) * sine["offset"] + torque_share)
     if upper is None:
-        upper = 2.0 * quasi_static if quasi_static > 0.0 else amplitude
+        upper = UPPER_FACTOR * quasi_static if quasi_static > 0.0 else amplitude
     upper = check_positive("upper", upper)
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
@@ -909,21 +921,29 @@ def min_holding_preload(
         expansions += 1
         high_holds = evaluate([high], 0)[0] is True
     iterations = 0
-    undecided = None  # a round whose every case raised ends the search
+    undecided: List[float] = []  # the preloads of a round that decided nothing
     if low_holds:
         high = 0.0
     elif high_holds:
         while high - low > tolerance * high and iterations < max_iterations:
             iterations += 1
             step = (high - low) / (points_per_round + 1)
-            preloads = [low + step * (i + 1) for i in range(points_per_round)]
-            verdicts = evaluate(preloads, iterations)
-            holding = [p for p, ok in zip(preloads, verdicts) if ok is True]
-            failing = [p for p, ok in zip(preloads, verdicts) if ok is False and
-                       (not holding or p < holding[0])]
+            # A round whose every case raised is evaluated again a third of
+            # the spacing higher (a preload exactly on the rigid drive's
+            # stick limit, the default search's first point, chatters
+            # between stick and slip); if those raise too, the search ends.
+            for shift in (0.0, 1.0 / 3.0):
+                preloads = [low + step * (i + 1 + shift) for i in range(points_per_round)]
+                verdicts = evaluate(preloads, iterations)
+                holding = [p for p, ok in zip(preloads, verdicts) if ok is True]
+                failing = [p for p, ok in zip(preloads, verdicts) if ok is False and
+                           (not holding or p < holding[0])]
+                if holding or failing:
+                    break
+                undecided += preloads
             if not holding and not failing:
-                undecided = preloads
                 break
+            undecided = []
             if holding:
                 high = holding[0]
             if failing:
@@ -933,7 +953,7 @@ def min_holding_preload(
         low = 0.0
     elif not found:
         low = high  # every preload evaluated failed (or raised), the largest too
-    converged = bool(found and undecided is None and (low_holds or high - low <= tolerance * high))
+    converged = bool(found and not undecided and (low_holds or high - low <= tolerance * high))
     verified, monotonic, agreement = _bracket_report(rows, found, low, high, low_holds)
     judged = cycles - settle_cycles
     relaxed = sum(1 for row in rows if row["start"] == "relaxed")
@@ -953,7 +973,7 @@ def min_holding_preload(
         decision = (f"bisection: {high:.6g} N held and {low:.6g} N failed (bracket "
                     f"{width:.2g} of its upper end{'' if converged else ', not converged'}; "
                     f"{'both simulated' if verified else 'NOT both simulated'})")
-        if undecided is not None:
+        if undecided:
             decision += (f"; stopped in round {iterations}: "
                          f"{', '.join(f'{p:.6g}' for p in undecided)} N raised")
     else:

@@ -14,11 +14,13 @@
 // normal force presses the nut against: e* = -sign(lambda_N) c / 2 for an
 // exact contact (lambda_N > 0 on the lower flank), a penalty flank penetrated
 // as far as its elastic law carries |lambda_N| (beyond c / 2), e* = 0 without
-// play. The thread sticks: the friction force must lie in the cone,
-// |lambda_T| <= mu' |lambda_N|; where it does not, no static equilibrium
-// exists (NoEquilibrium: the loads drive the thread). A regularized law
-// carries no friction at rest: its drive starts from the same state and
-// slips from it at the small speed its friction needs.
+// play. The thread sticks: the friction force must lie in the static cone,
+// |lambda_T| <= mu_static' |lambda_N| (the law's stick limit, mu' for plain
+// Coulomb); where it does not, no static equilibrium exists (NoEquilibrium:
+// the loads drive the thread). A regularized law carries no friction at
+// rest: its drive starts from the same state and slips from it at the small
+// speed its friction needs. LuGre's bristles start relaxed (z = 0): their
+// friction force builds up as they deflect, a presliding displacement.
 //
 // The screw's stiffness follows the nut (eq. 4.24), so the equations are
 // solved by Newton's method with the spring matrix at the current nut

@@ -66,6 +66,17 @@ struct ResultCheckSpec {
   // its clearance [m], 0 without; Moreau-Jean's step [s] (its flanks close a
   // step late).
   double clearance = 0.0, time_step = 0.0;
+  // Moreau-Jean: the largest rate of the play over its steps [m/s] (the
+  // flank_gap tolerance's, not from the sampled rows: sparse output rows
+  // would shrink it), and the energy its friction impulses book beyond the
+  // step's own work [J]: a step's impulse P_T acts on the slip at the step's
+  // end, gamma+, while the positions advance with gamma_theta = (1 - theta)
+  // gamma- + theta gamma+, so the loss -P_T gamma+ exceeds the scheme's
+  // friction work -P_T gamma_theta by -(1 - theta) P_T (gamma+ - gamma-)
+  // wherever the slip speeds up: first order in the step, a residual that
+  // looks like created energy. The sum of its positive parts widens the
+  // creation bound.
+  double step_play_rate = 0.0, step_friction_excess = 0.0;
   // false for eq. (3.15), whose friction may push (its energy balance is
   // checked only).
   bool friction_dissipates = true;

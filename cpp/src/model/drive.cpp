@@ -90,7 +90,9 @@ std::string backlash_contact_name(BacklashContact b) {
   return backlash_contact_names()[static_cast<int>(b)];
 }
 
-std::string initial_state_name(InitialState s) { return initial_state_names()[static_cast<int>(s)]; }
+std::string initial_state_name(InitialState s) {
+  return initial_state_names()[static_cast<int>(s)];
+}
 
 Concept parse_concept(const std::string& name) {
   return static_cast<Concept>(require_choice("concept", name, concept_names()));

@@ -163,14 +163,14 @@ DriveStart initial_state(const DriveModel& model) {
   // Stick: the friction force inside the static cone (mu_static's: a law
   // with a static coefficient holds up to it), to its round-off.
   const double mu = model.effective_mu_static();
-  if (std::abs(friction_force) >
-      mu * std::abs(normal_force) + 1e-12 * (std::abs(friction_force) + mu * std::abs(normal_force)))
+  const double cone = mu * std::abs(normal_force);
+  if (std::abs(friction_force) > cone + 1e-12 * (std::abs(friction_force) + cone))
     throw NoEquilibrium(
         "initial.state = \"equilibrium\" is invalid for the loads at t = 0 (" +
         loads_text(dynamics) + "): holding them at rest takes a flank friction force of " +
         format_value(std::abs(friction_force)) +
         " N, beyond the static friction cone mu_static' |N| = " +
-        format_value(mu * std::abs(normal_force)) + " N (normal force " +
+        format_value(cone) + " N (normal force " +
         format_value(normal_force) + " N, mu_static' = " + format_value(mu) +
         "): the loads drive the thread, no static equilibrium exists");
 

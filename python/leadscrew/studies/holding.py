@@ -814,8 +814,9 @@ def min_holding_preload(
         DataFrame with one row per evaluated preload, in evaluation order:
         ``iteration`` [1], ``preload`` [N], ``holds`` (None where the case
         raised), ``separated``, ``start`` (``"equilibrium"`` or
-        ``"relaxed"``, see above), ``separations`` [1], ``creep_per_cycle`` [m], ``max_displacement``
-        [m], ``flight_fraction`` [1] (those four in the judged cycles),
+        ``"relaxed"``, see above), ``separations`` [1], ``creep_per_cycle``
+        [m], ``max_displacement`` [m], ``flight_fraction`` [1] (those four
+        in the judged cycles),
         ``wall_time`` [s], ``error``. ``attrs["summary"]``: ``min_preload``
         [N] (the bracket's upper end: the smallest preload seen to hold; if
         none held, the text ``"not found in [0, P] N"``, P the largest
@@ -929,9 +930,9 @@ def min_holding_preload(
             iterations += 1
             step = (high - low) / (points_per_round + 1)
             # A round whose every case raised is evaluated again a third of
-            # the spacing higher (a preload exactly on the rigid drive's
-            # stick limit, the default search's first point, chatters
-            # between stick and slip); if those raise too, the search ends.
+            # the spacing higher (a preload exactly on a rigid drive's stick
+            # limit may chatter between stick and slip beyond max_events);
+            # if those raise too, the search ends.
             for shift in (0.0, 1.0 / 3.0):
                 preloads = [low + step * (i + 1 + shift) for i in range(points_per_round)]
                 verdicts = evaluate(preloads, iterations)

@@ -11,7 +11,7 @@ import numpy as np
 
 from . import _core
 from .models import FrictionBlock
-from .scene import Scene
+from .scene import Scene, _friction_law_entry
 from .units import channel_unit
 
 __all__ = ["simulate", "Result", "Event"]
@@ -176,7 +176,7 @@ def _restore_result(t, channels, data, events, stats, integrator, friction,
 def _law(name: str) -> Optional[dict]:
     """The registry's entry of a friction law (None: no such law; the core
     names the laws)."""
-    return next((law for law in _core.friction_laws() if law["name"] == name), None)
+    return _friction_law_entry(name)
 
 
 def _check_scene_friction(scene: Scene, friction: Optional[str], k_v=None) -> None:

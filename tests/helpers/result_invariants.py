@@ -99,7 +99,8 @@ distributions from about 500 runs, gaps and violations from two runs of
   energy created shows as a negative one: residual >= -(1e-3 E_ref + X +
   1e-15 J), X the friction booking's term of the page (the negative parts of
   (1 - theta) P_T (gamma_1 - gamma_0) summed over the steps, from the rows
-  where they are the steps; with t_eval the simulator's bound). Observed: 90
+  where they are the steps; with t_eval the simulator's bound), at most 1e-2
+  E_ref (a larger one is a step that does not resolve the slip). Observed: 90
   % of the Moreau runs create less than 1.1e-3 E_ref; the rest up to 5.5e-2
   (issue 17, reproduction 10: a step that does not resolve the scene).
 - ``flank_penetration`` (exact play only): gap >= -bound, the flanks are
@@ -141,6 +142,7 @@ LOSS_REL = (1e-5, 1e3)      # (floor, factor of rtol), of E_ref: a loss's fall
 ENERGY_FACTOR = 1e3         # K of docs/physics/result_checks.md: |residual| <= K (rtol E + atol G)
 DEFAULT_ATOL = 1e-10        # simulate's
 MOREAU_CREATION_REL = 1e-3  # of E_ref: -residual of Moreau-Jean
+MOREAU_BOOKING_REL = 1e-2   # of E_ref: the friction booking's term, at most
 ENERGY_FLOOR = 1e-15        # J
 FLANK_REL = 1e-3            # of the clearance: play beyond a flank
 MOREAU_FLANK_STEPS = 3.0    # steps of the largest play rate: Moreau-Jean's play beyond a flank
@@ -360,7 +362,9 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
         # own check (docs/physics/result_checks.md)
         flow = float(np.max(np.abs(ch["work_drive"]) + np.abs(ch["work_axial"]) + ch["kinetic"]
                             + ch["elastic"] + sum(np.abs(ch[name]) for name in losses)))
-        bound = MOREAU_CREATION_REL * flow + _moreau_friction_excess(result, options, ch) + round_off
+        bound = (MOREAU_CREATION_REL * flow
+                 + min(_moreau_friction_excess(result, options, ch), MOREAU_BOOKING_REL * flow)
+                 + round_off)
         i = int(np.argmin(residual))
         report["energy_balance"] = _entry(
             residual[i] >= -bound, -residual[i], bound, t[i],

@@ -20,6 +20,13 @@ loads by its definition (a speed-controlled motor raising each of its
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
+Arguments with a unit (an amplitude [N], frequencies [Hz], loads [N], a
+speed [rad/s], times [s], clearances [m], a sine ``excitation``'s values)
+take SI numbers or, as a scene's fields, strings with units (``"20 N"``,
+``["5 Hz", "10 Hz"]``, ``"100 rpm"``, ``{"type": "sine", "amplitude": "20 N",
+"omega": "10 Hz"}``), converted by :func:`leadscrew.units.to_si`; a string of
+another dimension raises ``ValueError`` naming the argument.
+
 Each study has a ``plot_...`` function drawing its figure from the frame it
 returned (``leadscrew study`` writes it as a PNG beside the CSV).
 """

@@ -73,7 +73,8 @@ def test_generator_is_deterministic_and_covers_the_space():
     drawn = generate(400, DEFAULT_SEED)
     for tag, values in [("concept", {"rigid", "flexible_nut", "flexible"}),
                         ("drive", {"screw", "nut"}),
-                        ("law", {"coulomb", "arctan_velocity", "arctan_acceleration"}),
+                        ("law", {"coulomb", "arctan_velocity", "arctan_acceleration", "stribeck",
+                             "lugre"}),
                         ("contact", {"none", "exact", "bistop", "cubic"}),
                         ("motor", {"torque", "speed"})]:
         assert {c["tags"][tag] for c in drawn} == values, tag

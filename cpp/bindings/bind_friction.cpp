@@ -47,6 +47,15 @@ void bind_friction(py::module_& m) {
       "The friction laws of the registry (cpp/src/friction/registry.cpp): per law its name, "
       "what it is, its parameters (key, unit, doc, default, default_from, range, at_least) and "
       "which integrators fit (time_stepping: Moreau-Jean; ode: the ODE methods).");
+  m.def(
+      "check_friction_law",
+      [](const std::string& name, const friction::LawValues& values, const std::string& prefix) {
+        friction::make_law(name, values, prefix);
+      },
+      py::arg("name"), py::arg("values"), py::arg("prefix") = "friction.",
+      "Raises ValueError naming '<prefix><key>', the value and the range where the law "
+      "`name` does not take `values` ((key, value) pairs): an unknown key, a missing required "
+      "one, a value out of range or below the key it may not fall below (mu_static >= mu).");
 }
 
 }  // namespace leadscrew::bindings

@@ -67,6 +67,7 @@ _DIMENSION_NAMES = (
     ("N*m*s/rad", "a torsional damping coefficient"),
     ("s/m", "an inverse velocity"),
     ("s^2/m", "an inverse acceleration"),
+    ("1/m", "an inverse length (a stiffness per unit force)"),
 )
 
 

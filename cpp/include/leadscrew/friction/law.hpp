@@ -30,7 +30,12 @@
 #include <utility>
 #include <vector>
 
-#include "leadscrew/friction/laws.hpp"  // kTwoOverPi
+namespace leadscrew {
+
+// 2/pi of the arctan laws lambda_T = (2/pi) mu' lambda_N atan(k_V x), eq. (3.15)/(3.16).
+constexpr double kTwoOverPi = 0.63661977236758134308;
+
+}  // namespace leadscrew
 
 namespace leadscrew::friction {
 

@@ -612,21 +612,25 @@ def test_a_mistyped_option_is_refused_naming_it_and_the_options():
 
 
 def test_a_friction_law_parameter_is_set_in_the_scene_not_as_an_option():
-    """Keywords that are friction-law parameters (a FrictionBlock's): the
-    scene's friction section holds mu (and k_v); the others belong to laws a
-    Scene does not take."""
+    """Keywords that are friction-law parameters (a FrictionBlock's) belong
+    in a Scene's friction section, which the message names with the laws
+    that take them."""
     scene = ls.scenes.load("default")
     with pytest.raises(ValueError, match=r"^mu = 0.2 is invalid for a Scene: set the scene's "
-                                         r"friction.mu$"):
+                                         r"friction.mu \(a parameter of the friction laws "
+                                         r"'coulomb', 'arctan_velocity', "):
         ls.simulate(scene, 0.1, mu=0.2)
-    with pytest.raises(ValueError, match=r"^mu_static = 0.4 is invalid for a Scene: it is a "
-                                         r"parameter of the friction laws 'coulomb', 'stribeck', "
-                                         r"'lugre' of a FrictionBlock .*a Scene's friction "
-                                         r"section takes law, mu, k_v$"):
+    with pytest.raises(ValueError, match=r"^mu_static = 0.4 is invalid for a Scene: set the "
+                                         r"scene's friction.mu_static \(a parameter of the "
+                                         r"friction laws 'coulomb', 'stribeck', 'lugre'\)$"):
         ls.simulate(scene, 0.1, mu_static=0.4)
-    with pytest.raises(ValueError, match=r"^sigma0 = 100000 is invalid for a Scene: it is a "
-                                         r"parameter of the friction law 'lugre' "):
+    with pytest.raises(ValueError, match=r"^sigma0 = 100000 is invalid for a Scene: set the "
+                                         r"scene's friction.sigma0 \(a parameter of the "
+                                         r"friction law 'lugre'\)$"):
         ls.simulate(scene, 0.1, sigma0=1e5)
+    # and the scene takes it there
+    lugre = scene.replace(friction={"law": "lugre", "sigma0": 1e5})
+    assert lugre["friction"]["sigma0"] == 1e5
 
 
 EXACT = {"axial": 1e-4, "contact": "exact"}

@@ -297,18 +297,15 @@ def _refuse_unused(integrator: str, allowed: Sequence[str], given: Dict[str, Any
 def _unknown_scene_option(name: str, value) -> ValueError:
     """The error of a keyword simulate() does not take for a Scene: a
     friction law's parameter (a FrictionBlock's keyword; a Scene carries its
-    law's) or an unknown option (with a close match and the list)."""
+    law's in its friction section) or an unknown option (with a close match
+    and the list)."""
     laws = [law["name"] for law in _core.friction_laws()
             if any(p["key"] == name for p in law["parameters"])]
-    if laws:
-        if name in _SCENE_FRICTION_KEYS:
-            return ValueError(f"{name} = {_shown(value)} is invalid for a Scene: set the scene's "
-                              f"friction.{name}")
-        return ValueError(f"{name} = {_shown(value)} is invalid for a Scene: it is a parameter of "
-                          f"the friction law{'s' if len(laws) > 1 else ''} "
-                          f"{', '.join(map(repr, laws))} of a FrictionBlock "
-                          f"(simulate(block, friction=..., {name}=...)); a Scene's friction "
-                          f"section takes {', '.join(_SCENE_FRICTION_KEYS)}")
+    if laws or name in _SCENE_FRICTION_KEYS:
+        taken = (f" (a parameter of the friction law{'s' if len(laws) > 1 else ''} "
+                 f"{', '.join(map(repr, laws))})" if laws else "")
+        return ValueError(f"{name} = {_shown(value)} is invalid for a Scene: set the scene's "
+                          f"friction.{name}{taken}")
     options = [option for option in _SIGNATURE if option not in ("model", "t_end")]
     close = difflib.get_close_matches(name, options, n=1)
     hint = f" (did you mean {close[0]!r}?)" if close else ""

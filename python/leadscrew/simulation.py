@@ -3,16 +3,17 @@
 from __future__ import annotations
 
 import difflib
+import functools
 import inspect
 import math
 import numbers
-from typing import Any, Dict, NamedTuple, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
 from . import _core
 from .models import FrictionBlock
-from .scene import SCHEMA, Scene
+from .scene import SCHEMA, Scene, _friction_law_entry, _friction_registry
 from .units import channel_unit
 
 __all__ = ["simulate", "Result", "Event"]
@@ -174,10 +175,12 @@ def _restore_result(t, channels, data, events, stats, integrator, friction,
     return result
 
 
+@functools.lru_cache(maxsize=None)
 def _law(name: str) -> Optional[dict]:
     """The registry's entry of a friction law (None: no such law; the core
-    names the laws)."""
-    return next((law for law in _core.friction_laws() if law["name"] == name), None)
+    names the laws); looked up once per name (a scan of the registry took
+    microseconds a call)."""
+    return _friction_law_entry(name)
 
 
 def _check_scene_friction(scene: Scene, friction: Optional[str], k_v=None) -> None:
@@ -270,19 +273,24 @@ def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene]
     return None
 
 
-def _refuse_unused(integrator: str, allowed: Sequence[str], given: Dict[str, Any],
-                   scene: Optional[Scene] = None) -> None:
+def _refuse_unused(integrator: str, integrators: Callable[[], Sequence[str]],
+                   given: Dict[str, Any], scene: Optional[Scene] = None) -> None:
     """Raise if the run (``integrator`` "": the default, the first of
-    ``allowed``) would ignore an option given (:func:`unused_option`); an
-    integrator not in ``allowed`` is left to the core, which lists those that
+    ``integrators()``, those that fit the model: called only if an option is
+    given) would ignore an option given (:func:`unused_option`); an
+    integrator not among them is left to the core, which lists those that
     fit.
 
     Raises:
         ValueError: naming the option, its value, the integrator and which
             integrator or scene takes the option.
     """
-    if all(value is None for value in given.values()):
+    for value in given.values():
+        if value is not None:
+            break
+    else:  # nothing given (the common case: no lookup)
         return
+    allowed = integrators()
     runs = integrator or allowed[0]
     if runs not in allowed:
         return
@@ -299,7 +307,7 @@ def _unknown_scene_option(name: str, value) -> ValueError:
     friction law's parameter (a FrictionBlock's keyword; a Scene carries its
     law's in its friction section) or an unknown option (with a close match
     and the list)."""
-    laws = [law["name"] for law in _core.friction_laws()
+    laws = [law["name"] for law in _friction_registry()
             if any(p["key"] == name for p in law["parameters"])]
     if laws or name in _SCENE_FRICTION_KEYS:
         taken = (f" (a parameter of the friction law{'s' if len(laws) > 1 else ''} "
@@ -315,7 +323,7 @@ def _unknown_scene_option(name: str, value) -> ValueError:
 
 def _law_keys() -> set:
     """The keys of every friction law's parameters."""
-    return {p["key"] for law in _core.friction_laws() for p in law["parameters"]}
+    return {p["key"] for law in _friction_registry() for p in law["parameters"]}
 
 
 def _unknown_block_option(name: str, value, friction: str, takes: Sequence[str]) -> ValueError:
@@ -591,12 +599,13 @@ def simulate(
                                       max_order)
         _check_block_options(smooth_integrator=smooth_integrator,
                              bounce_threshold=bounce_threshold)
-        if _law(friction) is not None:  # else the core names the laws
-            allowed = _core.block_integrators(friction)
-            _refuse_unused(arguments["integrator"], allowed, given)
+        entry = _law(friction)
+        if entry is not None:  # else the core names the laws
+            integrators = functools.partial(_core.block_integrators, friction)
+            _refuse_unused(arguments["integrator"], integrators, given)
             if not arguments["integrator"]:  # None or "": the first of those that fit
-                arguments["integrator"] = allowed[0]
-        takes = [p["key"] for p in _law(friction)["parameters"]] if _law(friction) else []
+                arguments["integrator"] = integrators()[0]
+        takes = [p["key"] for p in entry["parameters"]] if entry is not None else []
         for name, value in law_parameters.items():  # no law's parameter (a law's: the core)
             if takes and name not in _law_keys():
                 raise _unknown_block_option(name, value, friction, takes)
@@ -618,7 +627,8 @@ def simulate(
             t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
             max_events, max_step, first_step, bounce_threshold, max_order, check)
         drive = model.model()
-        _refuse_unused(arguments["integrator"], _core.drive_integrators(drive.parameters),
+        _refuse_unused(arguments["integrator"],
+                       functools.partial(_core.drive_integrators, drive.parameters),
                        dict(given, bounce_threshold=bounce_threshold), model)
         with _progress_bar(progress, arguments["t_end"]) as report:
             return Result(_core.simulate_drive(drive, progress=report, **arguments))

@@ -61,9 +61,8 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
         a["check"])
     given = {name: options.get(name) for name in (*ADAPTIVE_OPTIONS, *MOREAU_OPTIONS,
                                                   "bounce_threshold")}
-    if any(value is not None for value in given.values()):
-        _refuse_unused(arguments["integrator"], _core.drive_integrators(scene.model().parameters),
-                       given, scene)
+    _refuse_unused(arguments["integrator"],
+                   lambda: _core.drive_integrators(scene.model().parameters), given, scene)
     return arguments
 
 

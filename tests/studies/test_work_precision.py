@@ -340,3 +340,19 @@ def test_configuration_values_simulate_takes_as_none():
     assert len(frame) == 2 and (frame["failure"] == "").all(), frame["failure"].tolist()
     assert frame["label"].str.endswith("defaults").all(), frame["label"].tolist()
 
+
+
+def test_the_frame_has_the_unit_of_every_column():
+    """As the other studies' frames (leadscrew study writes them as a row of
+    units): the errors in the quantity's unit, k_v in its laws'."""
+    frame = studies.work_precision(block(), 0.1, [
+        {"friction": "arctan_velocity", "integrator": "dopri5", "k_v": 100.0, "rtol": 1e-6},
+        {"friction": "arctan_acceleration", "integrator": "dopri5", "k_v": 10.0, "rtol": 1e-6}],
+        repeats=1)
+    units = frame.attrs["units"]
+    assert list(units) == list(studies.COLUMNS)
+    assert units["error_max"] == units["error_final"] == "m" and units["wall_time"] == "s"
+    assert units["k_v"] == "s/m or s^2/m" and units["steps"] == "1" and units["label"] == ""
+    exact = studies.work_precision(block(), 0.1, [{"rtol": 1e-6}], repeats=1,
+                                   quantity="v")
+    assert exact.attrs["units"]["k_v"] == "" and exact.attrs["units"]["error_max"] == "m/s"

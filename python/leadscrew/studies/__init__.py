@@ -31,6 +31,13 @@ The holding and creep studies start every run at rest (their scenes'
 ``initial`` section does not decide); :func:`min_holding_preload` starts
 each from the static equilibrium under the loads at t = 0.
 
+Arguments with a unit (an amplitude [N], frequencies [Hz], loads [N], a
+speed [rad/s], times [s], clearances [m], a sine ``excitation``'s values)
+take SI numbers or, as a scene's fields, strings with units (``"20 N"``,
+``["5 Hz", "10 Hz"]``, ``"100 rpm"``, ``{"type": "sine", "amplitude": "20 N",
+"omega": "10 Hz"}``), converted by :func:`leadscrew.units.to_si`; a string of
+another dimension raises ``ValueError`` naming the argument.
+
 Each study has a ``plot_...`` function drawing its figure from the frame it
 returned (``leadscrew study`` writes it as a PNG beside the CSV).
 """

@@ -15,13 +15,16 @@ import pandas as pd
 
 from ..errors import StudyWarning
 from ..scene import Scene
+from ..units import to_si
 
 __all__ = [
     "as_scene",
+    "in_unit",
     "check_finite",
     "check_positive",
     "check_count",
     "check_grid",
+    "with_tolerances",
     "with_loads",
     "annotate",
     "raised_rows",
@@ -44,23 +47,44 @@ def as_scene(scene: Any) -> Scene:
     raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene or a scene dict")
 
 
-def check_finite(name: str, value: Any) -> float:
-    """``value`` as a float, a finite number.
+def in_unit(name: str, value: Any, unit: Optional[str]) -> Any:
+    """A study argument given as a string with a unit (``"20 N"``, ``"5 Hz"``)
+    as a number in ``unit``, as a scene's field (:func:`leadscrew.units.to_si`);
+    any other value, or any value where ``unit`` is None (a count, a flag),
+    is returned as it is (for the checks that follow to name).
+
+    Raises:
+        ValueError: a string of another dimension, or no number with a unit,
+            naming the argument: ``amplitude = "20 m" is invalid: "20 m" is
+            not a force (N)``.
+    """
+    if unit is None or not isinstance(value, str):
+        return value
+    return to_si(name, value, unit)
+
+
+def check_finite(name: str, value: Any, unit: Optional[str] = None) -> float:
+    """``value`` as a float, a finite number (a string with a unit converted
+    to ``unit``: :func:`in_unit`).
 
     Raises:
         ValueError: naming the parameter and the value.
     """
+    value = in_unit(name, value, unit)
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise ValueError(f"{name} = {value!r} is invalid: must be a finite number")
     return float(value)
 
 
-def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
-    """``value`` as a float, finite and > 0 (>= 0 with ``allow_zero``).
+def check_positive(name: str, value: Any, allow_zero: bool = False,
+                   unit: Optional[str] = None) -> float:
+    """``value`` as a float, finite and > 0 (>= 0 with ``allow_zero``; a
+    string with a unit converted to ``unit``: :func:`in_unit`).
 
     Raises:
         ValueError: naming the parameter, the value and the valid range.
     """
+    value = in_unit(name, value, unit)
     bound = ">= 0" if allow_zero else "> 0"
     try:
         value = check_finite(name, value)
@@ -83,12 +107,26 @@ def check_count(name: str, value: Any, low: int) -> int:
     return int(value)
 
 
-def check_grid(name: str, values: Iterable[float], allow_zero: bool = False) -> np.ndarray:
+def check_grid(name: str, values: Iterable[float], allow_zero: bool = False,
+               unit: Optional[str] = None) -> np.ndarray:
     """A non-empty 1-D array of finite values > 0 (>= 0 with ``allow_zero``).
 
+    With ``unit``, entries may be strings with units (``["5 Hz", "10 Hz"]``,
+    or one string for one value), converted to ``unit`` (:func:`in_unit`).
+
     Raises:
-        ValueError: naming the parameter, the offending value and the valid range.
+        ValueError: naming the parameter, the offending value and the valid
+            range; a string entry of another dimension naming its index
+            (``frequencies[1] = "5 N" is invalid: ...``).
     """
+    if unit is not None:
+        if isinstance(values, str):
+            values = [in_unit(name, values, unit)]
+        elif (isinstance(values, (list, tuple)) or (isinstance(values, np.ndarray)
+                                                    and values.dtype.kind in "UO"
+                                                    and values.ndim == 1)) \
+                and any(isinstance(v, str) for v in values):
+            values = [in_unit(f"{name}[{i}]", v, unit) for i, v in enumerate(values)]
     try:
         array = np.atleast_1d(np.asarray(values, dtype=float))
     except (TypeError, ValueError):
@@ -99,6 +137,19 @@ def check_grid(name: str, values: Iterable[float], allow_zero: bool = False) -> 
     if not valid.all():  # the message names the first offending entry
         check_positive(f"{name} entry", float(array[np.argmin(valid)]), allow_zero)
     return array
+
+
+def with_tolerances(options: Dict[str, Any], rtol: Any = None, atol: Any = None
+                    ) -> Dict[str, Any]:
+    """:func:`leadscrew.simulate`'s keywords ``options`` with the study's
+    ``rtol`` and ``atol`` where given (None: simulate's default, 1e-8 and
+    1e-10), so that simulate refuses them only where the user gave them
+    (``integrator="moreau"`` takes neither)."""
+    options = dict(options)
+    for name, value in (("rtol", rtol), ("atol", atol)):
+        if value is not None:
+            options[name] = value
+    return options
 
 
 def with_loads(scene: Scene, **loads: Any) -> Scene:

@@ -34,12 +34,12 @@ import numpy as np
 import pandas as pd
 
 from ..errors import NoEquilibriumError, StudyWarning
-from ..excitation import Constant, Sine
+from ..excitation import Constant, Sine, check_load_unit
 from ..scene import _DEFAULT_DRIVE_TORQUE, Scene
 from ..simulation import simulate
 from ..thread import is_self_locking, lower_torque, raise_torque
 from ._common import (annotate, as_scene, axes, check_count, check_finite, check_positive,
-                      numeric_or_nan, raised_rows)
+                      in_unit, numeric_or_nan, raised_rows, with_tolerances)
 from ._batch import check_simulate_options
 from ._sweep import run_cases
 
@@ -154,8 +154,8 @@ def _alternating_excitation(scene: Scene, amplitude: Optional[float],
     if frequency is None:
         frequency = (sine["omega"] / (2.0 * math.pi) if sine is not None
                      else FALLBACK_FREQUENCY)
-    return (check_positive("amplitude", amplitude), check_positive("frequency", frequency),
-            excitation_from)
+    return (check_positive("amplitude", amplitude, unit="N"),
+            check_positive("frequency", frequency, unit="Hz"), excitation_from)
 
 
 def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
@@ -184,7 +184,7 @@ def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
         ValueError: invalid scene or a force that is not finite.
     """
     scene = as_scene(scene)
-    axial_force = check_finite("axial_force", axial_force)
+    axial_force = check_finite("axial_force", axial_force, unit="N")
     thread, mu = scene.thread, scene["friction"]["mu"]
     if axial_force == 0.0:
         return 0.0, 0.0
@@ -228,7 +228,9 @@ def alternating_scene(scene: Scene, amplitude: float, frequency: float, offset: 
         ValueError: a value is not finite, or the frequency is not > 0 (the
             scene check names any other invalid field).
     """
-    frequency = check_positive("frequency", frequency)
+    frequency = check_positive("frequency", frequency, unit="Hz")
+    if backlash is not None:
+        backlash = in_unit("backlash", backlash, "m")
     return _alternating(scene, amplitude, 2.0 * math.pi * frequency, offset, backlash, on_flank,
                         phase)
 
@@ -237,9 +239,9 @@ def _alternating(scene: Scene, amplitude: float, omega: float, offset: float,
                  backlash: Optional[float], on_flank: bool, phase: float) -> Scene:
     """alternating_scene with the angular frequency omega [rad/s] > 0 as given
     (a user's Sine keeps its omega bit for bit: no round trip through f)."""
-    amplitude = check_finite("amplitude", amplitude)
-    offset = check_finite("offset", offset)
-    phase = check_finite("phase", phase)
+    amplitude = check_finite("amplitude", amplitude, unit="N")
+    offset = check_finite("offset", offset, unit="N")
+    phase = check_finite("phase", phase, unit="rad")
     changes: Dict[str, Any] = {"loads": {"axial_force": {
         "type": "sine", "amplitude": float(amplitude), "omega": float(omega),
         "phase": float(phase), "offset": float(offset)}}}
@@ -352,7 +354,7 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         ValueError: invalid arguments.
         SimulationError, JammingError: the simulation failed.
     """
-    frequency = check_positive("frequency", frequency)
+    frequency = check_positive("frequency", frequency, unit="Hz")
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     judged_from = check_count("judged_from", judged_from, 0)
@@ -406,8 +408,8 @@ def position_holding(
     cycles: int = 8,
     settle_cycles: int = 1,
     points_per_cycle: int = 200,
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
     executor=None,
     progress: bool = True,
     **simulate_options: Any,
@@ -438,7 +440,8 @@ def position_holding(
         cycles: excitation cycles simulated (both runs last cycles / f).
         settle_cycles: cycles before the creep fit.
         points_per_cycle: output points per cycle.
-        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        rtol, atol: integration tolerances (relative [1], absolute [SI];
+            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` on which the two
             runs go, at once (default: the calling thread, one after the
             other: each takes milliseconds; a Dask client's executor runs
@@ -472,10 +475,10 @@ def position_holding(
     torque = _constant_torque(scene)
     amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)
     static_force = -amplitude if static_force is None else check_finite("static_force",
-                                                                         static_force)
+                                                                         static_force, unit="N")
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
-    options = dict(simulate_options, rtol=rtol, atol=atol)
+    options = with_tolerances(simulate_options, rtol, atol)
     check_simulate_options(scene, options, cycles / frequency)
     centred = scene.replace(initial=dict(_AT_REST, play_position=0.0))
     runs = [centred.replace(loads={"axial_force": static_force}),
@@ -546,27 +549,44 @@ def plot_position_holding(frame: pd.DataFrame, ax: Optional[Any] = None):
     return ax
 
 
+#: The units of a sine excitation's parameters (those of an axial force).
+_SINE_UNITS = {"amplitude": "N", "omega": "rad/s", "phase": "rad", "offset": "N"}
+
+
 def _sine_parameters(excitation: Any) -> Dict[str, float]:
+    """A sine excitation of the axial force as ``{"amplitude", "omega",
+    "phase", "offset"}`` [N, rad/s, rad, N]: from a :class:`~leadscrew.Sine`
+    (a force's, or of plain numbers) or a dict ``{"type": "sine", ...}``
+    whose values may be strings with units, as in a scene (``"20 N"``,
+    ``"10 Hz"``).
+
+    Raises:
+        ValueError: not a sine, an unknown or missing key, a value that is no
+            finite number, or one of another dimension (naming
+            ``excitation.<key>``).
+    """
     if isinstance(excitation, Sine):
+        check_load_unit("excitation", excitation, "N")
         return {"amplitude": excitation.amplitude, "omega": excitation.omega,
                 "phase": excitation.phase, "offset": excitation.offset}
     if isinstance(excitation, dict) and excitation.get("type") == "sine":
-        keys = {"type", "amplitude", "omega", "phase", "offset"}
+        keys = {"type", *_SINE_UNITS}
         unknown = set(excitation) - keys
         if unknown:
             raise ValueError(f"excitation.{sorted(unknown)[0]} is not a known key; a sine "
                              "excitation takes amplitude, omega, phase, offset")
-        try:
-            out = {"amplitude": float(excitation["amplitude"]),
-                   "omega": float(excitation["omega"]),
-                   "phase": float(excitation.get("phase", 0.0)),
-                   "offset": float(excitation.get("offset", 0.0))}
-        except KeyError as missing:
-            raise ValueError(f"excitation.{missing.args[0]} is missing: a sine excitation "
-                             "needs amplitude and omega") from None
-        except (TypeError, ValueError):
-            raise ValueError(f"excitation = {excitation!r} is invalid: values must be "
-                             "numbers") from None
+        missing = [key for key in ("amplitude", "omega") if key not in excitation]
+        if missing:
+            raise ValueError(f"excitation.{missing[0]} is missing: a sine excitation "
+                             "needs amplitude and omega")
+        out = {}
+        for key, unit in _SINE_UNITS.items():
+            value = in_unit(f"excitation.{key}", excitation.get(key, 0.0), unit)
+            try:
+                out[key] = float(value)
+            except (TypeError, ValueError, OverflowError):
+                raise ValueError(f"excitation = {excitation!r} is invalid: values must be "
+                                 "numbers") from None
         if not all(math.isfinite(v) for v in out.values()):
             raise ValueError(f"excitation = {excitation!r} is invalid: values must be finite")
         return out
@@ -711,8 +731,8 @@ def min_holding_preload(
     settle_cycles: int = 1,
     points_per_cycle: int = 100,
     ramp_cycles: int = 0,
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
     executor=None,
     progress: bool = True,
     **simulate_options: Any,
@@ -804,7 +824,8 @@ def min_holding_preload(
             themselves, >= 0 (default 0: the full loads from t = 0, the
             drive in equilibrium under them); a ramp must be long against the
             drive's slowest mode on a closed flank.
-        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        rtol, atol: integration tolerances (relative [1], absolute [SI];
+            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores).
         progress: show a progress bar per round.
@@ -859,10 +880,10 @@ def min_holding_preload(
     if sine["amplitude"] == 0.0 or sine["omega"] <= 0.0:
         raise ValueError(f"excitation = {excitation!r} is invalid: needs amplitude != 0 and "
                          "omega > 0")
-    creep_limit = check_positive("creep_limit", creep_limit, allow_zero=True)
+    creep_limit = check_positive("creep_limit", creep_limit, allow_zero=True, unit="m")
     if isinstance(direction, bool) or direction not in (1, -1, 1.0, -1.0):
         raise ValueError(f"direction = {direction!r} is invalid: must be +1 or -1")
-    tolerance = check_positive("tolerance", tolerance)
+    tolerance = check_positive("tolerance", tolerance, unit="")
     max_iterations = check_count("max_iterations", max_iterations, 1)
     points_per_round = check_count("points_per_round", points_per_round, 1)
     ramp_cycles = check_count("ramp_cycles", ramp_cycles, 0)
@@ -877,11 +898,11 @@ def min_holding_preload(
     quasi_static = max(0.0, amplitude - float(direction) * sine["offset"] + torque_share)
     if upper is None:
         upper = UPPER_FACTOR * quasi_static if quasi_static > 0.0 else amplitude
-    upper = check_positive("upper", upper)
+    upper = check_positive("upper", upper, unit="N")
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     frequency = sine["omega"] / (2.0 * math.pi)
-    options = dict(simulate_options, rtol=rtol, atol=atol)
+    options = with_tolerances(simulate_options, rtol, atol)
     check_simulate_options(scene, options, (ramp_cycles + cycles) / frequency)
     case = functools.partial(_preload_case, scene=scene, sine=sine, direction=float(direction),
                              cycles=cycles, settle_cycles=settle_cycles,

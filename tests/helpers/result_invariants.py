@@ -105,7 +105,7 @@ distributions from about 500 runs, gaps and violations from two runs of
   (issue 17, reproduction 10: a step that does not resolve the scene).
 - ``flank_penetration`` (exact play only): gap >= -bound, the flanks are
   unilateral. Event-driven: bound 1e-3 c_a (the simulator's own
-  ``kFlankTolerance``, drive_simulation.cpp; observed at most 1e-5 c_a).
+  ``kFlankTolerance``, drive/hybrid.hpp; observed at most 1e-5 c_a).
   Moreau-Jean keeps the flanks at the velocity level, so a contact closes
   one step late: bound min(c_a, 1e-3 c_a + 3 dt max |d play / dt|), the
   latter from the output points (observed: up to 2.9 steps of it; beyond

@@ -352,7 +352,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
     const int gap = ch.index("gap");
     c.applies = spec.clearance > 0.0 && gap >= 0;
     if (c.applies) {
-      // The free flight's own check (drive_simulation.cpp, kFlankTolerance)
+      // The free flight's own check (drive/hybrid_impacts.cpp, kFlankTolerance)
       // allows 1e-3 of the clearance; Moreau-Jean closes a flank at the
       // velocity level, up to three steps of the play's motion late (and a
       // play that drifts beyond that through its flank is a step too long).

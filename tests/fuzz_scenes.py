@@ -137,6 +137,7 @@ def main(argv=None) -> int:
                           "invariants": outcome.get("invariants", []),
                           "report": outcome.get("report", {}),
                           "seconds": outcome.get("seconds"),
+                          "energy_accumulation": outcome.get("energy_accumulation"),
                           "tags": case.get("tags", {}), "hostile": case.get("hostile", []),
                           "scene": case["scene"], "options": case["options"]}
                 line = json.dumps(record, default=repr) + "\n"

@@ -72,7 +72,8 @@ def test_generator_is_deterministic_and_covers_the_space():
     drawn = generate(400, DEFAULT_SEED)
     for tag, values in [("concept", {"rigid", "flexible_nut", "flexible"}),
                         ("drive", {"screw", "nut"}),
-                        ("law", {"coulomb", "arctan_velocity", "arctan_acceleration"}),
+                        ("law", {"coulomb", "arctan_velocity", "arctan_acceleration", "stribeck",
+                             "lugre"}),
                         ("contact", {"none", "exact", "bistop", "cubic"}),
                         ("motor", {"torque", "speed"})]:
         assert {c["tags"][tag] for c in drawn} == values, tag
@@ -177,7 +178,8 @@ def test_run_isolated_reports_crashes_and_hangs():
 
 def test_failures_are_the_outcomes_not_allowed():
     assert set(FAILURES) | ALLOWED == set(OUTCOMES)
-    assert ALLOWED == {"passed", "value_error_named", "simulation_error", "jamming_error"}
+    assert ALLOWED == {"passed", "value_error_named", "simulation_error", "self_check_raised",
+                       "jamming_error"}
 
 
 # --- the checker on hand-made results -----------------------------------------

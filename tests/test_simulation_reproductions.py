@@ -480,3 +480,98 @@ def test_17_ctrl_c_interrupts_a_run_within_half_a_second(what):
     assert "INTERRUPTED" in lines, out.stdout
     assert float(lines["INTERRUPTED"]) < 0.5
     assert lines["USABLE"] == "True"
+
+
+# Found by the new-user review of this issue's work.
+
+def _resting_on_its_flank(mass, play_position=None):
+    """The default drive at rest, its load held by the thread alone (no motor
+    torque): mass m, axial force -m g. From m = 22 kg the Painleve condition
+    holds (mu' |G_NT| >= G_NN); the load stays inside the static band."""
+    changes = {"load": {"mass": mass}, "loads": {"drive_torque": 0.0, "axial_force": -9.81 * mass}}
+    if play_position is not None:
+        changes.update(backlash={"axial": 1e-4, "contact": "exact"},
+                       initial={"play_position": play_position})
+    return ls.scenes.load("default").replace(**changes)
+
+
+@pytest.mark.parametrize("integrator,options", [("event_driven", {}),
+                                                ("moreau", {"dt": 1e-5})])
+@pytest.mark.parametrize("play_position", [None, 5e-5, -5e-5])
+def test_review_a_drive_resting_on_its_loaded_flank_in_the_painleve_regime_holds(
+        integrator, options, play_position):
+    """The LCP of one normal-force sign may miss the stick that holds it in
+    the Painleve regime: the nut on its loaded flank opened and jammed at its
+    first impact 2.6e-11 s later (event-driven), Moreau-Jean jammed at t = 0
+    without play and let the load fall through the thread with it."""
+    scene = _resting_on_its_flank(22.0, play_position)
+    resting = ls.simulate(_resting_on_its_flank(22.0), 0.05, check=False)  # no play: always held
+    assert resting["u_load"][-1] == 0.0
+    r = ls.simulate(scene, 0.05, integrator=integrator, check=False, **options)
+    # held where it starts, or (starting on the other flank) down by the play
+    # onto the flank that carries the load, and held there
+    fall = 1e-4 if play_position == -5e-5 else 0.0
+    assert r["u_load"][-1] == pytest.approx(-fall, abs=2e-7)
+    assert r["stick"][-1] == 1.0
+    assert r["normal_force"][-1] == pytest.approx(resting["normal_force"][-1], rel=1e-9)
+
+
+def test_review_moreau_jeans_energy_check_accepts_the_schemes_own_friction_booking():
+    """The default scene with Moreau-Jean at its default step was refused by
+    energy_balance (5.0e-6 J created against 1.4e-6 J): a step's friction
+    impulse is booked at the slip at its end while the positions advance
+    with the theta-average, a first-order term wherever the slip speeds up
+    (ResultCheckSpec::step_friction_excess). It is now in the bound; the
+    answer agrees with the event-driven one."""
+    scene = ls.scenes.load("default")
+    t = np.linspace(0.0, 1.0, 11)
+    exact = ls.simulate(scene, 1.0, rtol=1e-10, atol=1e-14, t_eval=t)
+    for dt in (None, 2e-3):
+        options = {} if dt is None else {"dt": dt}
+        r = ls.simulate(scene, 1.0 if dt else 0.1, integrator="moreau", **options)
+        assert r.checks["energy_balance"]["passed"]
+        rows = np.searchsorted(r.t, t[t <= r.t[-1]])
+        np.testing.assert_allclose(r["u_load"][rows], exact["u_load"][: len(rows)], atol=5e-5)
+
+
+def test_review_moreau_jeans_flank_gap_bound_does_not_depend_on_the_output_times():
+    """The flank_gap tolerance took the play's rate from the output rows:
+    11 rows over 1 s made it 100 times tighter than every step's rows did,
+    and a correct run was refused."""
+    scene = ls.scenes.load("position_holding").replace(friction={"law": "coulomb"},
+                                                       backlash={"contact": "exact"})
+    bounds = []
+    for t_eval in (None, np.linspace(0.0, 1.0, 11)):
+        r = ls.simulate(scene, 1.0, integrator="moreau", dt=1e-4, t_eval=t_eval)
+        bounds.append(r.checks["flank_gap"]["bound"])
+    assert bounds[0] == bounds[1]
+
+
+def test_review_moreau_jeans_restituting_step_creates_no_energy():
+    """Fuzz case (seed 3338614132711679): a rigid drive with exact play and
+    Newton restitution e = 1 under Coulomb friction; Moreau-Jean's step that
+    closed the flank created 2.7e-4 J (0.3 of the run's energy scale) at
+    every dt, as Kane and Levinson's paradox does at an impact, and the
+    self-check let it pass. The step now takes the largest restitution that
+    creates no more than its plastic version, as the event-driven impact
+    does."""
+    scene = ls.Scene.from_dict({
+        "concept": "rigid",
+        "thread": {"pitch": 0.0034402036125209525, "mean_diameter": 0.007603260656619499},
+        "friction": {"law": "coulomb", "mu": 0.6428592238063809},
+        "backlash": {"axial": 0.0009448993211137465, "contact": "exact", "restitution": 1.0},
+        "rotor": {"inertia": 0.00038649918074686745}, "load": {"mass": 0.857529056882477},
+        "loads": {"axial_force": {"type": "sine", "amplitude": -0.9297532013089855,
+                                  "omega": 1538.3695374648876, "phase": 1.034684946709381,
+                                  "offset": 0.8821517505180909},
+                  "drive_torque": {"type": "table",
+                                   "times": [0.005302112395912321, 0.006814573490251086,
+                                             0.014398297702443445, 0.04666615755078447],
+                                   "values": [0.0005388124722896245, -0.0002703199598216808,
+                                              -0.0014019422328079895, -0.00034208540103732065]}},
+        "initial": {"play_position": 0.00047244966055687325}})
+    for dt in (4.483262026216875e-05, 4.483262026216875e-06):
+        r = ls.simulate(scene, 0.0496556958641739, integrator="moreau", dt=dt)
+        flow = np.max(np.abs(r["work_drive"]) + np.abs(r["work_axial"]) + r["kinetic"])
+        assert r.events or np.any(r["normal_force"] != 0)  # the flank closes
+        assert np.min(r["energy_residual"]) >= -1e-9 * flow

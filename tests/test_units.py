@@ -42,7 +42,10 @@ def test_every_block_channel_has_its_unit():
     assert r.units() == {
         "t": "s", "u": "m", "v": "m/s", "acceleration": "m/s^2", "friction_force": "N",
         "normal_force": "N", "force": "N", "stick": "", "work_force": "J",
-        "friction_loss": "J", "kinetic": "J", "energy_residual": "J"}
+        "friction_loss": "J", "kinetic": "J", "energy_residual": "J", "spring_force": "N",
+        "elastic": "J"}
+    lugre = ls.simulate(ls.FrictionBlock(1.0, 0.3, force=1.0), 0.01, friction="lugre")
+    assert lugre.units()["bristle_deflection"] == "m"
 
 
 @pytest.mark.parametrize("name, unit", [

@@ -84,8 +84,13 @@ void bind_drive(py::module_& m) {
             p.backlash = model::parse_backlash_contact(v);
           })
       .def_property(
-          "friction", [](const DriveParameters& p) { return friction_law_name(p.friction); },
-          [](DriveParameters& p, const std::string& v) { p.friction = parse_friction_law(v); })
+          "friction", [](const DriveParameters& p) { return p.friction; },
+          [](DriveParameters& p, const std::string& v) {
+            friction::law_type(v);  // raises for an unknown law
+            p.friction = v;
+          })
+      .def_readwrite("friction_values", &DriveParameters::friction_values,
+                     "the law's parameters besides mu and k_v, as (key, value) pairs")
       .def_readwrite("thread", &DriveParameters::thread)
       .def_property(
           "drive_torque", [](const DriveParameters& p) { return p.drive_torque; },

@@ -1,4 +1,6 @@
 #include <array>
+#include <map>
+#include <optional>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -106,34 +108,42 @@ void bind_model(py::module_& m) {
       });
 
   py::class_<model::FrictionBlock>(m, "FrictionBlock")
-      .def(py::init([](double mass, double mu, double g, py::handle force, double u0, double v0) {
-             return model::FrictionBlock(mass, mu, g, to_excitation(force, "force"), u0, v0);
+      .def(py::init([](double mass, double mu, double g, py::handle force, double u0, double v0,
+                       std::optional<double> mu_static, double stiffness, double pull_speed) {
+             return model::FrictionBlock(mass, mu, g, to_excitation(force, "force"), u0, v0,
+                                         mu_static ? *mu_static : -1.0, stiffness, pull_speed);
            }),
            py::arg("mass"), py::arg("mu"), py::arg("g") = 9.81, py::arg("force") = 0.0,
-           py::arg("initial_position") = 0.0, py::arg("initial_velocity") = 0.0)
+           py::arg("initial_position") = 0.0, py::arg("initial_velocity") = 0.0,
+           py::arg("mu_static") = py::none(), py::arg("stiffness") = 0.0,
+           py::arg("pull_speed") = 0.0)
       .def_readonly("mass", &model::FrictionBlock::mass)
       .def_readonly("mu", &model::FrictionBlock::mu)
       .def_readonly("g", &model::FrictionBlock::g)
       .def_readonly("force", &model::FrictionBlock::force)
       .def_readonly("initial_position", &model::FrictionBlock::initial_position)
       .def_readonly("initial_velocity", &model::FrictionBlock::initial_velocity)
+      .def_readonly("mu_static", &model::FrictionBlock::mu_static)
+      .def_readonly("stiffness", &model::FrictionBlock::stiffness)
+      .def_readonly("pull_speed", &model::FrictionBlock::pull_speed)
       .def_property_readonly("normal_force", &model::FrictionBlock::normal_force);
 
   m.def("block_integrators", [](const std::string& friction) {
-    return model::integrators_for(parse_friction_law(friction));
+    return model::integrators_for(friction);
   });
 
   m.def(
       "simulate_block",
       [](const model::FrictionBlock& block, double t_end, const std::string& friction,
-         const std::string& integrator, double k_v, double rtol, double atol, double dt,
+         const std::string& integrator, const std::map<std::string, double>& law, double rtol,
+         double atol, double dt,
          double theta, std::vector<double> t_eval, long max_steps, long max_events,
          double max_step, double first_step, int max_order, bool check, py::object progress) {
         model::BlockSimulationOptions options;
         options.check = check;
-        options.friction = parse_friction_law(friction);
+        options.friction = friction;
         options.integrator = integrator;
-        options.k_v = k_v;
+        options.law_values.assign(law.begin(), law.end());
         options.integrator_options =
             integrator_options(rtol, atol, max_steps, max_step, first_step, max_order);
         options.dt = dt;
@@ -148,7 +158,7 @@ void bind_model(py::module_& m) {
         return model::simulate(block, options);
       },
       py::arg("block"), py::arg("t_end"), py::arg("friction"), py::arg("integrator"),
-      py::arg("k_v"), py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"),
+      py::arg("law"), py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"),
       py::arg("t_eval"), py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
       py::arg("first_step"), py::arg("max_order"), py::arg("check") = true,
       py::arg("progress") = py::none());

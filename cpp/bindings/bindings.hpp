@@ -17,6 +17,7 @@ void bind_core(pybind11::module_& m);    // error types, the helper threads (wak
 void bind_thread(pybind11::module_& m);  // Thread and closed-form mechanics
 void bind_lcp(pybind11::module_& m);     // LCP solvers (submodule "lcp")
 void bind_excitation(pybind11::module_& m);
+void bind_friction(pybind11::module_& m);  // the friction laws' registry
 void bind_model(pybind11::module_& m);     // friction block, simulate, results
 void bind_drive(pybind11::module_& m);     // lead-screw drive models
 

@@ -6,6 +6,7 @@ PYBIND11_MODULE(_core, m) {
   leadscrew::bindings::bind_thread(m);
   leadscrew::bindings::bind_lcp(m);
   leadscrew::bindings::bind_excitation(m);
+  leadscrew::bindings::bind_friction(m);
   leadscrew::bindings::bind_model(m);
   leadscrew::bindings::bind_drive(m);
   leadscrew::bindings::bind_integrate(m);

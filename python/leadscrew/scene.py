@@ -76,6 +76,71 @@ _MODULUS_RANGE_DOC = (", in [1e4, 1e13] Pa: from soft foams and elastomers (abou
                       "to beyond diamond (1.2e12 Pa)")
 _DENSITY_RANGE_DOC = ", in [1, 1e5] kg/m^3: from aerogels to beyond osmium (22,590 kg/m^3)"
 
+# The friction laws' parameters that every scene's friction section has (mu;
+# k_v with its default even where the law takes none, as scenes have always
+# carried it); the others are optional, each law checks its own.
+_FRICTION_COMMON = ("mu", "k_v")
+
+
+def _friction_section() -> Dict[str, Field]:
+    """The friction section from the core's registry of laws
+    (``_core.friction_laws()``): the law, mu, k_v and every law's other
+    parameters (optional; only the law that takes one accepts it)."""
+    laws = _core.friction_laws()
+    law_doc = "; ".join(f"'{law['name']}': {law['doc']}" for law in laws)
+    section = {
+        "law": Field(f"flank friction law: {law_doc}", "", "coulomb", kind="choice",
+                     choices=tuple(law["name"] for law in laws)),
+        "mu": Field("flank friction coefficient (the kinetic one where a law has a static one)",
+                    "", None, **NONNEGATIVE),
+        "k_v": Field("gain k_V of the arctan laws and of a set-valued law's regularization "
+                     "with an ODE integrator (slip velocity in m/s, or slip acceleration in "
+                     "m/s^2, times k_V; in s^2/m for 'arctan_acceleration')", "s/m", 1.0e4,
+                     **POSITIVE),
+    }
+    for law in laws:
+        for parameter in law["parameters"]:
+            key = parameter["key"]
+            if key in section:
+                continue
+            takers = [other["name"] for other in laws
+                      if any(q["key"] == key for q in other["parameters"])]
+            default = (f"default {parameter['default']:g}" if parameter["default"] is not None
+                       else f"default friction.{parameter['default_from']}")
+            section[key] = Field(f"{parameter['doc']} ({default}; laws "
+                                 f"{', '.join(repr(t) for t in takers)})", parameter["unit"],
+                                 OPTIONAL, low=parameter["low"], high=parameter["high"],
+                                 low_open=parameter["low_open"],
+                                 high_open=parameter["high_open"])
+    return section
+
+
+def _friction_values(friction: Dict[str, Any]) -> list:
+    """The law's parameters of a checked friction section besides mu and k_v,
+    as the core takes them ((key, value) pairs)."""
+    return [(key, value) for key, value in friction.items()
+            if key not in ("law",) + _FRICTION_COMMON]
+
+
+def _check_friction(friction: Dict[str, Any]) -> None:
+    """The friction section's parameters against its law: a parameter the law
+    does not take is refused, and the law checks its own (mu_static >= mu)."""
+    name = friction["law"]
+    law = next(law for law in _core.friction_laws() if law["name"] == name)
+    takes = {parameter["key"] for parameter in law["parameters"]}
+    for key, value in _friction_values(friction):
+        if key not in takes:
+            own = sorted(takes - set(_FRICTION_COMMON))
+            _fail(f"friction.{key}", value,
+                  f"absent with friction.law = {name!r}: that law takes "
+                  + (", ".join(own) + " besides mu" if own else "mu alone")
+                  + (" and k_v" if "k_v" in takes else ""))
+    values = [("mu", friction["mu"])] + _friction_values(friction)
+    if "k_v" in takes:
+        values.append(("k_v", friction["k_v"]))
+    _core.check_friction_law(name, values)
+
+
 SCHEMA: Dict[str, Any] = {
     "concept": Field("model concept of thesis section 4.1: 'rigid' (4.1.1, one degree of "
                      "freedom without backlash), 'flexible_nut' (4.1.2), 'flexible' (4.1.3, "
@@ -97,16 +162,7 @@ SCHEMA: Dict[str, Any] = {
                              "trapezoidal", "rad", 0.0, low=0.0, high=math.pi, high_open=True),
         "hand": Field("thread hand", "", "right", kind="choice", choices=("right", "left")),
     },
-    "friction": {
-        "law": Field("flank friction law: 'coulomb' (exact, LCP), 'arctan_velocity' "
-                     "(eq. 3.16), 'arctan_acceleration' (eq. 3.15)", "", "coulomb",
-                     kind="choice", choices=("coulomb", "arctan_velocity",
-                                             "arctan_acceleration")),
-        "mu": Field("flank friction coefficient", "", None, **NONNEGATIVE),
-        "k_v": Field("gain k_V of the arctan laws (slip velocity in m/s, or slip "
-                     "acceleration in m/s^2, times k_V; in s^2/m for "
-                     "'arctan_acceleration')", "s/m", 1.0e4, **POSITIVE),
-    },
+    "friction": _friction_section(),
     "backlash": {
         "axial": Field("total axial clearance c_a of the thread (the nut starts centred)", "m",
                        None, **NONNEGATIVE),
@@ -676,6 +732,7 @@ def _effective(data: Dict[str, Any]) -> Dict[str, Any]:
 
 
 def _check_consistency(data: Dict[str, Any]) -> None:
+    _check_friction(data["friction"])
     loads = data["loads"]
     if "drive_torque" in loads and "drive_speed" in loads:
         raise ValueError("loads.drive_speed = {!r} is invalid: give either loads.drive_torque "
@@ -778,9 +835,16 @@ def _derived_values(data: Dict[str, Any]) -> Dict[str, Any]:
         d["contact_stiffness"] = k
         # Critical damping of the contact's linear-equivalent stiffness at d_0.
         equivalent = k * _power(depth, exponent - 1.0)
-        d["contact_damping"] = backlash.get("damping", 2.0 * math.sqrt(equivalent * translating))
+        d["contact_damping"] = backlash.get("damping", 2.0 * _root(equivalent * translating))
         d["contact_penetration"] = depth
     return d
+
+
+def _root(x: float) -> float:
+    """sqrt(x), NaN where x is negative or NaN (a quantity the checks then
+    name the input of, instead of math's 'domain error': a stiffness that
+    came out negative from an input that is not)."""
+    return math.sqrt(x) if x >= 0.0 else math.nan
 
 
 def _power(base: float, exponent: float) -> float:
@@ -971,7 +1035,7 @@ def _spring_problem(derived: Dict[str, Any], model: "_core.DriveModel") -> Optio
     for spring in model.springs:  # none in the rigid concept
         part, kind = spring["name"].split(" ")
         inertia = "mass" if kind == "axial" else "inertia"
-        omega = math.sqrt(spring["stiffness"] / derived[f"{part}_{inertia}"])
+        omega = _root(spring["stiffness"] / derived[f"{part}_{inertia}"])
         if not omega <= _MAX_NATURAL_FREQUENCY:
             return (f"the {part}'s {kind} natural frequency sqrt(stiffness / {part} {inertia}) "
                     f"comes to {omega!r} rad/s: must be at most {_MAX_NATURAL_FREQUENCY:g} "
@@ -1070,6 +1134,7 @@ def _core_parameters(data: Dict[str, Any], d: Dict[str, Any]) -> "_core.DrivePar
     p.thread = _thread(data)
     f = data["friction"]
     p.friction, p.mu, p.k_v = f["law"], f["mu"], f["k_v"]
+    p.friction_values = _friction_values(f)
     for key in ("screw_mass", "screw_inertia", "nut_mass", "nut_inertia",
                 "screw_axial_rigidity", "screw_torsional_rigidity", "nut_axial_stiffness",
                 "nut_torsional_stiffness", "screw_axial_stiffness", "screw_torsional_stiffness"):

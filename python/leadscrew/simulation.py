@@ -173,6 +173,12 @@ def _restore_result(t, channels, data, events, stats, integrator, friction,
     return result
 
 
+def _law(name: str) -> Optional[dict]:
+    """The registry's entry of a friction law (None: no such law; the core
+    names the laws)."""
+    return next((law for law in _core.friction_laws() if law["name"] == name), None)
+
+
 def _check_scene_friction(scene: Scene, friction: Optional[str], k_v=None) -> None:
     """A Scene carries its friction law and gain: ``friction`` and ``k_v``
     may only repeat them (another value would be ignored)."""
@@ -326,15 +332,19 @@ def simulate(
     max_order: Optional[int] = None,
     check: bool = True,
     progress: bool = False,
+    **law_parameters,
 ) -> Result:
     """Simulate a model from t = 0 to ``t_end``.
 
     Args:
         model: a :class:`~leadscrew.FrictionBlock` or a :class:`~leadscrew.Scene`.
         t_end: end time [s], > 0.
-        friction: for a FrictionBlock: ``"coulomb"`` (exact, default),
-            ``"arctan_velocity"`` (eq. 3.16) or ``"arctan_acceleration"``
-            (eq. 3.15). A Scene carries its friction law (``friction.law``).
+        friction: for a FrictionBlock: a law of the registry
+            (:func:`leadscrew.friction_laws`): ``"coulomb"`` (exact,
+            default; with the block's ``mu_static``), ``"stribeck"``,
+            ``"lugre"``, ``"arctan_velocity"`` (eq. 3.16) or
+            ``"arctan_acceleration"`` (eq. 3.15). A Scene carries its
+            friction law (``friction.law``).
         integrator: for ``"coulomb"``: ``"event_driven"`` (default) or
             ``"moreau"``; for the regularized laws an ODE integrator:
             ``"cvode_bdf"`` (default), ``"cvode_adams"``, ``"dopri5"``, ...
@@ -370,6 +380,10 @@ def simulate(
             updates about every 0.1 s of wall time). Whether or not it is
             shown, Ctrl-C interrupts a run within that time with
             ``KeyboardInterrupt``, the process left usable.
+        **law_parameters: for a FrictionBlock: the friction law's other
+            parameters by their keys (``sigma0``, ``sigma1``, ``viscous``,
+            ``stribeck_velocity``, ``stribeck_exponent``, ...; the law lists
+            them, with units and defaults). A Scene carries its own.
 
     Returns:
         A :class:`Result`.
@@ -394,12 +408,21 @@ def simulate(
             arguments["integrator"] = _core.block_integrators(friction)[0]
         _check_block_options(smooth_integrator=smooth_integrator,
                              bounce_threshold=bounce_threshold)
+        law = {name: _real(name, value) for name, value in law_parameters.items()}
+        takes = {p["key"] for p in _law(friction)["parameters"]} if _law(friction) else set()
+        if k_v is not None:
+            law["k_v"] = _real("k_v", k_v)
+        elif "k_v" in takes:
+            law["k_v"] = 100.0  # the block's default gain (the thesis's Table 3.1 range)
         with _progress_bar(progress, arguments["t_end"]) as report:
             return Result(_core.simulate_block(
-                model, friction=friction, k_v=100.0 if k_v is None else _real("k_v", k_v),
-                check=_flag("check", check), progress=report, **arguments))
+                model, friction=friction, law=law, check=_flag("check", check),
+                progress=report, **arguments))
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
+        for name, value in law_parameters.items():
+            raise ValueError(f"{name} = {value!r} is invalid for a Scene: set the scene's "
+                             f"friction.{name}")
         # integrator None: the core takes the model's default
         arguments = _drive_arguments(
             t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
@@ -414,6 +437,7 @@ def simulate(
 # batch's keywords are these).
 # (progress is the display of one run: a study shows its own over its cases.)
 _OPTIONS = {name: parameter for name, parameter in inspect.signature(simulate).parameters.items()
-            if name not in ("model", "t_end", "t_eval", "progress")}
+            if name not in ("model", "t_end", "t_eval", "progress")
+            and parameter.kind is not inspect.Parameter.VAR_KEYWORD}
 # Their defaults (what simulate takes for an option left out).
 _OPTION_DEFAULTS = {name: parameter.default for name, parameter in _OPTIONS.items()}

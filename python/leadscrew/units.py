@@ -67,6 +67,7 @@ _DIMENSION_NAMES = (
     ("N*m*s/rad", "a torsional damping coefficient"),
     ("s/m", "an inverse velocity"),
     ("s^2/m", "an inverse acceleration"),
+    ("1/m", "an inverse length (a stiffness per unit force)"),
 )
 
 
@@ -340,13 +341,13 @@ def load_quantity(name: str, value: Any, units: Sequence[str]) -> Tuple[float, s
 # --- units of result channels -------------------------------------------------
 
 # Channels named in full (the friction block's and the drive's, see
-# cpp/src/model/friction_block.cpp and drive_simulation.cpp), by unit.
+# cpp/src/model/block/block_common.cpp and drive_simulation.cpp), by unit.
 _CHANNELS_BY_UNIT = {
     "s": ("t",),
-    "m": ("u", "gap", "play"),
+    "m": ("u", "gap", "play", "bristle_deflection"),
     "m/s": ("v", "slip_velocity"),
     "m/s^2": ("acceleration",),
-    "N": ("force", "axial_force", "normal_force", "friction_force"),
+    "N": ("force", "axial_force", "normal_force", "friction_force", "spring_force"),
     "N*m": ("drive_torque",),
     "J": ("work_drive", "work_axial", "work_force", "friction_loss", "damping_loss",
           "contact_loss", "impact_loss", "kinetic", "elastic", "energy_residual"),

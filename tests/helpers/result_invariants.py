@@ -159,6 +159,22 @@ def _number(options: dict, name: str, default: float) -> float:
     return default if value is None else float(value)
 
 
+# Laws whose friction may do positive work: eq. (3.15)'s follows the slip
+# acceleration, LuGre's bristles give back what they stored.
+NON_DISSIPATIVE_LAWS = ("arctan_acceleration", "lugre")
+
+
+def stribeck_curve(friction: dict, speed: np.ndarray) -> np.ndarray:
+    """Stribeck's curve mu(v) = mu + (mu_static - mu) exp(-(v / v_s)^delta)
+    (docs/physics/friction_laws.md), with the registry's defaults."""
+    mu = float(friction["mu"])
+    mu_static = friction.get("mu_static")
+    mu_static = mu if mu_static is None else float(mu_static)
+    velocity = float(friction.get("stribeck_velocity", 1e-3) or 1e-3)
+    exponent = float(friction.get("stribeck_exponent", 2.0) or 2.0)
+    return mu + (mu_static - mu) * np.exp(-(speed / velocity) ** exponent)
+
+
 def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     """Check a returned drive result (module docstring).
 
@@ -214,10 +230,25 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
         f"{len(outside)} event(s) outside [0, {t_end:.6g}] s, first at {outside[0]!r} s"
         if outside else f"{len(times)} event(s) within the run")
 
-    mu = float(scene["friction"]["mu"])
-    mu_eff = mu / math.cos(float(scene["thread"]["flank_angle"]) / 2)
+    # The rows recorded just before an event at its located root (the next
+    # row has the same time): where a load's derivative jumps (a table's
+    # knot) or a load jumps, the forces there already jump with it, and a
+    # flank's normal force has the sign that ends the mode: they describe the
+    # instant the mode ends. The pointwise force checks skip them, as the
+    # simulator's own do (docs/physics/result_checks.md).
+    at_event = np.append(t[1:] == t[:-1], False)
+    friction_section = scene["friction"]
+    mu = float(friction_section["mu"])
+    flank_factor = 1 / math.cos(float(scene["thread"]["flank_angle"]) / 2)
+    mu_eff = mu * flank_factor
+    # The cone's coefficient: the static one where the law has it (the stick
+    # limit; Stribeck's curve and its regularization stay below it).
+    mu_static = friction_section.get("mu_static")
+    mu_static = mu if mu_static is None else float(mu_static)
+    mu_cone = max(mu, mu_static) * flank_factor
+    viscous = float(friction_section.get("viscous", 0.0) or 0.0)
     force, normal, slip = ch["friction_force"], ch["normal_force"], ch["slip_velocity"]
-    f_ref = max(float(np.max(np.abs(force))), mu_eff * float(np.max(np.abs(normal))))
+    f_ref = max(float(np.max(np.abs(force))), mu_cone * float(np.max(np.abs(normal))))
     n_ref = float(np.max(np.abs(normal)))
     radius = float(scene["thread"]["mean_diameter"]) / 2
     torque = float(np.max(np.abs(ch["drive_torque"])))
@@ -229,11 +260,30 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
                 float(np.max(ch["kinetic"] + ch["elastic"])),
                 float(np.max(sum(ch[name] for name in losses))), ENERGY_FLOOR)
     rtol = 0.0 if moreau else _number(options, "rtol", DEFAULT_RTOL)
-    loss_tol = max(LOSS_REL[0], LOSS_REL[1] * rtol) * e_ref + ENERGY_FLOOR
+    # The energies' round-off (docs/physics/result_checks.md): the work of
+    # the largest force over the round-off of the screw's length.
+    length = float(scene.get("screw", {}).get("length", 0.5))
+    round_off = 64 * np.finfo(float).eps * f_sys * length + ENERGY_FLOOR
+    atol = _number(options, "atol", DEFAULT_ATOL)
+
+    def loss_tol(x: np.ndarray) -> float:
+        """A loss's integration error (docs/physics/result_checks.md): K (rtol
+        max |loss| + atol) for the error-controlled integrators, round-off for
+        Moreau-Jean, whose losses are sums of non-negative step terms."""
+        largest = float(np.max(np.abs(x)))
+        if moreau:
+            return 64 * np.finfo(float).eps * largest + round_off
+        return ENERGY_FACTOR * (max(rtol, 64 * np.finfo(float).eps) * largest + atol) + round_off
+
+    # Moreau-Jean's outputs at requested times interpolate between its steps:
+    # a force and a slip velocity there come from two steps, and their product
+    # is not the scheme's (each step's friction impulse opposes its own slip,
+    # by its LCP): the pointwise force checks skip them, as the simulator's do.
+    pointwise = ~at_event & ~np.full(len(t), moreau and bool(options.get("t_eval")))
 
     # friction power and friction loss
-    if law != "arctan_acceleration":
-        power = force * slip
+    if law not in NON_DISSIPATIVE_LAWS:
+        power = np.where(pointwise, force * slip, -np.inf)
         i = int(np.argmax(power))
         bound = (f_ref * POWER_REL * v_ref + f_sys * POWER_FLOOR + FORCE_FLOOR * v_ref
                  + POWER_ENERGY_REL * e_ref / t_end)
@@ -241,39 +291,57 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
             power[i] <= bound, power[i], bound, t[i],
             f"friction does positive work: {power[i]:.4g} W (friction {force[i]:.4g} N at slip "
             f"velocity {slip[i]:.4g} m/s) at t = {t[i]:.6g} s, bound {bound:.3g} W")
-        report["friction_loss"] = _monotone("friction_loss", t, ch["friction_loss"], loss_tol)
+        report["friction_loss"] = _monotone("friction_loss", t, ch["friction_loss"],
+                                            loss_tol(ch["friction_loss"]))
 
     # other losses
-    entries = [_monotone(name, t, ch[name], loss_tol) for name in losses[1:]]
+    entries = [_monotone(name, t, ch[name], loss_tol(ch[name])) for name in losses[1:]]
     worst = max(entries, key=lambda e: e["value"] - e["bound"])
     report["other_losses"] = worst if not all(e["ok"] for e in entries) else _entry(
         True, worst["value"], worst["bound"], None, "damping, contact and impact losses grow")
 
-    # friction cone (every law: |kappa| < mu' for the arctan laws too)
+    # friction cone (every law but LuGre's: |kappa| < mu_static' for the
+    # regularized laws too; plus the viscous term)
     floor = CONE_FLOOR * f_sys + FORCE_FLOOR
-    excess = np.abs(force) - mu_eff * np.abs(normal) * (1 + CONE_REL)
-    i = int(np.argmax(excess))
-    report["friction_cone"] = _entry(
-        excess[i] <= floor, excess[i], floor, t[i],
-        f"|friction| {abs(force[i]):.6g} N > mu' |normal| = {mu_eff:.4g} * "
-        f"{abs(normal[i]):.6g} N at t = {t[i]:.6g} s (excess {excess[i]:.3g} N, "
-        f"bound {floor:.3g} N)")
+    if law != "lugre":
+        excess = np.where(pointwise, np.abs(force) - mu_cone * np.abs(normal) * (1 + CONE_REL)
+                          - viscous * np.abs(slip), -np.inf)
+        i = int(np.argmax(excess))
+        report["friction_cone"] = _entry(
+            excess[i] <= floor, excess[i], floor, t[i],
+            f"|friction| {abs(force[i]):.6g} N > mu_static' |normal| + viscous |slip| = "
+            f"{mu_cone:.4g} * {abs(normal[i]):.6g} N + {viscous:.4g} * {abs(slip[i]):.4g} N "
+            f"at t = {t[i]:.6g} s (excess {excess[i]:.3g} N, bound {floor:.3g} N)")
 
     # the friction law where it follows from the channels
-    if law == "coulomb":
-        slipping = (ch["stick"] == 0) & (np.abs(slip) > POWER_REL * v_ref + POWER_FLOOR)
-        short = np.where(slipping, mu_eff * np.abs(normal) * (1 - CONE_REL) - np.abs(force),
-                         -np.inf)
+    if law == "stribeck":
+        curve = stribeck_curve(friction_section, np.abs(slip)) * flank_factor
+    else:
+        curve = np.full(len(slip), mu_eff)
+    # The viscous term acts where the flanks touch (docs/physics/friction_laws.md).
+    touching = np.abs(normal) > 0
+    regularized = law == "arctan_velocity" or (law == "stribeck" and integrator
+                                               not in ("event_driven", "moreau"))
+    if law in ("coulomb", "stribeck") and not regularized and not (moreau and law == "stribeck"):
+        # In slip, |friction| = mu(|slip|)' |normal| + viscous |slip|: below
+        # that by the check's floor is a slipping contact short of its law
+        # (Moreau-Jean's stribeck friction is the curve's at the step's start
+        # speed, which is no channel).
+        slipping = ((ch["stick"] == 0) & (np.abs(slip) > POWER_REL * v_ref + POWER_FLOOR)
+                    & pointwise)
+        short = np.where(slipping, curve * np.abs(normal) * (1 - CONE_REL)
+                         + touching * viscous * np.abs(slip) - np.abs(force), -np.inf)
         i = int(np.argmax(short))
         report["friction_law"] = _entry(
             short[i] <= floor, max(float(short[i]), 0.0), floor, t[i],
             f"slipping at {slip[i]:.4g} m/s with |friction| {abs(force[i]):.6g} N < mu' "
-            f"|normal| = {mu_eff:.4g} * {abs(normal[i]):.6g} N at t = {t[i]:.6g} s (short by "
+            f"|normal| = {curve[i]:.4g} * {abs(normal[i]):.6g} N at t = {t[i]:.6g} s (short by "
             f"{short[i]:.3g} N, bound {floor:.3g} N)")
-    elif law == "arctan_velocity":
-        k_v = float(scene["friction"]["k_v"])
-        expected = -2 / math.pi * mu_eff * np.arctan(k_v * slip) * np.abs(normal)
-        error = np.abs(force - expected)
+    elif regularized:
+        k_v = float(friction_section["k_v"])
+        expected = (-2 / math.pi * curve * np.arctan(k_v * slip) * np.abs(normal)
+                    - touching * viscous * slip)
+        error = np.where(pointwise, np.abs(force - expected), -np.inf)
         i = int(np.argmax(error))
         bound = LAW_REL * f_ref + floor
         report["friction_law"] = _entry(
@@ -285,7 +353,11 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     # energy balance
     residual = ch["energy_residual"]
     if moreau:
-        bound = MOREAU_CREATION_REL * e_ref + ENERGY_FLOOR
+        # of the largest energy flow at an output point, as the simulator's
+        # own check (docs/physics/result_checks.md)
+        flow = float(np.max(np.abs(ch["work_drive"]) + np.abs(ch["work_axial"]) + ch["kinetic"]
+                            + ch["elastic"] + sum(np.abs(ch[name]) for name in losses)))
+        bound = MOREAU_CREATION_REL * flow + round_off
         i = int(np.argmin(residual))
         report["energy_balance"] = _entry(
             residual[i] >= -bound, -residual[i], bound, t[i],
@@ -297,9 +369,9 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
         # bound over the state (written here from that page).
         flow = float(np.max(np.abs(ch["work_drive"]) + np.abs(ch["work_axial"]) + ch["kinetic"]
                             + ch["elastic"] + sum(np.abs(ch[name]) for name in losses)))
-        atol = _number(options, "atol", DEFAULT_ATOL)
         gradient = _energy_gradient(scene, ch)
-        bound = ENERGY_FACTOR * (max(rtol, 64 * np.finfo(float).eps) * flow + atol * gradient)
+        bound = (ENERGY_FACTOR * (max(rtol, 64 * np.finfo(float).eps) * flow + atol * gradient)
+                 + round_off)
         i = int(np.argmax(np.abs(residual)))
         report["energy_balance"] = _entry(
             abs(residual[i]) <= bound, abs(residual[i]), bound, t[i],

@@ -62,7 +62,10 @@ __all__ = ["cases", "make_case", "generate", "run_case", "run_isolated", "OUTCOM
 DEFAULT_SEED = 20261217
 
 CONCEPTS = ("rigid", "flexible_nut", "flexible")
-LAWS = ("coulomb", "arctan_velocity", "arctan_acceleration")
+LAWS = ("coulomb", "arctan_velocity", "arctan_acceleration", "stribeck", "lugre")
+# Set-valued laws (Moreau-Jean with exact flanks; stribeck also regularized
+# in the ODE methods) and the smooth ones.
+SET_VALUED_LAWS = ("coulomb", "stribeck")
 CONTACTS = (None, "exact", "bistop", "cubic")
 ODE_INTEGRATORS = ("cvode_bdf", "cvode_adams", "dopri5", "verner6", "rk_dopri5", "rk_verner6")
 
@@ -100,12 +103,15 @@ HOSTILE_KINDS = ("nan", "inf", "-inf", "negative", "zero", "denormal", "huge", "
 
 def fitting_integrators(law: str, contact: Optional[str]) -> Tuple[str, ...]:
     """The integrators ``simulate`` runs for a friction law and a flank
-    contact (None: no play): exact Coulomb is event-driven or Moreau-Jean
-    (Moreau-Jean only with exact flanks, not penalty ones); a regularized law
-    with exact flanks is event-driven; otherwise an ODE integrator or
-    event-driven."""
-    if law == "coulomb":
-        return ("event_driven", "moreau") if contact in (None, "exact") else ("event_driven",)
+    contact (None: no play): a set-valued law (coulomb, stribeck) is
+    event-driven or Moreau-Jean (Moreau-Jean only with exact flanks, not
+    penalty ones), stribeck also in the ODE integrators (regularized) but for
+    exact play; a smooth law with exact flanks is event-driven; otherwise an
+    ODE integrator or event-driven."""
+    if law in SET_VALUED_LAWS:
+        regularized = ODE_INTEGRATORS if law == "stribeck" and contact != "exact" else ()
+        moreau = ("moreau",) if contact in (None, "exact") else ()
+        return ("event_driven",) + moreau + regularized
     if contact == "exact":
         return ("event_driven",)
     return ODE_INTEGRATORS + ("event_driven",)
@@ -176,10 +182,24 @@ def _friction(r, thread: dict) -> dict:
     else:
         mu = r.uniform(0.0, 1.0)
     friction = {"law": law, "mu": mu}
-    if law == "arctan_velocity" and r.chance(0.8):
+    if law in ("arctan_velocity", "stribeck") and r.chance(0.8):
         friction["k_v"] = r.log_uniform(10.0, 1e5)
     elif law == "arctan_acceleration" and r.chance(0.8):
         friction["k_v"] = r.log_uniform(1.0, 1e4)
+    if law in ("coulomb", "stribeck", "lugre") and r.chance(0.6):
+        friction["mu_static"] = mu * r.uniform(1.0, 2.0)
+    if law in ("stribeck", "lugre"):
+        if r.chance(0.6):
+            friction["stribeck_velocity"] = r.log_uniform(1e-5, 1e-1)
+        if r.chance(0.3):
+            friction["stribeck_exponent"] = r.uniform(0.5, 3.0)
+        if r.chance(0.3):
+            friction["viscous"] = r.log_uniform(1e-2, 1e3)
+    if law == "lugre":
+        if r.chance(0.6):
+            friction["sigma0"] = r.log_uniform(1e3, 1e7)
+        if r.chance(0.4):
+            friction["sigma1"] = r.log_uniform(1e-3, 1e2)
     return friction
 
 
@@ -340,6 +360,8 @@ def _options(r, law: str, contact: Optional[str], t_end: float,
     if law == "coulomb":
         integrator = "moreau" if "moreau" in fitting and r.chance(0.4) else (
             "event_driven" if r.chance(0.8) else None)
+    elif law == "stribeck":
+        integrator = None if r.chance(0.15) else r.pick(fitting)
     else:
         integrator = None if r.chance(0.15) else r.pick(fitting)
     if integrator is not None:

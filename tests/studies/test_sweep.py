@@ -104,13 +104,15 @@ def test_default_workers_are_the_cores_this_process_may_use(monkeypatch):
 
 
 def test_study_rows_carry_failures():
-    """A case that runs out of steps becomes a row with the solver's message;
-    the other cases of the sweep are intact."""
+    """A case that cannot run becomes a row with its message; the other
+    cases of the sweep are intact. (The long case's steps of 1e-4 s cannot
+    reach its end within max_steps: the core refuses them before it runs,
+    it used to run out of steps.)"""
     from leadscrew.studies.creep import creep_vs_frequency
 
     frame = creep_vs_frequency(holding_scene(), [1.0, 50.0], max_step=1e-4, max_steps=10_000,
                                progress=False)
-    assert frame.loc[0, "error"].startswith("SimulationError")
+    assert frame.loc[0, "error"].startswith("ValueError: max_step = 0.0001 is invalid")
     assert np.isnan(frame.loc[0, "creep_per_cycle"])
     assert frame.loc[1, "error"] is None
     assert frame.loc[1, "creep_per_cycle"] < 0

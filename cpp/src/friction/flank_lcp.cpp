@@ -70,4 +70,16 @@ FlankLcpResult solve_flank_prescribed_slip(double c, bool slip_zero, double alph
   return result;
 }
 
+FlankLcpResult flank_stick(double c, double d, double alpha, double beta, double mu, int sigma) {
+  FlankLcpResult r;
+  if (!(d > 0.0)) return r;
+  r.status = lcp::Status::solved;
+  r.friction_force = -c / d;
+  r.normal_force = beta + alpha * r.friction_force;
+  r.slip_acceleration = 0.0;
+  r.consistent = (sigma == 0 || sigma * r.normal_force >= 0.0) &&
+                 std::abs(r.friction_force) <= mu * std::abs(r.normal_force);
+  return r;
+}
+
 }  // namespace leadscrew::friction

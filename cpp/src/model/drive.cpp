@@ -106,6 +106,15 @@ BacklashContact parse_backlash_contact(const std::string& name) {
 DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
   require_nonnegative("friction.mu", p_.mu);
   require_positive("friction.k_v", p_.k_v);
+  {
+    // The law: mu, k_v where it takes it, and its other parameters.
+    const friction::LawType& type = friction::law_type(p_.friction);
+    friction::LawValues values = {{"mu", p_.mu}};
+    for (const friction::ParameterInfo& parameter : type.parameters)
+      if (std::string(parameter.key) == "k_v") values.emplace_back("k_v", p_.k_v);
+    values.insert(values.end(), p_.friction_values.begin(), p_.friction_values.end());
+    law_ = friction::make_law(p_.friction, values);
+  }
   require_positive("rotor.inertia", p_.rotor_inertia);
   require_nonnegative("load.mass", p_.load_mass);
   require_nonnegative("backlash.axial", p_.clearance);
@@ -283,6 +292,7 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
   add_gradient(tangent_, c.screw_phi, h * r_m * std::cos(alpha));
   add_gradient(tangent_, c.nut_phi, -h * r_m * std::cos(alpha));
   mu_eff_ = p_.thread.effective_mu(p_.mu);
+  flank_factor_ = p_.mu > 0.0 ? mu_eff_ / p_.mu : p_.thread.effective_mu(1.0);
 
   // Without play the thread is a kinematic constraint e = 0: eliminate a
   // translational coordinate of the thread pair (the nut's, as the thesis

@@ -99,7 +99,8 @@ friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha
   return r;
 }
 
-DriveDynamics::DriveDynamics(const DriveModel& model) : model_(model) {
+DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
+    : model_(model), law_(law ? law : &model.law()) {
   const int n = model.coordinate_count();
   if (n > kMaxCoordinates) throw InvalidArgument("a drive model has at most 6 coordinates");
   q_ = CoordinateVector::Zero(n);
@@ -118,7 +119,9 @@ DriveDynamics::DriveDynamics(const DriveModel& model) : model_(model) {
     delassus_nn_ -= w_n[r] * w_n[r] / inverse_mass_[r];
     delassus_nt_ -= w_n[r] * w_t[r] / inverse_mass_[r];
   }
-  painleve_possible_ = model.effective_mu() * std::abs(delassus_nt_) >= delassus_nn_;
+  // (with the largest coefficient the law reaches: a static one above mu)
+  painleve_possible_ =
+      law_->max_mu() * model.flank_factor() * std::abs(delassus_nt_) >= delassus_nn_;
   if (model.parameters().speed_controlled) {
     // The slip's response to a tangential force with the flank and the rotor
     // held: W_T . x with M x = W_T + B lambda, C x = 0. Zero (to round-off of
@@ -243,14 +246,19 @@ double DriveDynamics::kinetic_energy() const {
 }
 
 double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_acceleration) const {
-  const double mu = model_.effective_mu();
+  const double factor = model_.flank_factor();
   switch (spec.friction) {
     case FrictionMode::slip:
-      return spec.slip_sign * mu;
+      // mu' itself for one coefficient (the same bits as before the laws
+      // were types); Stribeck's curve at the slip speed otherwise.
+      return spec.slip_sign * (law_->plain_coulomb() ? model_.effective_mu()
+                                                     : law_->slip_mu(std::abs(slip_)) * factor);
     case FrictionMode::regularized_velocity:
-      return kTwoOverPi * mu * std::atan(model_.parameters().k_v * slip_);
+      return law_->velocity_coefficient(slip_) * factor;
     case FrictionMode::regularized_acceleration:
-      return kTwoOverPi * mu * std::atan(model_.parameters().k_v * slip_acceleration);
+      return law_->acceleration_coefficient(slip_acceleration) * factor;
+    case FrictionMode::bristle:
+      return law_->bristle_coefficient(slip_, bristle_) * factor;
     default:
       return 0.0;
   }
@@ -265,9 +273,16 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
   const bool stick = spec.friction == FrictionMode::stick;
 
+  // The law's viscous term, a force -viscous gamma along the helix where the
+  // flank is in contact and not stuck.
+  const bool in_contact =
+      normal_multiplier || (spec.contact == ThreadContact::penalty && penalty_normal_ != 0.0);
+  const double viscous = in_contact && !stick && spec.friction != FrictionMode::none
+                             ? -law_->viscous() * slip_
+                             : 0.0;
   auto evaluate = [&](double kappa, double given_tangential, ModeSolution& out) {
     CoordinateVector f = forces_;
-    f += given_tangential * tangent;
+    f += (given_tangential + viscous) * tangent;
     double normal_force = 0.0;
     if (spec.contact == ThreadContact::penalty) {
       normal_force = penalty_normal_;
@@ -308,7 +323,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       out.friction_force = -kappa * std::abs(normal_force);
     else
       out.friction_force = 0.0;
-    out.friction_force += given_tangential;
+    out.friction_force += given_tangential + viscous;
     out.motor_torque = p.speed_controlled ? lambda[rotor_row] : applied_torque_;
     out.slip_acceleration = tangent.dot(out.acceleration);
   };
@@ -358,7 +373,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   const bool penalty = spec.contact == ThreadContact::penalty;
   const double n0 = zero.normal_force, alpha = unit.normal_force - n0;
   const double x0 = zero.slip_acceleration, d = unit.slip_acceleration - x0;
-  const double k_v = model_.parameters().k_v;
+  const double k_v = law_->gain();
   auto multiplier = [&](double T) { return penalty ? std::abs(n0) : spec.sigma * (n0 + alpha * T); };
   auto phi = [&](double T) {
     return T + kTwoOverPi * mu * std::atan(k_v * (x0 + d * T)) * multiplier(T);
@@ -428,7 +443,7 @@ ModeSolution DriveDynamics::solve_acceleration_law(const ModeSpec& spec) {
   if (!without.regular || !unit.regular) return solution;
   const double n0 = without.normal_force, x0 = without.slip_acceleration;
   const double alpha = unit.normal_force - n0, d = unit.slip_acceleration - x0;
-  const double k_v = model_.parameters().k_v, mu = model_.effective_mu();
+  const double k_v = law_->gain(), mu = model_.effective_mu();
   if (!(d > 0.0)) return solution;
   const double C = -x0 / d, D = 1.0 / (d * k_v), A = n0 - alpha * x0 / d, B = alpha / (d * k_v);
   const double factor = kTwoOverPi * mu;
@@ -602,8 +617,22 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
                                               model_.effective_mu(), sigma, rotor_without,
                                               rotor_impulse - rotor_without);
   } else {
-    r = solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigma, workspace,
-                               options);
+    // A sticking impact where it is admissible (the law's static cone)
+    // takes precedence where the law has a static coefficient above its
+    // kinetic one, and where the LCP of the flank's sign finds no impulse (the
+    // Painleve regime); otherwise the LCP at the law's coefficient at the
+    // impact's slip speed.
+    const friction::FlankLcpResult stick =
+        friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma);
+    if (!law_->plain_coulomb() && stick.consistent) {
+      r = stick;
+    } else {
+      const double mu = law_->plain_coulomb()
+                            ? model_.effective_mu()
+                            : law_->slip_mu(std::abs(tangent.dot(v))) * model_.flank_factor();
+      r = solve_flank_lcp_scaled(c, d, alpha, beta, mu, sigma, workspace, options);
+      if (!r.consistent && stick.consistent) r = stick;
+    }
   }
   if (!r.consistent) return false;
   CoordinateVector change;
@@ -631,7 +660,8 @@ std::string DriveDynamics::jamming_report(double regularized_factor) const {
   if (regularized) {
     out << "Painleve condition of the regularized law kappa |G_NT| >= G_NN with kappa = (2/pi) mu' "
         << "|atan(k_V "
-        << (p.friction == FrictionLaw::arctan_acceleration ? "gamma_T')|" : "gamma_T)|")
+        << (law_->resolution() == friction::Resolution::acceleration ? "gamma_T')|"
+                                                                      : "gamma_T)|")
         << " = " << kappa << " (mu' = " << mu << "), G_NN = " << g_nn << ", G_NT = " << g_nt
         << " (" << (kappa * std::abs(g_nt) >= g_nn ? "holds" : "does not hold") << ")";
   } else {

@@ -12,7 +12,7 @@ namespace leadscrew::model {
 bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dynamics) {
   const DriveParameters& p = model.parameters();
   return p.concept == Concept::rigid && model.bilateral_thread() && !p.speed_controlled &&
-         p.friction == FrictionLaw::coulomb && model.springs().empty() &&
+         dynamics.law().plain_coulomb() && model.springs().empty() &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();
 }

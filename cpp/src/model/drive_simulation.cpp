@@ -9,6 +9,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/friction/flank_lcp.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/integrate/ode.hpp"
@@ -28,15 +29,22 @@ enum Energy { kWorkDrive = 0, kWorkAxial, kFrictionLoss, kDampingLoss, kContactL
 // speed-controlled rotor's), work and loss integrals] and full coordinates.
 class StateLayout {
  public:
-  explicit StateLayout(const DriveModel& model) : model_(model) {
+  // `bristle`: the friction law has LuGre's bristle deflection z, a state
+  // of its own after the velocities, followed by the bristles' stored energy
+  // (DriveHybrid::rhs).
+  StateLayout(const DriveModel& model, bool bristle) : model_(model), bristle_(bristle) {
     const bool speed = model.parameters().speed_controlled;
     positions_ = model.independent();
     for (int i : positions_)
       if (!(speed && i == model.rotor())) velocities_.push_back(i);
   }
   int size() const { return energy_offset() + kEnergyCount; }
+  // The bristle deflection's index (-1: none).
+  int bristle() const {
+    return bristle_ ? static_cast<int>(positions_.size() + velocities_.size()) : -1;
+  }
   int energy_offset() const {
-    return static_cast<int>(positions_.size() + velocities_.size());
+    return static_cast<int>(positions_.size() + velocities_.size()) + (bristle_ ? 2 : 0);
   }
 
   void expand(double t, const double* y, CoordinateVector& q, CoordinateVector& v) const {
@@ -68,6 +76,7 @@ class StateLayout {
 
  private:
   const DriveModel& model_;
+  bool bristle_;
   std::vector<int> positions_, velocities_;
 };
 
@@ -128,6 +137,8 @@ std::vector<std::string> drive_channel_names(const DriveModel& model) {
     names.push_back("gap");
     names.push_back("play");
   }
+  if (model.law().resolution() == friction::Resolution::bristle)
+    names.push_back("bristle_deflection");
   const int n = model.coordinate_count();
   for (int i = 1; i < n - 1; ++i) {
     const std::string& name = model.coordinate_names()[i];
@@ -152,6 +163,7 @@ struct ChannelState {
   const CoordinateVector& q;
   const CoordinateVector& v;
   double axial_force = 0.0, slip_velocity = 0.0, play = 0.0, kinetic = 0.0, elastic = 0.0;
+  double bristle = 0.0;  // LuGre's bristle deflection z [m]
 };
 
 // From the state last set in dynamics.
@@ -188,6 +200,7 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
     out[k++] = 0.5 * p.clearance - std::abs(state.play);
     out[k++] = state.play;
   }
+  if (model.law().resolution() == friction::Resolution::bristle) out[k++] = state.bristle;
   for (int i = 1; i < n - 1; ++i) {
     out[k++] = q[i];
     out[k++] = v[i];
@@ -215,12 +228,14 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
 
 class DriveHybrid final : public integrate::HybridSystem {
  public:
-  DriveHybrid(const DriveModel& model, double bounce_threshold, double t_end,
-              const integrate::IntegratorOptions& integrator_options)
+  // `law`: the friction law that runs (the model's, or its regularization
+  // for an ODE integrator); it outlives this.
+  DriveHybrid(const DriveModel& model, const friction::Law& law, double bounce_threshold,
+              double t_end, const integrate::IntegratorOptions& integrator_options)
       : model_(model),
         p_(model.parameters()),
-        dynamics_(model),
-        layout_(model),
+        dynamics_(model, &law),
+        layout_(model, law.resolution() == friction::Resolution::bristle),
         bounce_threshold_(bounce_threshold),
         backlash_(p_.backlash != BacklashContact::none),
         t_end_(t_end),
@@ -266,6 +281,23 @@ class DriveHybrid final : public integrate::HybridSystem {
     energy[kWorkAxial] = dynamics_.axial_force() * v_[model_.load()];
     energy[kFrictionLoss] =
         mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics_.slip_velocity();
+    const int bristle = layout_.bristle();
+    if (bristle >= 0) {
+      // LuGre's bristles: z' of the law. Of the friction's power, the part
+      // |N|' sigma0 z z' is stored in the bristles, not lost; it is
+      // integrated (the state after z) rather than taken as |N|' sigma0 z^2
+      // / 2, which would miss the work of a changing normal force on a
+      // deflected bristle. What remains, |N|' (sigma0^2 |gamma| z^2 / mu(|gamma|)
+      // + sigma1 z' gamma) + viscous gamma^2, is the loss (sigma1 z' gamma can be
+      // negative: LuGre is passive only for small sigma1).
+      const double z = y[bristle];
+      const double rate = dynamics_.law().bristle_rate(dynamics_.slip_velocity(), z);
+      const double stored = std::abs(s.normal_force) * model_.flank_factor() *
+                            dynamics_.law().bristle_stiffness() * z * rate;
+      ydot[bristle] = rate;
+      ydot[bristle + 1] = stored;
+      energy[kFrictionLoss] -= stored;
+    }
     energy[kDampingLoss] = dynamics_.damping_power();
     energy[kContactLoss] = dynamics_.contact_loss_power();
   }
@@ -277,7 +309,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
       if (mode_.friction == FrictionMode::none) return;
       const RigidSolution s = solve_rigid(t, y);
-      const double mu = model_.effective_mu();
+      const double mu = stick_mu();
       if (mode_.friction == FrictionMode::slip) {
         g[0] = rigid_->slip_per_speed() * y[1] - slip_offset_;
         g[1] = load_root_ == 1 ? load_root_value(t) : flank_change_root(s.normal_force);
@@ -301,7 +333,7 @@ class DriveHybrid final : public integrate::HybridSystem {
                                mode_.contact == ThreadContact::bilateral;
       if (need_forces) {
         const ModeSolution s = solve_current();
-        const double mu = model_.effective_mu();
+        const double mu = stick_mu();
         if (mode_.friction == FrictionMode::stick && slip_prescribed_now()) {
           // The motor holds the slip at zero (the friction force stays in the
           // cone by construction): the stick ends where the prescribed slip
@@ -612,6 +644,10 @@ class DriveHybrid final : public integrate::HybridSystem {
     forces.friction = s.friction_force;
     forces.motor_torque = s.motor_torque;
     ChannelState state = channel_state(dynamics_);
+    if (layout_.bristle() >= 0) {
+      state.bristle = y[layout_.bristle()];
+      state.elastic += y[layout_.bristle() + 1];  // the bristles' stored energy
+    }
     // Stick holds the slip velocity at zero; the state carries the integrator's
     // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
     if (forces.stick) state.slip_velocity = 0.0;
@@ -637,6 +673,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   void set(double t, const double* y) {
     layout_.expand(t, y, q_, v_);
     dynamics_.set_state(t, q_, v_);
+    if (layout_.bristle() >= 0) dynamics_.set_bristle(y[layout_.bristle()]);
   }
 
   // The open thread's flank roots, g[2] = e - c/2 and g[3] = e + c/2, see a
@@ -660,7 +697,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     if (beyond == 0) return;
     const PlayDirection direction = play_direction();
     const double kinetic_before = dynamics_.kinetic_energy();
-    if (beyond * dynamics_.play_rate() > 0.0) stop_play(t, direction);
+    const double motor_work = beyond * dynamics_.play_rate() > 0.0 ? stop_play(t, direction) : 0.0;
     // The play sums several coordinates: where rounding leaves it beyond the
     // flank, aim inside by as much, then twice as much, and so on.
     double target = beyond * half, shift = 0.0;
@@ -671,8 +708,9 @@ class DriveHybrid final : public integrate::HybridSystem {
       shift = std::max(2.0 * shift, excess);
       target = beyond * (half - shift);
     }
-    impact_loss_ += kinetic_before - dynamics_.kinetic_energy();
+    impact_loss_ += kinetic_before + motor_work - dynamics_.kinetic_energy();
     layout_.compress(q_, v_, y);
+    y[layout_.energy_offset() + kWorkDrive] += motor_work;
     set(t, y);
   }
 
@@ -701,9 +739,17 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   // Takes the play rate out of the velocities along `direction` (a plastic
   // frictionless touch), the state set.
-  void stop_play(double t, const PlayDirection& direction) {
-    v_ -= direction.along * (dynamics_.play_rate() / direction.metric);
+  // Returns the work of a speed-controlled motor's impulse at its held
+  // speed: the rotor does not yield, so the thread's impulse on it, grad e_r
+  // times the play impulse, is the motor's (a flank met by a moving screw
+  // takes kinetic energy from the motor: booked, the account lost 1.5e-6 J).
+  double stop_play(double t, const PlayDirection& direction) {
+    const double impulse = dynamics_.play_rate() / direction.metric;
+    v_ -= direction.along * impulse;
     dynamics_.set_state(t, q_, v_);
+    if (!p_.speed_controlled) return 0.0;
+    const int r = model_.rotor();
+    return model_.play_gradient()[r] * impulse * v_[r];
   }
 
   // How far beyond a flank a free flight starts (a closed flank's drift where
@@ -762,6 +808,11 @@ class DriveHybrid final : public integrate::HybridSystem {
     return normal_side_ != 0 ? normal_side_ * normal_force : 0.0;
   }
 
+  // The stick limit mu_static' of the law (mu' itself for one coefficient).
+  double stick_mu() const {
+    return dynamics_.law().plain_coulomb() ? model_.effective_mu() : model_.effective_mu_static();
+  }
+
   // The motor prescribes the slip (DriveDynamics::slip_prescribed) while the
   // thread's normal constraint is active.
   bool slip_prescribed_now() const {
@@ -776,7 +827,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // friction factor +-mu' is constant).
   bool load_driven() const {
     return p_.concept == Concept::rigid && model_.springs().empty() && !p_.speed_controlled &&
-           p_.friction == FrictionLaw::coulomb &&
+           dynamics_.law().plain_coulomb() &&
            (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
            (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
   }
@@ -821,7 +872,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       if (side == 0)
         side = sign_of(c.normal_force(p_.drive_torque.derivative(t), p_.axial_force.derivative(t)));
       if (side == 0) return;  // no load on the thread: the sampled margin decides
-      const double mu = model_.effective_mu();
+      const double mu = stick_mu();
       for (int s : {1, -1})
         functions[count++] = {mu * side * c.normal_force.per_torque - s * c.friction_force.per_torque,
                               mu * side * c.normal_force.per_force - s * c.friction_force.per_force};
@@ -894,7 +945,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   // the paradox begins where kappa |G_NT| reaches G_NN.
   bool watch_fold() const {
     return mode_.contact == ThreadContact::bilateral &&
-           mode_.friction == FrictionMode::regularized_velocity && dynamics_.painleve_possible();
+           (mode_.friction == FrictionMode::regularized_velocity ||
+            mode_.friction == FrictionMode::bristle) &&
+           dynamics_.painleve_possible();
   }
   double current_kappa() const { return dynamics_.friction_factor(spec(sigma_guess_), 0.0); }
   // The regularized law's Painleve margin at the state set: min over sigma of
@@ -1047,7 +1100,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   ModeSolution solve_current() {
     const bool friction_on_normal = mode_.friction == FrictionMode::slip ||
                                     mode_.friction == FrictionMode::regularized_velocity ||
-                                    mode_.friction == FrictionMode::regularized_acceleration;
+                                    mode_.friction == FrictionMode::regularized_acceleration ||
+                                    mode_.friction == FrictionMode::bristle;
     if (mode_.contact == ThreadContact::bilateral &&
         mode_.friction == FrictionMode::regularized_acceleration && dynamics_.painleve_possible()) {
       // Eq. (3.15): every consistent flank force at once (DriveDynamics::
@@ -1124,8 +1178,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   // Stick or slip: from the slip velocity, or at zero slip by the flank LCP.
   void decide_friction(double t, double* y, bool at_zero_slip, int hint) {
     (void)t;
-    const bool regularized = p_.friction == FrictionLaw::arctan_velocity ||
-                             p_.friction == FrictionLaw::arctan_acceleration;
+    const friction::Resolution resolution = dynamics_.law().resolution();
+    const bool regularized = resolution != friction::Resolution::set_valued;
     // A regularized law's friction on a penalty flank follows its penetration
     // (zero where it has none): no contact mode to track.
     if (mode_.contact == ThreadContact::open || model_.effective_mu() == 0.0 ||
@@ -1137,13 +1191,11 @@ class DriveHybrid final : public integrate::HybridSystem {
       open_if_pulling();
       return;
     }
-    if (p_.friction == FrictionLaw::arctan_velocity) {
-      mode_.friction = FrictionMode::regularized_velocity;
-      open_if_pulling();
-      return;
-    }
-    if (p_.friction == FrictionLaw::arctan_acceleration) {
-      mode_.friction = FrictionMode::regularized_acceleration;
+    if (regularized) {
+      mode_.friction = resolution == friction::Resolution::velocity ? FrictionMode::regularized_velocity
+                       : resolution == friction::Resolution::acceleration
+                           ? FrictionMode::regularized_acceleration
+                           : FrictionMode::bristle;
       open_if_pulling();
       return;
     }
@@ -1202,13 +1254,34 @@ class DriveHybrid final : public integrate::HybridSystem {
         sigma_count = 1;
       }
     }
+    // One coefficient: the thesis's LCP decides stick and slip at once. A
+    // static coefficient above the kinetic one: stick wherever the force
+    // that sticks lies in mu_static''s cone (its normal force on the
+    // flank's side); otherwise the LCP at the slip's coefficient at zero
+    // speed, mu(0+)', gives the slip's direction (no stick: it is not
+    // admissible even with the larger coefficient).
+    const friction::Law& law = dynamics_.law();
+    double lcp_mu = model_.effective_mu();
+    const int stick_side = mode_.contact == ThreadContact::closed ? mode_.flank
+                           : mode_.contact == ThreadContact::penalty ? sigmas[0]
+                                                                     : 0;
+    const bool stick_admissible =
+        hint == 0 && friction::flank_stick(c, d, alpha, beta, stick_mu(), stick_side).consistent;
+    if (!law.plain_coulomb()) {
+      if (stick_admissible) {
+        mode_.friction = FrictionMode::stick;
+        mode_.slip_sign = 0;
+        return;
+      }
+      lcp_mu = law.slip_mu(0.0) * model_.flank_factor();
+    }
     int found = 0;
     bool ambiguous = false;
     Mode chosen = mode_;
     for (int k = 0; k < sigma_count; ++k) {
       const friction::FlankLcpResult r =
-          solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigmas[k],
-                                 lcp_workspace_, lcp_options_);
+          solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
+                                 lcp_options_);
       ++lcp_solves_;
       if (!r.consistent) continue;
       Mode candidate = mode_;
@@ -1224,9 +1297,12 @@ class DriveHybrid final : public integrate::HybridSystem {
       chosen = candidate;
       ++found;
     }
-    if (found == 0 && mode_.contact == ThreadContact::closed) {
+    if (found == 0 && mode_.contact == ThreadContact::closed && !stick_admissible) {
       // No friction mode keeps the normal force on this flank's side: the
-      // flank opens (the contact is unilateral).
+      // flank opens (the contact is unilateral). (In the Painleve regime the
+      // LCP of the flank's sign can miss a stick that holds it: a rigid
+      // drive at rest on its loaded flank opened and jammed at its first
+      // impact, 2.6e-11 s later.)
       mode_.contact = ThreadContact::open;
       mode_.friction = FrictionMode::none;
       mode_.slip_sign = 0;
@@ -1237,9 +1313,7 @@ class DriveHybrid final : public integrate::HybridSystem {
       // sign may have no solution or admit a spurious slip start. At zero slip
       // the drive keeps sticking whenever stick is admissible
       // (docs/physics/rigid_drive.md, "uniqueness"); otherwise it jams.
-      const double stick_friction = -c / d;
-      const double stick_normal = beta + alpha * stick_friction;
-      if (hint == 0 && std::abs(stick_friction) <= model_.effective_mu() * std::abs(stick_normal)) {
+      if (stick_admissible) {
         chosen = mode_;
         chosen.friction = FrictionMode::stick;
         chosen.slip_sign = 0;
@@ -1277,8 +1351,9 @@ class DriveHybrid final : public integrate::HybridSystem {
       // weak bounce's energy went missing from the account: 5e-4 of the work
       // of a rattling nut with restitution 0.5).
       const double kinetic_open = dynamics_.kinetic_energy();
-      stop_play(t, direction);
-      impact_loss_ += kinetic_open - dynamics_.kinetic_energy();
+      const double closing_work = stop_play(t, direction);
+      y[layout_.energy_offset() + kWorkDrive] += closing_work;
+      impact_loss_ += kinetic_open + closing_work - dynamics_.kinetic_energy();
       mode_.contact = ThreadContact::closed;
       mode_.flank = flank;
     };
@@ -1387,7 +1462,7 @@ class DriveHybrid final : public integrate::HybridSystem {
 class DriveMoreau final : public integrate::TimeSteppingSystem {
  public:
   explicit DriveMoreau(const DriveModel& model)
-      : model_(model), p_(model.parameters()), dynamics_(model), layout_(model),
+      : model_(model), p_(model.parameters()), dynamics_(model), layout_(model, false),
         names_(drive_channel_names(model)) {
     const int n = model.coordinate_count();
     q_.setZero(n);
@@ -1397,6 +1472,10 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   int size() const override { return layout_.size(); }
   const std::vector<std::string>& channel_names() const override { return names_; }
   long lcp_solves() const override { return lcp_solves_; }
+  // For the checks (ResultCheckSpec): the play's largest rate over the
+  // steps [m/s], the friction impulses' booking beyond the steps' work [J].
+  double largest_play_rate() const { return play_rate_; }
+  double friction_excess() const { return friction_excess_; }
 
   void initialize(double t, const double* y) {
     layout_.expand(t, y, q_, v_);
@@ -1406,9 +1485,43 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   }
 
   void step(double t, double h, double theta, const double* y, double* y_next) override {
-    const int n = model_.coordinate_count();
+    const double excess = friction_excess_, play_rate = play_rate_;
+    if (!take_step(t, h, theta, y, y_next, p_.restitution)) return;
+    // A step that closes a flank with Newton's restitution e > 0: with
+    // Coulomb friction it can create energy (Kane and Levinson's paradox, as
+    // at the event-driven scheme's impacts: a rigid nut's closing step at
+    // e = 1 created 0.3 of the run's energy, at every dt). The step takes the
+    // largest restitution up to e that creates no more than its plastic
+    // version (e = 0, whose impulses solve the LCP of maximal dissipation),
+    // found by bisection; the step is rare, its 40 solves cheap.
+    const StepAccount first = energy_created(t, h, y, y_next);
+    auto retake = [&](double e) {
+      friction_excess_ = excess;
+      play_rate_ = play_rate;
+      take_step(t, h, theta, y, y_next, e);
+      return energy_created(t, h, y, y_next);
+    };
+    const StepAccount plastic = retake(0.0);
+    const double allowed =
+        std::max(plastic.created, 0.0) + std::max(first.round_off, plastic.round_off);
+    if (first.created <= allowed) {
+      retake(p_.restitution);
+      return;
+    }
+    double low = 0.0, high = p_.restitution;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+      const double middle = 0.5 * (low + high);
+      (retake(middle).created <= allowed ? low : high) = middle;
+    }
+    retake(low);
+  }
+
+  // One step at restitution e; true where it closes a flank with e > 0.
+  bool take_step(double t, double h, double theta, const double* y, double* y_next,
+                 double restitution) {
     layout_.expand(t, y, q_, v_);
     const CoordinateVector q0 = q_, v0 = v_;
+    bool restituting = false;
     dynamics_.set_state(t + theta * h, q_, v_);
     const double play0 = dynamics_.play();
     const double play_rate0 = dynamics_.play_rate();
@@ -1435,7 +1548,15 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
       } else {
         contact = false;
       }
-      normal_target = -p_.restitution * model_.normal_direction().dot(v0);
+      // Newton's restitution where this step closes the flank (the play
+      // inside the clearance at its start); a flank already closed stays so
+      // (target 0), as in the event-driven scheme an impact happens once:
+      // restitution at every step of a persistent contact flipped its normal
+      // velocity step after step, and with friction and the springs the
+      // account created energy (up to 1e3 of the work).
+      const bool closing = std::abs(play0) < half;
+      normal_target = closing ? -restitution * model_.normal_direction().dot(v0) : 0.0;
+      restituting = contact && closing && restitution > 0.0;
     }
     const double rotor_target = p_.speed_controlled ? p_.drive_speed(t + h) : 0.0;
 
@@ -1447,14 +1568,29 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
       const int sigma_count = sigma_fixed != 0 ? 1 : 2;
       const Impulses without = solve(true, normal_target, rotor_target, 0.0);
       const Impulses unit = solve(true, normal_target, rotor_target, 1.0);
-      const double c = model_.tangent_direction().dot(without.velocity);
-      const double d = model_.tangent_direction().dot(unit.velocity) - c;
-      const double beta = without.normal;
-      const double alpha = unit.normal - beta;
-      if (model_.effective_mu() * std::abs(alpha) >= 1.0 && !dynamics_.painleve_possible())
+      double c = model_.tangent_direction().dot(without.velocity);
+      double d = model_.tangent_direction().dot(unit.velocity) - c;
+      double beta = without.normal;
+      double alpha = unit.normal - beta;
+      // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
+      // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
+      // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
+      // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
+      // a stuck step (gamma+ = 0) has no viscous impulse.
+      const friction::Law& law = dynamics_.law();
+      const double viscous_step = law.viscous() * h;
+      const double viscous_scale = 1.0 / (1.0 + viscous_step * d);
+      const double viscous_c = c;
+      if (viscous_step > 0.0) {
+        beta -= alpha * viscous_step * c * viscous_scale;
+        c *= viscous_scale;
+        d *= viscous_scale;
+        alpha *= viscous_scale;
+      }
+      if (model_.effective_max_mu() * std::abs(alpha) >= 1.0 && !dynamics_.painleve_possible())
         throw SimulationError(t,
                               "dt = " + format_value(h) + " s is too long for the stiffness of "
-                              "this drive here: " + step_too_long(h, theta, alpha),
+                              "this drive here: " + step_too_long(theta, alpha),
                               "use dt < " + format_value(resolving_step(h, theta)) + " s");
       int found = 0;
       friction::FlankLcpResult chosen;
@@ -1463,19 +1599,46 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
       const double slip_noise =
           64.0 * std::numeric_limits<double>::epsilon() *
           model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum();
-      for (int k = 0; k < sigma_count; ++k) {
+      // One coefficient: the LCP decides stick and slip. A static one
+      // above the kinetic one: stick where the impulse that sticks lies in
+      // mu_static''s cone, else the LCP at the slip's coefficient at the
+      // step's start speed (Stribeck's curve, explicit in the speed).
+      // (In the Painleve regime the LCP may find no impulse where the stick
+      // holds: a stick that is admissible is taken then too.)
+      double lcp_mu = model_.effective_mu();
+      const friction::FlankLcpResult stick_step =
+          dynamics_.slip_prescribed()
+              ? friction::FlankLcpResult{}
+              : friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma_fixed);
+      bool stuck = false;
+      if (!law.plain_coulomb()) {
+        if (stick_step.consistent) {
+          chosen = stick_step;
+          stuck = true;
+          found = 1;
+        }
+        lcp_mu = law.slip_mu(std::abs(model_.tangent_direction().dot(v0))) * model_.flank_factor();
+      }
+      for (int k = 0; k < sigma_count && !stuck; ++k) {
         const friction::FlankLcpResult r =
             dynamics_.slip_prescribed()
                 ? friction::solve_flank_prescribed_slip(
-                      c, std::abs(c) <= slip_noise, alpha, beta, model_.effective_mu(),
-                      sigmas[k], without.rotor, unit.rotor - without.rotor)
-                : solve_flank_lcp_scaled(c, d, alpha, beta, model_.effective_mu(), sigmas[k],
-                                         lcp_workspace_, lcp_options_);
+                      c, std::abs(c) <= slip_noise, alpha, beta, lcp_mu, sigmas[k],
+                      without.rotor, unit.rotor - without.rotor)
+                : solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
+                                         lcp_options_);
         ++lcp_solves_;
         if (!r.consistent) continue;
         if (found == 0) chosen = r;
         ++found;
       }
+      if (found == 0 && stick_step.consistent) {
+        chosen = stick_step;
+        found = 1;
+      }
+      // The viscous impulse on top of the cone's (zero where stuck).
+      if (viscous_step > 0.0 && found > 0)
+        chosen.friction_force = (chosen.friction_force - viscous_step * viscous_c) * viscous_scale;
       if (found == 0 && sigma_fixed != 0) {
         contact = false;  // the flank separates: no impulse on it
       } else if (found == 0) {
@@ -1515,7 +1678,18 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     energy[kWorkAxial] +=
         p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
     const double slip = model_.tangent_direction().dot(v_);
-    energy[kFrictionLoss] += -impulses.friction * slip;
+    // A sticking step (the LCP's stick basis) ends at zero slip exactly; its
+    // computed slip is the round-off of terms of h f / m (1e-17 m/s against
+    // 4 m/s of a stuck drive's step), which would book a round-off loss of
+    // either sign.
+    if (!(contact && stick)) {
+      energy[kFrictionLoss] += -impulses.friction * slip;
+      // (ResultCheckSpec::step_friction_excess)
+      const double slip0 = model_.tangent_direction().dot(v0);
+      friction_excess_ += std::max(0.0, -(1.0 - theta) * impulses.friction * (slip - slip0));
+    }
+    play_rate_ = std::max({play_rate_, std::abs(play_rate0),
+                           std::abs(model_.play_gradient().dot(v_))});
     double damping_power = 0.0;
     for (const Spring& spring : model_.springs()) {
       const double rate = v_theta[spring.first] - (spring.second >= 0 ? v_theta[spring.second] : 0.0);
@@ -1527,6 +1701,33 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     last_.motor_torque =
         p_.speed_controlled ? impulses.rotor / h : p_.drive_torque(t + h);
     last_.stick = contact && stick;
+    return restituting;
+  }
+
+  // The energy a step from y to y_next creates: what the stored energy
+  // gains beyond the work in less the losses booked (the residual's fall),
+  // and the round-off of that account (of its largest term).
+  struct StepAccount {
+    double created = 0.0, round_off = 0.0;
+  };
+  StepAccount energy_created(double t, double h, const double* y, const double* y_next) {
+    double largest = 0.0;
+    auto account = [&](double time, const double* state) {
+      layout_.expand(time, state, q_, v_);
+      dynamics_.set_state(time, q_, v_);
+      const double* energy = state + layout_.energy_offset();
+      const double stored = dynamics_.kinetic_energy() + dynamics_.elastic_energy();
+      double balance = stored;
+      largest = std::max(largest, std::abs(stored));
+      for (int e = 0; e < kEnergyCount; ++e) {
+        balance += (e == kWorkDrive || e == kWorkAxial) ? -energy[e] : energy[e];
+        largest = std::max(largest, std::abs(energy[e]));
+      }
+      return balance;
+    };
+    const double before = account(t, y);
+    const double after = account(t + h, y_next);
+    return {after - before, 64.0 * std::numeric_limits<double>::epsilon() * largest};
   }
 
   void channels(double t, const double* y, double* out) override {
@@ -1535,7 +1736,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     const double* energy = y + layout_.energy_offset();
     // The Moreau-Jean scheme's numerical dissipation (and impacts) closes the
     // account: what the work and the named losses leave over.
-    write_drive_channels(model_, channel_state(dynamics_), last_, energy, 0.0, kinetic0_,
+    ChannelState state = channel_state(dynamics_);
+    if (last_.stick) state.slip_velocity = 0.0;  // the step's stick: zero slip (as above)
+    write_drive_channels(model_, state, last_, energy, 0.0, kinetic0_,
                          elastic0_, out);
   }
 
@@ -1584,7 +1787,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // No consistent impulse, or a spurious one, follows: a jam of the time
   // discretization, not of the drive (dt 7e-4 s "jammed" a flexible nut at
   // rest that dt 3e-4 s and the event-driven scheme run).
-  std::string step_too_long(double h, double theta, double alpha) {
+  std::string step_too_long(double theta, double alpha) {
     return "in the Moreau-Jean step (iteration matrix W = M + theta h C + theta^2 h^2 K, "
            "theta = " + format_value(theta) + ") the flank's "
            "friction impulse drives its own normal impulse, mu' |G~_NT| / G~_NN = " +
@@ -1618,7 +1821,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
       throw InvalidArgument("dt = " + format_value(h) + " is invalid: must be < " +
                             format_value(resolving_step(h, theta)) +
                             " s for the stiffness of this drive: " +
-                            step_too_long(h, theta, alpha));
+                            step_too_long(theta, alpha));
   }
 
  private:
@@ -1680,6 +1883,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   Eigen::LLT<Square> solver_;
   ContactForces last_;
   double kinetic0_ = 0.0, elastic0_ = 0.0;
+  double play_rate_ = 0.0, friction_excess_ = 0.0;
   long lcp_solves_ = 0;
   lcp::Workspace lcp_workspace_{2};
   lcp::Options lcp_options_{};
@@ -1688,18 +1892,38 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
 }  // namespace
 
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
-  static const std::vector<std::string> coulomb = {"event_driven", "moreau"};
-  // Exact play with a regularized law, and exact Coulomb on penalty flanks
-  // (Moreau-Jean's step handles exact flank contacts only).
+  // From the law's type (friction/law.hpp): a set-valued law runs in the
+  // event-driven scheme, in Moreau-Jean's time stepping, and where it has a
+  // regularization in the ODE methods; a smooth law in the ODE methods and
+  // the event-driven scheme. Moreau-Jean's step handles exact flank contacts
+  // only (not penalty flanks), and exact play needs the event-driven
+  // scheme's flank events with every law but for Moreau-Jean's.
   static const std::vector<std::string> event_driven_only = {"event_driven"};
+  static const std::vector<std::string> with_moreau = {"event_driven", "moreau"};
   static const std::vector<std::string> smooth = [] {
     std::vector<std::string> names = integrate::integrator_names();
     names.push_back("event_driven");
     return names;
   }();
+  static const std::vector<std::string> set_valued_all = [] {
+    std::vector<std::string> names = {"event_driven", "moreau"};
+    for (const std::string& name : integrate::integrator_names()) names.push_back(name);
+    return names;
+  }();
+  static const std::vector<std::string> set_valued_ode = [] {
+    std::vector<std::string> names = {"event_driven"};
+    for (const std::string& name : integrate::integrator_names()) names.push_back(name);
+    return names;
+  }();
+  const friction::LawType& type = friction::law_type(p.friction);
   const bool penalty = p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
-  if (p.friction == FrictionLaw::coulomb) return penalty ? event_driven_only : coulomb;
-  if (p.backlash == BacklashContact::exact) return event_driven_only;
+  const bool exact_play = p.backlash == BacklashContact::exact;
+  if (type.time_stepping) {  // set-valued
+    if (penalty) return type.ode ? set_valued_ode : event_driven_only;
+    if (exact_play) return with_moreau;
+    return type.ode ? set_valued_all : with_moreau;
+  }
+  if (exact_play) return event_driven_only;
   return smooth;
 }
 
@@ -1731,23 +1955,27 @@ integrate::MoreauOptions moreau_options(const DriveSimulationOptions& options) {
 
 // The checks of a drive's result (model/result_checks.hpp), raised unless
 // options.check is off.
-void check_drive_result(const DriveModel& model, const DriveSimulationOptions& options,
-                        bool time_stepping, integrate::SimulationResult& result) {
+// `step_play_rate`, `step_friction_excess`: Moreau-Jean's (ResultCheckSpec).
+void check_drive_result(const DriveModel& model, const friction::Law& law,
+                        const DriveSimulationOptions& options, bool time_stepping,
+                        integrate::SimulationResult& result, double step_play_rate = 0.0,
+                        double step_friction_excess = 0.0) {
   const DriveParameters& p = model.parameters();
   ResultCheckSpec spec;
   spec.work = {"work_drive", "work_axial"};
   spec.stored = {"kinetic", "elastic"};
   spec.losses = {"friction_loss", "damping_loss", "contact_loss", "impact_loss"};
   spec.t_end = options.output.t_end;
-  spec.cone_mu = p.friction == FrictionLaw::coulomb ? model.effective_mu() : -1.0;
-  spec.friction_dissipates = p.friction != FrictionLaw::arctan_acceleration;
-  spec.law = p.friction == FrictionLaw::coulomb           ? ResultCheckSpec::Law::coulomb
-             : p.friction == FrictionLaw::arctan_velocity ? ResultCheckSpec::Law::arctan_velocity
-                                                          : ResultCheckSpec::Law::none;
-  spec.law_mu = model.effective_mu();
-  spec.k_v = p.k_v;
+  spec.law = &law;
+  spec.coefficient_scale = model.flank_factor();
+  // Eq. (3.15)'s law can do positive work (its friction follows the slip
+  // acceleration), and LuGre's bristles give back what they stored.
+  spec.friction_dissipates = law.resolution() != friction::Resolution::acceleration &&
+                             law.resolution() != friction::Resolution::bristle;
   spec.clearance = p.backlash == BacklashContact::exact ? p.clearance : 0.0;
   spec.time_step = time_stepping ? options.dt : 0.0;
+  spec.step_play_rate = step_play_rate;
+  spec.step_friction_excess = step_friction_excess;
   spec.slip_resolution =
       model.tangent_direction().cwiseAbs().sum() * options.integrator_options.atol;
   spec.time_stepping = time_stepping;
@@ -1770,6 +1998,10 @@ void check_drive_result(const DriveModel& model, const DriveSimulationOptions& o
   }
   spec.force_factor = std::sqrt(2.0 * stiffness);
   spec.quadratures = kEnergyCount + 1;  // and the impact loss, booked at events
+  spec.load_forces = {"axial_force"};
+  spec.load_torques = {"drive_torque"};
+  spec.lever = p.thread.mean_radius();
+  spec.length_scale = p.screw_length;
   check_result(spec, result);
   if (options.check) integrate::enforce_checks(result);
 }
@@ -1785,7 +2017,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                    (p.backlash != BacklashContact::none
                         ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
                         : std::string()) +
-                       "friction.law = \"" + friction_law_name(p.friction) + "\"");
+                       "friction.law = \"" + p.friction + "\"");
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   integrate::validate_output_request(options.output, 0.0);
   if (options.max_events < 0)
@@ -1825,7 +2057,19 @@ integrate::SimulationResult simulate(const DriveModel& model,
   const DriveParameters& p = model.parameters();
   const std::string& integrator = chosen_integrator(p, options);
 
-  StateLayout layout(model);
+  // The law that runs: the model's, or a set-valued law's regularization
+  // where an ODE method runs it alone.
+  const bool ode_alone = integrator != "event_driven" && integrator != "moreau";
+  std::unique_ptr<friction::Law> regularization;
+  if (ode_alone && model.law().resolution() == friction::Resolution::set_valued) {
+    regularization = model.law().regularized();
+    if (!regularization)
+      throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with friction.law = \"" +
+                            p.friction + "\": the law has no regularization for an ODE method");
+  }
+  const friction::Law& law = regularization ? *regularization : model.law();
+
+  StateLayout layout(model, law.resolution() == friction::Resolution::bristle);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(layout.size());
   const double speed = p.speed_controlled ? p.drive_speed(0.0) : p.rotor_speed;
   const Eigen::VectorXd v0 = model.consistent_velocity(speed);
@@ -1838,12 +2082,13 @@ integrate::SimulationResult simulate(const DriveModel& model,
     system.check_step(options.dt, options.theta);
     integrate::SimulationResult result =
         integrate::simulate_moreau(system, 0.0, y0, options.output, moreau_options(options));
-    result.friction = friction_law_name(p.friction);
-    check_drive_result(model, options, true, result);
+    result.friction = p.friction;
+    check_drive_result(model, law, options, true, result, system.largest_play_rate(),
+                       system.friction_excess());
     return result;
   }
 
-  DriveHybrid system(model, options.bounce_threshold, options.output.t_end,
+  DriveHybrid system(model, law, options.bounce_threshold, options.output.t_end,
                      options.integrator_options);
   integrate::EventDrivenOptions driver;
   driver.integrator_options = options.integrator_options;
@@ -1860,7 +2105,8 @@ integrate::SimulationResult simulate(const DriveModel& model,
   // 1e-8), and order 3 ran past a million steps for a rattling flexible nut at
   // rtol 1e-9.
   if (driver.integrator == "cvode_bdf" && p.concept != Concept::rigid &&
-      p.friction != FrictionLaw::coulomb && driver.integrator_options.max_order == 0 &&
+      law.resolution() != friction::Resolution::set_valued &&
+      driver.integrator_options.max_order == 0 &&
       driver.integrator_options.rtol >= 1e-9)
     driver.integrator_options.max_order = 3;
   // Eq. (3.15)'s friction follows the slip acceleration, which carries the
@@ -1871,13 +2117,13 @@ integrate::SimulationResult simulate(const DriveModel& model,
   // iterations: with 3 it failed at every step (a nut-driven flexible drive,
   // 0.2 s: 229,147 steps, 225,258 convergence failures, 14 s), with 10 it
   // took 10,985 steps and 0.13 s.
-  if (p.friction == FrictionLaw::arctan_acceleration && p.concept != Concept::rigid)
+  if (law.resolution() == friction::Resolution::acceleration && p.concept != Concept::rigid)
     driver.integrator_options.max_nonlinear_iterations = 10;
   integrate::SimulationResult result =
       integrate::simulate_event_driven(system, 0.0, y0, options.output, driver);
   result.integrator = integrator;
-  result.friction = friction_law_name(p.friction);
-  check_drive_result(model, options, false, result);
+  result.friction = p.friction;
+  check_drive_result(model, law, options, false, result);
   return result;
 }
 

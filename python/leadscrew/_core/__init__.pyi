@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'drive_integrators', 'efficiency', 'efficiency_array', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive']
+__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -145,7 +145,7 @@ class SimulationResult:
     def time(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
 class FrictionBlock:
-    def __init__(self, mass: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex = 9.81, force: typing.Any = 0.0, initial_position: typing.SupportsFloat | typing.SupportsIndex = 0.0, initial_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, mass: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex = 9.81, force: typing.Any = 0.0, initial_position: typing.SupportsFloat | typing.SupportsIndex = 0.0, initial_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.0, mu_static: typing.SupportsFloat | typing.SupportsIndex | None = None, stiffness: typing.SupportsFloat | typing.SupportsIndex = 0.0, pull_speed: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
         ...
     @property
     def force(self) -> Excitation:
@@ -166,7 +166,16 @@ class FrictionBlock:
     def mu(self) -> float:
         ...
     @property
+    def mu_static(self) -> float:
+        ...
+    @property
     def normal_force(self) -> float:
+        ...
+    @property
+    def pull_speed(self) -> float:
+        ...
+    @property
+    def stiffness(self) -> float:
         ...
 class DriveParameters:
     """
@@ -234,6 +243,14 @@ class DriveParameters:
         ...
     @drive_torque.setter
     def drive_torque(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def friction_values(self) -> list[tuple[str, float]]:
+        """
+        the law's parameters besides mu and k_v, as (key, value) pairs
+        """
+    @friction_values.setter
+    def friction_values(self, arg0: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]]) -> None:
         ...
     @property
     def k_v(self) -> float:
@@ -462,6 +479,10 @@ def check_drive_options(drive: DriveModel, t_end: typing.SupportsFloat | typing.
     """
     The checks simulate_drive makes of these options before it integrates, without simulating: ValueError naming the option, its value and the valid range.
     """
+def check_friction_law(name: str, values: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]], prefix: str = 'friction.') -> None:
+    """
+    Raises ValueError naming '<prefix><key>', the value and the range where the law `name` does not take `values` ((key, value) pairs): an unknown key, a missing required one, a value out of range or below the key it may not fall below (mu_static >= mu).
+    """
 def drive_integrators(parameters: DriveParameters) -> list[str]:
     ...
 def efficiency(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0, backdrive: bool = False) -> float:
@@ -469,6 +490,10 @@ def efficiency(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, 
 def efficiency_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
     efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); ValueError for a negative or non-finite m.
+    """
+def friction_laws() -> list:
+    """
+    The friction laws of the registry (cpp/src/friction/registry.cpp): per law its name, what it is, its parameters (key, unit, doc, default, default_from, range, at_least) and which integrators fit (time_stepping: Moreau-Jean; ode: the ODE methods).
     """
 def is_drivable(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex) -> bool:
     ...
@@ -487,7 +512,7 @@ def pooled_helper_count() -> int:
     """
 def raise_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
     ...
-def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.SupportsIndex, friction: str, integrator: str, k_v: typing.SupportsFloat | typing.SupportsIndex, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
+def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.SupportsIndex, friction: str, integrator: str, law: collections.abc.Mapping[str, typing.SupportsFloat | typing.SupportsIndex], rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     ...
 def simulate_drive(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     """

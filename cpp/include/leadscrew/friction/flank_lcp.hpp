@@ -54,4 +54,14 @@ FlankLcpResult solve_flank_lcp(double c, double d, double alpha, double beta, do
 FlankLcpResult solve_flank_prescribed_slip(double c, bool slip_zero, double alpha, double beta,
                                            double mu, int sigma, double motor0, double motor1);
 
+// The stick solution alone: lambda_T = -c / d keeps the slip at zero; it is
+// admissible where d > 0, its normal force lambda_N = beta + alpha lambda_T
+// lies on the side sigma (0: either) and |lambda_T| <= mu |lambda_N|. In the
+// Painleve regime (mu |alpha| >= 1 on the velocity or impulse level) the
+// LCP of one sign may miss it; at zero slip the drive keeps sticking
+// wherever stick is admissible (docs/physics/rigid_drive.md, "uniqueness").
+// With a static coefficient above the kinetic one it is the first of the
+// two steps of the decision (docs/physics/friction_laws.md).
+FlankLcpResult flank_stick(double c, double d, double alpha, double beta, double mu, int sigma);
+
 }  // namespace leadscrew::friction

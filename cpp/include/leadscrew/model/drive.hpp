@@ -27,11 +27,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "leadscrew/excitation/excitation.hpp"
-#include "leadscrew/friction/laws.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/thread/thread.hpp"
 
 namespace leadscrew::model {
@@ -50,9 +51,13 @@ struct DriveParameters {
   Concept concept = Concept::rigid;
   DrivenPart drive = DrivenPart::screw;
   Thread thread{1e-3, 20e-3};
-  FrictionLaw friction = FrictionLaw::coulomb;
+  // The flank's friction law (friction::law_types()), its coefficient mu,
+  // its gain k_v where it takes one (the arctan laws', Stribeck's
+  // regularization), and its other parameters by key (mu_static, sigma0, ...).
+  std::string friction = "coulomb";
   double mu = 0.3;
   double k_v = 1e4;
+  friction::LawValues friction_values;
 
   BacklashContact backlash = BacklashContact::none;
   double clearance = 0.0;  // total axial play c_a [m]
@@ -141,7 +146,14 @@ class DriveModel {
   const Eigen::VectorXd& normal_direction() const noexcept { return normal_; }      // W_N
   const Eigen::VectorXd& tangent_direction() const noexcept { return tangent_; }    // W_T
   const Eigen::VectorXd& nut_position_gradient() const noexcept { return position_gradient_; }
+  // The flank's friction law, and its coefficients on the thread's normal
+  // force: mu' = mu / cos(beta / 2) (the flank angle scales the flank's own
+  // normal force), the static one, and the largest the law reaches.
+  const friction::Law& law() const noexcept { return *law_; }
+  double flank_factor() const noexcept { return flank_factor_; }
   double effective_mu() const noexcept { return mu_eff_; }
+  double effective_mu_static() const noexcept { return law_->mu_static() * flank_factor_; }
+  double effective_max_mu() const noexcept { return law_->max_mu() * flank_factor_; }
   bool bilateral_thread() const noexcept { return p_.backlash == BacklashContact::none; }
   // Coordinate eliminated by the bilateral thread constraint (-1 with backlash).
   int eliminated() const noexcept { return eliminated_; }
@@ -171,7 +183,8 @@ class DriveModel {
   Eigen::VectorXd mass_;
   std::vector<Spring> springs_;
   Eigen::VectorXd play_gradient_, normal_, tangent_, position_gradient_;
-  double mu_eff_ = 0.0;
+  double mu_eff_ = 0.0, flank_factor_ = 1.0;
+  std::shared_ptr<const friction::Law> law_;
   int eliminated_ = -1;
   std::vector<int> independent_;
   std::vector<int> rotating_group_, translating_group_;

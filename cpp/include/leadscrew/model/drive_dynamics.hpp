@@ -27,7 +27,17 @@ constexpr int kMaxConstraints = 3;
 using CoordinateVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCoordinates, 1>;
 
 enum class ThreadContact { bilateral, open, closed, penalty };
-enum class FrictionMode { none, stick, slip, regularized_velocity, regularized_acceleration };
+// The flank's friction in a mode: none; stick or slip of a set-valued law;
+// a velocity law's, an acceleration law's (eq. 3.15) or LuGre's bristles'
+// friction factor (friction/law.hpp).
+enum class FrictionMode {
+  none,
+  stick,
+  slip,
+  regularized_velocity,
+  regularized_acceleration,
+  bristle
+};
 
 struct ModeSpec {
   ThreadContact contact = ThreadContact::bilateral;
@@ -106,7 +116,19 @@ friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha
 
 class DriveDynamics {
  public:
-  explicit DriveDynamics(const DriveModel& model);
+  // `law`: the friction law that runs (default: the model's; a set-valued
+  // law's regularization where an ODE integrator runs it); it outlives this.
+  explicit DriveDynamics(const DriveModel& model, const friction::Law* law = nullptr);
+
+  const friction::Law& law() const noexcept { return *law_; }
+  // LuGre's bristle deflection z at the state last set (its own state).
+  void set_bristle(double z) noexcept { bristle_ = z; }
+  double bristle() const noexcept { return bristle_; }
+  // The bristles' energy |N|' sigma0 z^2 / 2 at a flank normal force N.
+  double bristle_energy(double normal_force) const noexcept {
+    return 0.5 * std::abs(normal_force) * model_.flank_factor() * law_->bristle_stiffness() *
+           bristle_ * bristle_;
+  }
 
   const DriveModel& model() const noexcept { return model_; }
 
@@ -203,6 +225,8 @@ class DriveDynamics {
   ModeSolution solve_acceleration_law(const ModeSpec& spec);
 
   const DriveModel& model_;
+  const friction::Law* law_;
+  double bristle_ = 0.0;
   double t_ = 0.0;
   CoordinateVector q_, v_, forces_, inverse_mass_;
   double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0, slip_noise_ = 0.0;

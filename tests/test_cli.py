@@ -247,7 +247,7 @@ def test_the_studies_of_each_shipped_scene_run_with_their_defaults(tmp_path, cap
     assert code == 0 and err == "", err
     stem = tmp_path / f"{study}_{scene}"
     assert stem.with_suffix(".png").stat().st_size > 10_000
-    frame = pd.read_csv(stem.with_suffix(".csv"))
+    frame = pd.read_csv(stem.with_suffix(".csv"), skiprows=[1])  # row 1: the units
     if study == "min_holding_preload":
         summary = json.loads(stem.with_suffix(".summary.json").read_text())
         assert summary["found"] and summary["monotonic"] and summary["bracket_verified"]
@@ -426,7 +426,7 @@ def test_study_dispatches_options_and_writes_csv(tmp_path, capsys, monkeypatch):
     (scene, mu, label, t_end), = calls
     assert scene == shipped.load("default") and mu == [0.1, 0.3] and label == "abc"
     assert t_end == 0.2
-    frame = pd.read_csv(tmp_path / "sweep_mu_default.csv")
+    frame = pd.read_csv(tmp_path / "sweep_mu_default.csv", skiprows=[1])  # row 1: the units
     assert list(frame.columns) == ["mu", "label", "u_end"]
     assert frame["mu"].tolist() == [0.1, 0.3]
     expected = ls.simulate(shipped.load("default").replace(friction={"mu": 0.3}), 0.2)
@@ -521,7 +521,7 @@ def test_readme_study_example_runs(tmp_path, capsys, monkeypatch):
     name, scene_name, out_dir = argv[1], argv[2], argv[argv.index("-o") + 1]
     csv = Path(out_dir) / f"{name}_{scene_name}.csv"
     assert f"wrote {csv}" in out
-    frame = pd.read_csv(tmp_path / csv)
+    frame = pd.read_csv(tmp_path / csv, skiprows=[1])  # row 1: the units
     mus = [float(v) for v in options["mu"].split(",")]
     loads = [float(v) for v in options["loads"].split(",")]
     assert frame["mu"].tolist() == [m for m in mus for _ in loads]
@@ -555,7 +555,7 @@ def test_study_warns_when_some_cases_failed(tmp_path, capsys, monkeypatch):
     code, out, err = run_main(capsys, "study", "partly", "default", "-o", tmp_path)
     assert code == 0
     assert err == "leadscrew: warning: 1 of 3 cases failed: SimulationError: at t = 0.5 s: boom\n"
-    frame = pd.read_csv(tmp_path / "partly_default.csv")
+    frame = pd.read_csv(tmp_path / "partly_default.csv", skiprows=[1])  # row 1: the units
     assert frame["error"].notna().tolist() == [False, True, False]
     code, _, err = run_main(capsys, "study", "partly", "default", "runs=2", "-o", tmp_path)
     assert code == 0 and "1 of 2 cases failed" in err
@@ -629,7 +629,9 @@ def test_study_summary_is_printed_and_written(tmp_path, capsys):
     summary = expected.attrs["summary"]
     path = tmp_path / "position_holding_position_holding.summary.json"
     assert f"wrote {path}" in out
-    assert json.loads(path.read_text()) == summary  # all finite here: numbers as they are
+    written = json.loads(path.read_text())
+    assert written.pop("units") == expected.attrs["summary_units"]
+    assert written == summary  # all finite here: numbers as they are
     lines = out.splitlines()
     assert "summary:" in lines
     assert "  self_locking: true" in lines
@@ -662,7 +664,11 @@ def test_study_summary_json_of_special_values(tmp_path, capsys, monkeypatch):
     json_path = tmp_path / "out" / "summarized_drive_v1.2.summary.json"
     text = json_path.read_text()
     assert "NaN" not in text and "Infinity" not in text
-    assert json.loads(text) == {
+    written = json.loads(text)
+    # the units of the entries summary_units names and the summary has
+    assert written.pop("units") == {"torque": "N*m", "ratio": "1",
+                                    "dynamic_creep_per_cycle": "m"}
+    assert written == {
         "missing": None, "unbounded": None, "count": 3, "value": 1.5, "holds": True,
         "window": [0.1, 0.2], "label": "x", "dynamic_creep_per_cycle": 2e-9, "torque": 0.5,
         "ratio": 0.25, "creep_per_cycle": 3e-9}
@@ -699,12 +705,10 @@ def test_every_study_has_a_tiny_case():
     assert set(TINY_STUDIES) == set(ls.studies.STUDIES)
 
 
-@pytest.mark.parametrize("name", sorted(TINY_STUDIES))
-def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys, monkeypatch,
-                                                               name):
-    """Every summary entry but the labels (booleans, strings) has its unit in
-    the frame's attrs["summary_units"] ("1" for counts and ratios), which is
-    where leadscrew study takes the units it prints from."""
+def run_tiny_study(tmp_path, capsys, monkeypatch, name):
+    """Run a study's tiny case with leadscrew study (into tmp_path / "out",
+    its scene file "scene.toml"): the frame the study returned and what was
+    printed."""
     study, frames = ls.studies.STUDIES[name], []
 
     @functools.wraps(study)  # the command line checks the options against its signature
@@ -720,6 +724,16 @@ def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys,
     assert code == 0 and err == "", err
     (frame,) = frames
     assert not cli._failures(frame)[0]
+    return frame, out
+
+
+@pytest.mark.parametrize("name", sorted(TINY_STUDIES))
+def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys, monkeypatch,
+                                                               name):
+    """Every summary entry but the labels (booleans, strings) has its unit in
+    the frame's attrs["summary_units"] ("1" for counts and ratios), which is
+    where leadscrew study takes the units it prints from."""
+    frame, out = run_tiny_study(tmp_path, capsys, monkeypatch, name)
     summary = frame.attrs.get("summary") or {}
     units = frame.attrs.get("summary_units") or {}
     labels = {key for key, value in summary.items() if isinstance(value, (bool, np.bool_, str))}
@@ -729,6 +743,38 @@ def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys,
         unit = units.get(key, "1")
         line = f"  {key}: {cli._summary_text(value)}" + ("" if unit in ("", "1") else f" {unit}")
         assert line in lines, (line, out)
+
+
+@pytest.mark.parametrize("name", sorted(TINY_STUDIES))
+def test_every_study_writes_the_units_of_its_csv_and_its_summary(tmp_path, capsys,
+                                                                 monkeypatch, name):
+    """A study's CSV has a row of units under its names, as a run's (the
+    frame's attrs["units"], "" for labels and flags), and its summary file
+    the units of its numbers ("units": attrs["summary_units"])."""
+    frame, _ = run_tiny_study(tmp_path, capsys, monkeypatch, name)
+    csv = tmp_path / "out" / f"{name}_scene.csv"
+    header = pd.read_csv(csv, nrows=1, dtype=str, keep_default_na=False)
+    written = pd.read_csv(csv, skiprows=[1])
+    columns = [c for c in frame.columns if c in written.columns]
+    assert columns and list(header.columns) == list(written.columns)
+    units = header.iloc[0].to_dict()
+    assert {c: units[c] for c in columns} == {c: frame.attrs["units"].get(c, "")
+                                              for c in columns}
+    numeric = [c for c in columns if pd.api.types.is_numeric_dtype(frame[c])
+               and not pd.api.types.is_bool_dtype(frame[c])]
+    # every number has its unit (a column of NaN only, such as work_precision's
+    # k_v without an arctan law, may have none)
+    assert all(units[c] for c in numeric if frame[c].notna().any()), units
+    assert len(written) == len(frame)
+    for column in numeric:  # the data below the units, as numbers
+        np.testing.assert_allclose(written[column].to_numpy(dtype=float),
+                                   frame[column].to_numpy(dtype=float), rtol=1e-15)
+    summary = frame.attrs.get("summary")
+    path = tmp_path / "out" / f"{name}_scene.summary.json"
+    if summary:
+        assert json.loads(path.read_text())["units"] == frame.attrs["summary_units"]
+    else:
+        assert not path.exists()
 
 
 @pytest.mark.parametrize("name", sorted(TINY_STUDIES))
@@ -775,6 +821,25 @@ def test_min_preload_not_found_names_the_range(tmp_path, capsys, monkeypatch):
         line for line in lines if line.startswith("  min_preload"))
     summary = json.loads((tmp_path / "min_holding_preload_scene.summary.json").read_text())
     assert summary["min_preload"] == "not found in [0, 10240] N" and summary["found"] is False
+
+
+def test_study_options_take_strings_with_units(tmp_path, capsys):
+    """Study options with a unit as strings, as in a scene file: a list of
+    frequencies, an amplitude; one of another dimension exits 2 naming it."""
+    changes, _ = TINY_STUDIES["creep_vs_frequency"]
+    path = scene_file(tmp_path, **changes)
+    code, out, err = run_main(capsys, "study", "creep_vs_frequency", path,
+                              "frequencies=20 Hz,0.04 kHz", "amplitude=30 N", *_HOLDING_RUNS,
+                              "progress=false", "-o", tmp_path / "out")
+    assert code == 0 and err == "", err
+    frame = pd.read_csv(tmp_path / "out" / "creep_vs_frequency_scene.csv", skiprows=[1])
+    assert frame["frequency"].tolist() == [20.0, 40.0] and frame["error"].isna().all()
+    summary = json.loads((tmp_path / "out" / "creep_vs_frequency_scene.summary.json").read_text())
+    assert summary["amplitude"] == 30.0 and summary["units"]["amplitude"] == "N"
+    code, _, err = run_main(capsys, "study", "creep_vs_frequency", path, "frequencies=20 Hz",
+                            "amplitude=30 m", "-o", tmp_path / "out")
+    assert code == 2
+    assert_one_line_error(err, 'amplitude = "30 m" is invalid: "30 m" is not a force (N)')
 
 
 @pytest.mark.parametrize(

@@ -31,6 +31,7 @@ from helpers.scene_fuzz import (ALLOWED, DEFAULT_SEED, FAILURES, OUTCOMES, cases
                                 make_case, names_user_key, prepare_parent, run_case,
                                 run_isolated)
 from helpers.scenes import thesis_scene
+from leadscrew.simulation import unused_option
 
 # A few hundred cases in well under two minutes on the 2-core machine
 # (measured: 300 cases in 14 s with two workers on a quiet machine, 45 s at a
@@ -96,13 +97,21 @@ def test_strategy_draws_cases(case):
 
 def test_valid_cases_are_valid_scenes():
     """Without hostile values a case's scene is valid (from_dict accepts it),
-    its integrator fits, and its run is bounded and short."""
+    its integrator fits, its run is bounded and short, and it sets only
+    options its integrator takes (simulate refuses the others)."""
     for case in generate(200, 11, hostile_share=0.0):
         assert not case["hostile"]
-        ls.Scene.from_dict(case["scene"])
+        scene = ls.Scene.from_dict(case["scene"])
         options = case["options"]
         assert 0.01 <= options["t_end"] <= 0.2
         assert options["max_steps"] <= 100_000 and options["max_events"] <= 2_000
+        try:  # (a valid scene may still have no model: load.mass = 0 with a flexible nut)
+            model = scene.model()
+        except ValueError:
+            continue
+        integrator = options.get("integrator") or ls._core.drive_integrators(
+            model.parameters)[0]
+        assert unused_option(integrator, options, scene) is None, case
 
 
 def test_names_user_key():

@@ -161,6 +161,95 @@ def test_schema_documents_every_field():
         assert path in text
 
 
+def test_schema_says_a_speed_controlled_drive_starts_at_drive_speed():
+    line = next(line for line in ls.scene.describe_schema().splitlines()
+                if line.startswith("initial.rotor_speed"))
+    assert line.startswith("initial.rotor_speed [rad/s] (default 0, or drive_speed(0) for a "
+                           "speed-controlled drive): ")
+    assert "A speed-controlled drive (loads.drive_speed) starts at drive_speed(0)" in line
+
+
+SPEED_SINE = {"type": "sine", "amplitude": 2.0, "omega": 3.0, "phase": 0.5, "offset": 1.0}
+
+
+@pytest.mark.parametrize("speed, rotor_speed, prescribed", [
+    (5.0, 2.0, 5.0),
+    (5.0, 0.0, 5.0),  # an explicit 0 is not "left out"
+    ({"type": "constant", "value": "60 rpm"}, 5.0, 2 * math.pi),
+    (SPEED_SINE, 1.0, 1.0 + 2.0 * math.sin(0.5)),
+    (ls.Table([0.0, 1.0], [3.0, 4.0]), 4.0, 3.0),
+    (lambda t: 3.0 + t, 2.0, 3.0),
+])
+def test_a_rotor_speed_that_contradicts_the_drive_speed_is_refused(speed, rotor_speed,
+                                                                    prescribed):
+    """A speed-controlled drive starts at drive_speed(0): another
+    initial.rotor_speed would be overridden silently."""
+    loads = {"drive_torque": None, "drive_speed": speed}
+    message = (rf"^initial\.rotor_speed = {rotor_speed!r} is invalid: must be "
+               rf"{re.escape(repr(prescribed))} rad/s or absent: loads\.drive_speed prescribes "
+               rf"{re.escape(repr(prescribed))} rad/s at t = 0")
+    with pytest.raises(ValueError, match=message):
+        ls.Scene.from_dict(thesis_scene(loads=loads, initial={"rotor_speed": rotor_speed}))
+    # replace: the speed given to a speed-controlled scene, or the drive
+    # switched to speed control under a scene's rotor speed
+    speed_scene = ls.Scene.from_dict(thesis_scene(loads=loads))
+    with pytest.raises(ValueError, match=message):
+        speed_scene.replace(initial={"rotor_speed": rotor_speed})
+    torque_scene = ls.Scene.from_dict(thesis_scene(initial={"rotor_speed": rotor_speed}))
+    with pytest.raises(ValueError, match=message):
+        torque_scene.replace(loads=loads)
+    # drive_speed(0) itself, or none, is the same scene
+    same = speed_scene.replace(initial={"rotor_speed": prescribed})
+    assert same == speed_scene
+    assert same["initial"]["rotor_speed"] == prescribed
+
+
+def test_a_speed_controlled_drive_starts_at_drive_speed(tmp_path):
+    scene = ls.Scene.from_dict(thesis_scene(loads={"drive_torque": None, "drive_speed": 5.0}))
+    assert "rotor_speed" not in scene["initial"]
+    assert ls.Scene.from_dict(scene.to_dict()) == scene
+    scene.to_toml(tmp_path / "speed.toml")
+    assert ls.Scene.from_toml(tmp_path / "speed.toml") == scene
+    result = ls.simulate(scene, 0.01, t_eval=[0.0, 0.01])
+    assert result["omega_drive"][0] == 5.0
+    # a torque-driven scene starts at initial.rotor_speed, 0 if left out
+    torque = ls.Scene.from_dict(thesis_scene())
+    assert "rotor_speed" not in torque["initial"]
+    assert torque == torque.replace(initial={"rotor_speed": 0.0})
+    assert torque != torque.replace(initial={"rotor_speed": 1.0})
+    assert ls.simulate(torque.replace(initial={"rotor_speed": 1.0}), 0.01,
+                       t_eval=[0.0])["omega_drive"][0] == 1.0
+    # switched back to a torque, the drive's given speed is its own again
+    given = scene.replace(initial={"rotor_speed": 5.0})
+    assert given.replace(loads={"drive_speed": None, "drive_torque": 0.0})["initial"][
+        "rotor_speed"] == 5.0
+
+
+@pytest.mark.parametrize("changes, path, default", [
+    ({"load": {"mass": None}}, "load.mass", "its default 1.0"),
+    ({"thread": {"hand": None}}, "thread.hand", "its default 'right'"),
+    ({"loads": {"axial_force": None}}, "loads.axial_force", "its default 0.0"),
+    ({"initial": {"play_position": None}}, "initial.play_position", "its default 0.0"),
+    ({"thread": {"pitch": None}}, "thread.pitch", "thread.pitch is required"),
+])
+def test_none_for_a_field_that_is_not_optional_is_refused(changes, path, default):
+    """None does not mean the schema's default (a replaced load.mass of 2 kg
+    came out 1 kg): refused, naming the key, in from_dict and replace."""
+    scene = ls.Scene.from_dict(thesis_scene(load={"mass": 2.0}, thread={
+        **thesis_scene()["thread"], "hand": "left"}))
+    message = rf"^{re.escape(path)} = None is invalid: must be .*\(None removes only an " \
+              rf"optional field: .*{re.escape(default)}"
+    with pytest.raises(ValueError, match=message):
+        scene.replace(**changes)
+    with pytest.raises(ValueError, match=message):
+        ls.Scene.from_dict(_merged(thesis_scene(), changes))
+    # None still removes an optional field
+    assert "nut_mass" not in scene.replace(overrides={"nut_mass": 0.3}).replace(
+        overrides={"nut_mass": None})["overrides"]
+    assert scene.replace(initial={"rotor_speed": 1.0}).replace(
+        initial={"rotor_speed": None}) == scene
+
+
 def test_nut_position_is_checked_for_both_drives():
     # The model takes the nut's centre as the point where the thread force
     # enters the screw (segments a and L - a), the whole nut on the screw:

@@ -247,3 +247,36 @@ def test_friction_block_names_a_bad_parameter(call, message):
     with pytest.raises(ValueError) as info:
         call()
     assert str(info.value).startswith(message), str(info.value)
+
+
+def test_a_mistyped_option_is_refused_naming_it_and_both_lists():
+    """A keyword that is neither simulate()'s nor any friction law's
+    parameter names the closest option and what simulate and the law take;
+    another law's parameter is the law's error (the core's)."""
+    with pytest.raises(ValueError, match=r"^rtool = 1e-06 is invalid: simulate\(\) has no option "
+                                         r"'rtool' and the friction law 'coulomb' no parameter "
+                                         r"'rtool' \(did you mean 'rtol'\?\); simulate takes "
+                                         r"friction, integrator, rtol, .*, the law mu, "
+                                         r"mu_static$"):
+        ls.simulate(block(6.0), 0.1, rtool=1e-6)
+    with pytest.raises(ValueError, match=r"sigma0 is invalid for the friction law \"coulomb\""):
+        ls.simulate(block(6.0), 0.1, sigma0=1e5)
+
+
+@pytest.mark.parametrize("options, message", [
+    ({"dt": 1e-3}, r"^dt = 0.001 is invalid with integrator 'event_driven' \(the default "
+                   r"here\): dt is taken by moreau only"),
+    ({"friction": "arctan_velocity", "theta": 0.5},
+     r"^theta = 0.5 is invalid with integrator 'cvode_bdf' \(the default here\)"),
+    ({"integrator": "moreau", "rtol": 1e-6}, r"^rtol = 1e-06 is invalid with integrator "
+                                             r"'moreau': moreau is a fixed-step scheme"),
+    ({"integrator": "moreau", "max_order": 2}, r"^max_order = 2 is invalid with integrator "
+                                               r"'moreau'"),
+])
+def test_options_the_integrator_would_ignore_are_refused(options, message):
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(block(6.0), 0.1, **options)
+    # left out, or None, they are not
+    left_out = {key: (None if key not in ("friction", "integrator") else value)
+                for key, value in options.items()}
+    ls.simulate(block(6.0), 1.0, t_eval=[1.0], **left_out)

@@ -443,6 +443,9 @@ BAD_OPTIONS = [
     ({"max_events": -2}, r"max_events = -2 is invalid"),
     ({"max_step": -1e-3}, r"max_step = -0.001 is invalid"),
     ({"first_step": -1e-3}, r"first_step = -0.001 is invalid"),
+    # (this scene has no backlash: refused as an option it would ignore,
+    # whatever its value; its range with an exact backlash:
+    # test_options_left_out_or_used_are_not_refused)
     ({"bounce_threshold": -1.0}, r"bounce_threshold = -1 is invalid"),
     ({"integrator": "euler"}, r"integrator = \"euler\" is invalid"),
     ({"smooth_integrator": "euler"}, r"smooth_integrator = \"euler\" is invalid"),
@@ -587,6 +590,135 @@ def test_options_the_model_would_ignore_are_refused():
     from leadscrew.studies import efficiency_vs_mu
     with pytest.raises(ValueError, match="k_v = 10.0 is invalid for a Scene"):
         efficiency_vs_mu(scene, [0.1], [10.0], k_v=10.0, progress=False)
+
+
+def test_a_mistyped_option_is_refused_naming_it_and_the_options():
+    """An unknown keyword is not a friction law's parameter to set in the
+    scene: the message names it, the closest option and every option."""
+    scene = ls.scenes.load("default")
+    with pytest.raises(ValueError) as error:
+        ls.simulate(scene, 0.1, rtool=1e-6)
+    message = str(error.value)
+    assert message.startswith("rtool = 1e-06 is invalid: simulate() has no option 'rtool' "
+                              "(did you mean 'rtol'?); for a Scene it takes friction, "
+                              "integrator, rtol, atol, dt, t_eval, ")
+    assert "friction.rtool" not in message
+    with pytest.raises(ValueError, match=r"^integrtor = 'moreau' is invalid: simulate\(\) has no "
+                                         r"option 'integrtor' \(did you mean 'integrator'\?\)"):
+        ls.simulate(scene, 0.1, integrtor="moreau")
+    with pytest.raises(ValueError, match=r"^zzz = 1 is invalid: simulate\(\) has no option 'zzz'; "
+                                         r"for a Scene it takes friction, "):
+        ls.simulate(scene, 0.1, zzz=1)
+
+
+def test_a_friction_law_parameter_is_set_in_the_scene_not_as_an_option():
+    """Keywords that are friction-law parameters (a FrictionBlock's) belong
+    in a Scene's friction section, which the message names with the laws
+    that take them."""
+    scene = ls.scenes.load("default")
+    with pytest.raises(ValueError, match=r"^mu = 0.2 is invalid for a Scene: set the scene's "
+                                         r"friction.mu \(a parameter of the friction laws "
+                                         r"'coulomb', 'arctan_velocity', "):
+        ls.simulate(scene, 0.1, mu=0.2)
+    with pytest.raises(ValueError, match=r"^mu_static = 0.4 is invalid for a Scene: set the "
+                                         r"scene's friction.mu_static \(a parameter of the "
+                                         r"friction laws 'coulomb', 'stribeck', 'lugre'\)$"):
+        ls.simulate(scene, 0.1, mu_static=0.4)
+    with pytest.raises(ValueError, match=r"^sigma0 = 100000 is invalid for a Scene: set the "
+                                         r"scene's friction.sigma0 \(a parameter of the "
+                                         r"friction law 'lugre'\)$"):
+        ls.simulate(scene, 0.1, sigma0=1e5)
+    # and the scene takes it there
+    lugre = scene.replace(friction={"law": "lugre", "sigma0": 1e5})
+    assert lugre["friction"]["sigma0"] == 1e5
+
+
+EXACT = {"axial": 1e-4, "contact": "exact"}
+BISTOP = {"axial": 1e-4, "contact": "bistop"}
+
+# (scene changes, options, message): the options the integrator that runs (or
+# the scene) would ignore.
+IGNORED_OPTIONS = [
+    ({}, {"dt": 1e-3}, r"^dt = 0.001 is invalid with integrator 'event_driven' \(the default "
+                       r"here\): dt is taken by moreau only"),
+    ({}, {"theta": 0.5}, r"^theta = 0.5 is invalid with integrator 'event_driven' \(the "
+                         r"default here\): theta is taken by moreau only"),
+    ({}, {"integrator": "event_driven", "dt": 1e-3},
+     r"^dt = 0.001 is invalid with integrator 'event_driven': dt is taken by moreau only"),
+    (dict(friction={"law": "arctan_velocity", "mu": 0.3}), {"integrator": "cvode_bdf",
+                                                            "theta": 1.0},
+     r"^theta = 1 is invalid with integrator 'cvode_bdf'"),
+    *[({}, {"integrator": "moreau", name: value},
+       rf"^{name} = {value!r} is invalid with integrator 'moreau': moreau is a fixed-step "
+       rf"scheme without error or step-size control \(its step is dt\); {name} is taken by the "
+       r"other integrators")
+      for name, value in (("rtol", 1e-6), ("atol", 1e-9), ("max_order", 3), ("max_step", 1e-3),
+                          ("first_step", 1e-6))],
+    ({}, {"bounce_threshold": 1e-5}, r"^bounce_threshold = 1e-05 is invalid for this Scene: "
+                                     r"it has no backlash, and bounce_threshold is taken by a "
+                                     r"Scene with an exact backlash"),
+    (dict(backlash=BISTOP), {"bounce_threshold": 1e-5},
+     r"^bounce_threshold = 1e-05 is invalid for this Scene: it has backlash.contact = "
+     r"'bistop', "),
+    (dict(backlash=EXACT), {"integrator": "moreau", "bounce_threshold": 1e-5},
+     r"^bounce_threshold = 1e-05 is invalid with integrator 'moreau': bounce_threshold is "
+     r"taken by integrator 'event_driven' only"),
+]
+
+
+@pytest.mark.parametrize("changes, options, message", IGNORED_OPTIONS)
+def test_options_the_run_would_ignore_are_refused(changes, options, message):
+    """As the command line: an option the integrator that runs (or the
+    scene) would ignore is refused, by simulate and by the check a sweep
+    makes before its cases (DriveBatch's keywords) alike."""
+    from leadscrew.studies._batch import check_simulate_options
+
+    scene = ls.Scene.from_dict(thesis_scene(**changes))
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(scene, 0.01, **options)
+    with pytest.raises(ValueError, match=message):
+        check_simulate_options(scene, options, 0.01)
+
+
+def test_options_left_out_or_used_are_not_refused():
+    """The defaults never trip the refusal (only options given count), nor
+    do options the run uses."""
+    scene = ls.Scene.from_dict(thesis_scene())
+    times = [0.01]
+    default = ls.simulate(scene, 0.01, t_eval=times)
+    moreau = ls.simulate(scene, 0.01, integrator="moreau", t_eval=times)
+    assert default.integrator == "event_driven" and moreau.integrator == "moreau"
+    # None is "left out", whatever the integrator
+    ls.simulate(scene, 0.01, integrator="moreau", rtol=None, atol=None, max_order=None,
+                t_eval=times)
+    ls.simulate(scene, 0.01, dt=None, theta=None, bounce_threshold=None, t_eval=times)
+    # the defaults given explicitly give the same run
+    explicit = ls.simulate(scene, 0.01, rtol=1e-8, atol=1e-10, t_eval=times)
+    np.testing.assert_array_equal(explicit["u_load"], default["u_load"])
+    same = ls.simulate(scene, 0.01, integrator="moreau", dt=1e-4, theta=0.5, t_eval=times)
+    np.testing.assert_array_equal(same["u_load"], moreau["u_load"])
+    # an exact backlash run event-driven takes bounce_threshold, and checks its range
+    exact = ls.Scene.from_dict(thesis_scene(backlash=EXACT))
+    ls.simulate(exact, 0.01, bounce_threshold=1e-5, t_eval=times)
+    with pytest.raises(ValueError, match=r"bounce_threshold = -1 is invalid: must be"):
+        ls.simulate(exact, 0.01, bounce_threshold=-1.0)
+
+
+@pytest.mark.parametrize("model", ["scene", "block"])
+@pytest.mark.parametrize("t_eval", [[], (), np.array([])])
+def test_an_empty_t_eval_is_refused(model, t_eval):
+    """No output time is not "the default output" (None)."""
+    with pytest.raises(ValueError, match=r"t_eval = .* is invalid: t_eval must hold at least "
+                                         r"one time in \[0, t_end\]"):
+        ls.simulate(block_or_scene(model), 0.1, t_eval=t_eval)
+
+
+@pytest.mark.parametrize("model", ["scene", "block"])
+@pytest.mark.parametrize("t_eval", [["0.1 s"], [{"t": 0.1}], "abc"])
+def test_a_t_eval_of_no_numbers_is_refused_naming_it(model, t_eval):
+    with pytest.raises(ValueError, match=r"^t_eval = .* is invalid: must be a sequence of times "
+                                         r"\[s\] in \[0, t_end\]"):
+        ls.simulate(block_or_scene(model), 0.1, t_eval=t_eval)
 
 
 # A trial state off the screw is retried, not the end of the run (OutsideDomain).

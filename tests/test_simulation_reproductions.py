@@ -373,9 +373,12 @@ def test_11_a_penalty_flank_the_nut_starts_on_carries_friction(law, contact):
 
 def test_13_options_that_make_the_answer_meaningless_are_refused():
     s = ls.scenes.load("default")
-    with pytest.raises(ValueError, match=r"rtol = 0\.5 is invalid: must be <= 0\.001"):
+    with pytest.raises(ValueError, match=r"rtol = 0\.5 is invalid: must be a finite number in "
+                                         r"\(0, 0\.001\] \(a looser tolerance no longer "
+                                         r"bounds the error"):
         ls.simulate(s, 1.0, rtol=0.5)
-    with pytest.raises(ValueError, match=r"atol = 1e-300 is invalid: must be >= 1e-100"):
+    with pytest.raises(ValueError, match=r"atol = 1e-300 is invalid: must be a finite number in "
+                                         r"\[1e-100, 0\.001\] \(the error weights"):
         ls.simulate(s, 1.0, atol=1e-300)
     with pytest.raises(ValueError, match=r"dt = 10 is invalid: must be <= t_end = 1 s"):
         ls.simulate(s, 1.0, integrator="moreau", dt=10.0)
@@ -388,6 +391,27 @@ def test_13_options_that_make_the_answer_meaningless_are_refused():
         ls.simulate(block, 1.0, rtol=0.01)
     with pytest.raises(ValueError, match="dt = 0.2 is invalid"):
         ls.simulate(block, 1.0, integrator="moreau", dt=0.2)
+
+
+@pytest.mark.parametrize("model", ["scene", "block"])
+@pytest.mark.parametrize("options, message", [
+    ({"rtol": math.nan}, r"^rtol = nan is invalid: must be a finite number in \(0, 0\.001\]$"),
+    ({"rtol": 0.0}, r"^rtol = 0 is invalid: must be a finite number in \(0, 0\.001\]$"),
+    ({"rtol": -1e-6}, r"^rtol = -1e-06 is invalid: must be a finite number in \(0, 0\.001\]$"),
+    ({"rtol": 1.0}, r"^rtol = 1 is invalid: must be a finite number in \(0, 0\.001\] \(a "
+                    r"looser"),
+    ({"rtol": math.inf}, r"^rtol = inf is invalid: must be a finite number in \(0, 0\.001\] "),
+    ({"atol": math.nan}, r"^atol = nan is invalid: must be a finite number in "
+                         r"\[1e-100, 0\.001\]$"),
+    ({"atol": 0.0}, r"^atol = 0 is invalid: must be a finite number in \[1e-100, 0\.001\]$"),
+])
+def test_13_the_tolerances_are_refused_naming_their_real_range(model, options, message):
+    """NaN and the values no integrator takes name the range that holds,
+    (0, 1e-3] for rtol (it said "(0, 1)" before)."""
+    run = (ls.scenes.load("default") if model == "scene"
+           else ls.FrictionBlock(1.0, 0.3, 10.0, ls.Sine(6.0, 4 * math.pi)))
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(run, 1.0, **options)
 
 
 def test_16_the_integrators_a_penalty_contact_with_coulomb_takes_are_one_list():

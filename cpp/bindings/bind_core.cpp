@@ -13,6 +13,7 @@ namespace {
 // released (no static destructor runs after Python has finalized).
 PyObject* simulation_error_type = nullptr;
 PyObject* jamming_error_type = nullptr;
+PyObject* no_equilibrium_error_type = nullptr;
 
 void raise_with_attributes(PyObject* type, const SimulationError& e) {
   py::object error = py::handle(type)(e.what());
@@ -36,9 +37,15 @@ void bind_core(py::module_& m) {
       PyErr_NewException("leadscrew._core.JammingError", simulation_error_type, nullptr);
   m.add_object("SimulationError", py::handle(simulation_error_type));
   m.add_object("JammingError", py::handle(jamming_error_type));
+  // NoEquilibriumError derives from ValueError: the start asked for does not exist.
+  no_equilibrium_error_type = PyErr_NewException("leadscrew._core.NoEquilibriumError",
+                                                 PyExc_ValueError, nullptr);
+  m.add_object("NoEquilibriumError", py::handle(no_equilibrium_error_type));
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const NoEquilibrium& e) {
+      PyErr_SetString(no_equilibrium_error_type, e.what());
     } catch (const JammingError& e) {
       raise_with_attributes(jamming_error_type, e);
     } catch (const SimulationError& e) {

@@ -6,6 +6,7 @@
 #include "bindings.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_batch.hpp"
+#include "leadscrew/model/drive_equilibrium.hpp"
 #include "leadscrew/model/drive_simulation.hpp"
 
 namespace py = pybind11;
@@ -91,6 +92,12 @@ void bind_drive(py::module_& m) {
           })
       .def_readwrite("friction_values", &DriveParameters::friction_values,
                      "the law's parameters besides mu and k_v, as (key, value) pairs")
+      .def_property(
+          "initial_state",
+          [](const DriveParameters& p) { return model::initial_state_name(p.initial_state); },
+          [](DriveParameters& p, const std::string& v) {
+            p.initial_state = model::parse_initial_state(v);
+          })
       .def_readwrite("thread", &DriveParameters::thread)
       .def_property(
           "drive_torque", [](const DriveParameters& p) { return p.drive_torque; },
@@ -129,6 +136,24 @@ void bind_drive(py::module_& m) {
                                return out;
                              })
       .def_property_readonly("effective_mu", &model::DriveModel::effective_mu)
+      .def(
+          "initial_state",
+          [](const model::DriveModel& d) {
+            const model::DriveStart start = model::initial_state(d);
+            py::dict out;
+            out["q"] = start.q;
+            out["v"] = start.v;
+            out["play"] = start.play;
+            out["normal_force"] = start.normal_force;
+            out["friction_force"] = start.friction_force;
+            out["iterations"] = start.iterations;
+            return out;
+          },
+          "The state at t = 0 that initial.state asks for: dict with q and v (every "
+          "coordinate and velocity, in coordinate_names' order), play [m], normal_force and "
+          "friction_force [N] (the flank forces holding the loads: 0 for a relaxed start), "
+          "iterations (Newton's). NoEquilibriumError where the loads at t = 0 have no static "
+          "equilibrium.")
       .def_property_readonly("parameters", &model::DriveModel::parameters);
 
   m.def("drive_integrators", &model::drive_integrators, py::arg("parameters"));

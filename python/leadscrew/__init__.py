@@ -4,7 +4,7 @@ SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
 from . import integrate, lcp, scene, scenes, studies, units
-from .errors import JammingError, SimulationError
+from .errors import JammingError, NoEquilibriumError, SimulationError, StudyWarning
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
 from .scene import Scene
@@ -38,6 +38,8 @@ __all__ = [
     "Event",
     "SimulationError",
     "JammingError",
+    "NoEquilibriumError",
+    "StudyWarning",
     "integrate",
     "lcp",
     "scene",

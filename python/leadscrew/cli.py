@@ -34,11 +34,13 @@ import os
 import re
 import sys
 import time
+import warnings
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import __version__
 from . import thread as _thread
+from .errors import StudyWarning
 
 __all__ = ["main"]
 
@@ -350,21 +352,19 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
         UsageError: naming the option, its value and the integrator.
     """
     from . import _core
+    from .simulation import unused_option
 
     if args.integrator is not None:
         integrator, which = args.integrator, f"--integrator {args.integrator}"
     else:  # the scene's default: the first of the integrators that fit it
         integrator = _core.drive_integrators(scene.model().parameters)[0]
         which = f"the scene's default integrator {integrator}"
-    if integrator == "moreau":
-        ignored = [("--rtol", args.rtol), ("--atol", args.atol)]
-        why = "moreau is a fixed-step scheme without error control (set its step with --dt)"
-    else:
-        ignored = [("--dt", args.dt), ("--theta", args.theta)]
-        why = "it applies to --integrator moreau only"
-    for flag, value in ignored:
-        if value is not None:
-            raise UsageError(f"{flag} {value:g} is invalid with {which}: {why}")
+    given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
+    # The rules of leadscrew.simulate, in the command line's spelling.
+    unused = unused_option(integrator, given, scene, spell=lambda name: f"--{name}")
+    if unused is not None:
+        name, _, why = unused
+        raise UsageError(f"--{name} {given[name]:g} is invalid with {which}: {why}")
 
 
 def _simulate(scene, t_end: float = DEFAULT_T_END, points: int = DEFAULT_POINTS, **options):
@@ -408,14 +408,27 @@ def _write_series(result, out: Path, name: str, fmt: str) -> Path:
                             for field in schema], metadata=schema.metadata)
         frame.to_parquet(path, index=False, schema=schema)
     else:
-        import csv
-
-        with open(path, "w", encoding="utf-8", newline="") as stream:
-            writer = csv.writer(stream, lineterminator="\n")
-            writer.writerow(frame.columns)
-            writer.writerow(units[column] for column in frame.columns)
-            frame.to_csv(stream, index=False, header=False, lineterminator="\n")
+        _write_csv(frame, path, units)
     return path
+
+
+def _write_csv(frame, path: Path, units: Dict[str, str], index: bool = False) -> None:
+    """Write a frame as CSV: the row of names, a row of units (``units`` by
+    column, ``""`` where it has none: a label, a flag, the index), then the
+    data (``pandas.read_csv(path, skiprows=[1])`` reads the data, with
+    ``header=[0, 1]`` names and units)."""
+    import csv
+
+    names = [str(column) for column in frame.columns]
+    unit_row = [str(units.get(column, "")) for column in frame.columns]
+    if index:
+        names.insert(0, "" if frame.index.name is None else str(frame.index.name))
+        unit_row.insert(0, "")
+    with open(path, "w", encoding="utf-8", newline="") as stream:
+        writer = csv.writer(stream, lineterminator="\n")
+        writer.writerow(names)
+        writer.writerow(unit_row)
+        frame.to_csv(stream, index=index, header=False, lineterminator="\n")
 
 
 def _require_parquet(fmt: str) -> None:
@@ -500,6 +513,10 @@ def _study_options(items: Sequence[str]) -> Dict[str, Any]:
                              "frequencies=5,10,20 or progress=false")
         options[key] = _option_value(value)
     return options
+
+
+#: What a study's StudyWarning about its rows that raised says (studies/_common.py).
+_RAISED_ROWS = r"\w+: \d+ of \d+ rows raised and decide nothing"
 
 
 def _import_studies():
@@ -633,6 +650,25 @@ def _json_value(value: Any) -> Any:
     return str(value)
 
 
+def _summary_json(summary: Dict[str, Any], frame) -> Dict[str, Any]:
+    """A study's summary as JSON data (:func:`_json_value`), with ``"units"``:
+    the SI unit of every entry the study gives one (its frame's
+    ``attrs["summary_units"]``; ``"1"`` a ratio or count; labels and flags
+    have none).
+
+    Raises:
+        StudyFailed: the summary has a key ``"units"`` of its own (it would
+            be overwritten).
+    """
+    if "units" in summary:
+        raise StudyFailed("the study's summary has a key 'units', which the summary file "
+                          "keeps for the units of its entries")
+    units = frame.attrs.get("summary_units") or {}
+    data = _json_value(dict(summary))
+    data["units"] = {str(key): str(units[key]) for key in summary if key in units}
+    return data
+
+
 def _summary_unit(key: str, frame) -> str:
     """The unit of a summary entry: the frame's ``attrs["summary_units"]``,
     which every study sets for its numbers; "" for ratios ("1") and for keys
@@ -675,7 +711,11 @@ def _study(args: argparse.Namespace) -> int:
     _check_output_dir(args.output)
     scene, scene_name, _ = _load_scene(args.scene)
     start = time.perf_counter()
-    frame = function(scene, **options)
+    with warnings.catch_warnings():
+        # The study's warning about its rows that raised: this command's own
+        # (below, once the files are written) says the same.
+        warnings.filterwarnings("ignore", message=_RAISED_ROWS, category=StudyWarning)
+        frame = function(scene, **options)
     elapsed = time.perf_counter() - start
     if not hasattr(frame, "to_csv"):
         raise StudyFailed(f"study {args.name!r} returned {type(frame).__name__}, not a DataFrame")
@@ -690,7 +730,8 @@ def _study(args: argparse.Namespace) -> int:
     # Columns holding arrays (time series per row) do not fit a CSV cell.
     arrays = [c for c in frame.columns
               if frame[c].map(lambda v: hasattr(v, "__len__") and not isinstance(v, str)).any()]
-    frame.drop(columns=arrays).to_csv(path, index=not default_index)
+    _write_csv(frame.drop(columns=arrays), path, frame.attrs.get("units") or {},
+               index=not default_index)
     written = [path]
     summary = frame.attrs.get("summary") or {}
     print(f"{args.name} on {scene_name}: {len(frame)} rows in {elapsed:.3g} s")
@@ -700,7 +741,7 @@ def _study(args: argparse.Namespace) -> int:
             print(f"  {key}: {_summary_text(value, _summary_unit(str(key), frame))}")
         written.append(_output_file(out, stem, "summary.json"))
         with open(written[-1], "w", encoding="utf-8") as stream:
-            json.dump(_json_value(dict(summary)), stream, indent=2, allow_nan=False)
+            json.dump(_summary_json(summary, frame), stream, indent=2, allow_nan=False)
             stream.write("\n")
     # The study's figure (leadscrew.studies.PLOTS) beside its CSV, if it has one.
     save_figure = getattr(studies, "save_figure", None)
@@ -785,10 +826,12 @@ def _parser() -> argparse.ArgumentParser:
     study = command(
         "study", help="run a design study of leadscrew.studies, write its table",
         description="Run a study of leadscrew.studies on SCENE and write its table to "
-        "DIR/NAME_SCENE.csv. A study's scalar verdicts (its summary: position_holding, "
-        "stick_slip, min_holding_preload, ...) are printed, one 'key: value unit' line each, "
-        "and written to DIR/NAME_SCENE.summary.json (NaN and infinities as null). Options are "
-        "the study's parameters and, for studies that pass them on, leadscrew.simulate's "
+        "DIR/NAME_SCENE.csv (a row of units under the column names). A study's scalar "
+        "verdicts (its summary: position_holding, stick_slip, min_holding_preload, ...) are "
+        "printed, one 'key: value unit' line each, and written to DIR/NAME_SCENE.summary.json "
+        "(NaN and infinities as null; 'units' maps each number to its SI unit). Options are "
+        "the study's parameters (values with a unit as strings: amplitude='20 N', "
+        "frequencies='5 Hz,10 Hz') and, for studies that pass them on, leadscrew.simulate's "
         "keywords (integrator, max_steps, ...; not t_eval); executor, ax and reference take "
         "Python objects and cannot be given here. Exit codes: 0 success (also when some cases "
         "failed: a warning 'k of N cases failed: <first message>' goes to stderr and each "

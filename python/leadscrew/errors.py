@@ -1,8 +1,8 @@
 """Exceptions raised by leadscrew."""
 
-from ._core import JammingError, SimulationError
+from ._core import JammingError, NoEquilibriumError, SimulationError
 
-__all__ = ["SimulationError", "JammingError"]
+__all__ = ["SimulationError", "JammingError", "NoEquilibriumError", "StudyWarning"]
 
 SimulationError.__doc__ = """A solver failed during a simulation.
 
@@ -14,3 +14,14 @@ JammingError.__doc__ = """A self-locking drive jams dynamically (Painleve parado
 
 No consistent flank-contact mode exists. Attributes as SimulationError.
 """
+NoEquilibriumError.__doc__ = """A start in static equilibrium (``initial.state =
+'equilibrium'``) that the loads at t = 0 do not admit: holding them at rest
+takes a flank friction force beyond the friction cone (the loads drive the
+thread). A ValueError; the message gives the loads and the forces.
+"""
+
+
+class StudyWarning(RuntimeWarning):
+    """A study returned a result that needs a reader's attention: cases that
+    failed (their rows carry the message and decide nothing), or a verdict
+    that rests on an assumption its evaluations contradict."""

@@ -7,7 +7,9 @@ and keeps only the sections the scene needs. ``Scene.to_dict()`` returns the
 complete dict, which ``from_dict`` accepts again unchanged (defaults filled,
 except the drive torque: without ``loads.drive_torque`` and
 ``loads.drive_speed`` the model applies 0 N*m, and the scene keeps the key
-absent; loads given as :class:`~leadscrew.Constant`, :class:`~leadscrew.Sine`
+absent; likewise ``initial.rotor_speed``: 0, or drive_speed(0) for a
+speed-controlled drive, which starts there and refuses another value; loads
+given as :class:`~leadscrew.Constant`, :class:`~leadscrew.Sine`
 or :class:`~leadscrew.Table` are kept as their ``{"type": ...}`` dicts).
 ``Scene.from_toml(path)`` and ``Scene.to_toml(path)`` read and write the same
 structure as a TOML file.
@@ -31,6 +33,7 @@ finite number > 0 (or set overrides.nut_mass)``.
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import numbers
@@ -62,6 +65,7 @@ class Field:
     low_open: bool = False
     high_open: bool = False
     choices: Tuple[str, ...] = ()
+    default_doc: str = ""  # the default in words, where it depends on other fields
 
 
 OPTIONAL = object()  # the field may be absent (derived or unused)
@@ -82,11 +86,24 @@ _DENSITY_RANGE_DOC = ", in [1, 1e5] kg/m^3: from aerogels to beyond osmium (22,5
 _FRICTION_COMMON = ("mu", "k_v")
 
 
+@functools.lru_cache(maxsize=None)
+def _friction_registry() -> Tuple[dict, ...]:
+    """The core's registry of friction laws (``_core.friction_laws()``),
+    read once: it does not change while the module lives, and building it
+    costs 40 us a call (twice a block's simulation, which takes 25 us)."""
+    return tuple(_core.friction_laws())
+
+
+def _friction_law_entry(name: str) -> Optional[dict]:
+    """The registry's entry of the friction law ``name`` (None: no such law)."""
+    return next((law for law in _friction_registry() if law["name"] == name), None)
+
+
 def _friction_section() -> Dict[str, Field]:
     """The friction section from the core's registry of laws
     (``_core.friction_laws()``): the law, mu, k_v and every law's other
     parameters (optional; only the law that takes one accepts it)."""
-    laws = _core.friction_laws()
+    laws = _friction_registry()
     law_doc = "; ".join(f"'{law['name']}': {law['doc']}" for law in laws)
     section = {
         "law": Field(f"flank friction law: {law_doc}", "", "coulomb", kind="choice",
@@ -126,7 +143,7 @@ def _check_friction(friction: Dict[str, Any]) -> None:
     """The friction section's parameters against its law: a parameter the law
     does not take is refused, and the law checks its own (mu_static >= mu)."""
     name = friction["law"]
-    law = next(law for law in _core.friction_laws() if law["name"] == name)
+    law = _friction_law_entry(name)
     takes = {parameter["key"] for parameter in law["parameters"]}
     for key, value in _friction_values(friction):
         if key not in takes:
@@ -164,7 +181,8 @@ SCHEMA: Dict[str, Any] = {
     },
     "friction": _friction_section(),
     "backlash": {
-        "axial": Field("total axial clearance c_a of the thread (the nut starts centred)", "m",
+        "axial": Field("total axial clearance c_a of the thread (a relaxed start puts the nut at "
+                       "initial.play_position, by default centred)", "m",
                        None, **NONNEGATIVE),
         "contact": Field("flank contact across the play: 'exact' (unilateral contacts, Newton "
                          "impacts), 'bistop' (Adams BISTOP penalty), 'cubic' (smooth cubic "
@@ -265,9 +283,26 @@ SCHEMA: Dict[str, Any] = {
     "initial": {
         "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),
         "rotor_speed": Field("rotor angular velocity at t = 0; every body moves consistently "
-                             "with the thread, springs relaxed", "rad/s", 0.0),
+                             "with the thread, springs relaxed (state 'relaxed'). A "
+                             "speed-controlled drive (loads.drive_speed) starts at drive_speed(0): "
+                             "leave rotor_speed out, or give that value (another one is refused)",
+                             "rad/s", OPTIONAL, default_doc="0, or drive_speed(0) for a "
+                             "speed-controlled drive"),
         "play_position": Field("axial position of the nut within the backlash, from its "
                                "centre (|value| <= axial / 2)", "m", 0.0),
+        "state": Field("the state at t = 0: 'relaxed' (every spring relaxed, the nut at "
+                       "play_position, every body turning with the thread at rotor_speed) or "
+                       "'equilibrium' (at rest in static equilibrium under the loads at "
+                       "t = 0: the springs deflected, the nut on the flank the loads press it "
+                       "against, a penalty flank penetrated as far as its force takes, the "
+                       "thread stuck with its friction force inside the static cone; "
+                       "rotor_speed and play_position 0, a torque-controlled motor; "
+                       "NoEquilibriumError where "
+                       "the loads drive the thread. A regularized law, which carries no "
+                       "friction at rest, starts from that state and slips from it; LuGre's "
+                       "bristles start relaxed. "
+                       "Scene.initial_state() gives the state)", "", "relaxed", kind="choice",
+                       choices=("relaxed", "equilibrium")),
     },
 }
 
@@ -473,6 +508,28 @@ class _Converted:
         return self.text
 
 
+def _refuse_none(path: str, f: Field) -> None:
+    """None for a field that is not optional: refused (it would take the
+    schema's default silently, also in :meth:`Scene.replace`, whose scene
+    may hold another value).
+
+    Raises:
+        ValueError: naming the key path, what the field takes and its default.
+    """
+    if f.kind == "choice":
+        allowed = "one of " + ", ".join(repr(c) for c in f.choices)
+    elif f.kind == "load":
+        allowed = "a number, a dict with 'type' in constant/sine/table, an Excitation or a callable"
+    else:
+        allowed = _range_text(f) + (f" [{f.unit}]" if f.unit else "")
+    if f.default is None:
+        hint = f"{path} is required; leave it out of Scene.replace to keep the scene's value"
+    else:
+        hint = (f"leave {path} out for its default {f.default!r}, or out of Scene.replace to "
+                "keep the scene's value")
+    _fail(path, None, f"{allowed} (None removes only an optional field: {hint})")
+
+
 def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]) -> Dict[str, Any]:
     if not isinstance(given, dict):
         _fail(path, given, "a table (dict) of fields")
@@ -485,6 +542,8 @@ def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]
     for key in sorted(schema, key=lambda k: (path, k) in _UNIT_DEPENDS_ON):
         f = schema[key]
         sub = f"{path}.{key}"
+        if key in given and given[key] is None and f.default is not OPTIONAL:
+            _refuse_none(sub, f)
         if key in given and given[key] is not None:
             unit = _field_unit(path, key, f, out)
             bistop = unit != f.unit and (path, key) == ("backlash", "stiffness")
@@ -559,9 +618,10 @@ class Scene:
             The scene.
 
         Raises:
-            ValueError: unknown key, missing required key, or value out of
-                range; the message names the key path, the value and what is
-                allowed.
+            ValueError: unknown key, missing required key, None for a field
+                that is not optional (it would not mean its default), or
+                value out of range; the message names the key path, the value
+                and what is allowed.
         """
         if not isinstance(d, dict):
             _fail("scene", d, "a dict of sections")
@@ -643,7 +703,10 @@ class Scene:
 
     def replace(self, **sections) -> "Scene":
         """A new scene with some fields changed: ``scene.replace(friction={"mu": 0.1})``
-        merges into the named sections (``backlash=None`` removes the backlash).
+        merges into the named sections (``backlash=None`` removes the backlash;
+        None for an optional field removes it, ``loads={"drive_torque": None}``;
+        None for any other field is refused, as by :meth:`from_dict`: leave
+        the key out to keep the scene's value).
 
         Raises:
             ValueError: as :meth:`from_dict`.
@@ -701,6 +764,33 @@ class Scene:
         """
         return _model(self._data)
 
+    def initial_state(self) -> Dict[str, Any]:
+        """The state the run starts from (``initial.state``), as the core computes it.
+
+        Returns:
+            dict with ``q`` and ``v``: coordinate name -> displacement from
+            the reference configuration (springs relaxed, the nut at
+            ``initial.play_position``) [m or rad] and velocity [m/s or
+            rad/s]; ``play`` [m], the nut's place in the play (0 without
+            backlash); ``normal_force`` and ``friction_force`` [N], the flank
+            forces holding the loads at t = 0 (0 for a relaxed start);
+            ``iterations``, Newton's (0 for a relaxed start).
+
+        Raises:
+            NoEquilibriumError: (a ValueError) ``initial.state`` is
+                ``'equilibrium'`` and the loads at t = 0 drive the thread.
+            ValueError: as :meth:`model`.
+            SimulationError: the equilibrium's solve did not converge.
+        """
+        model = self.model()
+        start = model.initial_state()
+        names = model.coordinate_names
+        return {"q": dict(zip(names, map(float, start["q"]))),
+                "v": dict(zip(names, map(float, start["v"]))),
+                "play": float(start["play"]), "normal_force": float(start["normal_force"]),
+                "friction_force": float(start["friction_force"]),
+                "iterations": int(start["iterations"])}
+
     @property
     def thread(self) -> Thread:
         return _thread(self._data)
@@ -721,14 +811,42 @@ class Scene:
 
 # The drive torque of a scene that gives neither drive_torque nor drive_speed.
 _DEFAULT_DRIVE_TORQUE = 0.0
+# The initial rotor speed of a torque-driven scene that gives none.
+_DEFAULT_ROTOR_SPEED = 0.0
 
 
 def _effective(data: Dict[str, Any]) -> Dict[str, Any]:
-    """The scene data with the default drive torque filled in (for comparing)."""
-    loads = data["loads"]
-    if "drive_torque" in loads or "drive_speed" in loads:
-        return data
-    return {**data, "loads": {**loads, "drive_torque": _DEFAULT_DRIVE_TORQUE}}
+    """The scene data with the defaults the model applies filled in (for
+    comparing): the drive torque, and the initial rotor speed (that of a
+    speed-controlled drive is drive_speed(0), whether given or not)."""
+    loads, initial = data["loads"], data["initial"]
+    if "drive_speed" in loads:
+        initial = {k: v for k, v in initial.items() if k != "rotor_speed"}
+    else:
+        initial = {"rotor_speed": _DEFAULT_ROTOR_SPEED, **initial}
+    if not ("drive_torque" in loads or "drive_speed" in loads):
+        loads = {**loads, "drive_torque": _DEFAULT_DRIVE_TORQUE}
+    return {**data, "loads": loads, "initial": initial}
+
+
+def _check_rotor_speed(data: Dict[str, Any]) -> None:
+    """A rotor speed given for a speed-controlled drive must be the speed the
+    drive prescribes at t = 0 (the run starts there: another value would be
+    overridden silently).
+
+    Raises:
+        ValueError: naming initial.rotor_speed, its value and drive_speed(0).
+    """
+    speed = data["initial"].get("rotor_speed")
+    if speed is None or "drive_speed" not in data["loads"]:
+        return
+    load = _make_excitation(data["loads"]["drive_speed"], "drive_speed")
+    prescribed = float(load if isinstance(load, numbers.Real) else load(0.0))
+    # Round-off of the load's evaluation (a sine's offset + amplitude sin(phase)).
+    if not math.isclose(speed, prescribed, rel_tol=1e-12, abs_tol=1e-12):
+        _fail("initial.rotor_speed", speed,
+              f"{prescribed!r} rad/s or absent: loads.drive_speed prescribes {prescribed!r} "
+              "rad/s at t = 0, where a speed-controlled drive starts")
 
 
 def _check_consistency(data: Dict[str, Any]) -> None:
@@ -754,12 +872,27 @@ def _check_consistency(data: Dict[str, Any]) -> None:
               f"{length - half:g}) (the distance of the nut's centre from the screw's {end} "
               f"for drive = {data['drive']!r}: the whole nut on the screw; nut.length = "
               f"{data['nut']['length']!r}, screw.length = {length!r})")
+    _check_rotor_speed(data)
     play = data["initial"]["play_position"]
     backlash = data.get("backlash")
     half = backlash["axial"] / 2 if backlash else 0.0
     if abs(play) > half:
         _fail("initial.play_position", play, f"within +-backlash.axial / 2 = +-{half:g}"
               + (f" (backlash.axial = {backlash['axial']!r})" if backlash else " (no backlash)"))
+    if data["initial"]["state"] == "equilibrium":
+        # The core checks the same (DriveModel); here the scene names it first.
+        equilibrium = " is invalid with initial.state = 'equilibrium': "
+        if "drive_speed" in loads:
+            raise ValueError("initial.state = 'equilibrium' is invalid with loads.drive_speed: "
+                             "the static equilibrium needs a torque-controlled motor "
+                             "(loads.drive_torque)")
+        if data["initial"].get("rotor_speed", _DEFAULT_ROTOR_SPEED) != 0.0:
+            raise ValueError(f"initial.rotor_speed = {data['initial']['rotor_speed']!r}"
+                             f"{equilibrium}must be 0 (the drive starts at rest)")
+        if play != 0.0:
+            raise ValueError(f"initial.play_position = {play!r}{equilibrium}must be 0 (the "
+                             "equilibrium puts the nut on the flank the loads press it "
+                             "against)")
 
 
 def describe_schema() -> str:
@@ -771,6 +904,8 @@ def describe_schema() -> str:
         for path, f in items:
             if f.default is None:
                 default = "required"
+            elif f.default_doc:
+                default = f.default_doc
             elif f.default is OPTIONAL:
                 default = "optional"
             else:
@@ -1165,8 +1300,10 @@ def _core_parameters(data: Dict[str, Any], d: Dict[str, Any]) -> "_core.DrivePar
     for key in (given, "axial_force"):
         setattr(p, key, _make_excitation(loads.get(key, _DEFAULT_DRIVE_TORQUE), key))
     init = data["initial"]
-    p.rotor_angle, p.rotor_speed, p.play_position = (init["rotor_angle"], init["rotor_speed"],
-                                                     init["play_position"])
+    # (A speed-controlled drive starts at drive_speed(0): the core takes that.)
+    p.rotor_angle, p.rotor_speed, p.play_position = (
+        init["rotor_angle"], init.get("rotor_speed", _DEFAULT_ROTOR_SPEED), init["play_position"])
+    p.initial_state = init["state"]
     return p
 
 

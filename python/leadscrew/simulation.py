@@ -2,16 +2,18 @@
 
 from __future__ import annotations
 
+import difflib
+import functools
 import inspect
 import math
 import numbers
-from typing import NamedTuple, Optional, Sequence
+from typing import Any, Callable, Dict, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
 from . import _core
 from .models import FrictionBlock
-from .scene import Scene
+from .scene import SCHEMA, Scene, _friction_law_entry, _friction_registry
 from .units import channel_unit
 
 __all__ = ["simulate", "Result", "Event"]
@@ -173,10 +175,12 @@ def _restore_result(t, channels, data, events, stats, integrator, friction,
     return result
 
 
+@functools.lru_cache(maxsize=None)
 def _law(name: str) -> Optional[dict]:
     """The registry's entry of a friction law (None: no such law; the core
-    names the laws)."""
-    return next((law for law in _core.friction_laws() if law["name"] == name), None)
+    names the laws); looked up once per name (a scan of the registry took
+    microseconds a call)."""
+    return _friction_law_entry(name)
 
 
 def _check_scene_friction(scene: Scene, friction: Optional[str], k_v=None) -> None:
@@ -188,6 +192,149 @@ def _check_scene_friction(scene: Scene, friction: Optional[str], k_v=None) -> No
     if k_v is not None and k_v != scene["friction"]["k_v"]:
         raise ValueError(f"k_v = {k_v!r} is invalid for a Scene: set the scene's friction.k_v "
                          f"(it is {scene['friction']['k_v']!r})")
+
+
+#: Options of the adaptive integrators (error and step-size control), which
+#: the fixed-step Moreau-Jean scheme does not take.
+ADAPTIVE_OPTIONS = ("rtol", "atol", "max_order", "max_step", "first_step")
+#: Options of the Moreau-Jean scheme only (its fixed step and theta).
+MOREAU_OPTIONS = ("dt", "theta")
+
+
+def _shown(value) -> str:
+    """A value in a message, a float as the core writes one (its
+    format_value: the shortest of 12 to 17 significant digits that reads
+    back, so that ``-1.0`` is ``-1`` in either's messages); others' repr."""
+    value = _scalar(value)
+    if not isinstance(value, float):
+        return repr(value)
+    if not math.isfinite(value):
+        return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
+    for digits in range(12, 18):
+        text = f"{value:.{digits}g}"
+        if float(text) == value:
+            break
+    return text
+
+
+def _play_of(scene: Scene) -> str:
+    """The scene's play for messages: "" for an exact backlash, else what it has."""
+    if "backlash" not in scene:
+        return "no backlash"
+    contact = scene["backlash"]["contact"]
+    return "" if contact == "exact" else f"backlash.contact = {contact!r}"
+
+
+def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene] = None,
+                  spell=str) -> Optional[Tuple[str, bool, str]]:
+    """The first option given that a run would ignore, and why.
+
+    ``dt`` and ``theta`` are Moreau-Jean's alone; ``rtol``, ``atol``,
+    ``max_order``, ``max_step`` and ``first_step`` the other integrators'
+    (:data:`ADAPTIVE_OPTIONS`); ``bounce_threshold`` that of a Scene with an
+    exact backlash run by ``"event_driven"`` (its plastic impacts). Shared by
+    :func:`simulate`, the study batches and the command line.
+
+    Args:
+        integrator: the integrator that runs (the model's default resolved).
+        given: option name -> value as the caller passed it (None: left out).
+        scene: the Scene that runs (None: a FrictionBlock).
+        spell: how the caller spells an option in messages (the command
+            line: ``--dt``).
+
+    Returns:
+        ``(name, of_scene, why)``: the option, whether the scene (True) or
+        the integrator (False) leaves it unused, and which integrator or
+        scene takes it; None if the run uses every option given.
+    """
+    if integrator == "moreau":
+        for name in ADAPTIVE_OPTIONS:
+            if given.get(name) is not None:
+                return name, False, (
+                    f"moreau is a fixed-step scheme without error or step-size control (its "
+                    f"step is {spell('dt')}); {spell(name)} is taken by the other integrators "
+                    "(event_driven, cvode_bdf, ...)")
+    else:
+        for name in MOREAU_OPTIONS:
+            if given.get(name) is not None:
+                return name, False, (f"{spell(name)} is taken by moreau only (the fixed-step "
+                                     "Moreau-Jean scheme)")
+    if given.get("bounce_threshold") is not None and scene is not None:
+        play = _play_of(scene)
+        if play:
+            return "bounce_threshold", True, (
+                f"it has {play}, and {spell('bounce_threshold')} is taken by a Scene with an "
+                "exact backlash (backlash.contact = 'exact') only, whose flank impacts it "
+                "makes plastic")
+        if integrator == "moreau":
+            return "bounce_threshold", False, (
+                f"{spell('bounce_threshold')} is taken by integrator 'event_driven' only "
+                "(Moreau-Jean has no impact events)")
+    return None
+
+
+def _refuse_unused(integrator: str, integrators: Callable[[], Sequence[str]],
+                   given: Dict[str, Any], scene: Optional[Scene] = None) -> None:
+    """Raise if the run (``integrator`` "": the default, the first of
+    ``integrators()``, those that fit the model: called only if an option is
+    given) would ignore an option given (:func:`unused_option`); an
+    integrator not among them is left to the core, which lists those that
+    fit.
+
+    Raises:
+        ValueError: naming the option, its value, the integrator and which
+            integrator or scene takes the option.
+    """
+    for value in given.values():
+        if value is not None:
+            break
+    else:  # nothing given (the common case: no lookup)
+        return
+    allowed = integrators()
+    runs = integrator or allowed[0]
+    if runs not in allowed:
+        return
+    unused = unused_option(runs, given, scene)
+    if unused is not None:
+        name, of_scene, why = unused
+        which = ("for this Scene" if of_scene else f"with integrator {runs!r}"
+                 + ("" if integrator else " (the default here)"))
+        raise ValueError(f"{name} = {_shown(given[name])} is invalid {which}: {why}")
+
+
+def _unknown_scene_option(name: str, value) -> ValueError:
+    """The error of a keyword simulate() does not take for a Scene: a
+    friction law's parameter (a FrictionBlock's keyword; a Scene carries its
+    law's in its friction section) or an unknown option (with a close match
+    and the list)."""
+    laws = [law["name"] for law in _friction_registry()
+            if any(p["key"] == name for p in law["parameters"])]
+    if laws or name in _SCENE_FRICTION_KEYS:
+        taken = (f" (a parameter of the friction law{'s' if len(laws) > 1 else ''} "
+                 f"{', '.join(map(repr, laws))})" if laws else "")
+        return ValueError(f"{name} = {_shown(value)} is invalid for a Scene: set the scene's "
+                          f"friction.{name}{taken}")
+    options = [option for option in _SIGNATURE if option not in ("model", "t_end")]
+    close = difflib.get_close_matches(name, options, n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    return ValueError(f"{name} = {_shown(value)} is invalid: simulate() has no option {name!r}"
+                      f"{hint}; for a Scene it takes {', '.join(options)}")
+
+
+def _law_keys() -> set:
+    """The keys of every friction law's parameters."""
+    return {p["key"] for law in _friction_registry() for p in law["parameters"]}
+
+
+def _unknown_block_option(name: str, value, friction: str, takes: Sequence[str]) -> ValueError:
+    """The error of a keyword that is neither simulate()'s nor a parameter of
+    the block's friction law (with a close match and both lists)."""
+    options = [option for option in _SIGNATURE if option not in ("model", "t_end")]
+    close = difflib.get_close_matches(name, [*options, *takes], n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    return ValueError(f"{name} = {_shown(value)} is invalid: simulate() has no option {name!r} and "
+                      f"the friction law {friction!r} no parameter {name!r}{hint}; simulate "
+                      f"takes {', '.join(options)}, the law {', '.join(takes)}")
 
 
 def _check_block_options(**options) -> None:
@@ -230,6 +377,26 @@ def _whole(name: str, value, limit: int = 2 ** 63 - 1) -> int:
     return int(value)
 
 
+def _t_eval_list(t_eval) -> list:
+    """``t_eval`` as a list of floats ([] for None: every step and event).
+
+    Raises:
+        ValueError: ``t_eval`` is no sequence of numbers, or holds no time
+            (an empty list would silently give the default output).
+    """
+    if t_eval is None:
+        return []
+    try:
+        times = np.asarray(t_eval, dtype=float).ravel().tolist()
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"t_eval = {t_eval!r} is invalid: must be a sequence of times [s] in "
+                         "[0, t_end] (None: every step and event)") from None
+    if not times:
+        raise ValueError(f"t_eval = {t_eval!r} is invalid: t_eval must hold at least one time "
+                         "in [0, t_end] (None: every step and event)")
+    return times
+
+
 class _progress_bar:
     """A tqdm bar over the simulated time [0, t_end] while a run lasts, or
     nothing (``show`` False); the context value is the core's progress
@@ -270,6 +437,11 @@ def _name(name: str, value, what: str = "an integrator") -> str:
     return value or ""
 
 
+#: simulate's defaults of the options it takes as None when left out (so that
+#: it can tell an option given from one left out: :func:`_unused_option`).
+DEFAULT_RTOL, DEFAULT_ATOL, DEFAULT_THETA = 1e-8, 1e-10, 0.5
+
+
 def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, theta, t_eval,
                       max_steps, max_events, max_step, first_step, max_order) -> dict:
     """The keywords the core's block and drive simulations share, from
@@ -282,8 +454,10 @@ def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, thet
             steps), naming the option; the core checks the ranges.
     """
     return {"t_end": _real("t_end", t_end), "integrator": _name("integrator", integrator),
-            "rtol": _real("rtol", rtol), "atol": _real("atol", atol),
-            "dt": default_dt if dt is None else _real("dt", dt), "theta": _real("theta", theta),
+            "rtol": DEFAULT_RTOL if rtol is None else _real("rtol", rtol),
+            "atol": DEFAULT_ATOL if atol is None else _real("atol", atol),
+            "dt": default_dt if dt is None else _real("dt", dt),
+            "theta": DEFAULT_THETA if theta is None else _real("theta", theta),
             "t_eval": t_eval, "max_steps": _whole("max_steps", max_steps),
             "max_events": _whole("max_events", max_events),
             "max_step": 0.0 if max_step is None else _real("max_step", max_step),
@@ -317,12 +491,12 @@ def simulate(
     t_end: float,
     friction: Optional[str] = None,
     integrator: Optional[str] = None,
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
     dt: Optional[float] = None,
     t_eval: Optional[Sequence[float]] = None,
     k_v: Optional[float] = None,
-    theta: float = 0.5,
+    theta: Optional[float] = None,
     max_steps: int = 1_000_000,
     max_events: int = 100_000,
     max_step: Optional[float] = None,
@@ -349,27 +523,34 @@ def simulate(
             ``"moreau"``; for the regularized laws an ODE integrator:
             ``"cvode_bdf"`` (default), ``"cvode_adams"``, ``"dopri5"``, ...
             (a Scene with exact backlash and a regularized law: ``"event_driven"``).
-        rtol, atol: integration tolerances (ODE and event-driven integrators).
+        rtol, atol: integration tolerances of the ODE and event-driven
+            integrators (default 1e-8 and 1e-10; refused with ``"moreau"``).
         dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,
-            1e-4 for a Scene).
-        t_eval: output times [s]; default: every step and event.
+            1e-4 for a Scene; refused with the other integrators).
+        t_eval: output times [s], at least one, in [0, t_end]; default
+            (None): every step and event.
         k_v: for a FrictionBlock: regularization gain k_V of the arctan laws
             [s/m or s^2/m] (default 100). A Scene carries its own
             (``friction.k_v``): k_v may only repeat it.
-        theta: theta of the Moreau-Jean scheme, in [0, 1].
+        theta: theta of the Moreau-Jean scheme, in [0, 1] (default 0.5;
+            refused with the other integrators).
         max_steps: bound on integrator steps; for ``"moreau"`` on its fixed
             steps (t_end / dt), refused before the run starts if too small.
         max_events: bound on events (Zeno or chattering raise instead of hanging).
-        max_step, first_step: optional step-size controls [s].
+        max_step, first_step: optional step-size controls [s] (not with
+            ``"moreau"``).
         smooth_integrator: for a Scene only: the ODE integrator inside
             ``"event_driven"`` (default ``"rk_verner6"`` for the rigid
             concept, ``"cvode_bdf"`` for the flexible ones).
         bounce_threshold: for a Scene only: a flank impact slower than this
-            [m/s] is plastic (exact backlash; default 1e-6).
+            [m/s] is plastic (default 1e-6; refused for a scene without an
+            exact backlash, ``backlash.contact = "exact"``, and with
+            ``"moreau"``).
         max_order: highest order of the CVODE methods (default: BDF 5,
             Adams 12; for the flexible drive models with a regularized
             friction law at rtol >= 1e-9, BDF 3: faster and robust with their
-            lightly damped stiff modes and the law's stiffness near zero slip).
+            lightly damped stiff modes and the law's stiffness near zero slip;
+            not with ``"moreau"``).
         check: check the result's physics before returning it (every
             channel finite, events within the run, friction never doing
             positive work, Coulomb's cone, the energy account within the
@@ -383,19 +564,31 @@ def simulate(
         **law_parameters: for a FrictionBlock: the friction law's other
             parameters by their keys (``sigma0``, ``sigma1``, ``viscous``,
             ``stribeck_velocity``, ``stribeck_exponent``, ...; the law lists
-            them, with units and defaults). A Scene carries its own.
+            them, with units and defaults). A Scene carries its own; for a
+            Scene any other keyword is refused, naming the options it takes.
+
+    An option the integrator that runs would ignore (``dt`` and ``theta``
+    without ``"moreau"``; ``rtol``, ``atol``, ``max_order``, ``max_step``,
+    ``first_step`` with it; ``bounce_threshold`` without an exact backlash)
+    is refused, not ignored: only options given count (None, the default,
+    is never refused).
 
     Returns:
         A :class:`Result`.
 
     Raises:
-        ValueError: bad input or an integrator that does not fit the friction law
+        ValueError: bad input, an unknown keyword, an option the integrator
+            would ignore, or an integrator that does not fit the friction law
             (the message lists those that do).
         SimulationError: the integrator or the LCP failed, or the result
             fails a check of its physics (time and reason).
         JammingError: the drive jams dynamically (a SimulationError).
     """
-    t_eval_list = [] if t_eval is None else np.asarray(t_eval, dtype=float).ravel().tolist()
+    t_eval_list = _t_eval_list(t_eval)
+    # The options only some integrators (or scenes) take, as given (None:
+    # left out; their defaults are filled in later).
+    given = {"rtol": rtol, "atol": atol, "dt": dt, "theta": theta, "max_order": max_order,
+             "max_step": max_step, "first_step": first_step}
     if isinstance(model, _core.FrictionBlock):
         # The kinds are checked as for a Scene; the core validates the names
         # (listing the allowed ones) and the values.
@@ -404,12 +597,19 @@ def simulate(
         arguments = _shared_arguments(1e-3, t_end, integrator, rtol, atol, dt, theta,
                                       t_eval_list, max_steps, max_events, max_step, first_step,
                                       max_order)
-        if not arguments["integrator"]:  # None or "": the core lists those that fit, default first
-            arguments["integrator"] = _core.block_integrators(friction)[0]
         _check_block_options(smooth_integrator=smooth_integrator,
                              bounce_threshold=bounce_threshold)
+        entry = _law(friction)
+        if entry is not None:  # else the core names the laws
+            integrators = functools.partial(_core.block_integrators, friction)
+            _refuse_unused(arguments["integrator"], integrators, given)
+            if not arguments["integrator"]:  # None or "": the first of those that fit
+                arguments["integrator"] = integrators()[0]
+        takes = [p["key"] for p in entry["parameters"]] if entry is not None else []
+        for name, value in law_parameters.items():  # no law's parameter (a law's: the core)
+            if takes and name not in _law_keys():
+                raise _unknown_block_option(name, value, friction, takes)
         law = {name: _real(name, value) for name, value in law_parameters.items()}
-        takes = {p["key"] for p in _law(friction)["parameters"]} if _law(friction) else set()
         if k_v is not None:
             law["k_v"] = _real("k_v", k_v)
         elif "k_v" in takes:
@@ -421,16 +621,25 @@ def simulate(
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
         for name, value in law_parameters.items():
-            raise ValueError(f"{name} = {value!r} is invalid for a Scene: set the scene's "
-                             f"friction.{name}")
+            raise _unknown_scene_option(name, value)
         # integrator None: the core takes the model's default
         arguments = _drive_arguments(
             t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
             max_events, max_step, first_step, bounce_threshold, max_order, check)
+        drive = model.model()
+        _refuse_unused(arguments["integrator"],
+                       functools.partial(_core.drive_integrators, drive.parameters),
+                       dict(given, bounce_threshold=bounce_threshold), model)
         with _progress_bar(progress, arguments["t_end"]) as report:
-            return Result(_core.simulate_drive(model.model(), progress=report, **arguments))
+            return Result(_core.simulate_drive(drive, progress=report, **arguments))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
+
+# simulate's parameters by name (its **law_parameters left out) and the keys
+# of a Scene's friction section (what a Scene takes of a law's parameters).
+_SIGNATURE = [name for name, parameter in inspect.signature(simulate).parameters.items()
+              if parameter.kind is not inspect.Parameter.VAR_KEYWORD]
+_SCENE_FRICTION_KEYS = tuple(SCHEMA["friction"])
 
 # simulate's options: its parameters but the model and the times, which a
 # study or a DriveBatch sets itself (the command line's study options and the

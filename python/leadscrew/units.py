@@ -341,7 +341,7 @@ def load_quantity(name: str, value: Any, units: Sequence[str]) -> Tuple[float, s
 # --- units of result channels -------------------------------------------------
 
 # Channels named in full (the friction block's and the drive's, see
-# cpp/src/model/block/block_common.cpp and drive_simulation.cpp), by unit.
+# cpp/src/model/block/block_common.cpp and drive/channels.cpp), by unit.
 _CHANNELS_BY_UNIT = {
     "s": ("t",),
     "m": ("u", "gap", "play", "bristle_deflection"),

@@ -275,7 +275,7 @@ class DriveEquations:
         self.n_pos, self.n_vel = len(self.position_index), len(self.velocity_index)
 
         # ---- initial state: springs relaxed, every body moving with the thread -----
-        omega0 = self.speed.value(0.0) if self.speed_controlled else d["initial"]["rotor_speed"]
+        omega0 = self.speed.value(0.0) if self.speed_controlled else d["initial"].get("rotor_speed", 0.0)
         v0 = np.zeros(n)
         v0[0] = omega0
         if rotating in flexible:

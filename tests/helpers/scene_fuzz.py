@@ -547,6 +547,8 @@ def make_case(case_seed: int, hostile_share: float = 0.15) -> dict:
     lead = scene["thread"].get("starts", 1) * scene["thread"]["pitch"]
     room = min(scene["nut"]["position"], scene["screw"]["length"] - scene["nut"]["position"])
     initial = _initial(r, backlash, 2 * math.pi * room / (lead * t_end) * 0.5)
+    if speed_controlled:  # it starts at drive_speed(0); another speed is refused
+        initial.pop("rotor_speed", None)
     if initial:
         scene["initial"] = initial
     contact = backlash["contact"] if backlash else None

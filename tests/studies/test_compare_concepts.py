@@ -64,8 +64,15 @@ def test_the_rigid_concept_departs_as_the_nut_softens(by_nut_modulus):
 
 
 def test_a_failed_concept_is_a_row_and_the_reference_falls_back():
-    frame = compare_concepts(ls.Scene.from_dict(thesis_scene()), t_end=T_END, points=11,
-                             max_steps=2000, executor=SerialExecutor(), progress=False)
+    with pytest.warns(ls.StudyWarning, match=r"compare_concepts: 2 of 3 rows raised and decide "
+                                             r"nothing .*: 2 SimulationError; first: "
+                                             r"SimulationError: .*max_steps"):
+        frame = compare_concepts(ls.Scene.from_dict(thesis_scene()), t_end=T_END, points=11,
+                                 max_steps=2000, executor=SerialExecutor(), progress=False)
+    assert frame.attrs["summary"]["raised"] == 2
+    assert frame.attrs["summary"]["raised_reasons"].startswith("2 SimulationError; first: "
+                                                               "SimulationError: ")
+    assert frame.attrs["summary_units"] == {"raised": "1"}
     assert frame.loc[0, "error"] is None
     assert frame.loc[1, "error"].startswith("SimulationError")
     assert frame.loc[2, "error"].startswith("SimulationError")

@@ -125,7 +125,8 @@ def test_columns_units_and_plots(by_backlash, by_frequency):
     assert set(units) == set(by_backlash.columns)
     assert units["creep_per_cycle"] == "m" and units["frequency"] == "Hz"
     assert by_backlash.attrs["summary"] == {"amplitude": 30.0, "cycles": 6, "settle_cycles": 1,
-                                            "excitation_from": "defaults"}
+                                            "excitation_from": "defaults", "raised": 0,
+                                            "raised_reasons": "none"}
     ax = plot_creep(by_backlash)
     assert ax.get_xlabel() == "backlash [mm]"
     ax = plot_creep(by_frequency, quantity="max_displacement")
@@ -203,3 +204,29 @@ def test_a_sweep_of_one_value_is_drawn_against_the_parameter_given(by_frequency)
     assert plot_creep(one, x="backlash").get_xlabel() == "backlash [mm]"
     with pytest.raises(ValueError, match="x = 'mu' is invalid"):
         plot_creep(one, x="mu")
+
+
+def test_cases_that_raised_are_counted_and_warned(monkeypatch):
+    """A case that raises is a row with its message and NaN numbers; the
+    summary counts such rows by exception type, and a StudyWarning names
+    them (as the command line's warning does)."""
+    import leadscrew.studies.creep as creep
+
+    def case(pair, *args, **kwargs):
+        frequency, _ = pair
+        if frequency == 20.0:
+            raise ls.JammingError("jammed at t = 0.1 s")
+        if frequency == 40.0:
+            raise ls.SimulationError("too many steps")
+        return {name: 0.0 for name in creep._MEASURES}
+
+    monkeypatch.setattr(creep, "_creep_case", case)
+    with pytest.warns(ls.StudyWarning, match=r"creep_vs_frequency: 2 of 5 rows raised and "
+                                             r"decide nothing \(their error column says why\): "
+                                             r"1 JammingError, 1 SimulationError; first: "
+                                             r"JammingError: jammed at t = 0.1 s"):
+        frame = creep_vs_frequency(holding_scene(), FREQUENCIES, progress=False)
+    summary = frame.attrs["summary"]
+    assert summary["raised"] == 2 and frame.attrs["summary_units"]["raised"] == "1"
+    assert frame["error"].notna().tolist() == [False, False, True, True, False]
+    assert frame.loc[2:3, "creep_per_cycle"].isna().all()

@@ -200,6 +200,15 @@ def test_drive_torque_needs_a_torque_driven_base_and_values_their_width():
     assert samples.shape == (0, 1, 1) and errors == [] and wall_time.shape == (0,)
 
 
+def test_rotor_speed_needs_a_torque_driven_base():
+    """A speed-controlled drive starts at drive_speed(0), as its scene's
+    initial.rotor_speed says: a batch does not vary it silently."""
+    with pytest.raises(ValueError, match=r"parameters entry 'rotor_speed' is invalid for a "
+                                         r"speed-controlled scene .* starts at drive_speed\(0\)"):
+        DriveBatch(speed_controlled(scene()), ["rotor_speed"], ["u_load"], 0.1, [0.1])
+    DriveBatch(scene(), ["rotor_speed"], ["u_load"], 0.1, [0.1])
+
+
 def test_a_batch_pickles_and_gives_the_same_samples():
     batch = DriveBatch(speed_controlled(scene()), ["mu", "axial_force"], CHANNELS, 0.1,
                        [0.05, 0.1], rtol=1e-9)
@@ -272,7 +281,7 @@ def test_efficiency_options_are_checked_before_the_sweep():
     # Values the core would refuse in every case alike: refused once, before
     # any case runs (the batch checks them as simulate() would).
     for options, message in [({"rtol": -1.0}, r"rtol = -1 is invalid: must be a finite "
-                                               r"number in \(0, 1\)"),
+                                               r"number in \(0, 0\.001\]"),
                              ({"integrator": "nope"}, r"integrator = \"nope\" is invalid"),
                              ({"smooth_integrator": "euler"}, "smooth_integrator"),
                              ({"max_steps": 1.5}, "max_steps = 1.5 is invalid"),

@@ -122,10 +122,15 @@ def test_each_case_keeps_its_row_on_every_path(monkeypatch, undrivable):
     monkeypatch.setattr(_batch.DriveBatch, "run", second_mu_fails)
     cot = 1.0 / math.tan(ls.Thread(1e-3, 20e-3).lead_angle)
     mu = MU[:4] + ([1.01 * cot] if undrivable else [])
-    one_call = efficiency_vs_mu(scene(), mu, LOADS[:2], progress=False)
+    with pytest.warns(ls.StudyWarning, match="efficiency_vs_mu: 2 of "):
+        one_call = efficiency_vs_mu(scene(), mu, LOADS[:2], progress=False)
     with ThreadPoolExecutor(2) as executor:
         chunked = efficiency_vs_mu(scene(), mu, LOADS[:2], executor=executor, progress=False)
     failed = one_call["mu"] == MU[2]
+    for frame in (one_call, chunked):  # the two loads of MU[2]
+        assert frame.attrs["summary"]["raised"] == 2
+        assert frame.attrs["summary"]["raised_reasons"] == (
+            "2 SimulationError; first: SimulationError: injected")
     assert one_call["error"].tolist() == [
         "SimulationError: injected" if bad else None for bad in failed]
     assert one_call.loc[failed, "efficiency"].isna().all()
@@ -180,7 +185,8 @@ def test_columns_units_and_plot(rigid):
     units = rigid.attrs["units"]
     assert set(units) == set(rigid.columns)
     assert units["efficiency"] == "1" and units["load"] == "N" and units["work_drive"] == "J"
-    assert rigid.attrs["summary"] == {"speed": 10.0, "window": (0.1, 0.2)}
+    assert rigid.attrs["summary"] == {"speed": 10.0, "window": (0.1, 0.2), "raised": 0,
+                                      "raised_reasons": "none"}
     ax = plot_efficiency_vs_mu(rigid)
     assert len(ax.lines) == len(LOADS) + 1
 

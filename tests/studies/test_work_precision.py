@@ -211,9 +211,15 @@ def test_scene_configurations():
 def test_failure_is_recorded_or_raised(closed_form):
     configurations = [{"integrator": "event_driven", "rtol": 1e-10, "max_steps": 5},
                       {"integrator": "event_driven", "rtol": 1e-8}]
-    with pytest.warns(RuntimeWarning, match="max_steps"):
+    with pytest.warns(RuntimeWarning, match="max_steps") as caught:
         frame = studies.work_precision(block(), T_END, configurations,
                                        reference=closed_form.position, repeats=1)
+    # One warning, a StudyWarning, counting the configurations that raised.
+    assert [w.category for w in caught] == [ls.StudyWarning]
+    assert "work_precision: 1 of 2 rows raised" in str(caught[0].message)
+    assert frame.attrs["summary"]["raised"] == 1
+    assert frame.attrs["summary"]["raised_reasons"].startswith("1 SimulationError; first: "
+                                                               "SimulationError: ")
     assert "max_steps" in frame["failure"][0] and frame["failure"][1] == ""
     assert np.isnan(frame["error_max"][0]) and np.isnan(frame["wall_time"][0])
     assert frame["error_max"][1] < 1e-9
@@ -334,3 +340,19 @@ def test_configuration_values_simulate_takes_as_none():
     assert len(frame) == 2 and (frame["failure"] == "").all(), frame["failure"].tolist()
     assert frame["label"].str.endswith("defaults").all(), frame["label"].tolist()
 
+
+
+def test_the_frame_has_the_unit_of_every_column():
+    """As the other studies' frames (leadscrew study writes them as a row of
+    units): the errors in the quantity's unit, k_v in its laws'."""
+    frame = studies.work_precision(block(), 0.1, [
+        {"friction": "arctan_velocity", "integrator": "dopri5", "k_v": 100.0, "rtol": 1e-6},
+        {"friction": "arctan_acceleration", "integrator": "dopri5", "k_v": 10.0, "rtol": 1e-6}],
+        repeats=1)
+    units = frame.attrs["units"]
+    assert list(units) == list(studies.COLUMNS)
+    assert units["error_max"] == units["error_final"] == "m" and units["wall_time"] == "s"
+    assert units["k_v"] == "s/m or s^2/m" and units["steps"] == "1" and units["label"] == ""
+    exact = studies.work_precision(block(), 0.1, [{"rtol": 1e-6}], repeats=1,
+                                   quantity="v")
+    assert exact.attrs["units"]["k_v"] == "" and exact.attrs["units"]["error_max"] == "m/s"

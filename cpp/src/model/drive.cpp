@@ -77,6 +77,10 @@ const std::vector<std::string>& backlash_contact_names() {
   static const std::vector<std::string> names = {"none", "exact", "bistop", "cubic"};
   return names;
 }
+const std::vector<std::string>& initial_state_names() {
+  static const std::vector<std::string> names = {"relaxed", "equilibrium"};
+  return names;
+}
 }  // namespace
 
 std::string concept_name(Concept c) { return concept_names()[static_cast<int>(c)]; }
@@ -84,6 +88,10 @@ std::string drive_name(DrivenPart d) { return drive_names()[static_cast<int>(d)]
 std::string support_name(ScrewSupport s) { return support_names()[static_cast<int>(s)]; }
 std::string backlash_contact_name(BacklashContact b) {
   return backlash_contact_names()[static_cast<int>(b)];
+}
+
+std::string initial_state_name(InitialState s) {
+  return initial_state_names()[static_cast<int>(s)];
 }
 
 Concept parse_concept(const std::string& name) {
@@ -101,6 +109,10 @@ ScrewSupport parse_support(const std::string& name) {
 BacklashContact parse_backlash_contact(const std::string& name) {
   return static_cast<BacklashContact>(
       require_choice("backlash.contact", name, backlash_contact_names()));
+}
+
+InitialState parse_initial_state(const std::string& name) {
+  return static_cast<InitialState>(require_choice("initial.state", name, initial_state_names()));
 }
 
 DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
@@ -146,6 +158,23 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
     throw InvalidArgument("initial.play_position = " + format_value(p_.play_position) +
                           " is invalid: must be within +-backlash.axial / 2 = +-" +
                           format_value(0.5 * p_.clearance));
+  if (p_.initial_state == InitialState::equilibrium) {
+    // The equilibrium is at rest, under a torque (a speed-controlled motor
+    // would make the thread's friction force statically indeterminate), with
+    // the nut where the loads put it.
+    const std::string with = " is invalid with initial.state = \"equilibrium\": ";
+    if (p_.speed_controlled)
+      throw InvalidArgument("initial.state = \"equilibrium\" is invalid with loads.drive_speed: "
+                            "the static equilibrium needs a torque-controlled motor "
+                            "(loads.drive_torque)");
+    if (p_.rotor_speed != 0.0)
+      throw InvalidArgument("initial.rotor_speed = " + format_value(p_.rotor_speed) + with +
+                            "must be 0 (the drive starts at rest)");
+    if (p_.play_position != 0.0)
+      throw InvalidArgument("initial.play_position = " + format_value(p_.play_position) + with +
+                            "must be 0 (the equilibrium puts the nut on the flank the loads "
+                            "press it against)");
+  }
 
   const bool nut_flexible = p_.concept != Concept::rigid;
   const bool screw_flexible = p_.concept == Concept::flexible;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -10,7 +11,31 @@
 namespace leadscrew::model {
 
 void check_meaningful_tolerances(const integrate::IntegratorOptions& options, double t_end) {
-  integrate::validate_options(options);  // the ranges first: rtol in (0, 1], atol > 0, ...
+  // The tolerances' real ranges first, NaN and values no integrator takes
+  // included (validate_options' own ranges, rtol in (0, 1), atol > 0, are
+  // wider: its message would name a range that is not the one that holds).
+  const std::string relative_range =
+      "a finite number in (0, " + format_value(kLoosestRelativeTolerance) + "]";
+  if (!(options.rtol > 0.0 && options.rtol <= kLoosestRelativeTolerance))
+    throw InvalidArgument("rtol = " + format_value(options.rtol) + " is invalid: must be " +
+                          relative_range +
+                          (options.rtol > kLoosestRelativeTolerance
+                               ? " (a looser tolerance no longer bounds the error, which "
+                                 "accumulates over the steps)"
+                               : ""));
+  const std::string absolute_range = "a finite number in [" +
+                                     format_value(kTightestAbsoluteTolerance) + ", " +
+                                     format_value(kLoosestAbsoluteTolerance) + "]";
+  if (!(options.atol >= kTightestAbsoluteTolerance && options.atol <= kLoosestAbsoluteTolerance))
+    throw InvalidArgument(
+        "atol = " + format_value(options.atol) + " is invalid: must be " + absolute_range +
+        (options.atol > kLoosestAbsoluteTolerance
+             ? " (it bounds the error of positions in m and rad: more exceeds a lead screw's "
+               "pitch and play)"
+             : options.atol < kTightestAbsoluteTolerance && options.atol > 0.0
+                   ? " (the error weights 1 / atol overflow when squared)"
+                   : ""));
+  integrate::validate_options(options);  // the other options' ranges
   if (options.max_step > 0.0 && t_end / options.max_step > static_cast<double>(options.max_steps))
     throw InvalidArgument("max_step = " + format_value(options.max_step) +
                           " is invalid: reaching t_end = " + format_value(t_end) +
@@ -22,20 +47,6 @@ void check_meaningful_tolerances(const integrate::IntegratorOptions& options, do
     throw InvalidArgument("first_step = " + format_value(options.first_step) +
                           " is invalid: must be 0 (the integrator's choice) or >= " +
                           format_value(resolution) + " s, the time's resolution at t_end");
-  if (options.rtol > kLoosestRelativeTolerance)
-    throw InvalidArgument("rtol = " + format_value(options.rtol) + " is invalid: must be <= " +
-                          format_value(kLoosestRelativeTolerance) +
-                          " (a looser tolerance no longer bounds the error, which accumulates "
-                          "over the steps)");
-  if (options.atol > kLoosestAbsoluteTolerance)
-    throw InvalidArgument("atol = " + format_value(options.atol) + " is invalid: must be <= " +
-                          format_value(kLoosestAbsoluteTolerance) +
-                          " (it bounds the error of positions in m and rad: more exceeds a "
-                          "lead screw's pitch and play)");
-  if (options.atol < kTightestAbsoluteTolerance)
-    throw InvalidArgument("atol = " + format_value(options.atol) + " is invalid: must be >= " +
-                          format_value(kTightestAbsoluteTolerance) +
-                          " (the error weights 1 / atol overflow when squared)");
 }
 
 void check_step_resolves_loads(double dt, double t_end,

@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive']
+__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -22,6 +22,12 @@ class JammingError(SimulationError):
     A self-locking drive jams dynamically (Painleve paradox).
     
     No consistent flank-contact mode exists. Attributes as SimulationError.
+    """
+class NoEquilibriumError(ValueError):
+    """
+    A start in static equilibrium (``initial.state = 'equilibrium'``) that the loads at t = 0 do not admit: holding them at rest
+    takes a flank friction force beyond the friction cone (the loads drive the
+    thread). A ValueError; the message gives the loads and the forces.
     """
 class Thread:
     """
@@ -319,6 +325,12 @@ class DriveParameters:
     def nut_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def initial_state(self) -> str:
+        ...
+    @initial_state.setter
+    def initial_state(self, arg1: str) -> None:
+        ...
+    @property
     def play_position(self) -> float:
         ...
     @play_position.setter
@@ -417,6 +429,10 @@ class DriveModel:
     @property
     def effective_mu(self) -> float:
         ...
+    def initial_state(self) -> dict:
+        """
+        The state at t = 0 that initial.state asks for: dict with q and v (every coordinate and velocity, in coordinate_names' order), play [m], normal_force and friction_force [N] (the flank forces holding the loads: 0 for a relaxed start), iterations (Newton's). NoEquilibriumError where the loads at t = 0 have no static equilibrium.
+        """
     @property
     def mass(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...

@@ -20,6 +20,24 @@ loads by its definition (a speed-controlled motor raising each of its
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
+One rule for cases that raise (a :class:`~leadscrew.JammingError`, a
+:class:`~leadscrew.SimulationError`, ...): the case's row carries the
+message (``error``; work_precision's ``failure``) and decides nothing; every
+study that aggregates rows counts them in ``attrs["summary"]`` (``raised``,
+and ``raised_reasons``: the exception types with their counts and the first
+message, or ``"none"``) and warns with :class:`~leadscrew.StudyWarning`.
+
+The holding and creep studies start every run at rest (their scenes'
+``initial`` section does not decide); :func:`min_holding_preload` starts
+each from the static equilibrium under the loads at t = 0.
+
+Arguments with a unit (an amplitude [N], frequencies [Hz], loads [N], a
+speed [rad/s], times [s], clearances [m], a sine ``excitation``'s values)
+take SI numbers or, as a scene's fields, strings with units (``"20 N"``,
+``["5 Hz", "10 Hz"]``, ``"100 rpm"``, ``{"type": "sine", "amplitude": "20 N",
+"omega": "10 Hz"}``), converted by :func:`leadscrew.units.to_si`; a string of
+another dimension raises ``ValueError`` naming the argument.
+
 Each study has a ``plot_...`` function drawing its figure from the frame it
 returned (``leadscrew study`` writes it as a PNG beside the CSV).
 """

@@ -21,7 +21,8 @@ import numpy as np
 from .. import _core
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
-from ..simulation import _OPTION_DEFAULTS, _check_scene_friction, _drive_arguments
+from ..simulation import (ADAPTIVE_OPTIONS, MOREAU_OPTIONS, _OPTION_DEFAULTS,
+                          _check_scene_friction, _drive_arguments, _refuse_unused)
 from ._common import check_count
 
 __all__ = ["DriveBatch", "check_simulate_options"]
@@ -42,7 +43,8 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
     Raises:
         TypeError: an unknown keyword (or ``t_eval``, which the batch sets).
         ValueError: ``friction`` or ``k_v`` differs from the scene's
-            (``friction.law``, ``friction.k_v``).
+            (``friction.law``, ``friction.k_v``), or the integrator would
+            ignore an option given (as simulate refuses it).
     """
     # A lookup rather than inspect's Signature.bind (~15 us: a tenth of the
     # Python around a fast sweep).
@@ -52,12 +54,16 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
                         f"those of leadscrew.simulate, but t_eval)")
     a = dict(_OPTION_DEFAULTS, **options)
     _check_scene_friction(scene, a["friction"], a["k_v"])
-
-    return _drive_arguments(t_end, a["integrator"], a["smooth_integrator"], a["rtol"], a["atol"],
-                            a["dt"], a["theta"], np.asarray(t_eval, dtype=float).ravel().tolist(),
-                            a["max_steps"], a["max_events"],
-                            a["max_step"], a["first_step"], a["bounce_threshold"],
-                            a["max_order"], a["check"])
+    arguments = _drive_arguments(
+        t_end, a["integrator"], a["smooth_integrator"], a["rtol"], a["atol"], a["dt"],
+        a["theta"], np.asarray(t_eval, dtype=float).ravel().tolist(), a["max_steps"],
+        a["max_events"], a["max_step"], a["first_step"], a["bounce_threshold"], a["max_order"],
+        a["check"])
+    given = {name: options.get(name) for name in (*ADAPTIVE_OPTIONS, *MOREAU_OPTIONS,
+                                                  "bounce_threshold")}
+    _refuse_unused(arguments["integrator"],
+                   lambda: _core.drive_integrators(scene.model().parameters), given, scene)
+    return arguments
 
 
 def check_simulate_options(scene: Scene, options: Dict[str, Any], t_end: float) -> None:
@@ -108,8 +114,10 @@ class DriveBatch:
     Raises:
         TypeError: an unknown keyword.
         ValueError: the scene's model is invalid, ``friction`` or ``k_v``
-            is not the scene's (``friction.law``, ``friction.k_v``), or a
-            parameter name is unknown (the message lists those allowed).
+            is not the scene's (``friction.law``, ``friction.k_v``), a
+            parameter name is unknown (the message lists those allowed), or
+            ``rotor_speed`` varies for a speed-controlled scene (which
+            starts at drive_speed(0)).
 
     A DriveBatch pickles (as its scene and arguments; a process-based executor
     rebuilds the core parameters once per task).
@@ -119,6 +127,11 @@ class DriveBatch:
                  t_end: float, t_eval: Sequence[float], **simulate_options: Any):
         self._scene = scene
         self._parameters = [str(name) for name in parameters]
+        if "rotor_speed" in self._parameters and "drive_speed" in scene["loads"]:
+            # as the scene refuses initial.rotor_speed other than drive_speed(0)
+            raise ValueError("parameters entry 'rotor_speed' is invalid for a speed-controlled "
+                             "scene (loads.drive_speed): it starts at drive_speed(0); vary "
+                             "drive_speed instead")
         self._channels = [str(name) for name in channels]
         self._options = dict(simulate_options)
         self._arguments = _core_arguments(scene, t_end, t_eval, self._options)

@@ -5,21 +5,28 @@ from __future__ import annotations
 import functools
 import math
 import numbers
-from typing import Any, Dict, Iterable, Optional
+import sys
+import warnings
+from typing import Any, Dict, Iterable, Optional, Tuple
 
 import numpy as np
 import pandas as pd
 
+from ..errors import StudyWarning
 from ..scene import Scene
+from ..units import to_si
 
 __all__ = [
     "as_scene",
+    "in_unit",
     "check_finite",
     "check_positive",
     "check_count",
     "check_grid",
+    "with_tolerances",
     "with_loads",
     "annotate",
+    "raised_rows",
     "frame_of",
     "numeric_or_nan",
     "axes",
@@ -39,23 +46,44 @@ def as_scene(scene: Any) -> Scene:
     raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene or a scene dict")
 
 
-def check_finite(name: str, value: Any) -> float:
-    """``value`` as a float, a finite number.
+def in_unit(name: str, value: Any, unit: Optional[str]) -> Any:
+    """A study argument given as a string with a unit (``"20 N"``, ``"5 Hz"``)
+    as a number in ``unit``, as a scene's field (:func:`leadscrew.units.to_si`);
+    any other value, or any value where ``unit`` is None (a count, a flag),
+    is returned as it is (for the checks that follow to name).
+
+    Raises:
+        ValueError: a string of another dimension, or no number with a unit,
+            naming the argument: ``amplitude = "20 m" is invalid: "20 m" is
+            not a force (N)``.
+    """
+    if unit is None or not isinstance(value, str):
+        return value
+    return to_si(name, value, unit)
+
+
+def check_finite(name: str, value: Any, unit: Optional[str] = None) -> float:
+    """``value`` as a float, a finite number (a string with a unit converted
+    to ``unit``: :func:`in_unit`).
 
     Raises:
         ValueError: naming the parameter and the value.
     """
+    value = in_unit(name, value, unit)
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise ValueError(f"{name} = {value!r} is invalid: must be a finite number")
     return float(value)
 
 
-def check_positive(name: str, value: Any, allow_zero: bool = False) -> float:
-    """``value`` as a float, finite and > 0 (>= 0 with ``allow_zero``).
+def check_positive(name: str, value: Any, allow_zero: bool = False,
+                   unit: Optional[str] = None) -> float:
+    """``value`` as a float, finite and > 0 (>= 0 with ``allow_zero``; a
+    string with a unit converted to ``unit``: :func:`in_unit`).
 
     Raises:
         ValueError: naming the parameter, the value and the valid range.
     """
+    value = in_unit(name, value, unit)
     bound = ">= 0" if allow_zero else "> 0"
     try:
         value = check_finite(name, value)
@@ -78,12 +106,26 @@ def check_count(name: str, value: Any, low: int) -> int:
     return int(value)
 
 
-def check_grid(name: str, values: Iterable[float], allow_zero: bool = False) -> np.ndarray:
+def check_grid(name: str, values: Iterable[float], allow_zero: bool = False,
+               unit: Optional[str] = None) -> np.ndarray:
     """A non-empty 1-D array of finite values > 0 (>= 0 with ``allow_zero``).
 
+    With ``unit``, entries may be strings with units (``["5 Hz", "10 Hz"]``,
+    or one string for one value), converted to ``unit`` (:func:`in_unit`).
+
     Raises:
-        ValueError: naming the parameter, the offending value and the valid range.
+        ValueError: naming the parameter, the offending value and the valid
+            range; a string entry of another dimension naming its index
+            (``frequencies[1] = "5 N" is invalid: ...``).
     """
+    if unit is not None:
+        if isinstance(values, str):
+            values = [in_unit(name, values, unit)]
+        elif (isinstance(values, (list, tuple)) or (isinstance(values, np.ndarray)
+                                                    and values.dtype.kind in "UO"
+                                                    and values.ndim == 1)) \
+                and any(isinstance(v, str) for v in values):
+            values = [in_unit(f"{name}[{i}]", v, unit) for i, v in enumerate(values)]
     try:
         array = np.atleast_1d(np.asarray(values, dtype=float))
     except (TypeError, ValueError):
@@ -94,6 +136,19 @@ def check_grid(name: str, values: Iterable[float], allow_zero: bool = False) -> 
     if not valid.all():  # the message names the first offending entry
         check_positive(f"{name} entry", float(array[np.argmin(valid)]), allow_zero)
     return array
+
+
+def with_tolerances(options: Dict[str, Any], rtol: Any = None, atol: Any = None
+                    ) -> Dict[str, Any]:
+    """:func:`leadscrew.simulate`'s keywords ``options`` with the study's
+    ``rtol`` and ``atol`` where given (None: simulate's default, 1e-8 and
+    1e-10), so that simulate refuses them only where the user gave them
+    (``integrator="moreau"`` takes neither)."""
+    options = dict(options)
+    for name, value in (("rtol", rtol), ("atol", atol)):
+        if value is not None:
+            options[name] = value
+    return options
 
 
 def with_loads(scene: Scene, **loads: Any) -> Scene:
@@ -152,7 +207,8 @@ _ERROR_TYPES = {type(None), str}
 
 
 def annotate(frame, units: Dict[str, str], errors_checked: bool = False,
-             summary_units: Optional[Dict[str, str]] = None, **summary: Any):
+             summary_units: Optional[Dict[str, str]] = None, study: Optional[str] = None,
+             **summary: Any):
     """Attach units and a summary to a study's frame.
 
     Args:
@@ -166,6 +222,12 @@ def annotate(frame, units: Dict[str, str], errors_checked: bool = False,
         summary_units: summary key -> SI unit, stored as
             ``attrs["summary_units"]`` for the keys of ``summary`` (the
             command line prints them next to the values).
+        study: the name of a study whose rows are cases that may raise
+            (their ``error`` column, work_precision's ``failure``, holds
+            the message): the summary gets ``raised`` [1] and
+            ``raised_reasons`` (:func:`raised_rows`), and where a row
+            raised, a :class:`~leadscrew.StudyWarning` says so (as the
+            command line does). None: a frame of one run, no such rows.
         **summary: scalars stored as ``attrs["summary"]``.
 
     Returns:
@@ -184,12 +246,71 @@ def annotate(frame, units: Dict[str, str], errors_checked: bool = False,
         if errors.dtype != object or not set(map(type, errors.to_numpy())) <= _ERROR_TYPES:
             frame["error"] = errors.astype(object).where(errors.notna(), None)
     frame.attrs["units"] = {column: units[column] for column in names if column in units}
+    if study is not None:
+        count, reasons = raised_rows(frame)
+        summary.update(raised=count, raised_reasons=reasons)
+        summary_units = dict(summary_units or {}, raised="1")
+        if count:
+            warnings.warn(f"{study}: {count} of {len(frame)} rows raised and decide nothing "
+                          f"(their error column says why): {reasons}", StudyWarning,
+                          stacklevel=_caller_level())
     if summary:
         frame.attrs["summary"] = dict(summary)
         if summary_units:
             frame.attrs["summary_units"] = {key: summary_units[key] for key in summary
                                             if key in summary_units}
     return frame
+
+
+#: The columns in which a study's row carries the message of a case that raised.
+FAILURE_COLUMNS = ("error", "failure")
+
+
+def _message(value: Any) -> str:
+    """A failure cell as one line ("" where the case ran: None, NaN, "")."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return ""
+    return " ".join(str(value).split())
+
+
+def raised_rows(frame) -> Tuple[int, str]:
+    """The rows of a study's frame whose case raised, and why.
+
+    A row raised if its ``error`` (or work_precision's ``failure``) column
+    holds a message, ``"ExceptionType: message"``.
+
+    Args:
+        frame: the study's DataFrame.
+
+    Returns:
+        ``(count, reasons)``: the number of such rows, and ``"none"`` or
+        their exception types with counts, most frequent first, and the
+        first message: ``"2 JammingError, 1 SimulationError; first:
+        JammingError: ..."``.
+    """
+    messages = []
+    for column in FAILURE_COLUMNS:
+        if column in frame:
+            messages.extend(m for m in map(_message, frame[column].tolist()) if m)
+    if not messages:
+        return 0, "none"
+    kinds: Dict[str, int] = {}
+    for message in messages:
+        kind = message.split(":", 1)[0]
+        kind = kind if ":" in message and kind.isidentifier() else "error"
+        kinds[kind] = kinds.get(kind, 0) + 1
+    counted = ", ".join(f"{n} {kind}" for kind, n in
+                        sorted(kinds.items(), key=lambda item: (-item[1], item[0])))
+    return len(messages), f"{counted}; first: {messages[0]}"
+
+
+def _caller_level() -> int:
+    """The stacklevel of warnings.warn that points at the first frame outside
+    this package (the user's call of the study)."""
+    level, frame = 2, sys._getframe(2)
+    while frame is not None and frame.f_globals.get("__name__", "").startswith("leadscrew."):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def numeric_or_nan(value: Optional[float]) -> float:

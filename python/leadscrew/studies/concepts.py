@@ -16,7 +16,8 @@ import numpy as np
 import pandas as pd
 
 from ..simulation import simulate
-from ._common import annotate, axes, as_scene, check_count, check_positive, numeric_or_nan
+from ._common import (annotate, axes, as_scene, check_count, check_positive, numeric_or_nan,
+                      with_tolerances)
 from ._batch import check_simulate_options
 from ._sweep import run_cases
 
@@ -42,8 +43,8 @@ def compare_concepts(
     concepts: Sequence[str] = CONCEPTS,
     t_end: float = 2.0,
     points: int = 2001,
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
     executor=None,
     progress: bool = True,
     **simulate_options: Any,
@@ -56,7 +57,8 @@ def compare_concepts(
         concepts: names from :data:`CONCEPTS`, each at most once.
         t_end: simulated time [s], > 0.
         points: number of common output times in [0, t_end], >= 2.
-        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        rtol, atol: integration tolerances (relative [1], absolute [SI];
+            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores).
         progress: show a progress bar.
@@ -69,7 +71,10 @@ def compare_concepts(
         and ``rms_diff`` [m] (of u_load against the reference on the common
         times; 0 for the reference), ``u_final`` [m], ``error`` (None, or why
         the run failed: then the numbers are NaN), and the series ``t`` [s] and
-        ``u_load`` [m] as arrays (None for a failed run).
+        ``u_load`` [m] as arrays (None for a failed run). ``attrs["summary"]``:
+        ``raised`` [1] and ``raised_reasons`` (the runs that raised: their
+        count, and their exception types with the first message, or
+        ``"none"``; a :class:`~leadscrew.StudyWarning` names them).
 
     Raises:
         ValueError: invalid scene, concept or argument (also a simulate option
@@ -88,10 +93,10 @@ def compare_concepts(
                              + ", ".join(CONCEPTS))
     if len(set(concepts)) != len(concepts):
         raise ValueError(f"concepts = {concepts!r} is invalid: a concept appears twice")
-    t_end = check_positive("t_end", t_end)
+    t_end = check_positive("t_end", t_end, unit="s")
     points = check_count("points", points, 2)
     t_eval = np.linspace(0.0, t_end, points)
-    options = dict(simulate_options, rtol=rtol, atol=atol)
+    options = with_tolerances(simulate_options, rtol, atol)
     # Options that no concept takes are refused once; those that only some
     # refuse (max_order: the rigid concept's default method is one-step)
     # fail those concepts' rows.
@@ -136,7 +141,7 @@ def compare_concepts(
             "t": None if u is None else t_eval,
             "u_load": u,
         })
-    return annotate(pd.DataFrame(rows), UNITS)
+    return annotate(pd.DataFrame(rows), UNITS, study="compare_concepts")
 
 
 def plot_compare_concepts(frame: pd.DataFrame, ax: Optional[Any] = None):

@@ -17,7 +17,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
-from ._common import annotate, as_scene, axes, check_grid, numeric_or_nan
+from ._common import annotate, as_scene, axes, check_grid, numeric_or_nan, with_tolerances
 from ._batch import check_simulate_options
 from ._sweep import run_cases
 from .holding import (_alternating_excitation, _constant_torque, alternating_scene,
@@ -44,12 +44,12 @@ def _creep_case(case: Tuple[float, float], scene, amplitude: float, cycles: int,
 
 def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float,
            excitation_from: str, cycles: int, settle_cycles: int, points_per_cycle: int,
-           rtol: float, atol: float, executor, progress: bool, description: str,
-           options: Dict[str, Any]) -> pd.DataFrame:
+           rtol: Optional[float], atol: Optional[float], executor, progress: bool,
+           description: str, options: Dict[str, Any]) -> pd.DataFrame:
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     _constant_torque(scene)
-    options = dict(options, rtol=rtol, atol=atol)
+    options = with_tolerances(options, rtol, atol)
     if pairs:  # every case has the first one's friction law and contact
         check_simulate_options(alternating_scene(scene, amplitude, pairs[0][0],
                                                  backlash=pairs[0][1]), options,
@@ -70,7 +70,7 @@ def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float,
         rows.append(row)
     columns = ["frequency", "backlash", "creep_per_cycle", "creep_rate", "max_displacement",
                "separations", "flight_fraction", "wall_time", "steps", "error"]
-    return annotate(pd.DataFrame(rows, columns=columns), UNITS,
+    return annotate(pd.DataFrame(rows, columns=columns), UNITS, study=description,
                     summary_units={"amplitude": "N", "cycles": "1", "settle_cycles": "1"},
                     amplitude=amplitude, cycles=cycles, settle_cycles=settle_cycles,
                     excitation_from=excitation_from)
@@ -100,7 +100,8 @@ _COMMON_ARGS = """
         cycles: cycles per run, > settle_cycles.
         settle_cycles: cycles before the creep fit, >= 0.
         points_per_cycle: output points per cycle, >= 4.
-        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        rtol, atol: integration tolerances (relative [1], absolute [SI];
+            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores). Scene and cases pickle, so process pools and
             ``dask.distributed.Client(...).get_executor()`` work too.
@@ -115,7 +116,11 @@ _COMMON_ARGS = """
         the message of a failed case, whose numbers are NaN).
         ``attrs["units"]`` maps columns to units; ``attrs["summary"]``:
         ``amplitude`` [N], ``cycles``, ``settle_cycles`` [1],
-        ``excitation_from``.
+        ``excitation_from``, ``raised`` [1] and ``raised_reasons`` (the
+        cases that raised: their count, and their exception types with the
+        first message, or ``"none"``; a :class:`~leadscrew.StudyWarning`
+        names them). Every run starts at rest with its springs relaxed, the
+        nut centred (:func:`~leadscrew.studies.alternating_scene`).
 
     Raises:
         ValueError: invalid scene (no constant drive torque) or arguments (the
@@ -125,12 +130,13 @@ _COMMON_ARGS = """
 
 def creep_vs_frequency(scene: Any, frequencies: Sequence[float],
                        amplitude: Optional[float] = None, cycles: int = 6,
-                       settle_cycles: int = 1, points_per_cycle: int = 100, rtol: float = 1e-8,
-                       atol: float = 1e-10, executor=None, progress: bool = True,
+                       settle_cycles: int = 1, points_per_cycle: int = 100,
+                       rtol: Optional[float] = None, atol: Optional[float] = None,
+                       executor=None, progress: bool = True,
                        **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
     backlash = _scene_backlash(scene)
-    pairs = [(float(f), backlash) for f in check_grid("frequencies", frequencies)]
+    pairs = [(float(f), backlash) for f in check_grid("frequencies", frequencies, unit="Hz")]
     # The frequencies are the sweep's: only the amplitude may come from the scene.
     amplitude, _, excitation_from = _alternating_excitation(scene, amplitude, pairs[0][0])
     return _sweep(scene, pairs, amplitude, excitation_from, cycles, settle_cycles,
@@ -147,12 +153,13 @@ creep_vs_frequency.__doc__ = """Creep per cycle and largest displacement against
 
 def creep_vs_backlash(scene: Any, backlash: Sequence[float], frequency: Optional[float] = None,
                       amplitude: Optional[float] = None, cycles: int = 6,
-                      settle_cycles: int = 1, points_per_cycle: int = 100, rtol: float = 1e-8,
-                      atol: float = 1e-10, executor=None, progress: bool = True,
+                      settle_cycles: int = 1, points_per_cycle: int = 100,
+                      rtol: Optional[float] = None, atol: Optional[float] = None,
+                      executor=None, progress: bool = True,
                       **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
     amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)
-    pairs = [(frequency, float(c)) for c in check_grid("backlash", backlash)]
+    pairs = [(frequency, float(c)) for c in check_grid("backlash", backlash, unit="m")]
     return _sweep(scene, pairs, amplitude, excitation_from, cycles, settle_cycles,
                   points_per_cycle, rtol, atol, executor, progress, "creep_vs_backlash",
                   simulate_options)
@@ -170,11 +177,12 @@ creep_vs_backlash.__doc__ = """Creep per cycle and largest displacement against 
 
 def creep_map(scene: Any, frequencies: Sequence[float], backlash: Sequence[float],
               amplitude: Optional[float] = None, cycles: int = 6, settle_cycles: int = 1,
-              points_per_cycle: int = 100, rtol: float = 1e-8, atol: float = 1e-10,
-              executor=None, progress: bool = True, **simulate_options: Any) -> pd.DataFrame:
+              points_per_cycle: int = 100, rtol: Optional[float] = None,
+              atol: Optional[float] = None, executor=None, progress: bool = True,
+              **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
-    frequencies = check_grid("frequencies", frequencies)
-    clearances = check_grid("backlash", backlash)
+    frequencies = check_grid("frequencies", frequencies, unit="Hz")
+    clearances = check_grid("backlash", backlash, unit="m")
     pairs = [(float(f), float(c)) for f in frequencies for c in clearances]
     amplitude, _, excitation_from = _alternating_excitation(scene, amplitude, pairs[0][0])
     return _sweep(scene, pairs, amplitude, excitation_from, cycles, settle_cycles,

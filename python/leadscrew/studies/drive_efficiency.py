@@ -20,7 +20,8 @@ import pandas as pd
 
 from .. import _core
 from ._batch import DriveBatch
-from ._common import annotate, axes, as_scene, check_grid, check_positive, frame_of
+from ._common import (annotate, axes, as_scene, check_grid, check_positive, frame_of,
+                      in_unit, with_tolerances)
 from ._sweep import SerialExecutor, default_workers, run_batches, run_chunks
 
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
@@ -56,7 +57,7 @@ def _efficiency_batch(scene, speed: float, t_end: float, window: Tuple[float, fl
     # forward turn moves the load along -h x (docs/physics/drive_models.md).
     omega = -scene.thread.hand_sign * speed
     running = scene.replace(loads={"drive_torque": None, "drive_speed": omega},
-                            initial={"rotor_speed": omega})
+                            initial={"rotor_speed": omega, "state": "relaxed"})
     start, end = window
     return DriveBatch(running, ("mu", "axial_force"), _CHANNELS, t_end,
                       [0.0, start, 0.5 * (start + end), end], **options)
@@ -126,8 +127,8 @@ def efficiency_vs_mu(
     speed: float = 10.0,
     t_end: float = 0.2,
     window: Optional[Tuple[float, float]] = None,
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
     executor=None,
     progress: bool = True,
     **simulate_options: Any,
@@ -168,7 +169,8 @@ def efficiency_vs_mu(
         t_end: simulated time [s], > 0.
         window: (start, end) [s] of the measurement, 0 <= start < end <= t_end
             (default: the second half of the run).
-        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        rtol, atol: integration tolerances (relative [1], absolute [SI];
+            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (a thread or process
             pool, a Dask client's executor), each task one chunk of cases;
             :class:`~leadscrew.studies._sweep.SerialExecutor`: the calling
@@ -188,6 +190,10 @@ def efficiency_vs_mu(
         ``work_drive`` and ``friction_loss`` [J] (over the window),
         ``load_speed`` [m/s], ``wall_time`` [s, C++] and ``error`` (None, or
         the message of a failed simulation, whose numbers are NaN).
+        ``attrs["summary"]``: ``speed`` [rad/s], ``window`` [s], ``raised``
+        [1] and ``raised_reasons`` (the simulations that raised: their
+        count, and their exception types with the first message, or
+        ``"none"``; a :class:`~leadscrew.StudyWarning` names them).
 
     Raises:
         ValueError: invalid scene or arguments (also a ``friction`` option
@@ -195,14 +201,17 @@ def efficiency_vs_mu(
         TypeError: an unknown keyword in ``simulate_options``.
     """
     scene = as_scene(scene)
-    mus = check_grid("mu", mu, allow_zero=True)
-    forces = check_grid("loads", loads)
-    speed = check_positive("speed", speed)
-    t_end = check_positive("t_end", t_end)
+    mus = check_grid("mu", mu, allow_zero=True, unit="")
+    forces = check_grid("loads", loads, unit="N")
+    speed = check_positive("speed", speed, unit="rad/s")
+    t_end = check_positive("t_end", t_end, unit="s")
     if window is None:
         window = (0.5 * t_end, t_end)
+    # (start, end) may be strings with units, as the other arguments
+    times = ([in_unit(f"window[{i}]", w, "s") for i, w in enumerate(window)]
+             if isinstance(window, (list, tuple)) else window)
     try:
-        start, end = (float(w) for w in window)
+        start, end = (float(w) for w in times)
     except (TypeError, ValueError):
         raise ValueError(f"window = {window!r} is invalid: must be (start, end) in s") from None
     if not (0.0 <= start < end <= t_end):
@@ -219,7 +228,7 @@ def efficiency_vs_mu(
     serial = type(executor) is SerialExecutor and not executor.is_shutdown
     workers = 1 if serial else max(1, min(default_workers(), len(simulated)))
     batch = _efficiency_batch(scene, speed, t_end, (start, end),
-                              dict(simulate_options, rtol=rtol, atol=atol))
+                              with_tolerances(simulate_options, rtol, atol))
     mu_column = np.repeat(mus, len(forces))
     load_column = np.tile(forces, len(mus))
     if executor is None or serial:
@@ -251,7 +260,7 @@ def efficiency_vs_mu(
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
         "error": errors})
     # errors: an object array of None and the messages of failed cases
-    return annotate(frame, UNITS, errors_checked=True,
+    return annotate(frame, UNITS, errors_checked=True, study="efficiency_vs_mu",
                     summary_units={"speed": "rad/s", "window": "s"}, speed=speed,
                     window=(start, end))
 

@@ -33,12 +33,13 @@ from typing import Any, Dict, List, Optional, Tuple
 import numpy as np
 import pandas as pd
 
-from ..excitation import Constant, Sine
+from ..errors import NoEquilibriumError, StudyWarning
+from ..excitation import Constant, Sine, check_load_unit
 from ..scene import _DEFAULT_DRIVE_TORQUE, Scene
 from ..simulation import simulate
 from ..thread import is_self_locking, lower_torque, raise_torque
 from ._common import (annotate, as_scene, axes, check_count, check_finite, check_positive,
-                      numeric_or_nan)
+                      in_unit, numeric_or_nan, raised_rows, with_tolerances)
 from ._batch import check_simulate_options
 from ._sweep import run_cases
 
@@ -76,12 +77,18 @@ _PENALTY_INSIDE = 1e-3
 UNITS = {
     "t": "s", "axial_force_static": "N", "u_load_static": "m", "axial_force_dynamic": "N",
     "u_load_dynamic": "m", "phi_drive_dynamic": "rad", "gap_dynamic": "m",
-    "iteration": "1", "preload": "N", "holds": "", "separated": "", "separations": "1",
+    "iteration": "1", "preload": "N", "holds": "", "separated": "", "start": "", "separations": "1",
     "creep_per_cycle": "m", "max_displacement": "m", "flight_fraction": "1",
     "wall_time": "s", "error": "",
 }
 
 _OPEN = "->open"
+
+#: How every run of these studies starts, whatever the scene's ``initial``
+#: section says (a study of holding must not depend on how a run starts):
+#: at rest, springs relaxed, the nut where the study puts it
+#: (:func:`min_holding_preload` replaces this by the static equilibrium).
+_AT_REST = {"rotor_speed": 0.0, "state": "relaxed"}
 
 
 def _constant_torque(scene: Scene) -> float:
@@ -147,8 +154,8 @@ def _alternating_excitation(scene: Scene, amplitude: Optional[float],
     if frequency is None:
         frequency = (sine["omega"] / (2.0 * math.pi) if sine is not None
                      else FALLBACK_FREQUENCY)
-    return (check_positive("amplitude", amplitude), check_positive("frequency", frequency),
-            excitation_from)
+    return (check_positive("amplitude", amplitude, unit="N"),
+            check_positive("frequency", frequency, unit="Hz"), excitation_from)
 
 
 def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
@@ -177,7 +184,7 @@ def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
         ValueError: invalid scene or a force that is not finite.
     """
     scene = as_scene(scene)
-    axial_force = check_finite("axial_force", axial_force)
+    axial_force = check_finite("axial_force", axial_force, unit="N")
     thread, mu = scene.thread, scene["friction"]["mu"]
     if axial_force == 0.0:
         return 0.0, 0.0
@@ -198,7 +205,9 @@ def _holds(band: Tuple[float, float], torque: float, axial_force: float) -> bool
 def alternating_scene(scene: Scene, amplitude: float, frequency: float, offset: float = 0.0,
                       backlash: Optional[float] = None, on_flank: bool = False,
                       phase: float = 0.0) -> Scene:
-    """The scene under the axial force ``offset + amplitude sin(2 pi f t + phase)``.
+    """The scene under the axial force ``offset + amplitude sin(2 pi f t + phase)``,
+    starting at rest with its springs relaxed (``initial.rotor_speed`` 0 and
+    ``initial.state`` ``"relaxed"``, whatever the scene's ``initial`` says).
 
     Args:
         scene: the scene (its drive torque and everything else are kept).
@@ -219,7 +228,9 @@ def alternating_scene(scene: Scene, amplitude: float, frequency: float, offset: 
         ValueError: a value is not finite, or the frequency is not > 0 (the
             scene check names any other invalid field).
     """
-    frequency = check_positive("frequency", frequency)
+    frequency = check_positive("frequency", frequency, unit="Hz")
+    if backlash is not None:
+        backlash = in_unit("backlash", backlash, "m")
     return _alternating(scene, amplitude, 2.0 * math.pi * frequency, offset, backlash, on_flank,
                         phase)
 
@@ -228,9 +239,9 @@ def _alternating(scene: Scene, amplitude: float, omega: float, offset: float,
                  backlash: Optional[float], on_flank: bool, phase: float) -> Scene:
     """alternating_scene with the angular frequency omega [rad/s] > 0 as given
     (a user's Sine keeps its omega bit for bit: no round trip through f)."""
-    amplitude = check_finite("amplitude", amplitude)
-    offset = check_finite("offset", offset)
-    phase = check_finite("phase", phase)
+    amplitude = check_finite("amplitude", amplitude, unit="N")
+    offset = check_finite("offset", offset, unit="N")
+    phase = check_finite("phase", phase, unit="rad")
     changes: Dict[str, Any] = {"loads": {"axial_force": {
         "type": "sine", "amplitude": float(amplitude), "omega": float(omega),
         "phase": float(phase), "offset": float(offset)}}}
@@ -250,7 +261,7 @@ def _alternating(scene: Scene, amplitude: float, omega: float, offset: float,
         # back-drives); a thousandth of the half play inside it works.
         inside = 1.0 - _PENALTY_INSIDE if contact in _PENALTY_CONTACTS else 1.0
         play = side * math.copysign(0.5 * clearance * inside, offset)
-    changes["initial"] = {"play_position": play}
+    changes["initial"] = dict(_AT_REST, play_position=play)
     return scene.replace(**changes)
 
 
@@ -343,7 +354,7 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
         ValueError: invalid arguments.
         SimulationError, JammingError: the simulation failed.
     """
-    frequency = check_positive("frequency", frequency)
+    frequency = check_positive("frequency", frequency, unit="Hz")
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     judged_from = check_count("judged_from", judged_from, 0)
@@ -397,8 +408,8 @@ def position_holding(
     cycles: int = 8,
     settle_cycles: int = 1,
     points_per_cycle: int = 200,
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
     executor=None,
     progress: bool = True,
     **simulate_options: Any,
@@ -429,7 +440,8 @@ def position_holding(
         cycles: excitation cycles simulated (both runs last cycles / f).
         settle_cycles: cycles before the creep fit.
         points_per_cycle: output points per cycle.
-        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        rtol, atol: integration tolerances (relative [1], absolute [SI];
+            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` on which the two
             runs go, at once (default: the calling thread, one after the
             other: each takes milliseconds; a Dask client's executor runs
@@ -463,12 +475,12 @@ def position_holding(
     torque = _constant_torque(scene)
     amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)
     static_force = -amplitude if static_force is None else check_finite("static_force",
-                                                                         static_force)
+                                                                         static_force, unit="N")
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
-    options = dict(simulate_options, rtol=rtol, atol=atol)
+    options = with_tolerances(simulate_options, rtol, atol)
     check_simulate_options(scene, options, cycles / frequency)
-    centred = scene.replace(initial={"play_position": 0.0})
+    centred = scene.replace(initial=dict(_AT_REST, play_position=0.0))
     runs = [centred.replace(loads={"axial_force": static_force}),
             alternating_scene(scene, amplitude, frequency)]
     arguments = (frequency, cycles, settle_cycles, points_per_cycle)
@@ -537,37 +549,49 @@ def plot_position_holding(frame: pd.DataFrame, ax: Optional[Any] = None):
     return ax
 
 
+#: The units of a sine excitation's parameters (those of an axial force).
+_SINE_UNITS = {"amplitude": "N", "omega": "rad/s", "phase": "rad", "offset": "N"}
+
+
 def _sine_parameters(excitation: Any) -> Dict[str, float]:
+    """A sine excitation of the axial force as ``{"amplitude", "omega",
+    "phase", "offset"}`` [N, rad/s, rad, N]: from a :class:`~leadscrew.Sine`
+    (a force's, or of plain numbers) or a dict ``{"type": "sine", ...}``
+    whose values may be strings with units, as in a scene (``"20 N"``,
+    ``"10 Hz"``).
+
+    Raises:
+        ValueError: not a sine, an unknown or missing key, a value that is no
+            finite number, or one of another dimension (naming
+            ``excitation.<key>``).
+    """
     if isinstance(excitation, Sine):
+        check_load_unit("excitation", excitation, "N")
         return {"amplitude": excitation.amplitude, "omega": excitation.omega,
                 "phase": excitation.phase, "offset": excitation.offset}
     if isinstance(excitation, dict) and excitation.get("type") == "sine":
-        keys = {"type", "amplitude", "omega", "phase", "offset"}
+        keys = {"type", *_SINE_UNITS}
         unknown = set(excitation) - keys
         if unknown:
             raise ValueError(f"excitation.{sorted(unknown)[0]} is not a known key; a sine "
                              "excitation takes amplitude, omega, phase, offset")
-        try:
-            out = {"amplitude": float(excitation["amplitude"]),
-                   "omega": float(excitation["omega"]),
-                   "phase": float(excitation.get("phase", 0.0)),
-                   "offset": float(excitation.get("offset", 0.0))}
-        except KeyError as missing:
-            raise ValueError(f"excitation.{missing.args[0]} is missing: a sine excitation "
-                             "needs amplitude and omega") from None
-        except (TypeError, ValueError):
-            raise ValueError(f"excitation = {excitation!r} is invalid: values must be "
-                             "numbers") from None
+        missing = [key for key in ("amplitude", "omega") if key not in excitation]
+        if missing:
+            raise ValueError(f"excitation.{missing[0]} is missing: a sine excitation "
+                             "needs amplitude and omega")
+        out = {}
+        for key, unit in _SINE_UNITS.items():
+            value = in_unit(f"excitation.{key}", excitation.get(key, 0.0), unit)
+            try:
+                out[key] = float(value)
+            except (TypeError, ValueError, OverflowError):
+                raise ValueError(f"excitation = {excitation!r} is invalid: values must be "
+                                 "numbers") from None
         if not all(math.isfinite(v) for v in out.values()):
             raise ValueError(f"excitation = {excitation!r} is invalid: values must be finite")
         return out
     raise ValueError(f"excitation = {excitation!r} is invalid: must be a leadscrew.Sine or a "
                      "dict {'type': 'sine', 'amplitude', 'omega', 'phase', 'offset'}")
-
-
-#: Excitation cycles over which :func:`min_holding_preload` ramps the loads
-#: of a drive with springs (its default ``ramp_cycles``).
-RAMP_CYCLES = 2
 
 
 #: The ramp's start, a share of the full loads: a ramp from exactly zero
@@ -576,6 +600,14 @@ RAMP_CYCLES = 2
 #: defect 2); a thousandth of the loads at once starts a transient a
 #: thousandth of the one without a ramp.
 RAMP_START = 1e-3
+
+
+#: The default upper end of :func:`min_holding_preload`'s search, a
+#: multiple of the quasi-static preload: 0.4 of it is no dyadic fraction, so
+#: no bisection point falls on the rigid drive's stick limit (with twice it,
+#: every other point did, where the rigid drive chatters between stick and
+#: slip beyond max_events).
+UPPER_FACTOR = 2.5
 
 
 class _Ramped:
@@ -610,10 +642,14 @@ class _Ramped:
 def _preload_case(preload: float, scene: Scene, sine: Dict[str, float], direction: float,
                   cycles: int, settle_cycles: int, points_per_cycle: int,
                   options: Dict[str, Any], ramp_cycles: int = 0) -> Dict[str, Any]:
-    """One preload of :func:`min_holding_preload`: the nut on the loaded
-    flank, ``ramp_cycles`` cycles of ramped loads (none: the full loads from
-    t = 0), then ``cycles`` cycles of which those after ``settle_cycles`` are
-    judged."""
+    """One preload of :func:`min_holding_preload`: the drive at rest in
+    static equilibrium under the loads at t = 0 (``initial.state =
+    "equilibrium"``; where the loads at t = 0 have none, at rest on the
+    loaded flank with its springs relaxed), ``ramp_cycles`` cycles of
+    ramped loads (none: the full loads from t = 0), then ``cycles`` cycles
+    of which those after ``settle_cycles`` are judged. The result has
+    :func:`cycle_response`'s entries and ``start``, ``"equilibrium"`` or
+    ``"relaxed"``."""
     static = sine["offset"] + direction * preload
     loaded = _alternating(scene, sine["amplitude"], sine["omega"], static, None, True,
                           sine["phase"])
@@ -629,19 +665,24 @@ def _preload_case(preload: float, scene: Scene, sine: Dict[str, float], directio
             loads["drive_torque"] = _Ramped(torque, 0.0, sine["omega"], 0.0, ramp_time)
         loaded = loaded.replace(loads=loads)
     judged_from = ramp_cycles + settle_cycles
-    return cycle_response(loaded, frequency, ramp_cycles + cycles, judged_from,
-                          points_per_cycle, judged_from=judged_from, **options)
+    arguments = (frequency, ramp_cycles + cycles, judged_from, points_per_cycle)
+    try:
+        out = cycle_response(loaded.replace(initial={"state": "equilibrium",
+                                                     "play_position": 0.0}),
+                             *arguments, judged_from=judged_from, **options)
+        start = "equilibrium"
+    except NoEquilibriumError:
+        # The loads at t = 0 cannot be held at rest (nor, then, their
+        # smallest value over a cycle): the run shows how the drive fails.
+        out = cycle_response(loaded, *arguments, judged_from=judged_from, **options)
+        start = "relaxed"
+    out["start"] = start
+    return out
 
 
 def _cycles(count: int, kind: str = "") -> str:
     """``"1 settle cycle"``, ``"2 settle cycles"``."""
     return f"{count} {kind}cycle{'' if count == 1 else 's'}"
-
-
-def _has_springs(scene: Scene) -> bool:
-    """Whether a drive at rest on its flank still has springs to pre-deflect
-    under load: a flexible concept, or a penalty flank contact."""
-    return scene["concept"] != "rigid" or scene["backlash"]["contact"] in _PENALTY_CONTACTS
 
 
 def _bracket_report(rows: List[Dict[str, Any]], found: bool, low: float, high: float,
@@ -652,7 +693,8 @@ def _bracket_report(rows: List[Dict[str, Any]], found: bool, low: float, high: f
     saying either (the contradicting pair if not)."""
     verdicts: Dict[float, List[bool]] = {}
     for row in rows:
-        verdicts.setdefault(row["preload"], []).append(row["holds"])
+        if row["holds"] is not None:  # a case that raised decides nothing
+            verdicts.setdefault(row["preload"], []).append(row["holds"])
     holding = [p for p, v in verdicts.items() if all(v)]
     failing = [p for p, v in verdicts.items() if not any(v)]
     mixed = [p for p, v in verdicts.items() if any(v) and not all(v)]
@@ -664,7 +706,10 @@ def _bracket_report(rows: List[Dict[str, Any]], found: bool, low: float, high: f
         verified = high in holding and low in failing
     monotonic = not mixed and (not holding or not failing or max(failing) < min(holding))
     if monotonic:
-        text = f"all {len(rows)} evaluated preloads agree with one threshold"
+        decided = sum(len(v) for v in verdicts.values())
+        text = (f"all {decided} evaluated preloads" if decided == len(rows) else
+                f"all {decided} decided preloads (of {len(rows)} evaluated)")
+        text += " agree with one threshold"
     elif mixed:
         text = f"NOT monotonic: {mixed[0]:.6g} N both held and failed"
     else:
@@ -685,43 +730,55 @@ def min_holding_preload(
     cycles: int = 4,
     settle_cycles: int = 1,
     points_per_cycle: int = 100,
-    ramp_cycles: Optional[int] = None,
-    rtol: float = 1e-8,
-    atol: float = 1e-10,
+    ramp_cycles: int = 0,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
     executor=None,
     progress: bool = True,
     **simulate_options: Any,
 ) -> pd.DataFrame:
     """Smallest static axial preload that holds the position under an alternating force.
 
-    The axial force is ``direction * preload + excitation(t)``; the nut starts
-    at rest on the flank the preload presses it against. A drive with
-    springs (a flexible concept, or a penalty flank contact) would start with
-    them relaxed, and the loads applied at once would set them ringing: the
-    start-up, not the preload, then decides (a flexible nut needed 15.0 N
-    started so, against 13.3 N quasi-statically). Its loads (preload,
-    excitation, drive torque) are ramped instead, all by one smooth factor
-    from 1e-3 (:data:`RAMP_START`) to 1 over ``ramp_cycles`` cycles, so that
-    the run passes through scaled copies of the full loading, each in static
-    equilibrium if the full one is, to the state of the drive under its
-    preload. The core has no initial spring deflections to start there at
-    once. A rigid drive on its flank needs no ramp: at rest it is in that
-    state from t = 0.
+    The axial force is ``direction * preload + excitation(t)``. Every run
+    starts at rest in static equilibrium under the loads at t = 0
+    (``initial.state = "equilibrium"``, :meth:`~leadscrew.Scene.initial_state`:
+    the nut on the flank the loads press it against, the springs deflected
+    by the loads, the thread stuck), whatever the scene's ``initial``
+    section says: the answer does not depend on how a run starts. (Started
+    with relaxed springs under the full loads, the start-up's ringing
+    decided instead: a flexible nut needed 15.0 N, against 13.3 N
+    quasi-statically, and a start at a rotor speed of 2 or 6 rad/s other
+    answers again.) A preload whose loads at t = 0 have no static
+    equilibrium (their friction force would lie outside the cone: below the
+    quasi-static preload, it cannot hold) starts at rest on the loaded flank
+    with its springs relaxed, and its run shows how it fails; the row's
+    ``start`` says which. ``ramp_cycles`` > 0 starts from the equilibrium
+    under 1e-3 (:data:`RAMP_START`) of the loads instead and ramps them, all
+    by one smooth factor, to the full ones over that many cycles (the
+    study's start before the equilibrium existed; no longer needed).
 
-    After the ramp, ``settle_cycles`` cycles let the transient settle, and
-    the following cycles are judged: a preload *holds* if there the flank
-    never separates (no event to 'open' and no output time with the nut off
-    its flank; an exact contact's flank state decides, not its gap, which
-    drifts with the integration error) and |creep per cycle| <=
-    ``creep_limit`` (:func:`cycle_response`). Holding is taken to be monotonic
-    in the preload; the search bisects (or, with ``points_per_round`` = n > 1,
-    evaluates n evenly spaced preloads per round on the executor) until the
-    bracket is narrower than ``tolerance`` times its upper end or
-    ``max_iterations`` rounds have run. A simulation that fails counts as not
-    holding (its row carries the message). The answer is then checked: the
-    bracket's ends were simulated with their verdicts (``bracket_verified``)
-    and every evaluated preload agrees with one threshold (``monotonic``; a
-    RuntimeWarning if not); ``decided_by`` says how the answer was found.
+    ``settle_cycles`` cycles (after the ramp, if any) let the transient of
+    the excitation's start settle, and the following cycles are judged: a
+    preload *holds* if there the flank never separates (no event to 'open'
+    and no output time with the nut off its flank; an exact contact's flank
+    state decides, not its gap, which drifts with the integration error) and
+    |creep per cycle| <= ``creep_limit`` (:func:`cycle_response`). Holding
+    is taken to be monotonic in the preload; the search bisects (or, with
+    ``points_per_round`` = n > 1, evaluates n evenly spaced preloads per
+    round on the executor) until the bracket is narrower than ``tolerance``
+    times its upper end or ``max_iterations`` rounds have run. A case that
+    raises (a :class:`~leadscrew.JammingError`, a
+    :class:`~leadscrew.SimulationError`) decides nothing: its row has
+    ``holds`` None and the message in ``error``, the bracket ignores it,
+    the summary counts such rows (``raised``, ``raised_reasons``) and a
+    :class:`~leadscrew.StudyWarning` says so. A round in which every case
+    raised is evaluated once more a third of its spacing higher (a point
+    exactly on a rigid drive's stick limit may chatter between stick and
+    slip beyond ``max_events``); if those raise too, the search ends (not
+    converged). The answer is then checked: the bracket's ends were
+    simulated with their verdicts (``bracket_verified``) and every decided
+    preload agrees with one threshold (``monotonic``; a StudyWarning if
+    not); ``decided_by`` says how the answer was found.
 
     For the rigid concept the answer has a closed form: stuck, the load is at
     rest, so the flank carries exactly the applied force, whose smallest
@@ -731,7 +788,10 @@ def min_holding_preload(
     The smallest such preload, max(0, |amplitude| - direction * offset +
     |M| / band edge), is ``attrs["summary"]["quasi_static_preload"]``; it is
     also the flexible drives' answer for an excitation slow and small
-    against their springs.
+    against their springs: from the static equilibrium the seat drive of
+    ``tests/studies/test_min_holding_preload.py`` (flexible nut, and the
+    flexible concept) finds it within the search's tolerance (1e-3 of the
+    bracket's upper end) at any initial rotor speed of the scene.
 
     The excitation follows the rule of every study (:mod:`leadscrew.studies`):
     an argument given overrides, the scene's own load is the default: here
@@ -747,8 +807,10 @@ def min_holding_preload(
             (default: the scene's ``loads.axial_force`` if it is a sine).
         creep_limit: largest admissible |creep per cycle| [m], >= 0.
         direction: +1 or -1, the preload's direction along x.
-        upper: a preload [N] expected to hold (default twice the quasi-static
-            preload, or |amplitude| where that is 0); doubled up to 10 times
+        upper: a preload [N] expected to hold (default 2.5 times the
+            quasi-static preload, or |amplitude| where that is 0: at 0.4 of
+            the bracket, no bisection point is the quasi-static preload, on
+            which a rigid drive's stick limit lies); doubled up to 10 times
             until it holds.
         tolerance: relative width of the final bracket, > 0.
         max_iterations: bound on the search rounds, >= 1.
@@ -758,11 +820,12 @@ def min_holding_preload(
         settle_cycles: cycles after the ramp left for the transient to
             settle, >= 0.
         points_per_cycle: output points per cycle, >= 4.
-        ramp_cycles: cycles over which the loads grow from zero, >= 0; it
-            must be long against the drive's slowest mode on a closed flank
-            (default: 2 for a drive with springs, 0 for a rigid drive with an
-            exact contact).
-        rtol, atol: integration tolerances (relative [1], absolute [SI]).
+        ramp_cycles: cycles over which the loads grow from 1e-3 of
+            themselves, >= 0 (default 0: the full loads from t = 0, the
+            drive in equilibrium under them); a ramp must be long against the
+            drive's slowest mode on a closed flank.
+        rtol, atol: integration tolerances (relative [1], absolute [SI];
+            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores).
         progress: show a progress bar per round.
@@ -770,9 +833,11 @@ def min_holding_preload(
 
     Returns:
         DataFrame with one row per evaluated preload, in evaluation order:
-        ``iteration`` [1], ``preload`` [N], ``holds``, ``separated``,
-        ``separations`` [1], ``creep_per_cycle`` [m], ``max_displacement``
-        [m], ``flight_fraction`` [1] (those four in the judged cycles),
+        ``iteration`` [1], ``preload`` [N], ``holds`` (None where the case
+        raised), ``separated``, ``start`` (``"equilibrium"`` or
+        ``"relaxed"``, see above), ``separations`` [1], ``creep_per_cycle``
+        [m], ``max_displacement`` [m], ``flight_fraction`` [1] (those four
+        in the judged cycles),
         ``wall_time`` [s], ``error``. ``attrs["summary"]``: ``min_preload``
         [N] (the bracket's upper end: the smallest preload seen to hold; if
         none held, the text ``"not found in [0, P] N"``, P the largest
@@ -783,7 +848,9 @@ def min_holding_preload(
         cycles), ``quasi_static_preload`` [N], ``amplitude`` [N],
         ``frequency`` [Hz], ``creep_limit`` [m], ``ramp_cycles``,
         ``settle_cycles``, ``judged_cycles`` [1], ``excitation_from``
-        (``"arguments"`` or ``"scene"``).
+        (``"arguments"`` or ``"scene"``), ``raised`` [1] and
+        ``raised_reasons`` (the rows whose case raised: their count, and
+        their exception types with the first message, or ``"none"``).
 
     Raises:
         ValueError: invalid scene or arguments, no excitation (neither given
@@ -813,14 +880,12 @@ def min_holding_preload(
     if sine["amplitude"] == 0.0 or sine["omega"] <= 0.0:
         raise ValueError(f"excitation = {excitation!r} is invalid: needs amplitude != 0 and "
                          "omega > 0")
-    creep_limit = check_positive("creep_limit", creep_limit, allow_zero=True)
+    creep_limit = check_positive("creep_limit", creep_limit, allow_zero=True, unit="m")
     if isinstance(direction, bool) or direction not in (1, -1, 1.0, -1.0):
         raise ValueError(f"direction = {direction!r} is invalid: must be +1 or -1")
-    tolerance = check_positive("tolerance", tolerance)
+    tolerance = check_positive("tolerance", tolerance, unit="")
     max_iterations = check_count("max_iterations", max_iterations, 1)
     points_per_round = check_count("points_per_round", points_per_round, 1)
-    if ramp_cycles is None:
-        ramp_cycles = RAMP_CYCLES if _has_springs(scene) else 0
     ramp_cycles = check_count("ramp_cycles", ramp_cycles, 0)
     amplitude = abs(sine["amplitude"])
     # Self-locking: the band per newton of force contains 0; the torque needs
@@ -832,12 +897,12 @@ def min_holding_preload(
     # the torque's share.
     quasi_static = max(0.0, amplitude - float(direction) * sine["offset"] + torque_share)
     if upper is None:
-        upper = 2.0 * quasi_static if quasi_static > 0.0 else amplitude
-    upper = check_positive("upper", upper)
+        upper = UPPER_FACTOR * quasi_static if quasi_static > 0.0 else amplitude
+    upper = check_positive("upper", upper, unit="N")
     cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
                                                            points_per_cycle)
     frequency = sine["omega"] / (2.0 * math.pi)
-    options = dict(simulate_options, rtol=rtol, atol=atol)
+    options = with_tolerances(simulate_options, rtol, atol)
     check_simulate_options(scene, options, (ramp_cycles + cycles) / frequency)
     case = functools.partial(_preload_case, scene=scene, sine=sine, direction=float(direction),
                              cycles=cycles, settle_cycles=settle_cycles,
@@ -846,6 +911,8 @@ def min_holding_preload(
     rows: List[Dict[str, Any]] = []
 
     def evaluate(preloads, iteration):
+        """The verdicts: True (holds), False (fails) or None (the case
+        raised: its row carries the message and decides nothing)."""
         outcomes = run_cases(case, preloads, executor=executor, progress=progress,
                              description=f"min_holding_preload round {iteration}")
         verdicts = []
@@ -853,11 +920,11 @@ def min_holding_preload(
             value = outcome.value or {}
             separated = None if not outcome.ok else bool(
                 value["separations"] > 0 or value["flight_fraction"] > 0.0)
-            holds = bool(outcome.ok and not separated
-                         and abs(value["creep_per_cycle"]) <= creep_limit)
+            holds = None if not outcome.ok else bool(
+                not separated and abs(value["creep_per_cycle"]) <= creep_limit)
             rows.append({
                 "iteration": iteration, "preload": float(preload), "holds": holds,
-                "separated": separated,
+                "separated": separated, "start": value.get("start"),
                 "separations": numeric_or_nan(value.get("separations")),
                 "creep_per_cycle": numeric_or_nan(value.get("creep_per_cycle")),
                 "max_displacement": numeric_or_nan(value.get("max_displacement")),
@@ -868,25 +935,37 @@ def min_holding_preload(
             verdicts.append(holds)
         return verdicts
 
-    low_holds, high_holds = evaluate([0.0, upper], 0)
+    low_holds, high_holds = (verdict is True for verdict in evaluate([0.0, upper], 0))
     low, high = 0.0, upper
     expansions = 0
     while not high_holds and expansions < 10:
         low, high = high, 2.0 * high
         expansions += 1
-        (high_holds,) = evaluate([high], 0)
+        high_holds = evaluate([high], 0)[0] is True
     iterations = 0
+    undecided: List[float] = []  # the preloads of a round that decided nothing
     if low_holds:
         high = 0.0
     elif high_holds:
         while high - low > tolerance * high and iterations < max_iterations:
             iterations += 1
             step = (high - low) / (points_per_round + 1)
-            preloads = [low + step * (i + 1) for i in range(points_per_round)]
-            verdicts = evaluate(preloads, iterations)
-            holding = [p for p, ok in zip(preloads, verdicts) if ok]
-            failing = [p for p, ok in zip(preloads, verdicts) if not ok and
-                       (not holding or p < holding[0])]
+            # A round whose every case raised is evaluated again a third of
+            # the spacing higher (a preload exactly on a rigid drive's stick
+            # limit may chatter between stick and slip beyond max_events);
+            # if those raise too, the search ends.
+            for shift in (0.0, 1.0 / 3.0):
+                preloads = [low + step * (i + 1 + shift) for i in range(points_per_round)]
+                verdicts = evaluate(preloads, iterations)
+                holding = [p for p, ok in zip(preloads, verdicts) if ok is True]
+                failing = [p for p, ok in zip(preloads, verdicts) if ok is False and
+                           (not holding or p < holding[0])]
+                if holding or failing:
+                    break
+                undecided += preloads
+            if not holding and not failing:
+                break
+            undecided = []
             if holding:
                 high = holding[0]
             if failing:
@@ -895,12 +974,18 @@ def min_holding_preload(
     if low_holds:
         low = 0.0
     elif not found:
-        low = high  # every preload evaluated failed, the largest too
-    converged = bool(found and (low_holds or high - low <= tolerance * high))
+        low = high  # every preload evaluated failed (or raised), the largest too
+    converged = bool(found and not undecided and (low_holds or high - low <= tolerance * high))
     verified, monotonic, agreement = _bracket_report(rows, found, low, high, low_holds)
     judged = cycles - settle_cycles
-    start = (f"the loads ramped from zero over {_cycles(ramp_cycles)}" if ramp_cycles else
-             "the nut at rest on the loaded flank from t = 0")
+    relaxed = sum(1 for row in rows if row["start"] == "relaxed")
+    start = "from rest in static equilibrium under the loads at t = 0"
+    if ramp_cycles:
+        start = (f"from rest in static equilibrium under {RAMP_START:g} of the loads, "
+                 f"ramped to them over {_cycles(ramp_cycles)}")
+    if relaxed:
+        start += (f" ({relaxed} of {len(rows)} preloads, without one at t = 0: from rest on "
+                  "the loaded flank, springs relaxed)")
     run = (f"each run: {start}, {_cycles(settle_cycles, 'settle ')}, then "
            f"{_cycles(judged, 'judged ')} at {frequency:.6g} Hz")
     if low_holds:
@@ -910,18 +995,24 @@ def min_holding_preload(
         decision = (f"bisection: {high:.6g} N held and {low:.6g} N failed (bracket "
                     f"{width:.2g} of its upper end{'' if converged else ', not converged'}; "
                     f"{'both simulated' if verified else 'NOT both simulated'})")
+        if undecided:
+            decision += (f"; stopped in round {iterations}: "
+                         f"{', '.join(f'{p:.6g}' for p in undecided)} N raised")
     else:
         decision = f"no preload up to {high:.6g} N held"
+    frame = pd.DataFrame(rows)
+    raised, _ = raised_rows(frame)
+    if raised:
+        decision += f"; {raised} of {len(rows)} evaluated preloads raised and decided nothing"
     decided_by = f"{decision}; {agreement}; {run}"
     if not monotonic:
         warnings.warn(f"min_holding_preload: {agreement}: the answer {high:.6g} N assumes "
-                      "that holding is monotonic in the preload", RuntimeWarning, stacklevel=2)
+                      "that holding is monotonic in the preload", StudyWarning, stacklevel=2)
     units = dict(SUMMARY_UNITS)
     if not found:
         units.pop("min_preload")  # a text
-    frame = pd.DataFrame(rows)
     return annotate(
-        frame, UNITS, summary_units=units,
+        frame, UNITS, summary_units=units, study="min_holding_preload",
         min_preload=float(high) if found else f"not found in [0, {high:.6g}] N",
         bracket_low=float(low),
         bracket_high=float(high) if found else float("nan"),
@@ -954,9 +1045,9 @@ def plot_min_holding_preload(frame: pd.DataFrame, ax: Optional[Any] = None):
         The Axes.
     """
     ax = axes(ax)
-    ok = frame[frame["error"].isna()]
-    holds = ok[ok["holds"]]
-    fails = ok[~ok["holds"]]
+    ok = frame[frame["error"].isna()]  # the rows that decided (holds True or False)
+    verdicts = ok["holds"].astype(bool).to_numpy()
+    holds, fails = ok[verdicts], ok[~verdicts]
     floor = 1e-15  # zero creep on a log axis
     ax.semilogy(holds["preload"], np.maximum(np.abs(holds["creep_per_cycle"]), floor), "o",
                 color="C2", label="holds")

@@ -16,7 +16,6 @@ import numbers
 import statistics
 import sys
 import time
-import warnings
 from typing import Callable, Dict, Iterable, List, Optional, Sequence, Union
 
 import numpy as np
@@ -26,7 +25,8 @@ from ..errors import SimulationError
 from ..models import FrictionBlock
 from ..scene import Scene
 from ..simulation import Result, _real, _whole, simulate
-from ._common import check_count, numeric_or_nan
+from ..units import channel_unit
+from ._common import annotate, check_count, in_unit, numeric_or_nan
 
 __all__ = [
     "work_precision",
@@ -166,7 +166,28 @@ def exact_reference(model, t_end: float, quantity: Optional[str] = None) -> Call
     return reference
 
 
+def _column_units(frictions: Iterable[str], quantity: str) -> Dict[str, str]:
+    """The unit of each of :data:`COLUMNS` (``"1"`` counts and ratios, ``""``
+    labels): the errors in the quantity's, ``k_v`` in those of the laws in
+    ``frictions`` that take it (``"s/m or s^2/m"`` for both arctan laws; ""
+    for none), ``atol`` in SI (it bounds every coordinate in its own unit).
+    """
+    try:
+        error = channel_unit(quantity)
+    except KeyError:
+        error = ""
+    laws = set(frictions)
+    k_v = sorted({p["unit"] for law in _core.friction_laws() if law["name"] in laws
+                  for p in law["parameters"] if p["key"] == "k_v"})
+    counts = ("steps", "rhs_evaluations", "events", "lcp_solves", "nonlinear_iterations")
+    return {"label": "", "friction": "", "integrator": "", "k_v": " or ".join(k_v),
+            "rtol": "1", "atol": "SI", "dt": "s", "theta": "1", "error_max": error,
+            "error_final": error, "wall_time": "s", "wall_time_python": "s",
+            **{name: "1" for name in counts}, "failure": ""}
+
+
 def _check_t_end(t_end) -> float:
+    t_end = in_unit("t_end", t_end, "s")
     if isinstance(t_end, bool) or not isinstance(t_end, numbers.Real) or \
             not (math.isfinite(float(t_end)) and float(t_end) > 0.0):
         raise ValueError(f"t_end = {t_end!r} is invalid: must be a finite time > 0 s")
@@ -352,7 +373,8 @@ def work_precision(
         quantity: the compared channel (default ``"u"``; ``"u_load"`` for a Scene).
         on_failure: ``"record"`` (default): a configuration whose run raises
             :class:`~leadscrew.SimulationError` gets a row with NaN errors and
-            times and the message in ``failure`` (and a RuntimeWarning);
+            times and the message in ``failure``, and the summary counts
+            them (one :class:`~leadscrew.StudyWarning` names them);
             ``"raise"``: the error propagates.
         progress: print one line per configuration to stderr.
         ax: a matplotlib Axes to draw the diagram on (see :func:`plot_work_precision`).
@@ -366,8 +388,12 @@ def work_precision(
         m for u]; ``wall_time`` (median, measured inside C++) and
         ``wall_time_python`` (median around the ``simulate`` call) [s];
         ``steps``, ``rhs_evaluations``, ``events``, ``lcp_solves``,
-        ``nonlinear_iterations``; ``failure`` (empty string, or the message).
-        ``frame.attrs`` holds ``reference``, ``quantity``, ``t_end``, ``repeats``.
+        ``nonlinear_iterations``; ``failure`` (empty string, or
+        ``"ExceptionType: message"``). ``frame.attrs`` holds ``reference``,
+        ``quantity``, ``t_end``, ``repeats``, ``units`` (each column's,
+        :func:`_column_units`) and the ``summary``: ``raised`` [1] and
+        ``raised_reasons`` (the configurations that raised: their count, and
+        their exception types with the first message, or ``"none"``).
 
     Raises:
         ValueError: a bad argument (the message names it), including a bad
@@ -423,11 +449,10 @@ def work_precision(
         except SimulationError as error:
             if on_failure == "raise":
                 raise
-            warnings.warn(f"work_precision: {row['label']} failed: {error}", RuntimeWarning,
-                          stacklevel=2)
             row.update(error_max=math.nan, error_final=math.nan, wall_time=math.nan,
                        wall_time_python=math.nan, steps=0, rhs_evaluations=0, events=0,
-                       lcp_solves=0, nonlinear_iterations=0, failure=str(error))
+                       lcp_solves=0, nonlinear_iterations=0,
+                       failure=f"{type(error).__name__}: {error}")
             rows.append(row)
             if progress:
                 print(f"[{i + 1}/{len(entries)}] {row['label']}: FAILED {error}", file=sys.stderr)
@@ -463,7 +488,10 @@ def work_precision(
                   f"{row['wall_time'] * 1e6:.0f} us", file=sys.stderr)
 
     frame = pd.DataFrame(rows, columns=list(COLUMNS))
-    frame.attrs.update(reference=description, quantity=quantity, t_end=t_end, repeats=repeats)
+    frame.attrs.update(reference=description, quantity=quantity, t_end=t_end, repeats=repeats,
+                       units=_column_units(frame["friction"], quantity))
+    # The configurations that raised: counted in the summary, and a StudyWarning.
+    annotate(frame, {}, errors_checked=True, study="work_precision")
     if ax is not None:
         plot_work_precision(frame, ax=ax)
     return frame

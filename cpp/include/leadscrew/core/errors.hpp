@@ -2,6 +2,7 @@
 //
 // The bindings translate them into Python exceptions:
 //   std::invalid_argument (and InvalidArgument) -> ValueError
+//   NoEquilibrium                             -> leadscrew.NoEquilibriumError (a ValueError)
 //   SimulationError                           -> leadscrew.SimulationError
 //   JammingError                              -> leadscrew.JammingError (a SimulationError)
 #pragma once
@@ -16,6 +17,14 @@ namespace leadscrew {
 class InvalidArgument : public std::invalid_argument {
  public:
   using std::invalid_argument::invalid_argument;
+};
+
+// A start in static equilibrium that the loads do not admit: at t = 0 the
+// thread cannot hold them at rest (the friction force it would need lies
+// outside the friction cone). The message says which forces and why.
+class NoEquilibrium : public InvalidArgument {
+ public:
+  using InvalidArgument::InvalidArgument;
 };
 
 // A solver failed during a simulation: the time it got to and the reason.

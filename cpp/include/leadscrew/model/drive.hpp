@@ -1,6 +1,8 @@
 // Lead-screw drive models of thesis chapter 4, assembled from elements.
 //
-// Bodies and coordinates (displacements from the initial configuration):
+// Bodies and coordinates (displacements from the reference configuration:
+// springs relaxed, the nut at initial.play_position in the play; the start
+// of a relaxed run, drive_equilibrium.hpp for the other):
 //   rotor          phi_rotor (always; prescribed when the motor is speed-controlled)
 //   rotating part  the part the motor turns (screw for drive = screw, nut for
 //                  drive = nut): rigid -> turns with the rotor, axially fixed;
@@ -41,6 +43,11 @@ enum class Concept { rigid, flexible_nut, flexible };
 enum class DrivenPart { screw, nut };
 enum class ScrewSupport { both_ends, drive_end };
 enum class BacklashContact { none, exact, bistop, cubic };
+// The state at t = 0 (initial.state): `relaxed`, every spring relaxed, the
+// nut at initial.play_position and every body turning with the thread at
+// initial.rotor_speed; `equilibrium`, at rest in static equilibrium under the
+// loads at t = 0 (drive_equilibrium.hpp).
+enum class InitialState { relaxed, equilibrium };
 
 // The smallest axial play a thread may have besides none [m].
 constexpr double kSmallestClearance = 1e-12;
@@ -106,6 +113,7 @@ struct DriveParameters {
   double rotor_angle = 0.0;
   double rotor_speed = 0.0;
   double play_position = 0.0;
+  InitialState initial_state = InitialState::relaxed;
 };
 
 // Every field of DriveParameters that is one number, by name, in declaration
@@ -196,9 +204,11 @@ std::string concept_name(Concept c);
 std::string drive_name(DrivenPart d);
 std::string support_name(ScrewSupport s);
 std::string backlash_contact_name(BacklashContact b);
+std::string initial_state_name(InitialState s);
 Concept parse_concept(const std::string& name);
 DrivenPart parse_drive(const std::string& name);
 ScrewSupport parse_support(const std::string& name);
 BacklashContact parse_backlash_contact(const std::string& name);  // "none" allowed
+InitialState parse_initial_state(const std::string& name);
 
 }  // namespace leadscrew::model

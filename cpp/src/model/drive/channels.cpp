@@ -1,0 +1,82 @@
+// The drive's result channels (channels.hpp).
+#include "channels.hpp"
+
+#include <cmath>
+
+#include "state_layout.hpp"
+
+namespace leadscrew::model::drive {
+
+std::vector<std::string> drive_channel_names(const DriveModel& model) {
+  std::vector<std::string> names = {"u_load",        "v_load",      "phi_drive",
+                                    "omega_drive",   "drive_torque", "axial_force",
+                                    "normal_force",  "friction_force", "slip_velocity",
+                                    "stick"};
+  if (model.parameters().backlash != BacklashContact::none) {
+    names.push_back("gap");
+    names.push_back("play");
+  }
+  if (model.law().resolution() == friction::Resolution::bristle)
+    names.push_back("bristle_deflection");
+  const int n = model.coordinate_count();
+  for (int i = 1; i < n - 1; ++i) {
+    const std::string& name = model.coordinate_names()[i];
+    names.push_back(name);
+    names.push_back((name[0] == 'u' ? "v" : "omega") + name.substr(name.find('_')));
+  }
+  for (const char* name : {"work_drive", "work_axial", "friction_loss", "damping_loss",
+                           "contact_loss", "impact_loss", "kinetic", "elastic",
+                           "energy_residual"})
+    names.push_back(name);
+  return names;
+}
+
+ChannelState channel_state(const DriveDynamics& dynamics) {
+  return {dynamics.q(),
+          dynamics.v(),
+          dynamics.axial_force(),
+          dynamics.slip_velocity(),
+          dynamics.play(),
+          dynamics.kinetic_energy(),
+          dynamics.elastic_energy() + dynamics.contact_energy()};
+}
+
+void write_drive_channels(const DriveModel& model, const ChannelState& state,
+                          const ContactForces& forces, const double* energy, double impact_loss,
+                          double kinetic0, double elastic0, double* out) {
+  const DriveParameters& p = model.parameters();
+  const CoordinateVector& q = state.q;
+  const CoordinateVector& v = state.v;
+  const int n = model.coordinate_count();
+  int k = 0;
+  out[k++] = q[model.load()];
+  out[k++] = v[model.load()];
+  out[k++] = p.rotor_angle + q[model.rotor()];
+  out[k++] = v[model.rotor()];
+  out[k++] = forces.motor_torque;
+  out[k++] = state.axial_force;
+  out[k++] = forces.normal;
+  out[k++] = forces.friction;
+  out[k++] = state.slip_velocity;
+  out[k++] = forces.stick ? 1.0 : 0.0;
+  if (p.backlash != BacklashContact::none) {
+    out[k++] = 0.5 * p.clearance - std::abs(state.play);
+    out[k++] = state.play;
+  }
+  if (model.law().resolution() == friction::Resolution::bristle) out[k++] = state.bristle;
+  for (int i = 1; i < n - 1; ++i) {
+    out[k++] = q[i];
+    out[k++] = v[i];
+  }
+  const double kinetic = state.kinetic;
+  const double elastic = state.elastic;
+  for (int e = 0; e < kEnergyCount; ++e) out[k++] = energy[e];
+  out[k++] = impact_loss;
+  out[k++] = kinetic;
+  out[k++] = elastic;
+  out[k++] = energy[kWorkDrive] + energy[kWorkAxial] -
+             (kinetic - kinetic0 + elastic - elastic0 + energy[kFrictionLoss] +
+              energy[kDampingLoss] + energy[kContactLoss] + impact_loss);
+}
+
+}  // namespace leadscrew::model::drive

@@ -1,0 +1,41 @@
+// The drive's result channels: their names (the thread and motor forces,
+// the play, the coordinates, the energy account) and the writing of one
+// output row, shared by the event-driven and Moreau-Jean systems. Internal to
+// cpp/src/model.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/drive_dynamics.hpp"
+
+namespace leadscrew::model::drive {
+
+// The names of a drive's result channels, in the order write_drive_channels
+// writes them.
+std::vector<std::string> drive_channel_names(const DriveModel& model);
+
+// Thread and motor forces at an output point.
+struct ContactForces {
+  double normal = 0.0, friction = 0.0, motor_torque = 0.0;
+  bool stick = false;
+};
+
+// The state of an output row besides the thread and motor forces.
+struct ChannelState {
+  const CoordinateVector& q;
+  const CoordinateVector& v;
+  double axial_force = 0.0, slip_velocity = 0.0, play = 0.0, kinetic = 0.0, elastic = 0.0;
+  double bristle = 0.0;  // LuGre's bristle deflection z [m]
+};
+
+// From the state last set in dynamics.
+ChannelState channel_state(const DriveDynamics& dynamics);
+
+// Writes one output row.
+void write_drive_channels(const DriveModel& model, const ChannelState& state,
+                          const ContactForces& forces, const double* energy, double impact_loss,
+                          double kinetic0, double elastic0, double* out);
+
+}  // namespace leadscrew::model::drive

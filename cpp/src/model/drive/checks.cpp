@@ -1,0 +1,63 @@
+// The checks of a drive's result (checks.hpp).
+#include "checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "leadscrew/integrate/event_driven.hpp"
+#include "leadscrew/model/result_checks.hpp"
+#include "state_layout.hpp"
+
+namespace leadscrew::model::drive {
+
+void check_drive_result(const DriveModel& model, const friction::Law& law,
+                        const DriveSimulationOptions& options, bool time_stepping,
+                        integrate::SimulationResult& result, double step_play_rate,
+                        double step_friction_excess) {
+  const DriveParameters& p = model.parameters();
+  ResultCheckSpec spec;
+  spec.work = {"work_drive", "work_axial"};
+  spec.stored = {"kinetic", "elastic"};
+  spec.losses = {"friction_loss", "damping_loss", "contact_loss", "impact_loss"};
+  spec.t_end = options.output.t_end;
+  spec.law = &law;
+  spec.coefficient_scale = model.flank_factor();
+  // Eq. (3.15)'s law can do positive work (its friction follows the slip
+  // acceleration), and LuGre's bristles give back what they stored.
+  spec.friction_dissipates = law.resolution() != friction::Resolution::acceleration &&
+                             law.resolution() != friction::Resolution::bristle;
+  spec.clearance = p.backlash == BacklashContact::exact ? p.clearance : 0.0;
+  spec.time_step = time_stepping ? options.dt : 0.0;
+  spec.step_play_rate = step_play_rate;
+  spec.step_friction_excess = step_friction_excess;
+  spec.slip_resolution =
+      model.tangent_direction().cwiseAbs().sum() * options.integrator_options.atol;
+  spec.time_stepping = time_stepping;
+  spec.rtol = options.integrator_options.rtol;
+  spec.atol = options.integrator_options.atol;
+  spec.momentum_factor = std::sqrt(2.0 * model.mass().sum());
+  // sum |k x| <= sqrt(2 E sum k) for the springs at their stiffest over the
+  // screw's length (the stiffness of eq. 4.24 grows toward its ends; the
+  // nut's whole length stays on it), and the flank's force for a penalty
+  // contact, whose energy is not quadratic: taken as its largest stiffness.
+  double stiffness = p.contact_stiffness;
+  for (const Spring& s : model.springs()) {
+    double k = 0.0;
+    for (const double a : {0.5 * p.nut_length, p.nut_position,
+                           p.screw_length - 0.5 * p.nut_length}) {
+      double derivative = 0.0;
+      k = std::max(k, model.spring_stiffness(s, a, &derivative));
+    }
+    stiffness += k;
+  }
+  spec.force_factor = std::sqrt(2.0 * stiffness);
+  spec.quadratures = kEnergyCount + 1;  // and the impact loss, booked at events
+  spec.load_forces = {"axial_force"};
+  spec.load_torques = {"drive_torque"};
+  spec.lever = p.thread.mean_radius();
+  spec.length_scale = p.screw_length;
+  check_result(spec, result);
+  if (options.check) integrate::enforce_checks(result);
+}
+
+}  // namespace leadscrew::model::drive

@@ -1,0 +1,205 @@
+// The event-driven system of a drive (integrate::HybridSystem): exact Coulomb
+// friction and exact flank contacts by modes and events, the regularized and
+// compliant formulations as smooth phases. Internal to cpp/src/model; its
+// members are defined by concern (docs/architecture.md):
+//   hybrid_rhs.cpp         construction, the right-hand side of a mode (the
+//                          rigid one-degree-of-freedom path, LuGre's
+//                          bristles), output rows
+//   hybrid_events.cpp      root functions, the initial mode, event handling
+//   hybrid_load_roots.cpp  load-driven roots of the rigid drive's modes
+//   hybrid_modes.cpp       the current mode's solution, stick or slip by the
+//                          flank LCP and the two-step stick test
+//   hybrid_impacts.cpp     flank impacts with restitution, free flights
+//   hybrid_jamming.cpp     dynamic jamming (Painleve), the regularized
+//                          law's fold
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "leadscrew/friction/law.hpp"
+#include "leadscrew/integrate/event_driven.hpp"
+#include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/lcp/workspace.hpp"
+#include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/drive_dynamics.hpp"
+#include "leadscrew/model/drive_rigid.hpp"
+#include "modes.hpp"
+#include "state_layout.hpp"
+
+namespace leadscrew::model::drive {
+
+// A bounce whose flight would rise less than this fraction of the clearance is
+// plastic: such flights (1e-6 of a 0.1 mm play is 0.1 nm) are far below the
+// flanks' roughness, and a geometric sequence of them only costs events.
+constexpr double kPlasticHeight = 1e-6;
+
+// A free flight whose play goes beyond a flank by more than this fraction of
+// the clearance (beyond where the flight started: a closed flank drifts, by
+// 1.6e-4 of a 0.2 mm play in 0.4 s) passed through it unseen: far above the
+// events' resolution (kPlasticHeight; roots are located to round-off).
+constexpr double kFlankTolerance = 1e-3;
+
+// The regularized law's branch is watched for the onset of jamming once its
+// denominator falls below this fraction of G_NN (DriveHybrid::approach_fold).
+constexpr double kFoldWatch = 0.1;
+
+class DriveHybrid final : public integrate::HybridSystem {
+ public:
+  // `law`: the friction law that runs (the model's, or its regularization
+  // for an ODE integrator); it outlives this.
+  DriveHybrid(const DriveModel& model, const friction::Law& law, double bounce_threshold,
+              double t_end, const integrate::IntegratorOptions& integrator_options);
+
+  int size() const override { return layout_.size(); }
+  // g0..g3: friction and flank events (see roots); g4: the nut's end at the
+  // screw's end, for every concept (the scene gives every screw its length).
+  int root_count() const override { return 5; }
+  // The work and loss integrals close the state; f does not depend on them.
+  int quadrature_count() const override { return kEnergyCount; }
+
+  // hybrid_rhs.cpp
+  void rhs(double t, const double* y, double* ydot) override;
+  void channels(double t, const double* y, double* out) override;
+  std::vector<double> breakpoints() const override;
+  double max_step_hint() const override;
+  const std::vector<std::string>& channel_names() const override { return names_; }
+  long lcp_solves() const override { return lcp_solves_; }
+
+  // hybrid_events.cpp
+  void roots(double t, const double* y, double* g) override;
+  void root_directions(int* directions) const override;
+  void select_initial_mode(double t, double* y) override;
+  std::string handle_event(double t, double* y, const std::vector<int>& root_info) override;
+
+ private:
+  // Expands y at t into q_, v_ and the dynamics' state (every right-hand
+  // side, root and output row starts here: inline).
+  void set(double t, const double* y) {
+    layout_.expand(t, y, q_, v_);
+    dynamics_.set_state(t, q_, v_);
+    if (layout_.bristle() >= 0) dynamics_.set_bristle(y[layout_.bristle()]);
+  }
+
+  // hybrid_rhs.cpp
+  struct RigidSolution {
+    double torque = 0.0, axial_force = 0.0;
+    double acceleration = 0.0, normal_force = 0.0, friction_force = 0.0;
+  };
+  RigidSolution solve_rigid(double t, const double* y);
+
+  // hybrid_events.cpp
+  void start_mode(double t, const double* y);
+  std::string change_mode(double t, double* y, const std::vector<int>& root_info);
+  double slip_resolution() const;
+
+  // hybrid_load_roots.cpp
+  bool load_driven() const;
+  RigidModeCoefficients mode_coefficients(int sigma);
+  void plan_load_roots(double t);
+  double load_root_value(double t) const {
+    return std::isfinite(load_root_time_) ? load_root_time_ - t : 1.0;
+  }
+
+  // hybrid_modes.cpp
+  ModeSpec spec(int sigma) const {
+    ModeSpec s;
+    s.contact = mode_.contact;
+    s.sigma = mode_.contact == ThreadContact::closed ? mode_.flank : sigma;
+    s.friction = mode_.contact == ThreadContact::open ? FrictionMode::none : mode_.friction;
+    s.slip_sign = mode_.slip_sign;
+    return s;
+  }
+
+  // The stick limit mu_static' of the law (mu' itself for one coefficient).
+  double stick_mu() const {
+    return dynamics_.law().plain_coulomb() ? model_.effective_mu() : model_.effective_mu_static();
+  }
+
+  // The motor prescribes the slip (DriveDynamics::slip_prescribed) while the
+  // thread's normal constraint is active.
+  bool slip_prescribed_now() const {
+    return dynamics_.slip_prescribed() && (mode_.contact == ThreadContact::bilateral ||
+                                           mode_.contact == ThreadContact::closed);
+  }
+  ModeSolution solve_current();
+  void open_if_pulling();
+  void decide_friction(double t, double* y, bool at_zero_slip, int hint);
+  void start_normal_side();
+  double flank_change_root(double normal_force);
+
+  // hybrid_impacts.cpp
+  // The direction in which an impact and put_back_inside move the
+  // coordinates to change the play: M^-1 grad e (the least kinetic energy
+  // for a given play rate), with a speed-controlled rotor held at its
+  // imposed speed; and the metric grad e . M^-1 grad e.
+  struct PlayDirection {
+    CoordinateVector along;
+    double metric;
+  };
+  PlayDirection play_direction() const;
+  void move_play_to(double t, const PlayDirection& direction, double target);
+  double stop_play(double t, const PlayDirection& direction);
+  void put_back_inside(double t, double* y);
+  void note_flight_start(double t, const double* y);
+  void check_flight(double t) const;
+  double free_flight_play_acceleration();
+  bool flank_impact(double t, double* y, int flank);
+
+  // hybrid_jamming.cpp
+  // The regularized law on the thread without play in a model where the
+  // Painleve paradox is possible (mu' |G_NT| >= G_NN): its friction factor
+  // kappa = (2/pi) mu' atan(k_V gamma_T) depends on the slip velocity, and
+  // the paradox begins where kappa |G_NT| reaches G_NN.
+  bool watch_fold() const {
+    return mode_.contact == ThreadContact::bilateral &&
+           (mode_.friction == FrictionMode::regularized_velocity ||
+            mode_.friction == FrictionMode::bristle) &&
+           dynamics_.painleve_possible();
+  }
+  double current_kappa() const { return dynamics_.friction_factor(spec(sigma_guess_), 0.0); }
+  double fold_margin() const;
+  [[noreturn]] void jam_regularized(const std::string& what) const;
+  void approach_fold(double t, const double* y);
+  class FoldApproach;  // the drive's equations in the time s with dt/ds = S
+  [[noreturn]] void jam_acceleration_law(int count);
+  [[noreturn]] void jam(const std::string& what) const;
+
+  const DriveModel& model_;
+  const DriveParameters& p_;
+  DriveDynamics dynamics_;
+  StateLayout layout_;
+  double bounce_threshold_;
+  bool backlash_;
+  bool touching_ = false;  // a penalty flank is penetrated
+  int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
+  int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
+  std::vector<double> saved_state_;  // y before a touch below resolution (handle_event)
+  double saved_impact_loss_ = 0.0;   // and impact_loss_
+  double flight_start_excess_ = 0.0;  // the play beyond a flank at the start of a flight
+  int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  double last_unique_time_ = 0.0;  // eq. (3.15) last seen with one solution (jam_acceleration_law)
+  // round-off of the slip velocity against a slip mode's sign at its start
+  double slip_offset_ = 0.0;
+  bool slip_noise_event_ = false;  // an event of g0 kept the same slip mode (start_mode)
+  bool stick_from_zero_ = false;  // a stick mode whose cone margin has not left zero
+  int load_root_ = -1;     // the root function replaced by a load-driven crossing (-1: none)
+  double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
+  double t_end_;
+  integrate::IntegratorOptions integrator_options_;
+  std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
+  double loads_time_ = std::numeric_limits<double>::quiet_NaN();  // the loads last evaluated
+  double torque_ = 0.0, axial_force_ = 0.0;
+  Mode mode_;
+  CoordinateVector q_, v_;
+  std::vector<std::string> names_;
+  double kinetic0_ = 0.0, elastic0_ = 0.0, impact_loss_ = 0.0;
+  long lcp_solves_ = 0;
+  lcp::Workspace lcp_workspace_{2};
+  lcp::Options lcp_options_{};
+};
+
+}  // namespace leadscrew::model::drive

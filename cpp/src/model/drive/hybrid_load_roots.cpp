@@ -1,0 +1,83 @@
+// DriveHybrid (hybrid.hpp): the roots of the rigid drive's load-driven modes,
+// planned from the loads alone (first_load_crossing, drive_rigid.hpp).
+#include "hybrid.hpp"
+
+#include <limits>
+#include <optional>
+
+namespace leadscrew::model::drive {
+
+// True if the thread forces of the current mode depend on the loads alone
+// (linearly): the rigid drive (no springs, no dampers) with a
+// torque-driven rotor and exact Coulomb friction on the thread without play
+// or a closed flank, in stick (every coordinate locked) or slip (the
+// friction factor +-mu' is constant).
+bool DriveHybrid::load_driven() const {
+  return p_.concept == Concept::rigid && model_.springs().empty() && !p_.speed_controlled &&
+         dynamics_.law().plain_coulomb() &&
+         (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
+         (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
+}
+
+// The thread forces of the current mode per unit drive torque and axial
+// force (normal-force sign sigma where it matters).
+RigidModeCoefficients DriveHybrid::mode_coefficients(int sigma) {
+  if (rigid_) return rigid_->coefficients(mode_.friction, mode_.slip_sign, sigma);
+  const int n = model_.coordinate_count();
+  CoordinateVector unit_torque = CoordinateVector::Zero(n), unit_force = unit_torque;
+  unit_torque[model_.rotor()] = 1.0;
+  unit_force[model_.load()] = 1.0;
+  const ModeSolution torque = dynamics_.solve_with_forces(spec(sigma), unit_torque);
+  const ModeSolution force = dynamics_.solve_with_forces(spec(sigma), unit_force);
+  RigidModeCoefficients c;
+  if (!torque.regular || !force.regular) return c;
+  c.normal_force = {torque.normal_force, force.normal_force};
+  c.friction_force = {torque.friction_force, force.friction_force};
+  return c;
+}
+
+// At the start of a mode whose thread forces are load-driven, the stick
+// cone's margin (stick) or the normal force on its side (slip) is a function
+// of time alone: its first zero is found by first_load_crossing, and the
+// root function becomes the time left until it, load_root_time_ - t, which
+// falls through zero exactly there however short the excursion beyond it.
+// (The margin sampled at the integrator's steps missed a 13 ms excursion out
+// of the cone with steps of 21 ms.)
+void DriveHybrid::plan_load_roots(double t) {
+  load_root_ = -1;
+  load_root_time_ = std::numeric_limits<double>::infinity();
+  if (!load_driven()) return;
+  const double torque = p_.drive_torque(t), force = p_.axial_force(t);
+  LoadCoefficients functions[2];
+  int count = 0, slot = -1;
+  if (mode_.friction == FrictionMode::stick) {
+    // |T| <= mu' |N| as the two factors mu' s N -+ T, with s the side of N
+    // at the start: before N could change sides, |T| would have to fall to
+    // zero with it, so one factor crosses first.
+    const RigidModeCoefficients c = mode_coefficients(1);
+    int side = sign_of(c.normal_force(torque, force));
+    if (side == 0)
+      side = sign_of(c.normal_force(p_.drive_torque.derivative(t), p_.axial_force.derivative(t)));
+    if (side == 0) return;  // no load on the thread: the sampled margin decides
+    const double mu = stick_mu();
+    for (int s : {1, -1})
+      functions[count++] = {mu * side * c.normal_force.per_torque - s * c.friction_force.per_torque,
+                            mu * side * c.normal_force.per_force - s * c.friction_force.per_force};
+    slot = 0;
+  } else {
+    // The normal force leaving its side: a flank change (bilateral) or the
+    // flank opening (closed).
+    const int side = mode_.contact == ThreadContact::closed ? mode_.flank : normal_side_;
+    if (side == 0) return;  // not left zero yet (flank_change_root)
+    const RigidModeCoefficients c = mode_coefficients(side);
+    functions[count++] = {side * c.normal_force.per_torque, side * c.normal_force.per_force};
+    slot = 1;
+  }
+  const std::optional<double> crossing =
+      first_load_crossing(p_.drive_torque, p_.axial_force, functions, count, t, t_end_);
+  if (!crossing) return;  // a callable load: no curvature bound
+  load_root_ = slot;
+  load_root_time_ = *crossing;
+}
+
+}  // namespace leadscrew::model::drive

@@ -1,0 +1,263 @@
+// DriveHybrid (hybrid.hpp): the current mode's accelerations and forces (the
+// consistent sign of the normal force), and the choice of stick or slip at
+// zero slip by the flank LCP and the two-step stick test (mu_static).
+#include "hybrid.hpp"
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/friction/flank_lcp.hpp"
+
+namespace leadscrew::model::drive {
+
+// Accelerations and forces in the current mode; for the thread without
+// play the sign of the normal force is the one consistent with it (the
+// thesis's y+/y- procedure, section 4.3, done exactly).
+ModeSolution DriveHybrid::solve_current() {
+  const bool friction_on_normal = mode_.friction == FrictionMode::slip ||
+                                  mode_.friction == FrictionMode::regularized_velocity ||
+                                  mode_.friction == FrictionMode::regularized_acceleration ||
+                                  mode_.friction == FrictionMode::bristle;
+  if (mode_.contact == ThreadContact::bilateral &&
+      mode_.friction == FrictionMode::regularized_acceleration && dynamics_.painleve_possible()) {
+    // Eq. (3.15): every consistent flank force at once (DriveDynamics::
+    // solve_acceleration_law); there is always one, several are jamming.
+    const ModeSolution s = dynamics_.solve(spec(sigma_guess_));
+    if (!s.regular)
+      throw SimulationError(dynamics_.time(), "the constraint equations of the drive are singular",
+                            "check masses, inertias and the thread geometry");
+    if (s.consistent_solutions != 1) jam_acceleration_law(s.consistent_solutions);
+    if (s.normal_force != 0.0) sigma_guess_ = sign_of(s.normal_force);
+    last_unique_time_ = std::max(last_unique_time_, dynamics_.time());
+    return s;
+  }
+  if (mode_.contact == ThreadContact::bilateral && friction_on_normal &&
+      !dynamics_.painleve_possible()) {
+    // At most one sign can be consistent: try the last one first.
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      const ModeSolution s = dynamics_.solve(spec(sigma_guess_));
+      if (s.regular && sigma_guess_ * s.normal_force >= 0.0) return s;
+      sigma_guess_ = -sigma_guess_;
+    }
+    jam("no sign of the flank normal force is consistent");
+  }
+  if (mode_.contact == ThreadContact::bilateral && friction_on_normal) {
+    const ModeSolution plus = dynamics_.solve(spec(1));
+    const ModeSolution minus = dynamics_.solve(spec(-1));
+    const bool plus_ok = plus.regular && plus.normal_force >= 0.0;
+    const bool minus_ok = minus.regular && minus.normal_force <= 0.0;
+    if (watch_fold()) {
+      // The paradox of the regularized law is located by its roots (the
+      // margin, the branch's denominator; approach_fold). Between them keep
+      // the current sign's branch: where both are consistent it is the
+      // continuous one, and where neither is (a trial state of the
+      // integrator beyond the onset) its continuation, so that the step is
+      // rejected, not the simulation ended at a state off the trajectory.
+      const ModeSolution& current = sigma_guess_ > 0 ? plus : minus;
+      const bool current_ok = sigma_guess_ > 0 ? plus_ok : minus_ok;
+      const bool other_ok = sigma_guess_ > 0 ? minus_ok : plus_ok;
+      if (current_ok || (!other_ok && current.regular)) return current;
+      if (other_ok) {
+        sigma_guess_ = -sigma_guess_;
+        return sigma_guess_ > 0 ? plus : minus;
+      }
+      jam("the constraint equations of the thread are singular");
+    }
+    if (plus_ok && minus_ok) {
+      if (plus.normal_force == 0.0) return plus;
+      if (minus.normal_force == 0.0) return minus;
+      jam("both signs of the flank normal force are consistent");
+    }
+    if (plus_ok) return plus;
+    if (minus_ok) return minus;
+    jam("no sign of the flank normal force is consistent");
+  }
+  const ModeSolution s = dynamics_.solve(spec(1));
+  if (!s.regular)
+    throw SimulationError(dynamics_.time(), "the constraint equations of the drive are singular",
+                          "check masses, inertias and the thread geometry");
+  return s;
+}
+
+// A flank closed by an impact (or a grazing touch) whose normal force would
+// pull opens at once: the contact is unilateral, as a closed flank opens
+// where its normal force falls through zero (the root g[1] cannot see a
+// force that starts on the wrong side). Solves the current mode.
+void DriveHybrid::open_if_pulling() {
+  const ModeSolution s = solve_current();
+  if (mode_.contact != ThreadContact::closed || mode_.flank * s.normal_force >= 0.0) return;
+  mode_.contact = ThreadContact::open;
+  mode_.friction = FrictionMode::none;
+  mode_.slip_sign = 0;
+}
+
+// Stick or slip: from the slip velocity, or at zero slip by the flank LCP.
+void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hint) {
+  (void)t;
+  const friction::Resolution resolution = dynamics_.law().resolution();
+  const bool regularized = resolution != friction::Resolution::set_valued;
+  // A regularized law's friction on a penalty flank follows its penetration
+  // (zero where it has none): no contact mode to track.
+  if (mode_.contact == ThreadContact::open || model_.effective_mu() == 0.0 ||
+      (mode_.contact == ThreadContact::penalty && !touching_ && !regularized)) {
+    // No contact (an open play, or a penalty flank not penetrated), or a
+    // frictionless flank: no stick, no slip, no friction events.
+    mode_.friction = FrictionMode::none;
+    mode_.slip_sign = 0;
+    open_if_pulling();
+    return;
+  }
+  if (regularized) {
+    mode_.friction = resolution == friction::Resolution::velocity ? FrictionMode::regularized_velocity
+                     : resolution == friction::Resolution::acceleration
+                         ? FrictionMode::regularized_acceleration
+                         : FrictionMode::bristle;
+    open_if_pulling();
+    return;
+  }
+  // A slip velocity at the level of its own round-off has no sign to take.
+  if (!at_zero_slip && std::abs(dynamics_.slip_velocity()) > dynamics_.slip_noise()) {
+    mode_.friction = FrictionMode::slip;
+    mode_.slip_sign = sign_of(dynamics_.slip_velocity());
+    open_if_pulling();  // raises JammingError if no normal-force sign is consistent
+    return;
+  }
+  ModeSpec base = spec(1);
+  base.friction = FrictionMode::none;
+  if (slip_prescribed_now()) {
+    // The motor prescribes every velocity: its slip acceleration decides
+    // (no projection: the velocities are the motor's).
+    const friction::FlankLcpResult r = dynamics_.prescribed_slip_decision(
+        base, mode_.contact == ThreadContact::closed ? mode_.flank : 0);
+    ++lcp_solves_;
+    if (!r.consistent && mode_.contact == ThreadContact::closed) {
+      mode_.contact = ThreadContact::open;  // the flank cannot push: it opens
+      mode_.friction = FrictionMode::none;
+      mode_.slip_sign = 0;
+      return;
+    }
+    if (!r.consistent)
+      jam("the prescribed motion needs a flank normal force of neither sign");
+    mode_.friction = r.slip_acceleration == 0.0 ? FrictionMode::stick : FrictionMode::slip;
+    mode_.slip_sign = sign_of(r.slip_acceleration);
+    return;
+  }
+  // Zero slip: project the velocities onto exactly zero slip (the root is
+  // located to round-off), then let the LCP decide.
+  dynamics_.project_zero_slip(base, v_);
+  layout_.compress(q_, v_, y);
+  set(t, y);
+  ModeSolution without = dynamics_.solve(base);
+  base.given_tangential = 1.0;
+  ModeSolution unit = dynamics_.solve(base);
+  if (!without.regular || !unit.regular)
+    throw SimulationError(t, "the constraint equations of the drive are singular",
+                          "check masses, inertias and the thread geometry");
+  const double c = without.slip_acceleration;
+  const double d = unit.slip_acceleration - c;
+  double alpha = 0.0, beta = dynamics_.penalty_normal_force();
+  // The normal-force signs to try: the penalty force's, the closed flank's, or both.
+  int sigmas[2] = {1, -1};
+  int sigma_count = 2;
+  if (mode_.contact == ThreadContact::penalty) {
+    sigmas[0] = beta >= 0.0 ? 1 : -1;
+    sigma_count = 1;
+  } else {
+    beta = without.normal_force;
+    alpha = unit.normal_force - beta;
+    if (mode_.contact == ThreadContact::closed) {
+      sigmas[0] = mode_.flank;
+      sigma_count = 1;
+    }
+  }
+  // One coefficient: the thesis's LCP decides stick and slip at once. A
+  // static coefficient above the kinetic one: stick wherever the force
+  // that sticks lies in mu_static''s cone (its normal force on the
+  // flank's side); otherwise the LCP at the slip's coefficient at zero
+  // speed, mu(0+)', gives the slip's direction (no stick: it is not
+  // admissible even with the larger coefficient).
+  const friction::Law& law = dynamics_.law();
+  double lcp_mu = model_.effective_mu();
+  const int stick_side = mode_.contact == ThreadContact::closed ? mode_.flank
+                         : mode_.contact == ThreadContact::penalty ? sigmas[0]
+                                                                   : 0;
+  const bool stick_admissible =
+      hint == 0 && friction::flank_stick(c, d, alpha, beta, stick_mu(), stick_side).consistent;
+  if (!law.plain_coulomb()) {
+    if (stick_admissible) {
+      mode_.friction = FrictionMode::stick;
+      mode_.slip_sign = 0;
+      return;
+    }
+    lcp_mu = law.slip_mu(0.0) * model_.flank_factor();
+  }
+  int found = 0;
+  bool ambiguous = false;
+  Mode chosen = mode_;
+  for (int k = 0; k < sigma_count; ++k) {
+    const friction::FlankLcpResult r =
+        solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
+                               lcp_options_);
+    ++lcp_solves_;
+    if (!r.consistent) continue;
+    Mode candidate = mode_;
+    const int direction = sign_of(r.slip_acceleration);
+    if (direction == 0 && hint == 0) {
+      candidate.friction = FrictionMode::stick;
+      candidate.slip_sign = 0;
+    } else {
+      candidate.friction = FrictionMode::slip;
+      candidate.slip_sign = direction != 0 ? direction : hint;
+    }
+    if (found > 0 && !(candidate == chosen)) ambiguous = true;
+    chosen = candidate;
+    ++found;
+  }
+  if (found == 0 && mode_.contact == ThreadContact::closed && !stick_admissible) {
+    // No friction mode keeps the normal force on this flank's side: the
+    // flank opens (the contact is unilateral). (In the Painleve regime the
+    // LCP of the flank's sign can miss a stick that holds it: a rigid
+    // drive at rest on its loaded flank opened and jammed at its first
+    // impact, 2.6e-11 s later.)
+    mode_.contact = ThreadContact::open;
+    mode_.friction = FrictionMode::none;
+    mode_.slip_sign = 0;
+    return;
+  }
+  if (found == 0 || ambiguous) {
+    // In the Painleve regime (mu' |G_NT| >= G_NN) the LCP of one normal-force
+    // sign may have no solution or admit a spurious slip start. At zero slip
+    // the drive keeps sticking whenever stick is admissible
+    // (docs/physics/rigid_drive.md, "uniqueness"); otherwise it jams.
+    if (stick_admissible) {
+      chosen = mode_;
+      chosen.friction = FrictionMode::stick;
+      chosen.slip_sign = 0;
+    } else {
+      jam(found == 0 ? "no flank-contact mode is consistent"
+                     : "two flank-contact modes are consistent");
+    }
+  }
+  mode_ = chosen;
+}
+
+// The bilateral thread's normal force at the start of a mode (the state is
+// set): its sign is the flank in contact; exactly zero leaves it open.
+void DriveHybrid::start_normal_side() {
+  normal_side_ = 0;
+  if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick &&
+      mode_.friction != FrictionMode::none)
+    normal_side_ = sign_of(solve_current().normal_force);
+}
+
+// Root function of a flank change of the thread without play: the normal
+// force on the side it pushes, falling through zero. A normal force that is
+// exactly zero at the start of a mode (a flexible drive whose springs are
+// relaxed at t = 0 transmits no load yet) has no side: until it leaves zero
+// the root is |N|, which cannot change sign, and the side it leaves to
+// becomes the flank (|N| = side N there, so the root stays continuous).
+// Leaving zero is not a flank change; passing through it is.
+double DriveHybrid::flank_change_root(double normal_force) {
+  if (normal_side_ == 0) normal_side_ = sign_of(normal_force);
+  return normal_side_ != 0 ? normal_side_ * normal_force : 0.0;
+}
+
+}  // namespace leadscrew::model::drive

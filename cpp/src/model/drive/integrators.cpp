@@ -1,0 +1,160 @@
+// Which integrators fit a drive (from its friction law's type and its
+// contact), the checks of simulate()'s options, and the options each scheme
+// runs with.
+#include "integrators.hpp"
+
+#include <algorithm>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+#include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/model/simulation_checks.hpp"
+
+namespace leadscrew::model {
+
+const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+  // From the law's type (friction/law.hpp): a set-valued law runs in the
+  // event-driven scheme, in Moreau-Jean's time stepping, and where it has a
+  // regularization in the ODE methods; a smooth law in the ODE methods and
+  // the event-driven scheme. Moreau-Jean's step handles exact flank contacts
+  // only (not penalty flanks), and exact play needs the event-driven
+  // scheme's flank events with every law but for Moreau-Jean's.
+  static const std::vector<std::string> event_driven_only = {"event_driven"};
+  static const std::vector<std::string> with_moreau = {"event_driven", "moreau"};
+  static const std::vector<std::string> smooth = [] {
+    std::vector<std::string> names = integrate::integrator_names();
+    names.push_back("event_driven");
+    return names;
+  }();
+  static const std::vector<std::string> set_valued_all = [] {
+    std::vector<std::string> names = {"event_driven", "moreau"};
+    for (const std::string& name : integrate::integrator_names()) names.push_back(name);
+    return names;
+  }();
+  static const std::vector<std::string> set_valued_ode = [] {
+    std::vector<std::string> names = {"event_driven"};
+    for (const std::string& name : integrate::integrator_names()) names.push_back(name);
+    return names;
+  }();
+  const friction::LawType& type = friction::law_type(p.friction);
+  const bool penalty = p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
+  const bool exact_play = p.backlash == BacklashContact::exact;
+  if (type.time_stepping) {  // set-valued
+    if (penalty) return type.ode ? set_valued_ode : event_driven_only;
+    if (exact_play) return with_moreau;
+    return type.ode ? set_valued_all : with_moreau;
+  }
+  if (exact_play) return event_driven_only;
+  return smooth;
+}
+
+void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
+  const DriveParameters& p = model.parameters();
+  const std::vector<std::string>& allowed = drive_integrators(p);
+  const std::string& integrator = drive::chosen_integrator(p, options);
+  if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
+    require_choice("integrator", integrator, allowed,
+                   (p.backlash != BacklashContact::none
+                        ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
+                        : std::string()) +
+                       "friction.law = \"" + p.friction + "\"");
+  require_nonnegative("bounce_threshold", options.bounce_threshold);
+  integrate::validate_output_request(options.output, 0.0);
+  if (options.max_events < 0)
+    throw InvalidArgument("max_events = " + std::to_string(options.max_events) +
+                          " is invalid: must be an integer >= 0");
+  if (!options.smooth_integrator.empty() && integrator != "event_driven")
+    throw InvalidArgument("smooth_integrator = \"" + options.smooth_integrator +
+                          "\" is invalid with integrator = \"" + integrator +
+                          "\": only \"event_driven\" takes one (the method between its events)");
+  if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
+    integrate::check_moreau_options(options.output.t_end, drive::moreau_options(options));
+    check_step_resolves_loads(options.dt, options.output.t_end,
+                              {p.speed_controlled ? &p.drive_speed : &p.drive_torque,
+                               &p.axial_force});
+    return;
+  }
+  check_meaningful_tolerances(options.integrator_options, options.output.t_end);
+  if (!options.smooth_integrator.empty())
+    require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
+  // What make_integrator checks as the smooth phases start, the method's
+  // own limits included (max_order of a one-step method, CVODE's orders).
+  integrate::validate_options(options.integrator_options);
+  const std::string method = drive::ode_method(p, integrator, options);
+  try {
+    integrate::check_method_limits(method, options.integrator_options);
+  } catch (const InvalidArgument& e) {
+    if (method == integrator || !options.smooth_integrator.empty()) throw;  // the user named it
+    // The default method between events: say which it is.
+    throw InvalidArgument(std::string(e.what()) + "; integrator \"event_driven\" runs \"" +
+                          method + "\" between events here (smooth_integrator chooses another)");
+  }
+}
+
+namespace drive {
+
+// The integrator simulate() runs ("" in the options: the model's default).
+const std::string& chosen_integrator(const DriveParameters& p,
+                                     const DriveSimulationOptions& options) {
+  return options.integrator.empty() ? drive_integrators(p).front() : options.integrator;
+}
+
+// The ODE method of the smooth phases: the integrator itself, or inside
+// "event_driven" the smooth_integrator option (default: our Verner 6(5)
+// with exact event location for the rigid concept, an order of magnitude
+// cheaper than CVODE; BDF for the stiff flexible ones. CVODE used to lose
+// flank events of a rattling nut, 3 to 8 of 36 at rtol 1e-12; with
+// handle_event's touch below resolution it finds the same ones:
+// tests/test_integrate_flank_events.py).
+std::string ode_method(const DriveParameters& p, const std::string& integrator,
+                       const DriveSimulationOptions& options) {
+  if (integrator != "event_driven") return integrator;
+  if (!options.smooth_integrator.empty()) return options.smooth_integrator;
+  return p.concept == Concept::rigid ? "rk_verner6" : "cvode_bdf";
+}
+
+// Moreau-Jean's dt, theta and step count from the options.
+integrate::MoreauOptions moreau_options(const DriveSimulationOptions& options) {
+  return {options.dt, options.theta, options.integrator_options.max_steps};
+}
+
+integrate::EventDrivenOptions event_driven_options(const DriveModel& model,
+                                                   const friction::Law& law,
+                                                   const std::string& integrator,
+                                                   const DriveSimulationOptions& options) {
+  const DriveParameters& p = model.parameters();
+  integrate::EventDrivenOptions driver;
+  driver.integrator_options = options.integrator_options;
+  driver.max_events = options.max_events;
+  driver.integrator = ode_method(p, integrator, options);
+  // The regularized friction laws are stiff near zero slip, and with the
+  // flexible models' lightly damped modes BDF above order 3 is not stable
+  // enough there: capped at 3 it was faster in every case measured
+  // (flexible_nut and flexible, no play and bistop, rtol 1e-4 ... 1e-8: 1.1 to
+  // 2.1x) and it no longer fails at loose tolerances (order 5: CV_ERR_FAILURE
+  // at rtol 1e-4). Tighter than 1e-9 the higher orders pay again. The smooth
+  // phases of exact Coulomb carry no such law: there order 5 took 1.4 to 2.5x
+  // fewer steps at the same error (no play and exact backlash, rtol 1e-6 and
+  // 1e-8), and order 3 ran past a million steps for a rattling flexible nut at
+  // rtol 1e-9.
+  if (driver.integrator == "cvode_bdf" && p.concept != Concept::rigid &&
+      law.resolution() != friction::Resolution::set_valued &&
+      driver.integrator_options.max_order == 0 &&
+      driver.integrator_options.rtol >= 1e-9)
+    driver.integrator_options.max_order = 3;
+  // Eq. (3.15)'s friction follows the slip acceleration, which carries the
+  // stiff modes of the flexible drives: the tangential inertia the law adds,
+  // (2/pi) mu' k_V |N| d / (1 + (k_V gamma_T')^2), switches on and off
+  // within one period of the fastest mode. CVODE's modified Newton, its
+  // Jacobian frozen over several steps, then needs more than its default 3
+  // iterations: with 3 it failed at every step (a nut-driven flexible drive,
+  // 0.2 s: 229,147 steps, 225,258 convergence failures, 14 s), with 10 it
+  // took 10,985 steps and 0.13 s.
+  if (law.resolution() == friction::Resolution::acceleration && p.concept != Concept::rigid)
+    driver.integrator_options.max_nonlinear_iterations = 10;
+  return driver;
+}
+
+}  // namespace drive
+
+}  // namespace leadscrew::model

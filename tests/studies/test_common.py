@@ -4,6 +4,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from leadscrew.studies import _common
 from leadscrew.studies._common import annotate, frame_of
 
 

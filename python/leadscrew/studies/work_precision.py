@@ -488,10 +488,11 @@ def work_precision(
                   f"{row['wall_time'] * 1e6:.0f} us", file=sys.stderr)
 
     frame = pd.DataFrame(rows, columns=list(COLUMNS))
-    frame.attrs.update(reference=description, quantity=quantity, t_end=t_end, repeats=repeats,
-                       units=_column_units(frame["friction"], quantity))
-    # The configurations that raised: counted in the summary, and a StudyWarning.
-    annotate(frame, {}, errors_checked=True, study="work_precision")
+    frame.attrs.update(reference=description, quantity=quantity, t_end=t_end, repeats=repeats)
+    # The units of every column; the configurations that raised: counted in
+    # the summary, and a StudyWarning.
+    annotate(frame, _column_units(frame["friction"], quantity), errors_checked=True,
+             study="work_precision")
     if ax is not None:
         plot_work_precision(frame, ax=ax)
     return frame

@@ -2,13 +2,10 @@
 the helper-thread pool under the batches' workers, from tests/cpp/test_parallel.cpp:
 what threads do cannot be observed from Python."""
 
-import os
 import re
 import subprocess
 
 import pytest
-
-from leadscrew import _core
 
 
 @pytest.fixture(scope="module")
@@ -51,34 +48,6 @@ def test_the_pool_is_bounded_and_reused(parallel_report):
 def test_concurrent_and_nested_callers(parallel_report):
     assert passed(parallel_report, "concurrent callers: 600 jobs, each on 3 threads at once") == 0
     assert passed(parallel_report, "nested calls on the caller and on a helper") == 2
-
-
-def test_wake_helpers_announces_a_job_and_spins_for_its_time_only(parallel_report):
-    """Helpers woken for a job run it; without one they spin for the time
-    given (10 ms: the process's CPU time while the caller sleeps 80 ms is
-    between 0.3 and 50 ms) and then sleep; bad arguments throw."""
-    assert passed(parallel_report, "a job after wake_helpers") == 3
-    assert passed(parallel_report, "a job after wake_helpers of no time") == 2
-    spun_us = passed(parallel_report, "an alert without a job spins for its time only [us]")
-    assert 300 < spun_us < 50000
-    assert passed(parallel_report, "a job after the alert ended") == 2
-    assert passed(parallel_report,
-                  "wake_helpers refuses threads < 1 and seconds outside [0, 0.01]") == 6
-
-
-@pytest.mark.parametrize("threads, seconds, message", [
-    (0, 0.001, "threads = 0 is invalid: must be an integer >= 1"),
-    (2, -1.0, r"seconds = -1 is invalid: must be in \[0, 0.01\]"),
-    (2, float("nan"), r"seconds = nan is invalid: must be in \[0, 0.01\]"),
-    (2, 0.5, r"seconds = 0.5 is invalid: must be in \[0, 0.01\]")])
-def test_wake_helpers_from_python_checks_its_arguments(threads, seconds, message):
-    with pytest.raises(ValueError, match=message):
-        _core.wake_helpers(threads, seconds)
-
-
-def test_wake_helpers_from_python_grows_the_pool_within_its_bound():
-    _core.wake_helpers(2, 0.001)
-    assert 1 <= _core.pooled_helper_count() <= max(1, os.cpu_count() or 1)
 
 
 def test_a_forked_child_builds_its_own_pool(parallel_report):

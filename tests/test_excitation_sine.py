@@ -7,7 +7,8 @@ its constants are checked against their derivation (the Cody-Waite parts of
 pi/2 and the polynomial fit errors).
 
 tests/cpp/test_sine.cpp is compiled here with the flags of the extension's
-Release build (-O3, GNU C++17, no -march) and run once per session."""
+Release build (-O3, GNU C++17, no -march, -ffp-contract=off) and run once per
+session."""
 
 import pathlib
 import re

@@ -15,7 +15,6 @@
 #include <vector>
 
 #include "leadscrew/excitation/sine.hpp"
-#include "leadscrew/friction/arctan.hpp"
 #include "leadscrew/integrate/explicit_rk.hpp"
 #include "leadscrew/integrate/rk_dopri5.hpp"
 #include "leadscrew/integrate/rk_stage_kernels.hpp"
@@ -34,7 +33,7 @@ struct Block {
     const double velocity = y[1];
     const double force = 6.0 * leadscrew::excitation::sine(4.0 * M_PI * t);
     if (velocity != velocity_memo) {
-      friction_memo = 2.0 / M_PI * 3.0 * leadscrew::friction::arctan(10.0 * velocity);
+      friction_memo = 2.0 / M_PI * 3.0 * std::atan(10.0 * velocity);
       velocity_memo = velocity;
     }
     ydot[0] = velocity;

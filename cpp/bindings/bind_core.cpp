@@ -52,11 +52,6 @@ void bind_core(py::module_& m) {
       raise_with_attributes(simulation_error_type, e);
     }
   });
-  m.def("wake_helpers", &wake_helpers, py::arg("threads"), py::arg("seconds"),
-        "Announce a batch on `threads` threads within `seconds` [s] (at most 0.01):\n"
-        "up to threads - 1 helper threads wake now and wait for it spinning, so that\n"
-        "it starts on all of them at once. ValueError for threads < 1 or seconds\n"
-        "outside [0, 0.01].");
   m.def("pooled_helper_count", &pooled_helper_count,
         "Helper threads the process's pool has started so far (the batch's workers\n"
         "beyond the calling thread; asleep between calls).");

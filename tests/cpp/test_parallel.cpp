@@ -5,13 +5,10 @@
 //
 // Prints "PASS <label> (<count>)" or "FAIL <label> (<count>)" per check and
 // "RESULT: PASS" at the end if all passed (read by tests/test_core_native.py).
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
-#include <stdexcept>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -71,23 +68,6 @@ struct Pieces {
   std::atomic<std::size_t> next{0};
   std::vector<int> done;
 };
-
-// CPU time this process has used [s] (all its threads).
-double process_cpu_seconds() {
-  rusage usage{};
-  ::getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
-         1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-}
-
-bool throws_invalid_argument(int threads, double seconds) {
-  try {
-    leadscrew::wake_helpers(threads, seconds);
-  } catch (const std::invalid_argument&) {
-    return true;
-  }
-  return false;
-}
 
 bool rendezvous_of(int threads) {
   Rendezvous job(threads);
@@ -157,32 +137,7 @@ int main() {
   leadscrew::run_in_parallel(2, nested);
   report(inner_ok.load() == 2, "nested calls on the caller and on a helper", inner_ok.load());
 
-  // 5. wake_helpers: a job after it runs as any other (on helpers that
-  // spin for it); without a job the helpers spin for the time given and no
-  // longer (CPU time of the process while the caller sleeps: ~10 ms of the
-  // 10 ms alert, bounded well below the 80 ms slept; the lower bound only
-  // asks for a fraction of it, a loaded machine may run the helper late);
-  // bad arguments throw.
-  leadscrew::wake_helpers(3, 0.01);
-  report(rendezvous_of(3), "a job after wake_helpers", 3);
-  leadscrew::wake_helpers(2, 0.0);  // wakes none
-  report(rendezvous_of(2), "a job after wake_helpers of no time", 2);
-  const double cpu_before = process_cpu_seconds();
-  leadscrew::wake_helpers(2, 0.01);
-  std::this_thread::sleep_for(std::chrono::milliseconds(80));
-  const double spun = process_cpu_seconds() - cpu_before;
-  report(spun > 0.0003 && spun < 0.05, "an alert without a job spins for its time only [us]",
-         std::lround(spun * 1e6));
-  report(rendezvous_of(2), "a job after the alert ended", 2);
-  int refused = 0;
-  for (const auto& [threads, seconds] : {std::pair<int, double>{0, 0.001}, {-1, 0.001},
-                                         {2, -1e-9}, {2, 0.011}, {2, std::nan("")},
-                                         {2, HUGE_VAL}})
-    refused += throws_invalid_argument(threads, seconds) ? 1 : 0;
-  report(refused == 6, "wake_helpers refuses threads < 1 and seconds outside [0, 0.01]",
-         refused);
-
-  // 6. A forked child has none of the parent's helper threads: it must build
+  // 5. A forked child has none of the parent's helper threads: it must build
   // its own pool rather than wait for them (alarm ends a hang).
   std::fflush(stdout);
   const pid_t child = ::fork();

@@ -1,8 +1,7 @@
-// Shared harness of the native checks of the core's own elementary functions
-// against the C library (tests/cpp/test_arctan.cpp, tests/cpp/test_sine.cpp),
-// built and run by tests/test_friction_arctan.py and
-// tests/test_excitation_sine.py (tests/helpers/native_program.py puts this
-// directory on the include path).
+// Harness of the native checks of the core's own elementary functions
+// against the C library (tests/cpp/test_sine.cpp; the own arctan's check was
+// removed with it in issue 18), built and run by tests/test_excitation_sine.py
+// (tests/helpers/native_program.py puts this directory on the include path).
 //
 // Output lines, parsed by tests/helpers/native_program.py:
 //   MAXULP <set> <max ulp distance to the reference> <points> <worst x (hex)>

@@ -31,31 +31,10 @@ def test_frame_of_keeps_order_dtypes_and_none():
     given = columns()
     frame = frame_of(given)
     check_frame(frame, given)
-    pd.testing.assert_frame_equal(frame, _common._public_frame_of(
-        _common._labels(tuple(given)), list(given.values())), check_exact=True)
 
 
-# The ways frame_of can build a frame with the pandas the tests run with
-# ("blocks" needs pandas >= 3; "public" is always there).
-PATHS = [path for path, there in (("blocks", _common._pandas_from_blocks() is not None),
-                                  ("arrays", _common._has_parameters(
-                                      getattr(pd.DataFrame, "_from_arrays", None),
-                                      ("arrays", "columns", "index", "verify_integrity"))),
-                                  ("public", True)) if there]
-
-
-def test_frame_of_takes_the_fastest_way_this_pandas_has():
-    assert _common._CONSTRUCTOR == PATHS[0]
-
-
-@pytest.mark.parametrize("path", PATHS)
-def test_every_way_gives_the_same_frame(monkeypatch, path):
-    expected = _common._public_frame_of(_common._labels(tuple(columns())),
-                                        list(columns().values()))
-    monkeypatch.setattr(_common, "_CONSTRUCTOR", path)
-    check_frame(frame_of(columns()), columns())
-    pd.testing.assert_frame_equal(frame_of(columns()), expected, check_exact=True)
-    # a dtype the blocks path leaves to the public constructor, and no rows
+def test_frame_of_takes_other_dtypes_sequence_cells_and_no_rows():
+    # a datetime column, and no rows
     dates = {"t": np.array(["2026-11-22", "2026-11-23"], dtype="datetime64[ns]"),
              "x": np.arange(2.0)}
     pd.testing.assert_frame_equal(frame_of(dates), pd.DataFrame(dates), check_column_type=False,
@@ -67,26 +46,7 @@ def test_every_way_gives_the_same_frame(monkeypatch, path):
     assert empty.shape == (0, 2) and empty.dtypes.tolist() == [np.float64, object]
 
 
-def test_the_pandas_constructors_are_recognised_by_their_parameters(monkeypatch):
-    def other(arrays, columns, index, dtype=None):  # no verify_integrity, no blocks
-        raise AssertionError("not to be called")
-
-    assert _common._frame_constructor() == PATHS[0]
-    # pandas < 3 has no pandas.api.internals (or not this function): the
-    # next way; so has a function of other parameters.
-    monkeypatch.setattr(_common, "_pandas_from_blocks", lambda: other)
-    assert _common._frame_constructor() == "arrays"
-    monkeypatch.setattr(_common, "_pandas_from_blocks", lambda: None)
-    assert _common._frame_constructor() == "arrays"
-    monkeypatch.setattr(pd.DataFrame, "_from_arrays", other, raising=False)
-    assert _common._frame_constructor() == "public"
-    monkeypatch.delattr(pd.DataFrame, "_from_arrays")
-    assert _common._frame_constructor() == "public"
-
-
-@pytest.mark.parametrize("path", PATHS)
-def test_frame_of_strings_are_objects_and_labels_are_the_frames_own(monkeypatch, path):
-    monkeypatch.setattr(_common, "_CONSTRUCTOR", path)
+def test_frame_of_strings_are_objects_and_labels_are_the_frames_own():
     given = {"name": np.array(["a", "bc", "d"]), "value": np.arange(3.0)}
     first = frame_of(given)
     assert first["name"].dtype == object and first["name"].tolist() == ["a", "bc", "d"]

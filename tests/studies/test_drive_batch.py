@@ -524,34 +524,18 @@ def test_default_efficiency_sweep_runs_on_the_cores_threads(monkeypatch):
         calls.append((len(values), workers))
         return run(self, values, workers)
 
-    woken = []
-    wake = _core.wake_helpers
-
-    def wake_spy(threads, seconds):
-        woken.append((threads, seconds))
-        wake(threads, seconds)
-
     monkeypatch.setattr(_batch.DriveBatch, "run", spy)
-    monkeypatch.setattr(_core, "wake_helpers", wake_spy)
     monkeypatch.setattr(drive_efficiency, "default_workers", lambda: 3)
     cot = 1.0 / math.tan(ls.Thread(1e-3, 20e-3).lead_angle)
     mu, loads = [0.0, 0.1, 1.01 * cot, 0.3, 0.45], [10.0, 50.0, 100.0]
     base = scene()
     default = efficiency_vs_mu(base, mu, loads, progress=False)
     assert calls == [(12, 3)]  # the 12 drivable cases, one call
-    # its helpers woken first, to wait for the batch spinning
-    assert woken == [(3, drive_efficiency._WAKE_SECONDS)]
     calls.clear()
-    woken.clear()
     serial = efficiency_vs_mu(base, mu, loads, executor=SerialExecutor(), progress=False)
     assert {workers for _, workers in calls} == {1}
     with concurrent.futures.ThreadPoolExecutor(2) as pool:
         pooled = efficiency_vs_mu(base, mu, loads, executor=pool, progress=False)
-    assert woken == []  # no helper of the core's is used
-    # one case to simulate, or none: no helper to wake
-    efficiency_vs_mu(base, [0.1], [10.0], progress=False)
-    efficiency_vs_mu(base, [1.01 * cot], [10.0, 50.0], progress=False)
-    assert woken == []
     assert list(default["simulated"]) == [True] * 6 + [False] * 3 + [True] * 6
     for frame in (serial, pooled):
         pd.testing.assert_frame_equal(default.drop(columns="wall_time"),

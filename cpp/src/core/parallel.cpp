@@ -9,12 +9,8 @@
 #include <cstdint>
 #include <exception>
 #include <mutex>
-#include <string>
 #include <thread>
 #include <vector>
-
-#include "leadscrew/core/errors.hpp"
-#include "leadscrew/core/validate.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -30,10 +26,10 @@ void cpu_relax() noexcept {
 #endif
 }
 
-// Helper threads asleep on a condition variable between jobs (or spinning
-// for the next one after an alert); one job at a time, that of the call
-// that claimed the pool. Never destroyed: its threads block in wait()
-// until the process ends (a joinable std::thread must not be destroyed).
+// Helper threads asleep on a condition variable between jobs; one job at a
+// time, that of the call that claimed the pool. Never destroyed: its threads
+// block in wait() until the process ends (a joinable std::thread must not be
+// destroyed).
 class HelperPool {
  public:
   HelperPool() = default;
@@ -59,17 +55,6 @@ class HelperPool {
     lock.unlock();
     wake_.notify_all();
     return static_cast<int>(taking_part_);
-  }
-
-  // Wakes up to `wanted` helpers (starting them as start() does) to wait for
-  // the next job spinning rather than asleep, until `until`.
-  void alert(int wanted, std::chrono::steady_clock::time_point until) noexcept {
-    std::unique_lock<std::mutex> lock(state_);
-    alerted_ = grow(wanted);
-    alert_until_ = until;
-    ++alerts_;
-    lock.unlock();
-    wake_.notify_all();
   }
 
   // Returns once every helper of the job has returned from its call.
@@ -104,9 +89,10 @@ class HelperPool {
     try {
       while (threads_.size() < needed) {
         const std::size_t index = threads_.size();
-        // A new thread must not take the jobs or alerts before this one for its own.
-        threads_.emplace_back([this, index, seen = generation_.load(std::memory_order_relaxed),
-                               alerts_seen = alerts_] { serve(index, seen, alerts_seen); });
+        // A new thread must not take the jobs before this one for its own.
+        threads_.emplace_back([this, index, seen = generation_.load(std::memory_order_relaxed)] {
+          serve(index, seen);
+        });
       }
     } catch (const std::exception&) {
       // No more threads (system_error, bad_alloc): those there are take part.
@@ -114,25 +100,10 @@ class HelperPool {
     return std::min(needed, threads_.size());
   }
 
-  void serve(std::size_t index, std::uint64_t seen, std::uint64_t alerts_seen) noexcept {
+  void serve(std::size_t index, std::uint64_t seen) noexcept {
     std::unique_lock<std::mutex> lock(state_);
     for (;;) {
-      wake_.wait(lock, [&] {
-        return generation_.load(std::memory_order_relaxed) != seen || alerts_ != alerts_seen;
-      });
-      alerts_seen = alerts_;
-      if (generation_.load(std::memory_order_relaxed) == seen) {
-        // An alert (wake_helpers): a job follows soon. Wait for it spinning,
-        // unlocked, until the alert ends; then sleep again if none came.
-        if (index >= alerted_) continue;
-        const auto until = alert_until_;
-        lock.unlock();
-        while (generation_.load(std::memory_order_acquire) == seen &&
-               std::chrono::steady_clock::now() < until)
-          for (int k = 0; k < 16; ++k) cpu_relax();
-        lock.lock();
-        if (generation_.load(std::memory_order_relaxed) == seen) continue;
-      }
+      wake_.wait(lock, [&] { return generation_.load(std::memory_order_relaxed) != seen; });
       seen = generation_.load(std::memory_order_relaxed);
       if (index >= taking_part_) continue;  // a job for fewer helpers
       const ParallelWork work = work_;
@@ -155,12 +126,9 @@ class HelperPool {
   std::condition_variable wake_;      // a new job (generation_ changed)
   std::condition_variable finished_;  // running_ reached zero
   std::vector<std::thread> threads_;
-  // Jobs started; changed under state_, read by spinning helpers without it.
+  // Jobs started; changed under state_.
   std::atomic<std::uint64_t> generation_{0};
   std::size_t taking_part_ = 0;  // helpers 0 .. taking_part_ - 1 run the current job
-  std::uint64_t alerts_ = 0;     // alerts so far
-  std::size_t alerted_ = 0;      // helpers 0 .. alerted_ - 1 spin for the next job
-  std::chrono::steady_clock::time_point alert_until_{};
   ParallelWork work_ = nullptr;
   void* context_ = nullptr;
   std::atomic<std::size_t> running_{0};  // helpers of the job not yet returned
@@ -224,21 +192,6 @@ void run_in_parallel(int threads, ParallelWork work, void* context) noexcept {
   for (std::thread& helper : extra) helper.join();
   if (pooled > 0) pool->wait();
   if (claimed) pool->release();
-}
-
-void wake_helpers(int threads, double seconds) {
-  if (threads < 1)
-    throw InvalidArgument("threads = " + std::to_string(threads) +
-                          " is invalid: must be an integer >= 1");
-  if (!(seconds >= 0.0 && seconds <= kMaxAlertSeconds))
-    throw InvalidArgument("seconds = " + format_value(seconds) + " is invalid: must be in [0, " +
-                          format_value(kMaxAlertSeconds) + "]");
-  if (threads == 1 || seconds == 0.0) return;
-  HelperPool* pool = pool_of_this_process();
-  if (pool == nullptr) return;
-  pool->alert(threads - 1, std::chrono::steady_clock::now() +
-                               std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(seconds)));
 }
 
 int pooled_helper_count() noexcept {

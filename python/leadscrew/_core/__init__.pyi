@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive', 'wake_helpers']
+__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -533,11 +533,4 @@ def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.Su
 def simulate_drive(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     """
     Simulate the drive (leadscrew.simulate's drive path); progress: None or a callable of the simulated time, called about every 0.1 s of wall time (Ctrl-C is checked there too).
-    """
-def wake_helpers(threads: typing.SupportsInt | typing.SupportsIndex, seconds: typing.SupportsFloat | typing.SupportsIndex) -> None:
-    """
-    Announce a batch on `threads` threads within `seconds` [s] (at most 0.01):
-    up to threads - 1 helper threads wake now and wait for it spinning, so that
-    it starts on all of them at once. ValueError for threads < 1 or seconds
-    outside [0, 0.01].
     """

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import functools
-import inspect
 import math
 import numbers
 import sys
@@ -162,68 +161,17 @@ def with_loads(scene: Scene, **loads: Any) -> Scene:
     return scene.replace(loads=loads)
 
 
-def _has_parameters(function: Any, names: Iterable[str]) -> bool:
-    """Whether ``function`` exists and takes parameters of all these names."""
-    try:
-        parameters = inspect.signature(function).parameters
-    except (TypeError, ValueError):  # None, or not introspectable
-        return False
-    return all(name in parameters for name in names)
-
-
-def _pandas_from_blocks():
-    """pandas.api.internals.create_dataframe_from_blocks, or None."""
-    try:
-        from pandas.api import internals
-    except ImportError:
-        return None
-    return getattr(internals, "create_dataframe_from_blocks", None)
-
-
-def _frame_constructor() -> str:
-    """How :func:`frame_of` builds frames with the pandas installed:
-    ``"blocks"`` (pandas >= 3: ``pandas.api.internals.create_dataframe_from_blocks(blocks,
-    index, columns)``), ``"arrays"`` (``DataFrame._from_arrays(arrays, columns,
-    index, ..., verify_integrity)``, internal to pandas 1 and 2) or
-    ``"public"`` (the DataFrame constructor)."""
-    if _has_parameters(_pandas_from_blocks(), ("blocks", "index", "columns")):
-        return "blocks"
-    if _has_parameters(getattr(pd.DataFrame, "_from_arrays", None),
-                       ("arrays", "columns", "index", "verify_integrity")):
-        return "arrays"
-    return "public"
-
-
-# Decided once, at import (tests/studies/test_common.py runs every path).
-_CONSTRUCTOR = _frame_constructor()
-_FROM_BLOCKS = _pandas_from_blocks()
-# The dtype kinds the "blocks" path puts into blocks as they are (others,
-# such as datetimes, go through the public constructor).
-_BLOCK_KINDS = frozenset("biufcO")
-
-
 def frame_of(columns: Dict[str, Any]):
-    """A DataFrame of 1-D columns of one length.
-
-    Why not ``pd.DataFrame(columns)``: that checks and converts every column
-    on its own (~100 us for the 14 columns of a sweep, as much as the rest of
-    the Python around a sweep of 150 microsecond simulations). Here the
-    columns of one dtype are stacked into one 2-D block and the frame is
-    made of the blocks: with pandas >= 3 by
-    ``pandas.api.internals.create_dataframe_from_blocks`` (22-30 us for
-    the 14 columns, grouping included), with older pandas by its internal
-    ``DataFrame._from_arrays``, which groups the columns itself (41-43 us
-    with pandas 3); where neither exists with the expected
-    parameters (checked at import), by the public constructor.
-    tests/studies/test_common.py checks that every path gives the same frame.
+    """A DataFrame of 1-D columns of one length, made by pandas' public
+    constructor (object columns passed as object Series, so that pandas does
+    not turn None and messages into a string dtype).
 
     Args:
         columns: column name -> 1-D array (or sequence) of values, all of one
             length, in the order of the frame's columns. Numeric and bool
             arrays keep their dtype; object arrays and arrays of strings
-            become object columns (None and messages are not turned into a
-            string dtype). The frame may share memory with the arrays: pass
-            arrays nothing else writes to.
+            become object columns. The frame may share memory with the
+            arrays: pass arrays nothing else writes to.
 
     Returns:
         The DataFrame, with a RangeIndex and plain (object) column labels.
@@ -240,25 +188,11 @@ def frame_of(columns: Dict[str, Any]):
     # A view: each frame gets its own Index object (its name is the frame's
     # to set), on the cached labels.
     names = _labels(tuple(columns)).view()
-    if _CONSTRUCTOR == "blocks" and arrays and all(a.dtype.kind in _BLOCK_KINDS
-                                                   for a in arrays):
-        return _blocks_frame_of(names, arrays, length)
-    if _CONSTRUCTOR == "arrays":
-        return pd.DataFrame._from_arrays(arrays, columns=names, index=pd.RangeIndex(length),
-                                         verify_integrity=False)
-    return _public_frame_of(names, arrays)
-
-
-def _blocks_frame_of(names, arrays, length):
-    """frame_of with pandas.api.internals.create_dataframe_from_blocks: one
-    2-D block (columns, rows) per dtype, and where its columns go."""
-    positions: Dict[Any, list] = {}
-    for position, values in enumerate(arrays):
-        positions.setdefault(values.dtype, []).append(position)
-    # np.array of the list: a third of np.stack's time for these sizes
-    blocks = [(np.array([arrays[p] for p in where], dtype=dtype), np.array(where, dtype=np.intp))
-              for dtype, where in positions.items()]
-    return _FROM_BLOCKS(blocks, index=pd.RangeIndex(length), columns=names)
+    frame = pd.DataFrame(
+        {name: pd.Series(a, dtype=object, copy=False) if a.dtype == object else a
+         for name, a in zip(names, arrays)}, copy=False)
+    frame.columns = names
+    return frame
 
 
 @functools.lru_cache(maxsize=64)
@@ -266,15 +200,6 @@ def _labels(names: tuple):
     """An object Index of column names, one per set of names (frame_of hands
     out views of it)."""
     return pd.Index(list(names), dtype=object)
-
-
-def _public_frame_of(names, arrays):
-    """frame_of with pandas' public constructor only."""
-    frame = pd.DataFrame(
-        {name: pd.Series(a, dtype=object, copy=False) if a.dtype == object else a
-         for name, a in zip(names, arrays)}, copy=False)
-    frame.columns = names
-    return frame
 
 
 # What an error column holds when it needs no conversion.

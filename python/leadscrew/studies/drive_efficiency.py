@@ -41,9 +41,6 @@ _WORKS = slice(_WORK, _LOSS + 1)
 # A case's values from its (mu, load): the load is raised, so it acts along
 # -x (loads.axial_force = -load).
 _RAISING = np.array([1.0, -1.0])
-# How long the core's helper threads wait spinning for the sweep's batch [s]
-# (the Python before it takes ~0.1-0.3 ms).
-_WAKE_SECONDS = 0.002
 # Sample indices of the whole window and its halves (eq. 5.2 over each).
 _WINDOW_STARTS = np.array([1, 1, 2])
 _WINDOW_ENDS = np.array([3, 2, 3])
@@ -230,11 +227,6 @@ def efficiency_vs_mu(
     # what the calling thread would: the default path's calls, on one worker.
     serial = type(executor) is SerialExecutor and not executor.is_shutdown
     workers = 1 if serial else max(1, min(default_workers(), len(simulated)))
-    if executor is None and workers > 1:
-        # The batch below runs on the core's helper threads: wake them now, so
-        # that they wait for it spinning while this thread prepares it (at
-        # most _WAKE_SECONDS) instead of taking 30-50 us to wake when it starts.
-        _core.wake_helpers(workers, _WAKE_SECONDS)
     batch = _efficiency_batch(scene, speed, t_end, (start, end),
                               with_tolerances(simulate_options, rtol, atol))
     mu_column = np.repeat(mus, len(forces))

@@ -47,18 +47,6 @@ void run_in_parallel(int threads, Work& work) noexcept {
       threads, [](void* context) noexcept { (*static_cast<Work*>(context))(); }, &work);
 }
 
-// Announces a job for `threads` threads within `seconds`: up to threads - 1
-// of the pool's helpers (started if need be) wake now and wait for the next
-// job spinning instead of asleep, for at most `seconds`, so that the job
-// starts on all its threads at once rather than after the 30-50 us a
-// sleeping thread takes to wake (a study calls it before it prepares a
-// batch). Spinning costs CPU time on those cores, until the job or the time
-// comes. InvalidArgument unless threads >= 1 and 0 <= seconds <=
-// kMaxAlertSeconds; threads == 1 or seconds == 0 wakes none.
-void wake_helpers(int threads, double seconds);
-// The longest alert wake_helpers takes [s].
-inline constexpr double kMaxAlertSeconds = 0.01;
-
 // Helper threads the process's pool has started so far (for tests).
 int pooled_helper_count() noexcept;
 

@@ -7,7 +7,6 @@
 
 #include "block_system.hpp"
 #include "leadscrew/core/errors.hpp"
-#include "leadscrew/friction/arctan.hpp"
 #include "leadscrew/integrate/rk_stage_kernels.hpp"
 
 namespace leadscrew::model::block {
@@ -21,9 +20,11 @@ namespace {
 // Evaluations repeat their arguments: Dormand-Prince's last two stages share
 // the time t_n + h, and the output at a step end takes the state of its last
 // stage; a one-entry memo of F(t) and of lambda_T(v) (or a(F)) returns those
-// without recomputation (bitwise-equal arguments give the same value). The
-// arctan is friction::arctan (arctan.hpp): within about 1 ulp of std::atan
-// at about half of its latency, which every stage waits for.
+// without recomputation (bitwise-equal arguments give the same value).
+// std::atan: an own arctan kernel (removed in issue 18) made a block run at
+// most 8 % faster inside C++ (eq. 3.15's Newton solve; up to 5 % for eq.
+// 3.16) with as many instructions as glibc's atan: below the 10 % an own
+// math kernel must gain (benchmarks/block/README.md).
 class RegularizedBlock final : public integrate::HybridSystem {
  public:
   RegularizedBlock(const FrictionBlock& block, const friction::Law& law)
@@ -91,7 +92,7 @@ class RegularizedBlock final : public integrate::HybridSystem {
     if (velocity_law_) {
       // Eq. (3.16): lambda_T = (2/pi) mu N atan(k_V v).
       if (velocity != friction_velocity_) {
-        friction_value_ = friction_scale_ * friction::arctan(k_v_ * velocity);
+        friction_value_ = friction_scale_ * std::atan(k_v_ * velocity);
         friction_velocity_ = velocity;
       }
       friction = friction_value_;
@@ -153,7 +154,7 @@ class RegularizedBlock final : public integrate::HybridSystem {
       const double d = 1.0 + x * x;
       const double inverse_slope = d / (mass * d + ck);  // 1 / r'(a)
       const double q = 1.0 / d;
-      const double friction = c * friction::arctan(x);
+      const double friction = c * std::atan(x);
       const double r = mass * a + friction - force;
       // r'' and r''' here, for the corrector and the next predictor.
       const double curvature_here = -2.0 * ck * k * x * q * q;

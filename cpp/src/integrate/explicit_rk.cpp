@@ -630,7 +630,11 @@ void ExplicitRungeKutta::locate_root() {
   // bracket then halves at least every other iteration, and the loop's
   // bound (far above the ~2 log2(h / tolerance) this needs) is never reached
   // with a bracket wider than the tolerance (checked: an error, never an
-  // event at the wrong time).
+  // event at the wrong time). A Newton step whose correction at least halves
+  // is progress although the bracket stays wide (Newton approaches from one
+  // side, the far end does not move): counted as a stall, it was cut off by
+  // bisection after two steps, and each slip->stick of a rigid drive took
+  // some 13 evaluations of phi (9 stages each) instead of 3 or 4.
   const double dense_far = hi + std::max(hi - lo, tolerance);
   bool dense_far_tried = false;
   reset_bracket();
@@ -642,6 +646,7 @@ void ExplicitRungeKutta::locate_root() {
   constexpr int exact_iterations = 400;
   int stalled = 0;
   double last_width = hi - lo;
+  double last_correction = std::numeric_limits<double>::infinity();
   bool converged = false;
   for (int iteration = 0; iteration < exact_iterations && hi - lo > tolerance; ++iteration) {
     tau = clamp(tau);
@@ -656,6 +661,7 @@ void ExplicitRungeKutta::locate_root() {
     int earliest = -1;
     double next = earliest_secant(&earliest);
     if (earliest < 0) break;  // not reached: the bracket always holds a crossing
+    bool newton_progress = false;
     if (earliest == active && iteration < newton_iterations) {
       const double local_slope = previous_tau >= 0.0 && tau != previous_tau
                                      ? (g_tau - previous_g) / (tau - previous_tau)
@@ -667,7 +673,11 @@ void ExplicitRungeKutta::locate_root() {
           break;
         }
         const double newton = tau + correction + tolerance;
-        if (newton > lo && newton < hi) next = newton;
+        if (newton > lo && newton < hi) {
+          next = newton;
+          newton_progress = std::fabs(correction) <= 0.5 * last_correction;
+        }
+        last_correction = std::fabs(correction);
       }
     }
     previous_tau = tau;
@@ -675,7 +685,7 @@ void ExplicitRungeKutta::locate_root() {
     if (earliest != active) previous_tau = -1.0;  // that secant would mix two functions
     active = earliest;
     const double width = hi - lo;
-    stalled = width > 0.5 * last_width ? stalled + 1 : 0;
+    stalled = width > 0.5 * last_width && !newton_progress ? stalled + 1 : 0;
     last_width = width;
     if (stalled >= 2) {
       next = !dense_far_tried && dense_far > lo && dense_far < hi ? dense_far : 0.5 * (lo + hi);

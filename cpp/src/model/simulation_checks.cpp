@@ -14,21 +14,22 @@ void check_meaningful_tolerances(const integrate::IntegratorOptions& options, do
   // The tolerances' real ranges first, NaN and values no integrator takes
   // included (validate_options' own ranges, rtol in (0, 1), atol > 0, are
   // wider: its message would name a range that is not the one that holds).
-  const std::string relative_range =
-      "a finite number in (0, " + format_value(kLoosestRelativeTolerance) + "]";
+  // (The messages are formatted only where they are thrown: formatting the
+  // ranges up front cost 24,000 instructions per run, 4 % of the friction
+  // block's whole simulation.)
   if (!(options.rtol > 0.0 && options.rtol <= kLoosestRelativeTolerance))
-    throw InvalidArgument("rtol = " + format_value(options.rtol) + " is invalid: must be " +
-                          relative_range +
+    throw InvalidArgument("rtol = " + format_value(options.rtol) +
+                          " is invalid: must be a finite number in (0, " +
+                          format_value(kLoosestRelativeTolerance) + "]" +
                           (options.rtol > kLoosestRelativeTolerance
                                ? " (a looser tolerance no longer bounds the error, which "
                                  "accumulates over the steps)"
                                : ""));
-  const std::string absolute_range = "a finite number in [" +
-                                     format_value(kTightestAbsoluteTolerance) + ", " +
-                                     format_value(kLoosestAbsoluteTolerance) + "]";
   if (!(options.atol >= kTightestAbsoluteTolerance && options.atol <= kLoosestAbsoluteTolerance))
     throw InvalidArgument(
-        "atol = " + format_value(options.atol) + " is invalid: must be " + absolute_range +
+        "atol = " + format_value(options.atol) + " is invalid: must be a finite number in [" +
+        format_value(kTightestAbsoluteTolerance) + ", " + format_value(kLoosestAbsoluteTolerance) +
+        "]" +
         (options.atol > kLoosestAbsoluteTolerance
              ? " (it bounds the error of positions in m and rad: more exceeds a lead screw's "
                "pitch and play)"

@@ -1,0 +1,16 @@
+// Element: the axial force on the load's coordinate (loads.axial_force; its
+// work is the axial work in the energy account).
+#pragma once
+
+#include "leadscrew/excitation/excitation.hpp"
+
+namespace leadscrew::model::elements {
+
+struct AxialLoad {
+  int coordinate = -1;
+  Excitation force;  // [N]
+
+  double force_at(double t) const { return force(t); }
+};
+
+}  // namespace leadscrew::model::elements

@@ -605,7 +605,7 @@ std::string DriveDynamics::jamming_report(double regularized_factor) const {
         << ")";
   }
   // The rigid drive (no spring: rotor and load the only bodies' coordinates).
-  if (model_.springs().empty() && !model_.motor().speed_controlled) {
+  if (model_.elements().forces.empty() && !model_.motor().speed_controlled) {
     const double inertia = model_.mass()[model_.rotor()];
     const double mass = model_.mass()[model_.load()];
     const double r_m = p.thread.mean_radius();

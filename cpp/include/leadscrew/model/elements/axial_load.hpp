@@ -11,6 +11,12 @@ struct AxialLoad {
   Excitation force;  // [N]
 
   double force_at(double t) const { return force(t); }
+  // Its power, the axial work rate [W], at the force it applies and the
+  // velocities v.
+  template <class Vector>
+  double power(double applied_force, const Vector& v) const {
+    return applied_force * v[coordinate];
+  }
 };
 
 }  // namespace leadscrew::model::elements

@@ -50,6 +50,10 @@ struct ForceElementLists {
   const std::vector<T>& of() const {
     return std::get<std::vector<T>>(lists);
   }
+  // True if there is no force element of any type.
+  bool empty() const {
+    return std::apply([](const auto&... list) { return (list.empty() && ...); }, lists);
+  }
   // Calls f(element) for every element, type by type.
   template <class F>
   void for_each(F&& f) const {

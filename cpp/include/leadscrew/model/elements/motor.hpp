@@ -21,6 +21,12 @@ struct Motor {
   double applied_torque(double t) const { return speed_controlled ? 0.0 : torque(t); }
   // The number of constraint rows it adds (0 or 1).
   int constraint_count() const noexcept { return speed_controlled ? 1 : 0; }
+  // Its power, the drive's work rate [W], at a motor torque (the applied
+  // one, or the constraint's multiplier) and the velocities v.
+  template <class Vector>
+  double power(double motor_torque, const Vector& v) const {
+    return motor_torque * v[rotor];
+  }
   // The prescribed rotor acceleration, the constraint's right-hand side.
   double prescribed_acceleration(double t) const {
     return speed.continuous_derivative(t, "loads.drive_speed");

@@ -71,13 +71,6 @@ bool solve_constrained(const CoordinateVector& inverse_mass, const CoordinateVec
   return x.allFinite() && lambda.allFinite();
 }
 
-// Adams' cubic STEP from 0 at x <= 0 to 1 at x >= 1.
-double smooth_step(double x) {
-  if (x <= 0.0) return 0.0;
-  if (x >= 1.0) return 1.0;
-  return x * x * (3.0 - 2.0 * x);
-}
-
 }  // namespace
 
 friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha, double beta,
@@ -114,7 +107,7 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
   const Eigen::VectorXd w_t = inverse_mass_.cwiseProduct(tangent);
   delassus_nn_ = normal.dot(w_n);
   delassus_nt_ = normal.dot(w_t);
-  if (model.parameters().speed_controlled) {
+  if (model.motor().speed_controlled) {
     const int r = model.rotor();
     delassus_nn_ -= w_n[r] * w_n[r] / inverse_mass_[r];
     delassus_nt_ -= w_n[r] * w_t[r] / inverse_mass_[r];
@@ -122,7 +115,7 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
   // (with the largest coefficient the law reaches: a static one above mu)
   painleve_possible_ =
       law_->max_mu() * model.flank_factor() * std::abs(delassus_nt_) >= delassus_nn_;
-  if (model.parameters().speed_controlled) {
+  if (model.motor().speed_controlled) {
     // The slip's response to a tangential force with the flank and the rotor
     // held: W_T . x with M x = W_T + B lambda, C x = 0. Zero (to round-off of
     // the unconstrained W_T M^-1 W_T) when those constraints fix every velocity.
@@ -140,7 +133,8 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
 }
 
 void DriveDynamics::set_state(double t, const CoordinateVector& q, const CoordinateVector& v) {
-  const DriveParameters& p = model_.parameters();
+  const elements::ThreadPair& thread = model_.thread_pair();
+  const elements::Motor& motor = model_.motor();
   t_ = t;
   q_ = q;
   v_ = v;
@@ -148,100 +142,37 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   elastic_ = 0.0;
   damping_power_ = 0.0;
 
-  const double a = model_.nut_position(q.data());
-  const bool screw_springs = p.concept == Concept::flexible;
+  const double a = thread.nut_position(q.data());
   // Either drive: the nut is a point of the screw in (0, L) (the scene checks
   // the initial position alike); beyond an end it is off the screw.
-  if (screw_springs && !(a > 0.0 && a < p.screw_length)) {
+  if (model_.springs_on_screw() && !(a > 0.0 && a < model_.parameters().screw_length)) {
     throw OutsideDomain(t, model_.nut_off_screw(a), DriveModel::kNutOffScrewHint);
   }
-  for (const Spring& s : model_.springs()) {
-    const double x = q[s.first] - (s.second >= 0 ? q[s.second] : 0.0);
-    const double rate = v[s.first] - (s.second >= 0 ? v[s.second] : 0.0);
-    double dk_da = 0.0;
-    const double k = model_.spring_stiffness(s, a, &dk_da);
-    const double force = -k * x - s.damping * rate;
-    forces_[s.first] += force;
-    if (s.second >= 0) forces_[s.second] -= force;
-    if (dk_da != 0.0) {
-      // The stiffness follows the nut (eq. 4.24): the force of the potential
-      // k(a) x^2 / 2 on the nut position keeps the energy account exact.
-      forces_ -= 0.5 * dk_da * x * x * model_.nut_position_gradient();
-    }
-    elastic_ += 0.5 * k * x * x;
-    damping_power_ += s.damping * rate * rate;
-  }
-  applied_torque_ = p.speed_controlled ? 0.0 : p.drive_torque(t);
-  axial_force_ = p.axial_force(t);
-  forces_[model_.rotor()] += applied_torque_;
-  forces_[model_.load()] += axial_force_;
+  // The elements' forces, grouped by type: the force elements (springs,
+  // dampers and supports), the motor's torque, the axial load.
+  model_.elements().forces.for_each([&](const auto& element) {
+    element.add_forces(q, v, a, thread.nut_position_gradient(), forces_, elastic_, damping_power_);
+  });
+  applied_torque_ = motor.applied_torque(t);
+  axial_force_ = model_.axial_load().force_at(t);
+  forces_[motor.rotor] += applied_torque_;
+  forces_[model_.axial_load().coordinate] += axial_force_;
   // A prescribed speed's derivative is taken when a mode is solved (solve):
   // Moreau-Jean sets states but never needs it, and takes a step of the
   // speed as an impulse, where a differentiating scheme cannot follow one.
-  rotor_acceleration_ = p.speed_controlled ? std::numeric_limits<double>::quiet_NaN() : 0.0;
+  rotor_acceleration_ = motor.speed_controlled ? std::numeric_limits<double>::quiet_NaN() : 0.0;
 
-  play_ = p.play_position + model_.play_gradient().dot(q);
-  play_rate_ = model_.play_gradient().dot(v);
-  slip_ = model_.tangent_direction().dot(v);
+  // The thread pair: its kinematics and its penalty flanks' force.
+  play_ = thread.play(q);
+  play_rate_ = thread.play_gradient().dot(v);
+  slip_ = thread.tangent().dot(v);
   slip_noise_ = 64.0 * std::numeric_limits<double>::epsilon() *
-                model_.tangent_direction().cwiseProduct(v).cwiseAbs().sum();
-  penalty_force();
-}
-
-void DriveDynamics::penalty_force() {
-  const DriveParameters& p = model_.parameters();
-  penalty_normal_ = 0.0;
-  penetration_[0] = penetration_[1] = 0.0;
-  contact_loss_power_ = 0.0;
-  if (p.backlash != BacklashContact::bistop && p.backlash != BacklashContact::cubic) return;
-  const double half = 0.5 * p.clearance;
-  const double k = p.contact_stiffness;
-  const double depth = p.contact_penetration;
-  double axial = 0.0;  // generalized force along grad e
-  for (int flank = 0; flank < 2; ++flank) {
-    const double sign = flank == 0 ? 1.0 : -1.0;  // upper flank e = +c/2, lower e = -c/2
-    const double penetration = sign * play_ - half;
-    if (penetration <= 0.0) continue;
-    penetration_[flank] = penetration;
-    const double rate = sign * play_rate_;
-    double elastic_force;
-    if (p.backlash == BacklashContact::bistop) {
-      // Adams BISTOP: k d^e, damping ramped in over the penetration depth.
-      elastic_force = k * std::pow(penetration, p.contact_exponent);
-    } else if (penetration < depth) {
-      // Cubic onset joining the linear spring k with matching slope at the
-      // depth: a C1 approximation of the dead zone with walls (thesis Fig. 2.6).
-      elastic_force = k * penetration * penetration * penetration / (3.0 * depth * depth);
-    } else {
-      const double beyond = penetration - depth;
-      elastic_force = k * beyond + k * depth / 3.0;
-    }
-    double force = elastic_force + p.contact_damping * smooth_step(penetration / depth) * rate;
-    if (force < 0.0) force = 0.0;  // flanks push, they do not pull
-    axial -= sign * force;
-    contact_loss_power_ += (force - elastic_force) * rate;
-  }
-  penalty_normal_ = axial / std::cos(p.thread.lead_angle());
+                thread.tangent().cwiseProduct(v).cwiseAbs().sum();
+  thread.penalty_force(play_, play_rate_, penalty_);
 }
 
 double DriveDynamics::contact_energy() const noexcept {
-  const DriveParameters& p = model_.parameters();
-  const double k = p.contact_stiffness;
-  const double depth = p.contact_penetration;
-  double energy = 0.0;
-  for (const double penetration : penetration_) {
-    if (penetration <= 0.0) continue;
-    // The potentials of penalty_force's elastic forces.
-    if (p.backlash == BacklashContact::bistop) {
-      energy += k * std::pow(penetration, p.contact_exponent + 1.0) / (p.contact_exponent + 1.0);
-    } else if (penetration < depth) {
-      energy += k * std::pow(penetration, 4) / (12.0 * depth * depth);
-    } else {
-      const double beyond = penetration - depth;
-      energy += k * depth * depth / 12.0 + k * depth * beyond / 3.0 + 0.5 * k * beyond * beyond;
-    }
-  }
-  return energy;
+  return model_.thread_pair().contact_energy(penalty_.penetration);
 }
 
 double DriveDynamics::kinetic_energy() const {
@@ -268,7 +199,7 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
 }
 
 ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
-  const DriveParameters& p = model_.parameters();
+  const elements::Motor& motor = model_.motor();
   const int n = model_.coordinate_count();
   const Eigen::VectorXd& normal = model_.normal_direction();
   const Eigen::VectorXd& tangent = model_.tangent_direction();
@@ -279,7 +210,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   // The law's viscous term, a force -viscous gamma along the helix where the
   // flank is in contact and not stuck.
   const bool in_contact =
-      normal_multiplier || (spec.contact == ThreadContact::penalty && penalty_normal_ != 0.0);
+      normal_multiplier || (spec.contact == ThreadContact::penalty && penalty_.normal_force != 0.0);
   const double viscous = in_contact && !stick && spec.friction != FrictionMode::none
                              ? -law_->viscous() * slip_
                              : 0.0;
@@ -288,11 +219,11 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     f += (given_tangential + viscous) * tangent;
     double normal_force = 0.0;
     if (spec.contact == ThreadContact::penalty) {
-      normal_force = penalty_normal_;
+      normal_force = penalty_.normal_force;
       f += normal_force * normal;
       if (!stick) f -= kappa * std::abs(normal_force) * tangent;
     }
-    const int nc = (normal_multiplier ? 1 : 0) + (stick ? 1 : 0) + (p.speed_controlled ? 1 : 0);
+    const int nc = (normal_multiplier ? 1 : 0) + (stick ? 1 : 0) + motor.constraint_count();
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
     ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
     SmallVector r = SmallVector::Zero(nc);
@@ -307,12 +238,11 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       B.col(stick_row) = tangent;
       C.row(stick_row) = tangent.transpose();
     }
-    if (p.speed_controlled) {
+    if (motor.speed_controlled) {
       rotor_row = row++;
-      B(model_.rotor(), rotor_row) = 1.0;
-      C(rotor_row, model_.rotor()) = 1.0;
-      if (std::isnan(rotor_acceleration_))
-        rotor_acceleration_ = p.drive_speed.continuous_derivative(t_, "loads.drive_speed");
+      B(motor.rotor, rotor_row) = 1.0;
+      C(rotor_row, motor.rotor) = 1.0;
+      if (std::isnan(rotor_acceleration_)) rotor_acceleration_ = motor.prescribed_acceleration(t_);
       r[rotor_row] = rotor_acceleration_;
     }
     SmallVector lambda;
@@ -329,7 +259,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     else
       out.friction_force = 0.0;
     out.friction_force += given_tangential + viscous;
-    out.motor_torque = p.speed_controlled ? lambda[rotor_row] : applied_torque_;
+    out.motor_torque = motor.speed_controlled ? lambda[rotor_row] : applied_torque_;
     out.slip_acceleration = tangent.dot(out.acceleration);
   };
 
@@ -535,11 +465,11 @@ ModeSolution DriveDynamics::solve_with_forces(const ModeSpec& spec,
 }
 
 void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v) {
-  const DriveParameters& p = model_.parameters();
+  const elements::Motor& motor = model_.motor();
   const int n = model_.coordinate_count();
   const bool normal_row =
       spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
-  const int nc = 1 + (normal_row ? 1 : 0) + (p.speed_controlled ? 1 : 0);
+  const int nc = 1 + (normal_row ? 1 : 0) + motor.constraint_count();
   ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
   SmallVector target = SmallVector::Zero(nc);  // the velocity constraints after the projection
   int row = 0;
@@ -547,9 +477,9 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
   // The thread without play and a closed flank have zero normal velocity
   // (the constraint; a closed flank's is set so when it closes).
   if (normal_row) C.row(row++) = model_.normal_direction().transpose();
-  if (p.speed_controlled) {
-    C(row, model_.rotor()) = 1.0;
-    target[row++] = v[model_.rotor()];  // the motor's prescribed speed
+  if (motor.speed_controlled) {
+    C(row, motor.rotor) = 1.0;
+    target[row++] = v[motor.rotor];  // the motor's prescribed speed
   }
   if (nc == n) {
     // The constraints fix every velocity (the rigid drive in stick): solve
@@ -575,7 +505,7 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
                            Impulses& impulses, lcp::Workspace& workspace,
                            const lcp::Options& options) {
-  const DriveParameters& p = model_.parameters();
+  const bool speed_controlled = model_.motor().speed_controlled;
   const int n = model_.coordinate_count();
   const Eigen::VectorXd& normal = model_.normal_direction();
   const Eigen::VectorXd& tangent = model_.tangent_direction();
@@ -585,14 +515,14 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   // maps, and the flank LCP on the impulse level decides stick or slip.
   double rotor_impulse = 0.0;
   auto jump = [&](double given_tangential, CoordinateVector& change, double& impulse) {
-    const int nc = 1 + (p.speed_controlled ? 1 : 0);
+    const int nc = 1 + (speed_controlled ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
     ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
     SmallVector r = SmallVector::Zero(nc);
     B.col(0) = normal;
     C.row(0) = normal.transpose();
     r[0] = -(1.0 + restitution) * normal.dot(v);
-    if (p.speed_controlled) {
+    if (speed_controlled) {
       B(model_.rotor(), 1) = 1.0;
       C(1, model_.rotor()) = 1.0;
     }
@@ -600,7 +530,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
     SmallVector lambda;
     if (!solve_constrained(inverse_mass_, f, B, C, r, change, lambda)) return false;
     impulse = lambda[0];
-    rotor_impulse = p.speed_controlled ? lambda[1] : 0.0;
+    rotor_impulse = speed_controlled ? lambda[1] : 0.0;
     return true;
   };
   CoordinateVector without, unit;
@@ -674,7 +604,8 @@ std::string DriveDynamics::jamming_report(double regularized_factor) const {
         << ", G_NT = " << g_nt << " (" << (mu * std::abs(g_nt) >= g_nn ? "holds" : "does not hold")
         << ")";
   }
-  if (p.concept == Concept::rigid && !p.speed_controlled) {
+  // The rigid drive (no spring: rotor and load the only bodies' coordinates).
+  if (model_.elements().forces.empty() && !model_.motor().speed_controlled) {
     const double inertia = model_.mass()[model_.rotor()];
     const double mass = model_.mass()[model_.load()];
     const double r_m = p.thread.mean_radius();

@@ -21,32 +21,12 @@ constexpr double kBalanceTolerance = 1e-9;
 // What the Newton iteration takes for round-off of a balance.
 constexpr double kRoundOff = 1e-13;
 
-// The penetration of a penalty flank whose elastic force is `force` >= 0
-// (the inverse of DriveDynamics::penalty_force's elastic law).
-double penetration_for(const DriveParameters& p, double force) {
-  if (force <= 0.0) return 0.0;
-  const double k = p.contact_stiffness;
-  if (p.backlash == BacklashContact::bistop) return std::pow(force / k, 1.0 / p.contact_exponent);
-  const double depth = p.contact_penetration;
-  if (force < k * depth / 3.0) return std::cbrt(3.0 * depth * depth * force / k);
-  return depth + (force - k * depth / 3.0) / k;
-}
-
 // The springs' stiffness matrix at nut position a (the Jacobian of their
 // forces without the terms of the stiffness's change along the nut).
 Eigen::MatrixXd stiffness_matrix(const DriveModel& model, double a) {
   const int n = model.coordinate_count();
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
-  for (const Spring& s : model.springs()) {
-    double derivative = 0.0;
-    const double k = model.spring_stiffness(s, a, &derivative);
-    K(s.first, s.first) += k;
-    if (s.second >= 0) {
-      K(s.second, s.second) += k;
-      K(s.first, s.second) -= k;
-      K(s.second, s.first) -= k;
-    }
-  }
+  model.elements().forces.for_each([&](const auto& element) { element.add_stiffness(K, a); });
   return K;
 }
 
@@ -87,7 +67,7 @@ DriveStart initial_state(const DriveModel& model) {
   auto rest_play = [&](double force) {
     if (model.bilateral_thread() || force == 0.0) return p.play_position;
     const double side = force > 0.0 ? -1.0 : 1.0;  // lower flank e = -c/2 for lambda_N > 0
-    return side * (half + (penalty ? penetration_for(p, std::abs(force) * cos_lead) : 0.0));
+    return side * (half + (penalty ? model.thread_pair().penetration_for(std::abs(force) * cos_lead) : 0.0));
   };
   // The scale of the forces that meet at each coordinate, against which
   // its balance is judged.

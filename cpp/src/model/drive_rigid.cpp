@@ -9,10 +9,12 @@
 
 namespace leadscrew::model {
 
+// From the model's structure (its elements), not its concept: two bodies'
+// coordinates, no force element, the thread pair without play (one
+// independent coordinate), a torque-controlled motor, exact Coulomb.
 bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dynamics) {
-  const DriveParameters& p = model.parameters();
-  return p.concept == Concept::rigid && model.bilateral_thread() && !p.speed_controlled &&
-         dynamics.law().plain_coulomb() && model.springs().empty() &&
+  return model.bilateral_thread() && !model.motor().speed_controlled &&
+         dynamics.law().plain_coulomb() && model.elements().forces.empty() &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();
 }

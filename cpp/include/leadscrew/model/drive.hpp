@@ -36,6 +36,7 @@
 #include "leadscrew/excitation/excitation.hpp"
 #include "leadscrew/friction/law.hpp"
 #include "leadscrew/thread/thread.hpp"
+#include "leadscrew/model/elements/drive_elements.hpp"
 
 namespace leadscrew::model {
 
@@ -126,45 +127,49 @@ struct ScalarField {
 const std::vector<ScalarField>& scalar_fields();
 
 // A linear spring-damper between two coordinates (or one and the ground),
-// optionally with the screw's position-dependent stiffness.
-struct Spring {
-  enum class Law { constant, screw_axial, screw_torsional };
-  std::string name;
-  int first = -1;   // coordinate index
-  int second = -1;  // coordinate index or -1 (ground)
-  Law law = Law::constant;
-  double stiffness = 0.0;  // constant law
-  double damping = 0.0;
-};
+// optionally with the screw's position-dependent stiffness: an element
+// (elements/spring_damper.hpp).
+using Spring = elements::SpringDamper;
 
-// The assembled model: immutable after construction (Pinocchio's Model).
+// The assembled model: immutable after construction (Pinocchio's Model), a
+// list of elements over its coordinates (elements/drive_elements.hpp) built
+// from the parameters by elements::build_drive_elements.
 class DriveModel {
  public:
   explicit DriveModel(DriveParameters parameters);
 
   const DriveParameters& parameters() const noexcept { return p_; }
+  const elements::DriveElements& elements() const noexcept { return e_; }
+  const elements::ThreadPair& thread_pair() const noexcept { return *e_.thread; }
+  const elements::Motor& motor() const noexcept { return e_.motor; }
+  const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
   int coordinate_count() const noexcept { return static_cast<int>(mass_.size()); }
-  const std::vector<std::string>& coordinate_names() const noexcept { return names_; }
+  const std::vector<std::string>& coordinate_names() const noexcept { return e_.coordinates; }
+  // The diagonal mass matrix: every body's inertia on its coordinate.
   const Eigen::VectorXd& mass() const noexcept { return mass_; }
-  const std::vector<Spring>& springs() const noexcept { return springs_; }
-  int rotor() const noexcept { return 0; }
-  int load() const noexcept { return coordinate_count() - 1; }
+  const std::vector<Spring>& springs() const noexcept { return e_.springs(); }
+  // True if a force element needs the nut on the screw (the flexible screw's springs).
+  bool springs_on_screw() const noexcept { return springs_on_screw_; }
+  int rotor() const noexcept { return e_.motor.rotor; }
+  int load() const noexcept { return e_.load.coordinate; }
   // Thread kinematics as gradients over the coordinates.
-  const Eigen::VectorXd& play_gradient() const noexcept { return play_gradient_; }  // grad e
-  const Eigen::VectorXd& normal_direction() const noexcept { return normal_; }      // W_N
-  const Eigen::VectorXd& tangent_direction() const noexcept { return tangent_; }    // W_T
-  const Eigen::VectorXd& nut_position_gradient() const noexcept { return position_gradient_; }
+  const Eigen::VectorXd& play_gradient() const noexcept { return thread_pair().play_gradient(); }  // grad e
+  const Eigen::VectorXd& normal_direction() const noexcept { return thread_pair().normal(); }  // W_N
+  const Eigen::VectorXd& tangent_direction() const noexcept { return thread_pair().tangent(); }  // W_T
+  const Eigen::VectorXd& nut_position_gradient() const noexcept {
+    return thread_pair().nut_position_gradient();
+  }
   // The flank's friction law, and its coefficients on the thread's normal
   // force: mu' = mu / cos(beta / 2) (the flank angle scales the flank's own
   // normal force), the static one, and the largest the law reaches.
-  const friction::Law& law() const noexcept { return *law_; }
-  double flank_factor() const noexcept { return flank_factor_; }
-  double effective_mu() const noexcept { return mu_eff_; }
-  double effective_mu_static() const noexcept { return law_->mu_static() * flank_factor_; }
-  double effective_max_mu() const noexcept { return law_->max_mu() * flank_factor_; }
-  bool bilateral_thread() const noexcept { return p_.backlash == BacklashContact::none; }
+  const friction::Law& law() const noexcept { return thread_pair().law(); }
+  double flank_factor() const noexcept { return thread_pair().flank_factor(); }
+  double effective_mu() const noexcept { return thread_pair().effective_mu(); }
+  double effective_mu_static() const noexcept { return law().mu_static() * flank_factor(); }
+  double effective_max_mu() const noexcept { return law().max_mu() * flank_factor(); }
+  bool bilateral_thread() const noexcept { return thread_pair().bilateral(); }
   // Coordinate eliminated by the bilateral thread constraint (-1 with backlash).
-  int eliminated() const noexcept { return eliminated_; }
+  int eliminated() const noexcept { return thread_pair().eliminated(); }
   // Independent coordinates integrated by the ODE solvers.
   const std::vector<int>& independent() const noexcept { return independent_; }
 
@@ -173,29 +178,28 @@ class DriveModel {
   Eigen::VectorXd consistent_velocity(double rotor_speed) const;
 
   // Stiffness of a spring at nut position a, and its derivative d k / d a.
-  double spring_stiffness(const Spring& s, double nut_position, double* derivative) const;
+  double spring_stiffness(const Spring& s, double nut_position, double* derivative) const {
+    return s.stiffness_at(nut_position, derivative);
+  }
   // How far the nut's nearer end is inside the screw's nearer end
   // [m] with its centre at nut_position: > 0 while the whole nut is on the
   // screw (the start must be; a run ends where it reaches 0).
-  double screw_end_margin(double nut_position) const noexcept;
+  double screw_end_margin(double nut_position) const noexcept {
+    return elements::ThreadPair::screw_end_margin(p_.screw_length, p_.nut_length, nut_position);
+  }
   // What an error says where the nut leaves the screw (the end of a run, or a
   // trial state off the model's domain), and its hint.
   std::string nut_off_screw(double nut_position) const;
   static constexpr const char* kNutOffScrewHint =
       "shorten t_end, change the loads or place the nut elsewhere";
-  double nut_position(const double* q) const;
+  double nut_position(const double* q) const { return thread_pair().nut_position(q); }
 
  private:
   DriveParameters p_;
-  std::vector<std::string> names_;
+  elements::DriveElements e_;
   Eigen::VectorXd mass_;
-  std::vector<Spring> springs_;
-  Eigen::VectorXd play_gradient_, normal_, tangent_, position_gradient_;
-  double mu_eff_ = 0.0, flank_factor_ = 1.0;
-  std::shared_ptr<const friction::Law> law_;
-  int eliminated_ = -1;
+  bool springs_on_screw_ = false;
   std::vector<int> independent_;
-  std::vector<int> rotating_group_, translating_group_;
 };
 
 // The names of the enumerations in scene files; parse_* raise InvalidArgument

@@ -172,13 +172,13 @@ class DriveDynamics {
   // The round-off of slip_velocity() at the state set: a slip velocity this
   // small has no reliable sign (64 ulp of the sum |W_T,i v_i| it cancels).
   double slip_noise() const noexcept { return slip_noise_; }
-  double penalty_normal_force() const noexcept { return penalty_normal_; }
+  double penalty_normal_force() const noexcept { return penalty_.normal_force; }
   double elastic_energy() const noexcept { return elastic_; }
   // Potential of the penalty flanks at the state last set: evaluated on request
   // (outputs and the energy account), not in every set_state of the right-hand side.
   double contact_energy() const noexcept;
   double damping_power() const noexcept { return damping_power_; }
-  double contact_loss_power() const noexcept { return contact_loss_power_; }
+  double contact_loss_power() const noexcept { return penalty_.loss_power; }
   double applied_torque() const noexcept { return applied_torque_; }
   // Spring, damper and load forces at the state last set (no thread forces).
   const CoordinateVector& forces() const noexcept { return forces_; }
@@ -221,7 +221,6 @@ class DriveDynamics {
   friction::FlankLcpResult prescribed_slip_decision(const ModeSpec& base, int sigma);
 
  private:
-  void penalty_force();
   ModeSolution solve_acceleration_law(const ModeSpec& spec);
 
   const DriveModel& model_;
@@ -230,9 +229,9 @@ class DriveDynamics {
   double t_ = 0.0;
   CoordinateVector q_, v_, forces_, inverse_mass_;
   double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0, slip_noise_ = 0.0;
-  double penalty_normal_ = 0.0, elastic_ = 0.0;
-  double penetration_[2] = {0.0, 0.0};  // of the upper and the lower penalty flank (0: none)
-  double damping_power_ = 0.0, contact_loss_power_ = 0.0;
+  double elastic_ = 0.0;
+  elements::ThreadPair::Penalty penalty_;  // the penalty flanks at the state set
+  double damping_power_ = 0.0;
   double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;
   bool painleve_possible_ = false;

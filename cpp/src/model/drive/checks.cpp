@@ -41,15 +41,15 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   // nut's whole length stays on it), and the flank's force for a penalty
   // contact, whose energy is not quadratic: taken as its largest stiffness.
   double stiffness = p.contact_stiffness;
-  for (const Spring& s : model.springs()) {
+  model.elements().forces.for_each([&](const auto& element) {
     double k = 0.0;
     for (const double a : {0.5 * p.nut_length, p.nut_position,
                            p.screw_length - 0.5 * p.nut_length}) {
       double derivative = 0.0;
-      k = std::max(k, model.spring_stiffness(s, a, &derivative));
+      k = std::max(k, element.stiffness_at(a, &derivative));
     }
     stiffness += k;
-  }
+  });
   spec.force_factor = std::sqrt(2.0 * stiffness);
   spec.quadratures = kEnergyCount + 1;  // and the impact loss, booked at events
   spec.load_forces = {"axial_force"};

@@ -126,7 +126,7 @@ void DriveHybrid::approach_fold(double t, const double* y) {
 // its state: raised where first seen, at the integrator's resolution.)
 void DriveHybrid::jam_acceleration_law(int count) {
   double onset = dynamics_.time();
-  if (model_.springs().empty() && last_unique_time_ < onset) {
+  if (model_.elements().forces.empty() && last_unique_time_ < onset) {
     const CoordinateVector q = q_, v = v_;
     double low = last_unique_time_, high = onset;
     for (int iteration = 0; iteration < 200 && high - low > 2.0 * std::numeric_limits<double>::epsilon() * std::abs(high); ++iteration) {

@@ -13,7 +13,7 @@ namespace leadscrew::model::drive {
 // or a closed flank, in stick (every coordinate locked) or slip (the
 // friction factor +-mu' is constant).
 bool DriveHybrid::load_driven() const {
-  return p_.concept == Concept::rigid && model_.springs().empty() && !p_.speed_controlled &&
+  return model_.elements().forces.empty() && !model_.motor().speed_controlled &&
          dynamics_.law().plain_coulomb() &&
          (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
          (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);

@@ -48,8 +48,8 @@ void DriveHybrid::rhs(double t, const double* y, double* ydot) {
   for (std::size_t k = 0; k < layout_.velocities().size(); ++k)
     ydot[np + k] = s.acceleration[layout_.velocities()[k]];
   double* energy = ydot + layout_.energy_offset();
-  energy[kWorkDrive] = s.motor_torque * v_[model_.rotor()];
-  energy[kWorkAxial] = dynamics_.axial_force() * v_[model_.load()];
+  energy[kWorkDrive] = model_.motor().power(s.motor_torque, v_);
+  energy[kWorkAxial] = model_.axial_load().power(dynamics_.axial_force(), v_);
   energy[kFrictionLoss] =
       mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics_.slip_velocity();
   const int bristle = layout_.bristle();

@@ -237,10 +237,8 @@ bool DriveMoreau::take_step(double t, double h, double theta, const double* y, d
   play_rate_ = std::max({play_rate_, std::abs(play_rate0),
                          std::abs(model_.play_gradient().dot(v_))});
   double damping_power = 0.0;
-  for (const Spring& spring : model_.springs()) {
-    const double rate = v_theta[spring.first] - (spring.second >= 0 ? v_theta[spring.second] : 0.0);
-    damping_power += spring.damping * rate * rate;
-  }
+  model_.elements().forces.for_each(
+      [&](const auto& element) { damping_power += element.damping_power(v_theta); });
   energy[kDampingLoss] += h * damping_power;
   last_.normal = impulses.normal / h;
   last_.friction = impulses.friction / h;
@@ -291,12 +289,10 @@ void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& da
   stiffness = Square::Zero(n, n);
   damping = Square::Zero(n, n);
   const double a = model_.nut_position(q_.data());
-  for (const Spring& spring : model_.springs()) {
-    double derivative = 0.0;
-    const double k = model_.spring_stiffness(spring, a, &derivative);
-    add_pair(stiffness, spring.first, spring.second, k);
-    add_pair(damping, spring.first, spring.second, spring.damping);
-  }
+  model_.elements().forces.for_each([&](const auto& element) {
+    element.add_stiffness(stiffness, a);
+    element.add_damping(damping);
+  });
   Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
   iteration.diagonal() += model_.mass();
   solver_.compute(iteration);
@@ -352,15 +348,6 @@ void DriveMoreau::check_step(double h, double theta) {
                           format_value(resolving_step(h, theta)) +
                           " s for the stiffness of this drive: " +
                           step_too_long(theta, alpha));
-}
-
-void DriveMoreau::add_pair(Square& matrix, int i, int j, double value) {
-  matrix(i, i) += value;
-  if (j >= 0) {
-    matrix(j, j) += value;
-    matrix(i, j) -= value;
-    matrix(j, i) -= value;
-  }
 }
 
 // v+ = free + W^-1 (B lambda + tangential W_T) with the active velocity

@@ -66,7 +66,6 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   double step_coupling(double h, double theta);
   std::string step_too_long(double theta, double alpha);
   double resolving_step(double h, double theta);
-  static void add_pair(Square& matrix, int i, int j, double value);
   Impulses solve(bool thread, double normal_target, double rotor_target, double tangential);
 
   const DriveModel& model_;

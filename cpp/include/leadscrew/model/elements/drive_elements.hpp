@@ -1,0 +1,97 @@
+// A drive as a list of elements over its coordinates (Pinocchio's Model:
+// immutable once built; DriveDynamics is its Data). One element per file in
+// this directory:
+//   rigid_body.hpp     RigidBody: inertia on a coordinate (mass matrix, kinetic energy)
+//   spring_damper.hpp  SpringDamper: springs, dampers and supports (eq. 4.24's screw),
+//                      a force element (ForceElements below)
+//   thread_pair.hpp    ThreadPair: the flank constraint or contact and its friction law
+//   motor.hpp          Motor: torque-controlled force or speed-controlled constraint
+//   axial_load.hpp     AxialLoad: the axial force on the load
+// The lists are grouped by type (no virtual call per scalar in the
+// right-hand side): DriveDynamics loops over each. The force elements (the
+// springs today; an end stop, a gear's compliance) are one registry line.
+//
+// build_drive_elements is the one place where the thesis's concepts (rigid,
+// flexible_nut, flexible; the screw or the nut driven) become elements.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "leadscrew/model/elements/axial_load.hpp"
+#include "leadscrew/model/elements/motor.hpp"
+#include "leadscrew/model/elements/rigid_body.hpp"
+#include "leadscrew/model/elements/spring_damper.hpp"
+#include "leadscrew/model/elements/thread_pair.hpp"
+
+namespace leadscrew::model {
+struct DriveParameters;
+}
+
+namespace leadscrew::model::elements {
+
+// Lists of force elements, one std::vector per type, visited in the order
+// of the types (static dispatch: no virtual call in the right-hand side).
+// A force element has the members of SpringDamper's interface:
+//   add_forces(q, v, a, nut_gradient, forces, elastic, damping_power)
+//   add_stiffness(K, a), add_damping(C), damping_power(v), stiffness_at(a, &dk)
+//   and the field on_screw (its coordinates need the nut on the screw).
+template <class... Types>
+struct ForceElementLists {
+  std::tuple<std::vector<Types>...> lists;
+
+  template <class T>
+  std::vector<T>& of() {
+    return std::get<std::vector<T>>(lists);
+  }
+  template <class T>
+  const std::vector<T>& of() const {
+    return std::get<std::vector<T>>(lists);
+  }
+  // True if there is no force element of any type.
+  bool empty() const {
+    return std::apply([](const auto&... list) { return (list.empty() && ...); }, lists);
+  }
+  // Calls f(element) for every element, type by type.
+  template <class F>
+  void for_each(F&& f) const {
+    std::apply([&](const auto&... list) { (visit_list(list, f), ...); }, lists);
+  }
+  template <class F>
+  void for_each(F&& f) {
+    std::apply([&](auto&... list) { (visit_list(list, f), ...); }, lists);
+  }
+
+ private:
+  template <class List, class F>
+  static void visit_list(List& list, F& f) {
+    for (auto& element : list) f(element);
+  }
+};
+
+// The registry of force elements: a new one is its file and its type here.
+using ForceElements = ForceElementLists<SpringDamper>;
+
+struct DriveElements {
+  std::vector<std::string> coordinates;  // their names, in order
+  std::vector<RigidBody> bodies;
+  ForceElements forces;  // springs, dampers, supports
+  std::optional<ThreadPair> thread;
+  Motor motor;
+  AxialLoad load;
+  // The coordinates that turn with the rotor and those that translate with
+  // the load in a rigid-body motion of the drive (consistent_velocity).
+  std::vector<int> rotating_group, translating_group;
+
+  int coordinate_count() const noexcept { return static_cast<int>(coordinates.size()); }
+  const std::vector<SpringDamper>& springs() const { return forces.of<SpringDamper>(); }
+};
+
+// The elements of the drive `p` describes, its values checked (raises
+// InvalidArgument naming the key, the value and the valid range). Normalizes
+// p: exact contacts without play are the thread without play.
+DriveElements build_drive_elements(DriveParameters& p);
+
+}  // namespace leadscrew::model::elements

@@ -1,0 +1,208 @@
+// The thesis's drive concepts (chapter 4) as elements: the one place where
+// the concept, the driven part and the backlash become bodies, springs, the
+// thread pair, the motor and the load.
+#include <algorithm>
+#include <cmath>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/elements/drive_elements.hpp"
+
+namespace leadscrew::model::elements {
+
+DriveElements build_drive_elements(DriveParameters& p) {
+  require_nonnegative("friction.mu", p.mu);
+  require_positive("friction.k_v", p.k_v);
+  std::shared_ptr<const friction::Law> law = ThreadPair::make_law(p);
+  require_positive("rotor.inertia", p.rotor_inertia);
+  require_nonnegative("load.mass", p.load_mass);
+  require_nonnegative("backlash.axial", p.clearance);
+  require_in_range("backlash.restitution", p.restitution, 0.0, 1.0);
+  require_finite("initial.rotor_angle", p.rotor_angle);
+  require_finite("initial.rotor_speed", p.rotor_speed);
+  require_finite("initial.play_position", p.play_position);
+  // Exact flank contacts with zero play touch both flanks at once: that is
+  // the thread without play.
+  if (p.backlash == BacklashContact::exact && p.clearance == 0.0)
+    p.backlash = BacklashContact::none;
+  if (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic) {
+    require_positive("backlash.stiffness", p.contact_stiffness);
+    require_nonnegative("backlash.damping", p.contact_damping);
+    require_positive("backlash.penetration", p.contact_penetration);
+    require_in_range("backlash.exponent", p.contact_exponent, 1.0, 10.0);
+  }
+  if (p.backlash == BacklashContact::none) {
+    p.clearance = 0.0;
+  }
+  // A play below a picometre is below the resolution of the positions it is
+  // the difference of (round-off of coordinates of up to a metre, 1e-16 m).
+  if (p.clearance > 0.0 && p.clearance < kSmallestClearance)
+    throw InvalidArgument("backlash.axial = " + format_value(p.clearance) +
+                          " is invalid: must be 0 (no play) or >= " +
+                          format_value(kSmallestClearance) +
+                          " m (a smaller play is below the resolution of the positions)");
+  if (std::abs(p.play_position) > 0.5 * p.clearance)
+    throw InvalidArgument("initial.play_position = " + format_value(p.play_position) +
+                          " is invalid: must be within +-backlash.axial / 2 = +-" +
+                          format_value(0.5 * p.clearance));
+  if (p.initial_state == InitialState::equilibrium) {
+    // The equilibrium is at rest, under a torque (a speed-controlled motor
+    // would make the thread's friction force statically indeterminate), with
+    // the nut where the loads put it.
+    const std::string with = " is invalid with initial.state = \"equilibrium\": ";
+    if (p.speed_controlled)
+      throw InvalidArgument("initial.state = \"equilibrium\" is invalid with loads.drive_speed: "
+                            "the static equilibrium needs a torque-controlled motor "
+                            "(loads.drive_torque)");
+    if (p.rotor_speed != 0.0)
+      throw InvalidArgument("initial.rotor_speed = " + format_value(p.rotor_speed) + with +
+                            "must be 0 (the drive starts at rest)");
+    if (p.play_position != 0.0)
+      throw InvalidArgument("initial.play_position = " + format_value(p.play_position) + with +
+                            "must be 0 (the equilibrium puts the nut on the flank the loads "
+                            "press it against)");
+  }
+
+  // The concept: which parts are contact bodies of their own.
+  const bool nut_flexible = p.concept != Concept::rigid;
+  const bool screw_flexible = p.concept == Concept::flexible;
+  const bool screw_rotates = p.drive == DrivenPart::screw;
+  const bool rotating_flexible = screw_rotates ? screw_flexible : nut_flexible;
+  const bool translating_flexible = screw_rotates ? nut_flexible : screw_flexible;
+  const std::string rotating = screw_rotates ? "screw" : "nut";
+  const std::string translating = screw_rotates ? "nut" : "screw";
+  const double rotating_mass = screw_rotates ? p.screw_mass : p.nut_mass;
+  const double rotating_inertia = screw_rotates ? p.screw_inertia : p.nut_inertia;
+  const double translating_mass = screw_rotates ? p.nut_mass : p.screw_mass;
+  const double translating_inertia = screw_rotates ? p.nut_inertia : p.screw_inertia;
+  require_nonnegative(rotating + " mass", rotating_mass);
+  require_nonnegative(rotating + " inertia", rotating_inertia);
+  require_nonnegative(translating + " mass", translating_mass);
+  require_nonnegative(translating + " inertia", translating_inertia);
+
+  DriveElements e;
+  auto add_coordinate = [&](const std::string& name) {
+    e.coordinates.push_back(name);
+    return e.coordinate_count() - 1;
+  };
+  // Bodies: the rotor (with a rigid rotating part on its coordinate), the
+  // flexible parts' own contact bodies (u_<part>, phi_<part>), the load
+  // (with a rigid translating part on its coordinate).
+  const int rotor = add_coordinate("phi_rotor");
+  e.bodies.push_back({"rotor", rotor, p.rotor_inertia});
+  if (!rotating_flexible) e.bodies.push_back({rotating, rotor, rotating_inertia});
+  int rotating_u = -1, rotating_phi = rotor, translating_u = -1, translating_phi = -1;
+  auto add_contact_body = [&](const std::string& part, double mass, double inertia, int& u,
+                              int& phi) {
+    u = add_coordinate("u_" + part);
+    e.bodies.push_back({part, u, require_positive(part + " mass", mass)});
+    phi = add_coordinate("phi_" + part);
+    e.bodies.push_back({part, phi, require_positive(part + " inertia", inertia)});
+  };
+  if (rotating_flexible)
+    add_contact_body(rotating, rotating_mass, rotating_inertia, rotating_u, rotating_phi);
+  if (translating_flexible)
+    add_contact_body(translating, translating_mass, translating_inertia, translating_u,
+                     translating_phi);
+  const int load = add_coordinate("u_load");
+  const double load_total = p.load_mass + (translating_flexible ? 0.0 : translating_mass);
+  if (!(load_total > 0.0))
+    throw InvalidArgument("load.mass = " + format_value(p.load_mass) +
+                          " is invalid: must be > 0 when the " + translating +
+                          " is flexible or massless");
+  e.bodies.push_back({"load", load, p.load_mass});
+  if (!translating_flexible) {
+    e.bodies.push_back({translating, load, translating_mass});
+    translating_u = load;
+  }
+  e.rotating_group = {rotor};
+  if (rotating_flexible) e.rotating_group.push_back(rotating_phi);
+  e.translating_group = {load};
+  if (translating_flexible) e.translating_group.push_back(translating_u);
+
+  const ContactCoordinates c = screw_rotates
+                                   ? ContactCoordinates{rotating_u, rotating_phi, translating_u,
+                                                        translating_phi}
+                                   : ContactCoordinates{translating_u, translating_phi,
+                                                        rotating_u, rotating_phi};
+
+  // Springs and supports of the flexible parts (thesis eq. 4.16, 4.26).
+  auto add_spring = [&](const std::string& name, int first, int second, bool screw, bool axial) {
+    SpringDamper s;
+    s.name = name;
+    s.first = first;
+    s.second = second;
+    if (screw) {
+      s.stiffness = axial ? p.screw_axial_stiffness : p.screw_torsional_stiffness;
+      s.law = s.stiffness > 0.0 ? SpringDamper::Law::constant
+                                : (axial ? SpringDamper::Law::screw_axial
+                                         : SpringDamper::Law::screw_torsional);
+      s.rigidity = axial ? p.screw_axial_rigidity : p.screw_torsional_rigidity;
+      s.screw_length = p.screw_length;
+      s.far_segment = axial && p.drive == DrivenPart::screw && p.support == ScrewSupport::both_ends;
+      s.damping = axial ? p.screw_axial_damping : p.screw_torsional_damping;
+    } else {
+      s.law = SpringDamper::Law::constant;
+      s.stiffness = axial ? p.nut_axial_stiffness : p.nut_torsional_stiffness;
+      s.damping = axial ? p.nut_axial_damping : p.nut_torsional_damping;
+    }
+    // Every spring of the flexible screw's model needs the nut on the screw.
+    s.on_screw = screw_flexible;
+    e.forces.of<SpringDamper>().push_back(s);
+  };
+  if (rotating_flexible) {
+    add_spring(rotating + " torsion", rotating_phi, rotor, screw_rotates, false);
+    add_spring(rotating + " axial", rotating_u, -1, screw_rotates, true);
+  }
+  if (translating_flexible) {
+    add_spring(translating + " axial", translating_u, load, !screw_rotates, true);
+    add_spring(translating + " torsion", translating_phi, -1, !screw_rotates, false);
+  }
+
+  // Screw stiffness data, checked at the initial nut position.
+  if (screw_flexible) {
+    if (p.screw_axial_stiffness <= 0.0)
+      require_positive("screw axial rigidity E A", p.screw_axial_rigidity);
+    if (p.screw_torsional_stiffness <= 0.0)
+      require_positive("screw torsional rigidity G I_p", p.screw_torsional_rigidity);
+  }
+  // The whole nut on the screw, for every concept (a run ends where it leaves).
+  require_positive("screw.length", p.screw_length);
+  require_positive("nut.position", p.nut_position);
+  if (!(p.nut_position < p.screw_length))
+    throw InvalidArgument("nut.position = " + format_value(p.nut_position) +
+                          " is invalid: must be < screw.length = " +
+                          format_value(p.screw_length));
+  require_positive("nut.length", p.nut_length);
+  if (!(ThreadPair::screw_end_margin(p.screw_length, p.nut_length, p.nut_position) > 0.0))
+    throw InvalidArgument("nut.position = " + format_value(p.nut_position) +
+                          " is invalid: must be in (nut.length / 2, screw.length - nut.length "
+                          "/ 2) = (" + format_value(0.5 * p.nut_length) + ", " +
+                          format_value(p.screw_length - 0.5 * p.nut_length) +
+                          "): the whole nut on the screw");
+  require_nonnegative("overrides.damping_ratio", p.damping_ratio);
+  Eigen::VectorXd mass = Eigen::VectorXd::Zero(e.coordinate_count());
+  for (const RigidBody& body : e.bodies) body.add_mass(mass);
+  e.forces.for_each([&](auto& s) {
+    double derivative = 0.0;
+    const double k = s.stiffness_at(p.nut_position, &derivative);
+    require_positive(s.name + " stiffness", k);
+    if (s.damping < 0.0) {
+      // The mode that matters on a spring is the heavier body's (the load
+      // bouncing on the nut, the screw on its support): the reduced mass
+      // would leave it nearly undamped.
+      const double carried =
+          s.second >= 0 ? std::max(mass[s.first], mass[s.second]) : mass[s.first];
+      s.damping = 2.0 * p.damping_ratio * std::sqrt(k * carried);
+    }
+    require_finite(s.name + " damping", s.damping);
+  });
+
+  e.thread.emplace(p, std::move(law), c, e.coordinate_count());
+  e.motor = Motor{rotor, p.speed_controlled, p.drive_torque, p.drive_speed};
+  e.load = AxialLoad{load, p.axial_force};
+  return e;
+}
+
+}  // namespace leadscrew::model::elements

@@ -5,6 +5,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/drive_geometry.hpp"
 
 namespace leadscrew::model {
 
@@ -59,6 +60,8 @@ void add_gradient(Eigen::VectorXd& gradient, int index, double value) {
   if (index >= 0) gradient[index] += value;
 }
 
+}  // namespace
+
 // One list per enumeration, in the order of its values: the names and the
 // parser cannot drift apart.
 const std::vector<std::string>& concept_names() {
@@ -81,7 +84,6 @@ const std::vector<std::string>& initial_state_names() {
   static const std::vector<std::string> names = {"relaxed", "equilibrium"};
   return names;
 }
-}  // namespace
 
 std::string concept_name(Concept c) { return concept_names()[static_cast<int>(c)]; }
 std::string drive_name(DrivenPart d) { return drive_names()[static_cast<int>(d)]; }
@@ -283,12 +285,7 @@ DriveModel::DriveModel(DriveParameters parameters) : p_(std::move(parameters)) {
                           " is invalid: must be < screw.length = " +
                           format_value(p_.screw_length));
   require_positive("nut.length", p_.nut_length);
-  if (!(screw_end_margin(p_.nut_position) > 0.0))
-    throw InvalidArgument("nut.position = " + format_value(p_.nut_position) +
-                          " is invalid: must be in (nut.length / 2, screw.length - nut.length "
-                          "/ 2) = (" + format_value(0.5 * p_.nut_length) + ", " +
-                          format_value(p_.screw_length - 0.5 * p_.nut_length) +
-                          "): the whole nut on the screw");
+  require_nut_on_screw(p_.drive, p_.nut_position, p_.nut_length, p_.screw_length, false);
   require_nonnegative("overrides.damping_ratio", p_.damping_ratio);
   for (Spring& s : springs_) {
     double derivative = 0.0;
@@ -357,8 +354,7 @@ double DriveModel::nut_position(const double* q) const {
 }
 
 double DriveModel::screw_end_margin(double nut_position) const noexcept {
-  const double half = 0.5 * p_.nut_length;
-  return std::min(nut_position - half, p_.screw_length - half - nut_position);
+  return model::screw_end_margin(nut_position, p_.nut_length, p_.screw_length);
 }
 
 std::string DriveModel::nut_off_screw(double nut_position) const {

@@ -198,8 +198,14 @@ class DriveModel {
   std::vector<int> rotating_group_, translating_group_;
 };
 
-// The names of the enumerations in scene files; parse_* raise InvalidArgument
-// naming the key and the allowed names.
+// The names of the enumerations in scene files, each list in the order of
+// its values (the Python Scene's choices come from here); parse_* raise
+// InvalidArgument naming the key and the allowed names.
+const std::vector<std::string>& concept_names();
+const std::vector<std::string>& drive_names();
+const std::vector<std::string>& support_names();
+const std::vector<std::string>& backlash_contact_names();  // "none" first
+const std::vector<std::string>& initial_state_names();
 std::string concept_name(Concept c);
 std::string drive_name(DrivenPart d);
 std::string support_name(ScrewSupport s);

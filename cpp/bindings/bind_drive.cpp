@@ -213,6 +213,16 @@ void bind_drive_geometry(py::module_& m) {
       "The rigid drive's two dynamic jamming (Painleve) inequalities for the friction factor "
       "kappa (mu' for exact Coulomb): lhs1, rhs1, jams1, lhs2, rhs2, jams2 [kg*m^2], mass1 "
       "[kg] and inertia2 [kg*m^2] (inf where never).");
+  m.def(
+      "spring_frequency_problem",
+      [](const model::DriveModel& drive) -> py::object {
+        const std::string problem = model::spring_frequency_problem(drive);
+        if (problem.empty()) return py::none();
+        return py::str(problem);
+      },
+      py::arg("drive"),
+      "None, or what is wrong with a spring of the drive: its part's natural angular "
+      "frequency sqrt(k / m) not finite or above 1e12 rad/s.");
   m.def("scene_choices", &model::scene_choices,
         "(key path, names) of the scene's choices the model's enumerations give.");
 }

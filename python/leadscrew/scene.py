@@ -955,8 +955,8 @@ def _derivation(data: Dict[str, Any]) -> "_core.DerivedQuantities":
     Raises:
         ValueError: a quantity is out of its range (the core's verdict), naming
             the inputs that made it so (see :func:`_blamed`), e.g.
-            ``nut.density = 5e-324 is invalid: with it the nut's mass, ...
-            comes to 0 kg: must be a finite number > 0 (or set
+            ``nut.density = 5e-324 is invalid: with it the nut's mass (...)
+            comes to 0.0 kg: must be a finite number > 0 (or set
             overrides.nut_mass)``.
     """
     derivation = _core.derive_drive(_geometry(data))
@@ -1014,7 +1014,7 @@ def _in_range(values: Dict[str, float], thread: Dict[str, float]) -> bool:
 
 
 def _model(data: Dict[str, Any]) -> "_core.DriveModel":
-    """The core's model of a scene, its springs checked (:func:`_spring_problem`).
+    """The core's model of a scene, its springs checked (``_core.spring_frequency_problem``).
 
     A ValueError of the core that names an internal quantity (a spring's
     damping, a part's mass) names the scene's inputs that made it so instead
@@ -1031,7 +1031,8 @@ def _model(data: Dict[str, Any]) -> "_core.DriveModel":
         value, _, why = rest.partition(" is invalid: ")
         raise _blamed(data, _model_is_bad, f"the model's {name} comes to {value}: {why}" if why
                       else f"the model cannot be built: {message}") from None
-    why = _spring_problem(derivation.derived, model)
+    # A part too stiff for its mass (the core's rule, sqrt(k / m) <= 1e12 rad/s).
+    why = _core.spring_frequency_problem(model)
     if why is not None:
         raise _blamed(data, _model_is_bad, why)
     return model
@@ -1044,37 +1045,7 @@ def _model_is_bad(data: Dict[str, Any]) -> bool:
         model = _core.DriveModel(_core_parameters(data, derivation))
     except ValueError:
         return True
-    return _spring_problem(derivation.derived, model) is not None
-
-
-# The highest natural angular frequency of a part on its own spring: a part
-# stiffer for its mass than this is rigid to any drive, and beyond what the
-# integrators resolve (the runs ended in a wrong message, "the nut reached the
-# end of the screw", or NaN).
-_MAX_NATURAL_FREQUENCY = 1e12  # rad/s
-
-
-def _root(x: float) -> float:
-    """sqrt(x), NaN where x is negative or NaN (a quantity the checks then
-    name the input of, instead of math's 'domain error')."""
-    return math.sqrt(x) if x >= 0.0 else math.nan
-
-
-def _spring_problem(derived: Dict[str, Any], model: "_core.DriveModel") -> Optional[str]:
-    """None, or what is wrong with a spring of ``model``: its part's natural
-    angular frequency sqrt(k / m) (m the part's mass or polar inertia from
-    ``derived``, k the spring's stiffness at the start) is not finite or
-    above :data:`_MAX_NATURAL_FREQUENCY`."""
-    for spring in model.springs:  # none in the rigid concept
-        part, kind = spring["name"].split(" ")
-        inertia = "mass" if kind == "axial" else "inertia"
-        omega = _root(spring["stiffness"] / derived[f"{part}_{inertia}"])
-        if not omega <= _MAX_NATURAL_FREQUENCY:
-            return (f"the {part}'s {kind} natural frequency sqrt(stiffness / {part} {inertia}) "
-                    f"comes to {omega!r} rad/s: must be at most {_MAX_NATURAL_FREQUENCY:g} "
-                    f"rad/s (a part this stiff for its {inertia} is rigid to any drive; a "
-                    "concept that takes it as rigid models it)")
-    return None
+    return _core.spring_frequency_problem(model) is not None
 
 
 # The key paths of the numeric fields, and the value each is set back to

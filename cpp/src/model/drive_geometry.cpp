@@ -243,6 +243,29 @@ void require_nut_on_screw(DrivenPart drive, double nut_position, double nut_leng
                         format_value(screw_length - half) + ")" + why);
 }
 
+std::string spring_frequency_problem(const DriveModel& model) {
+  const DriveParameters& p = model.parameters();
+  for (const Spring& s : model.springs()) {
+    // "<part> axial" or "<part> torsion" (DriveModel's names).
+    const std::string part = s.name.substr(0, s.name.find(' '));
+    const std::string kind = s.name.substr(s.name.find(' ') + 1);
+    const bool axial = kind == "axial";
+    const bool screw = part == "screw";
+    const double carried = axial ? (screw ? p.screw_mass : p.nut_mass)
+                                 : (screw ? p.screw_inertia : p.nut_inertia);
+    double derivative = 0.0;
+    const double omega = root(model.spring_stiffness(s, p.nut_position, &derivative) / carried);
+    if (!(omega <= kMaxNaturalFrequency)) {
+      const std::string inertia = axial ? "mass" : "inertia";
+      return "the " + part + "'s " + kind + " natural frequency sqrt(stiffness / " + part + " " +
+             inertia + ") comes to " + format_value(omega) + " rad/s: must be at most " +
+             format_g(kMaxNaturalFrequency) + " rad/s (a part this stiff for its " + inertia +
+             " is rigid to any drive; a concept that takes it as rigid models it)";
+    }
+  }
+  return "";
+}
+
 JammingMargins rigid_jamming_margins(const Thread& thread, double kappa, double inertia,
                                      double mass) {
   const double tan_a = std::tan(thread.lead_angle());

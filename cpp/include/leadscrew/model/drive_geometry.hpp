@@ -142,6 +142,16 @@ double screw_end_margin(double nut_position, double nut_length, double screw_len
 void require_nut_on_screw(DrivenPart drive, double nut_position, double nut_length,
                           double screw_length, bool explain);
 
+// The highest natural angular frequency of a part on its own spring
+// [rad/s]: a part stiffer for its mass than this is rigid to any drive, and
+// beyond what the integrators resolve (runs ended in a wrong message or NaN).
+constexpr double kMaxNaturalFrequency = 1e12;
+// What is wrong with a spring of `model`: its part's natural angular
+// frequency sqrt(k / m) (m the part's mass or polar inertia, k the spring's
+// stiffness at the start) not finite or above kMaxNaturalFrequency; "" where
+// every spring is fine (none in the rigid concept).
+std::string spring_frequency_problem(const DriveModel& model);
+
 // The rigid drive's two dynamic jamming (Painleve) inequalities
 // (docs/physics/rigid_drive.md section 7) for a friction factor kappa (mu'
 // for exact Coulomb, the regularized law's factor otherwise), rotating

@@ -4,9 +4,11 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "leadscrew/core/errors.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_batch.hpp"
 #include "leadscrew/model/drive_equilibrium.hpp"
+#include "leadscrew/model/drive_geometry.hpp"
 #include "leadscrew/model/drive_simulation.hpp"
 
 namespace py = pybind11;
@@ -62,6 +64,169 @@ void def_drive_call(py::module_& m, const char* name, Body body, const char* doc
       py::arg("progress") = py::none(), doc);
 }
 
+// The derivation from geometry and the rules of the scene's inputs
+// (model/drive_geometry.hpp).
+void bind_drive_geometry(py::module_& m) {
+  using model::DriveGeometry;
+  using model::DerivedQuantities;
+  py::class_<DriveGeometry> geometry(
+      m, "DriveGeometry",
+      "The scene's geometric and material inputs (SI), named <section>_<key> after its key "
+      "paths; optional ones None where the scene leaves them out.");
+  geometry.def(py::init<>())
+      .def_property(
+          "drive", [](const DriveGeometry& g) { return model::drive_name(g.drive); },
+          [](DriveGeometry& g, const std::string& v) { g.drive = model::parse_drive(v); })
+      .def_property(
+          "backlash_contact",
+          [](const DriveGeometry& g) { return model::backlash_contact_name(g.backlash_contact); },
+          [](DriveGeometry& g, const std::string& v) {
+            g.backlash_contact = model::parse_backlash_contact(v);
+          },
+          "'none' without a backlash section");
+#define LEADSCREW_FIELD(name) geometry.def_readwrite(#name, &DriveGeometry::name)
+  LEADSCREW_FIELD(thread_pitch);
+  LEADSCREW_FIELD(thread_mean_diameter);
+  LEADSCREW_FIELD(thread_starts);
+  LEADSCREW_FIELD(thread_flank_angle);
+  LEADSCREW_FIELD(friction_mu);
+  LEADSCREW_FIELD(screw_radius);
+  LEADSCREW_FIELD(screw_length);
+  LEADSCREW_FIELD(screw_density);
+  LEADSCREW_FIELD(screw_youngs_modulus);
+  LEADSCREW_FIELD(screw_poisson);
+  LEADSCREW_FIELD(nut_outer_radius);
+  LEADSCREW_FIELD(nut_length);
+  LEADSCREW_FIELD(nut_density);
+  LEADSCREW_FIELD(nut_youngs_modulus);
+  LEADSCREW_FIELD(nut_poisson);
+  LEADSCREW_FIELD(load_mass);
+  LEADSCREW_FIELD(backlash_axial);
+  LEADSCREW_FIELD(backlash_exponent);
+  LEADSCREW_FIELD(backlash_stiffness);
+  LEADSCREW_FIELD(backlash_damping);
+  LEADSCREW_FIELD(backlash_penetration);
+  LEADSCREW_FIELD(overrides_screw_mass);
+  LEADSCREW_FIELD(overrides_screw_inertia);
+  LEADSCREW_FIELD(overrides_nut_mass);
+  LEADSCREW_FIELD(overrides_nut_inertia);
+  LEADSCREW_FIELD(overrides_screw_axial_stiffness);
+  LEADSCREW_FIELD(overrides_screw_torsional_stiffness);
+  LEADSCREW_FIELD(overrides_nut_axial_stiffness);
+  LEADSCREW_FIELD(overrides_nut_torsional_stiffness);
+#undef LEADSCREW_FIELD
+
+  auto as_dict = [](const std::vector<std::pair<std::string, double>>& values) {
+    py::dict out;
+    for (const auto& [key, value] : values) out[py::str(key)] = value;
+    return out;
+  };
+  py::class_<DerivedQuantities>(m, "DerivedQuantities",
+                                "What a DriveGeometry gives the model (derive_drive).")
+      .def_property_readonly(
+          "derived", [as_dict](const DerivedQuantities& d) { return as_dict(d.derived()); },
+          "Scene.derived(): masses [kg], inertias [kg*m^2], rigidities [N, N*m^2], "
+          "stiffnesses [N/m, N*m/rad] and with backlash the contact's values")
+      .def_property_readonly(
+          "quantities",
+          [as_dict](const DerivedQuantities& d) { return as_dict(d.quantities()); },
+          "every quantity with a range: tan_lead_angle, effective_mu, then derived's")
+      .def_property_readonly(
+          "problem",
+          [](const DerivedQuantities& d) -> py::object {
+            const model::DerivedQuantity* q = model::first_out_of_range(d.quantities());
+            if (q == nullptr) return py::none();
+            return py::str(q->key);
+          },
+          "the key of the first quantity out of its range, or None")
+      .def("apply_to", &DerivedQuantities::apply_to, py::arg("parameters"),
+           "Set the masses, inertias, rigidities, stiffnesses and contact values of "
+           "DriveParameters.");
+  m.def("derive_drive", &model::derive, py::arg("geometry"),
+        "Masses, inertias, rigidities and stiffnesses of a DriveGeometry (thesis eq. 4.17, "
+        "4.18, 4.24), overrides applied; never raises (a value out of range: problem).");
+  m.def(
+      "derived_quantities",
+      []() {
+        py::list out;
+        for (const model::DerivedQuantity& q : model::derived_quantities()) {
+          py::dict entry;
+          entry["key"] = q.key;
+          entry["text"] = q.text;
+          entry["unit"] = q.unit;
+          entry["low"] = q.low;
+          entry["low_open"] = q.low_open;
+          entry["high"] = q.high;
+          entry["override"] = q.override_key;
+          out.append(entry);
+        }
+        return out;
+      },
+      "The derived quantities with their texts, units, ranges and overrides, in order.");
+  m.def(
+      "derived_quantity_problem",
+      [](const std::string& key, double value) -> py::object {
+        const model::DerivedQuantity* q = model::find_derived_quantity(key);
+        if (q == nullptr) throw InvalidArgument("no derived quantity " + key);
+        const std::string problem = q->problem(value);
+        if (problem.empty()) return py::none();
+        return py::str(problem);
+      },
+      py::arg("key"), py::arg("value"),
+      "None if value is in the quantity's range, else what it must be.");
+  m.def(
+      "first_derived_problem",
+      [](const std::vector<std::pair<std::string, double>>& values) -> py::object {
+        const model::DerivedQuantity* q = model::first_out_of_range(values);
+        if (q == nullptr) return py::none();
+        return py::str(q->key);
+      },
+      py::arg("values"),
+      "The key of the first of the (key, value) pairs out of its quantity's range, or None.");
+  m.def(
+      "check_nut_on_screw",
+      [](const std::string& drive, double nut_position, double nut_length, double screw_length,
+         bool explain) {
+        model::require_nut_on_screw(model::parse_drive(drive), nut_position, nut_length,
+                                    screw_length, explain);
+      },
+      py::arg("drive"), py::arg("nut_position"), py::arg("nut_length"),
+      py::arg("screw_length"), py::arg("explain") = true,
+      "ValueError naming nut.position unless the whole nut is on the screw: nut_length / 2 < "
+      "nut_position < screw_length - nut_length / 2 [m].");
+  m.def(
+      "rigid_jamming_margins",
+      [](const Thread& thread, double kappa, double inertia, double mass) {
+        const model::JammingMargins j = model::rigid_jamming_margins(thread, kappa, inertia, mass);
+        py::dict out;
+        out["lhs1"] = j.lhs1;
+        out["rhs1"] = j.rhs1;
+        out["jams1"] = j.jams1;
+        out["lhs2"] = j.lhs2;
+        out["rhs2"] = j.rhs2;
+        out["jams2"] = j.jams2;
+        out["mass1"] = j.mass1;
+        out["inertia2"] = j.inertia2;
+        return out;
+      },
+      py::arg("thread"), py::arg("kappa"), py::arg("inertia"), py::arg("mass"),
+      "The rigid drive's two dynamic jamming (Painleve) inequalities for the friction factor "
+      "kappa (mu' for exact Coulomb): lhs1, rhs1, jams1, lhs2, rhs2, jams2 [kg*m^2], mass1 "
+      "[kg] and inertia2 [kg*m^2] (inf where never).");
+  m.def(
+      "spring_frequency_problem",
+      [](const model::DriveModel& drive) -> py::object {
+        const std::string problem = model::spring_frequency_problem(drive);
+        if (problem.empty()) return py::none();
+        return py::str(problem);
+      },
+      py::arg("drive"),
+      "None, or what is wrong with a spring of the drive: its part's natural angular "
+      "frequency sqrt(k / m) not finite or above 1e12 rad/s.");
+  m.def("scene_choices", &model::scene_choices,
+        "(key path, names) of the scene's choices the model's enumerations give.");
+}
+
 }  // namespace
 
 void bind_drive(py::module_& m) {
@@ -111,6 +276,7 @@ void bind_drive(py::module_& m) {
   for (const model::ScalarField& field : model::scalar_fields())
     parameters.def_readwrite(field.name, field.member);
   parameters.def_readwrite("speed_controlled", &DriveParameters::speed_controlled);
+  bind_drive_geometry(m);
 
   py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")
       .def(py::init<DriveParameters>(), py::arg("parameters"))

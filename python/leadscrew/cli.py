@@ -39,6 +39,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 from . import __version__
+from . import _core
 from . import thread as _thread
 from .errors import StudyWarning
 
@@ -151,18 +152,10 @@ def jamming_margins(t, mu: float, rotating_inertia: float, translating_mass: flo
         which the first holds; inf if mu' <= tan a) and ``inertia2`` [kg*m^2]
         (rotating inertia at which the second holds; inf if mu' <= cot a).
     """
-    tan_a = math.tan(t.lead_angle)
-    cot_a = 1.0 / tan_a
-    r = 0.5 * t.mean_diameter
-    mu_e = t.effective_mu(mu)
-    J, m = rotating_inertia, translating_mass
-    lhs1, rhs1 = m * r * r * tan_a * (mu_e - tan_a), J * (1.0 + mu_e * tan_a)
-    lhs2, rhs2 = J * cot_a * (mu_e - cot_a), m * r * r * (1.0 + mu_e * cot_a)
-    mass1 = J * (1.0 + mu_e * tan_a) / (r * r * tan_a * (mu_e - tan_a)) if mu_e > tan_a else math.inf
-    inertia2 = (m * r * r * (1.0 + mu_e * cot_a) / (cot_a * (mu_e - cot_a)) if mu_e > cot_a
-                else math.inf)
-    return dict(lhs1=lhs1, rhs1=rhs1, jams1=lhs1 >= rhs1, lhs2=lhs2, rhs2=rhs2,
-                jams2=lhs2 >= rhs2, mass1=mass1, inertia2=inertia2)
+    # The core's inequalities (model/drive_geometry.hpp), which its
+    # JammingError reports as well, at the friction factor mu'.
+    return _core.rigid_jamming_margins(t, t.effective_mu(mu), rotating_inertia,
+                                       translating_mass)
 
 
 _DERIVED_UNITS = {

@@ -20,9 +20,13 @@ deg"``), converted to the field's unit by :func:`leadscrew.units.to_si` (Hz is
 cycles per second: ``"2 Hz"`` is 4 pi rad/s). :func:`describe_schema` prints
 the documentation of every field with its unit and default.
 
-``Scene.derived()`` and ``Scene.model()`` check what the inputs give: every
-mass, inertia, rigidity and stiffness finite and positive, the lead angle
-within 1e-6 <= tan(alpha) <= 1e6, every part's natural angular frequency on
+The core derives the masses, inertias and stiffnesses from geometry and
+material (``_core.derive_drive``, cpp/include/leadscrew/model/drive_geometry.hpp)
+and checks them; the enumerations' names and the rule that the nut stays on
+the screw are the core's as well. ``Scene.derived()`` and ``Scene.model()``
+check what the inputs give: every mass, inertia, rigidity and stiffness
+finite and positive, the lead angle within 1e-6 <= tan(alpha) <= 1e6 (the
+core's ranges), every part's natural angular frequency on
 its spring at most 1e12 rad/s, and the core's own checks of the assembled
 model. A quantity out of range raises ``ValueError`` naming the input(s)
 that made it so (those whose default, or for a required field the thesis
@@ -69,6 +73,8 @@ class Field:
 
 
 OPTIONAL = object()  # the field may be absent (derived or unused)
+# The names of the model's enumerations by key path (the core's lists).
+_CHOICES = {path: tuple(names) for path, names in _core.scene_choices()}
 POSITIVE = dict(low=0.0, low_open=True)
 NONNEGATIVE = dict(low=0.0)
 # Sane physical ranges of material data (beyond them a part is no solid the
@@ -162,11 +168,11 @@ SCHEMA: Dict[str, Any] = {
     "concept": Field("model concept of thesis section 4.1: 'rigid' (4.1.1, one degree of "
                      "freedom without backlash), 'flexible_nut' (4.1.2), 'flexible' (4.1.3, "
                      "flexible screw and nut)", default="rigid", kind="choice",
-                     choices=("rigid", "flexible_nut", "flexible")),
+                     choices=_CHOICES["concept"]),
     "drive": Field("which part the motor turns: 'screw' (axially fixed screw, the nut and "
                    "load translate, Fig. 3.2) or 'nut' (axially fixed nut, the screw and "
                    "load translate, Fig. 3.1)", default="screw", kind="choice",
-                   choices=("screw", "nut")),
+                   choices=_CHOICES["drive"]),
     "thread": {
         "pitch": Field("axial distance between neighbouring flanks", "m", None, **POSITIVE),
         "mean_diameter": Field("mean (pitch) diameter d_m = 2 r_m; with the lead, 1e-6 <= "
@@ -187,7 +193,7 @@ SCHEMA: Dict[str, Any] = {
         "contact": Field("flank contact across the play: 'exact' (unilateral contacts, Newton "
                          "impacts), 'bistop' (Adams BISTOP penalty), 'cubic' (smooth cubic "
                          "penalty, cf. thesis Fig. 2.6)", "", "exact", kind="choice",
-                         choices=("exact", "bistop", "cubic")),
+                         choices=_CHOICES["backlash.contact"]),
         "restitution": Field("Newton restitution coefficient of flank impacts ('exact')", "",
                              0.0, low=0.0, high=1.0),
         "stiffness": Field("contact stiffness k of 'bistop' in N/m^exponent (a string is "
@@ -215,7 +221,7 @@ SCHEMA: Dict[str, Any] = {
         "support": Field("axial support of a screw-driven screw: 'both_ends' (k = EA/a + "
                          "EA/(L - a), eq. 4.24) or 'drive_end' (k = EA/a); a is the nut's "
                          "distance from the drive end", "", "both_ends", kind="choice",
-                         choices=("both_ends", "drive_end")),
+                         choices=_CHOICES["screw.support"]),
     },
     "nut": {
         "outer_radius": Field("outer radius of the nut (hollow cylinder; inner radius = screw "
@@ -302,7 +308,7 @@ SCHEMA: Dict[str, Any] = {
                        "friction at rest, starts from that state and slips from it; LuGre's "
                        "bristles start relaxed. "
                        "Scene.initial_state() gives the state)", "", "relaxed", kind="choice",
-                       choices=("relaxed", "equilibrium")),
+                       choices=_CHOICES["initial.state"]),
     },
 }
 
@@ -860,18 +866,11 @@ def _check_consistency(data: Dict[str, Any]) -> None:
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
-    # Both drives: the nut's centre is at a from the screw's drive (or load)
-    # end, the whole nut on the screw: a in (l_n / 2, L - l_n / 2) (schema
-    # doc; a run of any concept ends where the nut's end reaches the
-    # screw's).
-    half, length = data["nut"]["length"] / 2, data["screw"]["length"]
-    if not half < data["nut"]["position"] < length - half:
-        end = "drive end" if data["drive"] == "screw" else "load end"
-        _fail("nut.position", data["nut"]["position"],
-              f"in (nut.length / 2, screw.length - nut.length / 2) = ({half:g}, "
-              f"{length - half:g}) (the distance of the nut's centre from the screw's {end} "
-              f"for drive = {data['drive']!r}: the whole nut on the screw; nut.length = "
-              f"{data['nut']['length']!r}, screw.length = {length!r})")
+    # Both drives: the whole nut on the screw (the core's rule, which
+    # DriveModel checks alike; a run of any concept ends where the nut's
+    # end reaches the screw's).
+    _core.check_nut_on_screw(data["drive"], data["nut"]["position"], data["nut"]["length"],
+                             data["screw"]["length"])
     _check_rotor_speed(data)
     play = data["initial"]["play_position"]
     backlash = data.get("backlash")
@@ -915,222 +914,115 @@ def describe_schema() -> str:
     return "\n".join(lines)
 
 
-def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
-    """:func:`_derived_values`, each checked (:func:`_check_derived`).
+# The scene's inputs of the derivation (_core.DriveGeometry's fields, named
+# <section>_<key>): always present, and optional (None where absent).
+_GEOMETRY_FIELDS = (("thread", ("pitch", "mean_diameter", "starts", "flank_angle")),
+                    ("friction", ("mu",)),
+                    ("screw", ("radius", "length", "density", "youngs_modulus", "poisson")),
+                    ("nut", ("outer_radius", "length", "density", "youngs_modulus", "poisson")),
+                    ("load", ("mass",)))
+_OPTIONAL_GEOMETRY_FIELDS = (("backlash", ("stiffness", "damping", "penetration")),
+                             ("overrides", ("screw_mass", "screw_inertia", "nut_mass",
+                                            "nut_inertia", "screw_axial_stiffness",
+                                            "screw_torsional_stiffness", "nut_axial_stiffness",
+                                            "nut_torsional_stiffness")))
 
-    Raises:
-        ValueError: a derived quantity is out of range, naming the inputs
-            that made it so.
-    """
-    return _check_derived(data)
 
-
-def _derived_values(data: Dict[str, Any]) -> Dict[str, Any]:
-    """Masses, inertias, rigidities and stiffnesses from geometry and material
-    (thesis eq. 4.17, 4.18, 4.24; polar moments for torsion), overrides applied.
-
-    The arithmetic never raises (no ``**`` of floats, which raises
-    OverflowError): a value beyond the float range comes out as inf or 0,
-    which :func:`_check_derived` refuses, naming the input.
-    """
-    screw, nut, over = data["screw"], data["nut"], data["overrides"]
-    r_s, r_o = screw["radius"], nut["outer_radius"]
-    g_s = screw["youngs_modulus"] / (2.0 * (1.0 + screw["poisson"]))
-    g_n = nut["youngs_modulus"] / (2.0 * (1.0 + nut["poisson"]))
-    r_s2, r_o2 = r_s * r_s, r_o * r_o
-    area_s = math.pi * r_s2
-    polar_s = math.pi * r_s2 * r_s2 / 2.0
-    area_n = math.pi * (r_o2 - r_s2)
-    polar_n = math.pi * (r_o2 * r_o2 - r_s2 * r_s2) / 2.0
-    screw_mass = over.get("screw_mass", screw["density"] * area_s * screw["length"])
-    nut_mass = over.get("nut_mass", nut["density"] * area_n * nut["length"])
-    d = {
-        "screw_mass": screw_mass,
-        "screw_inertia": over.get("screw_inertia", 0.5 * screw_mass * r_s2),
-        "nut_mass": nut_mass,
-        "nut_inertia": over.get("nut_inertia", 0.5 * nut_mass * (r_o2 + r_s2)),
-        "screw_axial_rigidity": screw["youngs_modulus"] * area_s,
-        "screw_torsional_rigidity": g_s * polar_s,
-        "nut_axial_stiffness": over.get("nut_axial_stiffness",
-                                        nut["youngs_modulus"] * area_n / nut["length"]),
-        "nut_torsional_stiffness": over.get("nut_torsional_stiffness",
-                                            g_n * polar_n / nut["length"]),
-        "screw_axial_stiffness": over.get("screw_axial_stiffness", 0.0),
-        "screw_torsional_stiffness": over.get("screw_torsional_stiffness", 0.0),
-    }
+def _geometry(data: Dict[str, Any]) -> "_core.DriveGeometry":
+    """The core's DriveGeometry of a (checked) scene."""
+    g = _core.DriveGeometry()
+    g.drive = data["drive"]
+    for section, keys in _GEOMETRY_FIELDS:
+        values = data[section]
+        for key in keys:
+            setattr(g, f"{section}_{key}", values[key])
     backlash = data.get("backlash")
     if backlash is not None:
-        translating = data["load"]["mass"] + (nut_mass if data["drive"] == "screw" else screw_mass)
-        depth = backlash.get("penetration", max(backlash["axial"] / 100.0, 1e-7))
-        linear = d["nut_axial_stiffness"]
-        # A 'bistop' stiffness is in N/m^exponent: match the nut's spring force
-        # k_nut d_0 at the reference penetration d_0.
-        exponent = backlash["exponent"] if backlash["contact"] == "bistop" else 1.0
-        k = backlash.get("stiffness", linear * _power(depth, 1.0 - exponent))
-        d["contact_stiffness"] = k
-        # Critical damping of the contact's linear-equivalent stiffness at d_0.
-        equivalent = k * _power(depth, exponent - 1.0)
-        d["contact_damping"] = backlash.get("damping", 2.0 * _root(equivalent * translating))
-        d["contact_penetration"] = depth
-    return d
+        g.backlash_contact = backlash["contact"]
+        g.backlash_axial, g.backlash_exponent = backlash["axial"], backlash["exponent"]
+    for section, keys in _OPTIONAL_GEOMETRY_FIELDS:
+        values = data.get(section) or {}
+        for key in keys:
+            setattr(g, f"{section}_{key}", values.get(key))
+    return g
 
 
-def _root(x: float) -> float:
-    """sqrt(x), NaN where x is negative or NaN (a quantity the checks then
-    name the input of, instead of math's 'domain error': a stiffness that
-    came out negative from an input that is not)."""
-    return math.sqrt(x) if x >= 0.0 else math.nan
+def _derivation(data: Dict[str, Any]) -> "_core.DerivedQuantities":
+    """The core's derivation of the scene's masses, inertias, rigidities and
+    stiffnesses (``_core.derive_drive``: thesis eq. 4.17, 4.18, 4.24,
+    overrides applied), every quantity in its range.
+
+    Raises:
+        ValueError: a quantity is out of its range (the core's verdict), naming
+            the inputs that made it so (see :func:`_blamed`), e.g.
+            ``nut.density = 5e-324 is invalid: with it the nut's mass (...)
+            comes to 0.0 kg: must be a finite number > 0 (or set
+            overrides.nut_mass)``.
+    """
+    derivation = _core.derive_drive(_geometry(data))
+    key = derivation.problem
+    if key is None:
+        return derivation
+    quantity = _QUANTITY[key]
+    value = derivation.quantities[key]
+
+    def still_bad(changed: Dict[str, Any]) -> bool:
+        value = _quantity_values(changed).get(key)
+        return value is not None and quantity.problem(value) is not None
+
+    hint = f" (or set {quantity.override})" if quantity.override else ""
+    unit = f" {quantity.unit}" if quantity.unit else ""
+    raise _blamed(data, still_bad, f"{quantity.text} comes to {value!r}{unit}: must be "
+                                   f"{quantity.problem(value)}{hint}")
 
 
-def _power(base: float, exponent: float) -> float:
-    """``base ** exponent`` for base > 0, inf where it overflows (instead of
-    Python's OverflowError)."""
-    try:
-        return base ** exponent
-    except OverflowError:
-        return math.inf
-
-
-def _thread_quantities(data: Dict[str, Any]) -> Dict[str, float]:
-    """What the thread's inputs give the model: tan(lead angle) = lead /
-    (pi d_m) and mu' = mu / cos(beta / 2) (checked, not part of derived())."""
-    t = data["thread"]
-    return {"tan_lead_angle": t["starts"] * t["pitch"] / (math.pi * t["mean_diameter"]),
-            "effective_mu": data["friction"]["mu"] / math.cos(0.5 * t["flank_angle"])}
-
-
-# The quantities derived from a scene's inputs, and what each must be: its
-# key (in derived() or _thread_quantities), its text for messages, unit,
-# range and the override that replaces it. _check_derived refuses a scene
-# whose quantity is out of range, naming the inputs that made it so.
-_TAN_LEAD_ANGLE_RANGE = (1e-6, 1e6)
-# Derived values that may be 0: a screw stiffness that follows the nut (no
-# override), no contact damping.
-_MAY_BE_ZERO = frozenset({"screw_axial_stiffness", "screw_torsional_stiffness",
-                          "contact_damping"})
+def _derived(data: Dict[str, Any]) -> Dict[str, Any]:
+    """Scene.derived(): the checked derivation's values (:func:`_derivation`)."""
+    return _derivation(data).derived
 
 
 @dataclass(frozen=True)
 class _Quantity:
+    """A quantity the core derives and checks (``_core.derived_quantities()``):
+    its key (in derived() or tan_lead_angle, effective_mu), its text for
+    messages, unit and the override that replaces it."""
+
     key: str
     text: str
     unit: str
-    low: float = 0.0
-    low_open: bool = True
-    high: float = math.inf
     override: str = ""
 
     def problem(self, value: float) -> Optional[str]:
-        """None if ``value`` is in range, else what it must be."""
-        above = value > self.low if self.low_open else value >= self.low
-        if math.isfinite(value) and above and value <= self.high:
-            return None
-        if self.high < math.inf:
-            return f"in [{self.low:g}, {self.high:g}]"
-        return f"a finite number {'>' if self.low_open else '>='} {self.low:g}"
+        """None if ``value`` is in the core's range of the quantity, else what it must be."""
+        return _core.derived_quantity_problem(self.key, value)
 
 
-_QUANTITIES = (
-    _Quantity("tan_lead_angle", "the tangent of the lead angle (thread.starts * thread.pitch / "
-              "(pi thread.mean_diameter))", "", low=_TAN_LEAD_ANGLE_RANGE[0], low_open=False,
-              high=_TAN_LEAD_ANGLE_RANGE[1]),
-    _Quantity("effective_mu", "the effective friction coefficient (friction.mu / "
-              "cos(thread.flank_angle / 2))", "", low_open=False),
-    _Quantity("screw_mass", "the screw's mass (screw.density * pi screw.radius^2 * "
-              "screw.length)", "kg", override="overrides.screw_mass"),
-    _Quantity("screw_inertia", "the screw's polar inertia (screw mass * screw.radius^2 / 2)",
-              "kg*m^2", override="overrides.screw_inertia"),
-    _Quantity("nut_mass", "the nut's mass (nut.density * pi (nut.outer_radius^2 - "
-              "screw.radius^2) * nut.length)", "kg", override="overrides.nut_mass"),
-    _Quantity("nut_inertia", "the nut's polar inertia (nut mass * (nut.outer_radius^2 + "
-              "screw.radius^2) / 2)", "kg*m^2", override="overrides.nut_inertia"),
-    _Quantity("screw_axial_rigidity", "the screw's axial rigidity (screw.youngs_modulus * pi "
-              "screw.radius^2)", "N", override="overrides.screw_axial_stiffness"),
-    _Quantity("screw_torsional_rigidity", "the screw's torsional rigidity (G I_p = "
-              "screw.youngs_modulus / (2 (1 + screw.poisson)) * pi screw.radius^4 / 2)",
-              "N*m^2", override="overrides.screw_torsional_stiffness"),
-    _Quantity("nut_axial_stiffness", "the nut's axial stiffness (nut.youngs_modulus * pi "
-              "(nut.outer_radius^2 - screw.radius^2) / nut.length)", "N/m",
-              override="overrides.nut_axial_stiffness"),
-    _Quantity("nut_torsional_stiffness", "the nut's torsional stiffness (G I_p / nut.length)",
-              "N*m/rad", override="overrides.nut_torsional_stiffness"),
-    _Quantity("screw_axial_stiffness", "overrides.screw_axial_stiffness (0: it follows the "
-              "nut's position)", "N/m", low_open=False),
-    _Quantity("screw_torsional_stiffness", "overrides.screw_torsional_stiffness (0: it "
-              "follows the nut's position)", "N*m/rad", low_open=False),
-    _Quantity("contact_stiffness", "the flank contact stiffness (default: the nut's axial "
-              "stiffness at backlash.penetration)", "N/m^exponent",
-              override="backlash.stiffness"),
-    _Quantity("contact_damping", "the flank contact damping (default: critical, of the "
-              "contact stiffness and the translating mass)", "N*s/m", low_open=False,
-              override="backlash.damping"),
-    _Quantity("contact_penetration", "the penetration of full contact damping "
-              "(backlash.penetration, default backlash.axial / 100)", "m",
-              override="backlash.penetration"),
-)
+_QUANTITIES = tuple(_Quantity(q["key"], q["text"], q["unit"], q["override"])
+                    for q in _core.derived_quantities())
+_QUANTITY = {q.key: q for q in _QUANTITIES}
 
 
 def _quantity_values(data: Dict[str, Any]) -> Dict[str, float]:
-    return {**_thread_quantities(data), **_derived_values(data)}
-
-
-def _check_derived(data: Dict[str, Any]) -> Dict[str, Any]:
-    """Refuse a scene whose derived quantities are out of range (not finite,
-    zero, a lead angle the model cannot resolve), naming the inputs that made
-    them so (see :func:`_blamed`). Scene.derived() and Scene.model() check.
-
-    Returns:
-        The derived values (:func:`_derived_values`).
-
-    Raises:
-        ValueError: e.g. ``nut.density = 5e-324 is invalid: with it the nut's
-            mass, ... comes to 0 kg: must be a finite number > 0 (or set
-            overrides.nut_mass)``.
-    """
-    values = _derived_values(data)
-    thread = _thread_quantities(data)
-    if _in_range(values, thread):  # the common case, at a fraction of the loop below
-        return values
-    values = {**thread, **values}
-    for quantity in _QUANTITIES:
-        value = values.get(quantity.key)
-        if value is None or quantity.problem(value) is None:
-            continue
-
-        def still_bad(changed: Dict[str, Any], quantity=quantity) -> bool:
-            value = _quantity_values(changed).get(quantity.key)
-            return value is not None and quantity.problem(value) is not None
-
-        hint = f" (or set {quantity.override})" if quantity.override else ""
-        unit = f" {quantity.unit}" if quantity.unit else ""
-        raise _blamed(data, still_bad, f"{quantity.text} comes to {value!r}{unit}: must be "
-                                       f"{quantity.problem(value)}{hint}")
-    raise AssertionError("_in_range and _QUANTITIES disagree")  # pragma: no cover
+    """Every quantity the core derives from ``data``, unchecked."""
+    return _core.derive_drive(_geometry(data)).quantities
 
 
 def _in_range(values: Dict[str, float], thread: Dict[str, float]) -> bool:
-    """Whether every quantity of :data:`_QUANTITIES` is in its range (the
-    same verdict as their ``problem``, written out for speed)."""
-    low, high = _TAN_LEAD_ANGLE_RANGE
-    inf = math.inf
-    if not (low <= thread["tan_lead_angle"] <= high and 0.0 <= thread["effective_mu"] < inf):
-        return False
-    for key, value in values.items():
-        if not 0.0 < value < inf and not (value == 0.0 and key in _MAY_BE_ZERO):
-            return False
-    return True
+    """Whether every quantity of ``values`` and ``thread`` (tan_lead_angle,
+    effective_mu) is in its range: the core's verdict on them all at once."""
+    return _core.first_derived_problem(list({**thread, **values}.items())) is None
 
 
 def _model(data: Dict[str, Any]) -> "_core.DriveModel":
-    """The core's model of a scene, its springs checked (:func:`_spring_problem`).
+    """The core's model of a scene, its springs checked (``_core.spring_frequency_problem``).
 
     A ValueError of the core that names an internal quantity (a spring's
     damping, a part's mass) names the scene's inputs that made it so instead
     (see :func:`_blamed`); one that names a key of the scene stays as it is.
     """
-    derived = _derived(data)  # ValueError naming the inputs itself
+    derivation = _derivation(data)  # ValueError naming the inputs itself
     try:
-        model = _core.DriveModel(_core_parameters(data, derived))
+        model = _core.DriveModel(_core_parameters(data, derivation))
     except ValueError as error:
         message = str(error)
         name, _, rest = message.partition(" = ")
@@ -1139,7 +1031,8 @@ def _model(data: Dict[str, Any]) -> "_core.DriveModel":
         value, _, why = rest.partition(" is invalid: ")
         raise _blamed(data, _model_is_bad, f"the model's {name} comes to {value}: {why}" if why
                       else f"the model cannot be built: {message}") from None
-    why = _spring_problem(derived, model)
+    # A part too stiff for its mass (the core's rule, sqrt(k / m) <= 1e12 rad/s).
+    why = _core.spring_frequency_problem(model)
     if why is not None:
         raise _blamed(data, _model_is_bad, why)
     return model
@@ -1148,35 +1041,11 @@ def _model(data: Dict[str, Any]) -> "_core.DriveModel":
 def _model_is_bad(data: Dict[str, Any]) -> bool:
     """Whether the scene ``data`` has no model (:func:`_model`'s checks)."""
     try:
-        derived = _derived(data)
-        model = _core.DriveModel(_core_parameters(data, derived))
+        derivation = _derivation(data)
+        model = _core.DriveModel(_core_parameters(data, derivation))
     except ValueError:
         return True
-    return _spring_problem(derived, model) is not None
-
-
-# The highest natural angular frequency of a part on its own spring: a part
-# stiffer for its mass than this is rigid to any drive, and beyond what the
-# integrators resolve (the runs ended in a wrong message, "the nut reached the
-# end of the screw", or NaN).
-_MAX_NATURAL_FREQUENCY = 1e12  # rad/s
-
-
-def _spring_problem(derived: Dict[str, Any], model: "_core.DriveModel") -> Optional[str]:
-    """None, or what is wrong with a spring of ``model``: its part's natural
-    angular frequency sqrt(k / m) (m the part's mass or polar inertia from
-    ``derived``, k the spring's stiffness at the start) is not finite or
-    above :data:`_MAX_NATURAL_FREQUENCY`."""
-    for spring in model.springs:  # none in the rigid concept
-        part, kind = spring["name"].split(" ")
-        inertia = "mass" if kind == "axial" else "inertia"
-        omega = _root(spring["stiffness"] / derived[f"{part}_{inertia}"])
-        if not omega <= _MAX_NATURAL_FREQUENCY:
-            return (f"the {part}'s {kind} natural frequency sqrt(stiffness / {part} {inertia}) "
-                    f"comes to {omega!r} rad/s: must be at most {_MAX_NATURAL_FREQUENCY:g} "
-                    f"rad/s (a part this stiff for its {inertia} is rigid to any drive; a "
-                    "concept that takes it as rigid models it)")
-    return None
+    return _core.spring_frequency_problem(model) is not None
 
 
 # The key paths of the numeric fields, and the value each is set back to
@@ -1261,8 +1130,10 @@ def _thread(data: Dict[str, Any]) -> Thread:
                         t["hand"])
 
 
-def _core_parameters(data: Dict[str, Any], d: Dict[str, Any]) -> "_core.DriveParameters":
-    """The core's parameters of a scene, ``d`` its derived values."""
+def _core_parameters(data: Dict[str, Any],
+                     derivation: "_core.DerivedQuantities") -> "_core.DriveParameters":
+    """The core's parameters of a scene, ``derivation`` its derived values
+    (:func:`_derivation`)."""
     p = _core.DriveParameters()
     p.concept = data["concept"]
     p.drive = data["drive"]
@@ -1270,19 +1141,13 @@ def _core_parameters(data: Dict[str, Any], d: Dict[str, Any]) -> "_core.DrivePar
     f = data["friction"]
     p.friction, p.mu, p.k_v = f["law"], f["mu"], f["k_v"]
     p.friction_values = _friction_values(f)
-    for key in ("screw_mass", "screw_inertia", "nut_mass", "nut_inertia",
-                "screw_axial_rigidity", "screw_torsional_rigidity", "nut_axial_stiffness",
-                "nut_torsional_stiffness", "screw_axial_stiffness", "screw_torsional_stiffness"):
-        setattr(p, key, d[key])
+    derivation.apply_to(p)  # masses, inertias, stiffnesses, the contact's values
     backlash = data.get("backlash")
     if backlash is not None:
         p.backlash = backlash["contact"]
         p.clearance = backlash["axial"]
         p.restitution = backlash["restitution"]
         p.contact_exponent = backlash["exponent"]
-        p.contact_stiffness = d["contact_stiffness"]
-        p.contact_damping = d["contact_damping"]
-        p.contact_penetration = d["contact_penetration"]
     p.rotor_inertia = data["rotor"]["inertia"]
     p.load_mass = data["load"]["mass"]
     p.screw_length = data["screw"]["length"]

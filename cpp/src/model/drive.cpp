@@ -5,6 +5,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/drive_geometry.hpp"
 
 namespace leadscrew::model {
 
@@ -47,8 +48,6 @@ const std::vector<ScalarField>& scalar_fields() {
   return fields;
 }
 
-namespace {
-
 // One list per enumeration, in the order of its values: the names and the
 // parser cannot drift apart.
 const std::vector<std::string>& concept_names() {
@@ -71,7 +70,6 @@ const std::vector<std::string>& initial_state_names() {
   static const std::vector<std::string> names = {"relaxed", "equilibrium"};
   return names;
 }
-}  // namespace
 
 std::string concept_name(Concept c) { return concept_names()[static_cast<int>(c)]; }
 std::string drive_name(DrivenPart d) { return drive_names()[static_cast<int>(d)]; }
@@ -124,6 +122,10 @@ Eigen::VectorXd DriveModel::consistent_velocity(double rotor_speed) const {
   const double speed = per_unit != 0.0 ? -play_gradient().dot(v) / per_unit : 0.0;
   for (int i : e_.translating_group) v[i] = speed;
   return v;
+}
+
+double DriveModel::screw_end_margin(double nut_position) const noexcept {
+  return model::screw_end_margin(nut_position, p_.nut_length, p_.screw_length);
 }
 
 std::string DriveModel::nut_off_screw(double nut_position) const {

@@ -8,6 +8,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/friction/flank_lcp.hpp"
+#include "leadscrew/model/drive_geometry.hpp"
 
 namespace leadscrew::model {
 
@@ -608,15 +609,12 @@ std::string DriveDynamics::jamming_report(double regularized_factor) const {
   if (model_.elements().forces.empty() && !model_.motor().speed_controlled) {
     const double inertia = model_.mass()[model_.rotor()];
     const double mass = model_.mass()[model_.load()];
-    const double r_m = p.thread.mean_radius();
-    const double tan_a = std::tan(p.thread.lead_angle());
-    const double cot_a = 1.0 / tan_a;
-    out << "; rigid drive: m r^2 tan(a) (" << name << " - tan a) = "
-        << mass * r_m * r_m * tan_a * (kappa - tan_a) << " vs J (1 + " << name
-        << " tan a) = " << inertia * (1.0 + kappa * tan_a) << ", J cot(a) (" << name
-        << " - cot a) = " << inertia * cot_a * (kappa - cot_a) << " vs m r^2 (1 + " << name
-        << " cot a) = " << mass * r_m * r_m * (1.0 + kappa * cot_a) << " (J = " << inertia
-        << " kg m^2, m = " << mass << " kg)";
+    const JammingMargins margins = rigid_jamming_margins(p.thread, kappa, inertia, mass);
+    out << "; rigid drive: m r^2 tan(a) (" << name << " - tan a) = " << margins.lhs1
+        << " vs J (1 + " << name << " tan a) = " << margins.rhs1 << ", J cot(a) (" << name
+        << " - cot a) = " << margins.lhs2 << " vs m r^2 (1 + " << name
+        << " cot a) = " << margins.rhs2 << " (J = " << inertia << " kg m^2, m = " << mass
+        << " kg)";
   }
   out << "; state q = [";
   for (int i = 0; i < q_.size(); ++i) out << (i ? ", " : "") << q_[i];

@@ -15,6 +15,7 @@ from typing import Any, Dict, Optional, Sequence
 import numpy as np
 import pandas as pd
 
+from ..scene import SCHEMA
 from ..simulation import simulate
 from ._common import (annotate, axes, as_scene, check_count, check_positive, numeric_or_nan,
                       with_tolerances)
@@ -24,7 +25,7 @@ from ._sweep import run_cases
 __all__ = ["CONCEPTS", "compare_concepts", "plot_compare_concepts"]
 
 #: The concepts from the least to the most detailed.
-CONCEPTS = ("rigid", "flexible_nut", "flexible")
+CONCEPTS = SCHEMA["concept"].choices  # the core's: rigid, flexible_nut, flexible
 
 UNITS = {"concept": "", "reference": "", "wall_time": "s", "steps": "1", "events": "1",
          "max_abs_diff": "m", "rms_diff": "m", "u_final": "m", "t": "s", "u_load": "m",

@@ -184,9 +184,8 @@ class DriveModel {
   // How far the nut's nearer end is inside the screw's nearer end
   // [m] with its centre at nut_position: > 0 while the whole nut is on the
   // screw (the start must be; a run ends where it reaches 0).
-  double screw_end_margin(double nut_position) const noexcept {
-    return elements::ThreadPair::screw_end_margin(p_.screw_length, p_.nut_length, nut_position);
-  }
+  // (model::screw_end_margin, drive_geometry.hpp: the rule's one place.)
+  double screw_end_margin(double nut_position) const noexcept;
   // What an error says where the nut leaves the screw (the end of a run, or a
   // trial state off the model's domain), and its hint.
   std::string nut_off_screw(double nut_position) const;
@@ -202,8 +201,14 @@ class DriveModel {
   std::vector<int> independent_;
 };
 
-// The names of the enumerations in scene files; parse_* raise InvalidArgument
-// naming the key and the allowed names.
+// The names of the enumerations in scene files, each list in the order of
+// its values (the Python Scene's choices come from here); parse_* raise
+// InvalidArgument naming the key and the allowed names.
+const std::vector<std::string>& concept_names();
+const std::vector<std::string>& drive_names();
+const std::vector<std::string>& support_names();
+const std::vector<std::string>& backlash_contact_names();  // "none" first
+const std::vector<std::string>& initial_state_names();
 std::string concept_name(Concept c);
 std::string drive_name(DrivenPart d);
 std::string support_name(ScrewSupport s);

@@ -6,6 +6,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/drive_geometry.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/elements/drive_elements.hpp"
 
@@ -175,12 +176,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
                           " is invalid: must be < screw.length = " +
                           format_value(p.screw_length));
   require_positive("nut.length", p.nut_length);
-  if (!(ThreadPair::screw_end_margin(p.screw_length, p.nut_length, p.nut_position) > 0.0))
-    throw InvalidArgument("nut.position = " + format_value(p.nut_position) +
-                          " is invalid: must be in (nut.length / 2, screw.length - nut.length "
-                          "/ 2) = (" + format_value(0.5 * p.nut_length) + ", " +
-                          format_value(p.screw_length - 0.5 * p.nut_length) +
-                          "): the whole nut on the screw");
+  require_nut_on_screw(p.drive, p.nut_position, p.nut_length, p.screw_length, false);
   require_nonnegative("overrides.damping_ratio", p.damping_ratio);
   Eigen::VectorXd mass = Eigen::VectorXd::Zero(e.coordinate_count());
   for (const RigidBody& body : e.bodies) body.add_mass(mass);

@@ -82,13 +82,6 @@ class ThreadPair {
     return a;
   }
 
-  // How far the nut's nearer end is inside the screw's nearer end [m] with
-  // its centre at a: > 0 while the whole nut is on the screw.
-  static double screw_end_margin(double screw_length, double nut_length, double a) noexcept {
-    const double half = 0.5 * nut_length;
-    return std::min(a - half, screw_length - half - a);
-  }
-
   void penalty_force(double play, double play_rate, Penalty& out) const;
   // The potential of penalty_force's elastic forces at the penetrations.
   double contact_energy(const double penetration[2]) const noexcept;

@@ -457,6 +457,23 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _scene_command(args: argparse.Namespace) -> int:
+    """``leadscrew scene resolve SCENE [-o FILE]``: the scene's core spec
+    (:meth:`leadscrew.Scene.to_core_toml`), the input of the C API, to FILE
+    or standard output."""
+    scene, _, source = _load_scene(args.scene)
+    try:
+        text = scene.to_core_toml()
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+    if args.output in (None, "-"):
+        sys.stdout.write(text)
+    else:
+        Path(args.output).write_text(text, encoding="utf-8")
+        print(f"wrote {args.output}")
+    return 0
+
+
 def _demo(args: argparse.Namespace) -> int:
     from . import scenes
 
@@ -848,6 +865,16 @@ def _parser() -> argparse.ArgumentParser:
                             "-o DIR)")
     study.add_argument("-o", "--output", default=".", help="output directory (default .)")
     study.set_defaults(func=_study)
+
+    scene = command("scene", help="scene tools: 'resolve' writes the core spec (every value "
+                    "SI and explicit) that the C API reads",
+                    epilog="example: leadscrew scene resolve default -o core.toml")
+    scene.add_argument("action", choices=("resolve",), metavar="resolve",
+                       help="write SCENE's core spec (Scene.to_core_toml)")
+    scene.add_argument("scene", metavar="SCENE")
+    scene.add_argument("-o", "--output", default=None,
+                       help="the file to write (default: standard output)")
+    scene.set_defaults(func=_scene_command)
 
     demo = command("demo", help="simulate the default scene and write its figures")
     demo.add_argument("-o", "--output", default="leadscrew-demo",

@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'simulate_block', 'simulate_drive']
+__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'read_core_spec', 'simulate_block', 'simulate_drive', 'write_core_spec']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -25,7 +25,8 @@ class JammingError(SimulationError):
     """
 class NoEquilibriumError(ValueError):
     """
-    A start in static equilibrium (``initial.state = 'equilibrium'``) that the loads at t = 0 do not admit: holding them at rest
+    A start in static equilibrium (``initial.state =
+    'equilibrium'``) that the loads at t = 0 do not admit: holding them at rest
     takes a flank friction force beyond the friction cone (the loads drive the
     thread). A ValueError; the message gives the loads and the forces.
     """
@@ -191,6 +192,7 @@ class DriveParameters:
     concept: str
     drive: str
     friction: str
+    initial_state: str
     speed_controlled: bool
     support: str
     thread: Thread
@@ -325,12 +327,6 @@ class DriveParameters:
     def nut_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
-    def initial_state(self) -> str:
-        ...
-    @initial_state.setter
-    def initial_state(self, arg1: str) -> None:
-        ...
-    @property
     def play_position(self) -> float:
         ...
     @play_position.setter
@@ -420,6 +416,10 @@ class DriveModel:
     """
     def __init__(self, parameters: DriveParameters) -> None:
         ...
+    def initial_state(self) -> dict:
+        """
+        The state at t = 0 that initial.state asks for: dict with q and v (every coordinate and velocity, in coordinate_names' order), play [m], normal_force and friction_force [N] (the flank forces holding the loads: 0 for a relaxed start), iterations (Newton's). NoEquilibriumError where the loads at t = 0 have no static equilibrium.
+        """
     @property
     def coordinate_names(self) -> list[str]:
         ...
@@ -429,10 +429,6 @@ class DriveModel:
     @property
     def effective_mu(self) -> float:
         ...
-    def initial_state(self) -> dict:
-        """
-        The state at t = 0 that initial.state asks for: dict with q and v (every coordinate and velocity, in coordinate_names' order), play [m], normal_force and friction_force [N] (the flank forces holding the loads: 0 for a relaxed start), iterations (Newton's). NoEquilibriumError where the loads at t = 0 have no static equilibrium.
-        """
     @property
     def mass(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
@@ -442,6 +438,59 @@ class DriveModel:
     @property
     def springs(self) -> list:
         ...
+class DriveStepper:
+    """
+    A drive advanced piece by piece with its inputs held over each piece (model/drive_stepper.hpp): simulate_drive's event-driven run, its state kept.
+    """
+    def __init__(self, drive: DriveModel, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> None:
+        """
+        The drive at t = 0; the options as simulate_drive's (integrator "": the model's default; "moreau" refused). ValueError for a bad option.
+        """
+    def advance(self, t: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        Advance to t [s] >= time with the inputs held. SimulationError (the nut at the screw's end, a solver failure), JammingError; ValueError for t < time.
+        """
+    def channel(self, name: str) -> float:
+        """
+        The result channel at time (simulate's names, SI).
+        """
+    def channels(self) -> list[float]:
+        """
+        Every channel at time, in channel_names' order.
+        """
+    def input(self, name: str) -> float:
+        """
+        The input's value at time (SI).
+        """
+    def reset(self) -> None:
+        """
+        Back to t = 0 and the drive's own loads.
+        """
+    def set_input(self, name: str, value: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        """
+        Hold the input ("drive_torque" [N*m], "axial_force" [N]) at value from time on. ValueError for an unknown name or a bad value.
+        """
+    @property
+    def channel_names(self) -> list[str]:
+        ...
+    @property
+    def events(self) -> list:
+        """
+        The events so far: (time [s], kind) tuples.
+        """
+    @property
+    def input_names(self) -> list[str]:
+        ...
+    @property
+    def stats(self) -> dict:
+        """
+        Counts so far, as Result.stats (wall_time 0).
+        """
+    @property
+    def time(self) -> float:
+        """
+        The time reached [s].
+        """
 class DriveBatchResult:
     """
     What DriveBatch.run gives: samples and failures.
@@ -528,9 +577,17 @@ def pooled_helper_count() -> int:
     """
 def raise_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
     ...
+def read_core_spec(text: str) -> tuple[DriveParameters, dict]:
+    """
+    (DriveParameters, options dict) from a core spec's TOML text. ValueError naming the key for a bad spec.
+    """
 def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.SupportsIndex, friction: str, integrator: str, law: collections.abc.Mapping[str, typing.SupportsFloat | typing.SupportsIndex], rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     ...
 def simulate_drive(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     """
     Simulate the drive (leadscrew.simulate's drive path); progress: None or a callable of the simulated time, called about every 0.1 s of wall time (Ctrl-C is checked there too).
+    """
+def write_core_spec(parameters: DriveParameters, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> str:
+    """
+    The core spec (TOML text, model/core_spec.hpp) of the parameters and the run's options. ValueError for a callable load.
     """

@@ -5,6 +5,7 @@
 
 #include "bindings.hpp"
 #include "leadscrew/model/core_spec.hpp"
+#include "leadscrew/model/cosim.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_batch.hpp"
 #include "leadscrew/model/drive_equilibrium.hpp"
@@ -216,6 +217,29 @@ void bind_drive(py::module_& m) {
       py::arg("text"),
       "(DriveParameters, options dict) from a core spec's TOML text. ValueError naming the "
       "key for a bad spec.");
+
+  m.def(
+      "cosim_variables",
+      [](const DriveParameters& parameters) {
+        py::list out;
+        for (const model::CosimVariable& v : model::cosim_variables(parameters)) {
+          py::dict entry;
+          entry["name"] = v.name;
+          entry["reference"] = v.reference;
+          entry["kind"] = v.kind == model::CosimVariable::Kind::input    ? "input"
+                          : v.kind == model::CosimVariable::Kind::output ? "output"
+                                                                         : "parameter";
+          entry["boolean"] = v.boolean;
+          entry["unit"] = v.unit;
+          entry["start"] = v.start;
+          entry["description"] = v.description;
+          out.append(entry);
+        }
+        return out;
+      },
+      py::arg("parameters"),
+      "The variables the FMU shows of the drive (model/cosim.hpp): dicts with name, "
+      "reference, kind (input, output, parameter), boolean, unit, start, description.");
 
   py::class_<model::DriveStepper>(
       m, "DriveStepper",

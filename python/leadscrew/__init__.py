@@ -3,7 +3,7 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
-from . import integrate, lcp, scene, scenes, studies, units
+from . import fmi, integrate, lcp, scene, scenes, studies, units
 from .errors import JammingError, NoEquilibriumError, SimulationError, StudyWarning
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
@@ -79,6 +79,7 @@ __all__ = [
     "JammingError",
     "NoEquilibriumError",
     "StudyWarning",
+    "fmi",
     "integrate",
     "lcp",
     "scene",

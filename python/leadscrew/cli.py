@@ -474,6 +474,21 @@ def _scene_command(args: argparse.Namespace) -> int:
     return 0
 
 
+def _export_fmu(args: argparse.Namespace) -> int:
+    """``leadscrew export-fmu SCENE -o drive.fmu``: the scene as an FMI 2.0
+    co-simulation FMU (:func:`leadscrew.fmi.export_fmu`)."""
+    from . import fmi
+
+    scene, name, source = _load_scene(args.scene)
+    output = args.output or f"{name}.fmu"
+    try:
+        fmi.export_fmu(scene, output, name=name)
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+    print(f"wrote {output}")
+    return 0
+
+
 def _demo(args: argparse.Namespace) -> int:
     from . import scenes
 
@@ -875,6 +890,13 @@ def _parser() -> argparse.ArgumentParser:
     scene.add_argument("-o", "--output", default=None,
                        help="the file to write (default: standard output)")
     scene.set_defaults(func=_scene_command)
+
+    export = command("export-fmu", help="write SCENE as an FMI 2.0 co-simulation FMU",
+                     epilog="example: leadscrew export-fmu default -o drive.fmu")
+    export.add_argument("scene", metavar="SCENE")
+    export.add_argument("-o", "--output", default=None,
+                        help="the .fmu file to write (default: SCENE's name + .fmu)")
+    export.set_defaults(func=_export_fmu)
 
     demo = command("demo", help="simulate the default scene and write its figures")
     demo.add_argument("-o", "--output", default="leadscrew-demo",

@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'read_core_spec', 'simulate_block', 'simulate_drive', 'write_core_spec']
+__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'cosim_variables', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'read_core_spec', 'simulate_block', 'simulate_drive', 'write_core_spec']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -547,6 +547,10 @@ def check_drive_options(drive: DriveModel, t_end: typing.SupportsFloat | typing.
 def check_friction_law(name: str, values: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]], prefix: str = 'friction.') -> None:
     """
     Raises ValueError naming '<prefix><key>', the value and the range where the law `name` does not take `values` ((key, value) pairs): an unknown key, a missing required one, a value out of range or below the key it may not fall below (mu_static >= mu).
+    """
+def cosim_variables(parameters: DriveParameters) -> list:
+    """
+    The variables the FMU shows of the drive (model/cosim.hpp): dicts with name, reference, kind (input, output, parameter), boolean, unit, start, description.
     """
 def drive_integrators(parameters: DriveParameters) -> list[str]:
     ...

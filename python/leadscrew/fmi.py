@@ -62,7 +62,7 @@ def _number(value: float) -> str:
     return repr(float(value))
 
 
-def model_description(variables: List[dict], name: str, guid: str,
+def _model_description(variables: List[dict], name: str, guid: str,
                       stop_time: float = 1.0, step: float = 1e-3) -> str:
     """The ``modelDescription.xml`` text of a drive's FMU.
 
@@ -166,7 +166,7 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
     path = os.fspath(path)
     name = name or os.path.splitext(os.path.basename(path))[0]
     guid = "{" + str(uuid.uuid5(uuid.NAMESPACE_URL, "leadscrew:" + name + spec)) + "}"
-    xml = model_description(variables, name, guid, stop_time, step)
+    xml = _model_description(variables, name, guid, stop_time, step)
     binary = _binary()
     with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED) as fmu:
         fmu.writestr("modelDescription.xml", xml)

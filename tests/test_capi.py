@@ -110,3 +110,11 @@ def test_a_step_past_the_screws_end_gives_an_error_text(capi_check, tmp_path):
     assert lines[0].startswith("error 2: ") and "screw" in lines[0]
     assert lines[1].startswith("error 2: ") and "stopped at its failure" in lines[1]
     assert lines[2:] == ["ok", "ok"]  # reset, and a step within the screw
+
+
+def test_null_pointers_are_errors_not_crashes(capi_check):
+    lines = run(capi_check, "null", "-")
+    assert lines[:2] == ["1", "1"]
+    for line in lines[2:7]:
+        assert line.startswith("error 1: ") and "is NULL" in line, line
+    assert lines[7] == "1 0 0 1"  # NaN time, no channels, no events, no name

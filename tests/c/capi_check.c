@@ -7,6 +7,7 @@
  *   capi_check toml TEXT      a drive from TOML text: "ok" or "error CODE: TEXT"
  *   capi_check input SPEC NAME VALUE     set an input: "ok" or "error CODE: TEXT"
  *   capi_check advance SPEC T            advance twice to T: a line per call
+ *   capi_check null -                    every function with NULL pointers: a line each
  * Exit code 0 unless the program itself is misused (then 64).
  */
 #include <stdio.h>
@@ -35,6 +36,21 @@ static leadscrew_drive* open_spec(const char* path) {
 int main(int argc, char** argv) {
   if (argc < 3) return 64;
   const char* mode = argv[1];
+  if (strcmp(mode, "null") == 0) {
+    double value = 0.0;
+    printf("%d\n", leadscrew_drive_from_toml(NULL) == NULL);
+    printf("%d\n", leadscrew_drive_from_file(NULL) == NULL);
+    report(leadscrew_set_input(NULL, "axial_force", 1.0));
+    report(leadscrew_get_input(NULL, "axial_force", &value));
+    report(leadscrew_advance(NULL, 1.0));
+    report(leadscrew_get_channel(NULL, "u_load", &value));
+    report(leadscrew_reset(NULL));
+    printf("%d %d %ld %d\n", leadscrew_time(NULL) != leadscrew_time(NULL),
+           leadscrew_channel_count(NULL), leadscrew_event_count(NULL),
+           leadscrew_channel_name(NULL, 0) == NULL);
+    leadscrew_drive_free(NULL);
+    return 0;
+  }
   if (strcmp(mode, "toml") == 0) {
     leadscrew_drive* drive = leadscrew_drive_from_toml(argv[2]);
     if (drive) {

@@ -5,11 +5,14 @@
 
 #include "bindings.hpp"
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/model/core_spec.hpp"
+#include "leadscrew/model/cosim.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_batch.hpp"
 #include "leadscrew/model/drive_equilibrium.hpp"
 #include "leadscrew/model/drive_geometry.hpp"
 #include "leadscrew/model/drive_simulation.hpp"
+#include "leadscrew/model/drive_stepper.hpp"
 
 namespace py = pybind11;
 
@@ -341,6 +344,118 @@ void bind_drive(py::module_& m) {
          const py::object&) { model::check_simulation_options(drive, options); },
       "The checks simulate_drive makes of these options before it integrates, without "
       "simulating: ValueError naming the option, its value and the valid range.");
+
+  m.def(
+      "write_core_spec",
+      [](const DriveParameters& parameters, const std::string& integrator,
+         const std::string& smooth_integrator, double rtol, double atol, long max_steps,
+         long max_events, double max_step, double first_step, double bounce_threshold,
+         int max_order) {
+        return model::write_core_spec(
+            parameters, drive_options(1.0, integrator, smooth_integrator, rtol, atol, 1e-4, 0.5,
+                                      {}, max_steps, max_events, max_step, first_step,
+                                      bounce_threshold, max_order, true));
+      },
+      py::arg("parameters"), py::arg("integrator"), py::arg("smooth_integrator"),
+      py::arg("rtol"), py::arg("atol"), py::arg("max_steps"), py::arg("max_events"),
+      py::arg("max_step"), py::arg("first_step"), py::arg("bounce_threshold"),
+      py::arg("max_order"),
+      "The core spec (TOML text, model/core_spec.hpp) of the parameters and the run's "
+      "options. ValueError for a callable load.");
+  m.def(
+      "read_core_spec",
+      [](const std::string& text) {
+        const model::CoreSpec spec = model::read_core_spec(text);
+        const integrate::IntegratorOptions& o = spec.options.integrator_options;
+        py::dict options;
+        options["integrator"] = spec.options.integrator;
+        options["smooth_integrator"] = spec.options.smooth_integrator;
+        options["rtol"] = o.rtol;
+        options["atol"] = o.atol;
+        options["max_steps"] = o.max_steps;
+        options["max_events"] = spec.options.max_events;
+        options["max_step"] = o.max_step;
+        options["first_step"] = o.first_step;
+        options["max_order"] = o.max_order;
+        options["bounce_threshold"] = spec.options.bounce_threshold;
+        return py::make_tuple(spec.parameters, options);
+      },
+      py::arg("text"),
+      "(DriveParameters, options dict) from a core spec's TOML text. ValueError naming the "
+      "key for a bad spec.");
+
+  m.def(
+      "cosim_variables",
+      [](const DriveParameters& parameters) {
+        py::list out;
+        for (const model::CosimVariable& v : model::cosim_variables(parameters)) {
+          py::dict entry;
+          entry["name"] = v.name;
+          entry["reference"] = v.reference;
+          entry["kind"] = v.kind == model::CosimVariable::Kind::input    ? "input"
+                          : v.kind == model::CosimVariable::Kind::output ? "output"
+                                                                         : "parameter";
+          entry["boolean"] = v.boolean;
+          entry["unit"] = v.unit;
+          entry["start"] = v.start;
+          entry["description"] = v.description;
+          out.append(entry);
+        }
+        return out;
+      },
+      py::arg("parameters"),
+      "The variables the FMU shows of the drive (model/cosim.hpp): dicts with name, "
+      "reference, kind (input, output, parameter), boolean, unit, start, description.");
+
+  py::class_<model::DriveStepper>(
+      m, "DriveStepper",
+      "A drive advanced piece by piece with its inputs held over each piece "
+      "(model/drive_stepper.hpp): simulate_drive's event-driven run, its state kept.")
+      .def(py::init([](const model::DriveModel& drive, const std::string& integrator,
+                       const std::string& smooth_integrator, double rtol, double atol,
+                       long max_steps, long max_events, double max_step, double first_step,
+                       double bounce_threshold, int max_order) {
+             model::DriveSimulationOptions options =
+                 drive_options(1.0, integrator, smooth_integrator, rtol, atol, 1e-4, 0.5, {},
+                               max_steps, max_events, max_step, first_step, bounce_threshold,
+                               max_order, false);
+             return std::make_unique<model::DriveStepper>(drive.parameters(), options);
+           }),
+           py::arg("drive"), py::arg("integrator"), py::arg("smooth_integrator"),
+           py::arg("rtol"), py::arg("atol"), py::arg("max_steps"), py::arg("max_events"),
+           py::arg("max_step"), py::arg("first_step"), py::arg("bounce_threshold"),
+           py::arg("max_order"),
+           "The drive at t = 0; the options as simulate_drive's (integrator \"\": the "
+           "model's default; \"moreau\" refused). ValueError for a bad option.")
+      .def_property_readonly("time", &model::DriveStepper::time, "The time reached [s].")
+      .def_property_readonly("input_names", &model::DriveStepper::input_names)
+      .def_property_readonly("channel_names", &model::DriveStepper::channel_names)
+      .def("advance", &model::DriveStepper::advance, py::arg("t"),
+           py::call_guard<py::gil_scoped_release>(),
+           "Advance to t [s] >= time with the inputs held. SimulationError (the nut at the "
+           "screw's end, a solver failure), JammingError; ValueError for t < time.")
+      .def("set_input", &model::DriveStepper::set_input, py::arg("name"), py::arg("value"),
+           "Hold the input (\"drive_torque\" [N*m], \"axial_force\" [N]) at value from "
+           "time on. ValueError for an unknown name or a bad value.")
+      .def("input", &model::DriveStepper::input, py::arg("name"),
+           "The input's value at time (SI).")
+      .def("channel", &model::DriveStepper::channel, py::arg("name"),
+           "The result channel at time (simulate's names, SI).")
+      .def("channels", &model::DriveStepper::channels,
+           "Every channel at time, in channel_names' order.")
+      .def_property_readonly(
+          "events",
+          [](const model::DriveStepper& s) {
+            py::list out;
+            for (const integrate::Event& e : s.events()) out.append(py::make_tuple(e.time, e.kind));
+            return out;
+          },
+          "The events so far: (time [s], kind) tuples.")
+      .def_property_readonly(
+          "stats",
+          [](const model::DriveStepper& s) { return stats_dict(s.stats()); },
+          "Counts so far, as Result.stats (wall_time 0).")
+      .def("reset", &model::DriveStepper::reset, "Back to t = 0 and the drive's own loads.");
 
   py::class_<model::DriveBatchResult>(m, "DriveBatchResult",
                                       "What DriveBatch.run gives: samples and failures.")

@@ -14,8 +14,6 @@ namespace py = pybind11;
 
 namespace leadscrew::bindings {
 
-namespace {
-
 py::dict stats_dict(const integrate::SimulationStats& s) {
   // The keys are made once (and never freed, so that nothing touches Python
   // at exit): a short simulation takes a few microseconds, and creating ten
@@ -33,6 +31,9 @@ py::dict stats_dict(const integrate::SimulationStats& s) {
   d[(*keys)[9]] = py::float_(s.wall_time);
   return d;
 }
+
+namespace {
+
 
 // channels as one (n_channels, n_points) array
 py::array_t<double> channel_matrix(const integrate::SimulationResult& r) {

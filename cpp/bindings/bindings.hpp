@@ -9,6 +9,7 @@
 #include "leadscrew/core/run_monitor.hpp"
 #include "leadscrew/excitation/excitation.hpp"
 #include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/integrate/simulation_result.hpp"
 
 namespace leadscrew::bindings {
 
@@ -24,6 +25,10 @@ void bind_drive(pybind11::module_& m);     // lead-screw drive models
 // Integrator options from the keyword arguments every simulate binding takes.
 integrate::IntegratorOptions integrator_options(double rtol, double atol, long max_steps,
                                                 double max_step, double first_step, int max_order);
+
+// A simulation's counts as a dict (steps, rhs_evaluations, events, ...,
+// wall_time), as Result.stats shows them.
+pybind11::dict stats_dict(const integrate::SimulationStats& s);
 
 // Converts a Python load description (an Excitation, a number, or a callable
 // of t) into an Excitation; `name` goes into the error message.

@@ -450,6 +450,38 @@ def _run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _scene_command(args: argparse.Namespace) -> int:
+    """``leadscrew scene resolve SCENE [-o FILE]``: the scene's core spec
+    (:meth:`leadscrew.Scene.to_core_toml`), the input of the C API, to FILE
+    or standard output."""
+    scene, _, source = _load_scene(args.scene)
+    try:
+        text = scene.to_core_toml()
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+    if args.output in (None, "-"):
+        sys.stdout.write(text)
+    else:
+        Path(args.output).write_text(text, encoding="utf-8")
+        print(f"wrote {args.output}")
+    return 0
+
+
+def _export_fmu(args: argparse.Namespace) -> int:
+    """``leadscrew export-fmu SCENE -o drive.fmu``: the scene as an FMI 2.0
+    co-simulation FMU (:func:`leadscrew.fmi.export_fmu`)."""
+    from . import fmi
+
+    scene, name, source = _load_scene(args.scene)
+    output = args.output or f"{name}.fmu"
+    try:
+        fmi.export_fmu(scene, output, name=name)
+    except ValueError as error:
+        raise ValueError(f"{source}: {error}") from None
+    print(f"wrote {output}")
+    return 0
+
+
 def _demo(args: argparse.Namespace) -> int:
     from . import scenes
 
@@ -841,6 +873,23 @@ def _parser() -> argparse.ArgumentParser:
                             "-o DIR)")
     study.add_argument("-o", "--output", default=".", help="output directory (default .)")
     study.set_defaults(func=_study)
+
+    scene = command("scene", help="scene tools: 'resolve' writes the core spec (every value "
+                    "SI and explicit) that the C API reads",
+                    epilog="example: leadscrew scene resolve default -o core.toml")
+    scene.add_argument("action", choices=("resolve",), metavar="resolve",
+                       help="write SCENE's core spec (Scene.to_core_toml)")
+    scene.add_argument("scene", metavar="SCENE")
+    scene.add_argument("-o", "--output", default=None,
+                       help="the file to write (default: standard output)")
+    scene.set_defaults(func=_scene_command)
+
+    export = command("export-fmu", help="write SCENE as an FMI 2.0 co-simulation FMU",
+                     epilog="example: leadscrew export-fmu default -o drive.fmu")
+    export.add_argument("scene", metavar="SCENE")
+    export.add_argument("-o", "--output", default=None,
+                        help="the .fmu file to write (default: SCENE's name + .fmu)")
+    export.set_defaults(func=_export_fmu)
 
     demo = command("demo", help="simulate the default scene and write its figures")
     demo.add_argument("-o", "--output", default="leadscrew-demo",

@@ -701,6 +701,47 @@ class Scene:
                 stream.write(text)
         return text
 
+    def to_core_toml(self, path: "Optional[str | os.PathLike[str]]" = None,
+                     **options) -> str:
+        """The scene's core spec: the drive as the C++ core runs it, in TOML,
+        for the C API (``leadscrew.h``) and programs without Python.
+
+        Every value is an SI number and every default and derived value
+        explicit (masses, inertias, stiffnesses, damping, the loads as
+        constant, sine or table), with the run's options (an ``[options]``
+        table). One C++ writer and reader define the format
+        (``cpp/include/leadscrew/model/core_spec.hpp``).
+
+        Args:
+            path: the file to write (UTF-8); None only returns the text.
+            **options: the run's options as :func:`leadscrew.simulate` takes
+                them (``integrator``, ``smooth_integrator``, ``rtol``,
+                ``atol``, ``max_steps``, ``max_events``, ``max_step``,
+                ``first_step``, ``bounce_threshold``, ``max_order``), with its
+                defaults.
+
+        Returns:
+            The TOML text.
+
+        Raises:
+            ValueError: a load is a Python callable (no file can carry it),
+                a derived value is out of range (as :meth:`model`), or an
+                unknown option (naming it).
+        """
+        from .simulation import _run_options
+
+        known = ("integrator", "smooth_integrator", "rtol", "atol", "max_steps", "max_events",
+                 "max_step", "first_step", "bounce_threshold", "max_order")
+        for name in options:
+            if name not in known:
+                raise ValueError(f"{name} = {options[name]!r} is invalid: to_core_toml takes "
+                                 f"the options {', '.join(known)}")
+        text = _core.write_core_spec(self.model().parameters, **_run_options(**options))
+        if path is not None:
+            with open(path, "w", encoding="utf-8", newline="\n") as stream:
+                stream.write(text)
+        return text
+
     def __getitem__(self, key: str):
         return _copy_tree(self._data[key])
 

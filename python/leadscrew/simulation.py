@@ -486,6 +486,24 @@ def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta
     return arguments
 
 
+def _run_options(integrator=None, smooth_integrator=None, rtol=None, atol=None,
+                 max_steps=1_000_000, max_events=100_000, max_step=None, first_step=None,
+                 bounce_threshold=None, max_order=None) -> dict:
+    """The options of a drive's run without its length or output, with
+    :func:`simulate`'s defaults: the keywords of ``_core.DriveStepper`` and
+    ``_core.write_core_spec`` (a core spec carries them).
+
+    Raises:
+        ValueError: a value of the wrong kind, naming the option.
+    """
+    arguments = _drive_arguments(1.0, integrator, smooth_integrator, rtol, atol, None, None,
+                                 [], max_steps, max_events, max_step, first_step,
+                                 bounce_threshold, max_order)
+    for unused in ("t_end", "dt", "theta", "t_eval", "check"):
+        del arguments[unused]
+    return arguments
+
+
 def simulate(
     model,
     t_end: float,

@@ -197,6 +197,21 @@ double Excitation::continuous_derivative(double t, const std::string& name) cons
   return (after - before) / (2.0 * h);
 }
 
+Excitation::Definition Excitation::definition() const {
+  switch (definition_.index()) {
+    case 0:
+      return {"constant", {std::get<0>(definition_).value}, {}, {}};
+    case 1: {
+      const auto& s = std::get<1>(definition_);
+      return {"sine", {s.amplitude, s.omega, s.phase, s.offset}, {}, {}};
+    }
+    case 2:
+      return {"table", {}, std::get<2>(definition_).times, std::get<2>(definition_).values};
+    default:
+      return {"callable", {}, {}, {}};
+  }
+}
+
 std::string Excitation::describe() const {
   std::ostringstream out;
   out.precision(12);

@@ -9,13 +9,12 @@
 #include "drive/hybrid.hpp"
 #include "drive/integrators.hpp"
 #include "drive/moreau.hpp"
+#include "drive/run_setup.hpp"
 #include "drive/state_layout.hpp"
-#include "leadscrew/core/errors.hpp"
 #include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/integrate/simulation_result.hpp"
-#include "leadscrew/model/drive_equilibrium.hpp"
 
 namespace leadscrew::model {
 
@@ -32,23 +31,11 @@ integrate::SimulationResult simulate(const DriveModel& model,
   const DriveParameters& p = model.parameters();
   const std::string& integrator = chosen_integrator(p, options);
 
-  // The law that runs: the model's, or a set-valued law's regularization
-  // where an ODE method runs it alone.
-  const bool ode_alone = integrator != "event_driven" && integrator != "moreau";
+  // The law that runs, the state at t = 0 (drive/run_setup.hpp).
   std::unique_ptr<friction::Law> regularization;
-  if (ode_alone && model.law().resolution() == friction::Resolution::set_valued) {
-    regularization = model.law().regularized();
-    if (!regularization)
-      throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with friction.law = \"" +
-                            p.friction + "\": the law has no regularization for an ODE method");
-  }
-  const friction::Law& law = regularization ? *regularization : model.law();
-
-  StateLayout layout(model, law.resolution() == friction::Resolution::bristle);
-  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(layout.size());
-  const DriveStart start = initial_state(model);  // initial.state: relaxed or in equilibrium
-  const CoordinateVector q = start.q, v = start.v;
-  layout.compress(q, v, y0.data());
+  const friction::Law& law = drive::running_law(model, integrator, regularization);
+  const StateLayout layout = drive::state_layout(model, law);
+  const Eigen::VectorXd y0 = drive::initial_vector(model, layout);
 
   if (integrator == "moreau") {
     DriveMoreau system(model);

@@ -52,6 +52,15 @@ class Excitation {
   static Excitation from_kind(const std::string& kind, const std::vector<double>& parameters,
                               const std::vector<double>& times, const std::vector<double>& values);
 
+  // The definition as from_kind takes it: kind "constant" (parameters
+  // [value]), "sine" ([amplitude, omega, phase, offset]) or "table" (times,
+  // values); "callable" for a callable, which has no other.
+  struct Definition {
+    std::string kind;
+    std::vector<double> parameters, times, values;
+  };
+  Definition definition() const;
+
   double operator()(double t) const {
     switch (definition_.index()) {
       case 0:

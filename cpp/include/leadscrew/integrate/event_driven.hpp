@@ -11,6 +11,7 @@
 #pragma once
 
 #include <initializer_list>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,58 @@ struct EventDrivenOptions {
   // Bound on the number of events: a Zeno-like accumulation of events raises
   // SimulationError instead of hanging.
   long max_events = 100000;
+};
+
+// The event-driven scheme as a run that can be advanced piece by piece:
+// simulate_event_driven is one run advanced to its end, and a stepper
+// (model/drive_stepper.hpp) advances one run in as many pieces as it is
+// asked for, keeping the integrator, the system's mode and the state
+// between them. `system` outlives the run (or is replaced by restart()).
+class EventDrivenRun {
+ public:
+  // Chooses the system's initial mode at (t0, y0) and initializes the ODE method.
+  EventDrivenRun(HybridSystem& system, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0,
+                 const EventDrivenOptions& options);
+  ~EventDrivenRun();
+  EventDrivenRun(const EventDrivenRun&) = delete;
+  EventDrivenRun& operator=(const EventDrivenRun&) = delete;
+
+  // Integrates from time() to output.t_end (> time()), locating every event
+  // inside, and appends to `result` its output rows in (time(), t_end]
+  // (output.t_eval: those times; empty: every step and event) and its
+  // events; the first call also the row at the start. Throws
+  // SimulationError as the scheme fails (the run cannot go on after it).
+  void advance(const OutputRequest& output, SimulationResult& result);
+  // The state changed discontinuously at time() (the loads changed): the
+  // ODE method restarts there on `system` (the same or a new one, whose
+  // mode the caller has chosen), keeping its step-size history and counts.
+  void restart(HybridSystem& system);
+
+  double time() const noexcept { return t_; }
+  const Eigen::VectorXd& state() const noexcept { return y_; }
+  // The state to change before restart() (a system's new mode may project it).
+  Eigen::VectorXd& state() noexcept { return y_; }
+  long events() const noexcept { return events_; }
+  // The integrator's and the system's counts so far, in result.stats
+  // (wall_time left as it is).
+  void fill_stats(SimulationResult& result) const;
+
+ private:
+  class Guard;
+  void attach(HybridSystem& system);
+
+  HybridSystem* system_;
+  EventDrivenOptions options_;
+  std::unique_ptr<Integrator> integrator_;
+  std::unique_ptr<Guard> guard_;
+  Eigen::VectorXd y_;
+  double t_;
+  long events_ = 0;
+  bool started_ = false;
+  std::vector<int> directions_;
+  // The counts of the integrations before a restart on another system.
+  IntegratorStats carried_;
+  long carried_lcp_solves_ = 0, carried_iterations_ = 0;
 };
 
 SimulationResult simulate_event_driven(HybridSystem& system, double t0,

@@ -75,6 +75,16 @@ class DriveHybrid final : public integrate::HybridSystem {
   void select_initial_mode(double t, double* y) override;
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override;
 
+  // hybrid_resume.cpp: a run advanced in pieces (model/drive_stepper.hpp).
+  // The run, at (t, y), now goes on to t_end (> the last): the load-driven
+  // roots are planned, and the regularized law's look-ahead toward jamming
+  // runs, up to it.
+  void extend_horizon(double t, const double* y, double t_end);
+  // Continues the run of `before` (the same drive under other loads) at its
+  // state (t, y): the mode chosen anew, as at a start, the energy account
+  // carried on.
+  void resume(const DriveHybrid& before, double t, double* y);
+
  private:
   // Expands y at t into q_, v_ and the dynamics' state (every right-hand
   // side, root and output row starts here: inline).

@@ -1,0 +1,145 @@
+// The co-simulation variables of a drive (model/cosim.hpp).
+#include "leadscrew/model/cosim.hpp"
+
+#include <algorithm>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/friction/law.hpp"
+
+namespace leadscrew::model {
+
+namespace {
+
+constexpr unsigned kInputs = 1, kOutputs = 10, kLawParameters = 100, kBodyParameters = 200;
+
+struct Output {
+  const char* name;
+  const char* unit;
+  const char* description;
+};
+const Output kOutputList[] = {
+    {"u_load", "m", "the load's displacement along +x"},
+    {"v_load", "m/s", "the load's velocity"},
+    {"phi_drive", "rad", "the rotor's angle about +x"},
+    {"omega_drive", "rad/s", "the rotor's speed"},
+    {"normal_force", "N", "the flank normal force on the screw"},
+    {"friction_force", "N", "the flank friction force on the screw (helix tangent)"},
+    {"stick", "", "the thread sticks"},
+    {"friction_loss", "J", "the work friction dissipated since the start"},
+};
+
+struct Body {
+  const char* name;
+  const char* unit;
+  bool flexible_only;
+  const char* description;
+};
+const Body kBodyList[] = {
+    {"rotor_inertia", "kg.m2", false, "the rotor's polar moment of inertia"},
+    {"load_mass", "kg", false, "the load's mass"},
+    {"screw_mass", "kg", false, "the screw's mass"},
+    {"screw_inertia", "kg.m2", false, "the screw's polar moment of inertia"},
+    {"nut_mass", "kg", false, "the nut's mass"},
+    {"nut_inertia", "kg.m2", false, "the nut's polar moment of inertia"},
+    {"screw_axial_stiffness", "N/m", true, "the screw's axial stiffness (0: from its geometry)"},
+    {"screw_torsional_stiffness", "N.m/rad", true,
+     "the screw's torsional stiffness (0: from its geometry)"},
+    {"nut_axial_stiffness", "N/m", true, "the nut's axial stiffness"},
+    {"nut_torsional_stiffness", "N.m/rad", true, "the nut's torsional stiffness"},
+};
+
+double DriveParameters::*field(const char* name) {
+  for (const ScalarField& f : scalar_fields())
+    if (std::string(f.name) == name) return f.member;
+  throw InvalidArgument(std::string("no parameter ") + name);
+}
+
+bool shown(const DriveParameters& p, const Body& body) {
+  return !body.flexible_only || p.concept != Concept::rigid;
+}
+
+// The law's parameters by key with its defaults filled, in its order.
+friction::LawValues law_values(const DriveParameters& p) {
+  const friction::LawType& type = friction::law_type(p.friction);
+  friction::LawValues given = p.friction_values;
+  for (const friction::ParameterInfo& info : type.parameters) {
+    if (std::string(info.key) == "mu") given.emplace_back("mu", p.mu);
+    if (std::string(info.key) == "k_v") given.emplace_back("k_v", p.k_v);
+  }
+  const std::vector<double> values = friction::complete_values(type, given);
+  friction::LawValues out;
+  for (std::size_t i = 0; i < type.parameters.size(); ++i)
+    out.emplace_back(type.parameters[i].key, values[i]);
+  return out;
+}
+
+std::string fmi_unit(const std::string& unit) {
+  // The law registry's SI units in FMI's unit names.
+  std::string out = unit;
+  std::replace(out.begin(), out.end(), '*', '.');
+  return out;
+}
+
+}  // namespace
+
+std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
+  using Kind = CosimVariable::Kind;
+  std::vector<CosimVariable> out;
+  if (!p.speed_controlled)
+    out.push_back({"drive_torque", kInputs, Kind::input, false, "N.m", p.drive_torque(0.0),
+                   "the motor's torque on the rotor about +x, held over a step"});
+  out.push_back({"axial_force", kInputs + 1, Kind::input, false, "N", p.axial_force(0.0),
+                 "the axial force on the load along +x, held over a step"});
+  unsigned reference = kOutputs;
+  for (const Output& o : kOutputList) {
+    const bool boolean = std::string(o.name) == "stick";
+    out.push_back({o.name, reference++, Kind::output, boolean, o.unit, 0.0, o.description});
+  }
+  const friction::LawType& type = friction::law_type(p.friction);
+  const friction::LawValues law = law_values(p);
+  for (std::size_t i = 0; i < law.size(); ++i)
+    out.push_back({law[i].first, kLawParameters + static_cast<unsigned>(i), Kind::parameter,
+                   false, fmi_unit(type.parameters[i].unit), law[i].second,
+                   type.parameters[i].doc});
+  for (std::size_t i = 0; i < std::size(kBodyList); ++i) {
+    const Body& body = kBodyList[i];
+    if (!shown(p, body)) continue;
+    out.push_back({body.name, kBodyParameters + static_cast<unsigned>(i), Kind::parameter, false,
+                   body.unit, p.*field(body.name), body.description});
+  }
+  return out;
+}
+
+void set_cosim_parameter(DriveParameters& p, unsigned reference, double value) {
+  if (reference >= kLawParameters && reference < kBodyParameters) {
+    const friction::LawValues law = law_values(p);
+    const std::size_t i = reference - kLawParameters;
+    if (i < law.size()) {
+      const std::string& key = law[i].first;
+      if (key == "mu") {
+        p.mu = value;
+      } else if (key == "k_v") {
+        p.k_v = value;
+      } else {
+        auto at = std::find_if(p.friction_values.begin(), p.friction_values.end(),
+                               [&](const auto& entry) { return entry.first == key; });
+        if (at == p.friction_values.end())
+          p.friction_values.emplace_back(key, value);
+        else
+          at->second = value;
+      }
+      return;
+    }
+  }
+  if (reference >= kBodyParameters && reference - kBodyParameters < std::size(kBodyList)) {
+    const Body& body = kBodyList[reference - kBodyParameters];
+    if (shown(p, body)) {
+      p.*field(body.name) = value;
+      return;
+    }
+  }
+  throw InvalidArgument("value reference " + std::to_string(reference) +
+                        " is invalid: it is none of the drive's parameters");
+}
+
+}  // namespace leadscrew::model

@@ -1,0 +1,34 @@
+// What every run of a drive starts from (run_setup.hpp).
+#include "run_setup.hpp"
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/model/drive_equilibrium.hpp"
+
+namespace leadscrew::model::drive {
+
+const friction::Law& running_law(const DriveModel& model, const std::string& integrator,
+                                 std::unique_ptr<friction::Law>& regularization) {
+  const bool ode_alone = integrator != "event_driven" && integrator != "moreau";
+  regularization.reset();
+  if (ode_alone && model.law().resolution() == friction::Resolution::set_valued) {
+    regularization = model.law().regularized();
+    if (!regularization)
+      throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with friction.law = \"" +
+                            model.parameters().friction +
+                            "\": the law has no regularization for an ODE method");
+  }
+  return regularization ? *regularization : model.law();
+}
+
+StateLayout state_layout(const DriveModel& model, const friction::Law& law) {
+  return StateLayout(model, law.resolution() == friction::Resolution::bristle);
+}
+
+Eigen::VectorXd initial_vector(const DriveModel& model, const StateLayout& layout) {
+  Eigen::VectorXd y0 = Eigen::VectorXd::Zero(layout.size());
+  const DriveStart start = initial_state(model);  // initial.state: relaxed or in equilibrium
+  layout.compress(start.q, start.v, y0.data());
+  return y0;
+}
+
+}  // namespace leadscrew::model::drive

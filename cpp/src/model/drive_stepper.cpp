@@ -1,0 +1,189 @@
+// DriveStepper (model/drive_stepper.hpp): simulate()'s event-driven run
+// (integrate::EventDrivenRun over drive::DriveHybrid) advanced in pieces.
+#include "leadscrew/model/drive_stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "drive/hybrid.hpp"
+#include "drive/integrators.hpp"
+#include "drive/run_setup.hpp"
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+#include "leadscrew/integrate/event_driven.hpp"
+
+namespace leadscrew::model {
+
+// A drive under one set of loads: its model, the law that runs, its hybrid
+// system. Replaced when an input changes; the run goes on from its state.
+struct DriveStepper::System {
+  std::unique_ptr<DriveModel> model;
+  std::unique_ptr<friction::Law> regularization;
+  const friction::Law* law = nullptr;
+  std::unique_ptr<drive::DriveHybrid> hybrid;
+};
+
+namespace {
+
+// A load that is the constant `value` already (nothing to restart for).
+bool constant_at(const Excitation& load, double t, double value) {
+  return std::isinf(load.time_scale()) && load.breakpoints().empty() && load(t) == value;
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& name : names) out += (out.empty() ? "\"" : ", \"") + name + "\"";
+  return out;
+}
+
+}  // namespace
+
+DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions options)
+    : parameters_(std::move(parameters)), current_(parameters_), options_(std::move(options)) {
+  // The output request is the stepper's own; simulate()'s checks of the
+  // options need a run length, which a stepper does not have.
+  options_.output = integrate::OutputRequest{};
+  options_.output.t_end = 1.0;
+  integrator_ = drive::chosen_integrator(parameters_, options_);
+  if (integrator_ == "moreau")
+    throw InvalidArgument(
+        "integrator = \"moreau\" is invalid for a stepper: it takes the event-driven scheme "
+        "(\"event_driven\") or an ODE method of drive_integrators()");
+  {
+    const DriveModel model(parameters_);  // validates the parameters
+    check_simulation_options(model, options_);
+  }
+  reset();
+}
+
+DriveStepper::~DriveStepper() = default;
+
+std::unique_ptr<DriveStepper::System> DriveStepper::make_system() const {
+  auto system = std::make_unique<System>();
+  system->model = std::make_unique<DriveModel>(current_);
+  system->law = &drive::running_law(*system->model, integrator_, system->regularization);
+  // The horizon (t_end) grows with each advance (DriveHybrid::extend_horizon).
+  system->hybrid = std::make_unique<drive::DriveHybrid>(
+      *system->model, *system->law, options_.bounce_threshold, 0.0, options_.integrator_options);
+  return system;
+}
+
+void DriveStepper::reset() {
+  run_.reset();
+  current_ = parameters_;
+  system_ = make_system();
+  const drive::StateLayout layout = drive::state_layout(*system_->model, *system_->law);
+  const Eigen::VectorXd y0 = drive::initial_vector(*system_->model, layout);
+  const integrate::EventDrivenOptions driver =
+      drive::event_driven_options(*system_->model, *system_->law, integrator_, options_);
+  record_ = integrate::SimulationResult{};
+  record_.channel_names = system_->hybrid->channel_names();
+  record_.integrator = integrator_;
+  record_.friction = current_.friction;
+  row_.assign(record_.channel_count(), 0.0);
+  failure_.clear();
+  failure_time_ = 0.0;
+  run_ = std::make_unique<integrate::EventDrivenRun>(*system_->hybrid, 0.0, y0, driver);
+}
+
+double DriveStepper::time() const noexcept { return run_->time(); }
+
+const std::vector<std::string>& DriveStepper::input_names() const {
+  static const std::vector<std::string> torque = {"drive_torque", "axial_force"};
+  static const std::vector<std::string> speed = {"drive_speed", "axial_force"};
+  return parameters_.speed_controlled ? speed : torque;
+}
+
+double DriveStepper::input(const std::string& name) const {
+  const double t = time();
+  if (name == "axial_force") return current_.axial_force(t);
+  if (name == "drive_torque" && !current_.speed_controlled) return current_.drive_torque(t);
+  if (name == "drive_speed" && current_.speed_controlled) return current_.drive_speed(t);
+  throw InvalidArgument("input = \"" + name + "\" is invalid: must be one of " +
+                        quoted_list(input_names()));
+}
+
+void DriveStepper::set_input(const std::string& name, double value) {
+  input(name);  // the name
+  if (name == "drive_speed")
+    throw InvalidArgument(
+        "input \"drive_speed\" cannot be set: a step of the prescribed speed is an infinite "
+        "acceleration; give the speed as the scene's loads.drive_speed (a table ramps it)");
+  require_finite(name, value);
+  if (!failure_.empty())
+    throw SimulationError(failure_time_, "the stepper stopped at its failure: " + failure_,
+                          "reset() starts it again");
+  Excitation& load = name == "axial_force" ? current_.axial_force : current_.drive_torque;
+  const double t = time();
+  if (constant_at(load, t, value)) return;
+  load = Excitation(ConstantExcitation{value});
+  try {
+    std::unique_ptr<System> next = make_system();
+    next->hybrid->resume(*system_->hybrid, t, run_->state().data());
+    run_->restart(*next->hybrid);
+    system_ = std::move(next);
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+    failure_time_ = t;
+    throw;
+  }
+}
+
+void DriveStepper::advance(double t) {
+  if (!std::isfinite(t))
+    throw InvalidArgument("t = " + format_value(t) + " is invalid: must be a finite time [s]");
+  if (!failure_.empty())
+    throw SimulationError(failure_time_, "the stepper stopped at its failure: " + failure_,
+                          "reset() starts it again");
+  const double now = time();
+  if (t < now)
+    throw InvalidArgument("t = " + format_value(t) + " is invalid: must be >= the stepper's time " +
+                          format_value(now) + " s (reset() goes back to 0)");
+  if (t == now) return;
+  integrate::OutputRequest output;
+  output.t_end = t;
+  output.t_eval = {t};
+  record_.time.clear();
+  record_.values.clear();
+  try {
+    system_->hybrid->extend_horizon(now, run_->state().data(), t);
+    run_->advance(output, record_);
+  } catch (const SimulationError& e) {
+    failure_ = e.what();
+    failure_time_ = e.time();
+    throw;
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+    failure_time_ = time();
+    throw;
+  }
+}
+
+const std::vector<std::string>& DriveStepper::channel_names() const {
+  return record_.channel_names;
+}
+
+std::vector<double> DriveStepper::channels() {
+  system_->hybrid->channels(time(), run_->state().data(), row_.data());
+  return row_;
+}
+
+double DriveStepper::channel(const std::string& name) {
+  const int k = record_.channel_index(name);
+  if (k < 0)
+    throw InvalidArgument("channel = \"" + name + "\" is invalid: must be one of " +
+                          quoted_list(record_.channel_names));
+  system_->hybrid->channels(time(), run_->state().data(), row_.data());
+  return row_[static_cast<std::size_t>(k)];
+}
+
+const std::vector<integrate::Event>& DriveStepper::events() const { return record_.events; }
+
+integrate::SimulationStats DriveStepper::stats() const {
+  integrate::SimulationResult counts;
+  run_->fill_stats(counts);
+  return counts.stats;
+}
+
+}  // namespace leadscrew::model

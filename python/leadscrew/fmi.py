@@ -1,0 +1,175 @@
+"""Export a drive as an FMI 2.0 co-simulation FMU.
+
+:func:`export_fmu` writes one file that Simulink, Dymola, OpenModelica,
+Adams, Simcenter Amesim or FMPy import: the scene's core spec
+(:meth:`leadscrew.Scene.to_core_toml`) in its ``resources/``, the package's
+generic binary (``binaries/linux64/``, SUNDIALS linked statically: it needs
+neither Python nor this package) and a ``modelDescription.xml`` written from
+the core's table of the drive's variables (``_core.cosim_variables``):
+
+- inputs ``drive_torque`` [N.m] (a torque-controlled drive) and
+  ``axial_force`` [N], held over each communication step (no input
+  interpolation); their start values are the scene's loads at t = 0, and an
+  input the importer never sets stays there for the whole run;
+- outputs ``u_load``, ``v_load``, ``phi_drive``, ``omega_drive``,
+  ``normal_force``, ``friction_force``, ``stick`` (Boolean) and
+  ``friction_loss``;
+- parameters that may be set before the initialization ends: the friction
+  law's (``mu``, ...), the masses and inertias and, for a flexible concept,
+  the springs' stiffness overrides (0: from the geometry).
+
+Events and stick/slip are located exactly inside each step. A step that
+ends past the screw's end, or any step after a failure, is refused with
+``fmi2Error`` and a message to the importer's logger naming the cause. A
+speed-controlled drive takes its speed from the scene's load (it has no
+speed input: a step of a prescribed speed is an infinite acceleration).
+"""
+
+from __future__ import annotations
+
+import datetime
+import os
+import uuid
+import zipfile
+from typing import Dict, List, Optional
+from xml.sax.saxutils import quoteattr
+
+from . import _core
+
+__all__ = ["export_fmu", "MODEL_IDENTIFIER"]
+
+#: The FMU's model identifier: the name of its binary in ``binaries/linux64/``.
+MODEL_IDENTIFIER = "leadscrew_drive"
+
+# SI base-unit exponents of the units the variables use (FMI's BaseUnit).
+_BASE_UNITS: Dict[str, Dict[str, int]] = {
+    "m": {"m": 1}, "m/s": {"m": 1, "s": -1}, "rad": {"rad": 1}, "rad/s": {"rad": 1, "s": -1},
+    "N": {"kg": 1, "m": 1, "s": -2}, "N.m": {"kg": 1, "m": 2, "s": -2},
+    "J": {"kg": 1, "m": 2, "s": -2}, "kg": {"kg": 1}, "kg.m2": {"kg": 1, "m": 2},
+    "N/m": {"kg": 1, "s": -2}, "N.m/rad": {"kg": 1, "m": 2, "s": -2, "rad": -1},
+    "s/m": {"s": 1, "m": -1}, "1/m": {"m": -1}, "N.s/m": {"kg": 1, "s": -1},
+    "s": {"s": 1},
+}
+
+
+def _binary() -> str:
+    from . import _shipped
+
+    return _shipped("lib", "leadscrew_fmu.so", directory=False)
+
+
+def _number(value: float) -> str:
+    return repr(float(value))
+
+
+def _model_description(variables: List[dict], name: str, guid: str,
+                      stop_time: float = 1.0, step: float = 1e-3) -> str:
+    """The ``modelDescription.xml`` text of a drive's FMU.
+
+    Args:
+        variables: ``_core.cosim_variables(parameters)``.
+        name: the model's name (the scene's).
+        guid: the FMU's GUID.
+        stop_time: the default experiment's stop time [s].
+        step: the default communication step [s].
+
+    Returns:
+        The XML text (UTF-8).
+    """
+    units = sorted({v["unit"] for v in variables if v["unit"]})
+    lines = ['<?xml version="1.0" encoding="UTF-8"?>',
+             f'<fmiModelDescription fmiVersion="2.0" modelName={quoteattr(name)} '
+             f'guid={quoteattr(guid)} description="a lead-screw drive (leadscrew)" '
+             f'generationTool="leadscrew" generationDateAndTime='
+             f'"{datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ")}" '
+             f'variableNamingConvention="flat" numberOfEventIndicators="0">',
+             f'  <CoSimulation modelIdentifier="{MODEL_IDENTIFIER}" '
+             'canHandleVariableCommunicationStepSize="true" canInterpolateInputs="false" '
+             'canBeInstantiatedOnlyOncePerProcess="false" canGetAndSetFMUstate="false" '
+             'canSerializeFMUstate="false" providesDirectionalDerivative="false" '
+             'needsExecutionTool="false"/>',
+             "  <UnitDefinitions>"]
+    for unit in units:
+        base = _BASE_UNITS.get(unit)
+        if base:
+            exponents = " ".join(f'{k}="{e}"' for k, e in base.items())
+            lines.append(f"    <Unit name={quoteattr(unit)}><BaseUnit {exponents}/></Unit>")
+        else:
+            lines.append(f"    <Unit name={quoteattr(unit)}/>")
+    lines += ["  </UnitDefinitions>",
+              "  <LogCategories>",
+              '    <Category name="logStatusError" description="a refused call or a failed '
+              'step, with its cause"/>',
+              "  </LogCategories>",
+              f'  <DefaultExperiment startTime="0.0" stopTime="{_number(stop_time)}" '
+              f'stepSize="{_number(step)}"/>',
+              "  <ModelVariables>"]
+    outputs = []
+    for index, v in enumerate(variables, start=1):
+        kind = v["kind"]
+        attributes = (f'name={quoteattr(v["name"])} valueReference="{v["reference"]}" '
+                      f'description={quoteattr(v["description"])} causality="{kind}"')
+        if kind == "input":
+            attributes += ' variability="continuous"'
+        elif kind == "parameter":
+            attributes += ' variability="fixed" initial="exact"'
+        else:
+            attributes += f' variability="{"discrete" if v["boolean"] else "continuous"}"'
+            outputs.append(index)
+        unit = f' unit={quoteattr(v["unit"])}' if v["unit"] else ""
+        start = f' start="{_number(v["start"])}"' if kind != "output" else ""
+        element = "Boolean" if v["boolean"] else f"Real{unit}"
+        lines.append(f"    <!-- {index} -->")
+        lines.append(f"    <ScalarVariable {attributes}><{element}{start}/></ScalarVariable>")
+    lines += ["  </ModelVariables>", "  <ModelStructure>", "    <Outputs>"]
+    lines += [f'      <Unknown index="{i}"/>' for i in outputs]
+    lines += ["    </Outputs>", "    <InitialUnknowns>"]
+    lines += [f'      <Unknown index="{i}"/>' for i in outputs]
+    lines += ["    </InitialUnknowns>", "  </ModelStructure>", "</fmiModelDescription>", ""]
+    return "\n".join(lines)
+
+
+def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None,
+               stop_time: float = 1.0, step: float = 1e-3, **options) -> str:
+    """Write the scene as an FMI 2.0 co-simulation FMU.
+
+    Args:
+        scene: a :class:`leadscrew.Scene`.
+        path: the ``.fmu`` file to write.
+        name: the model's name (default: the file's stem).
+        stop_time: the default experiment's stop time [s].
+        step: the default experiment's communication step [s].
+        **options: the run's options as :meth:`leadscrew.Scene.to_core_toml`
+            takes them (``rtol``, ``atol``, ``integrator``, ...).
+
+    Returns:
+        The path written.
+
+    Raises:
+        ValueError: the scene has a Python callable load (no FMU can carry
+            it), a derived value out of range, or an unknown option.
+        FileNotFoundError: the package was installed without the FMU binary.
+    """
+    from .scene import Scene
+
+    if not isinstance(scene, Scene):
+        raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene")
+    try:
+        spec = scene.to_core_toml(**options)
+    except ValueError as error:
+        if "callable" in str(error):
+            raise ValueError(f"the scene cannot be exported as an FMU: {error}; an FMU runs "
+                             f"without Python, so its loads must be constants, sines or "
+                             f"tables") from None
+        raise
+    variables = _core.cosim_variables(scene.model().parameters)
+    path = os.fspath(path)
+    name = name or os.path.splitext(os.path.basename(path))[0]
+    guid = "{" + str(uuid.uuid5(uuid.NAMESPACE_URL, "leadscrew:" + name + spec)) + "}"
+    xml = _model_description(variables, name, guid, stop_time, step)
+    binary = _binary()
+    with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED) as fmu:
+        fmu.writestr("modelDescription.xml", xml)
+        fmu.write(binary, f"binaries/linux64/{MODEL_IDENTIFIER}.so")
+        fmu.writestr("resources/core.toml", spec)
+    return path

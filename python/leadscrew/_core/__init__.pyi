@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DriveBatch', 'DriveBatchResult', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'cosim_variables', 'drive_integrators', 'efficiency', 'efficiency_array', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'read_core_spec', 'simulate_block', 'simulate_drive', 'write_core_spec']
+__all__: list[str] = ['DerivedQuantities', 'DriveBatch', 'DriveBatchResult', 'DriveGeometry', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'check_nut_on_screw', 'cosim_variables', 'derive_drive', 'derived_quantities', 'derived_quantity_problem', 'drive_integrators', 'efficiency', 'efficiency_array', 'first_derived_problem', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'read_core_spec', 'rigid_jamming_margins', 'scene_choices', 'simulate_block', 'simulate_drive', 'spring_frequency_problem', 'write_core_spec']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -410,6 +410,218 @@ class DriveParameters:
     @screw_torsional_stiffness.setter
     def screw_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
+class DriveGeometry:
+    """
+    The scene's geometric and material inputs (SI), named <section>_<key> after its key paths; optional ones None where the scene leaves them out.
+    """
+    drive: str
+    def __init__(self) -> None:
+        ...
+    @property
+    def backlash_axial(self) -> float:
+        ...
+    @backlash_axial.setter
+    def backlash_axial(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def backlash_contact(self) -> str:
+        """
+        'none' without a backlash section
+        """
+    @backlash_contact.setter
+    def backlash_contact(self, arg1: str) -> None:
+        ...
+    @property
+    def backlash_damping(self) -> float | None:
+        ...
+    @backlash_damping.setter
+    def backlash_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def backlash_exponent(self) -> float:
+        ...
+    @backlash_exponent.setter
+    def backlash_exponent(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def backlash_penetration(self) -> float | None:
+        ...
+    @backlash_penetration.setter
+    def backlash_penetration(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def backlash_stiffness(self) -> float | None:
+        ...
+    @backlash_stiffness.setter
+    def backlash_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def friction_mu(self) -> float:
+        ...
+    @friction_mu.setter
+    def friction_mu(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load_mass(self) -> float:
+        ...
+    @load_mass.setter
+    def load_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_density(self) -> float:
+        ...
+    @nut_density.setter
+    def nut_density(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_length(self) -> float:
+        ...
+    @nut_length.setter
+    def nut_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_outer_radius(self) -> float:
+        ...
+    @nut_outer_radius.setter
+    def nut_outer_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_poisson(self) -> float:
+        ...
+    @nut_poisson.setter
+    def nut_poisson(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_youngs_modulus(self) -> float:
+        ...
+    @nut_youngs_modulus.setter
+    def nut_youngs_modulus(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def overrides_nut_axial_stiffness(self) -> float | None:
+        ...
+    @overrides_nut_axial_stiffness.setter
+    def overrides_nut_axial_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def overrides_nut_inertia(self) -> float | None:
+        ...
+    @overrides_nut_inertia.setter
+    def overrides_nut_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def overrides_nut_mass(self) -> float | None:
+        ...
+    @overrides_nut_mass.setter
+    def overrides_nut_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def overrides_nut_torsional_stiffness(self) -> float | None:
+        ...
+    @overrides_nut_torsional_stiffness.setter
+    def overrides_nut_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def overrides_screw_axial_stiffness(self) -> float | None:
+        ...
+    @overrides_screw_axial_stiffness.setter
+    def overrides_screw_axial_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def overrides_screw_inertia(self) -> float | None:
+        ...
+    @overrides_screw_inertia.setter
+    def overrides_screw_inertia(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def overrides_screw_mass(self) -> float | None:
+        ...
+    @overrides_screw_mass.setter
+    def overrides_screw_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def overrides_screw_torsional_stiffness(self) -> float | None:
+        ...
+    @overrides_screw_torsional_stiffness.setter
+    def overrides_screw_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex | None) -> None:
+        ...
+    @property
+    def screw_density(self) -> float:
+        ...
+    @screw_density.setter
+    def screw_density(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_length(self) -> float:
+        ...
+    @screw_length.setter
+    def screw_length(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_poisson(self) -> float:
+        ...
+    @screw_poisson.setter
+    def screw_poisson(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_radius(self) -> float:
+        ...
+    @screw_radius.setter
+    def screw_radius(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def screw_youngs_modulus(self) -> float:
+        ...
+    @screw_youngs_modulus.setter
+    def screw_youngs_modulus(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def thread_flank_angle(self) -> float:
+        ...
+    @thread_flank_angle.setter
+    def thread_flank_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def thread_mean_diameter(self) -> float:
+        ...
+    @thread_mean_diameter.setter
+    def thread_mean_diameter(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def thread_pitch(self) -> float:
+        ...
+    @thread_pitch.setter
+    def thread_pitch(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def thread_starts(self) -> int:
+        ...
+    @thread_starts.setter
+    def thread_starts(self, arg0: typing.SupportsInt | typing.SupportsIndex) -> None:
+        ...
+class DerivedQuantities:
+    """
+    What a DriveGeometry gives the model (derive_drive).
+    """
+    def apply_to(self, parameters: DriveParameters) -> None:
+        """
+        Set the masses, inertias, rigidities, stiffnesses and contact values of DriveParameters.
+        """
+    @property
+    def derived(self) -> dict:
+        """
+        Scene.derived(): masses [kg], inertias [kg*m^2], rigidities [N, N*m^2], stiffnesses [N/m, N*m/rad] and with backlash the contact's values
+        """
+    @property
+    def problem(self) -> typing.Any:
+        """
+        the key of the first quantity out of its range, or None
+        """
+    @property
+    def quantities(self) -> dict:
+        """
+        every quantity with a range: tan_lead_angle, effective_mu, then derived's
+        """
 class DriveModel:
     """
     An assembled drive (immutable).
@@ -548,9 +760,25 @@ def check_friction_law(name: str, values: collections.abc.Sequence[tuple[str, ty
     """
     Raises ValueError naming '<prefix><key>', the value and the range where the law `name` does not take `values` ((key, value) pairs): an unknown key, a missing required one, a value out of range or below the key it may not fall below (mu_static >= mu).
     """
+def check_nut_on_screw(drive: str, nut_position: typing.SupportsFloat | typing.SupportsIndex, nut_length: typing.SupportsFloat | typing.SupportsIndex, screw_length: typing.SupportsFloat | typing.SupportsIndex, explain: bool = True) -> None:
+    """
+    ValueError naming nut.position unless the whole nut is on the screw: nut_length / 2 < nut_position < screw_length - nut_length / 2 [m].
+    """
 def cosim_variables(parameters: DriveParameters) -> list:
     """
     The variables the FMU shows of the drive (model/cosim.hpp): dicts with name, reference, kind (input, output, parameter), boolean, unit, start, description.
+    """
+def derive_drive(geometry: DriveGeometry) -> DerivedQuantities:
+    """
+    Masses, inertias, rigidities and stiffnesses of a DriveGeometry (thesis eq. 4.17, 4.18, 4.24), overrides applied; never raises (a value out of range: problem).
+    """
+def derived_quantities() -> list:
+    """
+    The derived quantities with their texts, units, ranges and overrides, in order.
+    """
+def derived_quantity_problem(key: str, value: typing.SupportsFloat | typing.SupportsIndex) -> typing.Any:
+    """
+    None if value is in the quantity's range, else what it must be.
     """
 def drive_integrators(parameters: DriveParameters) -> list[str]:
     ...
@@ -559,6 +787,10 @@ def efficiency(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, 
 def efficiency_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
     """
     efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); ValueError for a negative or non-finite m.
+    """
+def first_derived_problem(values: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]]) -> typing.Any:
+    """
+    The key of the first of the (key, value) pairs out of its quantity's range, or None.
     """
 def friction_laws() -> list:
     """
@@ -585,11 +817,23 @@ def read_core_spec(text: str) -> tuple[DriveParameters, dict]:
     """
     (DriveParameters, options dict) from a core spec's TOML text. ValueError naming the key for a bad spec.
     """
+def rigid_jamming_margins(thread: Thread, kappa: typing.SupportsFloat | typing.SupportsIndex, inertia: typing.SupportsFloat | typing.SupportsIndex, mass: typing.SupportsFloat | typing.SupportsIndex) -> dict:
+    """
+    The rigid drive's two dynamic jamming (Painleve) inequalities for the friction factor kappa (mu' for exact Coulomb): lhs1, rhs1, jams1, lhs2, rhs2, jams2 [kg*m^2], mass1 [kg] and inertia2 [kg*m^2] (inf where never).
+    """
+def scene_choices() -> list[tuple[str, list[str]]]:
+    """
+    (key path, names) of the scene's choices the model's enumerations give.
+    """
 def simulate_block(block: FrictionBlock, t_end: typing.SupportsFloat | typing.SupportsIndex, friction: str, integrator: str, law: collections.abc.Mapping[str, typing.SupportsFloat | typing.SupportsIndex], rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     ...
 def simulate_drive(drive: DriveModel, t_end: typing.SupportsFloat | typing.SupportsIndex, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, dt: typing.SupportsFloat | typing.SupportsIndex, theta: typing.SupportsFloat | typing.SupportsIndex, t_eval: collections.abc.Sequence[typing.SupportsFloat | typing.SupportsIndex], max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex, check: bool = True, progress: typing.Any = None) -> SimulationResult:
     """
     Simulate the drive (leadscrew.simulate's drive path); progress: None or a callable of the simulated time, called about every 0.1 s of wall time (Ctrl-C is checked there too).
+    """
+def spring_frequency_problem(drive: ...) -> typing.Any:
+    """
+    None, or what is wrong with a spring of the drive: its part's natural angular frequency sqrt(k / m) not finite or above 1e12 rad/s.
     """
 def write_core_spec(parameters: DriveParameters, integrator: str, smooth_integrator: str, rtol: typing.SupportsFloat | typing.SupportsIndex, atol: typing.SupportsFloat | typing.SupportsIndex, max_steps: typing.SupportsInt | typing.SupportsIndex, max_events: typing.SupportsInt | typing.SupportsIndex, max_step: typing.SupportsFloat | typing.SupportsIndex, first_step: typing.SupportsFloat | typing.SupportsIndex, bounce_threshold: typing.SupportsFloat | typing.SupportsIndex, max_order: typing.SupportsInt | typing.SupportsIndex) -> str:
     """

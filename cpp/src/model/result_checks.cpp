@@ -112,16 +112,20 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   const int kinetic = ch.index("kinetic"), elastic = ch.index("elastic");
   const int friction_loss = ch.index(spec.friction_loss), residual = ch.index(spec.residual);
   const int stick = ch.index(spec.stick), gap = ch.index("gap"), play = ch.index("play");
-  std::vector<int> work, stored, losses, load_forces, load_torques;
-  for (const auto& name : spec.work) work.push_back(ch.index(name));
-  for (const auto& name : spec.stored) stored.push_back(ch.index(name));
-  for (const auto& name : spec.losses) losses.push_back(ch.index(name));
-  for (const auto& name : spec.load_forces) load_forces.push_back(ch.index(name));
-  for (const auto& name : spec.load_torques) load_torques.push_back(ch.index(name));
-  // The losses checked by `losses` (the friction loss has its own check).
-  std::vector<int> other_losses;
-  for (std::size_t j = 0; j < spec.losses.size(); ++j)
-    if (spec.losses[j] != spec.friction_loss && losses[j] >= 0) other_losses.push_back(losses[j]);
+  // The channels present (an absent one counts as 0): the energy account's
+  // (work, stored, losses, in that order), the applied loads', and the
+  // losses `losses` checks (the friction loss has its own check).
+  std::vector<int> flow_channels, load_forces, load_torques, other_losses;
+  for (const auto* names : {&spec.work, &spec.stored, &spec.losses})
+    for (const auto& name : *names)
+      if (const int k = ch.index(name); k >= 0) flow_channels.push_back(k);
+  for (const auto& name : spec.load_forces)
+    if (const int k = ch.index(name); k >= 0) load_forces.push_back(k);
+  for (const auto& name : spec.load_torques)
+    if (const int k = ch.index(name); k >= 0) load_torques.push_back(k);
+  for (const auto& name : spec.losses)
+    if (const int k = ch.index(name); k >= 0 && name != spec.friction_loss)
+      other_losses.push_back(k);
 
   const friction::Resolution resolution =
       spec.law ? spec.law->resolution() : friction::Resolution::acceleration;
@@ -143,9 +147,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
     max_normal = std::max(max_normal, std::abs(ch.at(normal, i)));
     max_kinetic = std::max(max_kinetic, ch.at(kinetic, i));
     double flow = 0.0;
-    for (int k : work) flow += std::abs(ch.at(k, i));
-    for (int k : stored) flow += std::abs(ch.at(k, i));
-    for (int k : losses) flow += std::abs(ch.at(k, i));
+    for (int k : flow_channels) flow += std::abs(ch.at(k, i));
     energy = std::max(energy, flow);
     const double g = spec.momentum_factor * std::sqrt(std::max(0.0, ch.at(kinetic, i))) +
                      spec.force_factor * std::sqrt(std::max(0.0, ch.at(elastic, i)));

@@ -26,7 +26,9 @@ class ExactBlock final : public integrate::HybridSystem {
         law_(law),
         force_(block.force),
         kinetic0_(initial_kinetic(block)),
-        plain_(law.plain_coulomb()) {}
+        plain_(law.plain_coulomb()),
+        stick_mu_(law.mu_static()),
+        viscous_(law.viscous()) {}
 
   int size() const override { return kStateSize; }
   int root_count() const override { return 2; }
@@ -135,18 +137,18 @@ class ExactBlock final : public integrate::HybridSystem {
     }
   }
 
-  double stick_limit() const { return law_.mu_static() * block_.normal_force(); }
+  double stick_limit() const { return stick_mu_ * block_.normal_force(); }
 
+  // (The law's constant coefficients are read once: a virtual call per
+  // right-hand side cost the exact block 4 % of its run. Plain Coulomb's
+  // slip coefficient is its mu, the same number slip_mu returns.)
   double friction_force(double applied, double velocity) const {
     const double speed = std::abs(velocity);
-    switch (mode_) {
-      case Mode::stick:
-        return applied;  // whatever keeps the block at rest (|A| <= mu_static N)
-      case Mode::slip_positive:
-        return law_.slip_mu(speed) * block_.normal_force() + law_.viscous() * speed;
-      default:
-        return -(law_.slip_mu(speed) * block_.normal_force() + law_.viscous() * speed);
-    }
+    // Stick: whatever keeps the block at rest (|A| <= mu_static N).
+    if (mode_ == Mode::stick) return applied;
+    const double mu = plain_ ? stick_mu_ : law_.slip_mu(speed);
+    const double magnitude = mu * block_.normal_force() + viscous_ * speed;
+    return mode_ == Mode::slip_positive ? magnitude : -magnitude;
   }
 
   // Stick or slip at zero slip velocity (state at rest). `tie` is the mode
@@ -179,6 +181,8 @@ class ExactBlock final : public integrate::HybridSystem {
   LoadAtTime force_;
   double kinetic0_;
   bool plain_;
+  double stick_mu_;  // mu_static (plain Coulomb: mu)
+  double viscous_;   // [N s/m]
   Mode mode_ = Mode::stick;
   long lcp_solves_ = 0;
   lcp::Workspace lcp_workspace_{2};

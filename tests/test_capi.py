@@ -44,6 +44,17 @@ def test_paths():
     assert os.path.isfile(ls.get_library())
 
 
+def test_the_library_needs_no_sundials():
+    """A C program needs the C and C++ runtimes alone: SUNDIALS is linked
+    statically (a new user found libleadscrew asked for Debian's
+    libsundials_cvode.so.6)."""
+    ldd = shutil.which("ldd")
+    assert ldd, "ldd is needed to list the library's dependencies"
+    libraries = subprocess.run([ldd, ls.get_library()], capture_output=True, text=True,
+                               check=True).stdout
+    assert "sundials" not in libraries and "python" not in libraries, libraries
+
+
 CHANNELS = ["u_load", "v_load", "omega_drive", "normal_force", "friction_force", "stick",
             "friction_loss"]
 

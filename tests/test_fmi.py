@@ -155,3 +155,59 @@ def test_cli_export_fmu(tmp_path, capsys):
     assert validate_fmu(str(out)) == []
     with zipfile.ZipFile(out) as fmu:
         assert fmu.read("resources/core.toml").decode() == ls.scenes.load("default").to_core_toml()
+
+
+@pytest.mark.parametrize("name", ls.scenes.available())
+def test_unset_inputs_follow_the_scenes_loads(name, tmp_path):
+    """An importer that never sets an input runs the scene as simulate does:
+    every shipped scene has a sine load, which the FMU keeps (a new user
+    found the FMU froze it at its t = 0 value: u_load 0 against simulate's
+    travel)."""
+    scene = ls.scenes.load(name)
+    path = ls.fmi.export_fmu(scene, tmp_path / f"{name}.fmu")
+    t_end = 0.2
+    result = fmpy.simulate_fmu(path, stop_time=t_end, step_size=H, output_interval=H,
+                               output=["u_load", "omega_drive", "drive_torque"])
+    reference = ls.simulate(scene, t_end, t_eval=result["time"])
+    for channel in ("u_load", "omega_drive"):
+        expected = np.asarray(reference[channel])
+        scale = max(np.max(np.abs(expected)), 1e-12)
+        assert np.max(np.abs(result[channel] - expected)) <= 1e-4 * scale, channel
+    if "drive_torque" in reference.channels:  # a torque-controlled scene: its input reads the load
+        assert np.allclose(result["drive_torque"], reference["drive_torque"], rtol=0,
+                           atol=1e-12 * np.max(np.abs(reference["drive_torque"])))
+
+
+def test_mu_static_that_follows_mu_reads_as_it_runs(tmp_path):
+    """mu_static left out follows mu: the FMU reports the value the run uses."""
+    scene = ls.scenes.load("default")
+    path = ls.fmi.export_fmu(scene, tmp_path / "drive.fmu")
+    fmu = fmpy.instantiate_fmu(fmpy.extract(path), fmpy.read_model_description(path))
+    variables = {v.name: v.valueReference for v in fmpy.read_model_description(path).modelVariables}
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.setReal([variables["mu"]], [0.3])
+    assert fmu.getReal([variables["mu_static"]]) == [0.3]
+    fmu.exitInitializationMode()
+    fmu.terminate()
+    fmu.freeInstance()
+
+
+@pytest.mark.parametrize("options, match", [
+    ({"integrator": "moreau"}, "moreau"),
+    ({"integrator": "bogus"}, "bogus"),
+    ({"stop_time": -1.0}, "stop_time = -1.0 is invalid"),
+    ({"step": 0.0}, "step = 0.0 is invalid"),
+    ({"step": float("nan")}, "step = nan is invalid"),
+    ({"step": 2.0, "stop_time": 1.0}, "step = 2.0 is invalid: must be <= stop_time"),
+])
+def test_the_exporter_refuses_what_the_fmu_could_not_run(options, match, tmp_path):
+    with pytest.raises(ValueError, match=match):
+        ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu", **options)
+    assert not (tmp_path / "drive.fmu").exists()
+
+
+def test_a_stop_time_with_a_unit(tmp_path):
+    path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu",
+                             stop_time="500 ms", step="1 ms")
+    assert fmpy.read_model_description(path).defaultExperiment.stopTime == "0.5"

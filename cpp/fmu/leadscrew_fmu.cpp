@@ -12,10 +12,12 @@
 #include <exception>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 
 #include "fmi2.h"
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
 #include "leadscrew/model/core_spec.hpp"
 #include "leadscrew/model/cosim.hpp"
 #include "leadscrew/model/drive_stepper.hpp"
@@ -34,6 +36,10 @@ struct Instance {
   leadscrew::model::DriveParameters parameters;  // with the parameters set
   std::map<unsigned, CosimVariable> variables;
   std::map<unsigned, double> inputs;     // the held values
+  // The inputs the importer has set: the others follow the scene's loads
+  // (a sine or table load of the scene stays one until the importer sets
+  // that input; the C API's stepper does the same).
+  std::set<unsigned> set_inputs;
   std::unique_ptr<leadscrew::model::DriveStepper> stepper;
   Phase phase = Phase::instantiated;
   double last_successful_time = 0.0;
@@ -50,6 +56,7 @@ struct Instance {
   void index() {
     variables.clear();
     inputs.clear();
+    set_inputs.clear();
     for (const CosimVariable& v : leadscrew::model::cosim_variables(parameters)) {
       variables[v.reference] = v;
       if (v.kind == CosimVariable::Kind::input) inputs[v.reference] = v.start;
@@ -185,7 +192,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean, fmi2Real, fmi2Real 
   Instance* self = instance(c);
   if (!self) return fmi2Error;
   if (start_time != 0.0)
-    return self->error("startTime = " + std::to_string(start_time) +
+    return self->error("startTime = " + leadscrew::format_value(start_time) +
                        " is invalid: the drive starts at t = 0 (its initial state)");
   return fmi2OK;
 }
@@ -229,8 +236,16 @@ fmi2Status fmi2Reset(fmi2Component c) {
 fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        fmi2Real value[]) {
   return get_values(c, vr, nvr, value, false, [](Instance& self, const CosimVariable& v) {
-    if (v.kind == CosimVariable::Kind::input) return self.inputs[v.reference];
-    if (v.kind == CosimVariable::Kind::parameter) return v.start;
+    if (v.kind == CosimVariable::Kind::input)
+      return self.stepper && !self.set_inputs.count(v.reference) ? self.stepper->input(v.name)
+                                                                 : self.inputs[v.reference];
+    if (v.kind == CosimVariable::Kind::parameter) {
+      // The current value: a parameter that follows another (mu_static
+      // follows mu unless set) changes with it.
+      for (const CosimVariable& w : leadscrew::model::cosim_variables(self.parameters))
+        if (w.reference == v.reference) return w.start;
+      return v.start;
+    }
     return self.stepper ? self.stepper->channel(v.name) : 0.0;
   });
 }
@@ -270,9 +285,10 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         continue;
       }
       if (!std::isfinite(value[i]))
-        return self->error("input " + v->name + " = " + std::to_string(value[i]) +
+        return self->error("input " + v->name + " = " + leadscrew::format_value(value[i]) +
                            " is invalid: must be finite");
       self->inputs[v->reference] = value[i];
+      self->set_inputs.insert(v->reference);
     }
     return fmi2OK;
   });
@@ -331,19 +347,21 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real current_communication_point,
   if (!self) return fmi2Error;
   if (self->phase == Phase::failed)
     return self->error("doStep after a failure: the run stopped at t = " +
-                       std::to_string(self->last_successful_time) + " (fmi2Reset starts it again)");
+                       leadscrew::format_value(self->stepper ? self->stepper->time()
+                                                             : self->last_successful_time) +
+                       " s (fmi2Reset starts it again)");
   if (self->phase != Phase::stepping || !self->stepper)
     return self->error("doStep outside the stepping phase (after fmi2ExitInitializationMode)");
   const double now = self->stepper->time();
   if (std::abs(current_communication_point - now) > 1e-9 * std::max(1.0, std::abs(now)))
-    return self->error("currentCommunicationPoint = " + std::to_string(current_communication_point) +
-                       " is not the FMU's time " + std::to_string(now));
+    return self->error("currentCommunicationPoint = " + leadscrew::format_value(current_communication_point) +
+                       " is not the FMU's time " + leadscrew::format_value(now));
   if (!(communication_step_size > 0.0))
-    return self->error("communicationStepSize = " + std::to_string(communication_step_size) +
+    return self->error("communicationStepSize = " + leadscrew::format_value(communication_step_size) +
                        " is invalid: must be > 0");
   const fmi2Status status = guarded(self, [&] {
-    for (const auto& [reference, value] : self->inputs)
-      self->stepper->set_input(self->variables[reference].name, value);
+    for (const unsigned reference : self->set_inputs)
+      self->stepper->set_input(self->variables[reference].name, self->inputs[reference]);
     self->stepper->advance(now + communication_step_size);
     return fmi2OK;
   });

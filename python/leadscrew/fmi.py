@@ -9,8 +9,10 @@ the core's table of the drive's variables (``_core.cosim_variables``):
 
 - inputs ``drive_torque`` [N.m] (a torque-controlled drive) and
   ``axial_force`` [N], held over each communication step (no input
-  interpolation); their start values are the scene's loads at t = 0, and an
-  input the importer never sets stays there for the whole run;
+  interpolation); their start values are the scene's loads at t = 0. An
+  input the importer never sets follows the scene's load (a constant, sine
+  or table: the FMU then runs as :func:`leadscrew.simulate`); from the
+  first value the importer sets, it holds the importer's values;
 - outputs ``u_load``, ``v_load``, ``phi_drive``, ``omega_drive``,
   ``normal_force``, ``friction_force``, ``stick`` (Boolean) and
   ``friction_loss``;
@@ -28,6 +30,7 @@ speed input: a step of a prescribed speed is an infinite acceleration).
 from __future__ import annotations
 
 import datetime
+import math
 import os
 import uuid
 import zipfile
@@ -129,6 +132,20 @@ def _model_description(variables: List[dict], name: str, guid: str,
     return "\n".join(lines)
 
 
+def _positive_time(name: str, value) -> float:
+    """``value`` [s] (a number or a unit string) as a finite float > 0."""
+    from .units import to_si
+
+    seconds = to_si(name, value, "s")
+    try:
+        seconds = float(seconds)
+    except (TypeError, ValueError):
+        seconds = float("nan")
+    if not (math.isfinite(seconds) and seconds > 0.0):
+        raise ValueError(f"{name} = {value!r} is invalid: must be a finite number > 0 [s]")
+    return seconds
+
+
 def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None,
                stop_time: float = 1.0, step: float = 1e-3, **options) -> str:
     """Write the scene as an FMI 2.0 co-simulation FMU.
@@ -147,7 +164,10 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
 
     Raises:
         ValueError: the scene has a Python callable load (no FMU can carry
-            it), a derived value out of range, or an unknown option.
+            it), a derived value out of range, an unknown option, an option
+            the FMU's stepper refuses (``integrator="moreau"``, an
+            integrator that does not fit the friction law), or a stop time
+            or step that is not a finite number > 0 (step <= stop time).
         FileNotFoundError: the package was installed without the FMU binary.
     """
     from .scene import Scene
@@ -162,6 +182,15 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
                              f"without Python, so its loads must be constants, sines or "
                              f"tables") from None
         raise
+    stop_time = _positive_time("stop_time", stop_time)
+    step = _positive_time("step", step)
+    if step > stop_time:
+        raise ValueError(f"step = {step!r} is invalid: must be <= stop_time = {stop_time!r} s "
+                         "(the default experiment's communication step)")
+    # What the FMU will refuse at its initialization is refused here: the
+    # same core reads the spec and builds the same stepper.
+    parameters, run_options = _core.read_core_spec(spec)
+    _core.DriveStepper(_core.DriveModel(parameters), **run_options)
     variables = _core.cosim_variables(scene.model().parameters)
     path = os.fspath(path)
     name = name or os.path.splitext(os.path.basename(path))[0]

@@ -392,3 +392,21 @@ def test_loads_given_as_objects_with_units():
         with pytest.raises(ValueError, match=rf"^loads\.{key} = .* is invalid: .*"
                                              rf"{re.escape(message)}"):
             ls.Scene.from_dict(thesis_scene(loads=loads))
+
+
+def test_the_model_is_built_once_and_a_scene_still_pickles():
+    """A scene is immutable and so is its core model: built on the first
+    model() call and kept (simulate calls it on every run), left out when
+    the scene is pickled for a process pool."""
+    import pickle
+
+    scene = ls.scenes.load("default")
+    model = scene.model()
+    assert scene.model() is model
+    scene["loads"]["drive_torque"] = 1.0  # a copy: the scene (and its model) stay
+    assert scene.model() is model and scene["loads"]["drive_torque"] != 1.0
+    again = pickle.loads(pickle.dumps(scene))
+    assert again == scene and again.model() is not model
+    assert again.model().coordinate_names == model.coordinate_names
+    changed = scene.replace(friction={"mu": 0.2})
+    assert changed.model() is not model and changed.model().parameters.mu == 0.2

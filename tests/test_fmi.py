@@ -211,3 +211,15 @@ def test_a_stop_time_with_a_unit(tmp_path):
     path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu",
                              stop_time="500 ms", step="1 ms")
     assert fmpy.read_model_description(path).defaultExperiment.stopTime == "0.5"
+
+
+def test_units_are_si_with_display_units(tmp_path):
+    path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
+    description = fmpy.read_model_description(path)
+    units = {u.name: u for u in description.unitDefinitions}
+    display = {d.name: d.factor for u in units.values() for d in u.displayUnits}
+    assert display["mm"] == 1e3 and display["deg"] == pytest.approx(180.0 / math.pi)
+    assert display["rpm"] == pytest.approx(60.0 / (2.0 * math.pi))
+    variables = {v.name: v for v in description.modelVariables}
+    assert variables["u_load"].unit == "m" and variables["omega_drive"].unit == "rad/s"
+    assert variables["drive_torque"].unit == "N.m"

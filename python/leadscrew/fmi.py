@@ -55,6 +55,15 @@ _BASE_UNITS: Dict[str, Dict[str, int]] = {
 }
 
 
+# Display units an engineer reads these quantities in (FMI 2.0 DisplayUnit:
+# display value = factor * SI value): the variables stay SI, an importer
+# offers these beside them.
+_DISPLAY_UNITS: Dict[str, List[tuple]] = {
+    "m": [("mm", 1e3)], "m/s": [("mm/s", 1e3)], "rad": [("deg", 180.0 / math.pi)],
+    "rad/s": [("rpm", 30.0 / math.pi)], "N.m": [("N.mm", 1e3)],
+}
+
+
 def _binary() -> str:
     from . import _shipped
 
@@ -96,7 +105,10 @@ def _model_description(variables: List[dict], name: str, guid: str,
         base = _BASE_UNITS.get(unit)
         if base:
             exponents = " ".join(f'{k}="{e}"' for k, e in base.items())
-            lines.append(f"    <Unit name={quoteattr(unit)}><BaseUnit {exponents}/></Unit>")
+            display = "".join(f'<DisplayUnit name={quoteattr(name)} factor="{_number(factor)}"/>'
+                              for name, factor in _DISPLAY_UNITS.get(unit, []))
+            lines.append(f"    <Unit name={quoteattr(unit)}><BaseUnit {exponents}/>{display}"
+                         "</Unit>")
         else:
             lines.append(f"    <Unit name={quoteattr(unit)}/>")
     lines += ["  </UnitDefinitions>",

@@ -120,6 +120,8 @@ def test_a_step_past_the_screws_end_gives_an_error_text(capi_check, tmp_path):
     lines = run(capi_check, "advance", spec, 10.0)
     assert lines[0].startswith("error 2: ") and "screw" in lines[0]
     assert lines[1].startswith("error 2: ") and "stopped at its failure" in lines[1]
+    # The failure's time once (a new user read "at t = X s: ...: at t = X s: ...").
+    assert lines[1].count("t = ") == 1 + lines[0].count("t = ") - 1, lines[:2]
     assert lines[2:] == ["ok", "ok"]  # reset, and a step within the screw
 
 

@@ -223,3 +223,27 @@ def test_units_are_si_with_display_units(tmp_path):
     variables = {v.name: v for v in description.modelVariables}
     assert variables["u_load"].unit == "m" and variables["omega_drive"].unit == "rad/s"
     assert variables["drive_torque"].unit == "N.m"
+
+
+def test_a_guid_of_another_export_is_refused(tmp_path):
+    """The binary is generic, the GUID is the export's: a model description
+    and resources of two exports do not run together. (In a subprocess of
+    its own: FMPy loads the binary there once.)"""
+    path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
+    script = ("import fmpy\n"
+              "from fmpy.fmi2 import FMU2Slave\n"
+              f"path = {str(path)!r}\n"
+              "d = fmpy.read_model_description(path)\n"
+              "fmu = FMU2Slave(guid='{wrong}', unzipDirectory=fmpy.extract(path),\n"
+              "                modelIdentifier=d.coSimulation.modelIdentifier, instanceName='x')\n"
+              "try:\n"
+              "    fmu.instantiate(loggingOn=True)\n"
+              "except Exception as error:\n"
+              "    print('refused', error)\n"
+              "else:\n"
+              "    print('instantiated')\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "refused Failed to instantiate" in done.stdout, done.stdout
+    assert "is not this FMU's" in done.stdout + done.stderr

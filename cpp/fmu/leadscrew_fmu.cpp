@@ -10,9 +10,11 @@
 #include <cstdarg>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "fmi2.h"
@@ -161,7 +163,7 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean logging_on, size_t, 
   return fmi2OK;
 }
 
-fmi2Component fmi2Instantiate(fmi2String instance_name, fmi2Type fmu_type, fmi2String,
+fmi2Component fmi2Instantiate(fmi2String instance_name, fmi2Type fmu_type, fmi2String guid,
                               fmi2String resource_location,
                               const fmi2CallbackFunctions* functions, fmi2Boolean,
                               fmi2Boolean logging_on) {
@@ -174,8 +176,19 @@ fmi2Component fmi2Instantiate(fmi2String instance_name, fmi2Type fmu_type, fmi2S
     return nullptr;
   }
   try {
-    const std::string path = resource_path(resource_location) + "core.toml";
-    self->spec = leadscrew::model::read_core_spec_file(path);
+    const std::string resources = resource_path(resource_location);
+    // The binary is generic: the export's GUID is in its resources, and a
+    // modelDescription.xml of another export does not run this one's spec.
+    std::ifstream guid_file(resources + "guid");
+    std::string expected;
+    std::getline(guid_file, expected);
+    if (!guid_file || expected != (guid ? guid : ""))
+      throw std::invalid_argument("the GUID " + std::string(guid ? guid : "(null)") +
+                                  " is not this FMU's (" +
+                                  (expected.empty() ? "resources/guid missing" : expected) +
+                                  "): its modelDescription.xml and resources come from two "
+                                  "exports");
+    self->spec = leadscrew::model::read_core_spec_file(resources + "core.toml");
     self->parameters = self->spec.parameters;
     self->index();
   } catch (const std::exception& e) {

@@ -213,4 +213,5 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
         fmu.writestr("modelDescription.xml", xml)
         fmu.write(binary, f"binaries/linux64/{MODEL_IDENTIFIER}.so")
         fmu.writestr("resources/core.toml", spec)
+        fmu.writestr("resources/guid", guid + "\n")
     return path

@@ -150,7 +150,7 @@ void DriveStepper::advance(double t) {
     system_->hybrid->extend_horizon(now, run_->state().data(), t);
     run_->advance(output, record_);
   } catch (const SimulationError& e) {
-    failure_ = e.what();
+    failure_ = e.reason();  // (its time is failure_time_: what() would repeat it)
     failure_time_ = e.time();
     throw;
   } catch (const std::exception& e) {

@@ -349,8 +349,11 @@ _CHANNELS_BY_UNIT = {
     "m/s^2": ("acceleration",),
     "N": ("force", "axial_force", "normal_force", "friction_force", "spring_force"),
     "N*m": ("drive_torque",),
+    "A": ("motor_current",),
+    "V": ("motor_voltage",),
     "J": ("work_drive", "work_axial", "work_force", "friction_loss", "damping_loss",
-          "contact_loss", "impact_loss", "kinetic", "elastic", "energy_residual"),
+          "contact_loss", "impact_loss", "copper_loss", "kinetic", "elastic",
+          "magnetic_energy", "energy_residual"),
     "": ("stick",),  # a flag: 1 stick, 0 slip
 }
 _CHANNEL_UNITS = {name: unit for unit, names in _CHANNELS_BY_UNIT.items() for name in names}

@@ -40,7 +40,10 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   const bool penalty = p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
   const bool exact_play = p.backlash == BacklashContact::exact;
   if (type.time_stepping) {  // set-valued
-    if (penalty) return type.ode ? set_valued_ode : event_driven_only;
+    // Moreau-Jean's step does not carry a DC motor's current (a state of
+    // the ODE, elements/dc_motor.hpp): its drives run event-driven or by an
+    // ODE method.
+    if (penalty || p.dc_motor) return type.ode ? set_valued_ode : event_driven_only;
     if (exact_play) return with_moreau;
     return type.ode ? set_valued_all : with_moreau;
   }
@@ -57,7 +60,8 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                    (p.backlash != BacklashContact::none
                         ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
                         : std::string()) +
-                       "friction.law = \"" + p.friction + "\"");
+                       "friction.law = \"" + p.friction + "\"" +
+                       (p.dc_motor ? std::string(" and motor.type = \"dc\"") : std::string()));
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   integrate::validate_output_request(options.output, 0.0);
   if (options.max_events < 0)

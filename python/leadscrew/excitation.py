@@ -38,7 +38,7 @@ Excitation = _core.Excitation
 Number = Union[float, str]
 
 #: The units a load's values may have: those of the loads it drives.
-LOAD_UNITS = ("N", "N*m", "rad/s", "V")
+LOAD_UNITS = ("N", "N*m", "rad/s")
 
 
 def _load_values(named: Sequence[Tuple[str, Any]]) -> Tuple[List[float], str]:

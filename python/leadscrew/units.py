@@ -68,6 +68,12 @@ _DIMENSION_NAMES = (
     ("s/m", "an inverse velocity"),
     ("s^2/m", "an inverse acceleration"),
     ("1/m", "an inverse length (a stiffness per unit force)"),
+    ("V", "a voltage"),
+    ("A", "a current"),
+    ("ohm", "a resistance"),
+    ("H", "an inductance"),
+    ("N*m/A", "a torque constant"),
+    ("V*s/rad", "a back-EMF constant"),
 )
 
 

@@ -234,12 +234,38 @@ def test_motor_is_exclusive_with_the_drive_loads(load):
         ls.Scene.from_dict(motor_scene()).replace(loads={load: 1.0})
 
 
-def test_equilibrium_start_and_moreau_are_refused():
+def test_equilibrium_start_is_refused():
     with pytest.raises(ValueError, match=r"initial\.state = 'equilibrium' is invalid with motor"):
         ls.Scene.from_dict({**motor_scene(), "initial": {"state": "equilibrium"}})
-    scene = ls.Scene.from_dict(motor_scene())
-    with pytest.raises(ValueError, match=r"integrator.*motor\.type = \"dc\""):
-        ls.simulate(scene, 0.01, integrator="moreau", dt=1e-4)
+
+
+@pytest.mark.parametrize("inductance", [L, 0.0])
+@pytest.mark.parametrize("limit", [None, 1.0])
+def test_moreau_jean_reaches_the_steady_state_within_the_limit(inductance, limit):
+    motor = {"inductance": inductance, **({"current_limit": limit} if limit else {})}
+    scene = motor_scene(**motor)
+    result = ls.simulate(ls.Scene.from_dict(scene), STEADY_T_END, integrator="moreau", dt=1e-4)
+    current, omega, _ = reference.steady_state(rigid_reference(scene), F, U, R, KT, KT)
+    assert result["motor_current"][-1] == pytest.approx(current, rel=1e-6)
+    assert result["omega_drive"][-1] == pytest.approx(omega, rel=1e-6)
+    if limit:
+        assert np.max(np.abs(result["motor_current"])) <= limit * (1 + 1e-12)
+        assert np.max(np.abs(result["motor_current"])) == pytest.approx(limit, rel=1e-12)
+    # Moreau-Jean dissipates by construction: it creates at most 1e-3 of the work.
+    assert np.max(-result["energy_residual"]) <= 1e-3 * result["work_drive"][-1]
+
+
+def test_moreau_jean_stalled_current_follows_the_time_constant():
+    scene = motor_scene(axial_force=1000.0)
+    t_end = 10 * L / R
+    result = ls.simulate(ls.Scene.from_dict(scene), t_end, integrator="moreau", dt=1e-6,
+                         theta=0.5)
+    # The trapezoidal rule on i' = (U - R i) / L: second order in dt / (L / R) = 2e-3.
+    np.testing.assert_allclose(result["motor_current"],
+                               reference.stalled_current(result.t, U, R, L), rtol=1e-6,
+                               atol=1e-6 * U / R)
+    # At theta = 1/2 the magnetic energy's change is exact: the account closes.
+    assert np.max(np.abs(result["energy_residual"])) <= 1e-9 * result["work_drive"][-1]
 
 
 def test_removing_the_motor_restores_the_torque_drive():

@@ -40,10 +40,7 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   const bool penalty = p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
   const bool exact_play = p.backlash == BacklashContact::exact;
   if (type.time_stepping) {  // set-valued
-    // Moreau-Jean's step does not carry a DC motor's current (a state of
-    // the ODE, elements/dc_motor.hpp): its drives run event-driven or by an
-    // ODE method.
-    if (penalty || p.dc_motor) return type.ode ? set_valued_ode : event_driven_only;
+    if (penalty) return type.ode ? set_valued_ode : event_driven_only;
     if (exact_play) return with_moreau;
     return type.ode ? set_valued_all : with_moreau;
   }
@@ -60,8 +57,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                    (p.backlash != BacklashContact::none
                         ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
                         : std::string()) +
-                       "friction.law = \"" + p.friction + "\"" +
-                       (p.dc_motor ? std::string(" and motor.type = \"dc\"") : std::string()));
+                       "friction.law = \"" + p.friction + "\"");
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   integrate::validate_output_request(options.output, 0.0);
   if (options.max_events < 0)
@@ -74,7 +70,9 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
     integrate::check_moreau_options(options.output.t_end, drive::moreau_options(options));
     check_step_resolves_loads(options.dt, options.output.t_end,
-                              {p.speed_controlled ? &p.drive_speed : &p.drive_torque,
+                              {p.dc_motor           ? &p.motor_voltage
+                               : p.speed_controlled ? &p.drive_speed
+                                                    : &p.drive_torque,
                                &p.axial_force});
     return;
   }

@@ -74,6 +74,46 @@ struct DcMotor {
   double magnetic_energy(double current) const noexcept {
     return 0.5 * inductance * current * current;
   }
+
+  // The theta method over a step h of the armature (Moreau-Jean's step):
+  // L (i+ - i) = h (U - R i_theta - k_e omega_theta), with x_theta =
+  // (1 - theta) x + theta x+, U at t + theta h. Linear in the rotor's speed
+  // omega+ at the step's end: i_theta = mean + mean_slope omega+, i+ = end +
+  // end_slope omega+. L = 0: the same formulas give the quasi-static current
+  // at omega_theta as i_theta (the start's current cancels; i+ means
+  // nothing). Held at the limit (sign `held`): i+ = held i_max (L = 0:
+  // i_theta = held i_max), no slope. The current beyond the limit:
+  // |i+| (L > 0) or |i_theta| (L = 0) > i_max (exceeds).
+  struct ThetaStep {
+    double mean = 0.0, mean_slope = 0.0, end = 0.0, end_slope = 0.0;
+  };
+  ThetaStep theta_step(double u_theta, double h, double theta, double current,
+                       double omega, int held) const {
+    ThetaStep s;
+    if (held != 0) {
+      s.end = held * current_limit;
+      s.mean = has_state() ? (1.0 - theta) * current + theta * s.end : s.end;
+      return s;
+    }
+    if (!has_state()) {  // (directly: theta = 0 would divide 0 by 0)
+      s.mean = (u_theta - back_emf_constant * (1.0 - theta) * omega) / resistance;
+      s.mean_slope = -theta * back_emf_constant / resistance;
+      return s;
+    }
+    const double denominator = inductance + theta * h * resistance;
+    s.end = (inductance * current + h * (u_theta - resistance * (1.0 - theta) * current -
+                                         back_emf_constant * (1.0 - theta) * omega)) /
+            denominator;
+    s.end_slope = -h * theta * back_emf_constant / denominator;
+    s.mean = (1.0 - theta) * current + theta * s.end;
+    s.mean_slope = theta * s.end_slope;
+    return s;
+  }
+  bool exceeds(const ThetaStep& s, double omega_next) const {
+    const double i = has_state() ? s.end + s.end_slope * omega_next
+                                 : s.mean + s.mean_slope * omega_next;
+    return limited() && std::abs(i) > current_limit;
+  }
 };
 
 }  // namespace leadscrew::model::elements

@@ -11,7 +11,6 @@ import pytest
 
 import leadscrew as ls
 from helpers import dc_motor_reference as reference
-from helpers.rigid_drive_reference import RigidDrive
 from helpers.scenes import thesis_scene
 
 R, KT = 2.0, 0.05  # [Ohm], [N m/A] (= k_e in SI)
@@ -34,13 +33,7 @@ def motor_scene(voltage=U, axial_force=F, **motor):
 def rigid_reference(scene):
     """The helper's rigid drive with the scene's derived masses and inertias."""
     s = ls.Scene.from_dict(scene)
-    derived = s.derived()
-    t, fr = scene["thread"], scene["friction"]
-    return RigidDrive(lead=t["pitch"], mean_radius=t["mean_diameter"] / 2, mu=fr["mu"],
-                      rotor_inertia=scene["rotor"]["inertia"],
-                      screw_inertia=derived["screw_inertia"], screw_mass=derived["screw_mass"],
-                      nut_inertia=derived["nut_inertia"], nut_mass=derived["nut_mass"],
-                      load_mass=scene["load"]["mass"])
+    return reference.rigid_drive(s.to_dict(), s.derived())
 
 
 @pytest.mark.parametrize("inductance", [L, 0.0])

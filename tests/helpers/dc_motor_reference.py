@@ -20,7 +20,19 @@ import numpy as np
 
 from .rigid_drive_reference import RigidDrive
 
-__all__ = ["steady_torque", "steady_state", "stalled_current"]
+__all__ = ["rigid_drive", "steady_torque", "steady_state", "stalled_current"]
+
+
+def rigid_drive(scene: dict, derived: dict) -> RigidDrive:
+    """The rigid drive of a scene dict (Scene.to_dict()) and its derived
+    masses and inertias (Scene.derived()), screw-driven, right-hand."""
+    thread, friction = scene["thread"], scene["friction"]
+    return RigidDrive(lead=thread["pitch"] * thread["starts"],
+                      mean_radius=thread["mean_diameter"] / 2, mu=friction["mu"],
+                      rotor_inertia=scene["rotor"]["inertia"],
+                      screw_inertia=derived["screw_inertia"], screw_mass=derived["screw_mass"],
+                      nut_inertia=derived["nut_inertia"], nut_mass=derived["nut_mass"],
+                      load_mass=scene["load"]["mass"])
 
 
 def steady_torque(drive: RigidDrive, axial_force: float) -> float:

@@ -266,3 +266,34 @@ def test_removing_the_motor_restores_the_torque_drive():
     plain = scene.replace(motor=None)
     assert "motor" not in plain
     assert "motor_current" not in ls.simulate(plain, 0.01).channels
+
+
+def test_core_spec_carries_the_motor():
+    from leadscrew import _core
+
+    scene = ls.Scene.from_dict(motor_scene(voltage={"type": "sine", "amplitude": U,
+                                                    "omega": 2 * math.pi, "offset": 0.5},
+                                           current_limit=1.0))
+    text = scene.to_core_toml()
+    parameters, options = _core.read_core_spec(text)
+    assert parameters.dc_motor
+    original = scene.model().parameters
+    for name in ("motor_resistance", "motor_inductance", "motor_torque_constant",
+                 "motor_back_emf_constant", "motor_current_limit"):
+        assert getattr(parameters, name) == getattr(original, name), name
+    assert parameters.motor_voltage.describe() == original.motor_voltage.describe()
+    assert _core.write_core_spec(parameters, **options) == text
+
+
+def test_the_stepper_refuses_a_dc_motor():
+    from leadscrew import _core
+
+    model = ls.Scene.from_dict(motor_scene()).model()
+    with pytest.raises(ValueError, match=r"motor\.type = \"dc\" is invalid for a stepper"):
+        _core.DriveStepper(model, "", "", 1e-8, 1e-10, 100000, 1000, 0.0, 0.0, 0.0, 0)
+
+
+def test_fmu_export_refuses_a_dc_motor(tmp_path):
+    scene = ls.Scene.from_dict(motor_scene())
+    with pytest.raises(ValueError, match=r"cannot be exported as an FMU: motor\.type = 'dc'"):
+        ls.fmi.export_fmu(scene, tmp_path / "motor.fmu")

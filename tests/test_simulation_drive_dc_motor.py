@@ -297,3 +297,21 @@ def test_fmu_export_refuses_a_dc_motor(tmp_path):
     scene = ls.Scene.from_dict(motor_scene())
     with pytest.raises(ValueError, match=r"cannot be exported as an FMU: motor\.type = 'dc'"):
         ls.fmi.export_fmu(scene, tmp_path / "motor.fmu")
+
+
+@pytest.mark.parametrize("friction, options", [
+    ({"law": "lugre", "mu": 0.3, "sigma0": 1e5}, {"rtol": 1e-9, "atol": 1e-13}),
+    ({"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4}, {"integrator": "cvode_bdf"}),
+    ({"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4}, {"integrator": "event_driven"}),
+])
+def test_energy_closes_with_other_laws_and_ode_methods(friction, options):
+    """The motor's states follow LuGre's bristle states in y; an ODE method
+    (a set-valued law's regularization) carries them as the event-driven
+    scheme does."""
+    scene = motor_scene(voltage={"type": "sine", "amplitude": U, "omega": 2 * math.pi},
+                        current_limit=1.0)
+    scene["friction"] = friction
+    t_eval = np.linspace(0.0, 0.5, 2001)
+    result = ls.simulate(ls.Scene.from_dict(scene), 0.5, t_eval=t_eval, **options)
+    energy_closes(result)
+    assert np.max(np.abs(result["motor_current"])) <= 1.0 * (1 + 1e-12)

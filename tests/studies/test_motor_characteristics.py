@@ -113,3 +113,22 @@ def test_command_line_writes_the_table_and_figure(tmp_path, capsys):
     summary = json.loads(stem.with_suffix(".summary.json").read_text())
     assert summary["stall_load"] > 5.0
     assert np.isfinite(frame["speed"]).all()
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+@pytest.mark.parametrize("hand", ["right", "left"])
+@pytest.mark.parametrize("voltage", [U, -U])
+def test_every_drive_hand_and_voltage_sign_raises_the_load(drive, hand, voltage):
+    """The load to raise acts against the motion the voltage drives, whichever
+    part turns and whichever the hand: the same steady state, mirrored."""
+    d = motor_scene(voltage=voltage)
+    d["drive"] = drive
+    d["thread"] = {**d["thread"], "hand": hand}
+    d["nut"] = {**d["nut"], "position": 0.25}
+    row = ls.studies.motor_characteristics(d, [10.0], t_end=2.0, progress=False).iloc[0]
+    assert row["error"] is None and not row["stalled"]
+    assert math.copysign(1.0, row["speed"]) == math.copysign(1.0, voltage)
+    assert row["speed"] == pytest.approx(row["speed_closed_form"], rel=1e-6)
+    assert row["current"] == pytest.approx(row["current_closed_form"], rel=1e-6)
+    assert row["efficiency"] == pytest.approx(row["efficiency_closed_form"], rel=1e-6)
+    assert row["efficiency"] > 0.0

@@ -132,3 +132,22 @@ def test_every_drive_hand_and_voltage_sign_raises_the_load(drive, hand, voltage)
     assert row["current"] == pytest.approx(row["current_closed_form"], rel=1e-6)
     assert row["efficiency"] == pytest.approx(row["efficiency_closed_form"], rel=1e-6)
     assert row["efficiency"] > 0.0
+
+
+def test_the_batch_varies_the_motor_and_refuses_what_it_would_ignore():
+    from leadscrew.studies._batch import DriveBatch
+
+    scene = ls.Scene.from_dict(motor_scene())
+    batch = DriveBatch(scene, ("motor_resistance", "axial_force"), ("omega_drive",), 2.0, [2.0])
+    samples, errors, _ = batch.run(np.array([[R, 10.0], [2 * R, 10.0]]), 1)
+    assert not any(errors)
+    drive = reference.rigid_drive(scene.to_dict(), scene.derived())
+    for resistance, omega in zip((R, 2 * R), samples[:, 0, 0]):
+        expected = reference.steady_state(drive, 10.0, U, resistance, KT, KT)[1]
+        assert omega == pytest.approx(expected, rel=1e-6)
+    for name in ("drive_torque", "drive_speed"):
+        with pytest.raises(ValueError, match=rf"\"{name}\" is invalid for a drive with a DC motor"):
+            DriveBatch(scene, (name,), ("motor_current",), 0.1, [0.1])
+    with pytest.raises(ValueError, match=r"\"motor_resistance\" is invalid for a drive without"):
+        DriveBatch(ls.Scene.from_dict(thesis_scene()), ("motor_resistance",), ("u_load",), 0.1,
+                   [0.1])

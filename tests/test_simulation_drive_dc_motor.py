@@ -315,3 +315,16 @@ def test_energy_closes_with_other_laws_and_ode_methods(friction, options):
     result = ls.simulate(ls.Scene.from_dict(scene), 0.5, t_eval=t_eval, **options)
     energy_closes(result)
     assert np.max(np.abs(result["motor_current"])) <= 1.0 * (1 + 1e-12)
+
+
+def test_the_core_refuses_a_drive_torque_beside_the_motor():
+    from leadscrew import _core
+
+    parameters = ls.Scene.from_dict(motor_scene()).model().parameters
+    parameters.drive_torque = 0.01
+    with pytest.raises(ValueError, match=r"loads\.drive_torque = .* is invalid with motor\.type"):
+        _core.DriveModel(parameters)
+    parameters.drive_torque = 0.0
+    parameters.speed_controlled = True
+    with pytest.raises(ValueError, match=r"loads\.drive_speed is invalid with motor\.type"):
+        _core.DriveModel(parameters)

@@ -328,3 +328,32 @@ def test_the_core_refuses_a_drive_torque_beside_the_motor():
     parameters.speed_controlled = True
     with pytest.raises(ValueError, match=r"loads\.drive_speed is invalid with motor\.type"):
         _core.DriveModel(parameters)
+
+
+@pytest.mark.parametrize("integrator", ["event_driven", "moreau"])
+def test_the_driver_never_puts_out_more_than_its_voltage(integrator):
+    """A flexible nut with play rattling under a reversing voltage, the
+    current limited: where the current is held at the limit the driver's
+    voltage lies between 0 and U(t) on the current's side (it only lowers
+    U), elsewhere it is U(t); the limit holds; the account closes."""
+    amplitude, omega, limit = 2 * U, 4 * math.pi, 1.0
+    scene = motor_scene(voltage={"type": "sine", "amplitude": amplitude, "omega": omega},
+                        current_limit=limit)
+    scene["concept"] = "flexible_nut"
+    scene["backlash"] = {"axial": 1e-4, "contact": "exact", "restitution": 0.5}
+    t_eval = np.linspace(0.0, 0.5, 2001)
+    options = {"dt": 1e-5} if integrator == "moreau" else {}
+    result = ls.simulate(ls.Scene.from_dict(scene), 0.5, t_eval=t_eval, integrator=integrator,
+                         **options)
+    current, voltage = result["motor_current"], result["motor_voltage"]
+    supply = amplitude * np.sin(omega * result.t)
+    assert np.max(np.abs(current)) <= limit * (1 + 1e-12)
+    held = np.abs(current) >= limit * (1 - 1e-12)
+    assert held.any() and not held.all()
+    scale = 1e-9 * amplitude
+    side = np.sign(current[held])
+    assert np.all(side * voltage[held] <= side * supply[held] + scale)
+    if integrator == "event_driven":
+        np.testing.assert_allclose(voltage[~held], supply[~held], rtol=0, atol=scale)
+        energy_closes(result)
+        assert result["impact_loss"][-1] > 0.0  # (Moreau-Jean's impacts are its dissipation)

@@ -120,6 +120,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   // beyond it; the event holds or releases the current (snapped to the limit).
   double current_limit_margin(double t) const;
   std::string change_current_hold(double t, double* y);
+  // After a mechanical event: an impact's jump of the rotor's speed may end
+  // the driver's push at once (g5 would start beyond its zero).
+  void recheck_current_hold(double t, const double* y);
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);

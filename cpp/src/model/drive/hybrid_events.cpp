@@ -185,6 +185,7 @@ std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int
   const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
                          root_info[0] != 0;
   std::string kind = change_mode(t, y, root_info);
+  if (current_limit_root()) recheck_current_hold(t, y);
   note_flight_start(t, y);
   start_mode(t, y);
   // A stick whose cone margin never left zero was no stick phase: the thread

@@ -52,4 +52,10 @@ std::string DriveHybrid::change_current_hold(double t, double* y) {
   return "current limit reached";
 }
 
+void DriveHybrid::recheck_current_hold(double t, const double* y) {
+  if (current_held_ == 0) return;
+  set(t, y);
+  if (current_limit_margin(t) < 0.0) current_held_ = 0;
+}
+
 }  // namespace leadscrew::model::drive

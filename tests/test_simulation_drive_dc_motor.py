@@ -357,3 +357,12 @@ def test_the_driver_never_puts_out_more_than_its_voltage(integrator):
         np.testing.assert_allclose(voltage[~held], supply[~held], rtol=0, atol=scale)
         energy_closes(result)
         assert result["impact_loss"][-1] > 0.0  # (Moreau-Jean's impacts are its dissipation)
+
+
+def test_a_callable_voltage_runs_as_its_constant():
+    constant = ls.simulate(ls.Scene.from_dict(motor_scene()), 0.05)
+    called = ls.simulate(ls.Scene.from_dict(motor_scene(voltage=lambda t: U)), 0.05)
+    assert called["motor_current"][-1] == pytest.approx(constant["motor_current"][-1],
+                                                        rel=1e-9)
+    with pytest.raises(ValueError, match=r"motor\.voltage = .* returned .3 V., not a number \[V\]"):
+        ls.simulate(ls.Scene.from_dict(motor_scene(voltage=lambda t: "3 V")), 0.05)

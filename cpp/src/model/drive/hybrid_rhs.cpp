@@ -71,6 +71,7 @@ void DriveHybrid::rhs(double t, const double* y, double* ydot) {
   }
   energy[kDampingLoss] = dynamics_.damping_power();
   energy[kContactLoss] = dynamics_.contact_loss_power();
+  if (model_.dc_motor()) motor_rates(t, ydot, energy);
 }
 
 // The rigid drive's forces and acceleration at (t, y) from the coefficients
@@ -143,19 +144,24 @@ void DriveHybrid::channels(double t, const double* y, double* out) {
   // Stick holds the slip velocity at zero; the state carries the integrator's
   // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
   if (forces.stick) state.slip_velocity = 0.0;
+  if (model_.dc_motor()) motor_channels(t, y, state);
   write_drive_channels(model_, state, forces, y + layout_.energy_offset(), impact_loss_,
                        kinetic0_, elastic0_, out);
 }
 
 std::vector<double> DriveHybrid::breakpoints() const {
   std::vector<double> times = p_.axial_force.breakpoints();
-  const Excitation& drive = p_.speed_controlled ? p_.drive_speed : p_.drive_torque;
+  const Excitation& drive = p_.dc_motor           ? p_.motor_voltage
+                            : p_.speed_controlled ? p_.drive_speed
+                                                  : p_.drive_torque;
   times.insert(times.end(), drive.breakpoints().begin(), drive.breakpoints().end());
   return times;
 }
 
 double DriveHybrid::max_step_hint() const {
-  const Excitation& drive = p_.speed_controlled ? p_.drive_speed : p_.drive_torque;
+  const Excitation& drive = p_.dc_motor           ? p_.motor_voltage
+                            : p_.speed_controlled ? p_.drive_speed
+                                                  : p_.drive_torque;
   return integrate::max_step_from_time_scales(
       {drive.time_scale(), p_.axial_force.time_scale()});
 }

@@ -253,3 +253,38 @@ def test_a_guid_of_another_export_is_refused(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "refused Failed to instantiate" in done.stdout, done.stdout
     assert "is not this FMU's" in done.stdout + done.stderr
+
+
+def test_a_reference_of_another_type_names_the_variable_and_the_call(tmp_path):
+    """fmi2GetReal of the Boolean `stick`, fmi2GetBoolean of a Real and
+    fmi2GetInteger of a Real are refused naming the variable, its type and
+    the call that takes it. (In a subprocess: see the GUID test above.)"""
+    path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
+    script = ("import fmpy\n"
+              "from fmpy.fmi2 import FMU2Slave\n"
+              f"path = {str(path)!r}\n"
+              "d = fmpy.read_model_description(path)\n"
+              "refs = {v.name: v.valueReference for v in d.modelVariables}\n"
+              "fmu = FMU2Slave(guid=d.guid, unzipDirectory=fmpy.extract(path),\n"
+              "                modelIdentifier=d.coSimulation.modelIdentifier, instanceName='x')\n"
+              "fmu.instantiate(loggingOn=True)\n"
+              "fmu.setupExperiment(startTime=0.0)\n"
+              "fmu.enterInitializationMode(); fmu.exitInitializationMode()\n"
+              "for call, name in ((fmu.getReal, 'stick'), (fmu.getBoolean, 'u_load'),\n"
+              "                   (fmu.getInteger, 'u_load'), (fmu.setReal, 'stick')):\n"
+              "    try:\n"
+              "        call([refs[name]], [0.0]) if call == fmu.setReal else call([refs[name]])\n"
+              "    except Exception as error:\n"
+              "        print('refused', name, flush=True)\n"
+              "    else:\n"
+              "        print('answered', name, flush=True)\n"
+              "fmu.terminate(); fmu.freeInstance()\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    out = done.stdout + done.stderr
+    assert out.count("refused") == 4, out
+    assert "is stick, a Boolean variable: fmi2GetReal does not take it (fmi2GetBoolean does)" in out
+    assert "is u_load, a Real variable: fmi2GetBoolean does not take it (fmi2GetReal does)" in out
+    assert "is u_load, a Real variable: fmi2GetInteger does not take it (fmi2GetReal does)" in out
+    assert "is stick, a Boolean variable: fmi2SetReal does not take it (fmi2SetBoolean does)" in out

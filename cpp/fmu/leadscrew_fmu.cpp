@@ -112,31 +112,45 @@ fmi2Status unknown_reference(Instance* self, fmi2ValueReference vr) {
   return self->error("value reference " + std::to_string(vr) + " is not a variable of this FMU");
 }
 
+// `call` (e.g. "fmi2GetReal") was given a reference of another type, or of
+// none: names the variable and the call that takes it.
+fmi2Status wrong_type(Instance* self, fmi2ValueReference vr, const std::string& call) {
+  const CosimVariable* v = find(self, vr);
+  if (!v) return unknown_reference(self, vr);
+  const std::string type = v->boolean ? "Boolean" : "Real";
+  const std::string access = call.compare(0, 7, "fmi2Set") == 0 ? "fmi2Set" : "fmi2Get";
+  return self->error("value reference " + std::to_string(vr) + " is " + v->name + ", a " + type +
+                     " variable: " + call + " does not take it (" + access + type + " does)");
+}
+
 fmi2Status unsupported(fmi2Component c, const char* what) {
   if (c) instance(c)->log(fmi2Error, "logStatusError", std::string(what) + " is not supported");
   return fmi2Error;
 }
 
-// Reads each variable (all of the type `boolean` says) through `read`.
+// Reads each variable (all of the type `boolean` says) through `read`;
+// `call` names the function for a reference of another type.
 template <class T, class Read>
 fmi2Status get_values(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, T value[],
-                      bool boolean, Read read) {
+                      bool boolean, const char* call, Read read) {
   Instance* self = instance(c);
   return guarded(self, [&] {
     for (size_t i = 0; i < nvr; ++i) {
       const CosimVariable* v = find(self, vr[i]);
-      if (!v || v->boolean != boolean) return unknown_reference(self, vr[i]);
+      if (!v || v->boolean != boolean) return wrong_type(self, vr[i], call);
       value[i] = read(*self, *v);
     }
     return fmi2OK;
   });
 }
 
-// The drive has reals and one boolean: any reference of another type is unknown.
-fmi2Status no_variable(fmi2Component c, const fmi2ValueReference vr[], size_t nvr) {
+// The drive has reals and one boolean: a call of another type (`call`)
+// takes no reference.
+fmi2Status no_variable(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                       const char* call) {
   Instance* self = instance(c);
   if (!self) return fmi2Error;
-  return nvr == 0 ? fmi2OK : unknown_reference(self, vr[0]);
+  return nvr == 0 ? fmi2OK : wrong_type(self, vr[0], call);
 }
 
 // A status query of which the FMU answers the kind `served` alone.
@@ -248,7 +262,8 @@ fmi2Status fmi2Reset(fmi2Component c) {
 
 fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        fmi2Real value[]) {
-  return get_values(c, vr, nvr, value, false, [](Instance& self, const CosimVariable& v) {
+  return get_values(c, vr, nvr, value, false, "fmi2GetReal",
+                    [](Instance& self, const CosimVariable& v) {
     if (v.kind == CosimVariable::Kind::input)
       return self.stepper && !self.set_inputs.count(v.reference) ? self.stepper->input(v.name)
                                                                  : self.inputs[v.reference];
@@ -265,19 +280,20 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
 
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Boolean value[]) {
-  return get_values(c, vr, nvr, value, true, [](Instance& self, const CosimVariable& v) {
+  return get_values(c, vr, nvr, value, true, "fmi2GetBoolean",
+                    [](Instance& self, const CosimVariable& v) {
     return self.stepper && self.stepper->channel(v.name) != 0.0 ? fmi2True : fmi2False;
   });
 }
 
 fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Integer[]) {
-  return no_variable(c, vr, nvr);
+  return no_variable(c, vr, nvr, "fmi2GetInteger");
 }
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                          fmi2String[]) {
-  return no_variable(c, vr, nvr);
+  return no_variable(c, vr, nvr, "fmi2GetString");
 }
 
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -286,7 +302,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
   return guarded(self, [&] {
     for (size_t i = 0; i < nvr; ++i) {
       const CosimVariable* v = find(self, vr[i]);
-      if (!v || v->boolean) return unknown_reference(self, vr[i]);
+      if (!v || v->boolean) return wrong_type(self, vr[i], "fmi2SetReal");
       if (v->kind == CosimVariable::Kind::output)
         return self->error("variable " + v->name + " is an output: it cannot be set");
       if (v->kind == CosimVariable::Kind::parameter) {
@@ -309,17 +325,17 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
 
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer[]) {
-  return no_variable(c, vr, nvr);
+  return no_variable(c, vr, nvr, "fmi2SetInteger");
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Boolean[]) {
-  return no_variable(c, vr, nvr);
+  return no_variable(c, vr, nvr, "fmi2SetBoolean");
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                          const fmi2String[]) {
-  return no_variable(c, vr, nvr);
+  return no_variable(c, vr, nvr, "fmi2SetString");
 }
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate*) {

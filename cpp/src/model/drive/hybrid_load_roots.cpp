@@ -2,10 +2,10 @@
 // planned from the loads alone (first_load_crossing, drive_rigid.hpp).
 #include "hybrid.hpp"
 
-#include "mode_solver.hpp"
-
 #include <limits>
 #include <optional>
+
+#include "mode_solver.hpp"
 
 namespace leadscrew::model::drive {
 

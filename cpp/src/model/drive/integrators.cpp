@@ -54,9 +54,9 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
 }  // namespace
 
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
-  return integrators_for(p.friction,
-                         p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic,
-                         p.backlash == BacklashContact::exact);
+  const bool penalty =
+      p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
+  return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {

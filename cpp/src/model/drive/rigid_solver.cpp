@@ -35,7 +35,8 @@ DriveHybrid::RigidSolver::Solution DriveHybrid::RigidSolver::solve(double t, con
   int& sigma = h_.sigma_guess_;
   const bool slip = mode.friction == FrictionMode::slip;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    const RigidModeCoefficients& c = rigid_.coefficients(mode.friction, mode.slip_sign, slip ? sigma : 1);
+    const RigidModeCoefficients& c =
+        rigid_.coefficients(mode.friction, mode.slip_sign, slip ? sigma : 1);
     s.normal_force = c.normal_force(s.torque, s.axial_force);
     if (slip && sigma * s.normal_force < 0.0) {
       sigma = -sigma;

@@ -698,6 +698,9 @@ TINY_STUDIES = {
         f'excitation={{type="sine", amplitude=30.0, omega={2 * math.pi * 20}}}',
         "max_iterations=3", *_HOLDING_RUNS]),
     "efficiency_vs_mu": ({}, ["mu=0.3", "loads=10"]),
+    "motor_characteristics": ({"loads": None, "motor": {
+        "type": "dc", "voltage": 3.0, "resistance": 2.0, "inductance": 1e-3,
+        "torque_constant": 0.05}}, ["loads=10", "t_end=0.05"]),
 }
 
 

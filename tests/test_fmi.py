@@ -228,7 +228,13 @@ def test_units_are_si_with_display_units(tmp_path):
 def test_a_guid_of_another_export_is_refused(tmp_path):
     """The binary is generic, the GUID is the export's: a model description
     and resources of two exports do not run together. (In a subprocess of
-    its own: FMPy loads the binary there once.)"""
+    its own: FMPy 0.3's logger proxy, fmpy/logging's addLoggerProxy, keeps
+    the last host logger given to `fmpy.simulate_fmu` in a global of its own
+    whose ctypes thunk dies with that call; an FMU2Slave with FMPy's default
+    callbacks that later gets a log message, as this refusal sends, calls
+    through it and crashes the process. Reproduced without this test suite:
+    simulate_fmu(path, logger=f) of a successful run, then a wrong GUID's
+    instantiate, exits with SIGSEGV; without the logger it is refused.)"""
     path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
     script = ("import fmpy\n"
               "from fmpy.fmi2 import FMU2Slave\n"

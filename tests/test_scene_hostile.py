@@ -35,6 +35,10 @@ def base_scene(concept, drive, play):
                                                "values": [-10.0, -5.0, -10.0]}})
 
 
+# A DC motor (scene section motor) for the motor's fields.
+MOTOR = {"type": "dc", "voltage": 12.0, "resistance": 2.0, "inductance": 1e-3,
+         "torque_constant": 0.05}
+
 BASES = [(c, d, p) for c in ("rigid", "flexible_nut", "flexible") for d in ("screw", "nut")
          for p in PLAY]
 
@@ -109,7 +113,11 @@ def test_a_hostile_value_gives_a_valid_scene_or_names_its_key(base, path_unit, d
     value = data.draw(values_for(unit), label="value")
     if path.startswith("backlash.") and base[2] == "none":
         base = (base[0], base[1], "bistop")  # the backlash fields need a backlash
-    d = with_value(base_scene(*base), path, value)
+    d = base_scene(*base)
+    if path.startswith("motor."):  # the motor's fields need a motor instead of the torque
+        d["loads"] = {k: v for k, v in d["loads"].items() if k != "drive_torque"}
+        d["motor"] = dict(MOTOR)
+    d = with_value(d, path, value)
     try:
         scene = ls.Scene.from_dict(d)
         assert_finite_model(scene)

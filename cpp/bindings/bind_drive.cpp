@@ -274,11 +274,15 @@ void bind_drive(py::module_& m) {
           "drive_speed", [](const DriveParameters& p) { return p.drive_speed; },
           [](DriveParameters& p, py::handle v) { p.drive_speed = to_excitation(v, "loads.drive_speed"); })
       .def_property(
+          "motor_voltage", [](const DriveParameters& p) { return p.motor_voltage; },
+          [](DriveParameters& p, py::handle v) { p.motor_voltage = to_excitation(v, "motor.voltage"); })
+      .def_property(
           "axial_force", [](const DriveParameters& p) { return p.axial_force; },
           [](DriveParameters& p, py::handle v) { p.axial_force = to_excitation(v, "loads.axial_force"); });
   for (const model::ScalarField& field : model::scalar_fields())
     parameters.def_readwrite(field.name, field.member);
   parameters.def_readwrite("speed_controlled", &DriveParameters::speed_controlled);
+  parameters.def_readwrite("dc_motor", &DriveParameters::dc_motor);
   bind_drive_geometry(m);
 
   py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")

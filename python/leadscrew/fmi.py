@@ -175,8 +175,9 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
         The path written.
 
     Raises:
-        ValueError: the scene has a Python callable load (no FMU can carry
-            it), a derived value out of range, an unknown option, an option
+        ValueError: the scene has a DC motor (not an FMU input yet), a
+            Python callable load (no FMU can carry it), a derived value out
+            of range, an unknown option, an option
             the FMU's stepper refuses (``integrator="moreau"``, an
             integrator that does not fit the friction law), or a stop time
             or step that is not a finite number > 0 (step <= stop time).
@@ -186,6 +187,10 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
 
     if not isinstance(scene, Scene):
         raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene")
+    if "motor" in scene:
+        raise ValueError("the scene cannot be exported as an FMU: motor.type = "
+                         f"{scene['motor']['type']!r} is not an FMU input yet (its inputs are "
+                         "drive_torque or drive_speed and axial_force); remove the motor")
     try:
         spec = scene.to_core_toml(**options)
     except ValueError as error:

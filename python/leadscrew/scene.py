@@ -286,6 +286,40 @@ SCHEMA: Dict[str, Any] = {
                              "rad/s", OPTIONAL, kind="load"),
         "axial_force": Field("axial force on the load along +x", "N", 0.0, kind="load"),
     },
+    # (Absent: no motor element; loads.drive_torque or loads.drive_speed drive the rotor.)
+    "motor": {
+        "type": Field("the motor driving the rotor instead of loads.drive_torque or "
+                      "loads.drive_speed (exclusive with both): 'dc', a permanent-magnet DC "
+                      "motor on the rotor (rotor.inertia is its inertia) with the armature "
+                      "L di/dt = U_d - R i - k_e omega and the torque k_t i; its current i "
+                      "starts at 0 (the driver switched on at t = 0)", "", None,
+                      kind="choice", choices=("dc",)),
+        "voltage": Field("the driver's voltage U(t): a number, {'type': "
+                         "'sine'|'constant'|'table', ...} or an Excitation or callable",
+                         "V", None, kind="load"),
+        "resistance": Field("armature resistance R (terminal to terminal)", "ohm", None,
+                            **POSITIVE),
+        "inductance": Field("armature inductance L; 0 is the quasi-static limit, exact: "
+                            "i = (U - k_e omega) / R without a state", "H", 0.0,
+                            **NONNEGATIVE),
+        "torque_constant": Field("torque constant k_t: the torque k_t i on the rotor",
+                                 "N*m/A", None, **POSITIVE),
+        "back_emf_constant": Field("back-EMF constant k_e (equal to k_t in SI for a real "
+                                   "motor; where they differ the motor converts "
+                                   "(k_t - k_e) i omega out of nothing, which work_drive "
+                                   "books)", "V*s/rad", OPTIONAL,
+                                   default_doc="motor.torque_constant", **POSITIVE),
+        "current_limit": Field("the driver's current limit i_max: a voltage source with "
+                               "current limiting, which where |i| reaches i_max and U(t) would "
+                               "drive it further lowers its output to U_d = R i + k_e omega, "
+                               "holding |i| = i_max (an event starts and ends the hold; "
+                               "inductance 0: i clamped to +-i_max), and never puts out more "
+                               "than U(t) (absent: no limit)", "A", OPTIONAL, **POSITIVE),
+        "friction_torque": Field("the motor's own Coulomb friction torque: not modelled yet, "
+                                 "must be 0 (a value is refused rather than approximated; "
+                                 "put the motor's friction into friction.mu for now)", "N*m",
+                                 0.0, **NONNEGATIVE),
+    },
     "initial": {
         "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),
         "rotor_speed": Field("rotor angular velocity at t = 0; every body moves consistently "
@@ -315,7 +349,7 @@ SCHEMA: Dict[str, Any] = {
 # Sections that may be absent: then they take their defaults, except backlash
 # (absent: a thread without play) and overrides.
 _REQUIRED_SECTIONS = ("thread", "friction")
-_OPTIONAL_SECTIONS = ("backlash",)
+_OPTIONAL_SECTIONS = ("backlash", "motor")
 
 
 def _fail(path: str, value: Any, allowed: str) -> None:
@@ -918,6 +952,8 @@ def _check_consistency(data: Dict[str, Any]) -> None:
                          "or loads.drive_speed, not both".format(loads["drive_speed"]))
     # Without either the drive torque is 0, applied by _core_parameters: it is
     # not stored, so replace(loads={"drive_speed": w}) switches to speed.
+    if "motor" in data:
+        _check_motor(data)
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
@@ -947,6 +983,27 @@ def _check_consistency(data: Dict[str, Any]) -> None:
             raise ValueError(f"initial.play_position = {play!r}{equilibrium}must be 0 (the "
                              "equilibrium puts the nut on the flank the loads press it "
                              "against)")
+
+
+def _check_motor(data: Dict[str, Any]) -> None:
+    """The motor section's rules across sections: exclusive with the drive
+    loads, no equilibrium start, no friction torque yet.
+
+    Raises:
+        ValueError: naming the keys at fault and their values.
+    """
+    motor, loads = data["motor"], data["loads"]
+    for key in ("drive_torque", "drive_speed"):
+        if key in loads:
+            raise ValueError(f"loads.{key} = {loads[key]!r} is invalid with motor.type = "
+                             f"{motor['type']!r}: give either motor or loads.{key}, not both")
+    if motor["friction_torque"] != 0.0:
+        _fail("motor.friction_torque", motor["friction_torque"],
+              "0 (the motor's own Coulomb friction is not modelled yet)")
+    if data["initial"]["state"] == "equilibrium":
+        raise ValueError("initial.state = 'equilibrium' is invalid with motor.type = "
+                         f"{motor['type']!r}: the run starts with the current at 0 (use "
+                         "'relaxed')")
 
 
 def describe_schema() -> str:
@@ -1219,6 +1276,19 @@ def _core_parameters(data: Dict[str, Any],
     p.speed_controlled = given == "drive_speed"
     for key in (given, "axial_force"):
         setattr(p, key, _make_excitation(loads.get(key, _DEFAULT_DRIVE_TORQUE), key))
+    motor = data.get("motor")
+    if motor is not None:
+        p.dc_motor = True
+        voltage = motor["voltage"]
+        p.motor_voltage = (checked_callable("motor.voltage", voltage, "V")
+                           if voltage.__class__ is not float and callable(voltage)
+                           and not isinstance(voltage, _core.Excitation)
+                           else _make_excitation(voltage))
+        p.motor_resistance = motor["resistance"]
+        p.motor_inductance = motor["inductance"]
+        p.motor_torque_constant = motor["torque_constant"]
+        p.motor_back_emf_constant = motor.get("back_emf_constant", -1.0)
+        p.motor_current_limit = motor.get("current_limit", 0.0)
     init = data["initial"]
     # (A speed-controlled drive starts at drive_speed(0): the core takes that.)
     p.rotor_angle, p.rotor_speed, p.play_position = (

@@ -354,6 +354,8 @@ def _scalar(value):
 def _real(name: str, value) -> float:
     """``value`` as a float, if it is a real number (not a bool or a string:
     the core checks the range, this only the kind, naming the option)."""
+    if type(value) is float:  # the common case, without the abstract-class checks
+        return value
     value = _scalar(value)
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ValueError(f"{name} = {value!r} is invalid: must be a number")
@@ -366,6 +368,8 @@ def _real(name: str, value) -> float:
 def _whole(name: str, value, limit: int = 2 ** 63 - 1) -> int:
     """``value`` as an int, if it is a whole number (``1e6`` is; 1.5 is not)
     of at most ``limit`` in magnitude (the core's integer)."""
+    if type(value) is int and -limit <= value <= limit:  # the common case
+        return value
     value = _scalar(value)
     whole = isinstance(value, numbers.Integral) or (
         isinstance(value, numbers.Real) and math.isfinite(value) and value == int(value))

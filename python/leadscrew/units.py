@@ -68,6 +68,12 @@ _DIMENSION_NAMES = (
     ("s/m", "an inverse velocity"),
     ("s^2/m", "an inverse acceleration"),
     ("1/m", "an inverse length (a stiffness per unit force)"),
+    ("V", "a voltage"),
+    ("A", "a current"),
+    ("ohm", "a resistance"),
+    ("H", "an inductance"),
+    ("N*m/A", "a torque constant"),
+    ("V*s/rad", "a back-EMF constant"),
 )
 
 
@@ -349,8 +355,11 @@ _CHANNELS_BY_UNIT = {
     "m/s^2": ("acceleration",),
     "N": ("force", "axial_force", "normal_force", "friction_force", "spring_force"),
     "N*m": ("drive_torque",),
+    "A": ("motor_current",),
+    "V": ("motor_voltage",),
     "J": ("work_drive", "work_axial", "work_force", "friction_loss", "damping_loss",
-          "contact_loss", "impact_loss", "kinetic", "elastic", "energy_residual"),
+          "contact_loss", "impact_loss", "copper_loss", "kinetic", "elastic",
+          "magnetic_energy", "energy_residual"),
     "": ("stick",),  # a flag: 1 stick, 0 slip
 }
 _CHANNEL_UNITS = {name: unit for unit, names in _CHANNELS_BY_UNIT.items() for name in names}

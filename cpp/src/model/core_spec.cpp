@@ -232,7 +232,8 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
       << "\nsupport = " << quoted(support_name(p.support))
       << "\nbacklash = " << quoted(backlash_contact_name(p.backlash))
       << "\ninitial_state = " << quoted(initial_state_name(p.initial_state))
-      << "\nspeed_controlled = " << (p.speed_controlled ? "true" : "false") << "\n";
+      << "\nspeed_controlled = " << (p.speed_controlled ? "true" : "false")
+      << "\ndc_motor = " << (p.dc_motor ? "true" : "false") << "\n";
   out << "\n[thread]\npitch = " << number(p.thread.pitch())
       << "\nmean_diameter = " << number(p.thread.mean_diameter())
       << "\nstarts = " << p.thread.starts() << "\nflank_angle = " << number(p.thread.flank_angle())
@@ -245,6 +246,7 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
   write_load(out, "drive_torque", p.drive_torque, "N*m");
   write_load(out, "drive_speed", p.drive_speed, "rad/s");
   write_load(out, "axial_force", p.axial_force, "N");
+  write_load(out, "motor_voltage", p.motor_voltage, "V");
   const integrate::IntegratorOptions& o = options.integrator_options;
   out << "\n[options]\nintegrator = " << quoted(options.integrator)
       << "\nsmooth_integrator = " << quoted(options.smooth_integrator)
@@ -283,7 +285,7 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
   if (const toml::table* t = r.table(root, "", "drive")) {
     const std::string at = "drive.";
     r.known(*t, at, {"concept", "drive", "support", "backlash", "initial_state",
-                     "speed_controlled"});
+                     "speed_controlled", "dc_motor"});
     r.choice(*t, at, "concept", [&](const std::string& v) { p.concept = parse_concept(v); });
     r.choice(*t, at, "drive", [&](const std::string& v) { p.drive = parse_drive(v); });
     r.choice(*t, at, "support", [&](const std::string& v) { p.support = parse_support(v); });
@@ -292,6 +294,7 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.choice(*t, at, "initial_state",
              [&](const std::string& v) { p.initial_state = parse_initial_state(v); });
     r.flag(*t, at, "speed_controlled", p.speed_controlled);
+    r.flag(*t, at, "dc_motor", p.dc_motor);
   }
   if (const toml::table* t = r.table(root, "", "thread")) {
     const std::string at = "thread.";
@@ -336,7 +339,9 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.known(*t, "parameters.", names);
   }
   if (const toml::table* t = r.table(root, "", "loads")) {
-    r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force"});
+    r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force", "motor_voltage"});
+    if (const toml::table* l = r.table(*t, "loads.", "motor_voltage"))
+      p.motor_voltage = r.load(*l, "loads.motor_voltage.");
     if (const toml::table* l = r.table(*t, "loads.", "drive_torque"))
       p.drive_torque = r.load(*l, "loads.drive_torque.");
     if (const toml::table* l = r.table(*t, "loads.", "drive_speed"))

@@ -82,6 +82,16 @@ DriveParameterOverrides::DriveParameterOverrides(const std::vector<std::string>&
         names.begin() + static_cast<std::ptrdiff_t>(k))
       throw InvalidArgument(entry + " = \"" + names[k] +
                             "\" is invalid: must not repeat an earlier entry");
+    // A DC motor drives the rotor instead of either load; its fields mean
+    // nothing without one.
+    const bool motor_field = names[k].rfind("motor_", 0) == 0;
+    if (base.dc_motor && (names[k] == "drive_torque" || names[k] == "drive_speed"))
+      throw InvalidArgument(entry + " = \"" + names[k] +
+                            "\" is invalid for a drive with a DC motor (motor.type = \"dc\"): "
+                            "the motor drives the rotor; vary its motor_* fields instead");
+    if (!base.dc_motor && motor_field)
+      throw InvalidArgument(entry + " = \"" + names[k] +
+                            "\" is invalid for a drive without a DC motor (no motor section)");
     // The motor is either torque-driven or speed-controlled (the Scene's
     // loads.drive_torque / loads.drive_speed): the other load is unused.
     if ((names[k] == "drive_speed" && !base.speed_controlled) ||

@@ -155,6 +155,10 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
     element.add_forces(q, v, a, thread.nut_position_gradient(), forces_, elastic_, damping_power_);
   });
   applied_torque_ = motor.applied_torque(t);
+  if (const elements::DcMotor* dc = model_.dc_motor()) {
+    if (!dc->has_state()) motor_current_ = dc->quasi_static_current(t, v[dc->rotor]);
+    applied_torque_ += dc->torque(motor_current_);
+  }
   axial_force_ = model_.axial_load().force_at(t);
   forces_[motor.rotor] += applied_torque_;
   forces_[model_.axial_load().coordinate] += axial_force_;

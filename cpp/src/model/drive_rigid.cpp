@@ -11,9 +11,11 @@ namespace leadscrew::model {
 
 // From the model's structure (its elements), not its concept: two bodies'
 // coordinates, no force element, the thread pair without play (one
-// independent coordinate), a torque-controlled motor, exact Coulomb.
+// independent coordinate), a torque-controlled motor whose torque is a
+// function of time (not a DC motor's k_t i: its current is a state, and its
+// drive runs the general path, whose roots see the state), exact Coulomb.
 bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dynamics) {
-  return model.bilateral_thread() && !model.motor().speed_controlled &&
+  return model.bilateral_thread() && !model.motor().speed_controlled && !model.dc_motor() &&
          dynamics.law().plain_coulomb() && model.elements().forces.empty() &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();

@@ -46,6 +46,11 @@ DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions op
   options_.output = integrate::OutputRequest{};
   options_.output.t_end = 1.0;
   integrator_ = drive::chosen_integrator(parameters_, options_);
+  if (parameters_.dc_motor)
+    throw InvalidArgument(
+        "motor.type = \"dc\" is invalid for a stepper (the C API, the FMU): its inputs are "
+        "drive_torque or drive_speed and axial_force; a DC motor's voltage is no input yet "
+        "(run it with simulate)");
   if (integrator_ == "moreau")
     throw InvalidArgument(
         "integrator = \"moreau\" is invalid for a stepper: it takes the event-driven scheme "

@@ -190,6 +190,7 @@ class DriveParameters:
     """
     backlash: str
     concept: str
+    dc_motor: bool
     drive: str
     friction: str
     initial_state: str
@@ -271,6 +272,42 @@ class DriveParameters:
         ...
     @load_mass.setter
     def load_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def motor_back_emf_constant(self) -> float:
+        ...
+    @motor_back_emf_constant.setter
+    def motor_back_emf_constant(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def motor_current_limit(self) -> float:
+        ...
+    @motor_current_limit.setter
+    def motor_current_limit(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def motor_inductance(self) -> float:
+        ...
+    @motor_inductance.setter
+    def motor_inductance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def motor_resistance(self) -> float:
+        ...
+    @motor_resistance.setter
+    def motor_resistance(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def motor_torque_constant(self) -> float:
+        ...
+    @motor_torque_constant.setter
+    def motor_torque_constant(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def motor_voltage(self) -> Excitation:
+        ...
+    @motor_voltage.setter
+    def motor_voltage(self, arg1: typing.Any) -> None:
         ...
     @property
     def mu(self) -> float:

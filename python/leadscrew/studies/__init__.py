@@ -16,7 +16,8 @@ scene without one), unless ``amplitude=`` / ``frequency=`` give them;
 ``min_holding_preload`` takes the whole sine (amplitude, omega, phase,
 offset) unless ``excitation=`` gives one; ``efficiency_vs_mu`` replaces the
 loads by its definition (a speed-controlled motor raising each of its
-``loads``). Where a study may take its excitation from either,
+``loads``); ``motor_characteristics`` runs the scene's DC motor (section
+``motor``, a constant voltage) raising each of its ``loads``. Where a study may take its excitation from either,
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
@@ -50,12 +51,14 @@ from . import concepts as _concepts
 from . import creep as _creep
 from . import drive_efficiency as _drive_efficiency
 from . import holding as _holding
+from . import motor as _motor
 from . import stickslip as _stickslip
 from . import work_precision as _work_precision_module
 from ._sweep import SerialExecutor
 from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
 from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
 from .drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu
+from .motor import motor_characteristics, plot_motor_characteristics
 from .holding import (
     alternating_scene,
     cycle_response,
@@ -89,6 +92,7 @@ PLOTS = {
     "creep_map": plot_creep_map,
     "min_holding_preload": plot_min_holding_preload,
     "efficiency_vs_mu": plot_efficiency_vs_mu,
+    "motor_characteristics": plot_motor_characteristics,
 }
 
 
@@ -132,6 +136,7 @@ STUDIES = {
     "creep_map": creep_map,
     "min_holding_preload": min_holding_preload,
     "efficiency_vs_mu": efficiency_vs_mu,
+    "motor_characteristics": motor_characteristics,
 }
 
 __all__ = [
@@ -145,4 +150,5 @@ __all__ = [
     *_holding.__all__,
     *_creep.__all__,
     *_drive_efficiency.__all__,
+    *_motor.__all__,
 ]

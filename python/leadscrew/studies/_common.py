@@ -138,6 +138,36 @@ def check_grid(name: str, values: Iterable[float], allow_zero: bool = False,
     return array
 
 
+def check_window(window: Any, t_end: float, start_fraction: float) -> Tuple[float, float]:
+    """A measurement window (start, end) [s] within the run.
+
+    Args:
+        window: (start, end), numbers [s] or strings with units; None: from
+            ``start_fraction * t_end`` to ``t_end``.
+        t_end: the run's end [s].
+        start_fraction: where the default window starts, a fraction of t_end.
+
+    Returns:
+        (start, end) in s, 0 <= start < end <= t_end.
+
+    Raises:
+        ValueError: naming ``window``, its value and what is allowed.
+    """
+    if window is None:
+        window = (start_fraction * t_end, t_end)
+    # (start, end) may be strings with units, as the other arguments
+    times = ([in_unit(f"window[{i}]", w, "s") for i, w in enumerate(window)]
+             if isinstance(window, (list, tuple)) else window)
+    try:
+        start, end = (float(w) for w in times)
+    except (TypeError, ValueError):
+        raise ValueError(f"window = {window!r} is invalid: must be (start, end) in s") from None
+    if not (0.0 <= start < end <= t_end):
+        raise ValueError(f"window = {window!r} is invalid: must satisfy 0 <= start < end <= "
+                         f"t_end = {t_end:g}")
+    return start, end
+
+
 def with_tolerances(options: Dict[str, Any], rtol: Any = None, atol: Any = None
                     ) -> Dict[str, Any]:
     """:func:`leadscrew.simulate`'s keywords ``options`` with the study's

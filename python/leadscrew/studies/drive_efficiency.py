@@ -20,8 +20,8 @@ import pandas as pd
 
 from .. import _core
 from ._batch import DriveBatch
-from ._common import (annotate, axes, as_scene, check_grid, check_positive, frame_of,
-                      in_unit, with_tolerances)
+from ._common import (annotate, axes, as_scene, check_grid, check_positive, check_window,
+                      frame_of, with_tolerances)
 from ._sweep import SerialExecutor, default_workers, run_batches, run_chunks
 
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
@@ -205,18 +205,7 @@ def efficiency_vs_mu(
     forces = check_grid("loads", loads, unit="N")
     speed = check_positive("speed", speed, unit="rad/s")
     t_end = check_positive("t_end", t_end, unit="s")
-    if window is None:
-        window = (0.5 * t_end, t_end)
-    # (start, end) may be strings with units, as the other arguments
-    times = ([in_unit(f"window[{i}]", w, "s") for i, w in enumerate(window)]
-             if isinstance(window, (list, tuple)) else window)
-    try:
-        start, end = (float(w) for w in times)
-    except (TypeError, ValueError):
-        raise ValueError(f"window = {window!r} is invalid: must be (start, end) in s") from None
-    if not (0.0 <= start < end <= t_end):
-        raise ValueError(f"window = {window!r} is invalid: must satisfy 0 <= start < end <= "
-                         f"t_end = {t_end:g}")
+    start, end = check_window(window, t_end, 0.5)
     thread = scene.thread
     count = len(mus) * len(forces)
     # leadscrew.efficiency and is_drivable, elementwise over mu (one call each)

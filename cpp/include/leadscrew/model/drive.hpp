@@ -110,6 +110,15 @@ struct DriveParameters {
   bool speed_controlled = false;
   Excitation drive_speed;
   Excitation axial_force;
+  // A DC motor (elements/dc_motor.hpp; scene section `motor`) drives the
+  // rotor instead of drive_torque or drive_speed.
+  bool dc_motor = false;
+  Excitation motor_voltage;             // U(t) [V]
+  double motor_resistance = 1.0;        // R [Ohm]
+  double motor_inductance = 0.0;        // L [H]; 0: quasi-static
+  double motor_torque_constant = 0.0;   // k_t [N m/A]
+  double motor_back_emf_constant = -1.0;  // k_e [V s/rad]; < 0: k_t
+  double motor_current_limit = 0.0;     // i_max [A]; 0: none
 
   double rotor_angle = 0.0;
   double rotor_speed = 0.0;
@@ -142,6 +151,10 @@ class DriveModel {
   const elements::DriveElements& elements() const noexcept { return e_; }
   const elements::ThreadPair& thread_pair() const noexcept { return *e_.thread; }
   const elements::Motor& motor() const noexcept { return e_.motor; }
+  // The DC motor on the rotor (nullptr: the motor is torque- or speed-controlled).
+  const elements::DcMotor* dc_motor() const noexcept {
+    return e_.dc_motor ? &*e_.dc_motor : nullptr;
+  }
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
   int coordinate_count() const noexcept { return static_cast<int>(mass_.size()); }
   const std::vector<std::string>& coordinate_names() const noexcept { return e_.coordinates; }

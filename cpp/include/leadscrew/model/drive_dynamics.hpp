@@ -130,6 +130,14 @@ class DriveDynamics {
            bristle_ * bristle_;
   }
 
+  // A DC motor's armature current (model.dc_motor()): with inductance its
+  // state, set before set_state (kept through set_state calls without one:
+  // the current is continuous across impacts); without, set_state takes the
+  // quasi-static current at the rotor's speed. Its torque k_t i is part of
+  // applied_torque().
+  void set_motor_current(double current) noexcept { motor_current_ = current; }
+  double motor_current() const noexcept { return motor_current_; }
+
   const DriveModel& model() const noexcept { return model_; }
 
   // Full coordinates and velocities at time t. Throws SimulationError when
@@ -226,6 +234,7 @@ class DriveDynamics {
   const DriveModel& model_;
   const friction::Law* law_;
   double bristle_ = 0.0;
+  double motor_current_ = 0.0;
   double t_ = 0.0;
   CoordinateVector q_, v_, forces_, inverse_mass_;
   double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0, slip_noise_ = 0.0;

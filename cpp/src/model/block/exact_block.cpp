@@ -19,6 +19,10 @@ namespace leadscrew::model::block {
 
 namespace {
 
+// `kSpring`: the block has the stick-slip oscillator's spring (stiffness >
+// 0). Without it (the thesis's block) the right-hand side skips the spring's
+// terms: 10 % of the exact block's run (issue 17's benchmark).
+template <bool kSpring>
 class ExactBlock final : public integrate::HybridSystem {
  public:
   ExactBlock(const FrictionBlock& block, const friction::Law& law)
@@ -28,27 +32,30 @@ class ExactBlock final : public integrate::HybridSystem {
         kinetic0_(initial_kinetic(block)),
         plain_(law.plain_coulomb()),
         stick_mu_(law.mu_static()),
-        viscous_(law.viscous()) {}
+        viscous_(law.viscous()),
+        normal_force_(block.normal_force()),
+        plain_slip_force_(law.mu_static() * block.normal_force()) {}
 
   int size() const override { return kStateSize; }
   int root_count() const override { return 2; }
 
   void rhs(double t, const double* y, double* ydot) override {
     const double force = force_(t);
-    const double spring = block_.spring_force(t, y[kPosition]);
+    const double spring = spring_force(t, y);
     const double friction = friction_force(force + spring, y[kVelocity]);
     const double acceleration =
         mode_ == Mode::stick ? 0.0 : (force + spring - friction) / block_.mass;
     ydot[kPosition] = y[kVelocity];
     ydot[kVelocity] = acceleration;
-    ydot[kWorkForce] = applied_power(block_, force, spring, y[kVelocity]);
+    ydot[kWorkForce] = kSpring ? applied_power(block_, force, spring, y[kVelocity])
+                               : force * y[kVelocity];
     ydot[kFrictionLoss] = friction * y[kVelocity];
   }
 
   void roots(double t, const double* y, double* g) override {
     if (mode_ == Mode::stick) {
       // Stick ends when the force needed to stick reaches the stick limit.
-      const double applied = force_(t) + block_.spring_force(t, y[kPosition]);
+      const double applied = force_(t) + spring_force(t, y);
       g[0] = applied - stick_limit();
       g[1] = applied + stick_limit();
     } else {
@@ -110,7 +117,7 @@ class ExactBlock final : public integrate::HybridSystem {
   void channels(double t, const double* y, double* out) override {
     Row row;
     row.force = force_(t);
-    const double applied = row.force + block_.spring_force(t, y[kPosition]);
+    const double applied = row.force + spring_force(t, y);
     row.friction = friction_force(applied, y[kVelocity]);
     row.acceleration = mode_ == Mode::stick ? 0.0 : (applied - row.friction) / block_.mass;
     row.stick = mode_ == Mode::stick;
@@ -137,7 +144,11 @@ class ExactBlock final : public integrate::HybridSystem {
     }
   }
 
-  double stick_limit() const { return stick_mu_ * block_.normal_force(); }
+  double spring_force(double t, const double* y) const {
+    return kSpring ? block_.spring_force(t, y[kPosition]) : 0.0;
+  }
+
+  double stick_limit() const { return stick_mu_ * normal_force_; }
 
   // (The law's constant coefficients are read once: a virtual call per
   // right-hand side cost the exact block 4 % of its run. Plain Coulomb's
@@ -146,15 +157,15 @@ class ExactBlock final : public integrate::HybridSystem {
     const double speed = std::abs(velocity);
     // Stick: whatever keeps the block at rest (|A| <= mu_static N).
     if (mode_ == Mode::stick) return applied;
-    const double mu = plain_ ? stick_mu_ : law_.slip_mu(speed);
-    const double magnitude = mu * block_.normal_force() + viscous_ * speed;
+    const double magnitude = plain_ ? plain_slip_force_ + viscous_ * speed
+                                    : law_.slip_mu(speed) * normal_force_ + viscous_ * speed;
     return mode_ == Mode::slip_positive ? magnitude : -magnitude;
   }
 
   // Stick or slip at zero slip velocity (state at rest). `tie` is the mode
   // taken where the force sits exactly on the cone's boundary.
   Mode mode_at_rest(double t, const double* y, Mode tie) {
-    const double applied = force_(t) + block_.spring_force(t, y[kPosition]);
+    const double applied = force_(t) + spring_force(t, y);
     if (!plain_) {
       if (std::abs(applied) < stick_limit()) return Mode::stick;
       if (std::abs(applied) > stick_limit())
@@ -183,6 +194,8 @@ class ExactBlock final : public integrate::HybridSystem {
   bool plain_;
   double stick_mu_;  // mu_static (plain Coulomb: mu)
   double viscous_;   // [N s/m]
+  double normal_force_;      // m g [N]
+  double plain_slip_force_;  // plain Coulomb's mu m g [N]
   Mode mode_ = Mode::stick;
   long lcp_solves_ = 0;
   lcp::Workspace lcp_workspace_{2};
@@ -193,7 +206,8 @@ class ExactBlock final : public integrate::HybridSystem {
 
 std::unique_ptr<integrate::HybridSystem> make_exact_block(const FrictionBlock& block,
                                                           const friction::Law& law) {
-  return std::make_unique<ExactBlock>(block, law);
+  if (block.stiffness > 0.0) return std::make_unique<ExactBlock<true>>(block, law);
+  return std::make_unique<ExactBlock<false>>(block, law);
 }
 
 }  // namespace leadscrew::model::block

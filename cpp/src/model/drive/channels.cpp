@@ -18,6 +18,11 @@ std::vector<std::string> drive_channel_names(const DriveModel& model) {
   }
   if (model.law().resolution() == friction::Resolution::bristle)
     names.push_back("bristle_deflection");
+  const bool dc = model.dc_motor() != nullptr;
+  if (dc) {
+    names.push_back("motor_current");
+    names.push_back("motor_voltage");
+  }
   const int n = model.coordinate_count();
   for (int i = 1; i < n - 1; ++i) {
     const std::string& name = model.coordinate_names()[i];
@@ -25,9 +30,13 @@ std::vector<std::string> drive_channel_names(const DriveModel& model) {
     names.push_back((name[0] == 'u' ? "v" : "omega") + name.substr(name.find('_')));
   }
   for (const char* name : {"work_drive", "work_axial", "friction_loss", "damping_loss",
-                           "contact_loss", "impact_loss", "kinetic", "elastic",
-                           "energy_residual"})
+                           "contact_loss", "impact_loss"})
     names.push_back(name);
+  if (dc) names.push_back("copper_loss");
+  names.push_back("kinetic");
+  names.push_back("elastic");
+  if (dc) names.push_back("magnetic_energy");
+  names.push_back("energy_residual");
   return names;
 }
 
@@ -64,6 +73,11 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
     out[k++] = state.play;
   }
   if (model.law().resolution() == friction::Resolution::bristle) out[k++] = state.bristle;
+  const bool dc = model.dc_motor() != nullptr;
+  if (dc) {
+    out[k++] = state.motor_current;
+    out[k++] = state.motor_voltage;
+  }
   for (int i = 1; i < n - 1; ++i) {
     out[k++] = q[i];
     out[k++] = v[i];
@@ -72,11 +86,15 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
   const double elastic = state.elastic;
   for (int e = 0; e < kEnergyCount; ++e) out[k++] = energy[e];
   out[k++] = impact_loss;
+  if (dc) out[k++] = state.copper_loss;
   out[k++] = kinetic;
   out[k++] = elastic;
+  // (A DC motor's current, and so its magnetic energy, starts at 0.)
+  if (dc) out[k++] = state.magnetic;
   out[k++] = energy[kWorkDrive] + energy[kWorkAxial] -
              (kinetic - kinetic0 + elastic - elastic0 + energy[kFrictionLoss] +
-              energy[kDampingLoss] + energy[kContactLoss] + impact_loss);
+              energy[kDampingLoss] + energy[kContactLoss] + impact_loss + state.copper_loss +
+              state.magnetic);
 }
 
 }  // namespace leadscrew::model::drive

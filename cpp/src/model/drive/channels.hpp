@@ -28,6 +28,9 @@ struct ChannelState {
   const CoordinateVector& v;
   double axial_force = 0.0, slip_velocity = 0.0, play = 0.0, kinetic = 0.0, elastic = 0.0;
   double bristle = 0.0;  // LuGre's bristle deflection z [m]
+  // A DC motor's: its current [A], the driver's voltage [V], the copper
+  // loss integral [J] and the magnetic energy L i^2 / 2 [J].
+  double motor_current = 0.0, motor_voltage = 0.0, copper_loss = 0.0, magnetic = 0.0;
 };
 
 // From the state last set in dynamics.

@@ -35,7 +35,9 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   spec.time_stepping = time_stepping;
   spec.rtol = options.integrator_options.rtol;
   spec.atol = options.integrator_options.atol;
-  spec.momentum_factor = std::sqrt(2.0 * model.mass().sum());
+  // (A DC motor's magnetic energy L i^2 / 2 is kinetic-like: |L i| <= sqrt(2 E L).)
+  const elements::DcMotor* dc = model.dc_motor();
+  spec.momentum_factor = std::sqrt(2.0 * (model.mass().sum() + (dc ? dc->inductance : 0.0)));
   // sum |k x| <= sqrt(2 E sum k) for the springs at their stiffest over the
   // screw's length (the stiffness of eq. 4.24 grows toward its ends; the
   // nut's whole length stays on it), and the flank's force for a penalty
@@ -52,6 +54,11 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   });
   spec.force_factor = std::sqrt(2.0 * stiffness);
   spec.quadratures = kEnergyCount + 1;  // and the impact loss, booked at events
+  if (dc) {  // the electrical work is work_drive's
+    spec.stored.push_back("magnetic_energy");
+    spec.losses.push_back("copper_loss");
+    spec.quadratures += 1;
+  }
   spec.load_forces = {"axial_force"};
   spec.load_torques = {"drive_torque"};
   spec.lever = p.thread.mean_radius();

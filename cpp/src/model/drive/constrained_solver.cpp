@@ -55,6 +55,7 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
   }
   energy[kDampingLoss] = dynamics.damping_power();
   energy[kContactLoss] = dynamics.contact_loss_power();
+  if (model.dc_motor()) h_.motor_rates(t, ydot, energy);
 }
 
 ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
@@ -75,6 +76,7 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   // Stick holds the slip velocity at zero; the state carries the integrator's
   // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
   if (forces.stick) state.slip_velocity = 0.0;
+  if (h_.model_.dc_motor()) h_.motor_channels(t, y, state);
   return state;
 }
 

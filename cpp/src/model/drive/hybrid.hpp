@@ -17,6 +17,8 @@
 //   hybrid_impacts.cpp     flank impacts with restitution, free flights
 //   hybrid_jamming.cpp     dynamic jamming (Painleve), the regularized
 //                          law's fold
+//   hybrid_motor.cpp       a DC motor's current: its rates, channels, the
+//                          current limit's root and hold
 #pragma once
 
 #include <cmath>
@@ -52,6 +54,8 @@ constexpr double kFlankTolerance = 1e-3;
 // denominator falls below this fraction of G_NN (DriveHybrid::approach_fold).
 constexpr double kFoldWatch = 0.1;
 
+struct ChannelState;  // channels.hpp
+
 class DriveHybrid final : public integrate::HybridSystem {
  public:
   // `law`: the friction law that runs (the model's, or its regularization
@@ -65,8 +69,9 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   int size() const override { return layout_.size(); }
   // g0..g3: friction and flank events (see roots); g4: the nut's end at the
-  // screw's end, for every concept (the scene gives every screw its length).
-  int root_count() const override { return 5; }
+  // screw's end, for every concept (the scene gives every screw its length);
+  // g5: a DC motor's current limit (with inductance), hybrid_motor.cpp.
+  int root_count() const override { return current_limit_root() ? 6 : 5; }
   // The work and loss integrals close the state; f does not depend on them.
   int quadrature_count() const override { return kEnergyCount; }
 
@@ -99,6 +104,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // side, root and output row starts here: inline).
   void set(double t, const double* y) {
     layout_.expand(t, y, q_, v_);
+    if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
     dynamics_.set_state(t, q_, v_);
     if (layout_.bristle() >= 0) dynamics_.set_bristle(y[layout_.bristle()]);
   }
@@ -109,6 +115,23 @@ class DriveHybrid final : public integrate::HybridSystem {
   class ConstrainedSolver;
   class RigidSolver;
   static std::unique_ptr<ModeSolver> make_mode_solver(DriveHybrid& hybrid);
+
+  // hybrid_motor.cpp: a DC motor (model_.dc_motor()), at the state last set.
+  bool current_limit_root() const {
+    return model_.dc_motor() && model_.dc_motor()->has_state() && model_.dc_motor()->limited();
+  }
+  // Its current's rate, its copper loss rate and the electrical work's rate
+  // (which replaces the motor torque's power in the drive's work).
+  void motor_rates(double t, double* ydot, double* energy) const;
+  // Its channels: current, the driver's voltage, copper loss, magnetic energy.
+  void motor_channels(double t, const double* y, ChannelState& state) const;
+  // g5: the margin to the current limit, or while held the driver's push
+  // beyond it; the event holds or releases the current (snapped to the limit).
+  double current_limit_margin(double t) const;
+  std::string change_current_hold(double t, double* y);
+  // After a mechanical event: an impact's jump of the rotor's speed may end
+  // the driver's push at once (g5 would start beyond its zero).
+  void recheck_current_hold(double t, const double* y);
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);
@@ -207,6 +230,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
+  int current_held_ = 0;  // a DC motor's current held at +-current_limit (its sign; 0: free)
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;

@@ -50,6 +50,7 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
       if (load_root_ >= 0) g[load_root_] = load_root_value(t);
     }
   }
+  if (current_limit_root()) g[5] = current_limit_margin(t);
   if (mode_.contact == ThreadContact::open || mode_.contact == ThreadContact::penalty) {
     g[2] = dynamics_.play() - 0.5 * p_.clearance;
     g[3] = dynamics_.play() + 0.5 * p_.clearance;
@@ -98,6 +99,7 @@ void DriveHybrid::root_directions(int* directions) const {
   directions[2] = open || (penalty && !upper) ? 1 : (penalty ? -1 : 0);
   directions[3] = open || (penalty && !lower) ? -1 : (penalty ? 1 : 0);
   directions[4] = -1;  // the nut reaches an end of the screw
+  if (current_limit_root()) directions[5] = -1;  // the limit reached, or the push ends
   if (watch_fold()) directions[2] = directions[3] = -1;  // both fall towards jamming
 }
 
@@ -153,6 +155,12 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
 }
 
 std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int>& root_info) {
+  if (current_limit_root() && root_info[5] != 0) {
+    // The current's hold changes; the mechanical mode only with another root.
+    const std::string held = change_current_hold(t, y);
+    if (std::all_of(root_info.begin(), root_info.begin() + 5, [](int r) { return r == 0; }))
+      return held;
+  }
   if (root_info[4] != 0) {
     set(t, y);
     nut_left_the_screw(model_, t, model_.nut_position(q_.data()));
@@ -160,6 +168,7 @@ std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int
   const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
                          root_info[0] != 0;
   std::string kind = change_mode(t, y, root_info);
+  if (current_limit_root()) recheck_current_hold(t, y);
   note_flight_start(t, y);
   start_mode(t, y);
   // A stick whose cone margin never left zero was no stick phase: the thread

@@ -41,13 +41,17 @@ void DriveHybrid::channels(double t, const double* y, double* out) {
 
 std::vector<double> DriveHybrid::breakpoints() const {
   std::vector<double> times = p_.axial_force.breakpoints();
-  const Excitation& drive = p_.speed_controlled ? p_.drive_speed : p_.drive_torque;
+  const Excitation& drive = p_.dc_motor           ? p_.motor_voltage
+                            : p_.speed_controlled ? p_.drive_speed
+                                                  : p_.drive_torque;
   times.insert(times.end(), drive.breakpoints().begin(), drive.breakpoints().end());
   return times;
 }
 
 double DriveHybrid::max_step_hint() const {
-  const Excitation& drive = p_.speed_controlled ? p_.drive_speed : p_.drive_torque;
+  const Excitation& drive = p_.dc_motor           ? p_.motor_voltage
+                            : p_.speed_controlled ? p_.drive_speed
+                                                  : p_.drive_torque;
   return integrate::max_step_from_time_scales(
       {drive.time_scale(), p_.axial_force.time_scale()});
 }

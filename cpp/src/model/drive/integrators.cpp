@@ -86,7 +86,9 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
     integrate::check_moreau_options(options.output.t_end, drive::moreau_options(options));
     check_step_resolves_loads(options.dt, options.output.t_end,
-                              {p.speed_controlled ? &p.drive_speed : &p.drive_torque,
+                              {p.dc_motor           ? &p.motor_voltage
+                               : p.speed_controlled ? &p.drive_speed
+                                                    : &p.drive_torque,
                                &p.axial_force});
     return;
   }

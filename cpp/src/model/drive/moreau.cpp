@@ -26,6 +26,8 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
 void DriveMoreau::initialize(double t, const double* y) {
   layout_.expand(t, y, q_, v_);
   dynamics_.set_state(t, q_, v_);
+  if (const elements::DcMotor* dc = model_.dc_motor())
+    last_voltage_ = dc->terminal_voltage(t, dynamics_.motor_current(), v_[dc->rotor], false);
   kinetic0_ = dynamics_.kinetic_energy();
   elastic0_ = dynamics_.elastic_energy();
 }
@@ -62,22 +64,57 @@ void DriveMoreau::step(double t, double h, double theta, const double* y, double
   retake(low);
 }
 
-// One step at restitution e; true where it closes a flank with e > 0.
+// One step at restitution e; true where it closes a flank with e > 0. A DC
+// motor's current over the step is implicit (elements::DcMotor::theta_step);
+// where it would pass the driver's limit the step is taken again with the
+// current held there.
 bool DriveMoreau::take_step(double t, double h, double theta, const double* y, double* y_next,
                             double restitution) {
+  const double excess = friction_excess_, play_rate = play_rate_;
+  const bool restituting = take_step_held(t, h, theta, y, y_next, restitution, 0);
+  const elements::DcMotor* dc = model_.dc_motor();
+  if (dc == nullptr || !dc->limited()) return restituting;
+  layout_.expand(t, y, q_, v_);
+  if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
+  dynamics_.set_state(t + theta * h, q_, v_);
+  const double omega_next = last_omega_next_;
+  const elements::DcMotor::ThetaStep free = dc->theta_step(
+      dc->voltage(t + theta * h), h, theta, dynamics_.motor_current(), v_[dc->rotor], 0);
+  if (!dc->exceeds(free, omega_next)) return restituting;
+  const double beyond = dc->has_state() ? free.end + free.end_slope * omega_next
+                                        : free.mean + free.mean_slope * omega_next;
+  friction_excess_ = excess;  // (the step is taken again)
+  play_rate_ = play_rate;
+  return take_step_held(t, h, theta, y, y_next, restitution, beyond > 0.0 ? 1 : -1);
+}
+
+bool DriveMoreau::take_step_held(double t, double h, double theta, const double* y,
+                                 double* y_next, double restitution, int held) {
   layout_.expand(t, y, q_, v_);
   const CoordinateVector q0 = q_, v0 = v_;
   bool restituting = false;
+  const elements::DcMotor* dc = model_.dc_motor();
+  if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
   dynamics_.set_state(t + theta * h, q_, v_);
   const double play0 = dynamics_.play();
   const double play_rate0 = dynamics_.play_rate();
+  // A DC motor's current over the step, i_theta = mean + mean_slope omega+:
+  // its torque's impulse h k_t i_theta in place of the start's k_t i, its
+  // slope an implicit damping of the rotor.
+  elements::DcMotor::ThetaStep current;
+  if (dc != nullptr)
+    current = dc->theta_step(dc->voltage(t + theta * h), h, theta, dynamics_.motor_current(),
+                             v0[dc->rotor], held);
 
   // Iteration matrix and free velocity.
   Square stiffness, damping;
-  assemble(h, theta, stiffness, damping);
+  assemble(h, theta, stiffness, damping,
+           dc != nullptr ? -h * dc->torque(current.mean_slope) : 0.0);
   CoordinateVector rhs = model_.mass().cwiseProduct(v0) + h * dynamics_.forces() -
                          theta * (1.0 - theta) * h * h * (stiffness * v0) +
                          theta * h * (damping * v0);
+  if (dc != nullptr)
+    rhs[dc->rotor] += h * (dc->torque(current.mean) - dc->torque(dynamics_.motor_current()));
   free_ = solver_.solve(rhs);
 
   // Which thread contact is active in this step.
@@ -221,6 +258,23 @@ bool DriveMoreau::take_step(double t, double h, double theta, const double* y, d
                                            : p_.drive_torque(t + theta * h) *
                                                  (q_[model_.rotor()] - q0[model_.rotor()]);
   energy[kWorkDrive] += motor;
+  if (dc != nullptr) {
+    // The armature over the step: i_theta, i+, and the driver's voltage
+    // U_d = R i_theta + k_e omega_theta + L (i+ - i) / h (U(t + theta h)
+    // unless held), its electrical work and the copper loss.
+    const double omega_next = v_[dc->rotor], omega_theta = v_theta[dc->rotor];
+    const double i_theta = current.mean + current.mean_slope * omega_next;
+    const double i0 = dynamics_.motor_current();
+    const double i_next = dc->has_state() ? current.end + current.end_slope * omega_next : 0.0;
+    last_voltage_ = dc->resistance * i_theta + dc->back_emf_constant * omega_theta +
+                    (dc->has_state() ? dc->inductance * (i_next - i0) / h : 0.0);
+    energy[kWorkDrive] += h * (last_voltage_ * i_theta +
+                               (dc->torque_constant - dc->back_emf_constant) * i_theta *
+                                   omega_theta);
+    y_next[layout_.copper_loss()] = y[layout_.copper_loss()] + h * dc->copper_loss_rate(i_theta);
+    if (dc->has_state()) y_next[layout_.motor_current()] = i_next;
+    last_omega_next_ = omega_next;
+  }
   energy[kWorkAxial] +=
       p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
   const double slip = model_.tangent_direction().dot(v_);
@@ -244,6 +298,10 @@ bool DriveMoreau::take_step(double t, double h, double theta, const double* y, d
   last_.friction = impulses.friction / h;
   last_.motor_torque =
       p_.speed_controlled ? impulses.rotor / h : p_.drive_torque(t + h);
+  if (dc != nullptr)
+    last_.motor_torque = dc->torque(dc->has_state() ? y_next[layout_.motor_current()]
+                                                     : current.mean +
+                                                           current.mean_slope * v_[dc->rotor]);
   last_.stick = contact && stick;
   return restituting;
 }
@@ -252,11 +310,17 @@ bool DriveMoreau::take_step(double t, double h, double theta, const double* y, d
 DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const double* y,
                                                       const double* y_next) {
   double largest = 0.0;
+  const elements::DcMotor* dc = model_.dc_motor();
   auto account = [&](double time, const double* state) {
     layout_.expand(time, state, q_, v_);
+    if (layout_.motor_current() >= 0)
+      dynamics_.set_motor_current(state[layout_.motor_current()]);
     dynamics_.set_state(time, q_, v_);
     const double* energy = state + layout_.energy_offset();
-    const double stored = dynamics_.kinetic_energy() + dynamics_.elastic_energy();
+    double stored = dynamics_.kinetic_energy() + dynamics_.elastic_energy();
+    if (dc != nullptr)  // the magnetic energy, and the copper loss among the losses
+      stored += dc->magnetic_energy(dc->has_state() ? dynamics_.motor_current() : 0.0) +
+                state[layout_.copper_loss()];
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -272,19 +336,27 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
 
 void DriveMoreau::channels(double t, const double* y, double* out) {
   layout_.expand(t, y, q_, v_);
+  if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
   dynamics_.set_state(t, q_, v_);
   const double* energy = y + layout_.energy_offset();
   // The Moreau-Jean scheme's numerical dissipation (and impacts) closes the
   // account: what the work and the named losses leave over.
   ChannelState state = channel_state(dynamics_);
   if (last_.stick) state.slip_velocity = 0.0;  // the step's stick: zero slip (as above)
+  if (const elements::DcMotor* dc = model_.dc_motor()) {
+    state.motor_current = dynamics_.motor_current();
+    state.motor_voltage = last_voltage_;  // over the last step
+    state.copper_loss = y[layout_.copper_loss()];
+    state.magnetic = dc->has_state() ? dc->magnetic_energy(state.motor_current) : 0.0;
+  }
   write_drive_channels(model_, state, last_, energy, 0.0, kinetic0_,
                        elastic0_, out);
 }
 
 // The iteration matrix W = M + theta h C + theta^2 h^2 K at the positions
 // q_ (factored into solver_), and its stiffness and damping matrices.
-void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& damping) {
+void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& damping,
+                           double rotor_damping) {
   const int n = model_.coordinate_count();
   stiffness = Square::Zero(n, n);
   damping = Square::Zero(n, n);
@@ -295,6 +367,7 @@ void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& da
   });
   Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
   iteration.diagonal() += model_.mass();
+  iteration(model_.rotor(), model_.rotor()) += rotor_damping;
   solver_.compute(iteration);
 }
 

@@ -61,8 +61,13 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
 
   bool take_step(double t, double h, double theta, const double* y, double* y_next,
                  double restitution);
+  // take_step with a DC motor's current held at its limit (sign; 0: free).
+  bool take_step_held(double t, double h, double theta, const double* y, double* y_next,
+                      double restitution, int held);
   StepAccount energy_created(double t, double h, const double* y, const double* y_next);
-  void assemble(double h, double theta, Square& stiffness, Square& damping);
+  // (rotor_damping: a DC motor's implicit back-EMF term h k_t |di_theta/domega+|.)
+  void assemble(double h, double theta, Square& stiffness, Square& damping,
+                double rotor_damping = 0.0);
   double step_coupling(double h, double theta);
   std::string step_too_long(double theta, double alpha);
   double resolving_step(double h, double theta);
@@ -76,6 +81,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   CoordinateVector q_, v_, free_;
   Eigen::LLT<Square> solver_;
   ContactForces last_;
+  double last_voltage_ = 0.0;
+  double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]  // a DC motor's driver voltage over the last step [V]
   double kinetic0_ = 0.0, elastic0_ = 0.0;
   double play_rate_ = 0.0, friction_excess_ = 0.0;
   long lcp_solves_ = 0;

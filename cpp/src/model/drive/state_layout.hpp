@@ -21,20 +21,25 @@ class StateLayout {
   // `bristle`: the friction law has LuGre's bristle deflection z, a state
   // of its own after the velocities, followed by the bristles' stored energy
   // (DriveHybrid::rhs).
+  // A DC motor (model.dc_motor()) adds its states after those: the armature
+  // current (with inductance) and the copper loss integral.
   StateLayout(const DriveModel& model, bool bristle) : model_(model), bristle_(bristle) {
     const bool speed = model.parameters().speed_controlled;
     positions_ = model.independent();
     for (int i : positions_)
       if (!(speed && i == model.rotor())) velocities_.push_back(i);
+    if (const elements::DcMotor* dc = model.dc_motor()) motor_states_ = dc->has_state() ? 2 : 1;
   }
   int size() const { return energy_offset() + kEnergyCount; }
   // The bristle deflection's index (-1: none).
   int bristle() const {
     return bristle_ ? static_cast<int>(positions_.size() + velocities_.size()) : -1;
   }
-  int energy_offset() const {
-    return static_cast<int>(positions_.size() + velocities_.size()) + (bristle_ ? 2 : 0);
-  }
+  // The DC motor's current's index (-1: none, or no inductance) and its
+  // copper loss integral's (-1: no DC motor).
+  int motor_current() const { return motor_states_ == 2 ? motor_offset() : -1; }
+  int copper_loss() const { return motor_states_ > 0 ? motor_offset() + motor_states_ - 1 : -1; }
+  int energy_offset() const { return motor_offset() + motor_states_; }
 
   void expand(double t, const double* y, CoordinateVector& q, CoordinateVector& v) const {
     const int n = model_.coordinate_count();
@@ -64,8 +69,13 @@ class StateLayout {
   const std::vector<int>& velocities() const { return velocities_; }
 
  private:
+  int motor_offset() const {
+    return static_cast<int>(positions_.size() + velocities_.size()) + (bristle_ ? 2 : 0);
+  }
+
   const DriveModel& model_;
   bool bristle_;
+  int motor_states_ = 0;
   std::vector<int> positions_, velocities_;
 };
 

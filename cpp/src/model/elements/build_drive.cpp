@@ -197,6 +197,34 @@ DriveElements build_drive_elements(DriveParameters& p) {
 
   e.thread.emplace(p, std::move(law), c, e.coordinate_count());
   e.motor = Motor{rotor, p.speed_controlled, p.drive_torque, p.drive_speed};
+  if (p.dc_motor) {
+    // The DC motor drives the rotor alone (the torque-controlled Motor applies 0).
+    if (p.speed_controlled)
+      throw InvalidArgument("loads.drive_speed is invalid with motor.type = \"dc\": give "
+                            "either the DC motor or loads.drive_speed (or loads.drive_torque), "
+                            "not both");
+    if (p.initial_state == InitialState::equilibrium)
+      throw InvalidArgument("initial.state = \"equilibrium\" is invalid with motor.type = "
+                            "\"dc\": the run starts with the current at 0 (use \"relaxed\")");
+    const Excitation::Definition torque = p.drive_torque.definition();
+    if (!(torque.kind == "constant" && torque.parameters.at(0) == 0.0))
+      throw InvalidArgument("loads.drive_torque = " + p.drive_torque.describe() +
+                            " is invalid with motor.type = \"dc\": give either the DC motor "
+                            "or loads.drive_torque, not both");
+    DcMotor m;
+    m.rotor = rotor;
+    m.voltage = p.motor_voltage;
+    m.resistance = require_positive("motor.resistance", p.motor_resistance);
+    m.inductance = require_nonnegative("motor.inductance", p.motor_inductance);
+    m.torque_constant = require_positive("motor.torque_constant", p.motor_torque_constant);
+    m.back_emf_constant = p.motor_back_emf_constant < 0.0
+                              ? m.torque_constant
+                              : require_positive("motor.back_emf_constant",
+                                                 p.motor_back_emf_constant);
+    m.current_limit = require_nonnegative("motor.current_limit", p.motor_current_limit);
+    e.motor.torque = Excitation();
+    e.dc_motor = m;
+  }
   e.load = AxialLoad{load, p.axial_force};
   return e;
 }

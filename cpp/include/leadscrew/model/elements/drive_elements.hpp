@@ -6,6 +6,7 @@
 //                      a force element (ForceElements below)
 //   thread_pair.hpp    ThreadPair: the flank constraint or contact and its friction law
 //   motor.hpp          Motor: torque-controlled force or speed-controlled constraint
+//   dc_motor.hpp       DcMotor: armature current (a state), voltage driver, current limit
 //   axial_load.hpp     AxialLoad: the axial force on the load
 // The lists are grouped by type (no virtual call per scalar in the
 // right-hand side): DriveDynamics loops over each. The force elements (the
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "leadscrew/model/elements/axial_load.hpp"
+#include "leadscrew/model/elements/dc_motor.hpp"
 #include "leadscrew/model/elements/motor.hpp"
 #include "leadscrew/model/elements/rigid_body.hpp"
 #include "leadscrew/model/elements/spring_damper.hpp"
@@ -80,6 +82,7 @@ struct DriveElements {
   ForceElements forces;  // springs, dampers, supports
   std::optional<ThreadPair> thread;
   Motor motor;
+  std::optional<DcMotor> dc_motor;  // on the rotor, its torque k_t i (Motor applies 0)
   AxialLoad load;
   // The coordinates that turn with the rotor and those that translate with
   // the load in a rigid-body motion of the drive (consistent_velocity).

@@ -1,0 +1,256 @@
+"""A DC motor's characteristics on the drive (issue 19, item 5).
+
+The scene's DC motor (section ``motor``, constant voltage U) raises each axial
+load from rest; at the end of the run the drive turns at its steady speed.
+Beside the simulation, the rigid drive's steady state in closed form
+(docs/physics/dc_motor.md): the train needs the raise torque
+T = F r_m tan(alpha + rho') (:func:`leadscrew.raise_torque`), so
+i = T / k_t, omega = (U - R T / k_t) / k_e, the input power U i and the
+whole train's efficiency F v / (U i) with v = omega lead / (2 pi); the stall
+load is the one whose raise torque is the stall torque k_t min(U / R, i_max).
+At steady state the springs of the flexible concepts carry the load
+statically, so the closed form holds for every concept.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Any, Dict, Optional, Sequence, Tuple
+
+import numpy as np
+import pandas as pd
+
+from .. import _core
+from ._batch import DriveBatch
+from ._common import (annotate, as_scene, axes, check_grid, check_positive, check_window,
+                      frame_of, with_tolerances)
+from ._sweep import SerialExecutor, default_workers, run_batches, run_chunks
+
+__all__ = ["motor_characteristics", "plot_motor_characteristics"]
+
+UNITS = {"load": "N", "speed": "rad/s", "speed_closed_form": "rad/s", "current": "A",
+         "current_closed_form": "A", "input_power": "W", "input_power_closed_form": "W",
+         "efficiency": "1", "efficiency_closed_form": "1", "load_speed": "m/s",
+         "window_change": "1", "stalled": "", "wall_time": "s", "error": ""}
+
+# What each case samples at the window's start, middle and end.
+_CHANNELS = ("omega_drive", "motor_current", "motor_voltage", "v_load", "work_drive",
+             "work_axial")
+_OMEGA, _CURRENT, _VOLTAGE, _VLOAD, _WORK, _AXIAL = range(len(_CHANNELS))
+
+
+def _voltage(scene) -> float:
+    """The scene's motor voltage, a constant [V].
+
+    Raises:
+        ValueError: the scene has no DC motor, or its voltage is not constant.
+    """
+    motor = scene["motor"] if "motor" in scene else None
+    if motor is None:
+        raise ValueError("scene has no motor section: motor_characteristics needs a DC motor "
+                         "(motor = {type = \"dc\", voltage, resistance, ...})")
+    voltage = motor["voltage"]
+    if isinstance(voltage, dict) and voltage.get("type") == "constant":
+        voltage = voltage["value"]
+    if not isinstance(voltage, float):
+        raise ValueError(f"motor.voltage = {voltage!r} is invalid for motor_characteristics: "
+                         "must be a constant voltage (the steady state it reaches)")
+    if voltage == 0.0:
+        raise ValueError("motor.voltage = 0.0 is invalid for motor_characteristics: must be "
+                         "nonzero (the motor raises each load)")
+    return voltage
+
+
+def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, np.ndarray]:
+    """The rigid drive's steady state for each load (module docstring)."""
+    motor, thread, mu = scene["motor"], scene.thread, scene["friction"]["mu"]
+    resistance, k_t = motor["resistance"], motor["torque_constant"]
+    k_e = motor.get("back_emf_constant", k_t)
+    per_newton = _core.raise_torque(thread, mu, 1.0, 0.0, 0.0)  # T / F [m]
+    torque = loads * per_newton
+    current = torque / k_t
+    speed = (abs(voltage) - resistance * current) / k_e  # in the motor's direction
+    stall_current = abs(voltage) / resistance
+    if "current_limit" in motor:
+        stall_current = min(stall_current, motor["current_limit"])
+    stall_load = k_t * stall_current / per_newton
+    # Beyond the stall load (or the current limit) no steady raise exists.
+    stalled = (loads >= stall_load) | (current > stall_current)
+    speed = np.where(stalled, 0.0, speed)
+    power = abs(voltage) * current
+    lead_per_rad = thread.lead / (2.0 * math.pi)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        efficiency = np.where(stalled | (power <= 0.0), 0.0,
+                              loads * lead_per_rad * speed / power)
+    sign = math.copysign(1.0, voltage)
+    return {"speed": sign * speed, "current": np.where(stalled, sign * stall_current,
+                                                       sign * current),
+            # (stalled: the driver puts out R i at rest, U itself without a limit)
+            "input_power": np.where(stalled, resistance * stall_current ** 2, power),
+            "efficiency": efficiency, "stalled": stalled, "stall_load": stall_load}
+
+
+def _chunk(loads: Any, batch: DriveBatch, raising: float, workers: int = 1) -> Dict[str, Any]:
+    """The measures of a chunk of loads from one C++ batch call."""
+    forces = np.asarray(loads, dtype=float).reshape(-1, 1) * raising
+    samples, errors, wall_time = batch.run(forces, workers)
+    work = samples[:, _WORK, 2] - samples[:, _WORK, 0]
+    useful = -(samples[:, _AXIAL, 2] - samples[:, _AXIAL, 0])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        efficiency = np.where(work > 0.0, useful / work, 0.0) + 0.0  # (no -0.0)
+        omega = samples[:, _OMEGA, :]
+        change = np.where(omega[:, 2] != 0.0,
+                          np.abs(omega[:, 2] - omega[:, 1]) / np.abs(omega[:, 2]),
+                          np.abs(omega[:, 1]))  # at rest: 0 where it stays
+    return {"speed": omega[:, 2], "current": samples[:, _CURRENT, 2],
+            "load_speed": samples[:, _VLOAD, 2], "efficiency": efficiency,
+            "input_power": samples[:, _VOLTAGE, 2] * samples[:, _CURRENT, 2],
+            "window_change": change,
+            "wall_time": np.asarray(wall_time, dtype=float), "error": errors}
+
+
+def motor_characteristics(
+    scene: Any,
+    loads: Sequence[float],
+    t_end: float = 1.0,
+    window: Optional[Tuple[float, float]] = None,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    executor=None,
+    progress: bool = True,
+    **simulate_options: Any,
+) -> pd.DataFrame:
+    """Steady speed, current, input power and the whole train's efficiency of
+    the scene's DC motor against the axial load, and the stall load, simulated
+    and in closed form.
+
+    Each load is raised from rest (``loads.axial_force`` set against the
+    motion the motor's voltage drives) by the scene's motor at its constant
+    voltage; the speed, current and input power (the driver's voltage times
+    the current) are taken at ``t_end``, the efficiency (useful axial work
+    over electrical work) over ``window``.
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or dict) with a DC motor
+            (``motor.type = "dc"``) of constant ``voltage``.
+        loads: axial loads to raise [N], > 0.
+        t_end: simulated time [s], > 0: long enough for the mechanical time
+            constant J R / (k_t k_e) (``window_change`` shows what is left).
+        window: (start, end) [s], 0 <= start < end <= t_end (default: the
+            last fifth of the run).
+        rtol, atol: integration tolerances (default simulate's).
+        executor: as :func:`leadscrew.studies.efficiency_vs_mu` (default: the
+            core's own threads).
+        progress: show a tqdm progress bar.
+        **simulate_options: passed on to :func:`leadscrew.simulate` (all but
+            ``t_eval``).
+
+    Returns:
+        DataFrame with one row per load: ``load`` [N], ``speed`` and
+        ``speed_closed_form`` [rad/s] (the rotor's), ``current`` and
+        ``current_closed_form`` [A], ``input_power`` and
+        ``input_power_closed_form`` [W], ``efficiency`` and
+        ``efficiency_closed_form`` [1] (F v / (U i)), ``load_speed`` [m/s],
+        ``window_change`` [1] (the speed's relative change over the window's
+        second half: ~0 at steady state), ``stalled`` (the closed form has no
+        steady raise: load >= stall load), ``wall_time`` [s], ``error``.
+        ``attrs["summary"]``: ``voltage`` [V], ``stall_load`` [N] (closed
+        form), ``stall_torque`` [N*m], ``window`` [s], ``raised``,
+        ``raised_reasons``.
+
+    Raises:
+        ValueError: no DC motor or a voltage that is not constant, invalid
+            loads, t_end or window (naming the argument).
+    """
+    scene = as_scene(scene)
+    voltage = _voltage(scene)
+    forces = check_grid("loads", loads, unit="N")
+    t_end = check_positive("t_end", t_end, unit="s")
+    start, end = check_window(window, t_end, 0.8)
+    # A right-hand screw turning forward moves the load along -x
+    # (docs/physics/drive_models.md): the load to raise acts along +x then.
+    raising = scene.thread.hand_sign * math.copysign(1.0, voltage)
+    running = scene.replace(initial={"rotor_speed": 0.0, "state": "relaxed"})
+    batch = DriveBatch(running, ("axial_force",), _CHANNELS, t_end,
+                       [start, 0.5 * (start + end), end],
+                       **with_tolerances(simulate_options, rtol, atol))
+    serial = type(executor) is SerialExecutor and not executor.is_shutdown
+    workers = 1 if serial else max(1, min(default_workers(), len(forces)))
+    if executor is None or serial:
+        chunks = run_batches(lambda rows: _chunk(forces[rows.start:rows.stop], batch, raising,
+                                                 workers),
+                             len(forces), workers, progress=progress,
+                             description="motor_characteristics")
+    else:
+        chunks = run_chunks(functools.partial(_chunk, batch=batch, raising=raising),
+                            forces.tolist(), executor=executor, progress=progress,
+                            description="motor_characteristics")
+    names = ("speed", "current", "load_speed", "efficiency", "input_power", "window_change",
+             "wall_time")
+    columns = {name: np.full(len(forces), np.nan) for name in names}
+    errors = np.empty(len(forces), dtype=object)
+    for chunk in chunks:
+        rows = slice(chunk.cases.start, chunk.cases.stop)
+        if chunk.ok:
+            for name in names:
+                columns[name][rows] = chunk.value[name]
+            errors[rows] = chunk.value["error"]
+        else:
+            errors[rows] = chunk.error
+    closed = _closed_form(scene, forces, voltage)
+    frame = frame_of({
+        "load": forces, "speed": columns["speed"], "speed_closed_form": closed["speed"],
+        "current": columns["current"], "current_closed_form": closed["current"],
+        "input_power": columns["input_power"],
+        "input_power_closed_form": closed["input_power"],
+        "efficiency": columns["efficiency"], "efficiency_closed_form": closed["efficiency"],
+        "load_speed": columns["load_speed"], "window_change": columns["window_change"],
+        "stalled": closed["stalled"], "wall_time": columns["wall_time"], "error": errors})
+    stall_torque = float(closed["stall_load"] * _core.raise_torque(
+        scene.thread, scene["friction"]["mu"], 1.0, 0.0, 0.0))
+    return annotate(frame, UNITS, errors_checked=True, study="motor_characteristics",
+                    summary_units={"voltage": "V", "stall_load": "N", "stall_torque": "N*m",
+                                   "window": "s"},
+                    voltage=voltage, stall_load=float(closed["stall_load"]),
+                    stall_torque=stall_torque, window=(start, end))
+
+
+def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
+    """Draw speed, current and efficiency against the load, simulated (points)
+    and in closed form (lines), with the stall load.
+
+    Args:
+        frame: the DataFrame :func:`motor_characteristics` returned.
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes (speed); the current and the efficiency share its x axis on
+        twin axes.
+    """
+    ax = axes(ax)
+    frame = frame.sort_values("load")
+    load = frame["load"]
+    ax.plot(load, frame["speed"], "o", color="C0", label="speed (simulated)")
+    ax.plot(load, frame["speed_closed_form"], "-", color="C0", label="speed (closed form)")
+    ax.set_xlabel("axial load [N]")
+    ax.set_ylabel("rotor speed [rad/s]", color="C0")
+    current = ax.twinx()
+    current.plot(load, frame["current"], "s", color="C3", label="current (simulated)")
+    current.plot(load, frame["current_closed_form"], "-", color="C3",
+                 label="current (closed form)")
+    current.set_ylabel("current [A]", color="C3")
+    efficiency = ax.twinx()
+    efficiency.spines["right"].set_position(("axes", 1.12))
+    efficiency.plot(load, frame["efficiency"], "^", color="C2", label="efficiency (simulated)")
+    efficiency.plot(load, frame["efficiency_closed_form"], "-", color="C2",
+                    label="efficiency (closed form)")
+    efficiency.set_ylabel("efficiency [1]", color="C2")
+    stall = frame.attrs.get("summary", {}).get("stall_load")
+    if stall is not None and math.isfinite(stall):
+        ax.axvline(stall, color="k", linestyle=":", label=f"stall load {stall:.4g} N")
+    handles = []
+    for axis in (ax, current, efficiency):
+        handles += axis.get_legend_handles_labels()[0]
+    ax.legend(handles, [h.get_label() for h in handles], loc="upper right", fontsize="small")
+    return ax

@@ -1,0 +1,71 @@
+"""Closed forms of a DC motor on the rigid drive (issue 19, item 1), written
+from the armature equation L di/dt = U - R i - k_e omega and the torque k_t i,
+independent of the leadscrew package. SI units.
+
+- Steady state on the rigid drive without play: the rotor turns at a constant
+  speed omega > 0 where the motor's torque equals the torque the train needs,
+  T (the rigid drive's slip mode with zero acceleration,
+  rigid_drive_reference: a_eps T + b_eps F = 0 with the consistent
+  eps = h s sign(lam~)); then i = T / k_t and omega = (U - R i) / k_e.
+- Stalled rotor (the thread sticks): omega = 0, so
+  i(t) = U / R (1 - exp(-t R / L)), the stall current U / R, the electrical
+  time constant L / R.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .rigid_drive_reference import RigidDrive
+
+__all__ = ["rigid_drive", "steady_torque", "steady_state", "stalled_current"]
+
+
+def rigid_drive(scene: dict, derived: dict) -> RigidDrive:
+    """The rigid drive of a scene dict (Scene.to_dict()) and its derived
+    masses and inertias (Scene.derived()), screw-driven, right-hand."""
+    thread, friction = scene["thread"], scene["friction"]
+    return RigidDrive(lead=thread["pitch"] * thread["starts"],
+                      mean_radius=thread["mean_diameter"] / 2, mu=friction["mu"],
+                      rotor_inertia=scene["rotor"]["inertia"],
+                      screw_inertia=derived["screw_inertia"], screw_mass=derived["screw_mass"],
+                      nut_inertia=derived["nut_inertia"], nut_mass=derived["nut_mass"],
+                      load_mass=scene["load"]["mass"])
+
+
+def steady_torque(drive: RigidDrive, axial_force: float) -> float:
+    """The rotor torque [N m] that keeps the rigid drive slipping at a constant
+    positive speed under the axial force F [N] (the raise torque where F
+    opposes the motion: M = -b_eps F / a_eps with a_eps, b_eps of the
+    reference's slip mode).
+
+    Raises:
+        ValueError: no sign of the normal force is consistent, or both are.
+    """
+    found = []
+    for eps in (1.0, -1.0):
+        torque = -drive.b(eps) * axial_force / drive.a(eps)
+        normal = float(drive.K(torque, axial_force)) / (drive.cos_alpha * drive.delta(eps))
+        if normal != 0.0 and drive.h * math.copysign(1.0, normal) == eps:
+            found.append(torque)
+    if len(found) != 1:
+        raise ValueError(f"steady slip at F = {axial_force!r} N: {len(found)} consistent modes")
+    return found[0]
+
+
+def steady_state(drive: RigidDrive, axial_force: float, voltage: float, resistance: float,
+                 torque_constant: float, back_emf_constant: float):
+    """(current [A], omega [rad/s], torque [N m]) of the DC motor at steady
+    state on the rigid drive: i = T / k_t, omega = (U - R i) / k_e."""
+    torque = steady_torque(drive, axial_force)
+    current = torque / torque_constant
+    omega = (voltage - resistance * current) / back_emf_constant
+    return current, omega, torque
+
+
+def stalled_current(t, voltage: float, resistance: float, inductance: float):
+    """i(t) = U / R (1 - exp(-t R / L)) [A] with the rotor held (L > 0)."""
+    t = np.asarray(t, dtype=float)
+    return voltage / resistance * -np.expm1(-t * resistance / inductance)

@@ -1,0 +1,153 @@
+"""leadscrew.studies.motor_characteristics (issue 19, item 5): the DC motor's
+steady speed, current, input power and efficiency against the load, simulated
+beside the closed form, the stall load, its figure and the command line."""
+
+import json
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import leadscrew as ls
+from helpers import dc_motor_reference as reference
+from helpers.scenes import thesis_scene
+from leadscrew import cli
+
+R, KT, L, U = 2.0, 0.05, 1e-3, 3.0
+LOADS = [2.0, 10.0, 30.0]  # [N]: the last one beyond the stall load
+# t_end = 2 s in the closed-form test: 28 mechanical time constants J R / (k_t k_e) = 58 ms
+# before the window (0.8 t_end), whose efficiency the start-up would shift by 1e-6 at 1 s.
+
+
+def motor_scene(concept="rigid", **motor):
+    d = thesis_scene(concept=concept, loads={"axial_force": 0.0},
+                     motor={"type": "dc", "voltage": U, "resistance": R, "inductance": L,
+                            "torque_constant": KT, **motor})
+    d["loads"].pop("drive_torque")
+    return d
+
+
+@pytest.mark.parametrize("limit", [None, 1.0])
+def test_rigid_drive_matches_the_closed_form(limit):
+    scene = ls.Scene.from_dict(motor_scene(**({"current_limit": limit} if limit else {})))
+    frame = ls.studies.motor_characteristics(scene, LOADS, t_end=2.0, progress=False)
+    assert frame["error"].isna().all()
+    drive = reference.rigid_drive(scene.to_dict(), scene.derived())
+    stall_current = U / R if limit is None else limit
+    stall_load = KT * stall_current / ls.raise_torque(scene.thread, 0.3, 1.0)
+    assert frame.attrs["summary"]["stall_load"] == pytest.approx(stall_load, rel=1e-12)
+    assert frame.attrs["summary"]["stall_torque"] == pytest.approx(KT * stall_current, rel=1e-12)
+    for row in frame.itertuples():
+        if row.load < stall_load:
+            # The helper's steady state, from the rigid drive's slip mode
+            # (the axial force against the motion: +load for a right-hand screw).
+            current, omega, _ = reference.steady_state(drive, row.load, U, R, KT, KT)
+            assert not row.stalled
+            assert row.current_closed_form == pytest.approx(current, rel=1e-12)
+            assert row.speed_closed_form == pytest.approx(omega, rel=1e-12)
+            assert row.current == pytest.approx(current, rel=1e-6)
+            assert row.speed == pytest.approx(omega, rel=1e-6)
+            assert row.input_power == pytest.approx(U * current, rel=1e-6)
+            efficiency = row.load * 1e-3 / (2 * math.pi) * omega / (U * current)
+            assert row.efficiency_closed_form == pytest.approx(efficiency, rel=1e-12)
+            assert row.efficiency == pytest.approx(efficiency, rel=1e-6)
+            assert row.window_change < 1e-5
+        else:
+            assert row.stalled
+            assert row.speed == 0.0 and row.speed_closed_form == 0.0
+            assert row.current == pytest.approx(stall_current, rel=1e-9)
+            assert row.input_power == pytest.approx(R * stall_current ** 2, rel=1e-6)
+            assert row.efficiency == 0.0
+
+
+def test_flexible_concept_reaches_the_same_steady_state():
+    scene = ls.Scene.from_dict(motor_scene(concept="flexible_nut"))
+    frame = ls.studies.motor_characteristics(scene, [10.0], t_end=1.0, progress=False)
+    row = frame.iloc[0]
+    assert row["error"] is None
+    assert row["speed"] == pytest.approx(row["speed_closed_form"], rel=1e-5)
+    assert row["current"] == pytest.approx(row["current_closed_form"], rel=1e-5)
+
+
+def test_units_and_plot():
+    frame = ls.studies.motor_characteristics(motor_scene(), [5.0, 30.0], t_end=0.5,
+                                             progress=False)
+    units = frame.attrs["units"]
+    assert units["speed"] == "rad/s" and units["current"] == "A"
+    assert units["input_power"] == "W" and units["efficiency"] == "1"
+    from matplotlib.figure import Figure
+
+    ax = ls.studies.plot_motor_characteristics(frame, ax=Figure().subplots())
+    assert "stall load" in " ".join(t.get_text() for t in ax.get_legend().get_texts())
+
+
+@pytest.mark.parametrize("change, kwargs, match", [
+    ({"motor": None}, {}, r"scene has no motor section"),
+    ({"motor": {"voltage": {"type": "sine", "amplitude": 3.0, "omega": 1.0}}}, {},
+     r"motor\.voltage = .* must be a constant voltage"),
+    ({}, {"loads": [-1.0]}, r"loads"),
+    ({}, {"t_end": 0.0}, r"t_end"),
+    ({}, {"window": (0.5, 0.2)}, r"window"),
+])
+def test_bad_arguments(change, kwargs, match):
+    scene = ls.Scene.from_dict(motor_scene())
+    if change:
+        scene = scene.replace(**change)
+    arguments = {"loads": [5.0], "progress": False, **kwargs}
+    with pytest.raises(ValueError, match=match):
+        ls.studies.motor_characteristics(scene, **arguments)
+
+
+def test_command_line_writes_the_table_and_figure(tmp_path, capsys):
+    path = tmp_path / "motor.toml"
+    ls.Scene.from_dict(motor_scene()).to_toml(path)
+    code = cli.main(["study", "motor_characteristics", str(path), "loads=5,30", "t_end=0.5",
+                     "progress=false", "-o", str(tmp_path)])
+    out, err = capsys.readouterr()
+    assert code == 0 and err == "", err
+    stem = tmp_path / "motor_characteristics_motor"
+    frame = pd.read_csv(stem.with_suffix(".csv"), skiprows=[1])
+    assert list(frame["load"]) == [5.0, 30.0]
+    assert stem.with_suffix(".png").stat().st_size > 10_000
+    summary = json.loads(stem.with_suffix(".summary.json").read_text())
+    assert summary["stall_load"] > 5.0
+    assert np.isfinite(frame["speed"]).all()
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+@pytest.mark.parametrize("hand", ["right", "left"])
+@pytest.mark.parametrize("voltage", [U, -U])
+def test_every_drive_hand_and_voltage_sign_raises_the_load(drive, hand, voltage):
+    """The load to raise acts against the motion the voltage drives, whichever
+    part turns and whichever the hand: the same steady state, mirrored."""
+    d = motor_scene(voltage=voltage)
+    d["drive"] = drive
+    d["thread"] = {**d["thread"], "hand": hand}
+    d["nut"] = {**d["nut"], "position": 0.25}
+    row = ls.studies.motor_characteristics(d, [10.0], t_end=2.0, progress=False).iloc[0]
+    assert row["error"] is None and not row["stalled"]
+    assert math.copysign(1.0, row["speed"]) == math.copysign(1.0, voltage)
+    assert row["speed"] == pytest.approx(row["speed_closed_form"], rel=1e-6)
+    assert row["current"] == pytest.approx(row["current_closed_form"], rel=1e-6)
+    assert row["efficiency"] == pytest.approx(row["efficiency_closed_form"], rel=1e-6)
+    assert row["efficiency"] > 0.0
+
+
+def test_the_batch_varies_the_motor_and_refuses_what_it_would_ignore():
+    from leadscrew.studies._batch import DriveBatch
+
+    scene = ls.Scene.from_dict(motor_scene())
+    batch = DriveBatch(scene, ("motor_resistance", "axial_force"), ("omega_drive",), 2.0, [2.0])
+    samples, errors, _ = batch.run(np.array([[R, 10.0], [2 * R, 10.0]]), 1)
+    assert not any(errors)
+    drive = reference.rigid_drive(scene.to_dict(), scene.derived())
+    for resistance, omega in zip((R, 2 * R), samples[:, 0, 0]):
+        expected = reference.steady_state(drive, 10.0, U, resistance, KT, KT)[1]
+        assert omega == pytest.approx(expected, rel=1e-6)
+    for name in ("drive_torque", "drive_speed"):
+        with pytest.raises(ValueError, match=rf"\"{name}\" is invalid for a drive with a DC motor"):
+            DriveBatch(scene, (name,), ("motor_current",), 0.1, [0.1])
+    with pytest.raises(ValueError, match=r"\"motor_resistance\" is invalid for a drive without"):
+        DriveBatch(ls.Scene.from_dict(thesis_scene()), ("motor_resistance",), ("u_load",), 0.1,
+                   [0.1])

@@ -14,8 +14,9 @@ namespace leadscrew::model {
 
 struct DriveSimulationOptions {
   std::string integrator = "event_driven";  // "": the model's default (drive_integrators()[0])
-  // The smooth integrator inside "event_driven" ("": rk_verner6 for the rigid
-  // concept, cvode_bdf for the stiff flexible ones).
+  // The smooth integrator inside "event_driven" ("": rk_verner6 for a model
+  // without springs or dampers (the rigid concept), cvode_bdf for the stiff
+  // flexible ones).
   std::string smooth_integrator;
   integrate::IntegratorOptions integrator_options;
   double dt = 1e-4;    // moreau

@@ -12,7 +12,7 @@ std::vector<std::string> drive_channel_names(const DriveModel& model) {
                                     "omega_drive",   "drive_torque", "axial_force",
                                     "normal_force",  "friction_force", "slip_velocity",
                                     "stick"};
-  if (model.parameters().backlash != BacklashContact::none) {
+  if (!model.bilateral_thread()) {
     names.push_back("gap");
     names.push_back("play");
   }
@@ -68,7 +68,7 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
   out[k++] = forces.friction;
   out[k++] = state.slip_velocity;
   out[k++] = forces.stick ? 1.0 : 0.0;
-  if (p.backlash != BacklashContact::none) {
+  if (!model.bilateral_thread()) {
     out[k++] = 0.5 * p.clearance - std::abs(state.play);
     out[k++] = state.play;
   }

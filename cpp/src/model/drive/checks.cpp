@@ -26,7 +26,7 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   // acceleration), and LuGre's bristles give back what they stored.
   spec.friction_dissipates = law.resolution() != friction::Resolution::acceleration &&
                              law.resolution() != friction::Resolution::bristle;
-  spec.clearance = p.backlash == BacklashContact::exact ? p.clearance : 0.0;
+  spec.clearance = model.thread_pair().exact_play() ? p.clearance : 0.0;
   spec.time_step = time_stepping ? options.dt : 0.0;
   spec.step_play_rate = step_play_rate;
   spec.step_friction_excess = step_friction_excess;

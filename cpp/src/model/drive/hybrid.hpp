@@ -2,9 +2,14 @@
 // friction and exact flank contacts by modes and events, the regularized and
 // compliant formulations as smooth phases. Internal to cpp/src/model; its
 // members are defined by concern (docs/architecture.md):
-//   hybrid_rhs.cpp         construction, the right-hand side of a mode (the
-//                          rigid one-degree-of-freedom path, LuGre's
-//                          bristles), output rows
+//   hybrid_rhs.cpp         construction, the right-hand side and output rows
+//                          (by the mode solver), the loads' time scales
+//   mode_solver.hpp        how the current mode is solved at y and how y maps
+//                          to coordinates: the constrained solve for any
+//                          model (constrained_solver.cpp), the rigid drive's
+//                          one degree of freedom in closed form
+//                          (rigid_solver.cpp), chosen from the model's
+//                          structure (mode_solver.cpp)
 //   hybrid_events.cpp      root functions, the initial mode, event handling
 //   hybrid_load_roots.cpp  load-driven roots of the rigid drive's modes
 //   hybrid_modes.cpp       the current mode's solution, stick or slip by the
@@ -18,7 +23,7 @@
 
 #include <cmath>
 #include <limits>
-#include <optional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -57,6 +62,10 @@ class DriveHybrid final : public integrate::HybridSystem {
   // for an ODE integrator); it outlives this.
   DriveHybrid(const DriveModel& model, const friction::Law& law, double bounce_threshold,
               double t_end, const integrate::IntegratorOptions& integrator_options);
+  ~DriveHybrid() override;
+  // Its mode solver refers to it: neither copied nor moved.
+  DriveHybrid(const DriveHybrid&) = delete;
+  DriveHybrid& operator=(const DriveHybrid&) = delete;
 
   int size() const override { return layout_.size(); }
   // g0..g3: friction and flank events (see roots); g4: the nut's end at the
@@ -100,12 +109,12 @@ class DriveHybrid final : public integrate::HybridSystem {
     if (layout_.bristle() >= 0) dynamics_.set_bristle(y[layout_.bristle()]);
   }
 
-  // hybrid_rhs.cpp
-  struct RigidSolution {
-    double torque = 0.0, axial_force = 0.0;
-    double acceleration = 0.0, normal_force = 0.0, friction_force = 0.0;
-  };
-  RigidSolution solve_rigid(double t, const double* y);
+  // mode_solver.hpp: the current mode at a state y (the constrained solve,
+  // or a specialisation chosen from the model's structure).
+  class ModeSolver;
+  class ConstrainedSolver;
+  class RigidSolver;
+  static std::unique_ptr<ModeSolver> make_mode_solver(DriveHybrid& hybrid);
 
   // hybrid_motor.cpp: a DC motor (model_.dc_motor()), at the state last set.
   bool current_limit_root() const {
@@ -127,11 +136,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   // hybrid_events.cpp
   void start_mode(double t, const double* y);
   std::string change_mode(double t, double* y, const std::vector<int>& root_info);
-  double slip_resolution() const;
 
   // hybrid_load_roots.cpp
   bool load_driven() const;
-  RigidModeCoefficients mode_coefficients(int sigma);
   void plan_load_roots(double t);
   double load_root_value(double t) const {
     return std::isfinite(load_root_time_) ? load_root_time_ - t : 1.0;
@@ -223,9 +230,6 @@ class DriveHybrid final : public integrate::HybridSystem {
   double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
-  std::optional<RigidDriveModes> rigid_;  // the one-degree-of-freedom rigid drive
-  double loads_time_ = std::numeric_limits<double>::quiet_NaN();  // the loads last evaluated
-  double torque_ = 0.0, axial_force_ = 0.0;
   int current_held_ = 0;  // a DC motor's current held at +-current_limit (its sign; 0: free)
   Mode mode_;
   CoordinateVector q_, v_;
@@ -234,6 +238,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   long lcp_solves_ = 0;
   lcp::Workspace lcp_workspace_{2};
   lcp::Options lcp_options_{};
+  std::unique_ptr<ModeSolver> solver_;  // last: it refers to the fields above
 };
 
 }  // namespace leadscrew::model::drive

@@ -6,47 +6,31 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mode_solver.hpp"
 #include "screw_end.hpp"
 
 namespace leadscrew::model::drive {
 
 void DriveHybrid::roots(double t, const double* y, double* g) {
   g[0] = g[1] = g[2] = g[3] = g[4] = 1.0;
-  if (rigid_) {
-    layout_.expand(t, y, q_, v_);  // for the nut's position alone
-    g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
-    if (mode_.friction == FrictionMode::none) return;
-    const RigidSolution s = solve_rigid(t, y);
-    const double mu = stick_mu();
-    if (mode_.friction == FrictionMode::slip) {
-      g[0] = rigid_->slip_per_speed() * y[1] - slip_offset_;
-      g[1] = load_root_ == 1 ? load_root_value(t) : flank_change_root(s.normal_force);
-    } else {
-      const double margin =
-          (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
-      if (margin > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
-      g[0] = load_root_ == 0 ? load_root_value(t) : margin;
-    }
-    return;
-  }
-  set(t, y);
+  solver_->expand(t, y);
   g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
   const bool active = mode_.contact != ThreadContact::open;
   // A closed flank is watched for its normal force falling through zero
   // whatever the friction (a frictionless one too: it must open).
   if (active && (mode_.friction != FrictionMode::none || mode_.contact == ThreadContact::closed)) {
-    if (mode_.friction == FrictionMode::slip) g[0] = dynamics_.slip_velocity() - slip_offset_;
+    if (mode_.friction == FrictionMode::slip) g[0] = solver_->slip_velocity(y) - slip_offset_;
     const bool need_forces = mode_.friction == FrictionMode::stick ||
                              mode_.contact == ThreadContact::closed ||
                              mode_.contact == ThreadContact::bilateral;
     if (need_forces) {
-      const ModeSolution s = solve_current();
+      const ThreadForces s = solver_->forces(t, y);
       const double mu = stick_mu();
       if (mode_.friction == FrictionMode::stick && slip_prescribed_now()) {
         // The motor holds the slip at zero (the friction force stays in the
         // cone by construction): the stick ends where the prescribed slip
         // leaves zero, either way.
-        g[0] = std::abs(dynamics_.slip_velocity());
+        g[0] = std::abs(solver_->slip_velocity(y));
       } else if (mode_.friction == FrictionMode::stick) {
         g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
         if (g[0] > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
@@ -123,26 +107,25 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
   set(t, y);
   kinetic0_ = dynamics_.kinetic_energy();
   elastic0_ = dynamics_.elastic_energy() + dynamics_.contact_energy();
-  switch (p_.backlash) {
-    case BacklashContact::none:
-      mode_.contact = ThreadContact::bilateral;
-      break;
-    case BacklashContact::exact: {
-      const double half = 0.5 * p_.clearance;
-      if (dynamics_.play() >= half) {
-        mode_.contact = ThreadContact::closed;
-        mode_.flank = -1;
-      } else if (dynamics_.play() <= -half) {
-        mode_.contact = ThreadContact::closed;
-        mode_.flank = 1;
-      } else {
-        mode_.contact = ThreadContact::open;
-      }
-      break;
+  // The thread pair's kind of play: none (a constraint), exact flanks or
+  // penalty flanks.
+  const elements::ThreadPair& thread = model_.thread_pair();
+  if (thread.bilateral()) {
+    mode_.contact = ThreadContact::bilateral;
+  } else if (thread.exact_play()) {
+    const double half = 0.5 * p_.clearance;
+    if (dynamics_.play() >= half) {
+      mode_.contact = ThreadContact::closed;
+      mode_.flank = -1;
+    } else if (dynamics_.play() <= -half) {
+      mode_.contact = ThreadContact::closed;
+      mode_.flank = 1;
+    } else {
+      mode_.contact = ThreadContact::open;
     }
-    default:
-      mode_.contact = ThreadContact::penalty;
-      touching_ = std::abs(dynamics_.play()) > 0.5 * p_.clearance;
+  } else {
+    mode_.contact = ThreadContact::penalty;
+    touching_ = std::abs(dynamics_.play()) > 0.5 * p_.clearance;
   }
   decide_friction(t, y, std::abs(dynamics_.slip_velocity()) <= dynamics_.slip_noise(), 0);
   if (mode_.contact == ThreadContact::closed) {
@@ -218,10 +201,10 @@ void DriveHybrid::start_mode(double t, const double* y) {
   // at most mu' |N| times it (the result's checks allow for it).
   slip_offset_ = 0.0;
   if (mode_.friction == FrictionMode::slip) {
-    const double slip = rigid_ ? rigid_->slip_per_speed() * y[1]
-                               : (set(t, y), dynamics_.slip_velocity());
+    solver_->expand(t, y);
+    const double slip = solver_->slip_velocity(y);
     if (mode_.slip_sign * slip < 0.0) slip_offset_ = slip;
-    if (slip_noise_event_) slip_offset_ = -mode_.slip_sign * slip_resolution();
+    if (slip_noise_event_) slip_offset_ = -mode_.slip_sign * solver_->slip_resolution();
   }
   slip_noise_event_ = false;
   stick_from_zero_ = false;
@@ -324,13 +307,6 @@ std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>
   if (mode_ == before) return kind;
   const std::string change = describe(before, backlash_) + "->" + describe(mode_, backlash_);
   return kind.empty() ? change : kind + ", " + change;
-}
-
-// The slip velocity the integrator resolves: its absolute tolerance on the
-// velocities through the slip's gradient (|W_T| atol).
-double DriveHybrid::slip_resolution() const {
-  if (rigid_) return std::abs(rigid_->slip_per_speed()) * integrator_options_.atol;
-  return model_.tangent_direction().cwiseAbs().sum() * integrator_options_.atol;
 }
 
 }  // namespace leadscrew::model::drive

@@ -84,7 +84,7 @@ double DriveHybrid::stop_play(double t, const PlayDirection& direction) {
 // it opens), the baseline of check_flight.
 void DriveHybrid::note_flight_start(double t, const double* y) {
   flight_start_excess_ = 0.0;
-  if (p_.backlash != BacklashContact::exact || mode_.contact != ThreadContact::open) return;
+  if (!model_.thread_pair().exact_play() || mode_.contact != ThreadContact::open) return;
   set(t, y);
   flight_start_excess_ = std::max(0.0, std::abs(dynamics_.play()) - 0.5 * p_.clearance);
 }

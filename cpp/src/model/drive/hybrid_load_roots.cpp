@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 
+#include "mode_solver.hpp"
+
 namespace leadscrew::model::drive {
 
 // True if the thread forces of the current mode depend on the loads alone
@@ -18,23 +20,6 @@ bool DriveHybrid::load_driven() const {
          !model_.dc_motor() && dynamics_.law().plain_coulomb() &&
          (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
          (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
-}
-
-// The thread forces of the current mode per unit drive torque and axial
-// force (normal-force sign sigma where it matters).
-RigidModeCoefficients DriveHybrid::mode_coefficients(int sigma) {
-  if (rigid_) return rigid_->coefficients(mode_.friction, mode_.slip_sign, sigma);
-  const int n = model_.coordinate_count();
-  CoordinateVector unit_torque = CoordinateVector::Zero(n), unit_force = unit_torque;
-  unit_torque[model_.rotor()] = 1.0;
-  unit_force[model_.load()] = 1.0;
-  const ModeSolution torque = dynamics_.solve_with_forces(spec(sigma), unit_torque);
-  const ModeSolution force = dynamics_.solve_with_forces(spec(sigma), unit_force);
-  RigidModeCoefficients c;
-  if (!torque.regular || !force.regular) return c;
-  c.normal_force = {torque.normal_force, force.normal_force};
-  c.friction_force = {torque.friction_force, force.friction_force};
-  return c;
 }
 
 // At the start of a mode whose thread forces are load-driven, the stick
@@ -55,7 +40,7 @@ void DriveHybrid::plan_load_roots(double t) {
     // |T| <= mu' |N| as the two factors mu' s N -+ T, with s the side of N
     // at the start: before N could change sides, |T| would have to fall to
     // zero with it, so one factor crosses first.
-    const RigidModeCoefficients c = mode_coefficients(1);
+    const RigidModeCoefficients c = solver_->coefficients(1);
     int side = sign_of(c.normal_force(torque, force));
     if (side == 0)
       side = sign_of(c.normal_force(p_.drive_torque.derivative(t), p_.axial_force.derivative(t)));
@@ -70,7 +55,7 @@ void DriveHybrid::plan_load_roots(double t) {
     // flank opening (closed).
     const int side = mode_.contact == ThreadContact::closed ? mode_.flank : normal_side_;
     if (side == 0) return;  // not left zero yet (flank_change_root)
-    const RigidModeCoefficients c = mode_coefficients(side);
+    const RigidModeCoefficients c = solver_->coefficients(side);
     functions[count++] = {side * c.normal_force.per_torque, side * c.normal_force.per_force};
     slot = 1;
   }

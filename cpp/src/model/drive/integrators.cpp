@@ -12,7 +12,12 @@
 
 namespace leadscrew::model {
 
-const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+namespace {
+
+// The integrators that fit the friction law `friction` on a thread pair with
+// penalty flanks, exact flanks, or (neither) no play.
+const std::vector<std::string>& integrators_for(const std::string& friction, bool penalty,
+                                                bool exact_play) {
   // From the law's type (friction/law.hpp): a set-valued law runs in the
   // event-driven scheme, in Moreau-Jean's time stepping, and where it has a
   // regularization in the ODE methods; a smooth law in the ODE methods and
@@ -36,9 +41,7 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
     for (const std::string& name : integrate::integrator_names()) names.push_back(name);
     return names;
   }();
-  const friction::LawType& type = friction::law_type(p.friction);
-  const bool penalty = p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
-  const bool exact_play = p.backlash == BacklashContact::exact;
+  const friction::LawType& type = friction::law_type(friction);
   if (type.time_stepping) {  // set-valued
     if (penalty) return type.ode ? set_valued_ode : event_driven_only;
     if (exact_play) return with_moreau;
@@ -48,9 +51,22 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   return smooth;
 }
 
+}  // namespace
+
+const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+  const bool penalty =
+      p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
+  return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact);
+}
+
+const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
+  const elements::ThreadPair& thread = model.thread_pair();
+  return integrators_for(model.parameters().friction, thread.penalty(), thread.exact_play());
+}
+
 void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
-  const std::vector<std::string>& allowed = drive_integrators(p);
+  const std::vector<std::string>& allowed = drive::model_integrators(model);
   const std::string& integrator = drive::chosen_integrator(p, options);
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,
@@ -82,7 +98,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   // What make_integrator checks as the smooth phases start, the method's
   // own limits included (max_order of a one-step method, CVODE's orders).
   integrate::validate_options(options.integrator_options);
-  const std::string method = drive::ode_method(p, integrator, options);
+  const std::string method = drive::ode_method(model, integrator, options);
   try {
     integrate::check_method_limits(method, options.integrator_options);
   } catch (const InvalidArgument& e) {
@@ -103,16 +119,17 @@ const std::string& chosen_integrator(const DriveParameters& p,
 
 // The ODE method of the smooth phases: the integrator itself, or inside
 // "event_driven" the smooth_integrator option (default: our Verner 6(5)
-// with exact event location for the rigid concept, an order of magnitude
-// cheaper than CVODE; BDF for the stiff flexible ones. CVODE used to lose
+// with exact event location for a model without force elements (the rigid
+// concept), an order of magnitude cheaper than CVODE; BDF where springs and
+// dampers make it stiff (the flexible concepts). CVODE used to lose
 // flank events of a rattling nut, 3 to 8 of 36 at rtol 1e-12; with
 // handle_event's touch below resolution it finds the same ones:
 // tests/test_integrate_flank_events.py).
-std::string ode_method(const DriveParameters& p, const std::string& integrator,
+std::string ode_method(const DriveModel& model, const std::string& integrator,
                        const DriveSimulationOptions& options) {
   if (integrator != "event_driven") return integrator;
   if (!options.smooth_integrator.empty()) return options.smooth_integrator;
-  return p.concept == Concept::rigid ? "rk_verner6" : "cvode_bdf";
+  return model.elements().forces.empty() ? "rk_verner6" : "cvode_bdf";
 }
 
 // Moreau-Jean's dt, theta and step count from the options.
@@ -124,11 +141,12 @@ integrate::EventDrivenOptions event_driven_options(const DriveModel& model,
                                                    const friction::Law& law,
                                                    const std::string& integrator,
                                                    const DriveSimulationOptions& options) {
-  const DriveParameters& p = model.parameters();
   integrate::EventDrivenOptions driver;
   driver.integrator_options = options.integrator_options;
   driver.max_events = options.max_events;
-  driver.integrator = ode_method(p, integrator, options);
+  driver.integrator = ode_method(model, integrator, options);
+  // The springs and dampers of the flexible models carry their stiff modes.
+  const bool stiff = !model.elements().forces.empty();
   // The regularized friction laws are stiff near zero slip, and with the
   // flexible models' lightly damped modes BDF above order 3 is not stable
   // enough there: capped at 3 it was faster in every case measured
@@ -139,7 +157,7 @@ integrate::EventDrivenOptions event_driven_options(const DriveModel& model,
   // fewer steps at the same error (no play and exact backlash, rtol 1e-6 and
   // 1e-8), and order 3 ran past a million steps for a rattling flexible nut at
   // rtol 1e-9.
-  if (driver.integrator == "cvode_bdf" && p.concept != Concept::rigid &&
+  if (driver.integrator == "cvode_bdf" && stiff &&
       law.resolution() != friction::Resolution::set_valued &&
       driver.integrator_options.max_order == 0 &&
       driver.integrator_options.rtol >= 1e-9)
@@ -152,7 +170,7 @@ integrate::EventDrivenOptions event_driven_options(const DriveModel& model,
   // iterations: with 3 it failed at every step (a nut-driven flexible drive,
   // 0.2 s: 229,147 steps, 225,258 convergence failures, 14 s), with 10 it
   // took 10,985 steps and 0.13 s.
-  if (law.resolution() == friction::Resolution::acceleration && p.concept != Concept::rigid)
+  if (law.resolution() == friction::Resolution::acceleration && stiff)
     driver.integrator_options.max_nonlinear_iterations = 10;
   return driver;
 }

@@ -21,13 +21,18 @@ const std::string& chosen_integrator(const DriveParameters& p,
 
 // The ODE method of the smooth phases: the integrator itself, or inside
 // "event_driven" the smooth_integrator option (default: our Verner 6(5)
-// with exact event location for the rigid concept, an order of magnitude
-// cheaper than CVODE; BDF for the stiff flexible ones. CVODE used to lose
+// with exact event location for a model without force elements (the rigid
+// concept), an order of magnitude cheaper than CVODE; BDF where springs and
+// dampers make it stiff (the flexible concepts). CVODE used to lose
 // flank events of a rattling nut, 3 to 8 of 36 at rtol 1e-12; with
 // handle_event's touch below resolution it finds the same ones:
 // tests/test_integrate_flank_events.py).
-std::string ode_method(const DriveParameters& p, const std::string& integrator,
+std::string ode_method(const DriveModel& model, const std::string& integrator,
                        const DriveSimulationOptions& options);
+
+// The integrators that fit a built model: drive_integrators(parameters)
+// from its thread pair's kind of play and its friction law.
+const std::vector<std::string>& model_integrators(const DriveModel& model);
 
 // Moreau-Jean's dt, theta and step count from the options.
 integrate::MoreauOptions moreau_options(const DriveSimulationOptions& options);

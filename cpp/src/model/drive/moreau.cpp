@@ -121,7 +121,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   int sigma_fixed = 0;  // 0: bilateral (sign free); +-1: a flank
   bool contact = true;
   double normal_target = 0.0;
-  if (p_.backlash == BacklashContact::exact) {
+  if (model_.thread_pair().exact_play()) {
     const double half = 0.5 * p_.clearance;
     const double predicted = play0 + h * play_rate0;
     if (predicted <= -half) {
@@ -236,7 +236,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   }
   if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
   v_ = impulses.velocity;
-  if (p_.backlash == BacklashContact::exact && !contact)
+  if (model_.thread_pair().exact_play() && !contact)
     impulses.normal = 0.0, impulses.friction = 0.0;
 
   // Positions of the independent coordinates; the layout fills the rest.

@@ -1,0 +1,103 @@
+// DriveHybrid::ConstrainedSolver (mode_solver.hpp): any drive model; y
+// expanded by StateLayout, the current mode solved by DriveDynamics'
+// constrained solve (DriveHybrid::solve_current), LuGre's bristle states and
+// their stored energy.
+#include <cmath>
+
+#include "mode_solver.hpp"
+
+namespace leadscrew::model::drive {
+
+double DriveHybrid::ConstrainedSolver::slip_velocity(const double* y) const {
+  (void)y;
+  return h_.dynamics_.slip_velocity();
+}
+
+ThreadForces DriveHybrid::ConstrainedSolver::forces(double t, const double* y) {
+  (void)t;
+  (void)y;
+  const ModeSolution s = h_.solve_current();
+  return {s.normal_force, s.friction_force};
+}
+
+void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot) {
+  h_.set(t, y);
+  const ModeSolution s = h_.solve_current();
+  const StateLayout& layout = h_.layout_;
+  const DriveDynamics& dynamics = h_.dynamics_;
+  const DriveModel& model = h_.model_;
+  const CoordinateVector& v = h_.v_;
+  const int np = static_cast<int>(layout.positions().size());
+  for (int k = 0; k < np; ++k) ydot[k] = v[layout.positions()[k]];
+  for (std::size_t k = 0; k < layout.velocities().size(); ++k)
+    ydot[np + k] = s.acceleration[layout.velocities()[k]];
+  double* energy = ydot + layout.energy_offset();
+  energy[kWorkDrive] = model.motor().power(s.motor_torque, v);
+  energy[kWorkAxial] = model.axial_load().power(dynamics.axial_force(), v);
+  energy[kFrictionLoss] =
+      h_.mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics.slip_velocity();
+  const int bristle = layout.bristle();
+  if (bristle >= 0) {
+    // LuGre's bristles: z' of the law. Of the friction's power, the part
+    // |N|' sigma0 z z' is stored in the bristles, not lost; it is
+    // integrated (the state after z) rather than taken as |N|' sigma0 z^2
+    // / 2, which would miss the work of a changing normal force on a
+    // deflected bristle. What remains, |N|' (sigma0^2 |gamma| z^2 / mu(|gamma|)
+    // + sigma1 z' gamma) + viscous gamma^2, is the loss (sigma1 z' gamma can be
+    // negative: LuGre is passive only for small sigma1).
+    const double z = y[bristle];
+    const double rate = dynamics.law().bristle_rate(dynamics.slip_velocity(), z);
+    const double stored = std::abs(s.normal_force) * model.flank_factor() *
+                          dynamics.law().bristle_stiffness() * z * rate;
+    ydot[bristle] = rate;
+    ydot[bristle + 1] = stored;
+    energy[kFrictionLoss] -= stored;
+  }
+  energy[kDampingLoss] = dynamics.damping_power();
+  energy[kContactLoss] = dynamics.contact_loss_power();
+  if (model.dc_motor()) h_.motor_rates(t, ydot, energy);
+}
+
+ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
+                                                    ContactForces& forces) {
+  h_.set(t, y);
+  if (h_.model_.thread_pair().exact_play() && h_.mode_.contact == ThreadContact::open)
+    h_.check_flight(t);
+  const ModeSolution s = h_.solve_current();
+  forces.normal = s.normal_force;
+  forces.friction = s.friction_force;
+  forces.motor_torque = s.motor_torque;
+  ChannelState state = channel_state(h_.dynamics_);
+  const int bristle = h_.layout_.bristle();
+  if (bristle >= 0) {
+    state.bristle = y[bristle];
+    state.elastic += y[bristle + 1];  // the bristles' stored energy
+  }
+  // Stick holds the slip velocity at zero; the state carries the integrator's
+  // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
+  if (forces.stick) state.slip_velocity = 0.0;
+  if (h_.model_.dc_motor()) h_.motor_channels(t, y, state);
+  return state;
+}
+
+double DriveHybrid::ConstrainedSolver::slip_resolution() const {
+  return h_.model_.tangent_direction().cwiseAbs().sum() * h_.integrator_options_.atol;
+}
+
+// By the constrained solve with a unit drive torque and a unit axial force.
+RigidModeCoefficients DriveHybrid::ConstrainedSolver::coefficients(int sigma) {
+  const DriveModel& model = h_.model_;
+  const int n = model.coordinate_count();
+  CoordinateVector unit_torque = CoordinateVector::Zero(n), unit_force = unit_torque;
+  unit_torque[model.rotor()] = 1.0;
+  unit_force[model.load()] = 1.0;
+  const ModeSolution torque = h_.dynamics_.solve_with_forces(h_.spec(sigma), unit_torque);
+  const ModeSolution force = h_.dynamics_.solve_with_forces(h_.spec(sigma), unit_force);
+  RigidModeCoefficients c;
+  if (!torque.regular || !force.regular) return c;
+  c.normal_force = {torque.normal_force, force.normal_force};
+  c.friction_force = {torque.friction_force, force.friction_force};
+  return c;
+}
+
+}  // namespace leadscrew::model::drive

@@ -55,8 +55,9 @@ from .scene_derived import _derived, _model, _thread
 from .scene_derived import _QUANTITIES, _geometry, _in_range  # noqa: F401
 from .scene_files import _from_toml_text, _to_toml_text, _toml_parser  # noqa: F401
 from .scene_loads import _DEFAULT_DRIVE_TORQUE, _effective  # noqa: F401
-from .scene_schema import (OPTIONAL, SCHEMA, Field, _fail,  # noqa: F401
-                           _friction_law_entry, _friction_registry, describe_schema)
+from .scene_schema import (DENSITY, MODULUS, NONNEGATIVE, OPTIONAL,  # noqa: F401
+                           POSITIVE, SCHEMA, Field, _fail, _friction_law_entry,
+                           _friction_registry, describe_schema)
 from .thread import Thread
 
 __all__ = ["Scene", "SCHEMA", "describe_schema"]

@@ -45,10 +45,10 @@ from ._batch import check_simulate_options
 from ._common import (annotate, as_scene, axes, check_count, check_positive, numeric_or_nan,
                       raised_rows, with_tolerances)
 # (_preload_case calls cycle_response through this module, where tests replace it.)
-from ._holding_runs import (FLIGHT_RESOLUTION, SUMMARY_UNITS, UNITS,  # noqa: F401
-                            _alternating, _constant_torque, _scene_sine, _sine_parameters,
-                            alternating_scene, check_cycles, cycle_response,
-                            static_holding_band)
+from ._holding_runs import (FALLBACK_AMPLITUDE, FALLBACK_FREQUENCY,  # noqa: F401
+                            FLIGHT_RESOLUTION, SUMMARY_UNITS, UNITS, _alternating,
+                            _constant_torque, _scene_sine, _sine_parameters, alternating_scene,
+                            check_cycles, cycle_response, static_holding_band)
 from ._sweep import run_cases
 from .position import plot_position_holding, position_holding
 

@@ -20,8 +20,8 @@ import pandas as pd
 from ._common import annotate, as_scene, axes, check_grid, numeric_or_nan, with_tolerances
 from ._batch import check_simulate_options
 from ._sweep import run_cases
-from .holding import (_alternating_excitation, _constant_torque, alternating_scene,
-                      check_cycles, cycle_response)
+from ._holding_runs import (_alternating_excitation, _constant_torque, alternating_scene,
+                           check_cycles, cycle_response)
 
 __all__ = ["creep_vs_frequency", "creep_vs_backlash", "creep_map", "plot_creep",
            "plot_creep_map"]

@@ -1,0 +1,264 @@
+"""What the commands write: figures, tables with units, summaries.
+
+The run's figures (``_plot_time_series``, ``_plot_energy``) and time series
+(CSV with a row of units, or Parquet with each field's unit), the output
+directory (checked before anything runs, created only once there is something
+to write), and a study's output: the failed rows counted (``_failures``),
+its summary as JSON (NaN and infinities as null, with the units) and as
+text for the terminal.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import math
+import numbers
+import os
+from pathlib import Path
+from typing import Any, Dict, Tuple
+
+from .cli_parser import StudyFailed, UsageError
+
+__all__: list = []  # the command line's internals: leadscrew.cli.main is the entry point
+
+
+def _plot_time_series(result, title: str):
+    """Load position, rotor speed, forces and drive torque over time (a Figure)."""
+    from matplotlib.figure import Figure
+
+    t = result.t
+    figure = Figure(figsize=(8.0, 9.0), layout="constrained")
+    axes = figure.subplots(4, 1, sharex=True)
+    axes[0].plot(t, result["u_load"] * 1e3, color="C0")
+    if "stick" in result and len(t) > 1:
+        stick = result["stick"] > 0.5
+        axes[0].fill_between(t, 0, 1, where=stick, transform=axes[0].get_xaxis_transform(),
+                             color="0.85", step="mid", label="stick")
+        if stick.any():
+            axes[0].legend(loc="best")
+    axes[0].set_ylabel("load position u [mm]")
+    axes[1].plot(t, result["omega_drive"], color="C1")
+    axes[1].set_ylabel("rotor speed [rad/s]")
+    for name, label in (("axial_force", "axial load F"), ("normal_force", "flank normal N"),
+                        ("friction_force", "flank friction T")):
+        if name in result:
+            axes[2].plot(t, result[name], label=label)
+    axes[2].set_ylabel("force [N]")
+    axes[2].legend(loc="best")
+    axes[3].plot(t, result["drive_torque"] * 1e3, color="C3")
+    axes[3].set_ylabel("drive torque [N*mm]")
+    axes[3].set_xlabel("time t [s]")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    figure.suptitle(title, fontsize="medium")
+    return figure
+
+
+def _plot_energy(result, title: str):
+    """The energy account: work in, losses, stored energy, residual (a Figure)."""
+    from matplotlib.figure import Figure
+
+    t = result.t
+    figure = Figure(figsize=(8.0, 6.0), layout="constrained")
+    top, bottom = figure.subplots(2, 1, sharex=True)
+    for name in ("work_drive", "work_axial", "friction_loss", "damping_loss", "contact_loss",
+                 "impact_loss", "kinetic", "elastic"):
+        if name in result and (result[name] != 0).any():
+            top.plot(t, result[name], label=name)
+    top.set_ylabel("energy [J]")
+    top.legend(loc="best")
+    bottom.plot(t, result["energy_residual"], color="k")
+    bottom.set_ylabel("energy residual [J]")
+    bottom.set_xlabel("time t [s]")
+    for ax in (top, bottom):
+        ax.grid(True, alpha=0.3)
+    figure.suptitle(title, fontsize="medium")
+    return figure
+
+
+def _check_output_dir(path: str) -> None:
+    """Refuse an output directory that cannot be created, without creating it.
+
+    Commands check this before they simulate and create the directory only
+    once there is something to write, so that a failed command leaves nothing.
+
+    Raises:
+        UsageError: ``path`` or its first existing ancestor is not a writable
+            directory.
+    """
+    out = Path(path)
+    # The first existing ancestor (bounded by the path's depth).
+    existing = next((p for p in (out, *out.absolute().parents) if p.exists()), None)
+    if existing is None or not existing.is_dir():
+        raise UsageError(f"-o {path}: cannot create the output directory "
+                         f"({existing} is not a directory)")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise UsageError(f"-o {path}: cannot create the output directory "
+                         f"({existing} is not writable)")
+
+
+def _output_dir(path: str) -> Path:
+    out = Path(path)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as error:
+        raise UsageError(f"-o {path}: cannot create the output directory ({error.strerror})") from None
+    return out
+
+
+def _output_file(out: Path, name: str, suffix: str) -> Path:
+    """``out/name.suffix``: the suffix appended, never replacing a dotted
+    part of the name (``drive_v1.2`` gives ``drive_v1.2.csv``)."""
+    return out / f"{name}.{suffix}"
+
+
+def _summary(name: str, scene, result, t_end: float) -> str:
+    stats = result.stats
+    return (f"{name}: {scene!r}, t_end = {t_end:g} s, {result.friction}/{result.integrator}: "
+            f"{len(result.events)} events, {stats['steps']} steps, "
+            f"{stats['wall_time'] * 1e3:.3g} ms; u_load(t_end) = {result['u_load'][-1] * 1e3:.6g} mm")
+
+
+def _write_series(result, out: Path, name: str, fmt: str) -> Path:
+    """Write the time series with the unit of every column.
+
+    CSV: the row of names, then a row of units (SI, ``""`` for the flag
+    ``stick``), then the data (pandas reads the data with
+    ``read_csv(path, skiprows=[1])``, names and units with ``header=[0, 1]``).
+    Parquet: each field's metadata ``unit``, and the frame's
+    ``attrs["units"]`` (which ``pandas.read_parquet`` restores).
+    """
+    frame = result.to_frame()
+    units = frame.attrs["units"]
+    path = _output_file(out, name, fmt)
+    if fmt == "parquet":
+        import pyarrow as pa
+
+        schema = pa.Schema.from_pandas(frame, preserve_index=False)
+        schema = pa.schema([field.with_metadata({"unit": units[field.name]})
+                            for field in schema], metadata=schema.metadata)
+        frame.to_parquet(path, index=False, schema=schema)
+    else:
+        _write_csv(frame, path, units)
+    return path
+
+
+def _write_csv(frame, path: Path, units: Dict[str, str], index: bool = False) -> None:
+    """Write a frame as CSV: the row of names, a row of units (``units`` by
+    column, ``""`` where it has none: a label, a flag, the index), then the
+    data (``pandas.read_csv(path, skiprows=[1])`` reads the data, with
+    ``header=[0, 1]`` names and units)."""
+    import csv
+
+    names = [str(column) for column in frame.columns]
+    unit_row = [str(units.get(column, "")) for column in frame.columns]
+    if index:
+        names.insert(0, "" if frame.index.name is None else str(frame.index.name))
+        unit_row.insert(0, "")
+    with open(path, "w", encoding="utf-8", newline="") as stream:
+        writer = csv.writer(stream, lineterminator="\n")
+        writer.writerow(names)
+        writer.writerow(unit_row)
+        frame.to_csv(stream, index=index, header=False, lineterminator="\n")
+
+
+def _require_parquet(fmt: str) -> None:
+    if fmt == "parquet" and importlib.util.find_spec("pyarrow") is None:
+        raise UsageError("--format parquet needs pyarrow, which is not installed "
+                         "(pip install pyarrow), or use --format csv")
+
+
+#: Columns in which a study reports the failure of a case (None: it ran).
+_FAILURE_COLUMNS = ("error", "failure")
+
+
+def _failure_message(value: Any) -> str:
+    """A failure cell as one line ("" where the case ran: None, NaN, "")."""
+    import pandas as pd
+
+    if value is None or (pd.api.types.is_scalar(value) and pd.isna(value)):
+        return ""
+    return " ".join(str(value).split())
+
+
+def _failures(frame) -> Tuple[int, str]:
+    """How many rows of a study's frame failed, and the first message.
+
+    A row failed if one of its columns ``error`` or ``failure`` (work_precision)
+    holds a message.
+    """
+    columns = [c for c in _FAILURE_COLUMNS if c in frame.columns]
+    count, first = 0, ""
+    for values in zip(*(frame[c].tolist() for c in columns)):
+        messages = [m for m in map(_failure_message, values) if m]
+        if messages:
+            count += 1
+            first = first or messages[0]
+    return count, first
+
+
+def _json_value(value: Any) -> Any:
+    """A summary value as JSON data: NaN and infinities become null."""
+    import numpy as np
+
+    if isinstance(value, np.generic):
+        value = value.item()
+    if value is None or isinstance(value, (bool, str)):
+        return value
+    if isinstance(value, numbers.Integral):
+        return int(value)
+    if isinstance(value, numbers.Real):
+        number = float(value)
+        return number if math.isfinite(number) else None
+    if isinstance(value, dict):
+        return {str(k): _json_value(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
+        return [_json_value(v) for v in (value.tolist() if hasattr(value, "tolist") else value)]
+    return str(value)
+
+
+def _summary_json(summary: Dict[str, Any], frame) -> Dict[str, Any]:
+    """A study's summary as JSON data (:func:`_json_value`), with ``"units"``:
+    the SI unit of every entry the study gives one (its frame's
+    ``attrs["summary_units"]``; ``"1"`` a ratio or count; labels and flags
+    have none).
+
+    Raises:
+        StudyFailed: the summary has a key ``"units"`` of its own (it would
+            be overwritten).
+    """
+    if "units" in summary:
+        raise StudyFailed("the study's summary has a key 'units', which the summary file "
+                          "keeps for the units of its entries")
+    units = frame.attrs.get("summary_units") or {}
+    data = _json_value(dict(summary))
+    data["units"] = {str(key): str(units[key]) for key in summary if key in units}
+    return data
+
+
+def _summary_unit(key: str, frame) -> str:
+    """The unit of a summary entry: the frame's ``attrs["summary_units"]``,
+    which every study sets for its numbers; "" for ratios ("1") and for keys
+    it leaves out (labels: booleans, strings)."""
+    unit = (frame.attrs.get("summary_units") or {}).get(key)
+    return "" if unit in (None, "", "1") else str(unit)
+
+
+def _summary_text(value: Any, unit: str = "") -> str:
+    """A summary value for the terminal (NaN stays visible), with its unit."""
+    import numpy as np
+
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        text = str(int(value))
+    elif isinstance(value, numbers.Real):
+        text = f"{float(value):.6g}"
+    elif isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
+        text = ", ".join(_summary_text(v) for v in (value.tolist() if hasattr(value, "tolist")
+                                                     else value))
+    else:
+        return str(value)
+    return f"{text} {unit}" if unit else text

@@ -1,0 +1,196 @@
+"""The checks of a scene: each field, each section and the rules across sections.
+
+``_validate_entry`` checks one top-level entry of a raw scene dict against
+:data:`~leadscrew.scene_schema.SCHEMA` (unknown keys, missing required ones,
+None, units and ranges, each ``ValueError`` naming the key path, the value
+and what is allowed); ``_check_consistency`` then checks what sections say
+together (the friction law's parameters, the drive loads or the motor, the
+nut on the screw, the play position, an equilibrium start).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any, Dict, Optional
+
+from . import _core
+from .scene_loads import _DEFAULT_ROTOR_SPEED, _check_load, _check_rotor_speed
+from .scene_schema import (OPTIONAL, SCHEMA, _OPTIONAL_SECTIONS, _REQUIRED_SECTIONS,
+                           _UNIT_DEPENDS_ON, Field, _check_friction, _Converted, _fail,
+                           _field_unit, _range_text)
+from .units import to_si
+
+__all__: list = []  # the scene's internals: leadscrew.Scene is the public face
+
+
+def _check_field(path: str, f: Field, value: Any, unit: Optional[str] = None,
+                 name: Optional[str] = None):
+    """A field's value checked and converted to ``unit`` (default: the
+    field's); ``name`` says what it measures in unit messages."""
+    unit = f.unit if unit is None else unit
+    if f.kind == "choice":
+        if value not in f.choices:
+            _fail(path, value, "one of " + ", ".join(repr(c) for c in f.choices))
+        return value
+    if f.kind == "load":
+        return _check_load(path, value, unit)
+    given = value
+    value = to_si(path, value, unit, name)
+    shown = _Converted(given, value, unit) if isinstance(given, str) else value
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        _fail(path, shown, "a number" if f.kind == "float" else "an integer")
+    if f.kind == "int":
+        if not (isinstance(value, numbers.Integral)
+                or (math.isfinite(value) and int(value) == value)):
+            _fail(path, shown, _range_text(f))
+        value = int(value)
+    else:
+        try:
+            value = float(value)
+        except OverflowError:  # an int beyond the float range
+            _fail(path, shown, _range_text(f))
+    above = value > f.low if f.low_open else value >= f.low
+    below = value < f.high if f.high_open else value <= f.high
+    if not ((f.kind == "int" or math.isfinite(value)) and above and below):
+        _fail(path, shown, _range_text(f) + (f" [{unit}]" if unit and shown is not value else ""))
+    return value
+
+
+def _refuse_none(path: str, f: Field) -> None:
+    """None for a field that is not optional: refused (it would take the
+    schema's default silently, also in :meth:`Scene.replace`, whose scene
+    may hold another value).
+
+    Raises:
+        ValueError: naming the key path, what the field takes and its default.
+    """
+    if f.kind == "choice":
+        allowed = "one of " + ", ".join(repr(c) for c in f.choices)
+    elif f.kind == "load":
+        allowed = "a number, a dict with 'type' in constant/sine/table, an Excitation or a callable"
+    else:
+        allowed = _range_text(f) + (f" [{f.unit}]" if f.unit else "")
+    if f.default is None:
+        hint = f"{path} is required; leave it out of Scene.replace to keep the scene's value"
+    else:
+        hint = (f"leave {path} out for its default {f.default!r}, or out of Scene.replace to "
+                "keep the scene's value")
+    _fail(path, None, f"{allowed} (None removes only an optional field: {hint})")
+
+
+def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]) -> Dict[str, Any]:
+    if not isinstance(given, dict):
+        _fail(path, given, "a table (dict) of fields")
+    for key in given:
+        if key not in schema:
+            raise ValueError(f"{path}.{key} is not a known key; {path} takes "
+                             f"{', '.join(schema)}")
+    out = {}
+    # A field whose unit depends on others is checked after them.
+    for key in sorted(schema, key=lambda k: (path, k) in _UNIT_DEPENDS_ON):
+        f = schema[key]
+        sub = f"{path}.{key}"
+        if key in given and given[key] is None and f.default is not OPTIONAL:
+            _refuse_none(sub, f)
+        if key in given and given[key] is not None:
+            unit = _field_unit(path, key, f, out)
+            bistop = unit != f.unit and (path, key) == ("backlash", "stiffness")
+            try:
+                out[key] = _check_field(sub, f, given[key], unit,
+                                        "a 'bistop' contact stiffness" if bistop else None)
+            except ValueError as error:
+                if not bistop:
+                    raise
+                raise ValueError(f"{error} (a 'bistop' stiffness is in N/m^exponent, here "
+                                 f"backlash.exponent = {out['exponent']!r})") from None
+        elif f.default is None:
+            raise ValueError(f"{sub} is missing: {f.doc}" + (f" [{f.unit}]" if f.unit else ""))
+        elif f.default is not OPTIONAL:
+            out[key] = f.default
+    return {key: out[key] for key in schema if key in out}
+
+
+def _check_section_names(d: Dict[str, Any]) -> None:
+    for key in d:
+        if key not in SCHEMA:
+            raise ValueError(f"{key} is not a known section; a scene has "
+                             f"{', '.join(SCHEMA)}")
+
+
+def _validate_entry(key: str, given: Dict[str, Any], data: Dict[str, Any]) -> None:
+    """Check the top-level entry ``key`` of the raw scene ``given`` into ``data``
+    (a field, a required or optional section, or a section of defaults)."""
+    entry = SCHEMA[key]
+    if isinstance(entry, Field):
+        data[key] = _check_field(key, entry, given[key]) if key in given else entry.default
+        return
+    if key not in given:
+        if key in _REQUIRED_SECTIONS:
+            raise ValueError(f"{key} is missing: a scene needs the sections "
+                             f"{', '.join(_REQUIRED_SECTIONS)}")
+        if key in _OPTIONAL_SECTIONS:
+            return
+    data[key] = _validate_section(key, entry, given.get(key, {}))
+
+
+def _check_consistency(data: Dict[str, Any]) -> None:
+    _check_friction(data["friction"])
+    loads = data["loads"]
+    if "drive_torque" in loads and "drive_speed" in loads:
+        raise ValueError("loads.drive_speed = {!r} is invalid: give either loads.drive_torque "
+                         "or loads.drive_speed, not both".format(loads["drive_speed"]))
+    # Without either the drive torque is 0, applied by _core_parameters: it is
+    # not stored, so replace(loads={"drive_speed": w}) switches to speed.
+    if "motor" in data:
+        _check_motor(data)
+    if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
+        _fail("nut.outer_radius", data["nut"]["outer_radius"],
+              f"> screw.radius = {data['screw']['radius']:g}")
+    # Both drives: the whole nut on the screw (the core's rule, which
+    # DriveModel checks alike; a run of any concept ends where the nut's
+    # end reaches the screw's).
+    _core.check_nut_on_screw(data["drive"], data["nut"]["position"], data["nut"]["length"],
+                             data["screw"]["length"])
+    _check_rotor_speed(data)
+    play = data["initial"]["play_position"]
+    backlash = data.get("backlash")
+    half = backlash["axial"] / 2 if backlash else 0.0
+    if abs(play) > half:
+        _fail("initial.play_position", play, f"within +-backlash.axial / 2 = +-{half:g}"
+              + (f" (backlash.axial = {backlash['axial']!r})" if backlash else " (no backlash)"))
+    if data["initial"]["state"] == "equilibrium":
+        # The core checks the same (DriveModel); here the scene names it first.
+        equilibrium = " is invalid with initial.state = 'equilibrium': "
+        if "drive_speed" in loads:
+            raise ValueError("initial.state = 'equilibrium' is invalid with loads.drive_speed: "
+                             "the static equilibrium needs a torque-controlled motor "
+                             "(loads.drive_torque)")
+        if data["initial"].get("rotor_speed", _DEFAULT_ROTOR_SPEED) != 0.0:
+            raise ValueError(f"initial.rotor_speed = {data['initial']['rotor_speed']!r}"
+                             f"{equilibrium}must be 0 (the drive starts at rest)")
+        if play != 0.0:
+            raise ValueError(f"initial.play_position = {play!r}{equilibrium}must be 0 (the "
+                             "equilibrium puts the nut on the flank the loads press it "
+                             "against)")
+
+
+def _check_motor(data: Dict[str, Any]) -> None:
+    """The motor section's rules across sections: exclusive with the drive
+    loads, no equilibrium start, no friction torque yet.
+
+    Raises:
+        ValueError: naming the keys at fault and their values.
+    """
+    motor, loads = data["motor"], data["loads"]
+    for key in ("drive_torque", "drive_speed"):
+        if key in loads:
+            raise ValueError(f"loads.{key} = {loads[key]!r} is invalid with motor.type = "
+                             f"{motor['type']!r}: give either motor or loads.{key}, not both")
+    if motor["friction_torque"] != 0.0:
+        _fail("motor.friction_torque", motor["friction_torque"],
+              "0 (the motor's own Coulomb friction is not modelled yet)")
+    if data["initial"]["state"] == "equilibrium":
+        raise ValueError("initial.state = 'equilibrium' is invalid with motor.type = "
+                         f"{motor['type']!r}: the run starts with the current at 0 (use "
+                         "'relaxed')")

@@ -288,3 +288,49 @@ def test_a_reference_of_another_type_names_the_variable_and_the_call(tmp_path):
     assert "is u_load, a Real variable: fmi2GetBoolean does not take it (fmi2GetReal does)" in out
     assert "is u_load, a Real variable: fmi2GetInteger does not take it (fmi2GetReal does)" in out
     assert "is stick, a Boolean variable: fmi2SetReal does not take it (fmi2SetBoolean does)" in out
+
+
+def test_a_dc_motor_scene_has_the_voltage_input_and_the_current_output(tmp_path):
+    """With a DC motor the drive's input is motor_voltage [V], motor_current
+    [A] is an output and the motor's constants are parameters; held constant,
+    the FMU runs as simulate."""
+    from test_simulation_drive_dc_motor import motor_scene
+
+    scene = ls.Scene.from_dict(motor_scene(voltage=3.0))
+    path = ls.fmi.export_fmu(scene, tmp_path / "motor.fmu")
+    assert validate_fmu(path) == []
+    variables = {v.name: v for v in fmpy.read_model_description(path).modelVariables}
+    assert variables["motor_voltage"].causality == "input" and variables["motor_voltage"].unit == "V"
+    assert "drive_torque" not in variables
+    assert variables["motor_current"].causality == "output" and variables["motor_current"].unit == "A"
+    assert variables["motor_resistance"].causality == "parameter"
+    t_end = 0.05
+    result = fmpy.simulate_fmu(path, stop_time=t_end, step_size=H, output_interval=H,
+                               output=["u_load", "omega_drive", "motor_current"])
+    reference = ls.simulate(scene, t_end, t_eval=result["time"])
+    for channel in ("u_load", "omega_drive", "motor_current"):
+        expected = np.asarray(reference[channel])
+        scale = max(np.max(np.abs(expected)), 1e-12)
+        assert np.max(np.abs(result[channel] - expected)) <= 1e-4 * scale, channel
+
+
+def test_a_speed_input_ramps_over_each_step(tmp_path):
+    """A speed-controlled scene's input is drive_speed [rad/s]: each new value
+    is reached by a linear ramp over the step, so a speed held from the first
+    step on gives the angle of a ramp over the first step, then the held
+    speed."""
+    scene = ls.scenes.load("default").replace(loads={"drive_torque": None, "drive_speed": 0.0})
+    path = ls.fmi.export_fmu(scene, tmp_path / "speed.fmu")
+    assert validate_fmu(path) == []
+    variables = {v.name: v for v in fmpy.read_model_description(path).modelVariables}
+    assert variables["drive_speed"].causality == "input" and variables["drive_speed"].unit == "rad/s"
+    h, t_end, speed = 1e-3, 0.01, 20.0
+    result = fmpy.simulate_fmu(path, stop_time=t_end, step_size=h, output_interval=h,
+                               start_values={"drive_speed": speed},
+                               output=["phi_drive", "omega_drive"])
+    # drive_speed's start value is set before the first step: its ramp runs
+    # from 0 over that step, then the speed holds.
+    times = result["time"]
+    expected = np.where(times <= h, speed * times ** 2 / (2 * h), speed * (times - h / 2))
+    assert np.allclose(result["phi_drive"], expected, rtol=1e-9, atol=1e-12)
+    assert result["omega_drive"][-1] == pytest.approx(speed, rel=1e-12)

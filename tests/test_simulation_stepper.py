@@ -170,8 +170,10 @@ def test_bad_requests_are_refused():
     with pytest.raises(ValueError, match="moreau"):
         stepper(scene, integrator="moreau")
     speed = scene.replace(loads={"drive_torque": None, "drive_speed": 10.0})
-    with pytest.raises(ValueError, match="infinite acceleration"):
-        stepper(speed).set_input("drive_speed", 5.0)
+    with pytest.raises(ValueError, match='"drive_speed", "axial_force"'):
+        stepper(speed).set_input("drive_torque", 5.0)
+    with pytest.raises(ValueError, match="drive_speed"):
+        stepper(speed).set_input("drive_speed", math.inf)
 
 
 def test_a_step_past_the_screws_end_is_refused_and_stays_refused():
@@ -239,3 +241,72 @@ def test_a_jam_in_a_piece_is_the_runs():
     assert "Painleve" in str(pieces.value)
     with pytest.raises(ls.SimulationError, match="stopped at its failure"):
         s.advance(2.0)
+
+
+def speed_scene():
+    """The default drive (rigid, self-locking) with a speed-controlled motor at rest."""
+    return ls.scenes.load("default").replace(loads={"drive_torque": None, "drive_speed": 0.0})
+
+
+def test_a_drive_speed_input_ramps_over_the_next_advance():
+    """A prescribed speed is not stepped (an infinite acceleration): it ramps
+    linearly from the speed at the advance's start to the value at its end,
+    then holds. The rotor's angle is the ramp's integral, the trapezoid
+    h (omega_0 + omega_1) / 2, exactly."""
+    s = stepper(speed_scene(), rtol=RTOL, atol=ATOL)
+    assert list(s.input_names) == ["drive_speed", "axial_force"]
+    s.set_input("drive_speed", 10.0)
+    assert s.input("drive_speed") == 10.0
+    s.advance(0.01)
+    assert s.channel("omega_drive") == pytest.approx(10.0, rel=1e-12)
+    assert s.channel("phi_drive") == pytest.approx(0.01 * 10.0 / 2, rel=1e-9)
+    s.advance(0.02)  # held
+    assert s.channel("omega_drive") == pytest.approx(10.0, rel=1e-12)
+    assert s.channel("phi_drive") == pytest.approx(0.05 + 0.1, rel=1e-9)
+    s.set_input("drive_speed", -4.0)
+    s.advance(0.04)
+    assert s.channel("omega_drive") == pytest.approx(-4.0, rel=1e-12)
+    assert s.channel("phi_drive") == pytest.approx(0.15 + 0.02 * (10.0 - 4.0) / 2, rel=1e-9)
+    # As one run under the same speeds as a table load (its energy account
+    # and self-checks included).
+    table = speed_scene().replace(loads={"drive_speed": {
+        "type": "table", "times": [0.0, 0.01, 0.02, 0.04], "values": [0.0, 10.0, 10.0, -4.0]}})
+    run = ls.simulate(table, 0.04, rtol=RTOL, atol=ATOL)
+    assert run.checks["energy_balance"]["passed"]
+    for name in ("u_load", "phi_drive", "omega_drive", "normal_force"):
+        assert s.channel(name) == pytest.approx(run[name][-1], rel=1e-7, abs=1e-12), name
+    # The work integrals to the energy check's bound (their integration error:
+    # the two runs take different steps).
+    energy_tolerance = run.checks["energy_balance"]["bound"]
+    for name in ("work_drive", "work_axial", "friction_loss"):
+        assert s.channel(name) == pytest.approx(run[name][-1], rel=0, abs=energy_tolerance), name
+    assert abs(s.channel("energy_residual")) <= energy_tolerance
+    # the same speed again: no ramp, no restart
+    restarts = s.stats["restarts"]
+    s.set_input("drive_speed", -4.0)
+    s.advance(0.05)
+    assert s.stats["restarts"] == restarts
+    assert s.channel("phi_drive") == pytest.approx(0.15 + 0.06 - 0.04, rel=1e-9)
+
+
+def test_a_motor_voltage_input_reaches_the_closed_form_steady_state():
+    """A DC motor's stepper takes motor_voltage as its input, held: the
+    drive settles at the rigid drive's closed-form steady state for the new
+    voltage (tests/helpers/dc_motor_reference.py)."""
+    from test_simulation_drive_dc_motor import F, KT, R, motor_scene, rigid_reference
+    from helpers import dc_motor_reference
+
+    scene = motor_scene(voltage=3.0)
+    s = stepper(ls.Scene.from_dict(scene), rtol=RTOL, atol=ATOL)
+    assert list(s.input_names) == ["motor_voltage", "axial_force"]
+    assert s.input("motor_voltage") == 3.0
+    s.advance(0.5)
+    s.set_input("motor_voltage", 1.5)
+    assert s.input("motor_voltage") == 1.5
+    s.advance(2.5)
+    current, omega, _ = dc_motor_reference.steady_state(rigid_reference(scene), F, 1.5, R, KT, KT)
+    assert s.channel("motor_current") == pytest.approx(current, rel=1e-6)
+    assert s.channel("omega_drive") == pytest.approx(omega, rel=1e-6)
+    assert s.channel("motor_voltage") == 1.5
+    flow = abs(s.channel("work_drive")) + abs(s.channel("work_axial")) + s.channel("friction_loss")
+    assert abs(s.channel("energy_residual")) <= 1e-6 * flow

@@ -7,24 +7,28 @@ generic binary (``binaries/linux64/``, SUNDIALS linked statically: it needs
 neither Python nor this package) and a ``modelDescription.xml`` written from
 the core's table of the drive's variables (``_core.cosim_variables``):
 
-- inputs ``drive_torque`` [N.m] (a torque-controlled drive) and
-  ``axial_force`` [N], held over each communication step (no input
-  interpolation); their start values are the scene's loads at t = 0. An
-  input the importer never sets follows the scene's load (a constant, sine
-  or table: the FMU then runs as :func:`leadscrew.simulate`); from the
-  first value the importer sets, it holds the importer's values;
+- inputs: the drive's, ``drive_torque`` [N.m] (a torque-controlled drive),
+  ``motor_voltage`` [V] (a DC motor, scene section ``motor``) or
+  ``drive_speed`` [rad/s] (a speed-controlled drive), and ``axial_force``
+  [N]. A torque, a voltage and the force are held over each communication
+  step (no input interpolation); a prescribed speed is not stepped (a step
+  is an infinite acceleration): it ramps linearly from the speed at the
+  step's start to the new value at its end, then holds it. Their start
+  values are the scene's loads at t = 0. An input the importer never sets
+  follows the scene's load (a constant, sine or table: the FMU then runs as
+  :func:`leadscrew.simulate`); from the first value the importer sets, it
+  takes the importer's values;
 - outputs ``u_load``, ``v_load``, ``phi_drive``, ``omega_drive``,
-  ``normal_force``, ``friction_force``, ``stick`` (Boolean) and
-  ``friction_loss``;
+  ``normal_force``, ``friction_force``, ``stick`` (Boolean),
+  ``friction_loss`` and, with a DC motor, ``motor_current`` [A];
 - parameters that may be set before the initialization ends: the friction
-  law's (``mu``, ...), the masses and inertias and, for a flexible concept,
-  the springs' stiffness overrides (0: from the geometry).
+  law's (``mu``, ...), the masses and inertias, for a flexible concept the
+  springs' stiffness overrides (0: from the geometry), and a DC motor's
+  resistance, inductance, constants and current limit.
 
 Events and stick/slip are located exactly inside each step. A step that
 ends past the screw's end, or any step after a failure, is refused with
-``fmi2Error`` and a message to the importer's logger naming the cause. A
-speed-controlled drive takes its speed from the scene's load (it has no
-speed input: a step of a prescribed speed is an infinite acceleration).
+``fmi2Error`` and a message to the importer's logger naming the cause.
 """
 
 from __future__ import annotations
@@ -52,6 +56,10 @@ _BASE_UNITS: Dict[str, Dict[str, int]] = {
     "N/m": {"kg": 1, "s": -2}, "N.m/rad": {"kg": 1, "m": 2, "s": -2, "rad": -1},
     "s/m": {"s": 1, "m": -1}, "1/m": {"m": -1}, "N.s/m": {"kg": 1, "s": -1},
     "s": {"s": 1},
+    "V": {"kg": 1, "m": 2, "s": -3, "A": -1}, "A": {"A": 1},
+    "Ohm": {"kg": 1, "m": 2, "s": -3, "A": -2}, "H": {"kg": 1, "m": 2, "s": -2, "A": -2},
+    "N.m/A": {"kg": 1, "m": 2, "s": -2, "A": -1},
+    "V.s/rad": {"kg": 1, "m": 2, "s": -2, "A": -1, "rad": -1},
 }
 
 
@@ -175,8 +183,7 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
         The path written.
 
     Raises:
-        ValueError: the scene has a DC motor (not an FMU input yet), a
-            Python callable load (no FMU can carry it), a derived value out
+        ValueError: a Python callable load (no FMU can carry it), a derived value out
             of range, an unknown option, an option
             the FMU's stepper refuses (``integrator="moreau"``, an
             integrator that does not fit the friction law), or a stop time
@@ -187,10 +194,6 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
 
     if not isinstance(scene, Scene):
         raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene")
-    if "motor" in scene:
-        raise ValueError("the scene cannot be exported as an FMU: motor.type = "
-                         f"{scene['motor']['type']!r} is not an FMU input yet (its inputs are "
-                         "drive_torque or drive_speed and axial_force); remove the motor")
     try:
         spec = scene.to_core_toml(**options)
     except ValueError as error:

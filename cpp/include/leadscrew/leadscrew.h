@@ -74,11 +74,14 @@ LEADSCREW_API leadscrew_drive* leadscrew_drive_from_file(const char* path);
 /* Frees the drive (NULL is allowed). */
 LEADSCREW_API void leadscrew_drive_free(leadscrew_drive* drive);
 
-/* Holds an input at `value` from the current time on: "drive_torque" [N*m]
-   (a torque-controlled drive) or "axial_force" [N]. An unknown name, a
-   non-finite value and "drive_speed" (a step of a prescribed speed is an
-   infinite acceleration; give the speed as the spec's load) are
-   LEADSCREW_INVALID_ARGUMENT. */
+/* Sets an input to `value` from the current time on: the drive's,
+   "drive_torque" [N*m] (a torque-controlled drive), "motor_voltage" [V] (a
+   DC motor) or "drive_speed" [rad/s] (a speed-controlled drive), and
+   "axial_force" [N]. A torque, a voltage and the force are held; a
+   prescribed speed is not stepped (that is an infinite acceleration): it
+   ramps linearly from the current speed to `value` over the next
+   leadscrew_advance, then holds. An unknown name (the message lists the
+   drive's) and a non-finite value are LEADSCREW_INVALID_ARGUMENT. */
 LEADSCREW_API int leadscrew_set_input(leadscrew_drive* drive, const char* name, double value);
 /* The input's value at the current time. */
 LEADSCREW_API int leadscrew_get_input(leadscrew_drive* drive, const char* name, double* value);

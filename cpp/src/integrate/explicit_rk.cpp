@@ -372,7 +372,8 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
            "the total number of internal steps reached max_steps = " +
                std::to_string(options_.max_steps),
            "increase max_steps or check whether the solution blows up; if the step size "
-           "collapsed the problem may be stiff: use cvode_bdf");
+           "collapsed the problem may be stiff: use cvode_bdf (smooth_integrator = \"cvode_bdf\" "
+           "inside integrator = \"event_driven\")");
     if (!first_stage_valid_) {
       system_->rhs(t_, y_, f_current_);
       ++stats_.rhs_evaluations;

@@ -299,7 +299,8 @@ struct FailureText {
 FailureText describe(int flag, const std::string& method, bool implicit,
                      const IntegratorOptions& options) {
   const std::string stiff_hint =
-      implicit ? "" : "; if the step size collapsed the problem may be stiff: use cvode_bdf";
+      implicit ? "" : "; if the step size collapsed the problem may be stiff: use cvode_bdf "
+                 "(smooth_integrator = \"cvode_bdf\" inside integrator = \"event_driven\")";
   switch (flag) {
     case -1:
       return {"the total number of internal steps reached max_steps",

@@ -27,25 +27,35 @@ const Output kOutputList[] = {
     {"stick", "", "the thread sticks"},
     {"friction_loss", "J", "the work friction dissipated since the start"},
 };
+// With a DC motor (after the outputs above).
+const Output kMotorOutput = {"motor_current", "A", "the DC motor's armature current"};
 
+// The drive's parameters an FMU exposes, and the drives that have them.
+enum class Has { every_drive, flexible_drive, dc_motor };
 struct Body {
   const char* name;
   const char* unit;
-  bool flexible_only;
+  Has has;
   const char* description;
 };
 const Body kBodyList[] = {
-    {"rotor_inertia", "kg.m2", false, "the rotor's polar moment of inertia"},
-    {"load_mass", "kg", false, "the load's mass"},
-    {"screw_mass", "kg", false, "the screw's mass"},
-    {"screw_inertia", "kg.m2", false, "the screw's polar moment of inertia"},
-    {"nut_mass", "kg", false, "the nut's mass"},
-    {"nut_inertia", "kg.m2", false, "the nut's polar moment of inertia"},
-    {"screw_axial_stiffness", "N/m", true, "the screw's axial stiffness (0: from its geometry)"},
-    {"screw_torsional_stiffness", "N.m/rad", true,
+    {"rotor_inertia", "kg.m2", Has::every_drive, "the rotor's polar moment of inertia"},
+    {"load_mass", "kg", Has::every_drive, "the load's mass"},
+    {"screw_mass", "kg", Has::every_drive, "the screw's mass"},
+    {"screw_inertia", "kg.m2", Has::every_drive, "the screw's polar moment of inertia"},
+    {"nut_mass", "kg", Has::every_drive, "the nut's mass"},
+    {"nut_inertia", "kg.m2", Has::every_drive, "the nut's polar moment of inertia"},
+    {"screw_axial_stiffness", "N/m", Has::flexible_drive, "the screw's axial stiffness (0: from its geometry)"},
+    {"screw_torsional_stiffness", "N.m/rad", Has::flexible_drive,
      "the screw's torsional stiffness (0: from its geometry)"},
-    {"nut_axial_stiffness", "N/m", true, "the nut's axial stiffness"},
-    {"nut_torsional_stiffness", "N.m/rad", true, "the nut's torsional stiffness"},
+    {"nut_axial_stiffness", "N/m", Has::flexible_drive, "the nut's axial stiffness"},
+    {"nut_torsional_stiffness", "N.m/rad", Has::flexible_drive, "the nut's torsional stiffness"},
+    {"motor_resistance", "Ohm", Has::dc_motor, "the DC motor's armature resistance"},
+    {"motor_inductance", "H", Has::dc_motor, "the DC motor's armature inductance (0: quasi-static)"},
+    {"motor_torque_constant", "N.m/A", Has::dc_motor, "the DC motor's torque constant"},
+    {"motor_back_emf_constant", "V.s/rad", Has::dc_motor,
+     "the DC motor's back-EMF constant (< 0: the torque constant)"},
+    {"motor_current_limit", "A", Has::dc_motor, "the driver's current limit (0: none)"},
 };
 
 double DriveParameters::*field(const char* name) {
@@ -55,7 +65,14 @@ double DriveParameters::*field(const char* name) {
 }
 
 bool shown(const DriveParameters& p, const Body& body) {
-  return !body.flexible_only || p.concept != Concept::rigid;
+  switch (body.has) {
+    case Has::flexible_drive:
+      return p.concept != Concept::rigid;
+    case Has::dc_motor:
+      return p.dc_motor;
+    default:
+      return true;
+  }
 }
 
 // The law's parameters by key with its defaults filled, in its order.
@@ -85,7 +102,14 @@ std::string fmi_unit(const std::string& unit) {
 std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
   using Kind = CosimVariable::Kind;
   std::vector<CosimVariable> out;
-  if (!p.speed_controlled)
+  if (p.dc_motor)
+    out.push_back({"motor_voltage", kInputs, Kind::input, false, "V", p.motor_voltage(0.0),
+                   "the DC motor driver's voltage, held over a step"});
+  else if (p.speed_controlled)
+    out.push_back({"drive_speed", kInputs, Kind::input, false, "rad/s", p.drive_speed(0.0),
+                   "the rotor's prescribed speed about +x: a new value is reached by a linear "
+                   "ramp over the next step, then held"});
+  else
     out.push_back({"drive_torque", kInputs, Kind::input, false, "N.m", p.drive_torque(0.0),
                    "the motor's torque on the rotor about +x, held over a step"});
   out.push_back({"axial_force", kInputs + 1, Kind::input, false, "N", p.axial_force(0.0),
@@ -95,6 +119,9 @@ std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
     const bool boolean = std::string(o.name) == "stick";
     out.push_back({o.name, reference++, Kind::output, boolean, o.unit, 0.0, o.description});
   }
+  if (p.dc_motor)
+    out.push_back({kMotorOutput.name, reference, Kind::output, false, kMotorOutput.unit, 0.0,
+                   kMotorOutput.description});
   const friction::LawType& type = friction::law_type(p.friction);
   const friction::LawValues law = law_values(p);
   for (std::size_t i = 0; i < law.size(); ++i)

@@ -31,6 +31,15 @@ bool constant_at(const Excitation& load, double t, double value) {
   return std::isinf(load.time_scale()) && load.breakpoints().empty() && load(t) == value;
 }
 
+// Whether `load` holds `value` from t on (a constant, or a table past its
+// last time): a prescribed speed already there needs no ramp.
+bool held_from(const Excitation& load, double t, double value) {
+  if (constant_at(load, t, value)) return true;
+  const std::vector<double> times = load.breakpoints();
+  return load.definition().kind == "table" && !times.empty() && times.back() <= t &&
+         load(t) == value;
+}
+
 std::string quoted_list(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& name : names) out += (out.empty() ? "\"" : ", \"") + name + "\"";
@@ -46,11 +55,6 @@ DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions op
   options_.output = integrate::OutputRequest{};
   options_.output.t_end = 1.0;
   integrator_ = drive::chosen_integrator(parameters_, options_);
-  if (parameters_.dc_motor)
-    throw InvalidArgument(
-        "motor.type = \"dc\" is invalid for a stepper (the C API, the FMU): its inputs are "
-        "drive_torque or drive_speed and axial_force; a DC motor's voltage is no input yet "
-        "(run it with simulate)");
   if (integrator_ == "moreau")
     throw InvalidArgument(
         "integrator = \"moreau\" is invalid for a stepper: it takes the event-driven scheme "
@@ -82,6 +86,7 @@ void DriveStepper::reset() {
   const Eigen::VectorXd y0 = drive::initial_vector(*system_->model, layout);
   const integrate::EventDrivenOptions driver =
       drive::event_driven_options(*system_->model, *system_->law, integrator_, options_);
+  speed_pending_ = false;
   record_ = integrate::SimulationResult{};
   record_.channel_names = system_->hybrid->channel_names();
   record_.integrator = integrator_;
@@ -97,32 +102,48 @@ double DriveStepper::time() const noexcept { return run_->time(); }
 const std::vector<std::string>& DriveStepper::input_names() const {
   static const std::vector<std::string> torque = {"drive_torque", "axial_force"};
   static const std::vector<std::string> speed = {"drive_speed", "axial_force"};
+  static const std::vector<std::string> voltage = {"motor_voltage", "axial_force"};
+  if (parameters_.dc_motor) return voltage;
   return parameters_.speed_controlled ? speed : torque;
 }
 
 double DriveStepper::input(const std::string& name) const {
+  const std::vector<std::string>& names = input_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw InvalidArgument("input = \"" + name + "\" is invalid: must be one of " +
+                          quoted_list(names));
   const double t = time();
   if (name == "axial_force") return current_.axial_force(t);
-  if (name == "drive_torque" && !current_.speed_controlled) return current_.drive_torque(t);
-  if (name == "drive_speed" && current_.speed_controlled) return current_.drive_speed(t);
-  throw InvalidArgument("input = \"" + name + "\" is invalid: must be one of " +
-                        quoted_list(input_names()));
+  if (name == "motor_voltage") return current_.motor_voltage(t);
+  if (name == "drive_speed") return speed_pending_ ? speed_target_ : current_.drive_speed(t);
+  return current_.drive_torque(t);
+}
+
+Excitation& DriveStepper::load_of(const std::string& name) {
+  if (name == "axial_force") return current_.axial_force;
+  if (name == "motor_voltage") return current_.motor_voltage;
+  return current_.drive_torque;
 }
 
 void DriveStepper::set_input(const std::string& name, double value) {
   input(name);  // the name
-  if (name == "drive_speed")
-    throw InvalidArgument(
-        "input \"drive_speed\" cannot be set: a step of the prescribed speed is an infinite "
-        "acceleration; give the speed as the scene's loads.drive_speed (a table ramps it)");
   require_finite(name, value);
   if (!failure_.empty())
     throw SimulationError(failure_time_, "the stepper stopped at its failure: " + failure_,
                           "reset() starts it again");
-  Excitation& load = name == "axial_force" ? current_.axial_force : current_.drive_torque;
-  const double t = time();
-  if (constant_at(load, t, value)) return;
+  if (name == "drive_speed") {  // (its ramp starts at the next advance)
+    speed_pending_ = true;
+    speed_target_ = value;
+    return;
+  }
+  Excitation& load = load_of(name);
+  if (constant_at(load, time(), value)) return;
   load = Excitation(ConstantExcitation{value});
+  restart_with_current_loads();
+}
+
+void DriveStepper::restart_with_current_loads() {
+  const double t = time();
   try {
     std::unique_ptr<System> next = make_system();
     next->hybrid->resume(*system_->hybrid, t, run_->state().data());
@@ -146,6 +167,16 @@ void DriveStepper::advance(double t) {
     throw InvalidArgument("t = " + format_value(t) + " is invalid: must be >= the stepper's time " +
                           format_value(now) + " s (reset() goes back to 0)");
   if (t == now) return;
+  if (speed_pending_) {
+    // The prescribed speed ramps from its value now to the target at t
+    // (continuous: a finite acceleration, the motor's torque finite).
+    speed_pending_ = false;
+    if (!held_from(current_.drive_speed, now, speed_target_)) {
+      const double from = current_.drive_speed(now);
+      current_.drive_speed = Excitation(TableExcitation{{now, t}, {from, speed_target_}});
+      restart_with_current_loads();
+    }
+  }
   integrate::OutputRequest output;
   output.t_end = t;
   output.t_eval = {t};

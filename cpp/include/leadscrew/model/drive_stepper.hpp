@@ -1,5 +1,6 @@
 // A drive advanced piece by piece: created once, advanced to a time t with
-// its inputs (drive torque, axial force) held constant over each piece,
+// its inputs (drive torque or motor voltage, axial force) held constant over
+// each piece (a prescribed speed ramps to its new value over the piece),
 // read at the time it reached, and reset. It runs simulate()'s event-driven
 // scheme (integrate::EventDrivenRun, the same driver and hybrid system):
 // stick/slip, flank and screw-end events are located exactly inside a
@@ -36,16 +37,20 @@ class DriveStepper {
   DriveStepper(const DriveStepper&) = delete;
   DriveStepper& operator=(const DriveStepper&) = delete;
 
-  // The names set_input takes: "drive_torque" (a torque-controlled drive)
-  // and "axial_force".
+  // The names set_input takes: the drive's input ("drive_torque" of a
+  // torque-controlled drive, "drive_speed" of a speed-controlled one,
+  // "motor_voltage" of a DC motor) and "axial_force".
   const std::vector<std::string>& input_names() const;
-  // Holds the input `name` at `value` (SI) from time() on, until it is set
-  // again or reset(). InvalidArgument for an unknown name (listing the
-  // names), a non-finite value, and for "drive_speed": a step of a
-  // prescribed speed is an infinite acceleration (give the speed as the
-  // scene's load instead).
+  // Sets the input `name` to `value` (SI) from time() on, until it is set
+  // again or reset(). A torque, a voltage and the axial force are held
+  // constant. A prescribed speed is not stepped (a step is an infinite
+  // acceleration): it ramps linearly from the speed at time() to `value`
+  // over the next advance, reaching it at that advance's end, and is held
+  // after. InvalidArgument for an unknown name (listing the names) and a
+  // non-finite value.
   void set_input(const std::string& name, double value);
-  // The input's value at time() (the held one, or the parameters' load).
+  // The input's value at time() (the held one, the speed a ramp heads for,
+  // or the parameters' load).
   double input(const std::string& name) const;
 
   // Advances to t (>= time(); t == time() does nothing). Throws
@@ -73,6 +78,10 @@ class DriveStepper {
  private:
   struct System;
   std::unique_ptr<System> make_system() const;
+  // Continues the run from time() under current_'s loads (after an input
+  // changed them).
+  void restart_with_current_loads();
+  Excitation& load_of(const std::string& name);
 
   DriveParameters parameters_;  // as given
   DriveParameters current_;     // with the inputs held since
@@ -84,6 +93,8 @@ class DriveStepper {
   std::string failure_;
   double failure_time_ = 0.0;
   std::vector<double> row_;
+  bool speed_pending_ = false;  // set_input("drive_speed") waits for the next advance
+  double speed_target_ = 0.0;   // [rad/s]
 };
 
 }  // namespace leadscrew::model

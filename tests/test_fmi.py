@@ -315,22 +315,75 @@ def test_a_dc_motor_scene_has_the_voltage_input_and_the_current_output(tmp_path)
 
 
 def test_a_speed_input_ramps_over_each_step(tmp_path):
-    """A speed-controlled scene's input is drive_speed [rad/s]: each new value
-    is reached by a linear ramp over the step, so a speed held from the first
-    step on gives the angle of a ramp over the first step, then the held
-    speed."""
+    """A speed-controlled scene's input is drive_speed [rad/s]: its start
+    value is the speed the drive starts at; a new value is reached by a
+    linear ramp over the step that follows it, then held, and the outputs at
+    a step's end are the ramp's (the force on the flank carries the rotor's
+    acceleration, as simulate's run under the same speeds as a table)."""
     scene = ls.scenes.load("default").replace(loads={"drive_torque": None, "drive_speed": 0.0})
     path = ls.fmi.export_fmu(scene, tmp_path / "speed.fmu")
     assert validate_fmu(path) == []
     variables = {v.name: v for v in fmpy.read_model_description(path).modelVariables}
     assert variables["drive_speed"].causality == "input" and variables["drive_speed"].unit == "rad/s"
-    h, t_end, speed = 1e-3, 0.01, 20.0
-    result = fmpy.simulate_fmu(path, stop_time=t_end, step_size=h, output_interval=h,
-                               start_values={"drive_speed": speed},
-                               output=["phi_drive", "omega_drive"])
-    # drive_speed's start value is set before the first step: its ramp runs
-    # from 0 over that step, then the speed holds.
-    times = result["time"]
-    expected = np.where(times <= h, speed * times ** 2 / (2 * h), speed * (times - h / 2))
-    assert np.allclose(result["phi_drive"], expected, rtol=1e-9, atol=1e-12)
-    assert result["omega_drive"][-1] == pytest.approx(speed, rel=1e-12)
+    h = 1e-3
+    # 5 rad/s from the start; from t = 2 ms on the master raises it by 1 rad/s per step.
+    times = np.arange(0.0, 0.0105, h)
+    signal = np.array([(t, 5.0 + max(0.0, round((t - 0.002) / h))) for t in times],
+                      dtype=[("time", np.float64), ("drive_speed", np.float64)])
+    result = fmpy.simulate_fmu(path, stop_time=0.01, step_size=h, output_interval=h,
+                               start_values={"drive_speed": 5.0}, input=signal,
+                               output=["phi_drive", "omega_drive", "normal_force"])
+    # The speed the master sets at t_k is reached at t_k + h: a table whose
+    # points lag the input by one step.
+    speeds = signal["drive_speed"]
+    table = scene.replace(loads={"drive_speed": {
+        "type": "table", "times": list(np.append(0.0, times[:-1] + h)),
+        "values": list(np.append(5.0, speeds[:-1]))}})
+    reference = ls.simulate(table, 0.01, t_eval=result["time"], rtol=1e-8, atol=1e-10)
+    assert np.allclose(result["omega_drive"], reference["omega_drive"], rtol=1e-12, atol=1e-12)
+    assert np.allclose(result["phi_drive"], reference["phi_drive"], rtol=1e-8, atol=1e-12)
+    # at every point after the first ramp: the ramp's normal force (1000 rad/s^2)
+    ramping = result["time"] >= 0.0035
+    assert np.allclose(result["normal_force"][ramping], reference["normal_force"][ramping],
+                       rtol=1e-6)
+    assert result["omega_drive"][0] == 5.0
+
+
+def test_a_parameter_set_out_of_range_is_replaced_by_a_later_value(tmp_path):
+    """mu = -0.1 set before the initialization reads back as set and is
+    refused where the initialization ends (naming friction.mu); a later value
+    in range replaces it (a new user found every friction parameter locked
+    until fmi2Reset). (In a subprocess: see the GUID test above.)"""
+    path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
+    script = ("import fmpy\n"
+              "from fmpy.fmi2 import FMU2Slave\n"
+              f"path = {str(path)!r}\n"
+              "d = fmpy.read_model_description(path)\n"
+              "refs = {v.name: v.valueReference for v in d.modelVariables}\n"
+              "def instance():\n"
+              "    fmu = FMU2Slave(guid=d.guid, unzipDirectory=fmpy.extract(path),\n"
+              "                    modelIdentifier=d.coSimulation.modelIdentifier, instanceName='x')\n"
+              "    fmu.instantiate(loggingOn=True)\n"
+              "    fmu.setupExperiment(startTime=0.0)\n"
+              "    fmu.enterInitializationMode()\n"
+              "    return fmu\n"
+              "fmu = instance()\n"
+              "fmu.setReal([refs['mu']], [-0.1])\n"
+              "print('read', fmu.getReal([refs['mu']])[0], flush=True)\n"
+              "fmu.setReal([refs['mu']], [0.1])\n"
+              "fmu.exitInitializationMode()\n"
+              "fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-3)\n"
+              "print('mu', fmu.getReal([refs['mu']])[0], flush=True)\n"
+              "fmu.terminate(); fmu.freeInstance()\n"
+              "fmu = instance()\n"
+              "fmu.setReal([refs['mu']], [-0.1])\n"
+              "try:\n"
+              "    fmu.exitInitializationMode()\n"
+              "except Exception:\n"
+              "    print('refused', flush=True)\n")
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    out = done.stdout + done.stderr
+    assert "read -0.1" in out and "mu 0.1" in out and "refused" in out, out
+    assert "friction.mu = -0.1 is invalid" in out, out

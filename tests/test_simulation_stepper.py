@@ -249,31 +249,43 @@ def speed_scene():
 
 
 def test_a_drive_speed_input_ramps_over_the_next_advance():
-    """A prescribed speed is not stepped (an infinite acceleration): it ramps
-    linearly from the speed at the advance's start to the value at its end,
-    then holds. The rotor's angle is the ramp's integral, the trapezoid
-    h (omega_0 + omega_1) / 2, exactly."""
+    """A prescribed speed is not stepped (an infinite acceleration): set
+    before the first advance it is the speed the drive starts at; later it
+    ramps linearly from the speed at the advance's start to the value at its
+    end, then holds. The rotor's angle is the ramp's integral, the trapezoid
+    h (omega_0 + omega_1) / 2, exactly; the run equals simulate's under the
+    same speeds as a table load, the channels at an advance's end those of
+    the ramp that ends there."""
     s = stepper(speed_scene(), rtol=RTOL, atol=ATOL)
     assert list(s.input_names) == ["drive_speed", "axial_force"]
+    s.set_input("drive_speed", 2.0)  # before the first advance: the start speed
+    assert s.channel("omega_drive") == 2.0
+    s.advance(0.01)
+    assert s.channel("phi_drive") == pytest.approx(0.02, rel=1e-9)
     s.set_input("drive_speed", 10.0)
     assert s.input("drive_speed") == 10.0
-    s.advance(0.01)
+    s.advance(0.02)
     assert s.channel("omega_drive") == pytest.approx(10.0, rel=1e-12)
-    assert s.channel("phi_drive") == pytest.approx(0.01 * 10.0 / 2, rel=1e-9)
-    s.advance(0.02)  # held
+    assert s.channel("phi_drive") == pytest.approx(0.02 + 0.01 * (2.0 + 10.0) / 2, rel=1e-9)
+    ramp_end = {name: s.channel(name) for name in ("normal_force", "drive_torque")}
+    s.advance(0.03)  # held
     assert s.channel("omega_drive") == pytest.approx(10.0, rel=1e-12)
-    assert s.channel("phi_drive") == pytest.approx(0.05 + 0.1, rel=1e-9)
+    assert s.channel("phi_drive") == pytest.approx(0.08 + 0.1, rel=1e-9)
     s.set_input("drive_speed", -4.0)
-    s.advance(0.04)
+    s.advance(0.05)
     assert s.channel("omega_drive") == pytest.approx(-4.0, rel=1e-12)
-    assert s.channel("phi_drive") == pytest.approx(0.15 + 0.02 * (10.0 - 4.0) / 2, rel=1e-9)
+    assert s.channel("phi_drive") == pytest.approx(0.18 + 0.02 * (10.0 - 4.0) / 2, rel=1e-9)
     # As one run under the same speeds as a table load (its energy account
     # and self-checks included).
     table = speed_scene().replace(loads={"drive_speed": {
-        "type": "table", "times": [0.0, 0.01, 0.02, 0.04], "values": [0.0, 10.0, 10.0, -4.0]}})
-    run = ls.simulate(table, 0.04, rtol=RTOL, atol=ATOL)
+        "type": "table", "times": [0.0, 0.01, 0.02, 0.03, 0.05],
+        "values": [2.0, 2.0, 10.0, 10.0, -4.0]}})
+    run = ls.simulate(table, 0.05, t_eval=[0.02 - 1e-9, 0.05], rtol=RTOL, atol=ATOL)
     assert run.checks["energy_balance"]["passed"]
-    for name in ("u_load", "phi_drive", "omega_drive", "normal_force"):
+    # the ramp's end: its acceleration (800 rad/s^2) in the forces, the left limit
+    for name, value in ramp_end.items():
+        assert value == pytest.approx(run[name][0], rel=1e-5), name
+    for name in ("u_load", "phi_drive", "omega_drive"):
         assert s.channel(name) == pytest.approx(run[name][-1], rel=1e-7, abs=1e-12), name
     # The work integrals to the energy check's bound (their integration error:
     # the two runs take different steps).
@@ -281,12 +293,14 @@ def test_a_drive_speed_input_ramps_over_the_next_advance():
     for name in ("work_drive", "work_axial", "friction_loss"):
         assert s.channel(name) == pytest.approx(run[name][-1], rel=0, abs=energy_tolerance), name
     assert abs(s.channel("energy_residual")) <= energy_tolerance
-    # the same speed again: no ramp, no restart
+    # the same speed again: no ramp, and after the hold began no restart
+    s.set_input("drive_speed", -4.0)
+    s.advance(0.06)
     restarts = s.stats["restarts"]
     s.set_input("drive_speed", -4.0)
-    s.advance(0.05)
+    s.advance(0.07)
     assert s.stats["restarts"] == restarts
-    assert s.channel("phi_drive") == pytest.approx(0.15 + 0.06 - 0.04, rel=1e-9)
+    assert s.channel("phi_drive") == pytest.approx(0.24 - 0.08, rel=1e-9)
 
 
 def test_a_motor_voltage_input_reaches_the_closed_form_steady_state():

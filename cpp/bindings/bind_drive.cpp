@@ -439,8 +439,10 @@ void bind_drive(py::module_& m) {
            "Advance to t [s] >= time with the inputs held. SimulationError (the nut at the "
            "screw's end, a solver failure), JammingError; ValueError for t < time.")
       .def("set_input", &model::DriveStepper::set_input, py::arg("name"), py::arg("value"),
-           "Hold the input (\"drive_torque\" [N*m], \"axial_force\" [N]) at value from "
-           "time on. ValueError for an unknown name or a bad value.")
+           "Set the input (input_names: \"drive_torque\" [N*m], \"motor_voltage\" [V] or "
+           "\"drive_speed\" [rad/s], and \"axial_force\" [N]) to value from time on: held, "
+           "but a speed ramps to value over the next advance (set before the first advance: "
+           "the start speed). ValueError for an unknown name or a bad value.")
       .def("input", &model::DriveStepper::input, py::arg("name"),
            "The input's value at time (SI).")
       .def("channel", &model::DriveStepper::channel, py::arg("name"),

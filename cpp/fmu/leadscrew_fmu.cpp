@@ -237,6 +237,10 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     // The drive with the parameters set (DriveModel checks them, naming each).
     self->stepper =
         std::make_unique<leadscrew::model::DriveStepper>(self->parameters, self->spec.options);
+    // The inputs set so far hold from t = 0 (a speed is the one the drive
+    // starts at): the outputs at t = 0 are theirs.
+    for (const unsigned reference : self->set_inputs)
+      self->stepper->set_input(self->variables[reference].name, self->inputs[reference]);
     self->phase = Phase::stepping;
     self->last_successful_time = 0.0;
     return fmi2OK;
@@ -270,8 +274,13 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
     if (v.kind == CosimVariable::Kind::parameter) {
       // The current value: a parameter that follows another (mu_static
       // follows mu unless set) changes with it.
-      for (const CosimVariable& w : leadscrew::model::cosim_variables(self.parameters))
-        if (w.reference == v.reference) return w.start;
+      // (A parameter set out of range reads as set: it is refused where the
+      // initialization ends.)
+      try {
+        for (const CosimVariable& w : leadscrew::model::cosim_variables(self.parameters))
+          if (w.reference == v.reference) return w.start;
+      } catch (const leadscrew::InvalidArgument&) {
+      }
       return v.start;
     }
     return self.stepper ? self.stepper->channel(v.name) : 0.0;

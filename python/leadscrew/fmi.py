@@ -13,8 +13,10 @@ the core's table of the drive's variables (``_core.cosim_variables``):
   [N]. A torque, a voltage and the force are held over each communication
   step (no input interpolation); a prescribed speed is not stepped (a step
   is an infinite acceleration): it ramps linearly from the speed at the
-  step's start to the new value at its end, then holds it. Their start
-  values are the scene's loads at t = 0. An input the importer never sets
+  step's start to the new value at its end, then holds it (the outputs at
+  the step's end are the ramp's), and a speed set before the first step is
+  the one the drive starts at. Their start values are the scene's loads at
+  t = 0. An input the importer never sets
   follows the scene's load (a constant, sine or table: the FMU then runs as
   :func:`leadscrew.simulate`); from the first value the importer sets, it
   takes the importer's values;

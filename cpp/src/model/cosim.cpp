@@ -139,10 +139,13 @@ std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
 
 void set_cosim_parameter(DriveParameters& p, unsigned reference, double value) {
   if (reference >= kLawParameters && reference < kBodyParameters) {
-    const friction::LawValues law = law_values(p);
+    // (By the registry's keys, not the law's values: a value set out of
+    // range is refused where the drive is built, and a later value in range
+    // replaces it.)
+    const std::vector<friction::ParameterInfo>& keys = friction::law_type(p.friction).parameters;
     const std::size_t i = reference - kLawParameters;
-    if (i < law.size()) {
-      const std::string& key = law[i].first;
+    if (i < keys.size()) {
+      const std::string key = keys[i].key;
       if (key == "mu") {
         p.mu = value;
       } else if (key == "k_v") {

@@ -79,14 +79,20 @@ std::unique_ptr<DriveStepper::System> DriveStepper::make_system() const {
 }
 
 void DriveStepper::reset() {
-  run_.reset();
   current_ = parameters_;
+  start_run();
+}
+
+void DriveStepper::start_run() {
+  run_.reset();
   system_ = make_system();
   const drive::StateLayout layout = drive::state_layout(*system_->model, *system_->law);
   const Eigen::VectorXd y0 = drive::initial_vector(*system_->model, layout);
   const integrate::EventDrivenOptions driver =
       drive::event_driven_options(*system_->model, *system_->law, integrator_, options_);
   speed_pending_ = false;
+  ramp_end_ = std::numeric_limits<double>::infinity();
+  advanced_ = false;
   record_ = integrate::SimulationResult{};
   record_.channel_names = system_->hybrid->channel_names();
   record_.integrator = integrator_;
@@ -131,8 +137,13 @@ void DriveStepper::set_input(const std::string& name, double value) {
   if (!failure_.empty())
     throw SimulationError(failure_time_, "the stepper stopped at its failure: " + failure_,
                           "reset() starts it again");
-  if (name == "drive_speed") {  // (its ramp starts at the next advance)
-    speed_pending_ = true;
+  if (name == "drive_speed") {
+    if (!advanced_) {  // before the first advance: the speed the drive starts at
+      current_.drive_speed = Excitation(ConstantExcitation{value});
+      start_run();
+      return;
+    }
+    speed_pending_ = true;  // (its ramp starts at the next advance)
     speed_target_ = value;
     return;
   }
@@ -167,16 +178,30 @@ void DriveStepper::advance(double t) {
     throw InvalidArgument("t = " + format_value(t) + " is invalid: must be >= the stepper's time " +
                           format_value(now) + " s (reset() goes back to 0)");
   if (t == now) return;
-  if (speed_pending_) {
+  if (speed_pending_ || ramp_end_ <= now) {
     // The prescribed speed ramps from its value now to the target at t
     // (continuous: a finite acceleration, the motor's torque finite).
-    speed_pending_ = false;
-    if (!held_from(current_.drive_speed, now, speed_target_)) {
-      const double from = current_.drive_speed(now);
-      current_.drive_speed = Excitation(TableExcitation{{now, t}, {from, speed_target_}});
-      restart_with_current_loads();
+    bool changed = false;
+    if (ramp_end_ <= now) {  // the last ramp has ended: its speed holds from here
+      current_.drive_speed = Excitation(ConstantExcitation{ramp_target_});
+      ramp_end_ = std::numeric_limits<double>::infinity();
+      changed = true;
     }
+    if (speed_pending_ && !held_from(current_.drive_speed, now, speed_target_)) {
+      // Reached at t; the table runs on at the ramp's slope one piece
+      // beyond, so that the channels at t are the ramp's (its acceleration:
+      // the left limit), not those of the hold the next advance starts.
+      const double from = current_.drive_speed(now);
+      current_.drive_speed = Excitation(TableExcitation{
+          {now, t, 2.0 * t - now}, {from, speed_target_, 2.0 * speed_target_ - from}});
+      ramp_end_ = t;
+      ramp_target_ = speed_target_;
+      changed = true;
+    }
+    speed_pending_ = false;
+    if (changed) restart_with_current_loads();
   }
+  advanced_ = true;
   integrate::OutputRequest output;
   output.t_end = t;
   output.t_eval = {t};

@@ -717,7 +717,7 @@ class DriveStepper:
         """
     def set_input(self, name: str, value: typing.SupportsFloat | typing.SupportsIndex) -> None:
         """
-        Hold the input ("drive_torque" [N*m], "axial_force" [N]) at value from time on. ValueError for an unknown name or a bad value.
+        Set the input (input_names: "drive_torque" [N*m], "motor_voltage" [V] or "drive_speed" [rad/s], and "axial_force" [N]) to value from time on: held, but a speed ramps to value over the next advance (set before the first advance: the start speed). ValueError for an unknown name or a bad value.
         """
     @property
     def channel_names(self) -> list[str]:

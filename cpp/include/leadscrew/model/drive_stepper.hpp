@@ -10,6 +10,7 @@
 // the co-simulation interface are built on it.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -46,8 +47,10 @@ class DriveStepper {
   // constant. A prescribed speed is not stepped (a step is an infinite
   // acceleration): it ramps linearly from the speed at time() to `value`
   // over the next advance, reaching it at that advance's end, and is held
-  // after. InvalidArgument for an unknown name (listing the names) and a
-  // non-finite value.
+  // after (the channels at the advance's end are the ramp's: its
+  // acceleration, the left limit); set before the first advance, it is the
+  // speed the drive starts at. InvalidArgument for an unknown name (listing
+  // the names) and a non-finite value.
   void set_input(const std::string& name, double value);
   // The input's value at time() (the held one, the speed a ramp heads for,
   // or the parameters' load).
@@ -95,6 +98,11 @@ class DriveStepper {
   std::vector<double> row_;
   bool speed_pending_ = false;  // set_input("drive_speed") waits for the next advance
   double speed_target_ = 0.0;   // [rad/s]
+  // The last speed ramp ends at ramp_end_ at ramp_target_ (inf: none runs).
+  double ramp_end_ = std::numeric_limits<double>::infinity();
+  double ramp_target_ = 0.0;
+  bool advanced_ = false;  // an advance went past t = 0 since the start
+  void start_run();        // the run from t = 0 under current_'s loads
 };
 
 }  // namespace leadscrew::model

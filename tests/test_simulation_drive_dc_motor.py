@@ -169,6 +169,33 @@ def test_back_emf_constant_defaults_to_the_torque_constant_and_takes_units():
     np.testing.assert_array_equal(a["motor_current"], b["motor_current"])
 
 
+@pytest.mark.parametrize("voltage, expected", [
+    (ls.Constant("3 V"), 3.0),
+    (ls.Sine("3 V", "5 Hz", offset="1 V"), {"type": "sine", "amplitude": 3.0,
+                                             "omega": 10 * math.pi, "phase": 0.0,
+                                             "offset": 1.0}),
+    (ls.Table([0, 1], ["0 V", "3 V"]), {"type": "table", "times": [0.0, 1.0],
+                                        "values": [0.0, 3.0]}),
+])
+def test_voltage_takes_loads_in_volts(voltage, expected):
+    scene = ls.Scene.from_dict(motor_scene(voltage=voltage))
+    given = scene["motor"]["voltage"]
+    if isinstance(expected, float):
+        given = given["value"] if isinstance(given, dict) else given
+    assert given == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("voltage, match", [
+    ("12 N", r'^motor\.voltage = "12 N" is invalid: "12 N" is not a voltage \(V\)$'),
+    (ls.Constant("12 N"), r"^motor\.voltage = Constant\('12\.0 N'\) is invalid: its values "
+                          r"are a force \(N\), not a voltage \(V\)$"),
+    (ls.Sine("1 N*m", 2.0), r"^motor\.voltage = Sine\(.*\) is invalid: its values are a torque"),
+])
+def test_voltage_refuses_a_load_of_another_unit(voltage, match):
+    with pytest.raises(ValueError, match=match):
+        ls.Scene.from_dict(motor_scene(voltage=voltage))
+
+
 def test_scene_round_trips_through_toml(tmp_path):
     scene = ls.Scene.from_dict(motor_scene(current_limit=1.0))
     path = tmp_path / "motor.toml"

@@ -105,6 +105,12 @@ def test_loads_take_unit_strings(given, expected, unit):
     (lambda: ls.Sine("50 N", 94.2, offset="1 N*m"),
      'offset = "1 N*m" is invalid: a torque (N*m), but amplitude is a force (N): the values '
      "of one load share their unit"),
+    (lambda: ls.Sine("40 Nm", 94.2),
+     'amplitude = "40 Nm" is invalid: "40 Nm" is not a force (N), a torque (N*m), an angular '
+     "velocity or frequency (rad/s) or a voltage (V) (the loads' units) "
+     '("Nm" is number_meter to pint, not a newton metre: write "N*m")'),
+    (lambda: ls.Constant("12 v"), 'value = "12 v" is invalid: unit \'v\' does not parse: \'v\' '
+     'is not defined in the unit registry; units are case-sensitive: write "V" for volt'),
     (lambda: ls.Sine(None, 1.0), "amplitude = None is invalid: must be a number"),
     (lambda: ls.Sine(1.0, "fast"), 'omega = "fast" is invalid: not one number'),
     (lambda: ls.Sine(1.0, 2.0, phase=True), "phase = True is invalid: must be a number [rad]"),

@@ -196,6 +196,30 @@ def test_voltage_refuses_a_load_of_another_unit(voltage, match):
         ls.Scene.from_dict(motor_scene(voltage=voltage))
 
 
+def test_units_as_data_sheets_write_them():
+    """"2 Ohm" is an ohm (an alias in the registry)."""
+    scene = ls.Scene.from_dict(motor_scene(resistance="2 Ohm"))
+    assert scene["motor"]["resistance"] == 2.0
+
+
+@pytest.mark.parametrize("key, value, message", [
+    ("torque_constant", "0.05 Nm/A",
+     'motor.torque_constant = "0.05 Nm/A" is invalid: "0.05 Nm/A" is not a torque constant '
+     '(N*m/A) ("Nm" is number_meter to pint, not a newton metre: write "N*m")'),
+    ("torque_constant", "50 mNm/A", '("mNm" is millinumber_meter to pint, not a newton metre: '
+                                    'write "mN*m")'),
+    ("friction_torque", "0.01 Nm", '("Nm" is number_meter to pint, not a newton metre'),
+    ("voltage", "12 v", "units are case-sensitive: write \"V\" for volt"),
+    ("voltage", "3000 mv", "units are case-sensitive: write \"mV\" for millivolt"),
+    ("resistance", "2 OHM", "units are case-sensitive: write \"ohm\" for ohm"),
+])
+def test_units_users_type_by_mistake_are_explained(key, value, message):
+    with pytest.raises(ValueError) as raised:
+        ls.Scene.from_dict(motor_scene(**{key: value}))
+    assert message in str(raised.value)
+    assert str(raised.value).startswith(f'motor.{key} = "{value}" is invalid: ')
+
+
 def test_scene_round_trips_through_toml(tmp_path):
     scene = ls.Scene.from_dict(motor_scene(current_limit=1.0))
     path = tmp_path / "motor.toml"

@@ -82,6 +82,33 @@ def test_units_and_plot():
     assert "stall load" in " ".join(t.get_text() for t in ax.get_legend().get_texts())
 
 
+def test_the_figure_draws_the_closed_form_over_a_fine_grid_with_the_legend_off_the_data():
+    """The closed form's lines jump at the stall load (mu_static > mu: the
+    breakaway from rest fails while a moving drive would still turn at about
+    half its no-load speed), not a slope between the sampled loads; the
+    legend lies outside the axes."""
+    from matplotlib.figure import Figure
+
+    d = motor_scene()
+    d["friction"] = {**d["friction"], "mu": 0.15, "mu_static": 0.3}
+    frame = ls.studies.motor_characteristics(d, [5.0, 30.0], t_end=0.2, progress=False)
+    stall = frame.attrs["summary"]["stall_load"]
+    figure = Figure(figsize=(8.0, 5.0), layout="constrained")
+    ax = ls.studies.plot_motor_characteristics(frame, ax=figure.subplots())
+    line = next(line for line in ax.get_lines() if line.get_label() == "speed (closed form)")
+    load, speed = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+    assert len(load) > 100 and load.max() >= 30.0
+    below, at = np.searchsorted(load, stall) - 1, np.searchsorted(load, stall)
+    assert load[at] == stall and stall - load[below] < 1e-9 * stall
+    no_load = U / KT
+    assert speed[0] == pytest.approx(no_load, rel=1e-12)
+    assert speed[below] > 0.4 * no_load and speed[at] == 0.0
+    assert np.all(np.diff(speed[:below + 1]) < 0.0)
+    figure.canvas.draw()
+    legend = ax.get_legend().get_window_extent()
+    assert not legend.overlaps(ax.get_window_extent())
+
+
 @pytest.mark.parametrize("change, kwargs, match", [
     ({"motor": None}, {}, r"scene has no motor section"),
     ({"motor": {"voltage": {"type": "sine", "amplitude": 3.0, "omega": 1.0}}}, {},

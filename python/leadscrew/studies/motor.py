@@ -144,6 +144,22 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
             "back_drive_load": stall_torque / holding if holding > 0.0 else math.inf}
 
 
+def _closed_form_curve(scene, loads: np.ndarray, voltage: float,
+                       closed: Dict[str, Any]) -> Dict[str, list]:
+    """The closed form over a fine grid of loads from 0 to past the largest
+    (for the figure's lines), with the loads just below and at the stall and
+    back-drive loads, where it jumps."""
+    top = 1.05 * float(np.max(loads))
+    grid = [np.linspace(0.0, top, 401)]
+    for jump in (closed["stall_load"], closed["back_drive_load"]):
+        if 0.0 < jump < top:
+            grid.append([np.nextafter(jump, 0.0), jump])
+    grid = np.unique(np.concatenate(grid))
+    curve = _closed_form(scene, grid, voltage)
+    return {"load": grid.tolist(),
+            **{name: curve[name].tolist() for name in ("speed", "current", "efficiency")}}
+
+
 def _chunk(loads: Any, batch: DriveBatch, raising: float, workers: int = 1,
            torque_ratio: float = 0.0, speed_scale: float = 1.0) -> Dict[str, Any]:
     """The measures of a chunk of loads from one C++ batch call.
@@ -245,6 +261,9 @@ def motor_characteristics(
         moving), ``back_drive_load`` [N] (beyond it the load back-drives the
         stalled motor; inf for a self-locking thread), ``stall_torque``
         [N*m], ``window`` [s], ``raised``, ``raised_reasons``.
+        ``attrs["closed_form_curve"]``: the closed form's ``load`` [N],
+        ``speed`` [rad/s], ``current`` [A] and ``efficiency`` [1] over a fine
+        grid of loads (lists), which the figure draws.
 
     Raises:
         ValueError: no DC motor or a voltage that is not constant, invalid
@@ -298,6 +317,7 @@ def motor_characteristics(
         "load_speed": columns["load_speed"], "window_change": columns["window_change"],
         "stalled": closed["stalled"], "mode": closed["mode"], "wall_time": columns["wall_time"],
         "error": errors})
+    frame.attrs["closed_form_curve"] = _closed_form_curve(scene, forces, voltage, closed)
     return annotate(frame, UNITS, errors_checked=True, study="motor_characteristics",
                     summary_units={"voltage": "V", "stall_load": "N", "stall_load_moving": "N",
                                    "back_drive_load": "N", "stall_torque": "N*m",
@@ -310,7 +330,9 @@ def motor_characteristics(
 
 def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
     """Draw speed, current and efficiency against the load, simulated (points)
-    and in closed form (lines), with the stall load.
+    and in closed form (lines over the fine grid of
+    ``attrs["closed_form_curve"]``, so that the stall is a jump; the frame's
+    loads without it), with the stall load; the legend below the axes.
 
     Args:
         frame: the DataFrame :func:`motor_characteristics` returned.
@@ -323,19 +345,22 @@ def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
     ax = axes(ax)
     frame = frame.sort_values("load")
     load = frame["load"]
+    curve = frame.attrs.get("closed_form_curve") or {
+        "load": load, **{name: frame[f"{name}_closed_form"]
+                         for name in ("speed", "current", "efficiency")}}
     ax.plot(load, frame["speed"], "o", color="C0", label="speed (simulated)")
-    ax.plot(load, frame["speed_closed_form"], "-", color="C0", label="speed (closed form)")
+    ax.plot(curve["load"], curve["speed"], "-", color="C0", label="speed (closed form)")
     ax.set_xlabel("axial load [N]")
     ax.set_ylabel("rotor speed [rad/s]", color="C0")
     current = ax.twinx()
     current.plot(load, frame["current"], "s", color="C3", label="current (simulated)")
-    current.plot(load, frame["current_closed_form"], "-", color="C3",
+    current.plot(curve["load"], curve["current"], "-", color="C3",
                  label="current (closed form)")
     current.set_ylabel("current [A]", color="C3")
     efficiency = ax.twinx()
     efficiency.spines["right"].set_position(("axes", 1.12))
     efficiency.plot(load, frame["efficiency"], "^", color="C2", label="efficiency (simulated)")
-    efficiency.plot(load, frame["efficiency_closed_form"], "-", color="C2",
+    efficiency.plot(curve["load"], curve["efficiency"], "-", color="C2",
                     label="efficiency (closed form)")
     efficiency.set_ylabel("efficiency [1]", color="C2")
     stall = frame.attrs.get("summary", {}).get("stall_load")
@@ -344,5 +369,7 @@ def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
     handles = []
     for axis in (ax, current, efficiency):
         handles += axis.get_legend_handles_labels()[0]
-    ax.legend(handles, [h.get_label() for h in handles], loc="upper right", fontsize="small")
+    # Below the axes, off the data (a constrained layout makes room for it).
+    ax.legend(handles, [h.get_label() for h in handles], loc="upper center",
+              bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize="small")
     return ax

@@ -75,6 +75,11 @@ def test_parameters_are_read_only_and_match_what_the_core_evaluates():
     (lambda: ls.Table(["0 s", "250 ms"], ["0 N*mm", "40 N*mm"]), ls.Table([0, 0.25], [0, 0.04]),
      "N*m"),
     (lambda: ls.Table([0.0, 1.0], [0.0, 5.0]), ls.Table([0.0, 1.0], [0.0, 5.0]), ""),
+    # a DC motor's voltage (motor.voltage) is a load too
+    (lambda: ls.Constant("12 V"), ls.Constant(12.0), "V"),
+    (lambda: ls.Sine("12 V", "5 Hz"), ls.Sine(12.0, 10 * math.pi), "V"),
+    (lambda: ls.Table([0, 1], ["0 V", "12 V"]), ls.Table([0.0, 1.0], [0.0, 12.0]), "V"),
+    (lambda: ls.Constant("3000 mV"), ls.Constant(3.0), "V"),
 ])
 def test_loads_take_unit_strings(given, expected, unit):
     load = given()
@@ -91,12 +96,21 @@ def test_loads_take_unit_strings(given, expected, unit):
 
 @pytest.mark.parametrize("call, message", [
     (lambda: ls.Sine("50 kg", 94.2),
-     'amplitude = "50 kg" is invalid: "50 kg" is not a force (N), a torque (N*m) or an '
-     "angular velocity or frequency (rad/s) (the loads' units)"),
+     'amplitude = "50 kg" is invalid: "50 kg" is not a force (N), a torque (N*m), an '
+     "angular velocity or frequency (rad/s) or a voltage (V) (the loads' units)"),
+    (lambda: ls.Sine("12 V", 94.2, offset="1 N"),
+     'offset = "1 N" is invalid: a force (N), but amplitude is a voltage (V): the values '
+     "of one load share their unit"),
     (lambda: ls.Sine("50 N", "3 m"), 'omega = "3 m" is invalid: "3 m" is not an angular'),
     (lambda: ls.Sine("50 N", 94.2, offset="1 N*m"),
      'offset = "1 N*m" is invalid: a torque (N*m), but amplitude is a force (N): the values '
      "of one load share their unit"),
+    (lambda: ls.Sine("40 Nm", 94.2),
+     'amplitude = "40 Nm" is invalid: "40 Nm" is not a force (N), a torque (N*m), an angular '
+     "velocity or frequency (rad/s) or a voltage (V) (the loads' units) "
+     '("Nm" is number_meter to pint, not a newton metre: write "N*m")'),
+    (lambda: ls.Constant("12 v"), 'value = "12 v" is invalid: unit \'v\' does not parse: \'v\' '
+     'is not defined in the unit registry; units are case-sensitive: write "V" for volt'),
     (lambda: ls.Sine(None, 1.0), "amplitude = None is invalid: must be a number"),
     (lambda: ls.Sine(1.0, "fast"), 'omega = "fast" is invalid: not one number'),
     (lambda: ls.Sine(1.0, 2.0, phase=True), "phase = True is invalid: must be a number [rad]"),

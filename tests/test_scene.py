@@ -387,7 +387,9 @@ def test_loads_given_as_objects_with_units():
     for key, load, message in (
             ("axial_force", ls.Sine("50 N*m", 1.0), "its values are a torque (N*m), not a force"),
             ("drive_torque", ls.Constant("5 N"), "its values are a force (N), not a torque"),
-            ("drive_speed", ls.Table([0, 1], ["0 N", "1 N"]), "not an angular velocity")):
+            ("drive_speed", ls.Table([0, 1], ["0 N", "1 N"]), "not an angular velocity"),
+            ("axial_force", ls.Sine("12 V", "5 Hz"), "its values are a voltage (V), not a force"),
+            ("drive_torque", ls.Constant("12 V"), "its values are a voltage (V), not a torque")):
         loads = {key: load, **({"drive_torque": None} if key == "drive_speed" else {})}
         with pytest.raises(ValueError, match=rf"^loads\.{key} = .* is invalid: .*"
                                              rf"{re.escape(message)}"):

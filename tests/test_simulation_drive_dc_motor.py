@@ -169,6 +169,57 @@ def test_back_emf_constant_defaults_to_the_torque_constant_and_takes_units():
     np.testing.assert_array_equal(a["motor_current"], b["motor_current"])
 
 
+@pytest.mark.parametrize("voltage, expected", [
+    (ls.Constant("3 V"), 3.0),
+    (ls.Sine("3 V", "5 Hz", offset="1 V"), {"type": "sine", "amplitude": 3.0,
+                                             "omega": 10 * math.pi, "phase": 0.0,
+                                             "offset": 1.0}),
+    (ls.Table([0, 1], ["0 V", "3 V"]), {"type": "table", "times": [0.0, 1.0],
+                                        "values": [0.0, 3.0]}),
+])
+def test_voltage_takes_loads_in_volts(voltage, expected):
+    scene = ls.Scene.from_dict(motor_scene(voltage=voltage))
+    given = scene["motor"]["voltage"]
+    if isinstance(expected, float):
+        given = given["value"] if isinstance(given, dict) else given
+    assert given == pytest.approx(expected)
+
+
+@pytest.mark.parametrize("voltage, match", [
+    ("12 N", r'^motor\.voltage = "12 N" is invalid: "12 N" is not a voltage \(V\)$'),
+    (ls.Constant("12 N"), r"^motor\.voltage = Constant\('12\.0 N'\) is invalid: its values "
+                          r"are a force \(N\), not a voltage \(V\)$"),
+    (ls.Sine("1 N*m", 2.0), r"^motor\.voltage = Sine\(.*\) is invalid: its values are a torque"),
+])
+def test_voltage_refuses_a_load_of_another_unit(voltage, match):
+    with pytest.raises(ValueError, match=match):
+        ls.Scene.from_dict(motor_scene(voltage=voltage))
+
+
+def test_units_as_data_sheets_write_them():
+    """"2 Ohm" is an ohm (an alias in the registry)."""
+    scene = ls.Scene.from_dict(motor_scene(resistance="2 Ohm"))
+    assert scene["motor"]["resistance"] == 2.0
+
+
+@pytest.mark.parametrize("key, value, message", [
+    ("torque_constant", "0.05 Nm/A",
+     'motor.torque_constant = "0.05 Nm/A" is invalid: "0.05 Nm/A" is not a torque constant '
+     '(N*m/A) ("Nm" is number_meter to pint, not a newton metre: write "N*m")'),
+    ("torque_constant", "50 mNm/A", '("mNm" is millinumber_meter to pint, not a newton metre: '
+                                    'write "mN*m")'),
+    ("friction_torque", "0.01 Nm", '("Nm" is number_meter to pint, not a newton metre'),
+    ("voltage", "12 v", "units are case-sensitive: write \"V\" for volt"),
+    ("voltage", "3000 mv", "units are case-sensitive: write \"mV\" for millivolt"),
+    ("resistance", "2 OHM", "units are case-sensitive: write \"ohm\" for ohm"),
+])
+def test_units_users_type_by_mistake_are_explained(key, value, message):
+    with pytest.raises(ValueError) as raised:
+        ls.Scene.from_dict(motor_scene(**{key: value}))
+    assert message in str(raised.value)
+    assert str(raised.value).startswith(f'motor.{key} = "{value}" is invalid: ')
+
+
 def test_scene_round_trips_through_toml(tmp_path):
     scene = ls.Scene.from_dict(motor_scene(current_limit=1.0))
     path = tmp_path / "motor.toml"

@@ -13,7 +13,8 @@ their parameters (see :mod:`leadscrew.scene`).
 Their parameters may be strings with units, as in a scene: ``Sine("50 N",
 "15 Hz")``, ``Table(["0 s", "250 ms"], ["0 N*mm", "40 N*mm"])``. The values
 of a load (value, amplitude, offset, a table's values) take a force (N), a
-torque (N*m) or an angular velocity (rad/s), all in the same one: the load
+torque (N*m), an angular velocity (rad/s) or a voltage (V, a DC motor's
+``motor.voltage``), all in the same one: the load
 keeps it as :attr:`unit` (``""`` when they are plain numbers), and a scene
 or a FrictionBlock refuses a load whose unit is not that of the parameter it
 drives (a torque as an axial force). Plain numbers are SI in the unit of
@@ -38,7 +39,7 @@ Excitation = _core.Excitation
 Number = Union[float, str]
 
 #: The units a load's values may have: those of the loads it drives.
-LOAD_UNITS = ("N", "N*m", "rad/s")
+LOAD_UNITS = ("N", "N*m", "rad/s", "V")
 
 
 def _load_values(named: Sequence[Tuple[str, Any]]) -> Tuple[List[float], str]:
@@ -144,8 +145,8 @@ class Constant(_core.Excitation):
     """A constant load.
 
     Args:
-        value: the load (N, N*m, ... as the parameter it is passed to), or a
-            string with a unit (``"-10 N"``).
+        value: the load (N, N*m, rad/s or V as the parameter it is passed
+            to), or a string with a unit (``"-10 N"``, ``"12 V"``).
 
     Raises:
         ValueError: value is not finite, not a number or of another

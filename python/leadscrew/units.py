@@ -30,6 +30,12 @@ Angles and frequencies:
 - A dimensionless field (a friction coefficient, a ratio) takes plain numbers,
   numeric strings (``"0.3"``) and ``"30 %"``, but not angles.
 
+Units as people type them: ``"2 Ohm"`` is an ohm (an alias; pint knows
+``"ohm"`` and ``"Ω"``). Pint reads ``"Nm"`` as a "number meter", not a newton
+metre: where a torque is expected the message says to write ``"N*m"``. A unit
+pint does not know whose other case it knows (``"12 v"``, ``"3 mv"``) is
+refused with that unit in the message (units are case-sensitive).
+
 The registry is built on first use (about 0.5 s), so scenes of plain numbers
 never pay for it.
 
@@ -84,6 +90,8 @@ def _registry():
     registry = pint.UnitRegistry(on_redefinition="ignore")
     # Hz is a cycle per second here, so "2 Hz" in a rad/s field is 4 pi rad/s.
     registry.define("hertz = turn / second = Hz")
+    # "2 Ohm" as written in data sheets (pint knows only "ohm" and "Ω").
+    registry.define("@alias ohm = Ohm")
     # pint caches the root units of its definitions when it builds the
     # registry: without a rebuild "Hz" would keep 1/s as its root units and
     # lose the angle that the checks below compare.
@@ -104,7 +112,7 @@ def parse_unit(unit: str):
     try:
         return _registry().Unit(unit)
     except Exception as error:  # pint raises several unrelated types
-        raise ValueError(f"unit {unit!r} does not parse: {error}") from None
+        raise ValueError(f"unit {unit!r} does not parse: {error}{_case_hint(error)}") from None
 
 
 def _radian_exponent(unit: str) -> float:
@@ -175,6 +183,44 @@ def _split_number(prefix: str, value: str):
     return float(number), unit
 
 
+# "Nm", "mNm", "kNm" meant as newton metres (pint reads a "number meter").
+_NEWTON_METRE = re.compile(r"(?<![\w.])[a-zA-Zµ]?Nm(?!\w)")
+
+
+def _torque_hint(given_unit: str, units: Sequence[str]) -> str:
+    """A hint for a unit such as ``"Nm/A"`` given where one of ``units``
+    holds a torque (``N*m``): pint does not read ``Nm`` as N*m."""
+    match = _NEWTON_METRE.search(given_unit or "")
+    if match is None or not any("N*m" in unit for unit in units):
+        return ""
+    try:
+        read = f"{parse_unit(match.group(0))}"
+    except ValueError:  # pragma: no cover - pint reads all of them
+        read = "another unit"
+    return (f' ("{match.group(0)}" is {read} to pint, not a newton metre: write '
+            f'"{match.group(0)[:-2]}N*m")')
+
+
+def _case_hint(error: Exception) -> str:
+    """A hint for a unit pint does not know whose other case it does
+    (``"12 v"``: ``"V"``); units are case-sensitive."""
+    names = getattr(error, "unit_names", None) or getattr(error, "args", ())
+    for name in names if isinstance(names, (tuple, list)) else (names,):
+        if not isinstance(name, str):
+            continue
+        # "mv" is mV rather than MV: a prefix and a symbol first
+        variants = (name[:-1] + name[-1:].upper(), name.lower(), name.upper(), name.capitalize())
+        for other in dict.fromkeys(variants):
+            if other == name:
+                continue
+            try:  # (not parse_unit, whose own failure comes here)
+                known = _registry().Unit(other)
+            except Exception:  # pint raises several unrelated types
+                continue
+            return f'; units are case-sensitive: write "{other}" for {known}'
+    return ""
+
+
 def _angle_text(exponent: float) -> str:
     return "no angle" if exponent == 0 else f"rad^{exponent:g}"
 
@@ -208,8 +254,8 @@ def to_si(path: str, value: Any, unit: str, name: Optional[str] = None) -> Any:
         quantity = registry.Quantity(number, given_unit) if given_unit else \
             registry.Quantity(number)
     except Exception as error:  # pint raises several unrelated types
-        raise ValueError(f"{prefix}not a number with a unit such as \"1 mm\" ({error})") \
-            from None
+        raise ValueError(f"{prefix}not a number with a unit such as \"1 mm\" ({error})"
+                         f"{_case_hint(error)}") from None
     if name is None:
         name = dimension_name(unit)
     expected = name if not unit or name.startswith("a quantity in") else f"{name} ({unit})"
@@ -219,7 +265,8 @@ def to_si(path: str, value: Any, unit: str, name: Optional[str] = None) -> Any:
     try:
         magnitude = quantity.to(parse_unit(unit)).magnitude
     except Exception:
-        raise ValueError(f"{prefix}{_quoted(value)} is not {expected}") from None
+        raise ValueError(f"{prefix}{_quoted(value)} is not {expected}"
+                         f"{_torque_hint(given_unit, (unit,))}") from None
     field_angle = _radian_exponent(unit)
     if given_unit and given_angle != field_angle:
         _check_angle_free_rate(prefix, value, given_unit, unit, expected, given_angle,
@@ -341,7 +388,7 @@ def load_quantity(name: str, value: Any, units: Sequence[str]) -> Tuple[float, s
         raise ValueError(f"{prefix}not finite")
     names = [f"{dimension_name(unit)} ({unit})" for unit in units]
     raise ValueError(f"{prefix}{_quoted(value)} is not {', '.join(names[:-1])} or {names[-1]} "
-                     "(the loads' units)")
+                     f"(the loads' units){_torque_hint(given_unit, units)}")
 
 
 # --- units of result channels -------------------------------------------------

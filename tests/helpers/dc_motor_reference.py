@@ -7,6 +7,9 @@ independent of the leadscrew package. SI units.
   T (the rigid drive's slip mode with zero acceleration,
   rigid_drive_reference: a_eps T + b_eps F = 0 with the consistent
   eps = h s sign(lam~)); then i = T / k_t and omega = (U - R i) / k_e.
+- Back-driven (a thread with tan(alpha) > mu' under a load the stalled
+  motor cannot hold): the same balance slipping at omega < 0 (direction
+  -1), i = T / k_t > U / R, so omega = (U - R i) / k_e < 0.
 - Stalled rotor (the thread sticks): omega = 0, so
   i(t) = U / R (1 - exp(-t R / L)), the stall current U / R, the electrical
   time constant L / R.
@@ -35,11 +38,12 @@ def rigid_drive(scene: dict, derived: dict) -> RigidDrive:
                       load_mass=scene["load"]["mass"])
 
 
-def steady_torque(drive: RigidDrive, axial_force: float) -> float:
+def steady_torque(drive: RigidDrive, axial_force: float, direction: float = 1.0) -> float:
     """The rotor torque [N m] that keeps the rigid drive slipping at a constant
-    positive speed under the axial force F [N] (the raise torque where F
-    opposes the motion: M = -b_eps F / a_eps with a_eps, b_eps of the
-    reference's slip mode).
+    speed of the sign ``direction`` (+1, -1) under the axial force F [N] (the
+    raise torque where F opposes a positive motion: M = -b_eps F / a_eps with
+    a_eps, b_eps of the reference's slip mode, eps = h s sign(lam~), s the
+    direction).
 
     Raises:
         ValueError: no sign of the normal force is consistent, or both are.
@@ -48,7 +52,7 @@ def steady_torque(drive: RigidDrive, axial_force: float) -> float:
     for eps in (1.0, -1.0):
         torque = -drive.b(eps) * axial_force / drive.a(eps)
         normal = float(drive.K(torque, axial_force)) / (drive.cos_alpha * drive.delta(eps))
-        if normal != 0.0 and drive.h * math.copysign(1.0, normal) == eps:
+        if normal != 0.0 and drive.h * direction * math.copysign(1.0, normal) == eps:
             found.append(torque)
     if len(found) != 1:
         raise ValueError(f"steady slip at F = {axial_force!r} N: {len(found)} consistent modes")
@@ -56,10 +60,11 @@ def steady_torque(drive: RigidDrive, axial_force: float) -> float:
 
 
 def steady_state(drive: RigidDrive, axial_force: float, voltage: float, resistance: float,
-                 torque_constant: float, back_emf_constant: float):
+                 torque_constant: float, back_emf_constant: float, direction: float = 1.0):
     """(current [A], omega [rad/s], torque [N m]) of the DC motor at steady
-    state on the rigid drive: i = T / k_t, omega = (U - R i) / k_e."""
-    torque = steady_torque(drive, axial_force)
+    state on the rigid drive, slipping in ``direction`` (+1, -1: back-driven):
+    i = T / k_t, omega = (U - R i) / k_e."""
+    torque = steady_torque(drive, axial_force, direction)
     current = torque / torque_constant
     omega = (voltage - resistance * current) / back_emf_constant
     return current, omega, torque

@@ -82,6 +82,33 @@ def test_units_and_plot():
     assert "stall load" in " ".join(t.get_text() for t in ax.get_legend().get_texts())
 
 
+def test_the_figure_draws_the_closed_form_over_a_fine_grid_with_the_legend_off_the_data():
+    """The closed form's lines jump at the stall load (mu_static > mu: the
+    breakaway from rest fails while a moving drive would still turn at about
+    half its no-load speed), not a slope between the sampled loads; the
+    legend lies outside the axes."""
+    from matplotlib.figure import Figure
+
+    d = motor_scene()
+    d["friction"] = {**d["friction"], "mu": 0.15, "mu_static": 0.3}
+    frame = ls.studies.motor_characteristics(d, [5.0, 30.0], t_end=0.2, progress=False)
+    stall = frame.attrs["summary"]["stall_load"]
+    figure = Figure(figsize=(8.0, 5.0), layout="constrained")
+    ax = ls.studies.plot_motor_characteristics(frame, ax=figure.subplots())
+    line = next(line for line in ax.get_lines() if line.get_label() == "speed (closed form)")
+    load, speed = np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+    assert len(load) > 100 and load.max() >= 30.0
+    below, at = np.searchsorted(load, stall) - 1, np.searchsorted(load, stall)
+    assert load[at] == stall and stall - load[below] < 1e-9 * stall
+    no_load = U / KT
+    assert speed[0] == pytest.approx(no_load, rel=1e-12)
+    assert speed[below] > 0.4 * no_load and speed[at] == 0.0
+    assert np.all(np.diff(speed[:below + 1]) < 0.0)
+    figure.canvas.draw()
+    legend = ax.get_legend().get_window_extent()
+    assert not legend.overlaps(ax.get_window_extent())
+
+
 @pytest.mark.parametrize("change, kwargs, match", [
     ({"motor": None}, {}, r"scene has no motor section"),
     ({"motor": {"voltage": {"type": "sine", "amplitude": 3.0, "omega": 1.0}}}, {},
@@ -151,3 +178,114 @@ def test_the_batch_varies_the_motor_and_refuses_what_it_would_ignore():
     with pytest.raises(ValueError, match=r"\"motor_resistance\" is invalid for a drive without"):
         DriveBatch(ls.Scene.from_dict(thesis_scene()), ("motor_resistance",), ("u_load",), 0.1,
                    [0.1])
+
+
+def _friction_torque_per_newton(scene, mu, sign):
+    """r_m tan(alpha + sign rho') [m], rho' = atan(mu / cos(beta / 2)): the
+    torque per newton to raise (+1) or to hold a lowering load (-1, the
+    negative lower torque) on the thesis thread (flank angle 0 unless given)."""
+    thread = scene["thread"]
+    radius = thread["mean_diameter"] / 2
+    alpha = math.atan(thread["pitch"] * thread.get("starts", 1) / (2 * math.pi * radius))
+    rho = math.atan(mu / math.cos(thread.get("flank_angle", 0.0) / 2))
+    return radius * math.tan(alpha + sign * rho)
+
+
+def _run_at(voltage, d, loads, t_end):
+    """The study's frame without errors and the stall torque k_t U / R [N m]."""
+    frame = ls.studies.motor_characteristics(d, loads, t_end=t_end, progress=False)
+    assert frame["error"].isna().all()
+    return frame, frame.attrs["summary"], KT * voltage / R
+
+
+def test_a_back_drivable_thread_is_raised_held_or_back_driven():
+    """tan(alpha) = 0.35 > mu' = 0.05: below the stall load the motor raises the
+    load, up to the back-drive load it holds it at rest, beyond that the load
+    drives the rotor backwards at i = T / k_t > U / R (T the torque holding the
+    lowering load), which the closed form gives (not a stall); the efficiency
+    is NaN there (the load gives power)."""
+    voltage = 12.0
+    d = motor_scene(voltage=voltage)
+    d["thread"] = {**d["thread"], "pitch": 10e-3, "mean_diameter": 9e-3}
+    d["friction"] = {**d["friction"], "mu": 0.05}
+    # raised along -x at 0.15 m/s, back-driven along +x at 0.3 m/s: room for both
+    d["nut"] = {**d["nut"], "position": 0.18}
+    scene = ls.Scene.from_dict(d)
+    frame, summary, stall_torque = _run_at(voltage, scene, [100.0, 200.0, 400.0], 0.9)
+    assert summary["stall_load"] == pytest.approx(
+        stall_torque / _friction_torque_per_newton(d, 0.05, 1), rel=1e-12)
+    assert summary["back_drive_load"] == pytest.approx(
+        stall_torque / _friction_torque_per_newton(d, 0.05, -1), rel=1e-12)
+    assert summary["stall_load"] < 200.0 < summary["back_drive_load"] < 400.0
+    drive = reference.rigid_drive(scene.to_dict(), scene.derived())
+    raised, held, lowered = frame.itertuples()
+    assert list(frame["mode"]) == ["raising", "stalled", "back_driven"]
+    assert list(frame["stalled"]) == [False, True, False]
+    current, omega, _ = reference.steady_state(drive, 100.0, voltage, R, KT, KT)
+    assert raised.speed_closed_form == pytest.approx(omega, rel=1e-12) and omega > 0.0
+    assert raised.speed == pytest.approx(omega, rel=1e-6)
+    # (over the window: the start-up's tail shifts the mean by 3e-6)
+    assert raised.efficiency == pytest.approx(raised.efficiency_closed_form, rel=1e-5)
+    assert held.speed == 0.0 and held.speed_closed_form == 0.0
+    assert held.current == pytest.approx(voltage / R, rel=1e-7)
+    assert held.efficiency == 0.0 and held.efficiency_closed_form == 0.0
+    current, omega, _ = reference.steady_state(drive, 400.0, voltage, R, KT, KT, direction=-1.0)
+    assert omega < 0.0 and current > voltage / R
+    assert lowered.speed_closed_form == pytest.approx(omega, rel=1e-12)
+    assert lowered.current_closed_form == pytest.approx(current, rel=1e-12)
+    assert lowered.input_power_closed_form == pytest.approx(voltage * current, rel=1e-12)
+    assert lowered.speed == pytest.approx(omega, rel=1e-6)
+    assert lowered.current == pytest.approx(current, rel=1e-6)
+    assert lowered.window_change < 1e-5
+    assert math.isnan(lowered.efficiency) and math.isnan(lowered.efficiency_closed_form)
+
+
+def test_the_stall_from_rest_takes_mu_static():
+    """From rest the motor must break the thread free with mu_static: the
+    stall load is F_stall = k_t U / R / (r_m tan(alpha + rho_s')); between it
+    and the stall load with mu the drive stays at rest (one already moving
+    would keep moving)."""
+    voltage = 12.0
+    d = motor_scene(voltage=voltage)
+    d["friction"] = {**d["friction"], "mu": 0.15, "mu_static": 0.3}
+    frame, summary, stall_torque = _run_at(voltage, d, [80.0, 150.0], 1.0)
+    assert summary["stall_load"] == pytest.approx(
+        stall_torque / _friction_torque_per_newton(d, 0.3, 1), rel=1e-12)
+    assert summary["stall_load_moving"] == pytest.approx(
+        stall_torque / _friction_torque_per_newton(d, 0.15, 1), rel=1e-12)
+    assert summary["stall_load"] < 150.0 < summary["stall_load_moving"]
+    assert summary["back_drive_load"] == math.inf  # self-locking
+    raised, held = frame.itertuples()
+    assert raised.mode == "raising" and raised.speed > 0.0
+    assert raised.speed == pytest.approx(raised.speed_closed_form, rel=1e-5)
+    assert held.mode == "stalled" and held.stalled
+    assert held.speed == 0.0 and held.speed_closed_form == 0.0
+    assert held.current == pytest.approx(voltage / R, rel=1e-7)
+    assert held.current_closed_form == pytest.approx(voltage / R, rel=1e-12)
+
+
+def test_efficiency_is_the_useful_power_over_the_electrical_input():
+    """With k_e != k_t the work_drive channel books (k_t - k_e) i omega beyond
+    the electrical input U i: the efficiency is F v / (U i) all the same."""
+    d = motor_scene(back_emf_constant=0.04)
+    row = ls.studies.motor_characteristics(d, [20.0], t_end=2.0, progress=False).iloc[0]
+    assert row["error"] is None and not row["stalled"]
+    useful_over_input = 20.0 * abs(row["load_speed"]) / row["input_power"]
+    assert row["efficiency"] == pytest.approx(useful_over_input, rel=1e-6)
+    assert row["efficiency"] == pytest.approx(row["efficiency_closed_form"], rel=1e-6)
+    drive = reference.rigid_drive(ls.Scene.from_dict(d).to_dict(), ls.Scene.from_dict(d).derived())
+    current, omega, _ = reference.steady_state(drive, 20.0, U, R, KT, 0.04)
+    assert row["efficiency_closed_form"] == pytest.approx(
+        20.0 * 1e-3 / (2 * math.pi) * omega / (U * current), rel=1e-12)
+
+
+def test_a_steady_stall_reads_steady_on_the_flexible_concept():
+    """At rest the speed is round-off (~1e-8 rad/s): its change is measured
+    against the no-load speed scale, not against itself."""
+    frame = ls.studies.motor_characteristics(motor_scene(concept="flexible_nut"), [30.0],
+                                             t_end=1.0, progress=False)
+    row = frame.iloc[0]
+    assert row["error"] is None and row["stalled"]
+    assert abs(row["speed"]) < 1e-6 * U / KT
+    assert row["window_change"] < 1e-5
+    assert row["efficiency"] == pytest.approx(0.0, abs=1e-9)

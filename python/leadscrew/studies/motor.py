@@ -3,11 +3,24 @@
 The scene's DC motor (section ``motor``, constant voltage U) raises each axial
 load from rest; at the end of the run the drive turns at its steady speed.
 Beside the simulation, the rigid drive's steady state in closed form
-(docs/physics/dc_motor.md): the train needs the raise torque
-T = F r_m tan(alpha + rho') (:func:`leadscrew.raise_torque`), so
-i = T / k_t, omega = (U - R T / k_t) / k_e, the input power U i and the
-whole train's efficiency F v / (U i) with v = omega lead / (2 pi); the stall
-load is the one whose raise torque is the stall torque k_t min(U / R, i_max).
+(docs/physics/dc_motor.md), from rest: with the stall torque
+T_s = k_t min(U / R, i_max) and rho_s' = atan(mu_static'),
+
+- raising where T_s > F r_m tan(alpha + rho_s') (the breakaway): the train
+  needs the raise torque T = F r_m tan(alpha + rho') (:func:`leadscrew.raise_torque`),
+  so i = T / k_t, omega = (U - R T / k_t) / k_e, the input power U i and the
+  whole train's efficiency F v / (U i) with v = omega lead / (2 pi);
+- back-driven where the thread can be (tan(alpha) > mu_static') and
+  T_s < F r_m tan(alpha - rho_s'): the load turns the rotor against the
+  voltage; the torque that holds the lowering load, T = F r_m tan(alpha - rho')
+  (-:func:`leadscrew.lower_torque`), gives i = T / k_t > U / R and
+  omega = (U - R T / k_t) / k_e < 0 (no steady state where i > i_max: the
+  load runs away);
+- else stalled: at rest at the stall current.
+
+The stall load (from rest) is T_s / (r_m tan(alpha + rho_s')); a drive already
+moving keeps raising up to T_s / (r_m tan(alpha + rho')). The efficiency is
+that of motoring: 0 at rest, NaN where the load is lowered (it gives power).
 At steady state the springs of the flexible concepts carry the load
 statically, so the closed form holds for every concept.
 """
@@ -32,12 +45,12 @@ __all__ = ["motor_characteristics", "plot_motor_characteristics"]
 UNITS = {"load": "N", "speed": "rad/s", "speed_closed_form": "rad/s", "current": "A",
          "current_closed_form": "A", "input_power": "W", "input_power_closed_form": "W",
          "efficiency": "1", "efficiency_closed_form": "1", "load_speed": "m/s",
-         "window_change": "1", "stalled": "", "wall_time": "s", "error": ""}
+         "window_change": "1", "stalled": "", "mode": "", "wall_time": "s", "error": ""}
 
 # What each case samples at the window's start, middle and end.
 _CHANNELS = ("omega_drive", "motor_current", "motor_voltage", "v_load", "work_drive",
-             "work_axial")
-_OMEGA, _CURRENT, _VOLTAGE, _VLOAD, _WORK, _AXIAL = range(len(_CHANNELS))
+             "work_axial", "copper_loss", "magnetic_energy")
+_OMEGA, _CURRENT, _VOLTAGE, _VLOAD, _WORK, _AXIAL, _COPPER, _MAGNETIC = range(len(_CHANNELS))
 
 
 def _voltage(scene) -> float:
@@ -62,51 +75,127 @@ def _voltage(scene) -> float:
     return voltage
 
 
-def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, np.ndarray]:
-    """The rigid drive's steady state for each load (module docstring)."""
-    motor, thread, mu = scene["motor"], scene.thread, scene["friction"]["mu"]
+def _motor_constants(scene, voltage: float) -> Tuple[float, float, float, float]:
+    """(R [ohm], k_t [N*m/A], k_e [V*s/rad], the stall current min(|U| / R, i_max) [A])."""
+    motor = scene["motor"]
     resistance, k_t = motor["resistance"], motor["torque_constant"]
     k_e = motor.get("back_emf_constant", k_t)
-    per_newton = _core.raise_torque(thread, mu, 1.0, 0.0, 0.0)  # T / F [m]
-    torque = loads * per_newton
-    current = torque / k_t
-    speed = (abs(voltage) - resistance * current) / k_e  # in the motor's direction
     stall_current = abs(voltage) / resistance
     if "current_limit" in motor:
         stall_current = min(stall_current, motor["current_limit"])
-    stall_load = k_t * stall_current / per_newton
-    # Beyond the stall load (or the current limit) no steady raise exists.
-    stalled = (loads >= stall_load) | (current > stall_current)
-    speed = np.where(stalled, 0.0, speed)
-    power = abs(voltage) * current
-    lead_per_rad = thread.lead / (2.0 * math.pi)
+    return resistance, k_t, k_e, stall_current
+
+
+def _thread_torques(scene) -> Dict[str, float]:
+    """The rigid drive's torques per newton of axial load [N*m/N = m]: to raise
+    and to lower it, with mu (moving) and with mu_static (from rest); a
+    negative lowering torque: the thread back-drives (tan(alpha) > mu')."""
+    friction = scene["friction"]
+    mu = friction["mu"]
+    mu_static = friction.get("mu_static", mu)
+    thread = scene.thread
+    return {"raise": _core.raise_torque(thread, mu, 1.0),
+            "raise_static": _core.raise_torque(thread, mu_static, 1.0),
+            "lower": _core.lower_torque(thread, mu, 1.0),
+            "lower_static": _core.lower_torque(thread, mu_static, 1.0)}
+
+
+def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
+    """The rigid drive's steady state for each load, from rest (module docstring).
+
+    From rest the thread sticks while the stall torque T_s = k_t min(U/R, i_max)
+    lies between the torques that break it free with mu_static: it raises the
+    load where T_s exceeds the raise torque with mu_static, the load back-drives
+    it where T_s falls short of the torque that holds the load (-lower torque
+    with mu_static, a thread with tan(alpha) > mu_static'), else it stays at
+    rest. Moving, the train needs the torque T with mu: the raise torque
+    (raising), or -the lower torque (back-driven: the rotor turns against the
+    voltage, i = T / k_t > U / R, omega < 0). A back-driven steady state
+    needs i <= i_max; beyond it the load runs away (no steady state, NaN).
+    """
+    resistance, k_t, k_e, stall_current = _motor_constants(scene, voltage)
+    torques = _thread_torques(scene)
+    stall_torque = k_t * stall_current
+    raising = loads * torques["raise_static"] < stall_torque
+    back_driven = ~raising & (-loads * torques["lower_static"] > stall_torque)
+    torque = np.where(back_driven, -loads * torques["lower"], loads * torques["raise"])
+    current = torque / k_t
+    limit = scene["motor"].get("current_limit", math.inf)
+    runaway = back_driven & (current > limit)
+    stalled = ~raising & ~back_driven
+    current = np.where(stalled, stall_current, np.where(runaway, np.nan, current))
+    speed = np.where(stalled, 0.0, (abs(voltage) - resistance * current) / k_e)
+    # (stalled: the driver puts out R i at rest, U itself without a limit)
+    power = np.where(stalled, resistance * stall_current ** 2, abs(voltage) * current)
+    lead_per_rad = scene.thread.lead / (2.0 * math.pi)
     with np.errstate(divide="ignore", invalid="ignore"):
-        efficiency = np.where(stalled | (power <= 0.0), 0.0,
-                              loads * lead_per_rad * speed / power)
+        # Motoring only: 0 at rest, NaN where the load is lowered (it gives power).
+        efficiency = np.where(raising, loads * lead_per_rad * speed / power,
+                              np.where(stalled, 0.0, np.nan))
     sign = math.copysign(1.0, voltage)
-    return {"speed": sign * speed, "current": np.where(stalled, sign * stall_current,
-                                                       sign * current),
-            # (stalled: the driver puts out R i at rest, U itself without a limit)
-            "input_power": np.where(stalled, resistance * stall_current ** 2, power),
-            "efficiency": efficiency, "stalled": stalled, "stall_load": stall_load}
+    mode = np.where(raising, "raising", np.where(stalled, "stalled", np.where(
+        runaway, "runaway", "back_driven"))).astype(object)
+    holding = -torques["lower_static"]
+    return {"speed": sign * speed, "current": sign * current, "input_power": power,
+            "efficiency": efficiency, "stalled": stalled, "mode": mode,
+            "stall_torque": stall_torque,
+            "stall_load": stall_torque / torques["raise_static"],
+            "stall_load_moving": stall_torque / torques["raise"],
+            "back_drive_load": stall_torque / holding if holding > 0.0 else math.inf}
 
 
-def _chunk(loads: Any, batch: DriveBatch, raising: float, workers: int = 1) -> Dict[str, Any]:
-    """The measures of a chunk of loads from one C++ batch call."""
+def _closed_form_curve(scene, loads: np.ndarray, voltage: float,
+                       closed: Dict[str, Any]) -> Dict[str, list]:
+    """The closed form over a fine grid of loads from 0 to past the largest
+    (for the figure's lines), with the loads just below and at the stall and
+    back-drive loads, where it jumps."""
+    top = 1.05 * float(np.max(loads))
+    grid = [np.linspace(0.0, top, 401)]
+    for jump in (closed["stall_load"], closed["back_drive_load"]):
+        if 0.0 < jump < top:
+            grid.append([np.nextafter(jump, 0.0), jump])
+    grid = np.unique(np.concatenate(grid))
+    curve = _closed_form(scene, grid, voltage)
+    return {"load": grid.tolist(),
+            **{name: curve[name].tolist() for name in ("speed", "current", "efficiency")}}
+
+
+def _chunk(loads: Any, batch: DriveBatch, raising: float, workers: int = 1,
+           torque_ratio: float = 0.0, speed_scale: float = 1.0) -> Dict[str, Any]:
+    """The measures of a chunk of loads from one C++ batch call.
+
+    Args:
+        torque_ratio: (k_t - k_e) / k_t: the part of the motor's mechanical
+            work that work_drive books beyond the electrical input.
+        speed_scale: the no-load speed |U| / k_e [rad/s], the scale of the
+            speed's change where the speed is ~0.
+    """
     forces = np.asarray(loads, dtype=float).reshape(-1, 1) * raising
     samples, errors, wall_time = batch.run(forces, workers)
-    work = samples[:, _WORK, 2] - samples[:, _WORK, 0]
-    useful = -(samples[:, _AXIAL, 2] - samples[:, _AXIAL, 0])
+
+    def change(index):
+        return samples[:, index, 2] - samples[:, index, 0]
+
+    # work_drive = electrical input + (k_t - k_e) X, with k_t X (X = the
+    # integral of i omega) = work_drive - copper loss - magnetic energy's change
+    # (docs/physics/dc_motor.md): the integral of U_d i over the window.
+    work = change(_WORK)
+    electrical = work - torque_ratio * (work - change(_COPPER) - change(_MAGNETIC))
+    useful = -change(_AXIAL)
     with np.errstate(divide="ignore", invalid="ignore"):
-        efficiency = np.where(work > 0.0, useful / work, 0.0) + 0.0  # (no -0.0)
+        # Motoring only: NaN where the load is lowered (useful work below the
+        # round-off of the input) or no electrical power goes in.
+        lowered = (useful < -1e-9 * np.abs(electrical)) | ~(electrical > 0.0)
+        efficiency = np.where(lowered, np.nan, np.maximum(useful, 0.0) / electrical) + 0.0
         omega = samples[:, _OMEGA, :]
-        change = np.where(omega[:, 2] != 0.0,
-                          np.abs(omega[:, 2] - omega[:, 1]) / np.abs(omega[:, 2]),
-                          np.abs(omega[:, 1]))  # at rest: 0 where it stays
+        # Relative to the speed, or to 1e-3 of the no-load speed where the
+        # drive is (nearly) at rest: a steady stall reads ~0.
+        scale = np.maximum(np.abs(omega[:, 2]), 1e-3 * speed_scale)
+        window_change = np.abs(omega[:, 2] - omega[:, 1]) / scale
     return {"speed": omega[:, 2], "current": samples[:, _CURRENT, 2],
             "load_speed": samples[:, _VLOAD, 2], "efficiency": efficiency,
             "input_power": samples[:, _VOLTAGE, 2] * samples[:, _CURRENT, 2],
-            "window_change": change,
+            "window_change": window_change,
             "wall_time": np.asarray(wall_time, dtype=float), "error": errors}
 
 
@@ -129,7 +218,10 @@ def motor_characteristics(
     motion the motor's voltage drives) by the scene's motor at its constant
     voltage; the speed, current and input power (the driver's voltage times
     the current) are taken at ``t_end``, the efficiency (useful axial work
-    over electrical work) over ``window``.
+    over the electrical input, the integral of U_d i) over ``window``. The
+    drive starts from rest, so the closed form's stall is the breakaway with
+    ``friction.mu_static``; a thread that can be back-driven runs backwards
+    under a load the stalled motor cannot hold (module docstring).
 
     Args:
         scene: a :class:`~leadscrew.Scene` (or dict) with a DC motor
@@ -151,13 +243,27 @@ def motor_characteristics(
         ``speed_closed_form`` [rad/s] (the rotor's), ``current`` and
         ``current_closed_form`` [A], ``input_power`` and
         ``input_power_closed_form`` [W], ``efficiency`` and
-        ``efficiency_closed_form`` [1] (F v / (U i)), ``load_speed`` [m/s],
-        ``window_change`` [1] (the speed's relative change over the window's
-        second half: ~0 at steady state), ``stalled`` (the closed form has no
-        steady raise: load >= stall load), ``wall_time`` [s], ``error``.
+        ``efficiency_closed_form`` [1] (the useful axial work over the
+        electrical input, the integral of U_d i; closed form F v / (U i);
+        motoring only: 0 at rest, NaN where the load is lowered and gives
+        power), ``load_speed`` [m/s], ``window_change`` [1] (the speed's
+        change over the window's second half relative to the speed, or to
+        1e-3 of the no-load speed |U| / k_e where the drive is nearly at
+        rest: ~0 at steady state), ``stalled`` (closed form: the drive stays
+        at rest, the stall from rest with mu_static), ``mode`` (closed form:
+        ``"raising"``, ``"stalled"``, ``"back_driven"`` (the load turns the
+        rotor against the voltage: a thread with tan(alpha) > mu_static') or
+        ``"runaway"`` (back-driven beyond the current limit: no steady
+        state, the closed form's columns NaN)), ``wall_time`` [s], ``error``.
         ``attrs["summary"]``: ``voltage`` [V], ``stall_load`` [N] (closed
-        form), ``stall_torque`` [N*m], ``window`` [s], ``raised``,
-        ``raised_reasons``.
+        form, from rest: breakaway with mu_static), ``stall_load_moving``
+        [N] (with mu: the load up to which a drive already raising keeps
+        moving), ``back_drive_load`` [N] (beyond it the load back-drives the
+        stalled motor; inf for a self-locking thread), ``stall_torque``
+        [N*m], ``window`` [s], ``raised``, ``raised_reasons``.
+        ``attrs["closed_form_curve"]``: the closed form's ``load`` [N],
+        ``speed`` [rad/s], ``current`` [A] and ``efficiency`` [1] over a fine
+        grid of loads (lists), which the figure draws.
 
     Raises:
         ValueError: no DC motor or a voltage that is not constant, invalid
@@ -172,18 +278,21 @@ def motor_characteristics(
     # (docs/physics/drive_models.md): the load to raise acts along +x then.
     raising = scene.thread.hand_sign * math.copysign(1.0, voltage)
     running = scene.replace(initial={"rotor_speed": 0.0, "state": "relaxed"})
+    _, k_t, k_e, _ = _motor_constants(scene, voltage)
+    measures = {"raising": raising, "torque_ratio": (k_t - k_e) / k_t,
+                "speed_scale": abs(voltage) / k_e}
     batch = DriveBatch(running, ("axial_force",), _CHANNELS, t_end,
                        [start, 0.5 * (start + end), end],
                        **with_tolerances(simulate_options, rtol, atol))
     serial = type(executor) is SerialExecutor and not executor.is_shutdown
     workers = 1 if serial else max(1, min(default_workers(), len(forces)))
     if executor is None or serial:
-        chunks = run_batches(lambda rows: _chunk(forces[rows.start:rows.stop], batch, raising,
-                                                 workers),
+        chunks = run_batches(lambda rows: _chunk(forces[rows.start:rows.stop], batch,
+                                                 workers=workers, **measures),
                              len(forces), workers, progress=progress,
                              description="motor_characteristics")
     else:
-        chunks = run_chunks(functools.partial(_chunk, batch=batch, raising=raising),
+        chunks = run_chunks(functools.partial(_chunk, batch=batch, **measures),
                             forces.tolist(), executor=executor, progress=progress,
                             description="motor_characteristics")
     names = ("speed", "current", "load_speed", "efficiency", "input_power", "window_change",
@@ -206,19 +315,24 @@ def motor_characteristics(
         "input_power_closed_form": closed["input_power"],
         "efficiency": columns["efficiency"], "efficiency_closed_form": closed["efficiency"],
         "load_speed": columns["load_speed"], "window_change": columns["window_change"],
-        "stalled": closed["stalled"], "wall_time": columns["wall_time"], "error": errors})
-    stall_torque = float(closed["stall_load"] * _core.raise_torque(
-        scene.thread, scene["friction"]["mu"], 1.0, 0.0, 0.0))
+        "stalled": closed["stalled"], "mode": closed["mode"], "wall_time": columns["wall_time"],
+        "error": errors})
+    frame.attrs["closed_form_curve"] = _closed_form_curve(scene, forces, voltage, closed)
     return annotate(frame, UNITS, errors_checked=True, study="motor_characteristics",
-                    summary_units={"voltage": "V", "stall_load": "N", "stall_torque": "N*m",
+                    summary_units={"voltage": "V", "stall_load": "N", "stall_load_moving": "N",
+                                   "back_drive_load": "N", "stall_torque": "N*m",
                                    "window": "s"},
                     voltage=voltage, stall_load=float(closed["stall_load"]),
-                    stall_torque=stall_torque, window=(start, end))
+                    stall_load_moving=float(closed["stall_load_moving"]),
+                    back_drive_load=closed["back_drive_load"],
+                    stall_torque=float(closed["stall_torque"]), window=(start, end))
 
 
 def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
     """Draw speed, current and efficiency against the load, simulated (points)
-    and in closed form (lines), with the stall load.
+    and in closed form (lines over the fine grid of
+    ``attrs["closed_form_curve"]``, so that the stall is a jump; the frame's
+    loads without it), with the stall load; the legend below the axes.
 
     Args:
         frame: the DataFrame :func:`motor_characteristics` returned.
@@ -231,19 +345,22 @@ def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
     ax = axes(ax)
     frame = frame.sort_values("load")
     load = frame["load"]
+    curve = frame.attrs.get("closed_form_curve") or {
+        "load": load, **{name: frame[f"{name}_closed_form"]
+                         for name in ("speed", "current", "efficiency")}}
     ax.plot(load, frame["speed"], "o", color="C0", label="speed (simulated)")
-    ax.plot(load, frame["speed_closed_form"], "-", color="C0", label="speed (closed form)")
+    ax.plot(curve["load"], curve["speed"], "-", color="C0", label="speed (closed form)")
     ax.set_xlabel("axial load [N]")
     ax.set_ylabel("rotor speed [rad/s]", color="C0")
     current = ax.twinx()
     current.plot(load, frame["current"], "s", color="C3", label="current (simulated)")
-    current.plot(load, frame["current_closed_form"], "-", color="C3",
+    current.plot(curve["load"], curve["current"], "-", color="C3",
                  label="current (closed form)")
     current.set_ylabel("current [A]", color="C3")
     efficiency = ax.twinx()
     efficiency.spines["right"].set_position(("axes", 1.12))
     efficiency.plot(load, frame["efficiency"], "^", color="C2", label="efficiency (simulated)")
-    efficiency.plot(load, frame["efficiency_closed_form"], "-", color="C2",
+    efficiency.plot(curve["load"], curve["efficiency"], "-", color="C2",
                     label="efficiency (closed form)")
     efficiency.set_ylabel("efficiency [1]", color="C2")
     stall = frame.attrs.get("summary", {}).get("stall_load")
@@ -252,5 +369,7 @@ def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
     handles = []
     for axis in (ax, current, efficiency):
         handles += axis.get_legend_handles_labels()[0]
-    ax.legend(handles, [h.get_label() for h in handles], loc="upper right", fontsize="small")
+    # Below the axes, off the data (a constrained layout makes room for it).
+    ax.legend(handles, [h.get_label() for h in handles], loc="upper center",
+              bbox_to_anchor=(0.5, -0.13), ncol=3, fontsize="small")
     return ax

@@ -301,14 +301,14 @@ def test_a_dc_motor_scene_has_the_voltage_input_and_the_current_output(tmp_path)
     assert validate_fmu(path) == []
     variables = {v.name: v for v in fmpy.read_model_description(path).modelVariables}
     assert variables["motor_voltage"].causality == "input" and variables["motor_voltage"].unit == "V"
-    assert "drive_torque" not in variables
     assert variables["motor_current"].causality == "output" and variables["motor_current"].unit == "A"
     assert variables["motor_resistance"].causality == "parameter"
+    assert variables["drive_torque"].causality == "output"
     t_end = 0.05
     result = fmpy.simulate_fmu(path, stop_time=t_end, step_size=H, output_interval=H,
-                               output=["u_load", "omega_drive", "motor_current"])
+                               output=["u_load", "omega_drive", "motor_current", "drive_torque"])
     reference = ls.simulate(scene, t_end, t_eval=result["time"])
-    for channel in ("u_load", "omega_drive", "motor_current"):
+    for channel in ("u_load", "omega_drive", "motor_current", "drive_torque"):
         expected = np.asarray(reference[channel])
         scale = max(np.max(np.abs(expected)), 1e-12)
         assert np.max(np.abs(result[channel] - expected)) <= 1e-4 * scale, channel
@@ -332,7 +332,8 @@ def test_a_speed_input_ramps_over_each_step(tmp_path):
                       dtype=[("time", np.float64), ("drive_speed", np.float64)])
     result = fmpy.simulate_fmu(path, stop_time=0.01, step_size=h, output_interval=h,
                                start_values={"drive_speed": 5.0}, input=signal,
-                               output=["phi_drive", "omega_drive", "normal_force"])
+                               output=["phi_drive", "omega_drive", "normal_force",
+                                       "drive_torque"])
     # The speed the master sets at t_k is reached at t_k + h: a table whose
     # points lag the input by one step.
     speeds = signal["drive_speed"]
@@ -344,8 +345,8 @@ def test_a_speed_input_ramps_over_each_step(tmp_path):
     assert np.allclose(result["phi_drive"], reference["phi_drive"], rtol=1e-8, atol=1e-12)
     # at every point after the first ramp: the ramp's normal force (1000 rad/s^2)
     ramping = result["time"] >= 0.0035
-    assert np.allclose(result["normal_force"][ramping], reference["normal_force"][ramping],
-                       rtol=1e-6)
+    for channel in ("normal_force", "drive_torque"):  # the torque the motor supplies
+        assert np.allclose(result[channel][ramping], reference[channel][ramping], rtol=1e-6)
     assert result["omega_drive"][0] == 5.0
 
 

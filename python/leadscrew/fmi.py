@@ -22,7 +22,9 @@ the core's table of the drive's variables (``_core.cosim_variables``):
   takes the importer's values;
 - outputs ``u_load``, ``v_load``, ``phi_drive``, ``omega_drive``,
   ``normal_force``, ``friction_force``, ``stick`` (Boolean),
-  ``friction_loss`` and, with a DC motor, ``motor_current`` [A];
+  ``friction_loss``, with a DC motor ``motor_current`` [A], and where the
+  torque is no input (a DC motor, a speed-controlled drive)
+  ``drive_torque`` [N.m], the torque the motor supplies;
 - parameters that may be set before the initialization ends: the friction
   law's (``mu``, ...), the masses and inertias, for a flexible concept the
   springs' stiffness overrides (0: from the geometry), and a DC motor's

@@ -27,8 +27,11 @@ const Output kOutputList[] = {
     {"stick", "", "the thread sticks"},
     {"friction_loss", "J", "the work friction dissipated since the start"},
 };
-// With a DC motor (after the outputs above).
+// With a DC motor, and where the torque is no input (a DC motor, a
+// speed-controlled drive): after the outputs above.
 const Output kMotorOutput = {"motor_current", "A", "the DC motor's armature current"};
+const Output kTorqueOutput = {"drive_torque", "N.m",
+                              "the motor's torque on the rotor about +x (what the motor supplies)"};
 
 // The drive's parameters an FMU exposes, and the drives that have them.
 enum class Has { every_drive, flexible_drive, dc_motor };
@@ -122,6 +125,9 @@ std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
   if (p.dc_motor)
     out.push_back({kMotorOutput.name, reference, Kind::output, false, kMotorOutput.unit, 0.0,
                    kMotorOutput.description});
+  if (p.dc_motor || p.speed_controlled)
+    out.push_back({kTorqueOutput.name, reference + 1, Kind::output, false, kTorqueOutput.unit, 0.0,
+                   kTorqueOutput.description});
   const friction::LawType& type = friction::law_type(p.friction);
   const friction::LawValues law = law_values(p);
   for (std::size_t i = 0; i < law.size(); ++i)

@@ -6,6 +6,7 @@ import os
 import shutil
 import subprocess
 import sys
+import textwrap
 import zipfile
 
 import numpy as np
@@ -18,6 +19,32 @@ import fmpy
 from fmpy.validation import validate_fmu
 
 H = 1e-3  # the communication step [s]
+
+
+# The preamble of a script run in a process of its own (FMPy's logger proxy:
+# see test_a_guid_of_another_export_is_refused): the FMU at `path`, its model
+# description `d`, value references `refs` by name and `slave(guid)`, an
+# FMU2Slave of it (the export's GUID unless given).
+_FRESH_PREAMBLE = """\
+import fmpy
+from fmpy.fmi2 import FMU2Slave
+path = {path!r}
+d = fmpy.read_model_description(path)
+refs = {{v.name: v.valueReference for v in d.modelVariables}}
+def slave(guid=None):
+    return FMU2Slave(guid=guid or d.guid, unzipDirectory=fmpy.extract(path),
+                     modelIdentifier=d.coSimulation.modelIdentifier, instanceName='x')
+"""
+
+
+def in_fresh_process(path, body):
+    """Runs `body` after _FRESH_PREAMBLE in a new Python process; its result
+    (exit code 0 asserted)."""
+    script = _FRESH_PREAMBLE.format(path=str(path)) + textwrap.dedent(body)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    return done
 
 
 def constant_inputs(scene):
@@ -236,21 +263,15 @@ def test_a_guid_of_another_export_is_refused(tmp_path):
     simulate_fmu(path, logger=f) of a successful run, then a wrong GUID's
     instantiate, exits with SIGSEGV; without the logger it is refused.)"""
     path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
-    script = ("import fmpy\n"
-              "from fmpy.fmi2 import FMU2Slave\n"
-              f"path = {str(path)!r}\n"
-              "d = fmpy.read_model_description(path)\n"
-              "fmu = FMU2Slave(guid='{wrong}', unzipDirectory=fmpy.extract(path),\n"
-              "                modelIdentifier=d.coSimulation.modelIdentifier, instanceName='x')\n"
-              "try:\n"
-              "    fmu.instantiate(loggingOn=True)\n"
-              "except Exception as error:\n"
-              "    print('refused', error)\n"
-              "else:\n"
-              "    print('instantiated')\n")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          timeout=120)
-    assert done.returncode == 0, done.stderr
+    done = in_fresh_process(path, """
+        fmu = slave(guid='{wrong}')
+        try:
+            fmu.instantiate(loggingOn=True)
+        except Exception as error:
+            print('refused', error)
+        else:
+            print('instantiated')
+        """)
     assert "refused Failed to instantiate" in done.stdout, done.stdout
     assert "is not this FMU's" in done.stdout + done.stderr
 
@@ -260,28 +281,21 @@ def test_a_reference_of_another_type_names_the_variable_and_the_call(tmp_path):
     fmi2GetInteger of a Real are refused naming the variable, its type and
     the call that takes it. (In a subprocess: see the GUID test above.)"""
     path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
-    script = ("import fmpy\n"
-              "from fmpy.fmi2 import FMU2Slave\n"
-              f"path = {str(path)!r}\n"
-              "d = fmpy.read_model_description(path)\n"
-              "refs = {v.name: v.valueReference for v in d.modelVariables}\n"
-              "fmu = FMU2Slave(guid=d.guid, unzipDirectory=fmpy.extract(path),\n"
-              "                modelIdentifier=d.coSimulation.modelIdentifier, instanceName='x')\n"
-              "fmu.instantiate(loggingOn=True)\n"
-              "fmu.setupExperiment(startTime=0.0)\n"
-              "fmu.enterInitializationMode(); fmu.exitInitializationMode()\n"
-              "for call, name in ((fmu.getReal, 'stick'), (fmu.getBoolean, 'u_load'),\n"
-              "                   (fmu.getInteger, 'u_load'), (fmu.setReal, 'stick')):\n"
-              "    try:\n"
-              "        call([refs[name]], [0.0]) if call == fmu.setReal else call([refs[name]])\n"
-              "    except Exception as error:\n"
-              "        print('refused', name, flush=True)\n"
-              "    else:\n"
-              "        print('answered', name, flush=True)\n"
-              "fmu.terminate(); fmu.freeInstance()\n")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          timeout=120)
-    assert done.returncode == 0, done.stderr
+    done = in_fresh_process(path, """
+        fmu = slave()
+        fmu.instantiate(loggingOn=True)
+        fmu.setupExperiment(startTime=0.0)
+        fmu.enterInitializationMode(); fmu.exitInitializationMode()
+        for call, name in ((fmu.getReal, 'stick'), (fmu.getBoolean, 'u_load'),
+                           (fmu.getInteger, 'u_load'), (fmu.setReal, 'stick')):
+            try:
+                call([refs[name]], [0.0]) if call == fmu.setReal else call([refs[name]])
+            except Exception as error:
+                print('refused', name, flush=True)
+            else:
+                print('answered', name, flush=True)
+        fmu.terminate(); fmu.freeInstance()
+        """)
     out = done.stdout + done.stderr
     assert out.count("refused") == 4, out
     assert "is stick, a Boolean variable: fmi2GetReal does not take it (fmi2GetBoolean does)" in out
@@ -356,35 +370,28 @@ def test_a_parameter_set_out_of_range_is_replaced_by_a_later_value(tmp_path):
     in range replaces it (a new user found every friction parameter locked
     until fmi2Reset). (In a subprocess: see the GUID test above.)"""
     path = ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.fmu")
-    script = ("import fmpy\n"
-              "from fmpy.fmi2 import FMU2Slave\n"
-              f"path = {str(path)!r}\n"
-              "d = fmpy.read_model_description(path)\n"
-              "refs = {v.name: v.valueReference for v in d.modelVariables}\n"
-              "def instance():\n"
-              "    fmu = FMU2Slave(guid=d.guid, unzipDirectory=fmpy.extract(path),\n"
-              "                    modelIdentifier=d.coSimulation.modelIdentifier, instanceName='x')\n"
-              "    fmu.instantiate(loggingOn=True)\n"
-              "    fmu.setupExperiment(startTime=0.0)\n"
-              "    fmu.enterInitializationMode()\n"
-              "    return fmu\n"
-              "fmu = instance()\n"
-              "fmu.setReal([refs['mu']], [-0.1])\n"
-              "print('read', fmu.getReal([refs['mu']])[0], flush=True)\n"
-              "fmu.setReal([refs['mu']], [0.1])\n"
-              "fmu.exitInitializationMode()\n"
-              "fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-3)\n"
-              "print('mu', fmu.getReal([refs['mu']])[0], flush=True)\n"
-              "fmu.terminate(); fmu.freeInstance()\n"
-              "fmu = instance()\n"
-              "fmu.setReal([refs['mu']], [-0.1])\n"
-              "try:\n"
-              "    fmu.exitInitializationMode()\n"
-              "except Exception:\n"
-              "    print('refused', flush=True)\n")
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
-                          timeout=120)
-    assert done.returncode == 0, done.stderr
+    done = in_fresh_process(path, """
+        def instance():
+            fmu = slave()
+            fmu.instantiate(loggingOn=True)
+            fmu.setupExperiment(startTime=0.0)
+            fmu.enterInitializationMode()
+            return fmu
+        fmu = instance()
+        fmu.setReal([refs['mu']], [-0.1])
+        print('read', fmu.getReal([refs['mu']])[0], flush=True)
+        fmu.setReal([refs['mu']], [0.1])
+        fmu.exitInitializationMode()
+        fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=1e-3)
+        print('mu', fmu.getReal([refs['mu']])[0], flush=True)
+        fmu.terminate(); fmu.freeInstance()
+        fmu = instance()
+        fmu.setReal([refs['mu']], [-0.1])
+        try:
+            fmu.exitInitializationMode()
+        except Exception:
+            print('refused', flush=True)
+        """)
     out = done.stdout + done.stderr
     assert "read -0.1" in out and "mu 0.1" in out and "refused" in out, out
     assert "friction.mu = -0.1 is invalid" in out, out

@@ -283,6 +283,11 @@ void bind_drive(py::module_& m) {
     parameters.def_readwrite(field.name, field.member);
   parameters.def_readwrite("speed_controlled", &DriveParameters::speed_controlled);
   parameters.def_readwrite("dc_motor", &DriveParameters::dc_motor);
+  parameters.def_property(
+      "gear", [](const DriveParameters& p) { return model::gear_type_name(p.gear); },
+      [](DriveParameters& p, const std::string& v) { p.gear = model::parse_gear_type(v); },
+      "the gear stage between the rotor and the driven part: 'none' or 'ideal' (gear_ratio "
+      "rotor turns per turn of the driven part)");
   bind_drive_geometry(m);
 
   py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")

@@ -48,6 +48,7 @@ const std::vector<ScalarField>& scalar_fields() {
       LEADSCREW_FIELD(rotor_angle),
       LEADSCREW_FIELD(rotor_speed),
       LEADSCREW_FIELD(play_position),
+      LEADSCREW_FIELD(gear_ratio),
   };
 #undef LEADSCREW_FIELD
   return fields;
@@ -76,6 +77,11 @@ const std::vector<std::string>& initial_state_names() {
   return names;
 }
 
+const std::vector<std::string>& gear_type_names() {
+  static const std::vector<std::string> names = {"none", "ideal"};
+  return names;
+}
+
 std::string concept_name(Concept c) { return concept_names()[static_cast<int>(c)]; }
 std::string drive_name(DrivenPart d) { return drive_names()[static_cast<int>(d)]; }
 std::string support_name(ScrewSupport s) { return support_names()[static_cast<int>(s)]; }
@@ -85,6 +91,12 @@ std::string backlash_contact_name(BacklashContact b) {
 
 std::string initial_state_name(InitialState s) {
   return initial_state_names()[static_cast<int>(s)];
+}
+
+std::string gear_type_name(GearType g) { return gear_type_names()[static_cast<int>(g)]; }
+
+GearType parse_gear_type(const std::string& name) {
+  return static_cast<GearType>(require_choice("gear.type", name, gear_type_names()));
 }
 
 Concept parse_concept(const std::string& name) {
@@ -120,7 +132,7 @@ DriveModel::DriveModel(DriveParameters parameters)
 
 Eigen::VectorXd DriveModel::consistent_velocity(double rotor_speed) const {
   Eigen::VectorXd v = Eigen::VectorXd::Zero(coordinate_count());
-  for (int i : e_.rotating_group) v[i] = rotor_speed;
+  for (int i : e_.rotating_group) v[i] = gear().driven_speed(rotor_speed);
   // The translating parts move together so that e' = grad e . v = 0.
   double per_unit = 0.0;
   for (int i : e_.translating_group) per_unit += play_gradient()[i];

@@ -30,8 +30,10 @@ Eigen::MatrixXd stiffness_matrix(const DriveModel& model, double a) {
   return K;
 }
 
-std::string loads_text(const DriveDynamics& dynamics) {
-  return "drive torque " + format_value(dynamics.applied_torque()) + " N*m, axial force " +
+std::string loads_text(const DriveModel& model, const DriveDynamics& dynamics) {
+  // (the torque on the rotor, before a gear stage)
+  return "drive torque " + format_value(model.gear().rotor_torque(dynamics.applied_torque())) +
+         " N*m, axial force " +
          format_value(dynamics.axial_force()) + " N";
 }
 
@@ -147,7 +149,7 @@ DriveStart initial_state(const DriveModel& model) {
   if (std::abs(friction_force) > cone + 1e-12 * (std::abs(friction_force) + cone))
     throw NoEquilibrium(
         "initial.state = \"equilibrium\" is invalid for the loads at t = 0 (" +
-        loads_text(dynamics) + "): holding them at rest takes a flank friction force of " +
+        loads_text(model, dynamics) + "): holding them at rest takes a flank friction force of " +
         format_value(std::abs(friction_force)) +
         " N, beyond the static friction cone mu_static' |N| = " +
         format_value(cone) + " N (normal force " +

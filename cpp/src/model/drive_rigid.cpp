@@ -40,7 +40,7 @@ RigidDriveModes::RigidDriveModes(const DriveModel& model, DriveDynamics& dynamic
   const CoordinateVector zero = CoordinateVector::Zero(n);
   dynamics.set_state(0.0, zero, zero);
   CoordinateVector unit_torque = zero, unit_force = zero;
-  unit_torque[rotor] = 1.0;
+  unit_torque[rotor] = model.gear().driven_torque(1.0);  // per unit torque on the rotor
   unit_force[load] = 1.0;
   const FrictionMode frictions[] = {FrictionMode::none, FrictionMode::stick, FrictionMode::slip,
                                     FrictionMode::slip};

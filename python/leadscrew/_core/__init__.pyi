@@ -262,6 +262,20 @@ class DriveParameters:
     def friction_values(self, arg0: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]]) -> None:
         ...
     @property
+    def gear(self) -> str:
+        """
+        the gear stage between the rotor and the driven part: 'none' or 'ideal' (gear_ratio rotor turns per turn of the driven part)
+        """
+    @gear.setter
+    def gear(self, arg1: str) -> None:
+        ...
+    @property
+    def gear_ratio(self) -> float:
+        ...
+    @gear_ratio.setter
+    def gear_ratio(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def k_v(self) -> float:
         ...
     @k_v.setter

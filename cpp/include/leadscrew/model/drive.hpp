@@ -49,6 +49,9 @@ enum class BacklashContact { none, exact, bistop, cubic };
 // initial.rotor_speed; `equilibrium`, at rest in static equilibrium under the
 // loads at t = 0 (drive_equilibrium.hpp).
 enum class InitialState { relaxed, equilibrium };
+// The gear stage between the rotor and the driven part (gear.type;
+// elements/gear.hpp): none, or an ideal kinematic ratio.
+enum class GearType { none, ideal };
 
 // The smallest axial play a thread may have besides none [m].
 constexpr double kSmallestClearance = 1e-12;
@@ -119,6 +122,12 @@ struct DriveParameters {
   double motor_torque_constant = 0.0;   // k_t [N m/A]
   double motor_back_emf_constant = -1.0;  // k_e [V s/rad]; < 0: k_t
   double motor_current_limit = 0.0;     // i_max [A]; 0: none
+  // A gear stage between the rotor and the driven part (elements/gear.hpp;
+  // scene section `gear`): the rotor turns gear_ratio times per turn of the
+  // driven part (< 0: a reversing stage). Without one (GearType::none) the
+  // ratio must be 1.
+  GearType gear = GearType::none;
+  double gear_ratio = 1.0;
 
   double rotor_angle = 0.0;
   double rotor_speed = 0.0;
@@ -156,6 +165,8 @@ class DriveModel {
     return e_.dc_motor ? &*e_.dc_motor : nullptr;
   }
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
+  // The gear stage between the rotor and the rotor's coordinate (ratio 1: none).
+  const elements::Gear& gear() const noexcept { return e_.motor.gear; }
   int coordinate_count() const noexcept { return static_cast<int>(mass_.size()); }
   const std::vector<std::string>& coordinate_names() const noexcept { return e_.coordinates; }
   // The diagonal mass matrix: every body's inertia on its coordinate.
@@ -187,7 +198,8 @@ class DriveModel {
   const std::vector<int>& independent() const noexcept { return independent_; }
 
   // Velocities of every coordinate when the rotor turns at rotor_speed and
-  // the thread play does not change (springs relaxed, rigid-body motion).
+  // the thread play does not change (springs relaxed, rigid-body motion;
+  // behind a gear the rotor's coordinate turns at rotor_speed / n).
   Eigen::VectorXd consistent_velocity(double rotor_speed) const;
 
   // Stiffness of a spring at nut position a, and its derivative d k / d a.
@@ -222,15 +234,18 @@ const std::vector<std::string>& drive_names();
 const std::vector<std::string>& support_names();
 const std::vector<std::string>& backlash_contact_names();  // "none" first
 const std::vector<std::string>& initial_state_names();
+const std::vector<std::string>& gear_type_names();  // "none" first
 std::string concept_name(Concept c);
 std::string drive_name(DrivenPart d);
 std::string support_name(ScrewSupport s);
 std::string backlash_contact_name(BacklashContact b);
 std::string initial_state_name(InitialState s);
+std::string gear_type_name(GearType g);
 Concept parse_concept(const std::string& name);
 DrivenPart parse_drive(const std::string& name);
 ScrewSupport parse_support(const std::string& name);
 BacklashContact parse_backlash_contact(const std::string& name);  // "none" allowed
 InitialState parse_initial_state(const std::string& name);
+GearType parse_gear_type(const std::string& name);  // "none" allowed
 
 }  // namespace leadscrew::model

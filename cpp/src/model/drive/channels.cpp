@@ -60,8 +60,8 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
   int k = 0;
   out[k++] = q[model.load()];
   out[k++] = v[model.load()];
-  out[k++] = p.rotor_angle + q[model.rotor()];
-  out[k++] = v[model.rotor()];
+  out[k++] = p.rotor_angle + model.gear().rotor_angle(q[model.rotor()]);
+  out[k++] = model.gear().rotor_speed(v[model.rotor()]);
   out[k++] = forces.motor_torque;
   out[k++] = state.axial_force;
   out[k++] = forces.normal;

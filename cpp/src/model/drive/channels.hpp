@@ -16,7 +16,8 @@ namespace leadscrew::model::drive {
 // writes them.
 std::vector<std::string> drive_channel_names(const DriveModel& model);
 
-// Thread and motor forces at an output point.
+// Thread and motor forces at an output point (motor_torque: the torque on
+// the rotor, before a gear stage).
 struct ContactForces {
   double normal = 0.0, friction = 0.0, motor_torque = 0.0;
   bool stick = false;

@@ -61,7 +61,8 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   }
   spec.load_forces = {"axial_force"};
   spec.load_torques = {"drive_torque"};
-  spec.lever = p.thread.mean_radius();
+  // (the drive torque is the rotor's: n times it acts on the driven part)
+  spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
   spec.length_scale = p.screw_length;
   check_result(spec, result);
   if (options.check) integrate::enforce_checks(result);

@@ -66,7 +66,7 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   const ModeSolution s = h_.solve_current();
   forces.normal = s.normal_force;
   forces.friction = s.friction_force;
-  forces.motor_torque = s.motor_torque;
+  forces.motor_torque = h_.model_.gear().rotor_torque(s.motor_torque);
   ChannelState state = channel_state(h_.dynamics_);
   const int bristle = h_.layout_.bristle();
   if (bristle >= 0) {
@@ -84,12 +84,13 @@ double DriveHybrid::ConstrainedSolver::slip_resolution() const {
   return h_.model_.tangent_direction().cwiseAbs().sum() * h_.integrator_options_.atol;
 }
 
-// By the constrained solve with a unit drive torque and a unit axial force.
+// By the constrained solve with a unit drive torque (on the rotor: n on its
+// coordinate behind a gear) and a unit axial force.
 RigidModeCoefficients DriveHybrid::ConstrainedSolver::coefficients(int sigma) {
   const DriveModel& model = h_.model_;
   const int n = model.coordinate_count();
   CoordinateVector unit_torque = CoordinateVector::Zero(n), unit_force = unit_torque;
-  unit_torque[model.rotor()] = 1.0;
+  unit_torque[model.rotor()] = model.gear().driven_torque(1.0);
   unit_force[model.load()] = 1.0;
   const ModeSolution torque = h_.dynamics_.solve_with_forces(h_.spec(sigma), unit_torque);
   const ModeSolution force = h_.dynamics_.solve_with_forces(h_.spec(sigma), unit_force);

@@ -141,7 +141,8 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     normal_target = closing ? -restitution * model_.normal_direction().dot(v0) : 0.0;
     restituting = contact && closing && restitution > 0.0;
   }
-  const double rotor_target = p_.speed_controlled ? p_.drive_speed(t + h) : 0.0;
+  const double rotor_target =
+      p_.speed_controlled ? model_.motor().prescribed_speed(t + h) : 0.0;
 
   Impulses impulses;
   bool stick = false;
@@ -255,7 +256,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   if (!(model_.screw_end_margin(nut_end) > 0.0)) nut_left_the_screw(model_, t + h, nut_end);
   double* energy = y_next + offset;
   const double motor = p_.speed_controlled ? impulses.rotor * v_theta[model_.rotor()]
-                                           : p_.drive_torque(t + theta * h) *
+                                           : model_.motor().applied_torque(t + theta * h) *
                                                  (q_[model_.rotor()] - q0[model_.rotor()]);
   energy[kWorkDrive] += motor;
   if (dc != nullptr) {
@@ -297,11 +298,12 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   last_.normal = impulses.normal / h;
   last_.friction = impulses.friction / h;
   last_.motor_torque =
-      p_.speed_controlled ? impulses.rotor / h : p_.drive_torque(t + h);
+      p_.speed_controlled ? impulses.rotor / h : model_.motor().applied_torque(t + h);
   if (dc != nullptr)
     last_.motor_torque = dc->torque(dc->has_state() ? y_next[layout_.motor_current()]
                                                      : current.mean +
                                                            current.mean_slope * v_[dc->rotor]);
+  last_.motor_torque = model_.gear().rotor_torque(last_.motor_torque);
   last_.stick = contact && stick;
   return restituting;
 }

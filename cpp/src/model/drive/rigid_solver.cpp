@@ -61,7 +61,7 @@ void DriveHybrid::RigidSolver::rhs(double t, const double* y, double* ydot) {
   ydot[0] = omega;
   ydot[1] = s.acceleration;
   double* energy = ydot + h_.layout_.energy_offset();
-  energy[kWorkDrive] = s.torque * omega;
+  energy[kWorkDrive] = h_.model_.gear().driven_torque(s.torque) * omega;
   energy[kWorkAxial] = s.axial_force * rigid_.load_per_angle() * omega;
   energy[kFrictionLoss] = -s.friction_force * rigid_.slip_per_speed() * omega;
   energy[kDampingLoss] = 0.0;

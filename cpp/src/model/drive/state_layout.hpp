@@ -49,7 +49,7 @@ class StateLayout {
     for (int k = 0; k < np; ++k) q[positions_[k]] = y[k];
     for (std::size_t k = 0; k < velocities_.size(); ++k) v[velocities_[k]] = y[np + k];
     if (model_.parameters().speed_controlled)
-      v[model_.rotor()] = model_.parameters().drive_speed(t);
+      v[model_.rotor()] = model_.motor().prescribed_speed(t);
     const int d = model_.eliminated();
     if (d >= 0) {
       // The thread without play: e = grad e . q = 0 fixes coordinate d.

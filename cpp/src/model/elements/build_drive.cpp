@@ -65,6 +65,28 @@ DriveElements build_drive_elements(DriveParameters& p) {
                             "press it against)");
   }
 
+  // The gear stage between the rotor and the driven part (gear.hpp): the
+  // rotor's coordinate is the stage's output, the rotor and its motor
+  // reflected onto it.
+  Gear gear;
+  if (p.gear == GearType::none) {
+    if (p.gear_ratio != 1.0)
+      throw InvalidArgument("gear_ratio = " + format_value(p.gear_ratio) +
+                            " is invalid without a gear stage (gear.type = \"none\"): "
+                            "must be 1");
+  } else {
+    require_finite("gear.ratio", p.gear_ratio);
+    if (!(std::abs(p.gear_ratio) >= kSmallestGearRatio &&
+          std::abs(p.gear_ratio) <= 1.0 / kSmallestGearRatio))
+      throw InvalidArgument("gear.ratio = " + format_value(p.gear_ratio) +
+                            " is invalid: must be in [" + format_value(kSmallestGearRatio) +
+                            ", " + format_value(1.0 / kSmallestGearRatio) + "] or in [-" +
+                            format_value(1.0 / kSmallestGearRatio) + ", -" +
+                            format_value(kSmallestGearRatio) +
+                            "] (rotor turns per turn of the driven part; < 0 a reversing stage)");
+    gear.ratio = p.gear_ratio;
+  }
+
   // The concept: which parts are contact bodies of their own.
   const bool nut_flexible = p.concept != Concept::rigid;
   const bool screw_flexible = p.concept == Concept::flexible;
@@ -91,7 +113,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
   // flexible parts' own contact bodies (u_<part>, phi_<part>), the load
   // (with a rigid translating part on its coordinate).
   const int rotor = add_coordinate("phi_rotor");
-  e.bodies.push_back({"rotor", rotor, p.rotor_inertia});
+  e.bodies.push_back({"rotor", rotor, gear.reflected_inertia(p.rotor_inertia)});
   if (!rotating_flexible) e.bodies.push_back({rotating, rotor, rotating_inertia});
   int rotating_u = -1, rotating_phi = rotor, translating_u = -1, translating_phi = -1;
   auto add_contact_body = [&](const std::string& part, double mass, double inertia, int& u,
@@ -196,7 +218,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
   });
 
   e.thread.emplace(p, std::move(law), c, e.coordinate_count());
-  e.motor = Motor{rotor, p.speed_controlled, p.drive_torque, p.drive_speed};
+  e.motor = Motor{rotor, p.speed_controlled, p.drive_torque, p.drive_speed, gear};
   if (p.dc_motor) {
     // The DC motor drives the rotor alone (the torque-controlled Motor applies 0).
     if (p.speed_controlled)
@@ -222,6 +244,9 @@ DriveElements build_drive_elements(DriveParameters& p) {
                               : require_positive("motor.back_emf_constant",
                                                  p.motor_back_emf_constant);
     m.current_limit = require_nonnegative("motor.current_limit", p.motor_current_limit);
+    // Behind a gear: the motor as its coordinate sees it (gear.hpp).
+    m.torque_constant = gear.driven_torque(m.torque_constant);
+    m.back_emf_constant = gear.driven_torque(m.back_emf_constant);
     e.motor.torque = Excitation();
     e.dc_motor = m;
   }

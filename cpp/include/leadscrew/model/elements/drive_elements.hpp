@@ -8,6 +8,8 @@
 //   motor.hpp          Motor: torque-controlled force or speed-controlled constraint
 //   dc_motor.hpp       DcMotor: armature current (a state), voltage driver, current limit
 //   axial_load.hpp     AxialLoad: the axial force on the load
+//   gear.hpp           Gear: a stage between the rotor and the driven part (the
+//                      Motor's; the rotor reflected onto its coordinate)
 // The lists are grouped by type (no virtual call per scalar in the
 // right-hand side): DriveDynamics loops over each. The force elements (the
 // springs today; an end stop, a gear's compliance) are one registry line.
@@ -23,6 +25,7 @@
 
 #include "leadscrew/model/elements/axial_load.hpp"
 #include "leadscrew/model/elements/dc_motor.hpp"
+#include "leadscrew/model/elements/gear.hpp"
 #include "leadscrew/model/elements/motor.hpp"
 #include "leadscrew/model/elements/rigid_body.hpp"
 #include "leadscrew/model/elements/spring_damper.hpp"

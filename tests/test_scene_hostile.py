@@ -117,6 +117,8 @@ def test_a_hostile_value_gives_a_valid_scene_or_names_its_key(base, path_unit, d
     if path.startswith("motor."):  # the motor's fields need a motor instead of the torque
         d["loads"] = {k: v for k, v in d["loads"].items() if k != "drive_torque"}
         d["motor"] = dict(MOTOR)
+    if path.startswith("gear."):  # the gear's fields need a gear stage
+        d["gear"] = {"ratio": 3.0}
     d = with_value(d, path, value)
     try:
         scene = ls.Scene.from_dict(d)

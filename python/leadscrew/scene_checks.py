@@ -19,6 +19,7 @@ from .scene_loads import _DEFAULT_ROTOR_SPEED, _check_load, _check_rotor_speed
 from .scene_schema import (OPTIONAL, SCHEMA, _OPTIONAL_SECTIONS, _REQUIRED_SECTIONS,
                            _UNIT_DEPENDS_ON, Field, _check_friction, _Converted, _fail,
                            _field_unit, _range_text)
+from .scene_schema import _SMALLEST_GEAR_RATIO
 from .units import to_si
 
 __all__: list = []  # the scene's internals: leadscrew.Scene is the public face
@@ -144,6 +145,8 @@ def _check_consistency(data: Dict[str, Any]) -> None:
     # not stored, so replace(loads={"drive_speed": w}) switches to speed.
     if "motor" in data:
         _check_motor(data)
+    if "gear" in data:
+        _check_gear(data["gear"])
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
@@ -173,6 +176,28 @@ def _check_consistency(data: Dict[str, Any]) -> None:
             raise ValueError(f"initial.play_position = {play!r}{equilibrium}must be 0 (the "
                              "equilibrium puts the nut on the flank the loads press it "
                              "against)")
+
+
+def _check_gear(gear: Dict[str, Any]) -> None:
+    """The gear section's rules: a supported type, a nonzero ratio, the
+    efficiencies only for a lossy stage.
+
+    Raises:
+        ValueError: naming the key at fault, its value and the valid range.
+    """
+    if gear["type"] != "ideal":
+        _fail("gear.type", gear["type"], "'ideal' ('lossy' and 'worm' are not yet supported: "
+              "their set-valued friction on the stage needs a second friction element in the "
+              "driver)")
+    ratio = gear["ratio"]
+    if abs(ratio) < _SMALLEST_GEAR_RATIO:
+        _fail("gear.ratio", ratio, f"in [{_SMALLEST_GEAR_RATIO:g}, {1 / _SMALLEST_GEAR_RATIO:g}] "
+              f"or in [-{1 / _SMALLEST_GEAR_RATIO:g}, -{_SMALLEST_GEAR_RATIO:g}] (rotor turns per "
+              "turn of the driven part; < 0 a reversing stage)")
+    for key in ("efficiency", "efficiency_backdrive"):
+        if key in gear:
+            _fail(f"gear.{key}", gear[key], "absent with gear.type = 'ideal' (an ideal stage "
+                  "loses nothing)")
 
 
 def _check_motor(data: Dict[str, Any]) -> None:

@@ -284,6 +284,10 @@ def _core_parameters(data: Dict[str, Any],
         p.motor_torque_constant = motor["torque_constant"]
         p.motor_back_emf_constant = motor.get("back_emf_constant", -1.0)
         p.motor_current_limit = motor.get("current_limit", 0.0)
+    gear = data.get("gear")
+    if gear is not None:
+        p.gear = gear["type"]
+        p.gear_ratio = gear["ratio"]
     init = data["initial"]
     # (A speed-controlled drive starts at drive_speed(0): the core takes that.)
     p.rotor_angle, p.rotor_speed, p.play_position = (

@@ -57,6 +57,10 @@ _DENSITY_RANGE_DOC = ", in [1, 1e5] kg/m^3: from aerogels to beyond osmium (22,5
 # k_v with its default even where the law takes none, as scenes have always
 # carried it); the others are optional, each law checks its own.
 _FRICTION_COMMON = ("mu", "k_v")
+# The gear stage's types (the core runs 'ideal'; the others are refused for
+# now) and the smallest |gear.ratio| (the core's kSmallestGearRatio).
+_GEAR_TYPES = ("ideal", "lossy", "worm")
+_SMALLEST_GEAR_RATIO = 1e-4
 
 
 @functools.lru_cache(maxsize=None)
@@ -287,6 +291,31 @@ SCHEMA: Dict[str, Any] = {
                                  "put the motor's friction into friction.mu for now)", "N*m",
                                  0.0, **NONNEGATIVE),
     },
+    # (Absent: no gear stage; the rotor turns the driven part directly.)
+    "gear": {
+        "type": Field("the gear stage between the rotor and the driven part (the screw for "
+                      "drive = 'screw', the nut for 'nut'; docs/physics/gear.md): 'ideal', a "
+                      "kinematic ratio that stores and dissipates nothing: the driven part "
+                      "feels the rotor's inertia as n^2 rotor.inertia and the motor's torque "
+                      "T as n T (a DC motor's back-EMF is k_e n times the driven part's "
+                      "speed); the channels phi_drive [rad], omega_drive [rad/s] and "
+                      "drive_torque [N*m] and initial.rotor_angle / rotor_speed stay the "
+                      "rotor's, loads.drive_torque and loads.drive_speed act on the rotor. "
+                      "'lossy' (Modelica's LossyGear: efficiency, efficiency_backdrive) and "
+                      "'worm' are not yet supported (refused)", "", "ideal", kind="choice",
+                      choices=_GEAR_TYPES),
+        "ratio": Field("gear ratio n: the rotor turns n times per turn of the driven part "
+                       "(n > 1 a reduction); n < 0 is a reversing stage (the driven part "
+                       "turns the other way); |n| in [1e-4, 1e4]", "", None,
+                       low=-1.0 / _SMALLEST_GEAR_RATIO, high=1.0 / _SMALLEST_GEAR_RATIO),
+        "efficiency": Field("type 'lossy' (not yet supported): the efficiency where the power "
+                            "flows from the rotor to the driven part, in (0, 1]", "", OPTIONAL,
+                            low=0.0, high=1.0, low_open=True),
+        "efficiency_backdrive": Field("type 'lossy' (not yet supported): the efficiency where "
+                                      "the power flows from the driven part to the rotor, "
+                                      "at most 1 (<= 0: the stage is self-locking)", "",
+                                      OPTIONAL, high=1.0),
+    },
     "initial": {
         "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),
         "rotor_speed": Field("rotor angular velocity at t = 0; every body moves consistently "
@@ -316,7 +345,7 @@ SCHEMA: Dict[str, Any] = {
 # Sections that may be absent: then they take their defaults, except backlash
 # (absent: a thread without play) and overrides.
 _REQUIRED_SECTIONS = ("thread", "friction")
-_OPTIONAL_SECTIONS = ("backlash", "motor")
+_OPTIONAL_SECTIONS = ("backlash", "motor", "gear")
 
 
 def _fail(path: str, value: Any, allowed: str) -> None:

@@ -37,13 +37,25 @@ def as_scene(scene: Any) -> Scene:
     """A :class:`~leadscrew.Scene` from a Scene or a scene dict.
 
     Raises:
-        ValueError: ``scene`` is neither, or the dict is not a valid scene.
+        ValueError: ``scene`` is neither, the dict is not a valid scene, or the
+            scene has a gear stage (the studies' closed forms have none).
     """
     if isinstance(scene, Scene):
-        return scene
-    if isinstance(scene, dict):
-        return Scene.from_dict(scene)
-    raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene or a scene dict")
+        out = scene
+    elif isinstance(scene, dict):
+        out = Scene.from_dict(scene)
+    else:
+        raise ValueError(f"scene = {scene!r} is invalid: must be a leadscrew.Scene or a scene "
+                         "dict")
+    # The studies' closed forms are the bare drive's (the rotor turning the
+    # screw or the nut directly): a gear stage would put them beside a
+    # different train.
+    gear = out.to_dict().get("gear")
+    if gear is not None:
+        raise ValueError(f"gear = {gear!r} is invalid for a study: must be absent (the "
+                         "studies' closed forms are those of a rotor turning the screw or the "
+                         "nut directly; simulate a geared drive with leadscrew.simulate)")
+    return out
 
 
 def in_unit(name: str, value: Any, unit: Optional[str]) -> Any:

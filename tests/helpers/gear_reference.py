@@ -1,0 +1,95 @@
+"""Closed forms of an ideal gear stage between the rotor and the driven part
+(issue 19, item 2; docs/physics/gear.md), written from the kinematics
+phi_rotor = n phi_driven and the power balance of a stage that stores and
+dissipates nothing, independent of the leadscrew package. SI units.
+
+The rotor (inertia J, motor torque T) behind an ideal stage of ratio n acts
+on the driven part as a rotor of inertia n^2 J under the torque n T:
+  J omega_rotor' = T - tau_in,  n tau_in = tau_out  (power tau_in omega_rotor =
+  tau_out omega_driven),  omega_rotor = n omega_driven
+  =>  n^2 J omega_driven' = n T - tau_out.
+So the geared drive moves its load as the drive without a gear whose rotor
+has the inertia n^2 J and the torque n T (reflected_drive, reflected_torque,
+reflected_scene); its rotor turns n times the driven part's angle.
+
+DC motor (L di/dt = U - R i - k_e omega_rotor, torque k_t i on the rotor): at
+the steady state the driven part needs the torque T_d of the bare drive
+(dc_motor_reference.steady_torque, slipping in the direction of the driven
+part, sign(n) times the rotor's), so i = T_d / (n k_t) and
+omega_rotor = (U - R i) / k_e = n omega_driven.
+
+A speed-controlled rotor (omega_rotor prescribed) turns the driven part at
+omega_rotor / n; at a constant speed the rotor's torque is T_d / n.
+
+Efficiency: the stage passes the power T omega_rotor = (n T) omega_driven on
+whole, so the train's efficiency F v / (T omega_rotor) is the thread's.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+
+from . import dc_motor_reference
+from .rigid_drive_reference import Harmonic, RigidDrive
+
+__all__ = ["reflected_drive", "reflected_torque", "reflected_scene", "steady_state"]
+
+
+def reflected_drive(drive: RigidDrive, ratio: float) -> RigidDrive:
+    """The rigid drive without a gear that the geared drive ``drive`` (its
+    rotor_inertia the rotor's own) is on its driven part: rotor inertia n^2 J."""
+    return dataclasses.replace(drive, rotor_inertia=ratio * ratio * drive.rotor_inertia)
+
+
+def reflected_torque(torque: Harmonic, ratio: float) -> Harmonic:
+    """The torque n M(t) on the driven part of a torque M(t) on the rotor."""
+    return Harmonic(ratio * torque.mean, ratio * torque.amplitude, torque.omega, torque.phase)
+
+
+def _scaled_load(load, factor: float):
+    """A scene load (a number or a constant / sine / table dict) times ``factor``."""
+    if isinstance(load, (int, float)):
+        return factor * load
+    load = dict(load)
+    kind = load["type"]
+    keys = {"constant": ("value",), "sine": ("amplitude", "offset"), "table": ("values",)}[kind]
+    for key in keys:
+        if key in load:
+            value = load[key]
+            load[key] = [factor * x for x in value] if isinstance(value, list) else factor * value
+    return load
+
+
+def reflected_scene(scene: dict, ratio: float) -> dict:
+    """The scene without a gear whose rotor is the geared scene's reflected
+    onto the driven part: inertia n^2 J, drive torque n T(t), a prescribed
+    speed omega(t) / n and an initial speed omega_0 / n (the geared scene has
+    the section gear = {ratio = n}; this one has none)."""
+    out = copy.deepcopy(scene)
+    out.pop("gear", None)
+    out["rotor"] = {**out.get("rotor", {}), "inertia": ratio * ratio * scene["rotor"]["inertia"]}
+    loads = out["loads"]
+    if "drive_torque" in loads:
+        loads["drive_torque"] = _scaled_load(loads["drive_torque"], ratio)
+    if "drive_speed" in loads:
+        loads["drive_speed"] = _scaled_load(loads["drive_speed"], 1.0 / ratio)
+    initial = out.get("initial", {})
+    if "rotor_speed" in initial:
+        initial["rotor_speed"] = initial["rotor_speed"] / ratio
+    return out
+
+
+def steady_state(drive: RigidDrive, ratio: float, axial_force: float, voltage: float,
+                 resistance: float, torque_constant: float, back_emf_constant: float):
+    """(current [A], rotor speed [rad/s], rotor torque [N m]) of a DC motor
+    turning its rotor forward (omega_rotor > 0) through an ideal stage of
+    ratio n at the steady state: the driven part slips in the direction
+    sign(n) needing T_d, i = T_d / (n k_t), omega_rotor = (U - R i) / k_e."""
+    driven_torque = dc_motor_reference.steady_torque(drive, axial_force,
+                                                     math.copysign(1.0, ratio))
+    torque = driven_torque / ratio
+    current = torque / torque_constant
+    omega = (voltage - resistance * current) / back_emf_constant
+    return current, omega, torque

@@ -115,6 +115,8 @@ def _scene_report(name: str, scene) -> List[str]:
     J, m = _rigid_equivalent(scene)
     rotating, translating = (("rotor + screw", "nut + load") if d["drive"] == "screw"
                              else ("rotor + nut", "screw + load"))
+    if "gear" in d:  # the rotor reflected through the stage (docs/physics/gear.md)
+        rotating = f"n^2 rotor (n = {d['gear']['ratio']:g}) + " + rotating.split(" + ")[1]
     other = m - d["load"]["mass"]
     lines.append(f"rigid drive: J = {rotating} = {J:.6g} kg*m^2, m = {translating} = {m:.6g} kg"
                  + ("" if d["concept"] == "rigid"

@@ -312,3 +312,29 @@ def test_the_stepper_runs_a_geared_drive_in_pieces():
     for name, values in pieces.items():
         expected = np.asarray(one_run[name])
         assert np.max(np.abs(np.asarray(values) - expected)) <= 1e-8 * np.max(np.abs(expected))
+
+
+@pytest.mark.parametrize("mu", [0.005, 0.05, 0.3])
+def test_the_lossy_stage_closed_form_is_the_coulomb_screws(mu):
+    """The closed form docs/physics/gear.md derives for type 'lossy' (refused
+    by the simulator for now), checked where it must hold: a lead screw at a
+    steady motion is a lossy stage from its screw's angle to its load's
+    travel (|n| = 2 pi / lead rad per m) with the thread's efficiencies, so
+    the stage's rotor torque is the raise torque for a resisting load, the
+    lower torque for a driving one, and it locks exactly where the thread is
+    self-locking; in series with an ideal thread the train's efficiency is
+    the product."""
+    thread = ls.Scene.from_dict(thesis_scene()).thread
+    ratio = 2 * math.pi / thread.lead
+    forward, backward = ls.efficiency(thread, mu), ls.efficiency(thread, mu, backdrive=True)
+    load = 100.0  # [N]
+    raising = reference.lossy_rotor_torque(load, ratio, forward, backward)
+    lowering = reference.lossy_rotor_torque(-load, ratio, forward, backward)
+    assert raising == pytest.approx(ls.raise_torque(thread, mu, load), rel=1e-12)
+    assert lowering == pytest.approx(ls.lower_torque(thread, mu, load), rel=1e-12, abs=1e-15)
+    assert reference.lossy_stage_locks(backward) == ls.is_self_locking(thread, mu)
+    # A stage of eta = 0.8 before the screw: rotor torque raise / (n eta).
+    gear = 12.0
+    train = reference.lossy_rotor_torque(raising, gear, 0.8, 0.5)
+    ideal = load * thread.lead / (2 * math.pi) / gear
+    assert ideal / train == pytest.approx(0.8 * forward, rel=1e-12)

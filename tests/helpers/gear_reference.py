@@ -23,6 +23,15 @@ omega_rotor / n; at a constant speed the rotor's torque is T_d / n.
 
 Efficiency: the stage passes the power T omega_rotor = (n T) omega_driven on
 whole, so the train's efficiency F v / (T omega_rotor) is the thread's.
+
+Lossy stage (type "lossy", not yet run by the simulator; the closed form of
+docs/physics/gear.md, Modelica's LossyGear with constant efficiencies eta
+forward and eta_b backward): at a steady motion, with T_d the torque the
+driven part takes along its motion (> 0: it absorbs power; < 0: its load
+drives), the rotor's torque along its own motion is T_d / (n eta) where the
+rotor drives and eta_b T_d / n where the driven part drives
+(lossy_rotor_torque, |n|); the stage locks under a load alone where
+eta_b <= 0 (lossy_stage_locks).
 """
 
 from __future__ import annotations
@@ -34,7 +43,8 @@ import math
 from . import dc_motor_reference
 from .rigid_drive_reference import Harmonic, RigidDrive
 
-__all__ = ["reflected_drive", "reflected_torque", "reflected_scene", "steady_state"]
+__all__ = ["reflected_drive", "reflected_torque", "reflected_scene", "steady_state",
+           "lossy_rotor_torque", "lossy_stage_locks"]
 
 
 def reflected_drive(drive: RigidDrive, ratio: float) -> RigidDrive:
@@ -93,3 +103,21 @@ def steady_state(drive: RigidDrive, ratio: float, axial_force: float, voltage: f
     current = torque / torque_constant
     omega = (voltage - resistance * current) / back_emf_constant
     return current, omega, torque
+
+
+def lossy_rotor_torque(driven_torque: float, ratio: float, efficiency: float,
+                       efficiency_backdrive: float) -> float:
+    """The rotor's torque [N m] along its motion at a steady motion through a
+    lossy stage of ratio |n| (> 0), the driven part taking ``driven_torque``
+    T_d along its motion: T_d / (n eta) where the rotor drives (T_d >= 0),
+    eta_b T_d / n where the driven part drives (T_d < 0; >= 0 where
+    eta_b <= 0: the rotor must drive even then)."""
+    if driven_torque >= 0.0:
+        return driven_torque / (ratio * efficiency)
+    return efficiency_backdrive * driven_torque / ratio
+
+
+def lossy_stage_locks(efficiency_backdrive: float) -> bool:
+    """A lossy stage holds a load on its driven part with a free rotor (and
+    lowering it needs the rotor to drive) where eta_b <= 0."""
+    return efficiency_backdrive <= 0.0

@@ -338,3 +338,19 @@ def test_the_lossy_stage_closed_form_is_the_coulomb_screws(mu):
     train = reference.lossy_rotor_torque(raising, gear, 0.8, 0.5)
     ideal = load * thread.lead / (2 * math.pi) / gear
     assert ideal / train == pytest.approx(0.8 * forward, rel=1e-12)
+
+
+def test_the_static_equilibrium_start_is_the_reflected_drives():
+    """initial.state = 'equilibrium' behind a stage: the torque n T holds the
+    driven side as in the reflected drive (the same state); a refusal names
+    the torque on the rotor."""
+    ratio = 5.0
+    scene = thesis_scene(concept="flexible_nut", initial={"state": "equilibrium"},
+                         loads={"drive_torque": 0.001, "axial_force": -10.0},
+                         gear={"ratio": ratio})
+    geared = ls.Scene.from_dict(scene).initial_state()
+    plain = ls.Scene.from_dict(reference.reflected_scene(scene, ratio)).initial_state()
+    assert geared == plain
+    scene["loads"]["drive_torque"] = 0.1
+    with pytest.raises(ls.NoEquilibriumError, match=r"drive torque 0\.1 N\*m, axial force -10 N"):
+        ls.Scene.from_dict(scene).initial_state()

@@ -102,6 +102,38 @@ def test_event_driven_geared_drive_equals_the_reflected_drive(concept, backlash,
 
 
 R, KT, L, U, F = 2.0, 0.05, 1e-3, 3.0, 10.0  # [Ohm], [N m/A], [H], [V], [N]
+DC_MOTOR = {"type": "dc", "voltage": U, "resistance": R, "inductance": L, "torque_constant": KT}
+
+
+@pytest.mark.parametrize("drive, ratio", [("speed", -3.0), ("dc", 3.0)])
+def test_moreau_speed_and_dc_motor_behind_a_stage_equal_the_reflected_drive(drive, ratio):
+    """Moreau-Jean on the flexible nut with play behind a stage: a prescribed
+    rotor speed omega(t) (the driven part at omega / n; a reversing stage) and
+    a DC motor with a current limit (its constants reflected, n k_t and n k_e:
+    positive, as the reflected scene's motor section needs) move the load as
+    the reflected scene to round-off; the rotor's torque is 1/n of the
+    reflected one, the motor's current the same."""
+    if drive == "speed":
+        loads = {"drive_speed": {"type": "sine", "amplitude": 20.0, "omega": 10.0},
+                 "axial_force": F}
+        extra = {}
+    else:
+        loads, extra = {"axial_force": F}, {"motor": {**DC_MOTOR, "current_limit": 0.2}}
+    scene = thesis_scene(concept="flexible_nut", backlash={"axial": 1e-5}, loads=loads,
+                         gear={"ratio": ratio}, **extra)
+    scene["loads"].pop("drive_torque")
+    options = dict(integrator="moreau", dt=1e-5)
+    geared = ls.simulate(ls.Scene.from_dict(scene), 0.1, **options)
+    plain = ls.simulate(ls.Scene.from_dict(reference.reflected_scene(scene, ratio)), 0.1,
+                        **options)
+    assert np.max(np.abs(geared["u_load"] - plain["u_load"])) <= \
+        1e-12 * np.max(np.abs(plain["u_load"]))
+    speed = ratio * plain["omega_drive"]
+    assert np.max(np.abs(geared["omega_drive"] - speed)) <= 1e-12 * np.max(np.abs(speed))
+    assert np.max(np.abs(ratio * geared["drive_torque"] - plain["drive_torque"])) <= \
+        1e-12 * np.max(np.abs(plain["drive_torque"]))
+    if drive == "dc":
+        assert np.max(np.abs(geared["motor_current"] - plain["motor_current"])) <= 1e-12 * 0.2
 
 
 @pytest.mark.parametrize("ratio", [4.0, -4.0])
@@ -109,9 +141,7 @@ def test_dc_motor_through_the_gear_meets_the_closed_form(ratio):
     """i = T_d / (n k_t), omega_rotor = (U - R i) / k_e = n omega_driven with
     T_d the bare drive's steady torque on the driven part (raising for n > 0,
     the driven part turning backwards and lowering for n < 0)."""
-    scene = thesis_scene(loads={"axial_force": F}, gear={"ratio": ratio},
-                         motor={"type": "dc", "voltage": U, "resistance": R,
-                                "inductance": L, "torque_constant": KT})
+    scene = thesis_scene(loads={"axial_force": F}, gear={"ratio": ratio}, motor=DC_MOTOR)
     scene["loads"].pop("drive_torque")
     s = ls.Scene.from_dict(scene)
     result = ls.simulate(s, 2.0)
@@ -176,9 +206,7 @@ def test_energy_account_closes_with_a_gear():
     the account (the stage stores and loses nothing) closes to the result
     checks' tolerance, and the drive's work is the motor's."""
     scene = thesis_scene(concept="flexible_nut", backlash={"axial": 1e-5},
-                         loads={"axial_force": F}, gear={"ratio": 8.0},
-                         motor={"type": "dc", "voltage": U, "resistance": R,
-                                "inductance": L, "torque_constant": KT})
+                         loads={"axial_force": F}, gear={"ratio": 8.0}, motor=DC_MOTOR)
     scene["loads"].pop("drive_torque")
     result = ls.simulate(ls.Scene.from_dict(scene), 0.05)
     work = np.max(np.abs(result["work_drive"]))

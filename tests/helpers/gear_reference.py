@@ -75,8 +75,9 @@ def _scaled_load(load, factor: float):
 def reflected_scene(scene: dict, ratio: float) -> dict:
     """The scene without a gear whose rotor is the geared scene's reflected
     onto the driven part: inertia n^2 J, drive torque n T(t), a prescribed
-    speed omega(t) / n and an initial speed omega_0 / n (the geared scene has
-    the section gear = {ratio = n}; this one has none)."""
+    speed omega(t) / n, an initial speed omega_0 / n and a DC motor's
+    constants n k_t, n k_e (the geared scene has the section
+    gear = {ratio = n}; this one has none)."""
     out = copy.deepcopy(scene)
     out.pop("gear", None)
     out["rotor"] = {**out.get("rotor", {}), "inertia": ratio * ratio * scene["rotor"]["inertia"]}
@@ -88,6 +89,11 @@ def reflected_scene(scene: dict, ratio: float) -> dict:
     initial = out.get("initial", {})
     if "rotor_speed" in initial:
         initial["rotor_speed"] = initial["rotor_speed"] / ratio
+    motor = out.get("motor")
+    if motor is not None:  # a DC motor: n k_t i on the driven part, back-EMF k_e n omega
+        motor["back_emf_constant"] = ratio * motor.get("back_emf_constant",
+                                                       motor["torque_constant"])
+        motor["torque_constant"] = ratio * motor["torque_constant"]
     return out
 
 

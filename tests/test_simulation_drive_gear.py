@@ -52,6 +52,25 @@ def test_rigid_geared_drive_meets_the_reflected_closed_form(ratio):
                                atol=1e-15)
 
 
+def run_with_reflected(scene, ratio, t_end, **options):
+    """The runs of the geared scene and of its reflected one (no stage)."""
+    return tuple(ls.simulate(ls.Scene.from_dict(d), t_end, **options)
+                 for d in (scene, reference.reflected_scene(scene, ratio)))
+
+
+def assert_reflected(geared, plain, ratio, bound, same=(), torque=True):
+    """The geared run against the reflected one, within ``bound`` of each
+    channel's range: the load's motion and the channels in ``same`` alike,
+    the rotor's speed n times, its torque 1/n times the reflected ones."""
+    pairs = [(geared["u_load"], plain["u_load"]),
+             (geared["omega_drive"], ratio * plain["omega_drive"])]
+    if torque:
+        pairs.append((ratio * geared["drive_torque"], plain["drive_torque"]))
+    pairs += [(geared[name], plain[name]) for name in same]
+    for ours, theirs in pairs:
+        assert np.max(np.abs(ours - theirs)) <= bound * np.max(np.abs(theirs))
+
+
 @pytest.mark.parametrize("concept", ["rigid", "flexible_nut", "flexible"])
 def test_every_concept_equals_the_reflected_drive_to_round_off(concept):
     """Moreau-Jean (fixed steps, the same decisions) on each concept with play
@@ -61,18 +80,11 @@ def test_every_concept_equals_the_reflected_drive_to_round_off(concept):
     ratio = -3.0
     scene = thesis_scene(concept=concept, backlash={"axial": 1e-5},
                          gear={"ratio": ratio})
-    options = dict(integrator="moreau", dt=1e-5)
-    geared = ls.simulate(ls.Scene.from_dict(scene), 0.2, **options)
-    plain = ls.simulate(ls.Scene.from_dict(reference.reflected_scene(scene, ratio)), 0.2,
-                        **options)
-    assert np.max(np.abs(geared["u_load"] - plain["u_load"])) <= \
-        1e-12 * np.max(np.abs(plain["u_load"]))
-    speed = ratio * plain["omega_drive"]
-    assert np.max(np.abs(geared["omega_drive"] - speed)) <= 1e-12 * np.max(np.abs(speed))
+    geared, plain = run_with_reflected(scene, ratio, 0.2, integrator="moreau", dt=1e-5)
     np.testing.assert_allclose(ratio * geared["drive_torque"], plain["drive_torque"],
                                rtol=1e-12)
-    for name in ("work_drive", "friction_loss", "kinetic"):
-        assert np.max(np.abs(geared[name] - plain[name])) <= 1e-12 * np.max(np.abs(plain[name]))
+    assert_reflected(geared, plain, ratio, 1e-12,
+                     same=("work_drive", "friction_loss", "kinetic"))
 
 
 @pytest.mark.parametrize("concept, backlash, bound", [
@@ -88,17 +100,11 @@ def test_event_driven_geared_drive_equals_the_reflected_drive(concept, backlash,
     rtol 1e-8."""
     ratio = -3.0
     scene = thesis_scene(concept=concept, backlash=backlash, gear={"ratio": ratio})
-    t_eval = np.linspace(0.0, 0.5, 51)
-    geared = ls.simulate(ls.Scene.from_dict(scene), 0.5, t_eval=t_eval)
-    plain = ls.simulate(ls.Scene.from_dict(reference.reflected_scene(scene, ratio)), 0.5,
-                        t_eval=t_eval)
+    geared, plain = run_with_reflected(scene, ratio, 0.5, t_eval=np.linspace(0.0, 0.5, 51))
     assert [e.kind for e in geared.events] == [e.kind for e in plain.events]
     assert len(geared.events) >= 3
     assert max(abs(a.time - b.time) for a, b in zip(geared.events, plain.events)) <= bound
-    assert np.max(np.abs(geared["u_load"] - plain["u_load"])) <= \
-        bound * np.max(np.abs(plain["u_load"]))
-    speed = ratio * plain["omega_drive"]
-    assert np.max(np.abs(geared["omega_drive"] - speed)) <= bound * np.max(np.abs(speed))
+    assert_reflected(geared, plain, ratio, bound, torque=False)
 
 
 R, KT, L, U, F = 2.0, 0.05, 1e-3, 3.0, 10.0  # [Ohm], [N m/A], [H], [V], [N]
@@ -122,18 +128,9 @@ def test_moreau_speed_and_dc_motor_behind_a_stage_equal_the_reflected_drive(driv
     scene = thesis_scene(concept="flexible_nut", backlash={"axial": 1e-5}, loads=loads,
                          gear={"ratio": ratio}, **extra)
     scene["loads"].pop("drive_torque")
-    options = dict(integrator="moreau", dt=1e-5)
-    geared = ls.simulate(ls.Scene.from_dict(scene), 0.1, **options)
-    plain = ls.simulate(ls.Scene.from_dict(reference.reflected_scene(scene, ratio)), 0.1,
-                        **options)
-    assert np.max(np.abs(geared["u_load"] - plain["u_load"])) <= \
-        1e-12 * np.max(np.abs(plain["u_load"]))
-    speed = ratio * plain["omega_drive"]
-    assert np.max(np.abs(geared["omega_drive"] - speed)) <= 1e-12 * np.max(np.abs(speed))
-    assert np.max(np.abs(ratio * geared["drive_torque"] - plain["drive_torque"])) <= \
-        1e-12 * np.max(np.abs(plain["drive_torque"]))
-    if drive == "dc":
-        assert np.max(np.abs(geared["motor_current"] - plain["motor_current"])) <= 1e-12 * 0.2
+    geared, plain = run_with_reflected(scene, ratio, 0.1, integrator="moreau", dt=1e-5)
+    assert_reflected(geared, plain, ratio, 1e-12,
+                     same=("motor_current",) if drive == "dc" else ())
 
 
 @pytest.mark.parametrize("ratio", [4.0, -4.0])

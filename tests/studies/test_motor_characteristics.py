@@ -289,3 +289,38 @@ def test_a_steady_stall_reads_steady_on_the_flexible_concept():
     assert abs(row["speed"]) < 1e-6 * U / KT
     assert row["window_change"] < 1e-5
     assert row["efficiency"] == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("ratio", [4.0, -4.0])
+def test_an_ideal_gear_stage_reflects_the_train_torque_and_speed(ratio):
+    # Behind a stage of ratio n the rotor supplies T_d / |n| and turns |n|
+    # times the driven part (docs/physics/gear.md): i = F r_m tan(alpha + rho')
+    # / (|n| k_t), omega_rotor = (U - R i) / k_e, the load's speed omega lead /
+    # (2 pi |n|); a reversing stage raises the load the other way.
+    d = motor_scene()
+    d["gear"] = {"ratio": ratio}
+    scene = ls.Scene.from_dict(d)
+    loads = [10.0, 60.0]
+    frame = ls.studies.motor_characteristics(scene, loads, t_end=2.0, progress=False)
+    assert frame["error"].isna().all()
+    for row in frame.itertuples():
+        current = ls.raise_torque(scene.thread, 0.3, row.load) / (abs(ratio) * KT)
+        omega = (U - R * current) / KT
+        assert not row.stalled
+        assert row.current_closed_form == pytest.approx(current, rel=1e-12)
+        assert row.speed_closed_form == pytest.approx(omega, rel=1e-12)
+        assert row.current == pytest.approx(current, rel=1e-6)
+        assert row.speed == pytest.approx(omega, rel=1e-6)
+        v_load = 1e-3 / (2 * math.pi * abs(ratio)) * omega
+        assert abs(row.load_speed) == pytest.approx(v_load, rel=1e-6)
+        assert row.efficiency == pytest.approx(row.load * v_load / (U * current), rel=1e-6)
+    # The stall load grows with |n| (the rotor's torque is |n| times smaller).
+    assert frame.attrs["summary"]["stall_load"] == pytest.approx(
+        abs(ratio) * KT * U / R / ls.raise_torque(scene.thread, 0.3, 1.0), rel=1e-12)
+
+
+def test_the_other_studies_refuse_a_geared_scene():
+    d = thesis_scene(concept="rigid")
+    d["gear"] = {"ratio": 3.0}
+    with pytest.raises(ValueError, match="gear = .* is invalid for this study"):
+        ls.studies.efficiency_vs_mu(d, [0.1, 0.2], [10.0])

@@ -33,12 +33,16 @@ __all__ = [
 ]
 
 
-def as_scene(scene: Any) -> Scene:
+def as_scene(scene: Any, gear: bool = False) -> Scene:
     """A :class:`~leadscrew.Scene` from a Scene or a scene dict.
+
+    Args:
+        gear: the study's closed forms take an ideal gear stage (the rotor's
+            torque and speed reflected through its ratio).
 
     Raises:
         ValueError: ``scene`` is neither, the dict is not a valid scene, or the
-            scene has a gear stage (the studies' closed forms have none).
+            scene has a gear stage and the study's closed forms have none.
     """
     if isinstance(scene, Scene):
         out = scene
@@ -50,9 +54,9 @@ def as_scene(scene: Any) -> Scene:
     # The studies' closed forms are the bare drive's (the rotor turning the
     # screw or the nut directly): a gear stage would put them beside a
     # different train.
-    gear = out.to_dict().get("gear")
-    if gear is not None:
-        raise ValueError(f"gear = {gear!r} is invalid for a study: must be absent (the "
+    stage = out.to_dict().get("gear")
+    if stage is not None and not gear:
+        raise ValueError(f"gear = {stage!r} is invalid for this study: must be absent (the "
                          "studies' closed forms are those of a rotor turning the screw or the "
                          "nut directly; simulate a geared drive with leadscrew.simulate)")
     return out

@@ -23,6 +23,12 @@ moving keeps raising up to T_s / (r_m tan(alpha + rho')). The efficiency is
 that of motoring: 0 at rest, NaN where the load is lowered (it gives power).
 At steady state the springs of the flexible concepts carry the load
 statically, so the closed form holds for every concept.
+
+Behind an ideal gear stage of ratio n (section ``gear``; the rotor turns n
+times per turn of the driven part) the rotor supplies the driven part's torque
+over |n|, T = F r_m tan(alpha + rho') / |n|, and turns |n| times as fast:
+v = omega lead / (2 pi |n|) (docs/physics/gear.md). A reversing stage (n < 0)
+raises the load in the other direction.
 """
 
 from __future__ import annotations
@@ -86,18 +92,25 @@ def _motor_constants(scene, voltage: float) -> Tuple[float, float, float, float]
     return resistance, k_t, k_e, stall_current
 
 
+def _gear_ratio(scene) -> float:
+    """The ratio n of the scene's ideal gear stage (1: none)."""
+    return scene["gear"]["ratio"] if "gear" in scene else 1.0
+
+
 def _thread_torques(scene) -> Dict[str, float]:
-    """The rigid drive's torques per newton of axial load [N*m/N = m]: to raise
-    and to lower it, with mu (moving) and with mu_static (from rest); a
-    negative lowering torque: the thread back-drives (tan(alpha) > mu')."""
+    """The rigid drive's torques on the rotor per newton of axial load [N*m/N =
+    m]: to raise and to lower it, with mu (moving) and with mu_static (from
+    rest), over |n| behind a gear stage; a negative lowering torque: the thread
+    back-drives (tan(alpha) > mu')."""
     friction = scene["friction"]
     mu = friction["mu"]
     mu_static = friction.get("mu_static", mu)
     thread = scene.thread
-    return {"raise": _core.raise_torque(thread, mu, 1.0),
-            "raise_static": _core.raise_torque(thread, mu_static, 1.0),
-            "lower": _core.lower_torque(thread, mu, 1.0),
-            "lower_static": _core.lower_torque(thread, mu_static, 1.0)}
+    n = abs(_gear_ratio(scene))
+    return {"raise": _core.raise_torque(thread, mu, 1.0) / n,
+            "raise_static": _core.raise_torque(thread, mu_static, 1.0) / n,
+            "lower": _core.lower_torque(thread, mu, 1.0) / n,
+            "lower_static": _core.lower_torque(thread, mu_static, 1.0) / n}
 
 
 def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
@@ -127,7 +140,8 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
     speed = np.where(stalled, 0.0, (abs(voltage) - resistance * current) / k_e)
     # (stalled: the driver puts out R i at rest, U itself without a limit)
     power = np.where(stalled, resistance * stall_current ** 2, abs(voltage) * current)
-    lead_per_rad = scene.thread.lead / (2.0 * math.pi)
+    # (the load's travel per radian of the rotor)
+    lead_per_rad = scene.thread.lead / (2.0 * math.pi * abs(_gear_ratio(scene)))
     with np.errstate(divide="ignore", invalid="ignore"):
         # Motoring only: 0 at rest, NaN where the load is lowered (it gives power).
         efficiency = np.where(raising, loads * lead_per_rad * speed / power,
@@ -269,14 +283,16 @@ def motor_characteristics(
         ValueError: no DC motor or a voltage that is not constant, invalid
             loads, t_end or window (naming the argument).
     """
-    scene = as_scene(scene)
+    scene = as_scene(scene, gear=True)
     voltage = _voltage(scene)
     forces = check_grid("loads", loads, unit="N")
     t_end = check_positive("t_end", t_end, unit="s")
     start, end = check_window(window, t_end, 0.8)
     # A right-hand screw turning forward moves the load along -x
     # (docs/physics/drive_models.md): the load to raise acts along +x then.
-    raising = scene.thread.hand_sign * math.copysign(1.0, voltage)
+    # A reversing gear stage (n < 0) turns the driven part the other way.
+    raising = (scene.thread.hand_sign * math.copysign(1.0, voltage) *
+               math.copysign(1.0, _gear_ratio(scene)))
     running = scene.replace(initial={"rotor_speed": 0.0, "state": "relaxed"})
     _, k_t, k_e, _ = _motor_constants(scene, voltage)
     measures = {"raising": raising, "torque_ratio": (k_t - k_e) / k_t,

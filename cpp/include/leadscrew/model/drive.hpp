@@ -119,6 +119,11 @@ struct DriveParameters {
   double motor_torque_constant = 0.0;   // k_t [N m/A]
   double motor_back_emf_constant = -1.0;  // k_e [V s/rad]; < 0: k_t
   double motor_current_limit = 0.0;     // i_max [A]; 0: none
+  // A preloaded split nut (elements/preloaded_nut.hpp; scene keys
+  // nut.preload, nut.preload_stiffness): the halves' spring force P [N]
+  // (0: none) and its rate [N/m] (0: not given).
+  double nut_preload = 0.0;
+  double nut_preload_stiffness = 0.0;
 
   double rotor_angle = 0.0;
   double rotor_speed = 0.0;
@@ -156,6 +161,10 @@ class DriveModel {
     return e_.dc_motor ? &*e_.dc_motor : nullptr;
   }
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
+  // The preloaded split nut on the thread (nullptr: none, the plain thread).
+  const elements::PreloadedNut* preloaded_nut() const noexcept {
+    return e_.preloaded_nut ? &*e_.preloaded_nut : nullptr;
+  }
   int coordinate_count() const noexcept { return static_cast<int>(mass_.size()); }
   const std::vector<std::string>& coordinate_names() const noexcept { return e_.coordinates; }
   // The diagonal mass matrix: every body's inertia on its coordinate.

@@ -234,3 +234,17 @@ def test_scene_toml_and_core_spec_carry_the_preload(tmp_path):
     assert parameters.nut_preload == 50.0 and parameters.nut_preload_stiffness == 2e8
     text = describe_schema()
     assert "nut.preload [N]" in text and "nut.preload_stiffness [N/m]" in text
+
+
+def test_in_the_painleve_regime_a_stuck_preloaded_drive_keeps_sticking():
+    # A light rotor, a heavy load and a steep thread: mu' |G_NT| >= G_NN. At
+    # zero slip the drive keeps sticking where the stick force lies in the
+    # cone (as the plain thread does); the preload's friction holds the
+    # thesis's torque, under which the plain thread slips and jams.
+    changes = dict(rotor={"inertia": 1e-9}, load={"mass": 1000.0},
+                   thread={"pitch": 5e-3, "mean_diameter": 20e-3})
+    result = ls.simulate(ls.Scene.from_dict(preload_scene(0.3, 30.0, **changes)), 0.5)
+    assert np.all(result["stick"] == 1.0)
+    np.testing.assert_array_equal(result["omega_drive"], 0.0)
+    with pytest.raises(ls.JammingError):
+        ls.simulate(ls.Scene.from_dict(preload_scene(0.3, 0.0, **changes)), 0.5)

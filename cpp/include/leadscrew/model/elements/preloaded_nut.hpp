@@ -97,11 +97,24 @@ struct PreloadedNut {
   // three cases): with the slip acceleration x = c + d T (d > 0) and the
   // net normal force N = beta + alpha T, stick where T = -c / d lies
   // between the edges [T_+, T_-], slip s where x at the edge T_s has the
-  // sign s. `consistent` false: an edge is not unique (the Painleve regime).
+  // sign s. Where an edge is not unique (the Painleve regime) the drive
+  // keeps sticking if the stick force lies in the cone, as the plain
+  // thread does (docs/physics/rigid_drive.md, "uniqueness"); otherwise
+  // `consistent` is false (jamming).
   friction::FlankLcpResult decide(double c, double d, double alpha, double beta) const {
     friction::FlankLcpResult r;
+    if (!(d > 0.0)) return r;
     const Edge up = edge(1, alpha, beta), down = edge(-1, alpha, beta);
-    if (up.count != 1 || down.count != 1 || !(d > 0.0)) return r;
+    if (up.count != 1 || down.count != 1) {
+      const double stick = -c / d, normal_force = beta + alpha * stick;
+      if (!(bound(-1, normal_force) - stick >= 0.0 && bound(1, normal_force) + stick >= 0.0))
+        return r;
+      r.status = lcp::Status::solved;
+      r.consistent = true;
+      r.friction_force = stick;
+      r.normal_force = normal_force;
+      return r;
+    }
     r.status = lcp::Status::solved;
     r.consistent = true;
     const double x_up = c + d * up.friction, x_down = c + d * down.friction;

@@ -301,6 +301,9 @@ TINY_STUDIES = {
     "motor_characteristics": ({"loads": None, "motor": {
         "type": "dc", "voltage": 3.0, "resistance": 2.0, "inductance": 1e-3,
         "torque_constant": 0.05}}, ["loads=10", "t_end=0.05"]),
+    "preload_tradeoff": ({"loads": {"drive_torque": 2e-2, "axial_force": -10.0},
+                          "nut": {"preload_stiffness": 1e6}},
+                         ["preloads=0,20", "amplitude=30", "frequency=20", *_HOLDING_RUNS]),
 }
 
 

@@ -3,6 +3,8 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/elements/preloaded_nut.hpp"
 #include "leadscrew/thread/thread.hpp"
 
 namespace py = pybind11;
@@ -79,6 +81,17 @@ Raises:
         py::arg("thread"), py::arg("mu"),
         "efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); "
         "ValueError for a negative or non-finite m.");
+  m.def("preloaded_efficiency_array",
+        py::vectorize([](Thread thread, double mu, double load, double preload) {
+          return model::elements::preloaded_efficiency(
+              thread.lead_angle(), thread.effective_mu(require_nonnegative("mu", mu)),
+              require_nonnegative("load", load), require_nonnegative("preload", preload));
+        }),
+        py::arg("thread"), py::arg("mu"), py::arg("load"), py::arg("preload"),
+        "The steady raising efficiency of the rigid drive with a preloaded nut, F tan a / "
+        "[(F + P) tan(a + rho') + P tan(rho' - a)] [1], elementwise over mu [1], load F [N] "
+        "and preload P [N] (docs/physics/preloaded_nut.md); ValueError for a negative or "
+        "non-finite value.");
   m.def("is_drivable_array",
         py::vectorize([](Thread thread, double mu) { return is_drivable(thread, mu); }),
         py::arg("thread"), py::arg("mu"),

@@ -260,6 +260,8 @@ def _core_parameters(data: Dict[str, Any],
     p.screw_length = data["screw"]["length"]
     p.nut_position = data["nut"]["position"]
     p.nut_length = data["nut"]["length"]
+    p.nut_preload = data["nut"]["preload"]
+    p.nut_preload_stiffness = data["nut"]["preload_stiffness"]
     p.support = data["screw"]["support"]
     over = data["overrides"]
     p.damping_ratio = over["damping_ratio"]

@@ -210,6 +210,20 @@ SCHEMA: Dict[str, Any] = {
                           "nut.length sets the nut's mass and stiffness, and a run of any "
                           "concept ends (SimulationError) where the nut's end reaches the "
                           "screw's", "m", 0.1, **POSITIVE),
+        "preload": Field("preload P of a split nut: two nut halves sprung apart by a spring of "
+                         "axial force P, each bearing on one flank (docs/physics/"
+                         "preloaded_nut.md). 0: a plain nut. The half on the flank the axial "
+                         "load presses at t = 0 carries the load plus P, the other P; both slip "
+                         "together, so the torque to raise a load F is r_m [(F + P) "
+                         "tan(alpha + rho') + P tan(rho' - alpha)]. Supported on concept "
+                         "'rigid' with friction.law 'coulomb' (no mu_static), the event-driven "
+                         "integrator and initial.state 'relaxed'; there it closes a backlash "
+                         "(the thread without play, initial.play_position ignored)", "N", 0.0,
+                         **NONNEGATIVE),
+        "preload_stiffness": Field("rate of the split nut's spring (its axial stiffness "
+                                   "between the halves; on the rigid concept the spring force "
+                                   "stays P and the rate is reported, not simulated). 0: not "
+                                   "given", "N/m", 0.0, **NONNEGATIVE),
     },
     "rotor": {
         "inertia": Field("rotor inertia about the screw axis", "kg*m^2", 1e-5, **POSITIVE),

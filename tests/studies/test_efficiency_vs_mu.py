@@ -200,3 +200,29 @@ def test_bad_arguments(kwargs, match):
     arguments.update(kwargs)
     with pytest.raises(ValueError, match=match):
         efficiency_vs_mu(scene(), progress=False, **arguments)
+
+
+def test_a_preloaded_nut_shows_its_cost():
+    """With nut.preload P the closed form is F tan a / [(F + P) tan(a + rho')
+    + P tan(rho' - a)] (docs/physics/preloaded_nut.md): load-dependent, below
+    the plain thread's (efficiency_without_preload) wherever mu > 0."""
+    from helpers import preloaded_nut_reference as reference
+
+    preload = 50.0
+    frame = efficiency_vs_mu(scene(nut={"preload": preload}), [0.0, 0.1, 0.3], [5.0, 80.0],
+                             progress=False)
+    np.testing.assert_allclose(frame["efficiency"], frame["efficiency_closed_form"], rtol=1e-9)
+    thread = ls.Thread(1e-3, 20e-3)
+    for row in frame.itertuples():
+        mu_eff = reference.effective_mu(row.mu, thread.flank_angle)
+        assert row.efficiency_closed_form == pytest.approx(
+            reference.efficiency(row.load, preload, thread.lead_angle, mu_eff), rel=1e-12)
+        assert row.efficiency_without_preload == ls.efficiency(thread, row.mu)
+        if row.mu == 0.0:
+            assert row.efficiency == pytest.approx(1.0, abs=1e-12)
+        else:
+            assert row.efficiency < row.efficiency_without_preload
+    assert frame.attrs["summary"]["preload"] == preload
+    assert frame.attrs["units"]["efficiency_without_preload"] == "1"
+    ax = plot_efficiency_vs_mu(frame)
+    assert len(ax.lines) == 2 + 2 + 1  # simulated and closed form per load, the plain thread

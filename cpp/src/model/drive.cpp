@@ -45,6 +45,8 @@ const std::vector<ScalarField>& scalar_fields() {
       LEADSCREW_FIELD(motor_torque_constant),
       LEADSCREW_FIELD(motor_back_emf_constant),
       LEADSCREW_FIELD(motor_current_limit),
+      LEADSCREW_FIELD(nut_preload),
+      LEADSCREW_FIELD(nut_preload_stiffness),
       LEADSCREW_FIELD(rotor_angle),
       LEADSCREW_FIELD(rotor_speed),
       LEADSCREW_FIELD(play_position),

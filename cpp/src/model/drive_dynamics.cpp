@@ -219,9 +219,15 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   const double viscous = in_contact && !stick && spec.friction != FrictionMode::none
                              ? -law_->viscous() * slip_
                              : 0.0;
+  // A preloaded nut slipping: its preload half is a given flank force (N_B^s,
+  // T_B^s) of the slip's direction, the multiplier half A's normal force.
+  const elements::PreloadedNut* nut = model_.preloaded_nut();
+  const bool preload_half = nut && normal_multiplier && spec.friction == FrictionMode::slip;
   auto evaluate = [&](double kappa, double given_tangential, ModeSolution& out) {
     CoordinateVector f = forces_;
     f += (given_tangential + viscous) * tangent;
+    if (preload_half)
+      f += nut->normal(spec.slip_sign) * normal + nut->friction(spec.slip_sign) * tangent;
     double normal_force = 0.0;
     if (spec.contact == ThreadContact::penalty) {
       normal_force = penalty_.normal_force;
@@ -264,6 +270,11 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     else
       out.friction_force = 0.0;
     out.friction_force += given_tangential + viscous;
+    if (preload_half) {
+      out.preload_normal = nut->normal(spec.slip_sign);
+      out.normal_force += out.preload_normal;
+      out.friction_force += nut->friction(spec.slip_sign);
+    }
     out.motor_torque = motor.speed_controlled ? lambda[rotor_row] : applied_torque_;
     out.slip_acceleration = tangent.dot(out.acceleration);
   };
@@ -279,6 +290,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
         base, spec.contact == ThreadContact::closed ? spec.sigma : 0);
     base.given_tangential = decision.friction_force;
     solution = solve(base);
+    if (nut) solution.preload_normal = nut->normal(nut->edge_of(solution.friction_force));
     return solution;
   }
   if (spec.friction == FrictionMode::regularized_acceleration &&
@@ -287,6 +299,10 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   if (spec.friction != FrictionMode::regularized_acceleration ||
       spec.contact == ThreadContact::open) {
     evaluate(friction_factor(spec, 0.0), spec.given_tangential, solution);
+    // In stick the multipliers are the net forces; half B at the edge the
+    // friction force heads for (its preload_normal, for the sign of half A's).
+    if (nut && stick && normal_multiplier && solution.regular)
+      solution.preload_normal = nut->normal(nut->edge_of(solution.friction_force));
     return solution;
   }
   // Eq. (3.15) on the flank: kappa depends on the slip acceleration it
@@ -454,6 +470,10 @@ friction::FlankLcpResult DriveDynamics::prescribed_slip_decision(const ModeSpec&
                        model_.tangent_direction().cwiseProduct(without.acceleration).cwiseAbs().sum();
   // sigma 0: the thread without play, whose normal force takes either sign
   // (the one it has without friction; friction within the cone keeps it).
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut())
+    return nut->prescribed_slip(c, std::abs(c) <= noise, unit.normal_force - without.normal_force,
+                                without.normal_force, without.motor_torque,
+                                unit.motor_torque - without.motor_torque);
   if (sigma == 0) sigma = without.normal_force >= 0.0 ? 1 : -1;
   return friction::solve_flank_prescribed_slip(
       c, std::abs(c) <= noise, unit.normal_force - without.normal_force, without.normal_force,

@@ -16,6 +16,7 @@ namespace leadscrew::model {
 // drive runs the general path, whose roots see the state), exact Coulomb.
 bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dynamics) {
   return model.bilateral_thread() && !model.motor().speed_controlled && !model.dc_motor() &&
+         !model.preloaded_nut() &&
          dynamics.law().plain_coulomb() && model.elements().forces.empty() &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();

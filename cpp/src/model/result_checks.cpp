@@ -161,7 +161,10 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   for (std::size_t i = 0; i < n; ++i) {
     max_slip = std::max(max_slip, std::abs(slip[i]));
     max_friction = std::max(max_friction, std::abs(friction[i]));
-    max_normal = std::max(max_normal, std::abs(normal[i]));
+    max_normal = std::max(max_normal, spec.flank_normal
+                                          ? spec.flank_normal(normal[i],
+                                                              spec.friction_sign * friction[i])
+                                          : std::abs(normal[i]));
     max_kinetic = std::max(max_kinetic, kinetic[i]);
     double flow = 0.0;
     for (const Column& c : flow_channels) flow += std::abs(c[i]);
@@ -333,7 +336,8 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
     if (pointwise_forces && !at_event_root(i)) {
       const double f = spec.friction_sign * friction[i];
       const double v = slip[i];
-      const double normal_force = std::abs(normal[i]);
+      const double normal_force =
+          spec.flank_normal ? spec.flank_normal(normal[i], f) : std::abs(normal[i]);
       const double band = slip_band + (spec.time_stepping ? 0.0 : slip_rate(i) * time_resolution);
       if (power.applies) worst_power.offer(f * v, std::abs(f) * band + std::abs(v) * force_resolution, t);
       if (cone.applies)

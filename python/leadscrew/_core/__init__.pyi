@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DerivedQuantities', 'DriveBatch', 'DriveBatchResult', 'DriveGeometry', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'check_nut_on_screw', 'cosim_variables', 'derive_drive', 'derived_quantities', 'derived_quantity_problem', 'drive_integrators', 'efficiency', 'efficiency_array', 'first_derived_problem', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'raise_torque', 'read_core_spec', 'rigid_jamming_margins', 'scene_choices', 'simulate_block', 'simulate_drive', 'spring_frequency_problem', 'write_core_spec']
+__all__: list[str] = ['DerivedQuantities', 'DriveBatch', 'DriveBatchResult', 'DriveGeometry', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'check_nut_on_screw', 'cosim_variables', 'derive_drive', 'derived_quantities', 'derived_quantity_problem', 'drive_integrators', 'efficiency', 'efficiency_array', 'first_derived_problem', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'preloaded_efficiency_array', 'raise_torque', 'read_core_spec', 'rigid_jamming_margins', 'scene_choices', 'simulate_block', 'simulate_drive', 'spring_frequency_problem', 'write_core_spec']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -358,6 +358,18 @@ class DriveParameters:
         ...
     @nut_mass.setter
     def nut_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_preload(self) -> float:
+        ...
+    @nut_preload.setter
+    def nut_preload(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def nut_preload_stiffness(self) -> float:
+        ...
+    @nut_preload_stiffness.setter
+    def nut_preload_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def nut_position(self) -> float:
@@ -857,6 +869,10 @@ def is_self_locking(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIn
     ...
 def lower_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
     ...
+def preloaded_efficiency_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], preload: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    The steady raising efficiency of the rigid drive with a preloaded nut, F tan a / [(F + P) tan(a + rho') + P tan(rho' - a)] [1], elementwise over mu [1], load F [N] and preload P [N] (docs/physics/preloaded_nut.md); ValueError for a negative or non-finite value.
+    """
 def pooled_helper_count() -> int:
     """
     Helper threads the process's pool has started so far (the batch's workers

@@ -17,7 +17,9 @@ scene without one), unless ``amplitude=`` / ``frequency=`` give them;
 offset) unless ``excitation=`` gives one; ``efficiency_vs_mu`` replaces the
 loads by its definition (a speed-controlled motor raising each of its
 ``loads``); ``motor_characteristics`` runs the scene's DC motor (section
-``motor``, a constant voltage) raising each of its ``loads``. Where a study may take its excitation from either,
+``motor``, a constant voltage) raising each of its ``loads``;
+``preload_tradeoff`` raises the scene's static load and vibrates it with the
+scene's sine (30 N and 20 Hz without one) for each preload. Where a study may take its excitation from either,
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
@@ -52,6 +54,7 @@ from . import creep as _creep
 from . import drive_efficiency as _drive_efficiency
 from . import holding as _holding
 from . import motor as _motor
+from . import preload as _preload
 from . import stickslip as _stickslip
 from . import work_precision as _work_precision_module
 from ._sweep import SerialExecutor
@@ -59,6 +62,7 @@ from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
 from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
 from .drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu
 from .motor import motor_characteristics, plot_motor_characteristics
+from .preload import plot_preload_tradeoff, preload_tradeoff, preloaded_holding_band
 from .holding import (
     alternating_scene,
     cycle_response,
@@ -93,6 +97,7 @@ PLOTS = {
     "min_holding_preload": plot_min_holding_preload,
     "efficiency_vs_mu": plot_efficiency_vs_mu,
     "motor_characteristics": plot_motor_characteristics,
+    "preload_tradeoff": plot_preload_tradeoff,
 }
 
 
@@ -137,6 +142,7 @@ STUDIES = {
     "min_holding_preload": min_holding_preload,
     "efficiency_vs_mu": efficiency_vs_mu,
     "motor_characteristics": motor_characteristics,
+    "preload_tradeoff": preload_tradeoff,
 }
 
 __all__ = [
@@ -151,4 +157,5 @@ __all__ = [
     *_creep.__all__,
     *_drive_efficiency.__all__,
     *_motor.__all__,
+    *_preload.__all__,
 ]

@@ -27,7 +27,8 @@ from ._sweep import SerialExecutor, default_workers, run_batches, run_chunks
 __all__ = ["efficiency_vs_mu", "plot_efficiency_vs_mu"]
 
 UNITS = {"mu": "1", "load": "N", "efficiency": "1", "efficiency_closed_form": "1",
-         "relative_error": "1", "window_change": "1", "drivable": "", "simulated": "",
+         "relative_error": "1", "efficiency_without_preload": "1", "window_change": "1",
+         "drivable": "", "simulated": "",
          "drive_torque": "N*m", "work_drive": "J", "friction_loss": "J", "load_speed": "m/s",
          "wall_time": "s", "error": ""}
 
@@ -183,17 +184,20 @@ def efficiency_vs_mu(
     Returns:
         DataFrame with one row per (mu, load), mu-major: ``mu``, ``load``
         [N], ``efficiency`` [1], ``efficiency_closed_form`` [1]
-        (tan a / tan(a + rho')), ``relative_error`` [1] (|simulated - closed
-        form| / closed form), ``window_change`` [1] (relative change of eta
+        (tan a / tan(a + rho'); with a preloaded nut, ``nut.preload`` P > 0,
+        F tan a / [(F + P) tan(a + rho') + P tan(rho' - a)], and then the
+        column ``efficiency_without_preload`` [1], the plain thread's: the
+        preload's cost is the difference), ``relative_error`` [1] (|simulated
+        - closed form| / closed form), ``window_change`` [1] (relative change of eta
         between the window's halves: ~0 at steady state), ``drivable``,
         ``simulated``, ``drive_torque`` [N*m] (at the window's end),
         ``work_drive`` and ``friction_loss`` [J] (over the window),
         ``load_speed`` [m/s], ``wall_time`` [s, C++] and ``error`` (None, or
         the message of a failed simulation, whose numbers are NaN).
         ``attrs["summary"]``: ``speed`` [rad/s], ``window`` [s], ``raised``
-        [1] and ``raised_reasons`` (the simulations that raised: their
-        count, and their exception types with the first message, or
-        ``"none"``; a :class:`~leadscrew.StudyWarning` names them).
+        [1], ``preload`` [N] (where the scene has one) and ``raised_reasons``
+        (the simulations that raised: their count, and their exception types
+        with the first message, or ``"none"``; a :class:`~leadscrew.StudyWarning` names them).
 
     Raises:
         ValueError: invalid scene or arguments (also a ``friction`` option
@@ -211,6 +215,14 @@ def efficiency_vs_mu(
     # leadscrew.efficiency and is_drivable, elementwise over mu (one call each)
     closed_form = np.repeat(_core.efficiency_array(thread, mus), len(forces))
     drivable = np.repeat(_core.is_drivable_array(thread, mus), len(forces))
+    # A preloaded nut (nut.preload, docs/physics/preloaded_nut.md): its
+    # closed form depends on the load; the plain thread's is its column
+    # efficiency_without_preload, the preload's cost the difference.
+    preload = float(scene["nut"].get("preload", 0.0))
+    without_preload = closed_form
+    if preload > 0.0:
+        closed_form = _core.preloaded_efficiency_array(
+            thread, np.repeat(mus, len(forces)), np.tile(forces, len(mus)), preload)
     simulated = np.flatnonzero(drivable)
     # A SerialExecutor (exactly that class, not shut down) runs nothing but
     # what the calling thread would: the default path's calls, on one worker.
@@ -248,10 +260,15 @@ def efficiency_vs_mu(
         "work_drive": columns["work_drive"], "friction_loss": columns["friction_loss"],
         "load_speed": columns["load_speed"], "wall_time": columns["wall_time"],
         "error": errors})
+    summary = {"speed": speed, "window": (start, end)}
+    if preload > 0.0:
+        frame.insert(frame.columns.get_loc("relative_error"), "efficiency_without_preload",
+                     without_preload)
+        summary["preload"] = preload
     # errors: an object array of None and the messages of failed cases
     return annotate(frame, UNITS, errors_checked=True, study="efficiency_vs_mu",
-                    summary_units={"speed": "rad/s", "window": "s"}, speed=speed,
-                    window=(start, end))
+                    summary_units={"speed": "rad/s", "window": "s", "preload": "N"},
+                    **summary)
 
 
 def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):
@@ -269,9 +286,20 @@ def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):
     for index, (load, group) in enumerate(frame.groupby("load", sort=True)):
         ax.plot(group["mu"], group["efficiency"], "o", color=f"C{index}",
                 label=f"simulated, load {load:g} N")
-    closed = frame.drop_duplicates("mu").sort_values("mu")
-    ax.plot(closed["mu"], closed["efficiency_closed_form"], "k-",
-            label="tan a / tan(a + rho')")
+    if "efficiency_without_preload" in frame:
+        # A preloaded nut: its closed form per load, the plain thread's dashed
+        # (the preload's cost is the gap).
+        for index, (load, group) in enumerate(frame.groupby("load", sort=True)):
+            group = group.sort_values("mu")
+            ax.plot(group["mu"], group["efficiency_closed_form"], "-", color=f"C{index}",
+                    label=f"preloaded closed form, load {load:g} N")
+        closed = frame.drop_duplicates("mu").sort_values("mu")
+        ax.plot(closed["mu"], closed["efficiency_without_preload"], "k--",
+                label="without preload: tan a / tan(a + rho')")
+    else:
+        closed = frame.drop_duplicates("mu").sort_values("mu")
+        ax.plot(closed["mu"], closed["efficiency_closed_form"], "k-",
+                label="tan a / tan(a + rho')")
     ax.set_xlabel("friction coefficient mu [1]")
     ax.set_ylabel("efficiency eta [1]")
     ax.set_ylim(0.0, 1.05)

@@ -128,6 +128,11 @@ struct DriveParameters {
   // ratio must be 1.
   GearType gear = GearType::none;
   double gear_ratio = 1.0;
+  // A preloaded split nut (elements/preloaded_nut.hpp; scene keys
+  // nut.preload, nut.preload_stiffness): the halves' spring force P [N]
+  // (0: none) and its rate [N/m] (0: not given).
+  double nut_preload = 0.0;
+  double nut_preload_stiffness = 0.0;
 
   double rotor_angle = 0.0;
   double rotor_speed = 0.0;
@@ -167,6 +172,10 @@ class DriveModel {
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
   // The gear stage between the rotor and the rotor's coordinate (ratio 1: none).
   const elements::Gear& gear() const noexcept { return e_.motor.gear; }
+  // The preloaded split nut on the thread (nullptr: none, the plain thread).
+  const elements::PreloadedNut* preloaded_nut() const noexcept {
+    return e_.preloaded_nut ? &*e_.preloaded_nut : nullptr;
+  }
   int coordinate_count() const noexcept { return static_cast<int>(mass_.size()); }
   const std::vector<std::string>& coordinate_names() const noexcept { return e_.coordinates; }
   // The diagonal mass matrix: every body's inertia on its coordinate.

@@ -57,6 +57,12 @@ struct ModeSolution {
   // Eq. (3.15) on the thread without play in the Painleve regime: how many
   // flank forces are consistent (DriveDynamics::solve); 1 everywhere else.
   int consistent_solutions = 1;
+  // A preloaded nut (elements/preloaded_nut.hpp): its preload half's normal
+  // force in the mode (part of normal_force, the net), 0 without one.
+  double preload_normal = 0.0;
+  // The normal force of the half that carries the load (normal_force
+  // without one): its sign is the bilateral thread's flank side.
+  double loaded_normal() const noexcept { return normal_force - preload_normal; }
 };
 
 // A bracket [low, high] of a sign change narrowed by Illinois: regula falsi

@@ -28,6 +28,7 @@
 //                   it creates (-energy_residual) within 1e-3 of E.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,10 @@ struct ResultCheckSpec {
   // and torques [N m] (over `lever` [m]), and the model's longest length [m].
   std::vector<std::string> load_forces, load_torques;
   double lever = 1.0, length_scale = 1.0;
+  // The normal force the friction coefficient multiplies at a row's normal
+  // and friction force (a preloaded nut: both halves', |N_A| + |N_B|,
+  // elements/preloaded_nut.hpp); empty: |normal|.
+  std::function<double(double normal, double friction)> flank_normal;
 };
 
 // The safety factor K of energy_balance: the largest ratio of

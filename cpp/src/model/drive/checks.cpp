@@ -61,6 +61,10 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   }
   spec.load_forces = {"axial_force"};
   spec.load_torques = {"drive_torque"};
+  if (const elements::PreloadedNut* nut = model.preloaded_nut())
+    spec.flank_normal = [nut = *nut](double normal, double friction) {
+      return nut.flank_normal(normal, friction);
+    };
   // (the drive torque is the rotor's: n times it acts on the driven part)
   spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
   spec.length_scale = p.screw_length;

@@ -17,7 +17,7 @@ ThreadForces DriveHybrid::ConstrainedSolver::forces(double t, const double* y) {
   (void)t;
   (void)y;
   const ModeSolution s = h_.solve_current();
-  return {s.normal_force, s.friction_force};
+  return {s.normal_force, s.friction_force, s.preload_normal};
 }
 
 void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot) {

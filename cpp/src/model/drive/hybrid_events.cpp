@@ -31,12 +31,15 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
         // cone by construction): the stick ends where the prescribed slip
         // leaves zero, either way.
         g[0] = std::abs(solver_->slip_velocity(y));
+      } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut()) {
+        g[0] = model_.preloaded_nut()->stick_margin(s.normal_force, s.friction_force);
+        if (g[0] > 0.0) stick_from_zero_ = false;
       } else if (mode_.friction == FrictionMode::stick) {
         g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
         if (g[0] > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
       }
       if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
-        g[1] = flank_change_root(s.normal_force);
+        g[1] = flank_change_root(s.normal_force - s.preload_normal);
       if (watch_fold()) {
         // The regularized law's paradox: the margin min over sigma of
         // G_NN - sigma kappa G_NT, and the current branch's denominator

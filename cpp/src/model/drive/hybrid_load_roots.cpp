@@ -17,7 +17,7 @@ namespace leadscrew::model::drive {
 bool DriveHybrid::load_driven() const {
   // (A DC motor's torque k_t i depends on the state: its roots are the state's.)
   return model_.elements().forces.empty() && !model_.motor().speed_controlled &&
-         !model_.dc_motor() && dynamics_.law().plain_coulomb() &&
+         !model_.dc_motor() && !model_.preloaded_nut() && dynamics_.law().plain_coulomb() &&
          (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
          (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
 }

@@ -34,7 +34,7 @@ ModeSolution DriveHybrid::solve_current() {
     // At most one sign can be consistent: try the last one first.
     for (int attempt = 0; attempt < 2; ++attempt) {
       const ModeSolution s = dynamics_.solve(spec(sigma_guess_));
-      if (s.regular && sigma_guess_ * s.normal_force >= 0.0) return s;
+      if (s.regular && sigma_guess_ * s.loaded_normal() >= 0.0) return s;
       sigma_guess_ = -sigma_guess_;
     }
     jam("no sign of the flank normal force is consistent");
@@ -42,8 +42,8 @@ ModeSolution DriveHybrid::solve_current() {
   if (mode_.contact == ThreadContact::bilateral && friction_on_normal) {
     const ModeSolution plus = dynamics_.solve(spec(1));
     const ModeSolution minus = dynamics_.solve(spec(-1));
-    const bool plus_ok = plus.regular && plus.normal_force >= 0.0;
-    const bool minus_ok = minus.regular && minus.normal_force <= 0.0;
+    const bool plus_ok = plus.regular && plus.loaded_normal() >= 0.0;
+    const bool minus_ok = minus.regular && minus.loaded_normal() <= 0.0;
     if (watch_fold()) {
       // The paradox of the regularized law is located by its roots (the
       // margin, the branch's denominator; approach_fold). Between them keep
@@ -62,8 +62,8 @@ ModeSolution DriveHybrid::solve_current() {
       jam("the constraint equations of the thread are singular");
     }
     if (plus_ok && minus_ok) {
-      if (plus.normal_force == 0.0) return plus;
-      if (minus.normal_force == 0.0) return minus;
+      if (plus.loaded_normal() == 0.0) return plus;
+      if (minus.loaded_normal() == 0.0) return minus;
       jam("both signs of the flank normal force are consistent");
     }
     if (plus_ok) return plus;
@@ -174,6 +174,17 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   // flank's side); otherwise the LCP at the slip's coefficient at zero
   // speed, mu(0+)', gives the slip's direction (no stick: it is not
   // admissible even with the larger coefficient).
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut()) {
+    // The preloaded nut: the LCP's decision by its three cases (its bound
+    // depends on the slip's direction; preloaded_nut.hpp).
+    const friction::FlankLcpResult r = nut->decide(c, d, alpha, beta);
+    ++lcp_solves_;
+    if (!r.consistent) jam("the preloaded nut's friction has no unique edge (Painleve regime)");
+    const int direction = sign_of(r.slip_acceleration);
+    mode_.friction = direction == 0 && hint == 0 ? FrictionMode::stick : FrictionMode::slip;
+    mode_.slip_sign = mode_.friction == FrictionMode::stick ? 0 : direction != 0 ? direction : hint;
+    return;
+  }
   const friction::Law& law = dynamics_.law();
   double lcp_mu = model_.effective_mu();
   const int stick_side = mode_.contact == ThreadContact::closed ? mode_.flank
@@ -245,7 +256,7 @@ void DriveHybrid::start_normal_side() {
   normal_side_ = 0;
   if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick &&
       mode_.friction != FrictionMode::none)
-    normal_side_ = sign_of(solve_current().normal_force);
+    normal_side_ = sign_of(solve_current().loaded_normal());
 }
 
 // Root function of a flank change of the thread without play: the normal

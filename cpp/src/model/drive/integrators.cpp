@@ -101,6 +101,11 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                         ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
                         : std::string()) +
                        "friction.law = \"" + p.friction + "\"");
+  if (model.preloaded_nut() && integrator != "event_driven")
+    throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with nut.preload = " +
+                          format_value(p.nut_preload) +
+                          " N: a preloaded nut runs with exact Coulomb friction on the "
+                          "event-driven scheme only (integrator = \"event_driven\")");
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   integrate::validate_output_request(options.output, 0.0);
   if (options.max_events < 0)

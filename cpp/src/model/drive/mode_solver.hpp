@@ -32,6 +32,7 @@ namespace leadscrew::model::drive {
 struct ThreadForces {
   double normal_force = 0.0;
   double friction_force = 0.0;
+  double preload_normal = 0.0;  // a preloaded nut's preload half (ModeSolution's)
 };
 
 class DriveHybrid::ModeSolver {

@@ -12,6 +12,52 @@
 
 namespace leadscrew::model::elements {
 
+namespace {
+
+// The preloaded split nut of p (nut.preload > 0) on the thread without play
+// of the rigid concept; elsewhere refused with what is supported.
+void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
+  require_nonnegative("nut.preload", p.nut_preload);
+  require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
+  if (p.nut_preload == 0.0) return;
+  const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
+  const std::string supported =
+      ": a preloaded nut is supported on the rigid concept (concept = \"rigid\") with exact "
+      "Coulomb friction (friction.law = \"coulomb\", no mu_static) and initial.state = "
+      "\"relaxed\"";
+  if (p.concept != Concept::rigid)
+    throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) + "\"" +
+                          supported + " (the flexible concepts' lift-off of a half is not "
+                          "modelled)");
+  if (!e.thread->law().plain_coulomb())
+    throw InvalidArgument(preload + "with friction.law = \"" + p.friction +
+                          "\" (or its mu_static or viscous term)" + supported);
+  if (p.initial_state == InitialState::equilibrium)
+    throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
+                          " (on the rigid concept the relaxed start at rest is the same state)");
+  PreloadedNut nut;
+  nut.preload = p.nut_preload;
+  nut.stiffness = p.nut_preload_stiffness;
+  nut.mu = e.thread->effective_mu();
+  const double alpha = p.thread.lead_angle();
+  nut.cos_lead = std::cos(alpha);
+  nut.sin_lead = std::sin(alpha);
+  if (!(nut.cos_lead - nut.mu * nut.sin_lead > 0.0))
+    throw InvalidArgument(preload + "with mu' tan(lead angle) = " +
+                          format_value(nut.mu * std::tan(alpha)) +
+                          " >= 1: the preload half would lock against its own spring "
+                          "(lower friction.mu or the lead)");
+  // Half A carries the axial load at t = 0 (its flank: the sign of the normal
+  // force the load alone puts on the screw); half B bears on the other flank.
+  // No load at t = 0: half A on the flank of lambda_N > 0.
+  const double force = p.axial_force(0.0) * e.thread->normal()[e.load.coordinate];
+  const int loaded_side = force > 0.0 ? -1 : 1;
+  nut.side = -loaded_side;
+  e.preloaded_nut = nut;
+}
+
+}  // namespace
+
 DriveElements build_drive_elements(DriveParameters& p) {
   require_nonnegative("friction.mu", p.mu);
   require_positive("friction.k_v", p.k_v);
@@ -27,6 +73,12 @@ DriveElements build_drive_elements(DriveParameters& p) {
   // the thread without play.
   if (p.backlash == BacklashContact::exact && p.clearance == 0.0)
     p.backlash = BacklashContact::none;
+  // A preloaded split nut on the rigid concept closes the play: its halves
+  // bear on both flanks (preloaded_nut.hpp), the thread without play.
+  if (p.nut_preload > 0.0 && p.concept == Concept::rigid && p.backlash != BacklashContact::none) {
+    p.backlash = BacklashContact::none;
+    p.play_position = 0.0;
+  }
   if (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic) {
     require_positive("backlash.stiffness", p.contact_stiffness);
     require_nonnegative("backlash.damping", p.contact_damping);
@@ -251,6 +303,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
     e.dc_motor = m;
   }
   e.load = AxialLoad{load, p.axial_force};
+  build_preloaded_nut(p, e);
   return e;
 }
 

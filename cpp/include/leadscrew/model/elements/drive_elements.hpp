@@ -10,6 +10,7 @@
 //   axial_load.hpp     AxialLoad: the axial force on the load
 //   gear.hpp           Gear: a stage between the rotor and the driven part (the
 //                      Motor's; the rotor reflected onto its coordinate)
+//   preloaded_nut.hpp  PreloadedNut: the split nut's preload half on the thread without play
 // The lists are grouped by type (no virtual call per scalar in the
 // right-hand side): DriveDynamics loops over each. The force elements (the
 // springs today; an end stop, a gear's compliance) are one registry line.
@@ -27,6 +28,7 @@
 #include "leadscrew/model/elements/dc_motor.hpp"
 #include "leadscrew/model/elements/gear.hpp"
 #include "leadscrew/model/elements/motor.hpp"
+#include "leadscrew/model/elements/preloaded_nut.hpp"
 #include "leadscrew/model/elements/rigid_body.hpp"
 #include "leadscrew/model/elements/spring_damper.hpp"
 #include "leadscrew/model/elements/thread_pair.hpp"
@@ -87,6 +89,7 @@ struct DriveElements {
   Motor motor;
   std::optional<DcMotor> dc_motor;  // on the rotor, its torque k_t i (Motor applies 0)
   AxialLoad load;
+  std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (rigid concept)
   // The coordinates that turn with the rotor and those that translate with
   // the load in a rigid-body motion of the drive (consistent_velocity).
   std::vector<int> rotating_group, translating_group;

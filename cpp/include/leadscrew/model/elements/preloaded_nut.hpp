@@ -1,0 +1,178 @@
+// Element: a preloaded split nut on the thread without play (issue 19 item
+// 4; scene keys nut.preload, nut.preload_stiffness; docs/physics/
+// preloaded_nut.md). Two nut halves sprung apart by a spring of force P,
+// each bearing on one flank. Half A carries the load; half B bears on the
+// opposite flank (sign `side` of its normal force on the screw, -sigma_A).
+// On the rigid concept the halves keep the spring force equal to P, and
+// they stick or slip together (one slip velocity gamma_T).
+//
+// While the nut slips in the direction s = sign(gamma_T), half B's flank
+// force (normal N_B, friction T_B = -s mu' |N_B|) has the axial component
+// cos(a) N_B + sin(a) T_B = side P (the spring's force), so
+//   N_B^s = side P / (cos a - s side mu' sin a),  T_B^s = -s mu' |N_B^s|,
+// constant in the mode: half B is a given force N_B^s W_N + T_B^s W_T. Half
+// A is the thread pair's flank force (the constraint's multiplier N_A, its
+// friction -s mu' |N_A|). The net forces N = N_A + N_B^s, T = T_A + T_B^s
+// are the channels. With net maps N = beta + alpha T (every constraint but
+// friction enforced, T along W_T), the friction bound in the direction s is
+//   -s T <= b_s(N) = mu' (|N - N_B^s| + |N_B^s|),
+// convex and 1-Lipschitz in N: at stick (zero slip) T lies in
+// [-b_+(N), b_-(N)], and the edge of slip s is the unique solution of
+// T = -s b_s(beta + alpha T) outside the Painleve regime (mu' |alpha| < 1).
+// Where N - N_B^s changes sign (the load on half B's side beyond what the
+// preload holds) half A bears on its other flank: the thread without play
+// is bilateral, and the bound becomes mu' |N| (half A and B on one side).
+// P = 0 is no element (the plain thread, bit for bit).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "leadscrew/friction/flank_lcp.hpp"
+
+namespace leadscrew::model::elements {
+
+struct PreloadedNut {
+  double preload = 0.0;    // P [N] > 0: the spring's axial force between the halves
+  double stiffness = 0.0;  // k_p [N/m] >= 0: the spring's rate (0: not given)
+  double mu = 0.0;         // mu' = mu / cos(beta / 2)
+  double cos_lead = 1.0, sin_lead = 0.0;
+  int side = -1;  // half B's normal-force sign on the screw (half A's is -side)
+
+  // Half B's normal and friction force while the nut slips in direction s (+-1) [N].
+  double normal(int s) const noexcept {
+    return side * preload / (cos_lead - s * side * mu * sin_lead);
+  }
+  double friction(int s) const noexcept { return -s * mu * std::abs(normal(s)); }
+  // The friction bound b_s(N) in the direction s at the net normal force N.
+  double bound(int s, double normal_force) const noexcept {
+    const double b = normal(s);
+    return mu * (std::abs(normal_force - b) + std::abs(b));
+  }
+  // The stick cone's margin at net forces (N, T): >= 0 inside, the
+  // product of the two edges' reserves (as the plain thread's
+  // (mu' N - T)(mu' N + T)).
+  double stick_margin(double normal_force, double friction_force) const noexcept {
+    return (bound(-1, normal_force) - friction_force) * (bound(1, normal_force) + friction_force);
+  }
+  // The slip direction a net friction force T resists (its edge): -sign T (+1 for T = 0).
+  static int edge_of(double friction_force) noexcept { return friction_force > 0.0 ? -1 : 1; }
+  // |N_A| + |N_B| at net forces (N, T), half B at the edge T heads for: the
+  // normal force mu' multiplies (the result checks' cone and law).
+  double flank_normal(double normal_force, double friction_force) const noexcept {
+    const double b = normal(edge_of(friction_force));
+    return std::abs(normal_force - b) + std::abs(b);
+  }
+
+  // The edge of slip s: the net friction force T = -s b_s(beta + alpha T)
+  // with N = beta + alpha T the net normal force. `count`: how many of the
+  // two pieces of b_s (half A's normal-force sign) give a consistent
+  // solution; 1 outside the Painleve regime, 0 or 2 (distinct) is jamming.
+  struct Edge {
+    double friction = 0.0, normal = 0.0;
+    int count = 0;
+  };
+  Edge edge(int s, double alpha, double beta) const noexcept {
+    const double b = normal(s);
+    Edge e;
+    for (int sigma : {1, -1}) {
+      // T = -s mu' (sigma (beta + alpha T - b) + |b|)
+      const double coupling = 1.0 + s * mu * sigma * alpha;
+      if (!(coupling > 0.0)) continue;
+      const double t = -s * mu * (sigma * (beta - b) + std::abs(b)) / coupling;
+      const double n = beta + alpha * t;
+      if (!(sigma * (n - b) >= 0.0)) continue;
+      // The kink (half A's force zero): both pieces, one solution to round-off.
+      if (e.count > 0 && std::abs(t - e.friction) <=
+                             1e-12 * (std::abs(t) + std::abs(e.friction) + mu * std::abs(b)))
+        continue;
+      e.friction = t;
+      e.normal = n;
+      ++e.count;
+    }
+    return e;
+  }
+
+  // Stick or slip at zero slip velocity (the flank LCP's decision, by its
+  // three cases): with the slip acceleration x = c + d T (d > 0) and the
+  // net normal force N = beta + alpha T, stick where T = -c / d lies
+  // between the edges [T_+, T_-], slip s where x at the edge T_s has the
+  // sign s. Where an edge is not unique (the Painleve regime) the drive
+  // keeps sticking if the stick force lies in the cone, as the plain
+  // thread does (docs/physics/rigid_drive.md, "uniqueness"); otherwise
+  // `consistent` is false (jamming).
+  friction::FlankLcpResult decide(double c, double d, double alpha, double beta) const {
+    friction::FlankLcpResult r;
+    if (!(d > 0.0)) return r;
+    const Edge up = edge(1, alpha, beta), down = edge(-1, alpha, beta);
+    if (up.count != 1 || down.count != 1) {
+      const double stick = -c / d, normal_force = beta + alpha * stick;
+      if (!(bound(-1, normal_force) - stick >= 0.0 && bound(1, normal_force) + stick >= 0.0))
+        return r;
+      r.status = lcp::Status::solved;
+      r.consistent = true;
+      r.friction_force = stick;
+      r.normal_force = normal_force;
+      return r;
+    }
+    r.status = lcp::Status::solved;
+    r.consistent = true;
+    const double x_up = c + d * up.friction, x_down = c + d * down.friction;
+    if (x_up > 0.0) {
+      r.friction_force = up.friction;
+      r.slip_acceleration = x_up;
+    } else if (x_down < 0.0) {
+      r.friction_force = down.friction;
+      r.slip_acceleration = x_down;
+    } else {
+      r.friction_force = -c / d;
+      r.slip_acceleration = 0.0;
+    }
+    r.normal_force = beta + alpha * r.friction_force;
+    return r;
+  }
+
+  // The same where the motor prescribes the slip (d = 0,
+  // friction::solve_flank_prescribed_slip): slip in the direction of c where
+  // c != 0; at c = 0 stick, with the friction force in [T_+, T_-] that
+  // leaves the motor (motor0 + motor1 T) the least torque.
+  friction::FlankLcpResult prescribed_slip(double c, bool slip_zero, double alpha, double beta,
+                                           double motor0, double motor1) const {
+    friction::FlankLcpResult r;
+    r.status = lcp::Status::solved;
+    if (!slip_zero) {
+      const Edge e = edge(c > 0.0 ? 1 : -1, alpha, beta);
+      r.consistent = e.count == 1;
+      r.friction_force = e.friction;
+      r.normal_force = e.normal;
+      r.slip_acceleration = c;
+      return r;
+    }
+    const Edge up = edge(1, alpha, beta), down = edge(-1, alpha, beta);
+    if (up.count != 1 || down.count != 1) return r;
+    double friction_force = motor1 != 0.0 ? -motor0 / motor1 : 0.0;
+    if (!std::isfinite(friction_force)) friction_force = 0.0;
+    r.friction_force = std::min(down.friction, std::max(up.friction, friction_force));
+    r.normal_force = beta + alpha * r.friction_force;
+    r.slip_acceleration = 0.0;
+    r.consistent = true;
+    return r;
+  }
+};
+
+// The steady raising efficiency of the rigid drive with a preloaded nut
+// (docs/physics/preloaded_nut.md): a load F >= 0 on half A's flank, preload
+// P >= 0, lead angle alpha, mu' = tan rho':
+//   eta = F tan(alpha) / [(F + P) tan(alpha + rho') + P tan(rho' - alpha)],
+// 0 where the thread cannot be driven (alpha + rho' >= pi / 2), 1 at F = 0 with P = 0.
+inline double preloaded_efficiency(double alpha, double mu_eff, double load, double preload) {
+  const double rho = std::atan(mu_eff);
+  const double half_pi = 1.57079632679489661923;
+  if (!(alpha + rho < half_pi)) return 0.0;
+  const double need =
+      (load + preload) * std::tan(alpha + rho) + preload * std::tan(rho - alpha);
+  if (need == 0.0) return 1.0;
+  return load * std::tan(alpha) / need;
+}
+
+}  // namespace leadscrew::model::elements

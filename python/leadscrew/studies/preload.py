@@ -1,0 +1,290 @@
+"""The preload trade-off of a split nut (issue 19, item 5; docs/physics/preloaded_nut.md).
+
+The thesis's design compromise in one table: "a higher preload leads to a
+worse efficiency", but it holds the load against reversal and vibration.
+For each preload P of ``nut.preload`` on the scene's rigid drive:
+
+- **efficiency**: a speed-controlled motor raises the static load ``load``
+  (the scene's static axial force by default) as in
+  :func:`~leadscrew.studies.efficiency_vs_mu`, eq. (5.2) over the run's
+  second half, beside the closed form F tan a / [(F + P) tan(a + rho') +
+  P tan(rho' - a)];
+- **axial stiffness** (closed form; the rigid model does not simulate a
+  half lifting off): the nut is rigid while both halves bear, so it holds a
+  reversed load up to P without moving (``held_reverse_load`` = P). The
+  vibration of amplitude A about the static load F reverses the force by
+  R = A - F where A > F; beyond P half A lifts off and the spring of rate
+  k_p (``nut.preload_stiffness``) carries the excess, moving the load by
+  (R - P) / k_p, so the secant stiffness against the reversed peak is
+  k_p R / (R - P) (``axial_stiffness``; inf where R <= P, NaN where k_p is
+  not given);
+- **creep** under the scene's vibration: the static load plus the scene's
+  alternating axial force (its sine's amplitude and frequency, else 30 N and
+  20 Hz; ``amplitude=`` / ``frequency=`` override) with the scene's constant
+  drive torque, from rest, whole cycles (:func:`~leadscrew.studies.cycle_response`);
+  beside it ``holds_closed_form``: the stuck rigid drive's holding band
+  (raise and lower torques of both halves) contains the drive torque at both
+  extremes of the force, so the drive never slips (a stuck rigid drive is in
+  static equilibrium: exact).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Any, Dict, Optional, Sequence, Tuple
+
+import numpy as np
+import pandas as pd
+
+from .. import _core
+from ..thread import lower_torque, raise_torque
+from ._common import (annotate, as_scene, axes, check_grid, check_positive, numeric_or_nan,
+                      with_tolerances)
+from ._holding_runs import (_alternating_excitation, _constant_torque, _scene_sine,
+                            alternating_scene, check_cycles, cycle_response)
+from ._sweep import run_cases
+
+__all__ = ["preload_tradeoff", "plot_preload_tradeoff", "preloaded_holding_band"]
+
+UNITS = {"preload": "N", "efficiency": "1", "efficiency_closed_form": "1",
+         "relative_error": "1", "held_reverse_load": "N", "axial_stiffness": "N/m",
+         "creep_per_cycle": "m", "max_displacement": "m", "holds_closed_form": "",
+         "wall_time": "s", "error": ""}
+
+
+def _half_torque(thread, mu: float, axial: float, against: bool) -> float:
+    """The torque [N*m] that moves one nut half with axial force ``axial`` on
+    its flank against it (a power screw raising) or with it (lowering)."""
+    if axial < 0.0:  # the half on its other flank: the sense turns
+        axial, against = -axial, not against
+    return raise_torque(thread, mu, axial) if against else lower_torque(thread, mu, axial)
+
+
+def preloaded_holding_band(scene: Any, axial_force: float, preload: float,
+                           loaded_side: float) -> Tuple[float, float]:
+    """Drive torques [N*m] a stuck rigid drive with a preloaded nut holds
+    under a static axial force (docs/physics/preloaded_nut.md, "Holding").
+
+    Half A bears on the flank that a force of sign ``loaded_side`` presses
+    (the scene's axial force at t = 0), carrying F_A + P with F_A =
+    loaded_side * axial_force; half B carries P. Moving against F_A needs
+    T_raise = [half A against F_A + P] + [half B with P], moving with it
+    T_lower = [half A with F_A + P] + [half B against P] (each half a power
+    screw: raise_torque, lower_torque; a half whose force is negative bears
+    on its other flank). The band is (-T_lower, T_raise) in the sense that
+    moves against F_A, mapped to the sign of ``loads.drive_torque`` as in
+    :func:`~leadscrew.studies.static_holding_band` (P = 0: that band).
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict): thread and mu.
+        axial_force: static axial force on the load along +x [N].
+        preload: the nut's preload P [N], >= 0.
+        loaded_side: +1 or -1, the sign of the force that presses half A.
+
+    Returns:
+        (low, high) [N*m]: the drive holds iff the torque lies strictly inside.
+    """
+    scene = as_scene(scene)
+    thread, mu = scene.thread, scene["friction"]["mu"]
+    side = 1.0 if loaded_side > 0 else -1.0
+    a_force = side * axial_force + preload
+    against = _half_torque(thread, mu, a_force, True) + _half_torque(thread, mu, preload, False)
+    along = _half_torque(thread, mu, a_force, False) + _half_torque(thread, mu, preload, True)
+    # Positive torque moves the load along -h x: against F_A iff h side > 0.
+    if thread.hand_sign * side > 0:
+        return -along, against
+    return -against, along
+
+
+def _efficiency_case(scene, load: float, speed: float, t_end: float,
+                     options: Dict[str, Any]) -> Dict[str, Any]:
+    """eta = 1 - W_friction / W_in over the second half of a raising run."""
+    from ..simulation import simulate
+
+    omega = -scene.thread.hand_sign * speed
+    running = scene.replace(loads={"drive_torque": None, "drive_speed": omega,
+                                   "axial_force": -load},
+                            initial={"rotor_speed": omega, "state": "relaxed"})
+    t_eval = np.array([0.0, 0.5 * t_end, t_end])
+    result = simulate(running, t_end, t_eval=t_eval, **options)
+    work = result["work_drive"][2] - result["work_drive"][1]
+    loss = result["friction_loss"][2] - result["friction_loss"][1]
+    return {"efficiency": (work - loss) / work, "wall_time": float(result.stats["wall_time"])}
+
+
+def _case(preload: float, scene, load: float, speed: float, t_end: float, amplitude: float,
+          frequency: float, cycles: int, settle_cycles: int, points_per_cycle: int,
+          options: Dict[str, Any]) -> Dict[str, Any]:
+    preloaded = scene.replace(nut={"preload": preload})
+    out = _efficiency_case(preloaded, load, speed, t_end, options)
+    excited = alternating_scene(preloaded, amplitude, frequency, offset=-load)
+    creep = cycle_response(excited, frequency, cycles, settle_cycles, points_per_cycle,
+                           **options)
+    out["creep_per_cycle"] = creep["creep_per_cycle"]
+    out["max_displacement"] = creep["max_displacement"]
+    out["wall_time"] += creep["wall_time"]
+    return out
+
+
+def preload_tradeoff(
+    scene: Any,
+    preloads: Sequence[float],
+    load: Optional[float] = None,
+    speed: float = 10.0,
+    t_end: float = 0.05,
+    amplitude: Optional[float] = None,
+    frequency: Optional[float] = None,
+    cycles: int = 6,
+    settle_cycles: int = 1,
+    points_per_cycle: int = 50,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    executor=None,
+    progress: bool = True,
+    **simulate_options: Any,
+) -> pd.DataFrame:
+    """Efficiency, axial stiffness and creep against the split nut's preload.
+
+    Each preload runs the scene (rigid concept, exact Coulomb: what a
+    preloaded nut supports) with ``nut.preload`` = P twice: raising the
+    static load ``load`` at ``speed``, and at rest under the load plus the
+    vibration with the scene's constant drive torque (module docstring).
+    The static load presses along -x, so half A bears on its flank.
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict), concept "rigid"
+            with a constant ``loads.drive_torque`` (the torque the drive holds
+            against; 0 for a scene without one).
+        preloads: the preloads P [N], >= 0.
+        load: the static load [N], > 0 (default: the magnitude of the scene's
+            static axial force, a constant or its sine's offset).
+        speed: rotor speed of the efficiency run [rad/s], > 0.
+        t_end: duration of the efficiency run [s], > 0 (the rigid drive is
+            steady at once).
+        amplitude: the vibration's amplitude [N], > 0 (default: the scene's
+            sine's, else 30 N).
+        frequency: its frequency [Hz], > 0 (default: the scene's sine's,
+            else 20 Hz).
+        cycles, settle_cycles, points_per_cycle: the creep runs'
+            (:func:`~leadscrew.studies.cycle_response`).
+        rtol, atol: integration tolerances (default simulate's).
+        executor: a :class:`concurrent.futures.Executor` (default: a thread
+            pool over all cores).
+        progress: show a tqdm progress bar.
+        **simulate_options: passed on to :func:`leadscrew.simulate`.
+
+    Returns:
+        DataFrame with one row per preload: ``preload`` [N], ``efficiency``
+        [1], ``efficiency_closed_form`` [1], ``relative_error`` [1],
+        ``held_reverse_load`` [N], ``axial_stiffness`` [N/m],
+        ``creep_per_cycle`` [m] (signed along +x), ``max_displacement`` [m],
+        ``holds_closed_form`` (bool), ``wall_time`` [s, C++] and ``error``
+        (None, or the message of a failed case, whose numbers are NaN).
+        ``attrs["summary"]``: ``load`` [N], ``amplitude`` [N], ``frequency``
+        [Hz], ``reversed_load`` [N] (max(0, amplitude - load)), ``drive_torque`` [N*m], ``preload_stiffness`` [N/m],
+        ``excitation_from``, ``raised``, ``raised_reasons``.
+
+    Raises:
+        ValueError: invalid scene (not rigid, no constant drive torque, no
+            static load and no ``load``) or arguments.
+        TypeError: an unknown keyword in ``simulate_options``.
+    """
+    scene = as_scene(scene)
+    if scene["concept"] != "rigid":
+        raise ValueError(f"concept = {scene['concept']!r} is invalid for preload_tradeoff: a "
+                         "preloaded nut is supported on the rigid concept (concept = 'rigid')")
+    preloads = check_grid("preloads", preloads, allow_zero=True, unit="N")
+    torque = _constant_torque(scene)
+    if load is None:
+        load = abs(_static_force(scene))
+        if load == 0.0:
+            raise ValueError("load is missing: the scene has no static axial force (a "
+                             "constant loads.axial_force or a sine's offset); give load=")
+    load = check_positive("load", load, unit="N")
+    speed = check_positive("speed", speed, unit="rad/s")
+    t_end = check_positive("t_end", t_end, unit="s")
+    amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)
+    cycles, settle_cycles, points_per_cycle = check_cycles(cycles, settle_cycles,
+                                                           points_per_cycle)
+    options = with_tolerances(simulate_options, rtol, atol)
+    function = functools.partial(_case, scene=scene, load=load, speed=speed, t_end=t_end,
+                                 amplitude=amplitude, frequency=frequency, cycles=cycles,
+                                 settle_cycles=settle_cycles, points_per_cycle=points_per_cycle,
+                                 options=options)
+    outcomes = run_cases(function, list(preloads), executor=executor, progress=progress,
+                         description="preload_tradeoff")
+    thread, mu = scene.thread, scene["friction"]["mu"]
+    closed = _core.preloaded_efficiency_array(thread, mu, load, preloads)
+    stiffness = float(scene["nut"]["preload_stiffness"])
+    reversed_load = max(0.0, amplitude - load)  # the vibration's peak on half B's side
+    rows = []
+    for preload, expected, outcome in zip(preloads, closed, outcomes):
+        value = outcome.value or {}
+        eta = numeric_or_nan(value.get("efficiency"))
+        if preload >= reversed_load:
+            secant = math.inf
+        else:
+            secant = (stiffness * reversed_load / (reversed_load - preload) if stiffness > 0
+                      else math.nan)
+        # The band is piecewise affine in the force, with its kink where half
+        # A's force F_A + P is zero: the extremes of the force and the kink.
+        forces = [-load - amplitude, -load + amplitude]
+        if forces[0] < preload < forces[1]:
+            forces.append(preload)
+        bands = [preloaded_holding_band(scene, force, preload, -1.0) for force in forces]
+        rows.append({
+            "preload": preload, "efficiency": eta, "efficiency_closed_form": float(expected),
+            "relative_error": abs(eta - expected) / expected if expected > 0 else abs(eta),
+            "held_reverse_load": preload, "axial_stiffness": secant,
+            "creep_per_cycle": numeric_or_nan(value.get("creep_per_cycle")),
+            "max_displacement": numeric_or_nan(value.get("max_displacement")),
+            "holds_closed_form": all(low < torque < high or low == torque == high
+                                     for low, high in bands),
+            "wall_time": numeric_or_nan(value.get("wall_time")), "error": outcome.error})
+    frame = pd.DataFrame(rows, columns=list(UNITS))
+    return annotate(frame, UNITS, study="preload_tradeoff",
+                    summary_units={"load": "N", "amplitude": "N", "frequency": "Hz",
+                                   "reversed_load": "N", "drive_torque": "N*m",
+                                   "preload_stiffness": "N/m"},
+                    load=load, amplitude=amplitude, frequency=frequency,
+                    reversed_load=reversed_load, drive_torque=torque,
+                    preload_stiffness=stiffness, excitation_from=excitation_from)
+
+
+def _static_force(scene) -> float:
+    """The scene's static axial force [N]: a constant, or a sine's offset (0 otherwise)."""
+    force = scene["loads"].get("axial_force", 0.0)
+    if isinstance(force, (int, float)):
+        return float(force)
+    if isinstance(force, dict) and force.get("type") == "constant":
+        return float(force["value"])
+    sine = _scene_sine(scene)
+    return float(sine["offset"]) if sine else 0.0
+
+
+def plot_preload_tradeoff(frame: pd.DataFrame, ax: Optional[Any] = None):
+    """Draw the trade-off: efficiency (simulated, closed form) against the
+    preload, and on a second axis the creep per cycle under the vibration.
+
+    Args:
+        frame: the DataFrame :func:`preload_tradeoff` returned.
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes (of the efficiency; the creep's is its twin).
+    """
+    ax = axes(ax)
+    ax.plot(frame["preload"], frame["efficiency"], "o", color="C0", label="efficiency, simulated")
+    ax.plot(frame["preload"], frame["efficiency_closed_form"], "-", color="C0",
+            label="efficiency, closed form")
+    ax.set_xlabel("preload P [N]")
+    ax.set_ylabel("efficiency eta [1]")
+    ax.set_ylim(0.0, 1.05)
+    creep_ax = ax.twinx()
+    creep_ax.plot(frame["preload"], np.abs(frame["creep_per_cycle"]) * 1e6, "s--", color="C3",
+                  label="|creep| per cycle")
+    creep_ax.set_ylabel("|creep| per cycle [um]")
+    lines = ax.get_lines() + creep_ax.get_lines()
+    ax.legend(lines, [line.get_label() for line in lines], loc="upper right")
+    return ax

@@ -1,0 +1,105 @@
+"""preload_tradeoff (issue 19, item 5): efficiency, axial stiffness and creep
+against the split nut's preload on the rigid drive, against the closed forms
+of tests/helpers/preloaded_nut_reference.py (docs/physics/preloaded_nut.md)."""
+
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+
+import leadscrew as ls  # noqa: E402
+from helpers import preloaded_nut_reference as reference  # noqa: E402
+from helpers.scenes import thesis_scene  # noqa: E402
+from leadscrew.studies import (plot_preload_tradeoff, preload_tradeoff,  # noqa: E402
+                               preloaded_holding_band, static_holding_band)
+
+PRELOADS = [0.0, 5.0, 10.0, 20.0, 40.0]
+STIFFNESS = 1e6  # [N/m]
+VIBRATION = {"type": "sine", "amplitude": 30.0, "omega": 2 * math.pi * 20.0, "offset": -10.0}
+
+
+def scene(torque=-2e-2, **changes):
+    return ls.Scene.from_dict(thesis_scene(
+        friction={"law": "coulomb", "mu": 0.1}, nut={"preload_stiffness": STIFFNESS},
+        loads={"drive_torque": torque, "axial_force": VIBRATION}, **changes))
+
+
+@pytest.fixture(scope="module")
+def frame():
+    return preload_tradeoff(scene(), PRELOADS, cycles=4, points_per_cycle=40, progress=False)
+
+
+def test_efficiency_against_the_closed_form(frame):
+    assert frame["error"].isna().all()
+    thread = ls.Thread(1e-3, 20e-3)
+    mu_eff = reference.effective_mu(0.1, thread.flank_angle)
+    expected = [reference.efficiency(10.0, p, thread.lead_angle, mu_eff) for p in PRELOADS]
+    np.testing.assert_allclose(frame["efficiency_closed_form"], expected, rtol=1e-12)
+    np.testing.assert_allclose(frame["efficiency"], expected, rtol=1e-9)
+    assert np.all(np.diff(frame["efficiency"]) < 0.0)  # each newton of preload costs
+
+
+def test_creep_stops_where_the_holding_band_holds_the_torque(frame):
+    # A stuck rigid drive is in static equilibrium: it never slips iff the
+    # torque lies in the band at every force of the cycle (closed form).
+    holds = frame["holds_closed_form"].to_numpy(dtype=bool)
+    creep = frame["creep_per_cycle"].to_numpy()
+    assert not holds[0] and holds[-1]
+    np.testing.assert_array_equal(creep[holds], 0.0)
+    np.testing.assert_array_equal(frame["max_displacement"][holds], 0.0)
+    assert np.all(np.abs(creep[~holds]) > 1e-9)
+    assert np.all(np.diff(np.abs(creep)) <= 0.0)  # more preload, less creep
+
+
+def test_axial_stiffness_and_held_reverse_load(frame):
+    reversed_load = 30.0 - 10.0
+    np.testing.assert_array_equal(frame["held_reverse_load"], PRELOADS)
+    for row in frame.itertuples():
+        if row.preload >= reversed_load:
+            assert row.axial_stiffness == math.inf
+        else:
+            assert row.axial_stiffness == pytest.approx(
+                STIFFNESS * reversed_load / (reversed_load - row.preload), rel=1e-15)
+    summary = frame.attrs["summary"]
+    assert summary["reversed_load"] == reversed_load and summary["load"] == 10.0
+    assert summary["amplitude"] == 30.0 and summary["frequency"] == pytest.approx(20.0)
+    assert summary["excitation_from"] == "scene" and summary["raised"] == 0
+
+
+def test_holding_band_against_the_closed_form():
+    s = scene()
+    thread = s.thread
+    mu_eff = reference.effective_mu(0.1, thread.flank_angle)
+    alpha, r_m = thread.lead_angle, thread.mean_radius
+    # P = 0: the plain thread's band.
+    assert preloaded_holding_band(s, -10.0, 0.0, -1.0) == pytest.approx(
+        static_holding_band(s, -10.0), rel=1e-14)
+    # A load of 10 N on half A's side (along -x, raised by a negative torque
+    # on the right-hand screw), preload 20 N.
+    low, high = preloaded_holding_band(s, -10.0, 20.0, -1.0)
+    assert -low == pytest.approx(reference.raise_torque(10.0, 20.0, alpha, mu_eff, r_m),
+                                 rel=1e-12)
+    assert high == pytest.approx(reference.lower_torque(10.0, 20.0, alpha, mu_eff, r_m),
+                                 rel=1e-12)
+
+
+def test_units_and_plot(frame):
+    assert set(frame.attrs["units"]) == set(frame.columns)
+    assert frame.attrs["units"]["axial_stiffness"] == "N/m"
+    ax = plot_preload_tradeoff(frame)
+    assert len(ax.lines) == 2
+
+
+@pytest.mark.parametrize("changes, arguments, match", [
+    ({"concept": "flexible_nut"}, {}, r"concept = 'flexible_nut' is invalid for preload_tradeoff"),
+    ({}, {"preloads": [-1.0]}, "preloads"),
+    ({}, {"load": 0.0}, "load"),
+])
+def test_bad_arguments(changes, arguments, match):
+    kwargs = {"preloads": [0.0], "progress": False, **arguments}
+    with pytest.raises(ValueError, match=match):
+        preload_tradeoff(scene(**changes), **kwargs)

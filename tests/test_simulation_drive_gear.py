@@ -283,7 +283,7 @@ def test_the_studies_refuse_a_gear_stage(study):
     refused, naming the section."""
     arguments = {"efficiency_vs_mu": ([0.1, 0.2], [10.0]), "stick_slip": ()}[study]
     with pytest.raises(ValueError, match=r"gear = \{'type': 'ideal', 'ratio': 2.0\} is invalid "
-                                         r"for a study: must be absent"):
+                                         r"for this study: must be absent"):
         getattr(ls.studies, study)(thesis_scene(gear={"ratio": 2.0}), *arguments)
 
 

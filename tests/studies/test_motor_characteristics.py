@@ -318,9 +318,3 @@ def test_an_ideal_gear_stage_reflects_the_train_torque_and_speed(ratio):
     assert frame.attrs["summary"]["stall_load"] == pytest.approx(
         abs(ratio) * KT * U / R / ls.raise_torque(scene.thread, 0.3, 1.0), rel=1e-12)
 
-
-def test_the_other_studies_refuse_a_geared_scene():
-    d = thesis_scene(concept="rigid")
-    d["gear"] = {"ratio": 3.0}
-    with pytest.raises(ValueError, match="gear = .* is invalid for this study"):
-        ls.studies.efficiency_vs_mu(d, [0.1, 0.2], [10.0])

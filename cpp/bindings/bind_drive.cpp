@@ -283,6 +283,13 @@ void bind_drive(py::module_& m) {
     parameters.def_readwrite(field.name, field.member);
   parameters.def_readwrite("speed_controlled", &DriveParameters::speed_controlled);
   parameters.def_readwrite("dc_motor", &DriveParameters::dc_motor);
+  parameters.def_property(
+      "end_stops",
+      [](const DriveParameters& p) { return model::end_stop_contact_name(p.end_stops); },
+      [](DriveParameters& p, const std::string& v) {
+        p.end_stops = model::parse_end_stop_contact(v);
+      },
+      "the end stops' contact: 'none' (no end stops), 'penalty' or 'exact'");
   bind_drive_geometry(m);
 
   py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")

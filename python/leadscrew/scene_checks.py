@@ -144,6 +144,8 @@ def _check_consistency(data: Dict[str, Any]) -> None:
     # not stored, so replace(loads={"drive_speed": w}) switches to speed.
     if "motor" in data:
         _check_motor(data)
+    if "end_stops" in data:
+        _check_end_stops(data)
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
@@ -194,3 +196,29 @@ def _check_motor(data: Dict[str, Any]) -> None:
         raise ValueError("initial.state = 'equilibrium' is invalid with motor.type = "
                          f"{motor['type']!r}: the run starts with the current at 0 (use "
                          "'relaxed')")
+
+
+def _check_end_stops(data: Dict[str, Any]) -> None:
+    """The end_stops section's rules across its fields and sections: a stop
+    on at least one side, a stiffness for penalty stops, a relaxed start.
+
+    Raises:
+        ValueError: naming the keys at fault and their values.
+    """
+    stops = data["end_stops"]
+    if "lower" not in stops and "upper" not in stops:
+        raise ValueError("end_stops = {!r} is invalid: give end_stops.lower [m] (< 0), "
+                         "end_stops.upper [m] (> 0) or both".format(stops))
+    if stops["contact"] == "exact":
+        _fail("end_stops.contact", "exact", "'penalty' ('exact' is not available yet)")
+    if stops["restitution"] != 0.0:
+        _fail("end_stops.restitution", stops["restitution"],
+              f"0 with end_stops.contact = {stops['contact']!r} (a penalty stop's restitution "
+              "follows from its stiffness and damping)")
+    if "stiffness" not in stops:
+        raise ValueError("end_stops.stiffness is missing: required with end_stops.contact = "
+                         f"{stops['contact']!r} [N/m]")
+    if data["initial"]["state"] == "equilibrium":
+        raise ValueError("initial.state = 'equilibrium' is invalid with end_stops: the stops "
+                         "are placed relative to the load's start, and the static equilibrium "
+                         "does not take them (use 'relaxed')")

@@ -29,6 +29,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -49,6 +50,8 @@ enum class BacklashContact { none, exact, bistop, cubic };
 // initial.rotor_speed; `equilibrium`, at rest in static equilibrium under the
 // loads at t = 0 (drive_equilibrium.hpp).
 enum class InitialState { relaxed, equilibrium };
+// The end stops' contact (end_stops.contact; none: no end stops).
+enum class EndStopContact { none, penalty, exact };
 
 // The smallest axial play a thread may have besides none [m].
 constexpr double kSmallestClearance = 1e-12;
@@ -119,6 +122,16 @@ struct DriveParameters {
   double motor_torque_constant = 0.0;   // k_t [N m/A]
   double motor_back_emf_constant = -1.0;  // k_e [V s/rad]; < 0: k_t
   double motor_current_limit = 0.0;     // i_max [A]; 0: none
+
+  // End stops of the load's travel (elements/end_stop.hpp; scene section
+  // `end_stops`): the load's coordinate u_load between end_stop_lower < 0 <
+  // end_stop_upper, relative to its start (-inf / +inf: no stop on that side).
+  EndStopContact end_stops = EndStopContact::none;
+  double end_stop_lower = -std::numeric_limits<double>::infinity();  // [m]
+  double end_stop_upper = std::numeric_limits<double>::infinity();   // [m]
+  double end_stop_stiffness = 0.0;    // k [N/m] (penalty)
+  double end_stop_damping = 0.0;      // c [N s/m] (penalty)
+  double end_stop_restitution = 0.0;  // Newton's e (exact)
 
   double rotor_angle = 0.0;
   double rotor_speed = 0.0;
@@ -222,6 +235,7 @@ const std::vector<std::string>& drive_names();
 const std::vector<std::string>& support_names();
 const std::vector<std::string>& backlash_contact_names();  // "none" first
 const std::vector<std::string>& initial_state_names();
+const std::vector<std::string>& end_stop_contact_names();  // "none" first
 std::string concept_name(Concept c);
 std::string drive_name(DrivenPart d);
 std::string support_name(ScrewSupport s);
@@ -232,5 +246,7 @@ DrivenPart parse_drive(const std::string& name);
 ScrewSupport parse_support(const std::string& name);
 BacklashContact parse_backlash_contact(const std::string& name);  // "none" allowed
 InitialState parse_initial_state(const std::string& name);
+std::string end_stop_contact_name(EndStopContact c);
+EndStopContact parse_end_stop_contact(const std::string& name);  // "none" allowed
 
 }  // namespace leadscrew::model

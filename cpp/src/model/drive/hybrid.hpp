@@ -19,6 +19,7 @@
 //                          law's fold
 //   hybrid_motor.cpp       a DC motor's current: its rates, channels, the
 //                          current limit's root and hold
+//   hybrid_end_stops.cpp   the penalty end stops' roots (contact, release)
 #pragma once
 
 #include <cmath>
@@ -70,8 +71,11 @@ class DriveHybrid final : public integrate::HybridSystem {
   int size() const override { return layout_.size(); }
   // g0..g3: friction and flank events (see roots); g4: the nut's end at the
   // screw's end, for every concept (the scene gives every screw its length);
-  // g5: a DC motor's current limit (with inductance), hybrid_motor.cpp.
-  int root_count() const override { return current_limit_root() ? 6 : 5; }
+  // g5: a DC motor's current limit (with inductance), hybrid_motor.cpp;
+  // then one per penalty end stop, hybrid_end_stops.cpp.
+  int root_count() const override {
+    return end_stop_root() + static_cast<int>(model_.elements().end_stops().size());
+  }
   // The work and loss integrals close the state; f does not depend on them.
   int quadrature_count() const override { return kEnergyCount; }
 
@@ -132,6 +136,18 @@ class DriveHybrid final : public integrate::HybridSystem {
   // After a mechanical event: an impact's jump of the rotor's speed may end
   // the driver's push at once (g5 would start beyond its zero).
   void recheck_current_hold(double t, const double* y);
+
+  // hybrid_end_stops.cpp: the penalty end stops (model_.elements().end_stops()),
+  // at the state last set. Their roots follow g0..g4 and a DC motor's g5.
+  int end_stop_root() const { return current_limit_root() ? 6 : 5; }
+  // Each stop's contact margin (> 0 exactly where it pushes).
+  void end_stop_roots(double* g) const;
+  void end_stop_directions(int* directions) const;
+  // Which stops push at the state last set (a start, a resume).
+  void start_end_stops();
+  // An event of their roots: the stops that now push or no longer do, its
+  // description ("" if none of their roots).
+  std::string change_end_stops(const std::vector<int>& root_info);
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);
@@ -231,6 +247,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
   int current_held_ = 0;  // a DC motor's current held at +-current_limit (its sign; 0: free)
+  std::vector<char> stop_pushing_;  // per end stop: it pushes (its root's direction)
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;

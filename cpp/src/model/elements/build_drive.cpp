@@ -12,6 +12,55 @@
 
 namespace leadscrew::model::elements {
 
+namespace {
+
+// The end stops of the load's travel (end_stops; elements/end_stop.hpp),
+// their values checked: lower < 0 < upper, relative to the load's start,
+// which a relaxed start puts at u_load = 0.
+void add_end_stops(const DriveParameters& p, int load, DriveElements& e) {
+  if (p.end_stops == EndStopContact::none) return;
+  const double lower = p.end_stop_lower, upper = p.end_stop_upper;
+  if (!(lower < 0.0))
+    throw InvalidArgument("end_stops.lower = " + format_value(lower) +
+                          " m is invalid: must be < 0 (relative to the load's start; -inf: "
+                          "no lower stop)");
+  if (!(upper > 0.0))
+    throw InvalidArgument("end_stops.upper = " + format_value(upper) +
+                          " m is invalid: must be > 0 (relative to the load's start; inf: "
+                          "no upper stop)");
+  if (std::isinf(lower) && std::isinf(upper))
+    throw InvalidArgument("end_stops = \"" + end_stop_contact_name(p.end_stops) +
+                          "\" is invalid without end_stops.lower or end_stops.upper: give "
+                          "either or both");
+  // What end stops do not take yet.
+  const char* refused =
+      p.initial_state == InitialState::equilibrium
+          ? "initial.state = \"equilibrium\" is invalid with end_stops: the stops are placed "
+            "relative to the load's start, and the static equilibrium does not take them (use "
+            "\"relaxed\")"
+      : p.end_stops == EndStopContact::exact
+          ? "end_stops.contact = \"exact\" is not available yet: use \"penalty\" (stiffness, "
+            "damping)"
+          : nullptr;
+  if (refused != nullptr) throw InvalidArgument(refused);
+  require_positive("end_stops.stiffness", p.end_stop_stiffness);
+  require_nonnegative("end_stops.damping", p.end_stop_damping);
+  for (const int side : {-1, 1}) {
+    const double position = side < 0 ? lower : upper;
+    if (std::isinf(position)) continue;
+    EndStop stop;
+    stop.name = side < 0 ? "lower end stop" : "upper end stop";
+    stop.coordinate = load;
+    stop.side = side;
+    stop.position = position;
+    stop.stiffness = p.end_stop_stiffness;
+    stop.damping = p.end_stop_damping;
+    e.forces.of<EndStop>().push_back(stop);
+  }
+}
+
+}  // namespace
+
 DriveElements build_drive_elements(DriveParameters& p) {
   require_nonnegative("friction.mu", p.mu);
   require_positive("friction.k_v", p.k_v);
@@ -180,7 +229,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
   require_nonnegative("overrides.damping_ratio", p.damping_ratio);
   Eigen::VectorXd mass = Eigen::VectorXd::Zero(e.coordinate_count());
   for (const RigidBody& body : e.bodies) body.add_mass(mass);
-  e.forces.for_each([&](auto& s) {
+  for (SpringDamper& s : e.forces.of<SpringDamper>()) {  // (their damping defaults)
     double derivative = 0.0;
     const double k = s.stiffness_at(p.nut_position, &derivative);
     require_positive(s.name + " stiffness", k);
@@ -193,7 +242,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
       s.damping = 2.0 * p.damping_ratio * std::sqrt(k * carried);
     }
     require_finite(s.name + " damping", s.damping);
-  });
+  }
 
   e.thread.emplace(p, std::move(law), c, e.coordinate_count());
   e.motor = Motor{rotor, p.speed_controlled, p.drive_torque, p.drive_speed};
@@ -226,6 +275,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
     e.dc_motor = m;
   }
   e.load = AxialLoad{load, p.axial_force};
+  add_end_stops(p, load, e);
   return e;
 }
 

@@ -8,6 +8,7 @@
 //   motor.hpp          Motor: torque-controlled force or speed-controlled constraint
 //   dc_motor.hpp       DcMotor: armature current (a state), voltage driver, current limit
 //   axial_load.hpp     AxialLoad: the axial force on the load
+//   end_stop.hpp       EndStop: a penalty end stop of the load's travel (a force element)
 // The lists are grouped by type (no virtual call per scalar in the
 // right-hand side): DriveDynamics loops over each. The force elements (the
 // springs today; an end stop, a gear's compliance) are one registry line.
@@ -23,6 +24,7 @@
 
 #include "leadscrew/model/elements/axial_load.hpp"
 #include "leadscrew/model/elements/dc_motor.hpp"
+#include "leadscrew/model/elements/end_stop.hpp"
 #include "leadscrew/model/elements/motor.hpp"
 #include "leadscrew/model/elements/rigid_body.hpp"
 #include "leadscrew/model/elements/spring_damper.hpp"
@@ -74,7 +76,7 @@ struct ForceElementLists {
 };
 
 // The registry of force elements: a new one is its file and its type here.
-using ForceElements = ForceElementLists<SpringDamper>;
+using ForceElements = ForceElementLists<SpringDamper, EndStop>;
 
 struct DriveElements {
   std::vector<std::string> coordinates;  // their names, in order
@@ -90,6 +92,8 @@ struct DriveElements {
 
   int coordinate_count() const noexcept { return static_cast<int>(coordinates.size()); }
   const std::vector<SpringDamper>& springs() const { return forces.of<SpringDamper>(); }
+  // The penalty end stops of the load's travel (elements/end_stop.hpp).
+  const std::vector<EndStop>& end_stops() const { return forces.of<EndStop>(); }
 };
 
 // The elements of the drive `p` describes, its values checked (raises

@@ -153,7 +153,7 @@ def test_stops_out_of_reach_change_nothing_on_the_rigid_drive():
     ({"upper": 0.1}, "end_stops.stiffness is missing"),
     ({"stiffness": K}, "give end_stops.lower [m] (< 0), end_stops.upper [m] (> 0) or both"),
     ({"upper": 0.1, "stiffness": K, "restitution": 0.5}, "end_stops.restitution = 0.5 is invalid"),
-    ({"upper": 0.1, "stiffness": K, "contact": "exact"}, "end_stops.contact = 'exact' is invalid"),
+    ({"upper": 0.1, "contact": "exact"}, "end_stops.contact = 'exact' is invalid"),
     ({"upper": 0.1, "stiffness": K, "gap": 1.0}, "end_stops.gap is not a known key"),
 ])
 def test_invalid_end_stops_are_refused_naming_the_key(stops, message):
@@ -220,3 +220,91 @@ def test_schema_documents_every_end_stop_field():
         if unit:
             assert line.startswith(f"end_stops.{key} [{unit}]")
     assert ls.units.channel_unit("stop_force") == "N"
+
+
+# --- exact stops (contact = "exact"): Newton impacts, a closed contact --------
+
+
+def free_flight_scene(restitution, **changes):
+    """The flexible nut (screw-driven: the load hangs on the nut's spring)
+    frictionless, without loads, every body moving with the thread at 50
+    rad/s: the load flies at a constant speed into the lower stop 0.1 mm away."""
+    return thesis_scene(concept="flexible_nut", friction={"mu": 0.0},
+                        loads={"drive_torque": 0.0, "axial_force": 0.0},
+                        initial={"rotor_speed": 50.0},
+                        end_stops={"lower": -1e-4, "upper": 1e-4, "contact": "exact",
+                                   "restitution": restitution}, **changes)
+
+
+@pytest.mark.parametrize("restitution", [1.0, 0.5, 0.2])
+def test_exact_stop_rebound_is_restitution_times_the_approach_speed(restitution):
+    scene = free_flight_scene(restitution)
+    result = ls.simulate(ls.Scene.from_dict(scene), 0.02, rtol=1e-10, atol=1e-14)
+    approach = result["v_load"][0]
+    assert approach < 0.0  # a right-hand screw turning +x moves the load along -x
+    impact = next(e for e in result.events if e.kind.startswith("lower end stop impact"))
+    assert impact.time == pytest.approx(-1e-4 / approach, rel=1e-9)
+    rows = np.flatnonzero(result.t == impact.time)
+    before, after = result["v_load"][rows[0]], result["v_load"][rows[-1]]
+    assert before == pytest.approx(approach, rel=1e-12)
+    assert after == pytest.approx(-restitution * approach, rel=1e-12)
+    assert result["u_load"][rows[-1]] == -1e-4
+    loss = 0.5 * scene["load"]["mass"] * (1.0 - restitution ** 2) * approach ** 2
+    assert result["impact_loss"][rows[-1]] == pytest.approx(loss, rel=1e-12, abs=1e-18)
+    scale = np.max(result["kinetic"])  # (the nut's spring rings after the impact)
+    assert np.max(np.abs(result["energy_residual"])) <= 1e-8 * scale
+
+
+def test_exact_stop_closes_holds_the_load_and_opens_when_the_force_reverses():
+    # Pressed into the lower stop by -40 N on a self-locking thread: the
+    # plastic stop (e = 0) holds the load at its face, balancing the axial
+    # force and the nut's spring, until the force turns at 0.1 s.
+    force = {"type": "table", "times": [0.0, 0.1, 0.11, 0.2], "values": [-40.0, -40.0, 40.0, 40.0]}
+    scene = thesis_scene(concept="flexible_nut", loads={"drive_torque": 0.0, "axial_force": force},
+                         end_stops={"lower": -1e-6, "contact": "exact"})
+    s = ls.Scene.from_dict(scene)
+    result = ls.simulate(s, 0.2, rtol=1e-10, atol=1e-14)
+    # (The impact stops the load, and the nut's damper jumps: the thread may slip.)
+    closed = next(e.time for e in result.events
+                  if e.kind.startswith("lower end stop impact, closed"))
+    opens = next(e.time for e in result.events if e.kind.startswith("lower end stop opens"))
+    assert 0.0 < closed < opens and 0.1 < opens < 0.11
+    inside = (result.t > closed) & (result.t < opens)
+    assert np.all(result["u_load"][inside] == -1e-6)
+    assert np.all(result["v_load"][inside] == 0.0)
+    # The stop balances the forces on the held load: the axial force and the
+    # nut's spring-damper k (u_nut - u_load) + c (v_nut - v_load).
+    spring = next(sp for sp in s.model().springs if sp["name"] == "nut axial")
+    on_load = (result["axial_force"] + spring["stiffness"] * (result["u_nut"] - result["u_load"])
+               + spring["damping"] * (result["v_nut"] - result["v_load"]))
+    np.testing.assert_allclose(result["stop_force"][inside], -on_load[inside], rtol=0,
+                               atol=1e-9 * 40.0)
+    assert np.all(result["stop_force"][inside] > 0.0)  # it pushes, toward +u
+    assert np.all(result["stop_force"][result.t > opens] == 0.0)
+    scale = np.max(np.abs(result["work_axial"]))
+    assert np.max(np.abs(result["energy_residual"])) <= 1e-6 * scale
+
+
+@pytest.mark.parametrize("changes, message", [
+    ({"concept": "rigid"}, "end_stops.contact = 'exact' is invalid with concept = 'rigid'"),
+    ({"concept": "flexible_nut", "drive": "nut"}, "the load moves with the screw"),
+    ({"concept": "flexible_nut", "end_stops": {"stiffness": K}},
+     "end_stops.stiffness = 10000000.0 is invalid: must be absent with end_stops.contact = 'exact'"),
+    ({"concept": "flexible_nut", "end_stops": {"restitution": 1.5}},
+     "end_stops.restitution = 1.5 is invalid"),
+])
+def test_exact_stops_are_refused_where_the_load_is_rigid_in_the_thread(changes, message):
+    stops = {"lower": -1e-4, "contact": "exact", **changes.pop("end_stops", {})}
+    with pytest.raises(ValueError) as raised:
+        ls.Scene.from_dict(thesis_scene(end_stops=stops, **changes))
+    assert message in str(raised.value)
+
+
+def test_the_core_refuses_exact_stops_on_a_rigid_drive():
+    from leadscrew import _core
+
+    parameters = ls.Scene.from_dict(thesis_scene()).model().parameters
+    parameters.end_stops = "exact"
+    parameters.end_stop_lower = -1e-3
+    with pytest.raises(ValueError, match="statically indeterminate"):
+        _core.DriveModel(parameters)

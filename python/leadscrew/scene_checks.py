@@ -210,15 +210,40 @@ def _check_end_stops(data: Dict[str, Any]) -> None:
         raise ValueError("end_stops = {!r} is invalid: give end_stops.lower [m] (< 0), "
                          "end_stops.upper [m] (> 0) or both".format(stops))
     if stops["contact"] == "exact":
-        _fail("end_stops.contact", "exact", "'penalty' ('exact' is not available yet)")
-    if stops["restitution"] != 0.0:
-        _fail("end_stops.restitution", stops["restitution"],
-              f"0 with end_stops.contact = {stops['contact']!r} (a penalty stop's restitution "
-              "follows from its stiffness and damping)")
-    if "stiffness" not in stops:
-        raise ValueError("end_stops.stiffness is missing: required with end_stops.contact = "
-                         f"{stops['contact']!r} [N/m]")
+        _check_exact_stops(data)
+    else:
+        if stops["restitution"] != 0.0:
+            _fail("end_stops.restitution", stops["restitution"],
+                  f"0 with end_stops.contact = {stops['contact']!r} (a penalty stop's "
+                  "restitution follows from its stiffness and damping)")
+        if "stiffness" not in stops:
+            raise ValueError("end_stops.stiffness is missing: required with "
+                             f"end_stops.contact = {stops['contact']!r} [N/m]")
     if data["initial"]["state"] == "equilibrium":
         raise ValueError("initial.state = 'equilibrium' is invalid with end_stops: the stops "
                          "are placed relative to the load's start, and the static equilibrium "
                          "does not take them (use 'relaxed')")
+
+
+def _check_exact_stops(data: Dict[str, Any]) -> None:
+    """Exact stops: on a load hanging on a flexible translating part only (the
+    core's rule, named here first), without a penalty's stiffness or damping.
+
+    Raises:
+        ValueError: naming the keys at fault and their values.
+    """
+    stops = data["end_stops"]
+    for key in ("stiffness", "damping"):
+        if key in stops and not (key == "damping" and stops[key] == 0.0):
+            _fail(f"end_stops.{key}", stops[key], "absent with end_stops.contact = 'exact' "
+                  "(a rigid stop; its impacts take end_stops.restitution)")
+    translating = "nut" if data["drive"] == "screw" else "screw"
+    flexible = (data["concept"] == "flexible"
+                or (data["concept"] == "flexible_nut" and translating == "nut"))
+    if not flexible:
+        raise ValueError(
+            f"end_stops.contact = 'exact' is invalid with concept = {data['concept']!r} and "
+            f"drive = {data['drive']!r}: the load moves with the {translating}, rigid and in "
+            "the thread, and a rigid drive clamped against a rigid stop is statically "
+            "indeterminate (the thread's friction and the stop's force, one equation); use "
+            "end_stops.contact = 'penalty', or a concept where that part is flexible")

@@ -297,16 +297,23 @@ SCHEMA: Dict[str, Any] = {
                        "no upper stop)", "m", OPTIONAL, **POSITIVE),
         "contact": Field("the stops' contact: 'penalty', a one-sided spring-damper on the "
                          "load against the ground, F = max(0, k d + c d') for a penetration "
-                         "d > 0, which pushes and never pulls (docs/physics/end_stops.md); "
-                         "'exact' is not available yet", "", "penalty", kind="choice",
+                         "d > 0, which pushes and never pulls; 'exact', a rigid unilateral "
+                         "stop with Newton impacts (restitution), only where the load hangs "
+                         "on a flexible translating part (concept 'flexible', or "
+                         "'flexible_nut' with drive 'screw'; docs/physics/end_stops.md)",
+                         "", "penalty", kind="choice",
                          choices=("penalty", "exact")),
         "stiffness": Field("the penalty stop's stiffness k (required with contact = "
-                           "'penalty'): the static deflection under a held force F is F / k",
+                           "'penalty', absent with 'exact'): the static deflection under a "
+                           "held force F is F / k",
                            "N/m", OPTIONAL, **POSITIVE),
         "damping": Field("the penalty stop's damping c in contact (0: an elastic stop, which "
                          "gives back all it stores)", "N*s/m", 0.0, **NONNEGATIVE),
-        "restitution": Field("Newton restitution coefficient of an 'exact' stop's impacts, "
-                             "in [0, 1]", "", 0.0, low=0.0, high=1.0),
+        "restitution": Field("Newton restitution coefficient e of an 'exact' stop's "
+                             "impacts, in [0, 1]: the load leaves at e times its approach "
+                             "speed; a rebound below the run's bounce_threshold closes the "
+                             "contact (the load held at the face while the forces press it "
+                             "there)", "", 0.0, low=0.0, high=1.0),
     },
     "initial": {
         "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),

@@ -38,11 +38,30 @@ void add_end_stops(const DriveParameters& p, int load, DriveElements& e) {
           ? "initial.state = \"equilibrium\" is invalid with end_stops: the stops are placed "
             "relative to the load's start, and the static equilibrium does not take them (use "
             "\"relaxed\")"
-      : p.end_stops == EndStopContact::exact
-          ? "end_stops.contact = \"exact\" is not available yet: use \"penalty\" (stiffness, "
-            "damping)"
           : nullptr;
   if (refused != nullptr) throw InvalidArgument(refused);
+  if (p.end_stops == EndStopContact::exact) {
+    // The load alone meets the stop: no constraint may tie it to other
+    // coordinates (a rigid translating part carries the thread: a rigid
+    // drive clamped against a rigid stop is statically indeterminate).
+    if (e.thread->play_gradient()[load] != 0.0)
+      throw InvalidArgument(
+          "end_stops.contact = \"exact\" is invalid with concept = \"" +
+          concept_name(p.concept) + "\" and drive = \"" + drive_name(p.drive) +
+          "\": the load moves with the " + (p.drive == DrivenPart::screw ? "nut" : "screw") +
+          ", rigid and in the thread, and a rigid drive clamped against a rigid stop is "
+          "statically indeterminate (the thread's friction and the stop's force, one "
+          "equation); use end_stops.contact = \"penalty\", or a concept where that part is "
+          "flexible (the load on its spring)");
+    require_in_range("end_stops.restitution", p.end_stop_restitution, 0.0, 1.0);
+    for (const int side : {-1, 1}) {
+      const double position = side < 0 ? lower : upper;
+      if (std::isinf(position)) continue;
+      e.exact_stops.push_back({side < 0 ? "lower end stop" : "upper end stop", load, side,
+                               position, p.end_stop_restitution});
+    }
+    return;
+  }
   require_positive("end_stops.stiffness", p.end_stop_stiffness);
   require_nonnegative("end_stops.damping", p.end_stop_damping);
   for (const int side : {-1, 1}) {

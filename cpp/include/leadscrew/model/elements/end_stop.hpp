@@ -92,4 +92,23 @@ struct EndStop {
   }
 };
 
+// An exact end stop (contact = "exact"; docs/physics/end_stops.md): a
+// unilateral contact on the load coordinate u, gap g = side (position - u)
+// >= 0, with Newton's impact law u'+ = -e u'- (restitution e), and a closed
+// contact (u held at the face) while the forces on the load press it
+// there. Only on a load that no constraint ties to other coordinates (the
+// translating part flexible: the load hangs on its spring), where the
+// impact and the closed contact concern the load alone; DriveHybrid holds
+// its contact state (hybrid_end_stops.cpp). Not a force element.
+struct ExactEndStop {
+  std::string name;
+  int coordinate = -1;
+  int side = 1;
+  double position = 0.0;
+  double restitution = 0.0;
+
+  // The gap to the face [m] (>= 0 while free).
+  double gap(double u) const { return side * (position - u); }
+};
+
 }  // namespace leadscrew::model::elements

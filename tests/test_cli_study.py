@@ -301,6 +301,9 @@ TINY_STUDIES = {
     "motor_characteristics": ({"loads": None, "motor": {
         "type": "dc", "voltage": 3.0, "resistance": 2.0, "inductance": 1e-3,
         "torque_constant": 0.05}}, ["loads=10", "t_end=0.05"]),
+    "end_stop_jam": ({"loads": {"drive_torque": 0.5, "axial_force": 0.0},
+                      "end_stops": {"lower": -2e-4, "stiffness": 1e8, "damping": 1e4}},
+                     ["t_drive=0.3", "t_reverse=0.05", "runs=6"]),
 }
 
 

@@ -308,3 +308,26 @@ def test_the_core_refuses_exact_stops_on_a_rigid_drive():
     parameters.end_stop_lower = -1e-3
     with pytest.raises(ValueError, match="statically indeterminate"):
         _core.DriveModel(parameters)
+
+
+@pytest.mark.parametrize("stops", [{"lower": -1e-6, "contact": "exact"},
+                                   {"lower": -1e-6, "stiffness": 1e8, "damping": 1e4}])
+def test_the_stepper_carries_the_stops_across_its_pieces(stops):
+    # The axial force changed at every piece (each rebuilds the run): the
+    # held load stays held, an exact stop closes once.
+    from leadscrew import _core
+
+    scene = ls.Scene.from_dict(thesis_scene(
+        concept="flexible_nut", loads={"drive_torque": 0.0, "axial_force": -40.0},
+        end_stops=stops))
+    stepper = _core.DriveStepper(scene.model(), "", "", 1e-8, 1e-12, 1_000_000, 100_000, 0.0,
+                                 0.0, 1e-6, 0)
+    for k in range(1, 11):
+        stepper.set_input("axial_force", -40.0 - k)
+        stepper.advance(0.01 * k)
+    assert "stop_force" in stepper.channel_names
+    assert stepper.channel("stop_force") > 0.0
+    contacts = [kind for _, kind in stepper.events if kind.startswith("lower end stop")]
+    assert len(contacts) == 1, contacts
+    if stops.get("contact") == "exact":
+        assert stepper.channel("u_load") == -1e-6 and stepper.channel("v_load") == 0.0

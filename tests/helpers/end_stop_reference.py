@@ -12,6 +12,11 @@ d = side (u - u_s) pushes with F = max(0, k d + c d') where d > 0:
   M = F r_m tan(alpha + rho'), so F = M / (r_m tan(alpha + rho')) with
   rho' = atan(mu / cos(beta / 2)) (thread_reference.raise_torque).
 - The stop's energy: elastic k d^2 / 2, loss power F d' - k d d' >= 0.
+- Breakaway of a clamp F held by a self-locking thread (end_stop_jam): the
+  reverse torque that moves the clamped load back, quasi-statically with
+  the static coefficient, is the lowering torque T_b = F r_m tan(rho_s' -
+  alpha) (thread_reference.lower_torque with mu_static); a DC motor at rest
+  gives k_t U / R, so U_b = R T_b / k_t.
 """
 
 from __future__ import annotations
@@ -20,8 +25,8 @@ import numpy as np
 
 from . import thread_reference
 
-__all__ = ["static_deflection", "clamp_force", "pushing_force", "elastic_energy",
-           "loss_power"]
+__all__ = ["static_deflection", "clamp_force", "breakaway_torque", "pushing_force",
+           "elastic_energy", "loss_power"]
 
 
 def static_deflection(force: float, stiffness: float) -> float:
@@ -37,6 +42,14 @@ def clamp_force(torque: float, thread: dict, mu: float) -> float:
                                          thread.get("starts", 1),
                                          thread.get("flank_angle", 0.0))
     return abs(torque) / unit
+
+
+def breakaway_torque(clamp: float, thread: dict, mu_static: float) -> float:
+    """F r_m tan(rho_s' - alpha) [N m]: the reverse torque that breaks a clamp
+    F [N] free (thread: the scene's thread section, SI)."""
+    return thread_reference.lower_torque(thread["pitch"], thread["mean_diameter"], mu_static,
+                                         clamp, thread.get("starts", 1),
+                                         thread.get("flank_angle", 0.0))
 
 
 def pushing_force(d, rate, stiffness: float, damping: float):

@@ -17,7 +17,9 @@ scene without one), unless ``amplitude=`` / ``frequency=`` give them;
 offset) unless ``excitation=`` gives one; ``efficiency_vs_mu`` replaces the
 loads by its definition (a speed-controlled motor raising each of its
 ``loads``); ``motor_characteristics`` runs the scene's DC motor (section
-``motor``, a constant voltage) raising each of its ``loads``. Where a study may take its excitation from either,
+``motor``, a constant voltage) raising each of its ``loads``; ``end_stop_jam``
+runs the scene's constant drive torque or DC motor into its end stop and
+reverses it. Where a study may take its excitation from either,
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
@@ -50,6 +52,7 @@ from typing import Optional
 from . import concepts as _concepts
 from . import creep as _creep
 from . import drive_efficiency as _drive_efficiency
+from . import end_stop as _end_stop
 from . import holding as _holding
 from . import motor as _motor
 from . import stickslip as _stickslip
@@ -58,6 +61,7 @@ from ._sweep import SerialExecutor
 from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
 from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
 from .drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu
+from .end_stop import end_stop_jam, plot_end_stop_jam
 from .motor import motor_characteristics, plot_motor_characteristics
 from .holding import (
     alternating_scene,
@@ -93,6 +97,7 @@ PLOTS = {
     "min_holding_preload": plot_min_holding_preload,
     "efficiency_vs_mu": plot_efficiency_vs_mu,
     "motor_characteristics": plot_motor_characteristics,
+    "end_stop_jam": plot_end_stop_jam,
 }
 
 
@@ -137,6 +142,7 @@ STUDIES = {
     "min_holding_preload": min_holding_preload,
     "efficiency_vs_mu": efficiency_vs_mu,
     "motor_characteristics": motor_characteristics,
+    "end_stop_jam": end_stop_jam,
 }
 
 __all__ = [
@@ -151,4 +157,5 @@ __all__ = [
     *_creep.__all__,
     *_drive_efficiency.__all__,
     *_motor.__all__,
+    *_end_stop.__all__,
 ]

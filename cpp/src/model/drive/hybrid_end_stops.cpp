@@ -57,9 +57,14 @@ void DriveHybrid::start_end_stops() {
   const int load = model_.load();
   for (std::size_t i = 0; i < stops.size(); ++i)
     stop_pushing_[i] = stops[i].contact_margin(q_[load], v_[load]) > 0.0;
-  // (The scene starts the load between the stops; a resumed run's closed
-  // stop closes again at its first root, the gap at 0.)
-  stop_closed_.assign(model_.elements().exact_stops.size(), 0);
+  // The scene starts the load between the stops; a resumed run (the stepper's
+  // next piece) starts closed where the last left the load held at a face
+  // and the forces still press it there.
+  const auto& exact = model_.elements().exact_stops;
+  stop_closed_.assign(exact.size(), 0);
+  for (std::size_t i = 0; i < exact.size(); ++i)
+    stop_closed_[i] = exact[i].gap(q_[load]) <= 0.0 && v_[load] == 0.0 &&
+                      exact[i].side * dynamics_.forces()[load] >= 0.0;
 }
 
 std::string DriveHybrid::change_end_stops(double t, double* y,

@@ -9,6 +9,7 @@ made it so (``_blamed``, which asks the core again with inputs set back).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Optional
 
@@ -290,6 +291,14 @@ def _core_parameters(data: Dict[str, Any],
     if gear is not None:
         p.gear = gear["type"]
         p.gear_ratio = gear["ratio"]
+    stops = data.get("end_stops")
+    if stops is not None:
+        p.end_stops = stops["contact"]
+        p.end_stop_lower = stops.get("lower", -math.inf)
+        p.end_stop_upper = stops.get("upper", math.inf)
+        p.end_stop_stiffness = stops.get("stiffness", 0.0)
+        p.end_stop_damping = stops["damping"]
+        p.end_stop_restitution = stops["restitution"]
     init = data["initial"]
     # (A speed-controlled drive starts at drive_speed(0): the core takes that.)
     p.rotor_angle, p.rotor_speed, p.play_position = (

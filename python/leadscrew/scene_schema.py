@@ -329,6 +329,33 @@ SCHEMA: Dict[str, Any] = {
                                       "the power flows from the driven part to the rotor, "
                                       "at most 1 (<= 0: the stage is self-locking)", "",
                                       OPTIONAL, high=1.0),
+    # (Absent: no end stops; the load travels until the nut leaves the screw.)
+    "end_stops": {
+        "lower": Field("the lower end stop's face: the load's axial position u_load where it "
+                       "touches, relative to the load's start (u_load at t = 0), < 0 "
+                       "(absent: no lower stop; give lower, upper or both)", "m", OPTIONAL,
+                       high=0.0, high_open=True),
+        "upper": Field("the upper end stop's face, relative to the load's start, > 0 (absent: "
+                       "no upper stop)", "m", OPTIONAL, **POSITIVE),
+        "contact": Field("the stops' contact: 'penalty', a one-sided spring-damper on the "
+                         "load against the ground, F = max(0, k d + c d') for a penetration "
+                         "d > 0, which pushes and never pulls; 'exact', a rigid unilateral "
+                         "stop with Newton impacts (restitution), only where the load hangs "
+                         "on a flexible translating part (concept 'flexible', or "
+                         "'flexible_nut' with drive 'screw'; docs/physics/end_stops.md)",
+                         "", "penalty", kind="choice",
+                         choices=("penalty", "exact")),
+        "stiffness": Field("the penalty stop's stiffness k (required with contact = "
+                           "'penalty', absent with 'exact'): the static deflection under a "
+                           "held force F is F / k",
+                           "N/m", OPTIONAL, **POSITIVE),
+        "damping": Field("the penalty stop's damping c in contact (0: an elastic stop, which "
+                         "gives back all it stores)", "N*s/m", 0.0, **NONNEGATIVE),
+        "restitution": Field("Newton restitution coefficient e of an 'exact' stop's "
+                             "impacts, in [0, 1]: the load leaves at e times its approach "
+                             "speed; a rebound below the run's bounce_threshold closes the "
+                             "contact (the load held at the face while the forces press it "
+                             "there)", "", 0.0, low=0.0, high=1.0),
     },
     "initial": {
         "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),
@@ -359,7 +386,7 @@ SCHEMA: Dict[str, Any] = {
 # Sections that may be absent: then they take their defaults, except backlash
 # (absent: a thread without play) and overrides.
 _REQUIRED_SECTIONS = ("thread", "friction")
-_OPTIONAL_SECTIONS = ("backlash", "motor", "gear")
+_OPTIONAL_SECTIONS = ("backlash", "motor", "gear", "end_stops")
 
 
 def _fail(path: str, value: Any, allowed: str) -> None:
@@ -374,6 +401,8 @@ def _range_text(f: Field) -> str:
         return number
     if f.high == math.inf:
         return f"{number} {'>' if f.low_open else '>='} {f.low:g}"
+    if f.low == -math.inf:
+        return f"{number} {'<' if f.high_open else '<='} {f.high:g}"
     return f"{number} in {lo}{f.low:g}, {f.high:g}{hi}"
 
 

@@ -218,7 +218,10 @@ def _shown(value) -> str:
 
 
 def _play_of(scene: Scene) -> str:
-    """The scene's play for messages: "" for an exact backlash, else what it has."""
+    """The scene's play for messages: "" for an exact backlash (or exact end
+    stops), else what it has."""
+    if "end_stops" in scene and scene["end_stops"]["contact"] == "exact":
+        return ""  # (exact end stops' impacts take it too)
     if "backlash" not in scene:
         return "no backlash"
     contact = scene["backlash"]["contact"]

@@ -234,7 +234,8 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
       << "\ninitial_state = " << quoted(initial_state_name(p.initial_state))
       << "\nspeed_controlled = " << (p.speed_controlled ? "true" : "false")
       << "\ndc_motor = " << (p.dc_motor ? "true" : "false")
-      << "\ngear = " << quoted(gear_type_name(p.gear)) << "\n";
+      << "\ngear = " << quoted(gear_type_name(p.gear))
+      << "\nend_stops = " << quoted(end_stop_contact_name(p.end_stops)) << "\n";
   out << "\n[thread]\npitch = " << number(p.thread.pitch())
       << "\nmean_diameter = " << number(p.thread.mean_diameter())
       << "\nstarts = " << p.thread.starts() << "\nflank_angle = " << number(p.thread.flank_angle())
@@ -287,6 +288,7 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     const std::string at = "drive.";
     r.known(*t, at, {"concept", "drive", "support", "backlash", "initial_state",
                      "speed_controlled", "dc_motor", "gear"});
+                     "speed_controlled", "dc_motor", "end_stops"});
     r.choice(*t, at, "concept", [&](const std::string& v) { p.concept = parse_concept(v); });
     r.choice(*t, at, "drive", [&](const std::string& v) { p.drive = parse_drive(v); });
     r.choice(*t, at, "support", [&](const std::string& v) { p.support = parse_support(v); });
@@ -297,6 +299,8 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.flag(*t, at, "speed_controlled", p.speed_controlled);
     r.flag(*t, at, "dc_motor", p.dc_motor);
     r.choice(*t, at, "gear", [&](const std::string& v) { p.gear = parse_gear_type(v); });
+    r.choice(*t, at, "end_stops",
+             [&](const std::string& v) { p.end_stops = parse_end_stop_contact(v); });
   }
   if (const toml::table* t = r.table(root, "", "thread")) {
     const std::string at = "thread.";

@@ -192,6 +192,7 @@ class DriveParameters:
     concept: str
     dc_motor: bool
     drive: str
+    end_stops: str
     friction: str
     initial_state: str
     speed_controlled: bool
@@ -252,6 +253,36 @@ class DriveParameters:
         ...
     @drive_torque.setter
     def drive_torque(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def end_stop_damping(self) -> float:
+        ...
+    @end_stop_damping.setter
+    def end_stop_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def end_stop_lower(self) -> float:
+        ...
+    @end_stop_lower.setter
+    def end_stop_lower(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def end_stop_restitution(self) -> float:
+        ...
+    @end_stop_restitution.setter
+    def end_stop_restitution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def end_stop_stiffness(self) -> float:
+        ...
+    @end_stop_stiffness.setter
+    def end_stop_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def end_stop_upper(self) -> float:
+        ...
+    @end_stop_upper.setter
+    def end_stop_upper(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def friction_values(self) -> list[tuple[str, float]]:

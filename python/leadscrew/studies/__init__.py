@@ -19,7 +19,9 @@ loads by its definition (a speed-controlled motor raising each of its
 ``loads``); ``motor_characteristics`` runs the scene's DC motor (section
 ``motor``, a constant voltage) raising each of its ``loads``;
 ``preload_tradeoff`` raises the scene's static load and vibrates it with the
-scene's sine (30 N and 20 Hz without one) for each preload. Where a study may take its excitation from either,
+scene's sine (30 N and 20 Hz without one) for each preload; ``end_stop_jam``
+runs the scene's constant drive torque or DC motor into its end stop and
+reverses it. Where a study may take its excitation from either,
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
@@ -52,6 +54,7 @@ from typing import Optional
 from . import concepts as _concepts
 from . import creep as _creep
 from . import drive_efficiency as _drive_efficiency
+from . import end_stop as _end_stop
 from . import holding as _holding
 from . import motor as _motor
 from . import preload as _preload
@@ -61,6 +64,7 @@ from ._sweep import SerialExecutor
 from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
 from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
 from .drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu
+from .end_stop import end_stop_jam, plot_end_stop_jam
 from .motor import motor_characteristics, plot_motor_characteristics
 from .preload import plot_preload_tradeoff, preload_tradeoff, preloaded_holding_band
 from .holding import (
@@ -98,6 +102,7 @@ PLOTS = {
     "efficiency_vs_mu": plot_efficiency_vs_mu,
     "motor_characteristics": plot_motor_characteristics,
     "preload_tradeoff": plot_preload_tradeoff,
+    "end_stop_jam": plot_end_stop_jam,
 }
 
 
@@ -143,6 +148,7 @@ STUDIES = {
     "efficiency_vs_mu": efficiency_vs_mu,
     "motor_characteristics": motor_characteristics,
     "preload_tradeoff": preload_tradeoff,
+    "end_stop_jam": end_stop_jam,
 }
 
 __all__ = [
@@ -158,4 +164,5 @@ __all__ = [
     *_drive_efficiency.__all__,
     *_motor.__all__,
     *_preload.__all__,
+    *_end_stop.__all__,
 ]

@@ -253,6 +253,9 @@ class _NoProgressBar:
     def update(self, count: int = 1) -> None:
         pass
 
+    def close(self) -> None:
+        pass
+
 
 def _progress_bar(count: int, description: Optional[str], progress: bool):
     """A tqdm bar over ``count`` cases, or a stand-in when ``progress`` is off."""

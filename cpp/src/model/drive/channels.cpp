@@ -23,6 +23,8 @@ std::vector<std::string> drive_channel_names(const DriveModel& model) {
     names.push_back("motor_current");
     names.push_back("motor_voltage");
   }
+  // The end stops' force on the load along +u (elements/end_stop.hpp).
+  if (model.parameters().end_stops != EndStopContact::none) names.push_back("stop_force");
   const int n = model.coordinate_count();
   for (int i = 1; i < n - 1; ++i) {
     const std::string& name = model.coordinate_names()[i];
@@ -77,6 +79,12 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
   if (dc) {
     out[k++] = state.motor_current;
     out[k++] = state.motor_voltage;
+  }
+  if (p.end_stops != EndStopContact::none) {
+    double stop_force = state.stop_force;
+    for (const elements::EndStop& stop : model.elements().end_stops())
+      stop_force += stop.force_on_load(q[model.load()], v[model.load()]);
+    out[k++] = stop_force;
   }
   for (int i = 1; i < n - 1; ++i) {
     out[k++] = q[i];

@@ -32,6 +32,9 @@ struct ChannelState {
   // A DC motor's: its current [A], the driver's voltage [V], the copper
   // loss integral [J] and the magnetic energy L i^2 / 2 [J].
   double motor_current = 0.0, motor_voltage = 0.0, copper_loss = 0.0, magnetic = 0.0;
+  // The exact end stops' force on the load [N] (the penalty stops' follows
+  // from q and v).
+  double stop_force = 0.0;
 };
 
 // From the state last set in dynamics.

@@ -56,6 +56,7 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
   energy[kDampingLoss] = dynamics.damping_power();
   energy[kContactLoss] = dynamics.contact_loss_power();
   if (model.dc_motor()) h_.motor_rates(t, ydot, energy);
+  if (!model.elements().exact_stops.empty()) h_.hold_closed_stops(ydot);
 }
 
 ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
@@ -77,6 +78,7 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
   if (forces.stick) state.slip_velocity = 0.0;
   if (h_.model_.dc_motor()) h_.motor_channels(t, y, state);
+  if (!h_.model_.elements().exact_stops.empty()) state.stop_force = h_.exact_stop_force();
   return state;
 }
 

@@ -19,6 +19,7 @@
 //                          law's fold
 //   hybrid_motor.cpp       a DC motor's current: its rates, channels, the
 //                          current limit's root and hold
+//   hybrid_end_stops.cpp   the penalty end stops' roots (contact, release)
 #pragma once
 
 #include <cmath>
@@ -70,8 +71,12 @@ class DriveHybrid final : public integrate::HybridSystem {
   int size() const override { return layout_.size(); }
   // g0..g3: friction and flank events (see roots); g4: the nut's end at the
   // screw's end, for every concept (the scene gives every screw its length);
-  // g5: a DC motor's current limit (with inductance), hybrid_motor.cpp.
-  int root_count() const override { return current_limit_root() ? 6 : 5; }
+  // g5: a DC motor's current limit (with inductance), hybrid_motor.cpp;
+  // then one per penalty end stop, hybrid_end_stops.cpp.
+  int root_count() const override {
+    return end_stop_root() + static_cast<int>(model_.elements().end_stops().size() +
+                                              model_.elements().exact_stops.size());
+  }
   // The work and loss integrals close the state; f does not depend on them.
   int quadrature_count() const override { return kEnergyCount; }
 
@@ -132,6 +137,28 @@ class DriveHybrid final : public integrate::HybridSystem {
   // After a mechanical event: an impact's jump of the rotor's speed may end
   // the driver's push at once (g5 would start beyond its zero).
   void recheck_current_hold(double t, const double* y);
+
+  // hybrid_end_stops.cpp: the end stops, penalty (model_.elements().end_stops())
+  // and exact (exact_stops), at the state last set. Their roots follow g0..g4
+  // and a DC motor's g5, the penalty stops' first.
+  int end_stop_root() const { return current_limit_root() ? 6 : 5; }
+  bool has_end_stops() const {
+    return !model_.elements().end_stops().empty() || !model_.elements().exact_stops.empty();
+  }
+  // A penalty stop's contact margin (> 0 exactly where it pushes); an exact
+  // stop's gap while free, its reaction while closed.
+  void end_stop_roots(double* g) const;
+  void end_stop_directions(int* directions) const;
+  // Which stops push at the state last set (a start, a resume: exact stops free).
+  void start_end_stops();
+  // An event of their roots at (t, y): the penalty stops that now push or no
+  // longer do, an exact stop's impact, closing or opening (y changed); its
+  // description ("" if none of their roots).
+  std::string change_end_stops(double t, double* y, const std::vector<int>& root_info);
+  // A closed exact stop holds the load: its position's and velocity's rates 0.
+  void hold_closed_stops(double* ydot) const;
+  // The exact stops' force on the load along +u at the state last set [N].
+  double exact_stop_force() const;
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);
@@ -231,6 +258,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
   int current_held_ = 0;  // a DC motor's current held at +-current_limit (its sign; 0: free)
+  std::vector<char> stop_pushing_;  // per penalty end stop: it pushes (its root's direction)
+  std::vector<char> stop_closed_;   // per exact end stop: closed (the load held at its face)
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;

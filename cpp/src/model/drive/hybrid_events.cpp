@@ -54,6 +54,7 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
     }
   }
   if (current_limit_root()) g[5] = current_limit_margin(t);
+  if (has_end_stops()) end_stop_roots(g);
   if (mode_.contact == ThreadContact::open || mode_.contact == ThreadContact::penalty) {
     g[2] = dynamics_.play() - 0.5 * p_.clearance;
     g[3] = dynamics_.play() + 0.5 * p_.clearance;
@@ -103,6 +104,7 @@ void DriveHybrid::root_directions(int* directions) const {
   directions[3] = open || (penalty && !lower) ? -1 : (penalty ? 1 : 0);
   directions[4] = -1;  // the nut reaches an end of the screw
   if (current_limit_root()) directions[5] = -1;  // the limit reached, or the push ends
+  if (has_end_stops()) end_stop_directions(directions);
   if (watch_fold()) directions[2] = directions[3] = -1;  // both fall towards jamming
 }
 
@@ -140,6 +142,7 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
   }
   note_flight_start(t, y);
   start_normal_side();
+  if (has_end_stops()) start_end_stops();
   if (watch_fold()) {
     set(t, y);
     // A start inside the regularized law's Painleve regime (kappa |G_NT| >=
@@ -170,7 +173,12 @@ std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int
   }
   const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
                          root_info[0] != 0;
+  // An end stop starts or stops pushing: its force jumps (c d' at the onset;
+  // an exact stop's impact or closing), so the friction mode is decided anew
+  // (change_mode) as at a penalty flank.
+  const std::string stops = has_end_stops() ? change_end_stops(t, y, root_info) : std::string();
   std::string kind = change_mode(t, y, root_info);
+  if (!stops.empty()) kind = kind.empty() ? stops : stops + ", " + kind;
   if (current_limit_root()) recheck_current_hold(t, y);
   note_flight_start(t, y);
   start_mode(t, y);

@@ -115,6 +115,12 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
     throw InvalidArgument("smooth_integrator = \"" + options.smooth_integrator +
                           "\" is invalid with integrator = \"" + integrator +
                           "\": only \"event_driven\" takes one (the method between its events)");
+  if (integrator == "moreau" && p.end_stops != EndStopContact::none)
+    throw InvalidArgument(
+        "integrator = \"moreau\" is invalid with end_stops: Moreau-Jean's iteration matrix "
+        "takes the force elements' stiffness, which a penalty stop has only in contact, and "
+        "an exact stop would be a second contact of its step (use \"event_driven\", which "
+        "locates the stop's contact and release, or an ODE method)");
   if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
     integrate::check_moreau_options(options.output.t_end, drive::moreau_options(options));
     check_step_resolves_loads(options.dt, options.output.t_end,

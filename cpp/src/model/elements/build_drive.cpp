@@ -54,6 +54,68 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   const int loaded_side = force > 0.0 ? -1 : 1;
   nut.side = -loaded_side;
   e.preloaded_nut = nut;
+// The end stops of the load's travel (end_stops; elements/end_stop.hpp),
+// their values checked: lower < 0 < upper, relative to the load's start,
+// which a relaxed start puts at u_load = 0.
+void add_end_stops(const DriveParameters& p, int load, DriveElements& e) {
+  if (p.end_stops == EndStopContact::none) return;
+  const double lower = p.end_stop_lower, upper = p.end_stop_upper;
+  if (!(lower < 0.0))
+    throw InvalidArgument("end_stops.lower = " + format_value(lower) +
+                          " m is invalid: must be < 0 (relative to the load's start; -inf: "
+                          "no lower stop)");
+  if (!(upper > 0.0))
+    throw InvalidArgument("end_stops.upper = " + format_value(upper) +
+                          " m is invalid: must be > 0 (relative to the load's start; inf: "
+                          "no upper stop)");
+  if (std::isinf(lower) && std::isinf(upper))
+    throw InvalidArgument("end_stops = \"" + end_stop_contact_name(p.end_stops) +
+                          "\" is invalid without end_stops.lower or end_stops.upper: give "
+                          "either or both");
+  // What end stops do not take yet.
+  const char* refused =
+      p.initial_state == InitialState::equilibrium
+          ? "initial.state = \"equilibrium\" is invalid with end_stops: the stops are placed "
+            "relative to the load's start, and the static equilibrium does not take them (use "
+            "\"relaxed\")"
+          : nullptr;
+  if (refused != nullptr) throw InvalidArgument(refused);
+  if (p.end_stops == EndStopContact::exact) {
+    // The load alone meets the stop: no constraint may tie it to other
+    // coordinates (a rigid translating part carries the thread: a rigid
+    // drive clamped against a rigid stop is statically indeterminate).
+    if (e.thread->play_gradient()[load] != 0.0)
+      throw InvalidArgument(
+          "end_stops.contact = \"exact\" is invalid with concept = \"" +
+          concept_name(p.concept) + "\" and drive = \"" + drive_name(p.drive) +
+          "\": the load moves with the " + (p.drive == DrivenPart::screw ? "nut" : "screw") +
+          ", rigid and in the thread, and a rigid drive clamped against a rigid stop is "
+          "statically indeterminate (the thread's friction and the stop's force, one "
+          "equation); use end_stops.contact = \"penalty\", or a concept where that part is "
+          "flexible (the load on its spring)");
+    require_in_range("end_stops.restitution", p.end_stop_restitution, 0.0, 1.0);
+    for (const int side : {-1, 1}) {
+      const double position = side < 0 ? lower : upper;
+      if (std::isinf(position)) continue;
+      e.exact_stops.push_back({side < 0 ? "lower end stop" : "upper end stop", load, side,
+                               position, p.end_stop_restitution});
+    }
+    return;
+  }
+  require_positive("end_stops.stiffness", p.end_stop_stiffness);
+  require_nonnegative("end_stops.damping", p.end_stop_damping);
+  for (const int side : {-1, 1}) {
+    const double position = side < 0 ? lower : upper;
+    if (std::isinf(position)) continue;
+    EndStop stop;
+    stop.name = side < 0 ? "lower end stop" : "upper end stop";
+    stop.coordinate = load;
+    stop.side = side;
+    stop.position = position;
+    stop.stiffness = p.end_stop_stiffness;
+    stop.damping = p.end_stop_damping;
+    e.forces.of<EndStop>().push_back(stop);
+  }
 }
 
 }  // namespace
@@ -254,7 +316,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
   require_nonnegative("overrides.damping_ratio", p.damping_ratio);
   Eigen::VectorXd mass = Eigen::VectorXd::Zero(e.coordinate_count());
   for (const RigidBody& body : e.bodies) body.add_mass(mass);
-  e.forces.for_each([&](auto& s) {
+  for (SpringDamper& s : e.forces.of<SpringDamper>()) {  // (their damping defaults)
     double derivative = 0.0;
     const double k = s.stiffness_at(p.nut_position, &derivative);
     require_positive(s.name + " stiffness", k);
@@ -267,7 +329,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
       s.damping = 2.0 * p.damping_ratio * std::sqrt(k * carried);
     }
     require_finite(s.name + " damping", s.damping);
-  });
+  }
 
   e.thread.emplace(p, std::move(law), c, e.coordinate_count());
   e.motor = Motor{rotor, p.speed_controlled, p.drive_torque, p.drive_speed, gear};
@@ -304,6 +366,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
   }
   e.load = AxialLoad{load, p.axial_force};
   build_preloaded_nut(p, e);
+  add_end_stops(p, load, e);
   return e;
 }
 

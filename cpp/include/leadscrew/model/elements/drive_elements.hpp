@@ -11,6 +11,7 @@
 //   gear.hpp           Gear: a stage between the rotor and the driven part (the
 //                      Motor's; the rotor reflected onto its coordinate)
 //   preloaded_nut.hpp  PreloadedNut: the split nut's preload half on the thread without play
+//   end_stop.hpp       EndStop: a penalty end stop of the load's travel (a force element)
 // The lists are grouped by type (no virtual call per scalar in the
 // right-hand side): DriveDynamics loops over each. The force elements (the
 // springs today; an end stop, a gear's compliance) are one registry line.
@@ -27,6 +28,7 @@
 #include "leadscrew/model/elements/axial_load.hpp"
 #include "leadscrew/model/elements/dc_motor.hpp"
 #include "leadscrew/model/elements/gear.hpp"
+#include "leadscrew/model/elements/end_stop.hpp"
 #include "leadscrew/model/elements/motor.hpp"
 #include "leadscrew/model/elements/preloaded_nut.hpp"
 #include "leadscrew/model/elements/rigid_body.hpp"
@@ -79,7 +81,7 @@ struct ForceElementLists {
 };
 
 // The registry of force elements: a new one is its file and its type here.
-using ForceElements = ForceElementLists<SpringDamper>;
+using ForceElements = ForceElementLists<SpringDamper, EndStop>;
 
 struct DriveElements {
   std::vector<std::string> coordinates;  // their names, in order
@@ -90,12 +92,15 @@ struct DriveElements {
   std::optional<DcMotor> dc_motor;  // on the rotor, its torque k_t i (Motor applies 0)
   AxialLoad load;
   std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (rigid concept)
+  std::vector<ExactEndStop> exact_stops;  // end_stops.contact = "exact" (not force elements)
   // The coordinates that turn with the rotor and those that translate with
   // the load in a rigid-body motion of the drive (consistent_velocity).
   std::vector<int> rotating_group, translating_group;
 
   int coordinate_count() const noexcept { return static_cast<int>(coordinates.size()); }
   const std::vector<SpringDamper>& springs() const { return forces.of<SpringDamper>(); }
+  // The penalty end stops of the load's travel (elements/end_stop.hpp).
+  const std::vector<EndStop>& end_stops() const { return forces.of<EndStop>(); }
 };
 
 // The elements of the drive `p` describes, its values checked (raises

@@ -1,0 +1,307 @@
+"""The drive jammed at its end stop (issue 19, item 5): ``end_stop_jam``.
+
+The scene's motor (a constant drive torque M, or a DC motor at a constant
+voltage U) drives the load into the scene's penalty end stop for
+``t_drive``; the thread clamps, and a self-locking thread keeps the clamp
+force F after the drive lets go. Then the drive reverses: at ``t_drive``
+the torque steps to -x (the voltage to -x), held for ``t_reverse``. The
+smallest reverse x that breaks the thread free (the stop releases the
+load) is found by bisection over runs of the whole sequence, a bounded
+number of them.
+
+Beside it the quasi-static closed form (docs/physics/end_stops.md): the
+clamp is an axial load F that the thread holds; the torque that moves it
+back (lowers it) with the static coefficient is
+
+    breakaway torque T_b = F r_m tan(rho_s' - alpha),  rho_s' = atan(mu_static'),
+
+(:func:`leadscrew.lower_torque` with ``mu_static``). Only a self-locking
+thread (tan(alpha) < mu_static') jams; the study refuses another, where the
+stop pushes the drive back as soon as it lets go. With a DC motor at rest the torque
+is k_t U / R (the current limit caps it), so the breakaway voltage is
+U_b = R T_b / k_t (infinite where T_b > k_t i_max).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, Optional, Tuple
+
+import numpy as np
+import pandas as pd
+
+from .. import _core
+from ..simulation import simulate
+from ._common import annotate, as_scene, axes, check_count, check_positive, frame_of
+from ._sweep import _progress_bar
+
+__all__ = ["end_stop_jam", "plot_end_stop_jam"]
+
+UNITS = {"reverse_torque": "N*m", "reverse_voltage": "V", "broke_free": "",
+         "stop_force_end": "N", "error": ""}
+_SUMMARY_UNITS = {"clamp_force": "N", "peak_clamp_force": "N", "peak_current": "A",
+                  "breakaway_torque": "N*m", "breakaway_torque_closed_form": "N*m",
+                  "breakaway_voltage": "V", "breakaway_voltage_closed_form": "V",
+                  "t_drive": "s", "t_reverse": "s", "runs": "1"}
+
+
+def _drive(scene) -> Tuple[str, float]:
+    """("torque", M [N*m]) or ("voltage", U [V]): the scene's constant drive.
+
+    Raises:
+        ValueError: no penalty end stops, a speed-controlled drive, or a drive
+            that is not constant or is zero.
+    """
+    if "end_stops" not in scene or scene["end_stops"]["contact"] != "penalty":
+        raise ValueError("scene has no penalty end stops: end_stop_jam needs end_stops = "
+                         "{lower or upper, contact = \"penalty\", stiffness, damping}")
+    if "motor" in scene:
+        kind, key, value = "voltage", "motor.voltage", scene["motor"]["voltage"]
+    else:
+        loads = scene["loads"]
+        if "drive_speed" in loads:
+            raise ValueError("loads.drive_speed is invalid for end_stop_jam: a prescribed "
+                             "speed drives through any stop; give loads.drive_torque or a "
+                             "DC motor")
+        kind, key, value = "torque", "loads.drive_torque", loads.get("drive_torque", 0.0)
+    if isinstance(value, dict) and value.get("type") == "constant":
+        value = value["value"]
+    if not isinstance(value, float) or value == 0.0:
+        raise ValueError(f"{key} = {value!r} is invalid for end_stop_jam: must be a nonzero "
+                         "constant (it drives the load into the stop)")
+    return kind, value
+
+
+def _with_drive(scene, kind: str, forward: float, reverse: Optional[float], t_drive: float,
+                t_end: float):
+    """The scene with its drive held at ``forward`` up to t_drive, then
+    stepped to ``reverse`` (None: held)."""
+    if reverse is None:
+        value: Any = forward
+    else:
+        step = 1e-9 * t_end
+        value = {"type": "table", "times": [0.0, t_drive, t_drive + step, t_end],
+                 "values": [forward, forward, reverse, reverse]}
+    if kind == "voltage":
+        return scene.replace(motor={"voltage": value})
+    return scene.replace(loads={"drive_torque": value})
+
+
+def _require_self_locking(scene) -> None:
+    """A thread that holds a clamp by itself: tan(alpha) < mu_static'.
+
+    Raises:
+        ValueError: the thread back-drives (nothing jams: the stop pushes the
+            drive back once the drive lets go).
+    """
+    friction = scene["friction"]
+    mu_static = friction.get("mu_static", friction["mu"])
+    if not _core.lower_torque(scene.thread, mu_static, 1.0) > 0.0:
+        raise ValueError(f"friction.mu_static = {mu_static!r} is invalid for end_stop_jam: the "
+                         "thread is not self-locking (tan(alpha) >= mu_static'), so nothing "
+                         "jams: the stop pushes the drive back as soon as the drive lets go")
+
+
+def _closed_form(scene, kind: str, clamp: float) -> Dict[str, float]:
+    """T_b = F r_m tan(rho_s' - alpha) and, with a DC motor, U_b = R T_b / k_t."""
+    friction = scene["friction"]
+    mu_static = friction.get("mu_static", friction["mu"])
+    torque = float(_core.lower_torque(scene.thread, mu_static, clamp))
+    out = {"breakaway_torque_closed_form": torque, "breakaway_voltage_closed_form": math.nan}
+    if kind == "voltage":
+        motor = scene["motor"]
+        limit = motor.get("current_limit", math.inf)
+        current = torque / motor["torque_constant"]
+        out["breakaway_voltage_closed_form"] = (math.inf if current > limit
+                                                else motor["resistance"] * current)
+    return out
+
+
+def end_stop_jam(
+    scene: Any,
+    t_drive: float = 0.5,
+    t_reverse: float = 0.2,
+    runs: int = 30,
+    rtol: Optional[float] = None,
+    atol: Optional[float] = None,
+    progress: bool = True,
+    **simulate_options: Any,
+) -> pd.DataFrame:
+    """Drive into the end stop under the scene's motor, then reverse: the peak
+    clamp force, the peak current and the smallest reverse torque (or voltage)
+    that breaks the thread free, beside the quasi-static closed form.
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or dict) with penalty
+            ``end_stops`` and a constant ``loads.drive_torque`` or a DC motor
+            (``motor``) at a constant voltage, which drive the load into a
+            stop within ``t_drive``.
+        t_drive: the time the drive pushes [s], > 0: the load reaches the
+            stop and the clamp settles.
+        t_reverse: the time the reverse torque or voltage is held [s], > 0.
+        runs: the largest number of reversing runs (bracket and bisection),
+            at least 4; the breakaway is resolved to the bracket's width
+            over 2^(runs - bracketing runs).
+        rtol, atol: integration tolerances (default simulate's).
+        progress: show a tqdm progress bar over the runs (they follow each
+            other: a bisection).
+        **simulate_options: passed on to :func:`leadscrew.simulate` (all
+            but ``t_eval``).
+
+    Returns:
+        DataFrame with one row per reversing run, in the order run:
+        ``reverse_torque`` [N*m] (a torque-driven scene: the torque after
+        the reversal is -sign(M) reverse_torque) or ``reverse_voltage`` [V]
+        (a DC motor), ``broke_free`` (the stop released the load by the
+        run's end), ``stop_force_end`` [N], ``error``.
+        ``attrs["summary"]``: ``drive`` ("torque" or "voltage"),
+        ``clamp_force`` [N] (|stop_force| held at the reversal),
+        ``peak_clamp_force`` [N], ``peak_current`` [A] (NaN without a DC
+        motor), ``breakaway_torque`` [N*m] (on the driven part; with a DC
+        motor k_t times the current at rest, min(U_b / R, i_max)),
+        ``breakaway_torque_closed_form`` [N*m], ``breakaway_voltage`` and
+        ``breakaway_voltage_closed_form`` [V] (NaN without a DC motor; inf
+        where the current limit cannot reach the torque), ``bracket`` (the
+        last held and the first freeing reverse [N*m or V]; inf: none freed),
+        ``t_drive`` and ``t_reverse`` [s], ``runs``.
+        ``attrs["histories"]``: ``t`` [s] and ``stop_force`` [N] of the
+        last held and the first freeing run (lists, for the figure).
+
+    Raises:
+        ValueError: no penalty end stops, a drive that is not a nonzero
+            constant, a thread that is not self-locking, invalid times or
+            runs (naming the argument), or the load does not rest clamped
+            against a stop at ``t_drive``.
+    """
+    scene = as_scene(scene)
+    kind, forward = _drive(scene)
+    _require_self_locking(scene)
+    t_drive = check_positive("t_drive", t_drive, unit="s")
+    t_reverse = check_positive("t_reverse", t_reverse, unit="s")
+    runs = check_count("runs", runs, 4)
+    options = dict(simulate_options)
+    if rtol is not None:
+        options["rtol"] = rtol
+    if atol is not None:
+        options["atol"] = atol
+    t_end = t_drive + t_reverse
+    running = scene.replace(initial={"rotor_speed": 0.0, "state": "relaxed"})
+
+    pushing = simulate(_with_drive(running, kind, forward, None, t_drive, t_drive), t_drive,
+                       **options)
+    clamp = abs(float(pushing["stop_force"][-1]))
+    if clamp == 0.0:
+        raise ValueError(f"t_drive = {t_drive!r} is invalid for end_stop_jam: the load does "
+                         "not press on an end stop at its end (a stop out of reach, or a "
+                         "longer t_drive)")
+    if not (pushing["stick"][-1] == 1.0 and pushing["omega_drive"][-1] == 0.0):
+        raise ValueError(f"t_drive = {t_drive!r} is invalid for end_stop_jam: the thread does "
+                         "not stick against the stop at its end (the clamp has not settled: a "
+                         "longer t_drive, or more end_stops.damping)")
+    peak_current = (float(np.max(np.abs(pushing["motor_current"]))) if kind == "voltage"
+                    else math.nan)
+    sign = math.copysign(1.0, forward)
+
+    rows = []
+    histories: Dict[str, Any] = {}
+    bar = _progress_bar(runs, "end_stop_jam", progress)
+
+    def frees(x: float) -> bool:
+        """One reversing run: -sign x after t_drive; True if the stop let go."""
+        bar.update()
+        try:
+            result = simulate(_with_drive(running, kind, forward, -sign * x, t_drive, t_end),
+                              t_end, **options)
+        except (ValueError, ArithmeticError, RuntimeError) as error:
+            rows.append({"reverse": x, "broke_free": False, "stop_force_end": math.nan,
+                         "error": f"{type(error).__name__}: {error}"})
+            return False
+        free = float(result["stop_force"][-1]) == 0.0
+        rows.append({"reverse": x, "broke_free": free,
+                     "stop_force_end": float(result["stop_force"][-1]), "error": None})
+        histories["freeing" if free else "held"] = (x, result.t.tolist(),
+                                                    result["stop_force"].tolist())
+        return free
+
+    closed = _closed_form(scene, kind, clamp)
+    estimate = closed["breakaway_voltage_closed_form" if kind == "voltage"
+                      else "breakaway_torque_closed_form"]
+    # The bracket: the forward drive itself holds (the run's state at t_drive);
+    # the reverse is doubled from max(|forward|, the closed form) until it frees.
+    low = -abs(forward)
+    high = max(abs(forward), estimate if math.isfinite(estimate) else 0.0)
+    found = False
+    while len(rows) < runs:
+        if frees(high):
+            found = True
+            break
+        low, high = high, 2.0 * high
+    while found and len(rows) < runs:
+        middle = 0.5 * (low + high)
+        if frees(middle):
+            high = middle
+        else:
+            low = middle
+    bar.close()
+    breakaway = high if found else math.inf
+
+    summary = {"drive": kind, "clamp_force": clamp,
+               "peak_clamp_force": float(np.max(np.abs(pushing["stop_force"]))),
+               "peak_current": peak_current, **closed,
+               "bracket": (low, high if found else math.inf),
+               "t_drive": t_drive, "t_reverse": t_reverse, "runs": len(rows)}
+    if kind == "voltage":
+        motor = scene["motor"]
+        current = min(breakaway / motor["resistance"], motor.get("current_limit", math.inf))
+        summary["breakaway_voltage"] = breakaway
+        summary["breakaway_torque"] = motor["torque_constant"] * current if found else math.inf
+    else:
+        summary["breakaway_voltage"] = math.nan
+        summary["breakaway_torque"] = breakaway
+    column = "reverse_voltage" if kind == "voltage" else "reverse_torque"
+    frame = frame_of({column: [row["reverse"] for row in rows],
+                      "broke_free": [row["broke_free"] for row in rows],
+                      "stop_force_end": [row["stop_force_end"] for row in rows],
+                      "error": [row["error"] for row in rows]})
+    frame.attrs["histories"] = {name: {"reverse": x, "t": t, "stop_force": f}
+                                for name, (x, t, f) in histories.items()}
+    return annotate(frame, UNITS, study="end_stop_jam",
+                    summary_units={**_SUMMARY_UNITS, "bracket": UNITS[column]}, **summary)
+
+
+def plot_end_stop_jam(frame: pd.DataFrame, ax: Optional[Any] = None):
+    """Draw the stop's force over time in the last run that held and the
+    first that broke free, with the clamp force and the breakaway (simulated
+    and closed form) in the legend.
+
+    Args:
+        frame: what :func:`end_stop_jam` returned (its ``attrs["histories"]``
+            and summary are drawn).
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes, the stop's force [N] over the time [s].
+    """
+    ax = axes(ax)
+    summary = frame.attrs.get("summary", {})
+    unit = "V" if summary.get("drive") == "voltage" else "N*m"
+    for name, style in (("held", "-"), ("freeing", "--")):
+        history = frame.attrs.get("histories", {}).get(name)
+        if history:
+            ax.plot(history["t"], np.abs(history["stop_force"]), style,
+                    label=f"{name}: reverse {history['reverse']:.4g} {unit}")
+    clamp = summary.get("clamp_force")
+    if clamp is not None:
+        ax.axhline(clamp, color="k", linestyle=":", label=f"clamp force {clamp:.4g} N")
+    key = "breakaway_voltage" if unit == "V" else "breakaway_torque"
+    simulated, closed = summary.get(key), summary.get(f"{key}_closed_form")
+    if simulated is not None and closed is not None:
+        ax.plot([], [], " ", label=f"breakaway {simulated:.4g} {unit} "
+                                   f"(closed form {closed:.4g} {unit})")
+    t_drive = summary.get("t_drive")
+    if t_drive is not None:
+        ax.axvline(t_drive, color="0.6", linewidth=0.8)
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("|stop force| [N]")
+    ax.legend(loc="best", fontsize="small")
+    return ax

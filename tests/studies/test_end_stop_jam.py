@@ -1,0 +1,115 @@
+"""leadscrew.studies.end_stop_jam (issue 19, item 5): the drive run into its
+penalty end stop and reversed; the breakaway torque (or voltage) found by
+bisection against the quasi-static closed form F r_m tan(rho_s' - alpha)
+(tests/helpers/end_stop_reference.py), the peak current, the refusals and
+the figure."""
+
+import math
+
+import numpy as np
+import pytest
+
+import leadscrew as ls
+from helpers import end_stop_reference as reference
+from helpers.scenes import thesis_scene
+
+STOPS = {"lower": -2e-4, "stiffness": 1e8, "damping": 1e4}  # 0.2 mm of run-up
+R, KT, L, U = 2.0, 0.05, 1e-3, 3.0
+
+
+def torque_scene(loads=None, **changes):
+    return thesis_scene(loads={"drive_torque": 0.5, "axial_force": 0.0, **(loads or {})},
+                        end_stops=STOPS, **changes)
+
+
+def speed_scene():
+    d = torque_scene(loads={"drive_speed": 1.0})
+    d["loads"].pop("drive_torque")
+    return d
+
+
+def motor_scene(**motor):
+    d = thesis_scene(loads={"axial_force": 0.0}, end_stops=STOPS,
+                     motor={"type": "dc", "voltage": U, "resistance": R, "inductance": L,
+                            "torque_constant": KT, **motor})
+    d["loads"].pop("drive_torque")
+    return d
+
+
+def bisection_is_consistent(frame, column):
+    """Every run that broke free reversed harder than every run that held."""
+    free = frame.loc[frame["broke_free"], column]
+    held = frame.loc[~frame["broke_free"], column]
+    assert frame["error"].isna().all()
+    assert len(free) and (not len(held) or held.max() < free.min())
+
+
+@pytest.mark.parametrize("friction", [{"mu": 0.3}, {"law": "coulomb", "mu": 0.2, "mu_static": 0.3}])
+def test_breakaway_torque_matches_the_closed_form(friction):
+    scene = torque_scene(friction=friction)
+    frame = ls.studies.end_stop_jam(scene, t_drive=0.3, t_reverse=0.1, progress=False)
+    summary = frame.attrs["summary"]
+    clamp = summary["clamp_force"]
+    # The 0.2 mm run-up clamps harder than a slow approach would.
+    slow = reference.clamp_force(0.5, scene["thread"], friction["mu"])
+    assert clamp > slow and summary["peak_clamp_force"] >= clamp
+    expected = reference.breakaway_torque(clamp, scene["thread"], friction.get("mu_static", 0.3))
+    assert summary["breakaway_torque_closed_form"] == pytest.approx(expected, rel=1e-12)
+    assert summary["breakaway_torque"] == pytest.approx(expected, rel=1e-6)
+    low, high = summary["bracket"]
+    assert low < expected * (1 + 1e-9) and high >= expected * (1 - 1e-9)
+    assert summary["runs"] == len(frame) <= 30
+    assert math.isnan(summary["peak_current"]) and math.isnan(summary["breakaway_voltage"])
+    bisection_is_consistent(frame, "reverse_torque")
+    assert frame.attrs["units"]["reverse_torque"] == "N*m"
+
+
+def test_breakaway_voltage_of_a_dc_motor_matches_the_closed_form():
+    scene = motor_scene()
+    frame = ls.studies.end_stop_jam(scene, t_drive=0.3, t_reverse=0.1, progress=False)
+    summary = frame.attrs["summary"]
+    assert summary["peak_current"] == pytest.approx(U / R, rel=1e-6)  # stalled at the stop
+    torque = reference.breakaway_torque(summary["clamp_force"], scene["thread"], 0.3)
+    assert summary["breakaway_torque"] == pytest.approx(torque, rel=1e-6)
+    assert summary["breakaway_voltage"] == pytest.approx(R * torque / KT, rel=1e-6)
+    assert summary["breakaway_voltage_closed_form"] == pytest.approx(R * torque / KT, rel=1e-12)
+    bisection_is_consistent(frame, "reverse_voltage")
+
+
+def test_a_current_limit_below_the_breakaway_never_frees_the_drive():
+    frame = ls.studies.end_stop_jam(motor_scene(current_limit=0.5), t_drive=0.3,
+                                    t_reverse=0.05, runs=5, progress=False)
+    summary = frame.attrs["summary"]
+    torque = reference.breakaway_torque(summary["clamp_force"], motor_scene()["thread"], 0.3)
+    assert torque > KT * 0.5
+    assert summary["breakaway_voltage_closed_form"] == math.inf
+    assert summary["breakaway_voltage"] == math.inf and summary["breakaway_torque"] == math.inf
+    assert len(frame) == 5 and not frame["broke_free"].any()
+
+
+@pytest.mark.parametrize("scene, options, message", [
+    (thesis_scene(loads={"drive_torque": 0.5, "axial_force": 0.0}), {},
+     "scene has no penalty end stops"),
+    (torque_scene(friction={"mu": 0.01}), {}, "the thread is not self-locking"),
+    (speed_scene(), {}, "loads.drive_speed is invalid for end_stop_jam"),
+    (torque_scene(loads={"drive_torque": 0.0}), {}, "loads.drive_torque = 0.0 is invalid"),
+    (torque_scene(), {"t_drive": 1e-3}, "t_drive = 0.001 is invalid for end_stop_jam"),
+    (torque_scene(), {"runs": 2}, "runs"),
+])
+def test_invalid_cases_are_refused(scene, options, message):
+    with pytest.raises(ValueError) as raised:
+        ls.studies.end_stop_jam(scene, progress=False, **options)
+    assert message in str(raised.value)
+
+
+def test_figure_draws_the_held_and_the_freeing_run(tmp_path):
+    frame = ls.studies.end_stop_jam(torque_scene(), t_drive=0.3, t_reverse=0.05, runs=6,
+                                    progress=False)
+    assert set(frame.attrs["histories"]) == {"held", "freeing"}
+    path = ls.studies.save_figure("end_stop_jam", frame, tmp_path / "jam.png")
+    assert path.stat().st_size > 0
+    ax = ls.studies.plot_end_stop_jam(frame)
+    labels = [line.get_label() for line in ax.get_lines()]
+    assert any(label.startswith("breakaway") for label in labels)
+    np.testing.assert_array_equal(ax.get_lines()[0].get_ydata(),
+                                  np.abs(frame.attrs["histories"]["held"]["stop_force"]))

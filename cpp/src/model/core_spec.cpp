@@ -287,8 +287,7 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
   if (const toml::table* t = r.table(root, "", "drive")) {
     const std::string at = "drive.";
     r.known(*t, at, {"concept", "drive", "support", "backlash", "initial_state",
-                     "speed_controlled", "dc_motor", "gear"});
-                     "speed_controlled", "dc_motor", "end_stops"});
+                     "speed_controlled", "dc_motor", "gear", "end_stops"});
     r.choice(*t, at, "concept", [&](const std::string& v) { p.concept = parse_concept(v); });
     r.choice(*t, at, "drive", [&](const std::string& v) { p.drive = parse_drive(v); });
     r.choice(*t, at, "support", [&](const std::string& v) { p.support = parse_support(v); });

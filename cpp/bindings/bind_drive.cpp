@@ -288,6 +288,7 @@ void bind_drive(py::module_& m) {
       [](DriveParameters& p, const std::string& v) { p.gear = model::parse_gear_type(v); },
       "the gear stage between the rotor and the driven part: 'none' or 'ideal' (gear_ratio "
       "rotor turns per turn of the driven part)");
+  parameters.def_property(
       "end_stops",
       [](const DriveParameters& p) { return model::end_stop_contact_name(p.end_stops); },
       [](DriveParameters& p, const std::string& v) {

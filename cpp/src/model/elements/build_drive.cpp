@@ -54,6 +54,8 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   const int loaded_side = force > 0.0 ? -1 : 1;
   nut.side = -loaded_side;
   e.preloaded_nut = nut;
+}
+
 // The end stops of the load's travel (end_stops; elements/end_stop.hpp),
 // their values checked: lower < 0 < upper, relative to the load's start,
 // which a relaxed start puts at u_load = 0.

@@ -329,6 +329,7 @@ SCHEMA: Dict[str, Any] = {
                                       "the power flows from the driven part to the rotor, "
                                       "at most 1 (<= 0: the stage is self-locking)", "",
                                       OPTIONAL, high=1.0),
+    },
     # (Absent: no end stops; the load travels until the nut leaves the screw.)
     "end_stops": {
         "lower": Field("the lower end stop's face: the load's axial position u_load where it "

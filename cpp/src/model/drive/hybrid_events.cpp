@@ -162,10 +162,13 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
 
 std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int>& root_info) {
   if (current_limit_root() && root_info[5] != 0) {
-    // The current's hold changes; the mechanical mode only with another root.
+    // The current's hold changes; the mechanical mode only with another root
+    // (g0..g4, or an end stop's after g5).
     const std::string held = change_current_hold(t, y);
-    if (std::all_of(root_info.begin(), root_info.begin() + 5, [](int r) { return r == 0; }))
-      return held;
+    bool other = false;
+    for (std::size_t k = 0; k < root_info.size(); ++k)
+      if (k != 5 && root_info[k] != 0) other = true;
+    if (!other) return held;
   }
   if (root_info[4] != 0) {
     set(t, y);

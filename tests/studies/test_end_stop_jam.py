@@ -113,3 +113,32 @@ def test_figure_draws_the_held_and_the_freeing_run(tmp_path):
     assert any(label.startswith("breakaway") for label in labels)
     np.testing.assert_array_equal(ax.get_lines()[0].get_ydata(),
                                   np.abs(frame.attrs["histories"]["held"]["stop_force"]))
+
+
+@pytest.mark.parametrize("axial", [-20.0, 20.0])
+def test_the_thread_holds_the_stop_force_and_the_axial_load_together(axial):
+    # At rest against the lower stop (its force along +x) the thread balances
+    # the stop's force and the axial load on the load: the closed form's F.
+    scene = torque_scene(loads={"axial_force": axial})
+    frame = ls.studies.end_stop_jam(scene, t_drive=0.3, t_reverse=0.1, progress=False)
+    summary = frame.attrs["summary"]
+    assert summary["thread_force"] == pytest.approx(abs(summary["clamp_force"] + axial),
+                                                    rel=1e-12)
+    expected = reference.breakaway_torque(summary["thread_force"], scene["thread"], 0.3)
+    assert summary["breakaway_torque_closed_form"] == pytest.approx(expected, rel=1e-12)
+    assert summary["breakaway_torque"] == pytest.approx(expected, rel=1e-6)
+    assert frame.attrs["summary_units"]["thread_force"] == "N"
+
+
+@pytest.mark.parametrize("ratio", [2.0, -2.0])
+def test_behind_an_ideal_gear_stage_the_rotor_reverses_the_torque_over_n(ratio):
+    # The rotor's reverse torque T_b / |n| frees the drive; the summary's
+    # breakaway torque is the driven part's.
+    scene = torque_scene(loads={"drive_torque": 0.5 / ratio}, gear={"ratio": ratio})
+    frame = ls.studies.end_stop_jam(scene, t_drive=0.3, t_reverse=0.1, progress=False)
+    summary = frame.attrs["summary"]
+    expected = reference.breakaway_torque(summary["thread_force"], scene["thread"], 0.3)
+    assert summary["breakaway_torque"] == pytest.approx(expected, rel=1e-6)
+    assert summary["bracket"][1] * abs(ratio) == pytest.approx(summary["breakaway_torque"],
+                                                               rel=1e-12)
+    bisection_is_consistent(frame, "reverse_torque")

@@ -10,7 +10,8 @@ load) is found by bisection over runs of the whole sequence, a bounded
 number of them.
 
 Beside it the quasi-static closed form (docs/physics/end_stops.md): the
-clamp is an axial load F that the thread holds; the torque that moves it
+clamp is an axial load F that the thread holds (the stop's force and the
+scene's axial force on the load, at rest); the torque that moves it
 back (lowers it) with the static coefficient is
 
     breakaway torque T_b = F r_m tan(rho_s' - alpha),  rho_s' = atan(mu_static'),
@@ -20,6 +21,11 @@ thread (tan(alpha) < mu_static') jams; the study refuses another, where the
 stop pushes the drive back as soon as it lets go. With a DC motor at rest the torque
 is k_t U / R (the current limit caps it), so the breakaway voltage is
 U_b = R T_b / k_t (infinite where T_b > k_t i_max).
+
+Behind an ideal gear stage of ratio n (section ``gear``) the drive's torque
+and the DC motor act on the rotor: the breakaway torque on the driven part
+T_b takes T_b / |n| on the rotor, U_b = R T_b / (|n| k_t). The study reports
+``breakaway_torque`` on the driven part either way.
 """
 
 from __future__ import annotations
@@ -39,7 +45,8 @@ __all__ = ["end_stop_jam", "plot_end_stop_jam"]
 
 UNITS = {"reverse_torque": "N*m", "reverse_voltage": "V", "broke_free": "",
          "stop_force_end": "N", "error": ""}
-_SUMMARY_UNITS = {"clamp_force": "N", "peak_clamp_force": "N", "peak_current": "A",
+_SUMMARY_UNITS = {"clamp_force": "N", "thread_force": "N", "peak_clamp_force": "N",
+                  "peak_current": "A",
                   "breakaway_torque": "N*m", "breakaway_torque_closed_form": "N*m",
                   "breakaway_voltage": "V", "breakaway_voltage_closed_form": "V",
                   "t_drive": "s", "t_reverse": "s", "runs": "1"}
@@ -102,8 +109,14 @@ def _require_self_locking(scene) -> None:
                          "jams: the stop pushes the drive back as soon as the drive lets go")
 
 
+def _gear_ratio(scene) -> float:
+    """|n| of the scene's ideal gear stage (1: none)."""
+    return abs(scene["gear"]["ratio"]) if "gear" in scene else 1.0
+
+
 def _closed_form(scene, kind: str, clamp: float) -> Dict[str, float]:
-    """T_b = F r_m tan(rho_s' - alpha) and, with a DC motor, U_b = R T_b / k_t."""
+    """T_b = F r_m tan(rho_s' - alpha) on the driven part and, with a DC motor,
+    U_b = R T_b / (|n| k_t)."""
     friction = scene["friction"]
     mu_static = friction.get("mu_static", friction["mu"])
     torque = float(_core.lower_torque(scene.thread, mu_static, clamp))
@@ -111,7 +124,7 @@ def _closed_form(scene, kind: str, clamp: float) -> Dict[str, float]:
     if kind == "voltage":
         motor = scene["motor"]
         limit = motor.get("current_limit", math.inf)
-        current = torque / motor["torque_constant"]
+        current = torque / (_gear_ratio(scene) * motor["torque_constant"])
         out["breakaway_voltage_closed_form"] = (math.inf if current > limit
                                                 else motor["resistance"] * current)
     return out
@@ -150,15 +163,17 @@ def end_stop_jam(
 
     Returns:
         DataFrame with one row per reversing run, in the order run:
-        ``reverse_torque`` [N*m] (a torque-driven scene: the torque after
+        ``reverse_torque`` [N*m] (a torque-driven scene: the torque on the rotor after
         the reversal is -sign(M) reverse_torque) or ``reverse_voltage`` [V]
         (a DC motor), ``broke_free`` (the stop released the load by the
         run's end), ``stop_force_end`` [N], ``error``.
         ``attrs["summary"]``: ``drive`` ("torque" or "voltage"),
         ``clamp_force`` [N] (|stop_force| held at the reversal),
+        ``thread_force`` [N] (the axial load the thread holds then: |stop_force
+        + axial_force|, the closed form's F),
         ``peak_clamp_force`` [N], ``peak_current`` [A] (NaN without a DC
-        motor), ``breakaway_torque`` [N*m] (on the driven part; with a DC
-        motor k_t times the current at rest, min(U_b / R, i_max)),
+        motor), ``breakaway_torque`` [N*m] (on the driven part, |n| times the rotor's behind a gear stage; with a DC
+        motor |n| k_t times the current at rest, min(U_b / R, i_max)),
         ``breakaway_torque_closed_form`` [N*m], ``breakaway_voltage`` and
         ``breakaway_voltage_closed_form`` [V] (NaN without a DC motor; inf
         where the current limit cannot reach the torque), ``bracket`` (the
@@ -173,7 +188,7 @@ def end_stop_jam(
             runs (naming the argument), or the load does not rest clamped
             against a stop at ``t_drive``.
     """
-    scene = as_scene(scene)
+    scene = as_scene(scene, gear=True)
     kind, forward = _drive(scene)
     _require_self_locking(scene)
     t_drive = check_positive("t_drive", t_drive, unit="s")
@@ -194,10 +209,18 @@ def end_stop_jam(
         raise ValueError(f"t_drive = {t_drive!r} is invalid for end_stop_jam: the load does "
                          "not press on an end stop at its end (a stop out of reach, or a "
                          "longer t_drive)")
-    if not (pushing["stick"][-1] == 1.0 and pushing["omega_drive"][-1] == 0.0):
-        raise ValueError(f"t_drive = {t_drive!r} is invalid for end_stop_jam: the thread does "
-                         "not stick against the stop at its end (the clamp has not settled: a "
-                         "longer t_drive, or more end_stops.damping)")
+    # Settled: the thread stuck, or (a DC motor's back-EMF damps the approach
+    # to the quasi-static clamp, which the slip then reaches only
+    # asymptotically, never stopping at a zero of the slip) a clamp force
+    # that changed by less than 1e-3 over the drive's last tenth.
+    stuck = pushing["stick"][-1] == 1.0 and pushing["omega_drive"][-1] == 0.0
+    earlier = abs(float(np.interp(0.9 * t_drive, pushing.t, pushing["stop_force"])))
+    if not (stuck or abs(clamp - earlier) <= 1e-3 * clamp):
+        raise ValueError(f"t_drive = {t_drive!r} is invalid for end_stop_jam: the clamp has "
+                         "not settled at its end (the thread does not stick against the stop, "
+                         f"and the stop's force changed from {earlier:.6g} N to {clamp:.6g} N "
+                         "over the last tenth of t_drive: a longer t_drive, or more "
+                         "end_stops.damping)")
     peak_current = (float(np.max(np.abs(pushing["motor_current"]))) if kind == "voltage"
                     else math.nan)
     sign = math.copysign(1.0, forward)
@@ -223,9 +246,14 @@ def end_stop_jam(
                                                     result["stop_force"].tolist())
         return free
 
-    closed = _closed_form(scene, kind, clamp)
-    estimate = closed["breakaway_voltage_closed_form" if kind == "voltage"
-                      else "breakaway_torque_closed_form"]
+    # The thread holds the load against the stop's force and the axial load
+    # together (the load at rest): the clamp the thread carries.
+    thread_force = abs(float(pushing["stop_force"][-1]) + float(pushing["axial_force"][-1]))
+    closed = _closed_form(scene, kind, thread_force)
+    # (in the units of the reverse drive: the rotor's torque, or the voltage)
+    n = _gear_ratio(scene)
+    estimate = (closed["breakaway_voltage_closed_form"] if kind == "voltage"
+                else closed["breakaway_torque_closed_form"] / n)
     # The bracket: the forward drive itself holds (the run's state at t_drive);
     # the reverse is doubled from max(|forward|, the closed form) until it frees.
     low = -abs(forward)
@@ -245,7 +273,7 @@ def end_stop_jam(
     bar.close()
     breakaway = high if found else math.inf
 
-    summary = {"drive": kind, "clamp_force": clamp,
+    summary = {"drive": kind, "clamp_force": clamp, "thread_force": thread_force,
                "peak_clamp_force": float(np.max(np.abs(pushing["stop_force"]))),
                "peak_current": peak_current, **closed,
                "bracket": (low, high if found else math.inf),
@@ -254,10 +282,11 @@ def end_stop_jam(
         motor = scene["motor"]
         current = min(breakaway / motor["resistance"], motor.get("current_limit", math.inf))
         summary["breakaway_voltage"] = breakaway
-        summary["breakaway_torque"] = motor["torque_constant"] * current if found else math.inf
+        summary["breakaway_torque"] = (n * motor["torque_constant"] * current if found
+                                       else math.inf)
     else:
         summary["breakaway_voltage"] = math.nan
-        summary["breakaway_torque"] = breakaway
+        summary["breakaway_torque"] = n * breakaway
     column = "reverse_voltage" if kind == "voltage" else "reverse_torque"
     frame = frame_of({column: [row["reverse"] for row in rows],
                       "broke_free": [row["broke_free"] for row in rows],

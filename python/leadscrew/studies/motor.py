@@ -24,6 +24,9 @@ that of motoring: 0 at rest, NaN where the load is lowered (it gives power).
 At steady state the springs of the flexible concepts carry the load
 statically, so the closed form holds for every concept.
 
+The drive runs free: the scene's end stops (section ``end_stops``) are left
+out (:func:`end_stop_jam` drives into them).
+
 Behind an ideal gear stage of ratio n (section ``gear``; the rotor turns n
 times per turn of the driven part) the rotor supplies the driven part's torque
 over |n|, T = F r_m tan(alpha + rho') / |n|, and turns |n| times as fast:
@@ -293,7 +296,10 @@ def motor_characteristics(
     # A reversing gear stage (n < 0) turns the driven part the other way.
     raising = (scene.thread.hand_sign * math.copysign(1.0, voltage) *
                math.copysign(1.0, _gear_ratio(scene)))
-    running = scene.replace(initial={"rotor_speed": 0.0, "state": "relaxed"})
+    # The train's characteristic runs free: the scene's end stops (if any) are
+    # left out, so that each load reaches its steady state (end_stop_jam runs
+    # the drive into them).
+    running = scene.replace(initial={"rotor_speed": 0.0, "state": "relaxed"}, end_stops=None)
     _, k_t, k_e, _ = _motor_constants(scene, voltage)
     measures = {"raising": raising, "torque_ratio": (k_t - k_e) / k_t,
                 "speed_scale": abs(voltage) / k_e}

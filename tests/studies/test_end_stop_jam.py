@@ -142,3 +142,10 @@ def test_behind_an_ideal_gear_stage_the_rotor_reverses_the_torque_over_n(ratio):
     assert summary["bracket"][1] * abs(ratio) == pytest.approx(summary["breakaway_torque"],
                                                                rel=1e-12)
     bisection_is_consistent(frame, "reverse_torque")
+
+
+def test_a_clamp_still_building_up_is_refused_not_taken():
+    # 0.02 s: the load is on the stop, the thread still slipping into it.
+    with pytest.raises(ValueError, match=r"t_drive = 0.02 is invalid for end_stop_jam: the "
+                                         r"clamp has not settled .* from .* N to .* N"):
+        ls.studies.end_stop_jam(torque_scene(), t_drive=0.02, t_reverse=0.05, progress=False)

@@ -37,6 +37,7 @@ import numpy as np
 import pandas as pd
 
 from .. import _core
+from ..errors import SimulationError
 from ..simulation import simulate
 from ._common import annotate, as_scene, axes, check_count, check_positive, frame_of
 from ._sweep import _progress_bar
@@ -59,9 +60,13 @@ def _drive(scene) -> Tuple[str, float]:
         ValueError: no penalty end stops, a speed-controlled drive, or a drive
             that is not constant or is zero.
     """
-    if "end_stops" not in scene or scene["end_stops"]["contact"] != "penalty":
-        raise ValueError("scene has no penalty end stops: end_stop_jam needs end_stops = "
+    if "end_stops" not in scene:
+        raise ValueError("scene has no end stops: end_stop_jam needs end_stops = "
                          "{lower or upper, contact = \"penalty\", stiffness, damping}")
+    if scene["end_stops"]["contact"] != "penalty":
+        raise ValueError(f"end_stops.contact = {scene['end_stops']['contact']!r} is invalid "
+                         "for end_stop_jam: must be 'penalty' (the clamp force of a rigid "
+                         "stop depends on compliance the exact stop does not have)")
     if "motor" in scene:
         kind, key, value = "voltage", "motor.voltage", scene["motor"]["voltage"]
     else:
@@ -165,8 +170,12 @@ def end_stop_jam(
         DataFrame with one row per reversing run, in the order run:
         ``reverse_torque`` [N*m] (a torque-driven scene: the torque on the rotor after
         the reversal is -sign(M) reverse_torque) or ``reverse_voltage`` [V]
-        (a DC motor), ``broke_free`` (the stop released the load by the
-        run's end), ``stop_force_end`` [N], ``error``.
+        (a DC motor), ``broke_free`` (the clamping stop released the load
+        after the reversal, whatever it met then: the other stop, or the
+        screw's end, which ends the run), ``stop_force_end`` [N] (NaN where
+        the run ended at the screw's end), ``error``. With a DC motor and a
+        current limit the bracket stops doubling beyond R i_max volts (no more
+        torque).
         ``attrs["summary"]``: ``drive`` ("torque" or "voltage"),
         ``clamp_force`` [N] (|stop_force| held at the reversal),
         ``thread_force`` [N] (the axial load the thread holds then: |stop_force
@@ -213,7 +222,7 @@ def end_stop_jam(
     # to the quasi-static clamp, which the slip then reaches only
     # asymptotically, never stopping at a zero of the slip) a clamp force
     # that changed by less than 1e-3 over the drive's last tenth.
-    stuck = pushing["stick"][-1] == 1.0 and pushing["omega_drive"][-1] == 0.0
+    stuck = pushing["stick"][-1] == 1.0
     earlier = abs(float(np.interp(0.9 * t_drive, pushing.t, pushing["stop_force"])))
     if not (stuck or abs(clamp - earlier) <= 1e-3 * clamp):
         raise ValueError(f"t_drive = {t_drive!r} is invalid for end_stop_jam: the clamp has "
@@ -224,22 +233,33 @@ def end_stop_jam(
     peak_current = (float(np.max(np.abs(pushing["motor_current"]))) if kind == "voltage"
                     else math.nan)
     sign = math.copysign(1.0, forward)
+    # The stop that clamps (its force pushes the load along +x: the lower one).
+    clamping = "lower end stop" if float(pushing["stop_force"][-1]) > 0.0 else "upper end stop"
 
     rows = []
     histories: Dict[str, Any] = {}
     bar = _progress_bar(runs, "end_stop_jam", progress)
 
     def frees(x: float) -> bool:
-        """One reversing run: -sign x after t_drive; True if the stop let go."""
+        """One reversing run: -sign x after t_drive; True if the clamping stop let
+        go of the load after the reversal (whatever the load met then: the
+        other stop, or the screw's end)."""
         bar.update()
         try:
             result = simulate(_with_drive(running, kind, forward, -sign * x, t_drive, t_end),
                               t_end, **options)
+        except SimulationError as error:
+            # Only a load that left the stop runs the nut to the screw's end.
+            free = error.time > t_drive and "the nut reached the end of the screw" in str(error)
+            rows.append({"reverse": x, "broke_free": free, "stop_force_end": math.nan,
+                         "error": None if free else f"{type(error).__name__}: {error}"})
+            return free
         except (ValueError, ArithmeticError, RuntimeError) as error:
             rows.append({"reverse": x, "broke_free": False, "stop_force_end": math.nan,
                          "error": f"{type(error).__name__}: {error}"})
             return False
-        free = float(result["stop_force"][-1]) == 0.0
+        free = any(event.time > t_drive and f"{clamping} release" in event.kind
+                   for event in result.events) or float(result["stop_force"][-1]) == 0.0
         rows.append({"reverse": x, "broke_free": free,
                      "stop_force_end": float(result["stop_force"][-1]), "error": None})
         histories["freeing" if free else "held"] = (x, result.t.tolist(),
@@ -259,9 +279,16 @@ def end_stop_jam(
     low = -abs(forward)
     high = max(abs(forward), estimate if math.isfinite(estimate) else 0.0)
     found = False
+    # With a DC motor the torque at rest is k_t min(U / R, i_max): beyond R i_max
+    # volts a larger reverse voltage adds nothing.
+    ceiling = math.inf
+    if kind == "voltage" and "current_limit" in scene["motor"]:
+        ceiling = scene["motor"]["resistance"] * scene["motor"]["current_limit"]
     while len(rows) < runs:
         if frees(high):
             found = True
+            break
+        if high > ceiling:
             break
         low, high = high, 2.0 * high
     while found and len(rows) < runs:

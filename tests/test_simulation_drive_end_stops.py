@@ -331,3 +331,23 @@ def test_the_stepper_carries_the_stops_across_its_pieces(stops):
     assert len(contacts) == 1, contacts
     if stops.get("contact") == "exact":
         assert stepper.channel("u_load") == -1e-6 and stepper.channel("v_load") == 0.0
+
+
+def test_the_integrators_listed_with_end_stops_are_the_ones_that_run():
+    # One list, the true one (issue 17 item 16): a review found "moreau" listed, then refused.
+    for friction, expected in [({"law": "coulomb", "mu": 0.3}, ["event_driven"]),
+                               ({"law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}, None)]:
+        scene = ls.Scene.from_dict(thesis_scene(concept="rigid", friction=friction,
+                                                end_stops={"lower": -0.01, "stiffness": 1e7}))
+        listed = ls._core.drive_integrators(scene.model().parameters)
+        assert "moreau" not in listed
+        if expected is not None:
+            assert listed == expected
+        for integrator in listed:
+            options = {} if integrator == "event_driven" else {"rtol": 1e-6, "atol": 1e-9}
+            ls.simulate(scene, 0.002, integrator=integrator, max_steps=200_000, **options)
+    with pytest.raises(ValueError, match=r"integrator = \"cvode_bdf\" is invalid for "
+                                         r"friction\.law = \"coulomb\" and end_stops: must be "
+                                         r"one of \"event_driven\""):
+        ls.simulate(ls.Scene.from_dict(thesis_scene(concept="rigid", end_stops={
+            "lower": -0.01, "stiffness": 1e7})), 0.01, integrator="cvode_bdf")

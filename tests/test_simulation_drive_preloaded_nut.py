@@ -195,7 +195,7 @@ def test_energy_account_closes_and_friction_never_pushes():
     ({"friction": {"law": "arctan_velocity", "mu": 0.3}},
      r"nut\.preload = 10 is invalid with friction\.law = \"arctan_velocity\""),
     ({"friction": {"law": "coulomb", "mu": 0.3, "mu_static": 0.4}},
-     r"nut\.preload = 10 is invalid with friction\.law = \"coulomb\""),
+     r"friction\.mu_static = 0\.4 is invalid with nut\.preload = 10: must equal friction\.mu"),
     ({"initial": {"state": "equilibrium", "rotor_speed": 0.0}},
      r"nut\.preload = 10 is invalid with initial\.state = \"equilibrium\""),
 ])
@@ -248,3 +248,12 @@ def test_in_the_painleve_regime_a_stuck_preloaded_drive_keeps_sticking():
     np.testing.assert_array_equal(result["omega_drive"], 0.0)
     with pytest.raises(ls.JammingError):
         ls.simulate(ls.Scene.from_dict(preload_scene(0.3, 0.0, **changes)), 0.5)
+
+
+def test_the_integrators_a_preloaded_nut_lists_are_the_ones_it_runs():
+    # One list, the true one (issue 17 item 16): a review found "moreau" listed, then refused.
+    scene = ls.Scene.from_dict(preload_scene(0.3, 10.0))
+    assert ls._core.drive_integrators(scene.model().parameters) == ["event_driven"]
+    with pytest.raises(ValueError, match=r"integrator = \"cvode_bdf\" is invalid with "
+                                         r"nut\.preload = 10 N"):
+        ls.simulate(scene, 0.01, integrator="cvode_bdf")

@@ -103,3 +103,27 @@ def test_bad_arguments(changes, arguments, match):
     kwargs = {"preloads": [0.0], "progress": False, **arguments}
     with pytest.raises(ValueError, match=match):
         preload_tradeoff(scene(**changes), **kwargs)
+
+
+def test_what_a_preloaded_nut_refuses_is_said_up_front():
+    # (A review: a DC motor scene failed in every row, a mu_static in every row but P = 0's.)
+    with pytest.raises(ValueError, match=r"friction\.mu_static = 0\.4 is invalid with "
+                                         r"nut\.preload = 50"):
+        preload_tradeoff(scene().replace(friction={"mu_static": 0.4}), [0.0, 50.0],
+                         progress=False)
+    motor = scene().to_dict()
+    motor["loads"].pop("drive_torque")
+    motor["motor"] = {"type": "dc", "voltage": 12.0, "resistance": 1.0, "torque_constant": 0.02}
+    with pytest.raises(ValueError, match=r"motor = .* is invalid for preload_tradeoff"):
+        preload_tradeoff(motor, [0.0, 50.0], progress=False)
+
+
+def test_motor_characteristics_refuses_a_preloaded_nut():
+    # Its closed form is the plain nut's (a review found it silently beside the wrong train).
+    d = thesis_scene(concept="rigid", nut={"preload": 50.0}, loads={"axial_force": 0.0},
+                     motor={"type": "dc", "voltage": 12.0, "resistance": 1.0,
+                            "torque_constant": 0.02})
+    d["loads"].pop("drive_torque")
+    with pytest.raises(ValueError, match=r"nut\.preload = 50\.0 is invalid for "
+                                         r"motor_characteristics: must be 0"):
+        ls.studies.motor_characteristics(d, [10.0], progress=False)

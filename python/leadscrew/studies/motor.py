@@ -287,6 +287,10 @@ def motor_characteristics(
             loads, t_end or window (naming the argument).
     """
     scene = as_scene(scene, gear=True)
+    if scene["nut"]["preload"] > 0.0:
+        raise ValueError(f"nut.preload = {scene['nut']['preload']!r} is invalid for "
+                         "motor_characteristics: must be 0 (its closed form is the plain nut's; "
+                         "preload_tradeoff prices a preload)")
     voltage = _voltage(scene)
     forces = check_grid("loads", loads, unit="N")
     t_end = check_positive("t_end", t_end, unit="s")

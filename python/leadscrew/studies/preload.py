@@ -195,6 +195,14 @@ def preload_tradeoff(
         raise ValueError(f"concept = {scene['concept']!r} is invalid for preload_tradeoff: a "
                          "preloaded nut is supported on the rigid concept (concept = 'rigid')")
     preloads = check_grid("preloads", preloads, allow_zero=True, unit="N")
+    if "motor" in scene:
+        raise ValueError("motor = {'type': 'dc', ...} is invalid for preload_tradeoff: its "
+                         "efficiency run prescribes the rotor's speed and its creep runs hold "
+                         "the scene's constant loads.drive_torque (leave the motor out)")
+    # What a preloaded nut refuses (the friction law's mu_static, the start, ...),
+    # said once, up front, rather than in every row but P = 0's.
+    if preloads.max() > 0.0:
+        scene.replace(nut={"preload": float(preloads.max())}).model()
     torque = _constant_torque(scene)
     if load is None:
         load = abs(_static_force(scene))

@@ -15,9 +15,12 @@ namespace leadscrew::model {
 namespace {
 
 // The integrators that fit the friction law `friction` on a thread pair with
-// penalty flanks, exact flanks, or (neither) no play.
+// penalty flanks, exact flanks, or (neither) no play; a preloaded nut runs on
+// the event-driven scheme only, and with end stops (`no_moreau`) Moreau-Jean
+// is out (its iteration matrix does not see a stop's contact).
 const std::vector<std::string>& integrators_for(const std::string& friction, bool penalty,
-                                                bool exact_play) {
+                                                bool exact_play, bool preloaded,
+                                                bool no_moreau) {
   // From the law's type (friction/law.hpp): a set-valued law runs in the
   // event-driven scheme, in Moreau-Jean's time stepping, and where it has a
   // regularization in the ODE methods; a smooth law in the ODE methods and
@@ -42,10 +45,12 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
     return names;
   }();
   const friction::LawType& type = friction::law_type(friction);
+  if (preloaded) return event_driven_only;
   if (type.time_stepping) {  // set-valued
     if (penalty) return type.ode ? set_valued_ode : event_driven_only;
-    if (exact_play) return with_moreau;
-    return type.ode ? set_valued_all : with_moreau;
+    if (exact_play) return no_moreau ? event_driven_only : with_moreau;
+    if (type.ode) return no_moreau ? set_valued_ode : set_valued_all;
+    return no_moreau ? event_driven_only : with_moreau;
   }
   if (exact_play) return event_driven_only;
   return smooth;
@@ -56,12 +61,15 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   const bool penalty =
       p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
-  return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact);
+  return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact,
+                         p.nut_preload > 0.0, p.end_stops != EndStopContact::none);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
-  return integrators_for(model.parameters().friction, thread.penalty(), thread.exact_play());
+  const DriveParameters& p = model.parameters();
+  return integrators_for(p.friction, thread.penalty(), thread.exact_play(),
+                         model.preloaded_nut() != nullptr, p.end_stops != EndStopContact::none);
 }
 
 namespace {
@@ -95,17 +103,25 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   const DriveParameters& p = model.parameters();
   const std::vector<std::string>& allowed = drive::model_integrators(model);
   const std::string& integrator = drive::chosen_integrator(p, options);
-  if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
-    require_choice("integrator", integrator, allowed,
-                   (p.backlash != BacklashContact::none
-                        ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
-                        : std::string()) +
-                       "friction.law = \"" + p.friction + "\"");
+  // The elements' own reasons first (the list below leaves them out).
   if (model.preloaded_nut() && integrator != "event_driven")
     throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with nut.preload = " +
                           format_value(p.nut_preload) +
                           " N: a preloaded nut runs with exact Coulomb friction on the "
                           "event-driven scheme only (integrator = \"event_driven\")");
+  if (integrator == "moreau" && p.end_stops != EndStopContact::none)
+    throw InvalidArgument(
+        "integrator = \"moreau\" is invalid with end_stops: Moreau-Jean's iteration matrix "
+        "takes the force elements' stiffness, which a penalty stop has only in contact, and "
+        "an exact stop would be a second contact of its step (use \"event_driven\", which "
+        "locates the stop's contact and release, or an ODE method)");
+  if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
+    require_choice("integrator", integrator, allowed,
+                   (p.backlash != BacklashContact::none
+                        ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
+                        : std::string()) +
+                       "friction.law = \"" + p.friction + "\"" +
+                       (p.end_stops != EndStopContact::none ? " and end_stops" : ""));
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   integrate::validate_output_request(options.output, 0.0);
   if (options.max_events < 0)
@@ -115,12 +131,6 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
     throw InvalidArgument("smooth_integrator = \"" + options.smooth_integrator +
                           "\" is invalid with integrator = \"" + integrator +
                           "\": only \"event_driven\" takes one (the method between its events)");
-  if (integrator == "moreau" && p.end_stops != EndStopContact::none)
-    throw InvalidArgument(
-        "integrator = \"moreau\" is invalid with end_stops: Moreau-Jean's iteration matrix "
-        "takes the force elements' stiffness, which a penalty stop has only in contact, and "
-        "an exact stop would be a second contact of its step (use \"event_driven\", which "
-        "locates the stop's contact and release, or an ODE method)");
   if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
     integrate::check_moreau_options(options.output.t_end, drive::moreau_options(options));
     check_step_resolves_loads(options.dt, options.output.t_end,

@@ -29,9 +29,13 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
     throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) + "\"" +
                           supported + " (the flexible concepts' lift-off of a half is not "
                           "modelled)");
-  if (!e.thread->law().plain_coulomb())
-    throw InvalidArgument(preload + "with friction.law = \"" + p.friction +
-                          "\" (or its mu_static or viscous term)" + supported);
+  if (!e.thread->law().plain_coulomb()) {
+    if (p.friction == "coulomb")  // Coulomb's law with a static coefficient above mu
+      throw InvalidArgument("friction.mu_static = " + format_value(e.thread->law().mu_static()) +
+                            " is invalid with nut.preload = " + format_value(p.nut_preload) +
+                            ": must equal friction.mu (or be left out)" + supported);
+    throw InvalidArgument(preload + "with friction.law = \"" + p.friction + "\"" + supported);
+  }
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
                           " (on the rigid concept the relaxed start at rest is the same state)");

@@ -269,7 +269,7 @@ def test_study_summary_json_of_special_values(tmp_path, capsys, monkeypatch):
     assert written.pop("units") == {"torque": "N*m", "ratio": "1",
                                     "dynamic_creep_per_cycle": "m"}
     assert written == {
-        "missing": None, "unbounded": None, "count": 3, "value": 1.5, "holds": True,
+        "missing": None, "unbounded": "-inf", "count": 3, "value": 1.5, "holds": True,
         "window": [0.1, 0.2], "label": "x", "dynamic_creep_per_cycle": 2e-9, "torque": 0.5,
         "ratio": 0.25, "creep_per_cycle": 3e-9}
     lines = out.splitlines()

@@ -198,7 +198,10 @@ def _failures(frame) -> Tuple[int, str]:
 
 
 def _json_value(value: Any) -> Any:
-    """A summary value as JSON data: NaN and infinities become null."""
+    """A summary value as JSON data: NaN becomes null (not a number), an
+    infinity the string "inf" or "-inf" (a breakaway no voltage reaches, a
+    thread that never back-drives: a value, not a missing one; JSON has no
+    infinity)."""
     import numpy as np
 
     if isinstance(value, np.generic):
@@ -209,6 +212,8 @@ def _json_value(value: Any) -> Any:
         return int(value)
     if isinstance(value, numbers.Real):
         number = float(value)
+        if math.isinf(number):
+            return "inf" if number > 0 else "-inf"
         return number if math.isfinite(number) else None
     if isinstance(value, dict):
         return {str(k): _json_value(v) for k, v in value.items()}

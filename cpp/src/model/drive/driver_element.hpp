@@ -5,8 +5,9 @@
 // (docs/architecture.md, "An element with events").
 //
 // DriveHybrid holds a list of them, built once from the model in
-// DriveHybrid::make_elements (hybrid_rhs.cpp, one line per kind), in that order; a
-// model with none has an empty list and pays nothing. Their root functions
+// DriveHybrid::make_elements (hybrid_rhs.cpp, one line per kind), in that
+// order; a model with none has an empty list and pays nothing, one with any
+// never takes the rigid solver (mode_solver.cpp). Their root functions
 // follow the driver's own g0..g4 (friction, flanks, the screw's end), each
 // element's in one block (first_root), in the list's order. Each kind is a
 // class derived from DriveHybrid::Element in a file of its own:

@@ -1,8 +1,8 @@
 // An element of the drive with events of its own in the event-driven driver
 // (DriveHybrid): its root functions, what happens at them, its start at a
-// (re)start of the run, its internal states (into the dynamics, their
-// rates), its energy terms and its output values. Internal to cpp/src/model
-// (docs/architecture.md, "An element with events").
+// (re)start of the run, its internal states' rates, its energy terms and its
+// output values. Internal to cpp/src/model (docs/architecture.md, "An element
+// with events").
 //
 // DriveHybrid holds a list of them, built once from the model in
 // DriveHybrid::make_elements (hybrid_rhs.cpp, one line per kind), in that
@@ -65,11 +65,6 @@ class DriveHybrid::Element {
     (void)y;
   }
 
-  // Its states of y into the dynamics, before the forces are evaluated at
-  // the state (DriveHybrid::set: every right-hand side, root and output row
-  // of the constrained solve).
-  virtual void set_state(const double* y) { (void)y; }
-
   // At a start of the run (select_initial_mode, after the thread's mode is
   // chosen): its state from the state last set. A resumed run (the stepper's
   // next piece, DriveHybrid::resume) starts its new elements the same way:
@@ -107,7 +102,6 @@ class DriveHybrid::Element {
   // expand).
   const DriveModel& model() const { return h_.model_; }
   const DriveDynamics& dynamics() const { return h_.dynamics_; }
-  DriveDynamics& dynamics() { return h_.dynamics_; }
   const StateLayout& layout() const { return h_.layout_; }
   const CoordinateVector& q() const { return h_.q_; }
   const CoordinateVector& v() const { return h_.v_; }

@@ -18,8 +18,7 @@
 //   hybrid_jamming.cpp     dynamic jamming (Painleve), the regularized
 //                          law's fold
 //   driver_element.hpp     DriveHybrid::Element: an element with events of
-//                          its own (roots, events, start, states, rates,
-//                          output),
+//                          its own (roots, events, start, rates, output),
 //                          one file each:
 //   hybrid_motor.cpp       a DC motor's current: its rates, channels, the
 //                          current limit's root and hold
@@ -113,7 +112,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // side, root and output row starts here: inline).
   void set(double t, const double* y) {
     layout_.expand(t, y, q_, v_);
-    if (!elements_.empty()) set_element_states(y);  // before the forces, which use them
+    if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
     dynamics_.set_state(t, q_, v_);
     if (layout_.bristle() >= 0) dynamics_.set_bristle(y[layout_.bristle()]);
   }
@@ -130,8 +129,6 @@ class DriveHybrid final : public integrate::HybridSystem {
   // hybrid_rhs.cpp: the elements with events of the model, one line per kind.
   void make_elements();
   void add_element(std::unique_ptr<Element> element);
-  // Their states of y into the dynamics (Element::set_state).
-  void set_element_states(const double* y);
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);

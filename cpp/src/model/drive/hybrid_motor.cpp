@@ -16,11 +16,6 @@ class DcMotorElement final : public DriveHybrid::Element {
   DcMotorElement(DriveHybrid& hybrid, const elements::DcMotor& dc)
       : Element(hybrid), dc_(dc), limit_root_(dc.has_state() && dc.limited()) {}
 
-  // The current (with inductance a state) gives the motor's torque k_t i.
-  void set_state(const double* y) override {
-    if (layout().motor_current() >= 0) dynamics().set_motor_current(y[layout().motor_current()]);
-  }
-
   // One root with inductance and a current limit: the margin to the limit,
   // or while held the driver's push beyond it.
   int root_count() const override { return limit_root_ ? 1 : 0; }

@@ -46,10 +46,6 @@ void DriveHybrid::add_element(std::unique_ptr<Element> element) {
   elements_.push_back(std::move(element));
 }
 
-void DriveHybrid::set_element_states(const double* y) {
-  for (const std::unique_ptr<Element>& element : elements_) element->set_state(y);
-}
-
 void DriveHybrid::rhs(double t, const double* y, double* ydot) { solver_->rhs(t, y, ydot); }
 
 void DriveHybrid::channels(double t, const double* y, double* out) {

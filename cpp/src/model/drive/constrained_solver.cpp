@@ -1,9 +1,11 @@
 // DriveHybrid::ConstrainedSolver (mode_solver.hpp): any drive model; y
 // expanded by StateLayout, the current mode solved by DriveDynamics'
 // constrained solve (DriveHybrid::solve_current), LuGre's bristle states and
-// their stored energy.
+// their stored energy, the elements' with events rates and output values
+// (driver_element.hpp).
 #include <cmath>
 
+#include "driver_element.hpp"
 #include "mode_solver.hpp"
 
 namespace leadscrew::model::drive {
@@ -55,8 +57,7 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
   }
   energy[kDampingLoss] = dynamics.damping_power();
   energy[kContactLoss] = dynamics.contact_loss_power();
-  if (model.dc_motor()) h_.motor_rates(t, ydot, energy);
-  if (!model.elements().exact_stops.empty()) h_.hold_closed_stops(ydot);
+  for (const std::unique_ptr<Element>& element : h_.elements_) element->rates(t, y, ydot, energy);
 }
 
 ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
@@ -77,8 +78,7 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   // Stick holds the slip velocity at zero; the state carries the integrator's
   // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
   if (forces.stick) state.slip_velocity = 0.0;
-  if (h_.model_.dc_motor()) h_.motor_channels(t, y, state);
-  if (!h_.model_.elements().exact_stops.empty()) state.stop_force = h_.exact_stop_force();
+  for (const std::unique_ptr<Element>& element : h_.elements_) element->output(t, y, state);
   return state;
 }
 

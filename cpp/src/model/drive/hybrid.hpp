@@ -17,9 +17,13 @@
 //   hybrid_impacts.cpp     flank impacts with restitution, free flights
 //   hybrid_jamming.cpp     dynamic jamming (Painleve), the regularized
 //                          law's fold
+//   driver_element.hpp     DriveHybrid::Element: an element with events of
+//                          its own (roots, events, start, rates, output),
+//                          one file each:
 //   hybrid_motor.cpp       a DC motor's current: its rates, channels, the
 //                          current limit's root and hold
-//   hybrid_end_stops.cpp   the penalty end stops' roots (contact, release)
+//   hybrid_end_stops.cpp   the end stops, penalty and exact: their roots,
+//                          impacts, closed contacts and force
 #pragma once
 
 #include <cmath>
@@ -55,8 +59,6 @@ constexpr double kFlankTolerance = 1e-3;
 // denominator falls below this fraction of G_NN (DriveHybrid::approach_fold).
 constexpr double kFoldWatch = 0.1;
 
-struct ChannelState;  // channels.hpp
-
 class DriveHybrid final : public integrate::HybridSystem {
  public:
   // `law`: the friction law that runs (the model's, or its regularization
@@ -71,12 +73,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   int size() const override { return layout_.size(); }
   // g0..g3: friction and flank events (see roots); g4: the nut's end at the
   // screw's end, for every concept (the scene gives every screw its length);
-  // g5: a DC motor's current limit (with inductance), hybrid_motor.cpp;
-  // then one per penalty end stop, hybrid_end_stops.cpp.
-  int root_count() const override {
-    return end_stop_root() + static_cast<int>(model_.elements().end_stops().size() +
-                                              model_.elements().exact_stops.size());
-  }
+  // then the elements' with events (elements_), each in a block of its own,
+  // in the list's order.
+  int root_count() const override { return root_count_; }
   // The work and loss integrals close the state; f does not depend on them.
   int quadrature_count() const override { return kEnergyCount; }
 
@@ -104,6 +103,10 @@ class DriveHybrid final : public integrate::HybridSystem {
   // carried on.
   void resume(const DriveHybrid& before, double t, double* y);
 
+  // driver_element.hpp: an element with events of its own (a DC motor's
+  // current limit, the end stops), held in elements_.
+  class Element;
+
  private:
   // Expands y at t into q_, v_ and the dynamics' state (every right-hand
   // side, root and output row starts here: inline).
@@ -121,44 +124,11 @@ class DriveHybrid final : public integrate::HybridSystem {
   class RigidSolver;
   static std::unique_ptr<ModeSolver> make_mode_solver(DriveHybrid& hybrid);
 
-  // hybrid_motor.cpp: a DC motor (model_.dc_motor()), at the state last set.
-  bool current_limit_root() const {
-    return model_.dc_motor() && model_.dc_motor()->has_state() && model_.dc_motor()->limited();
-  }
-  // Its current's rate, its copper loss rate and the electrical work's rate
-  // (which replaces the motor torque's power in the drive's work).
-  void motor_rates(double t, double* ydot, double* energy) const;
-  // Its channels: current, the driver's voltage, copper loss, magnetic energy.
-  void motor_channels(double t, const double* y, ChannelState& state) const;
-  // g5: the margin to the current limit, or while held the driver's push
-  // beyond it; the event holds or releases the current (snapped to the limit).
-  double current_limit_margin(double t) const;
-  std::string change_current_hold(double t, double* y);
-  // After a mechanical event: an impact's jump of the rotor's speed may end
-  // the driver's push at once (g5 would start beyond its zero).
-  void recheck_current_hold(double t, const double* y);
-
-  // hybrid_end_stops.cpp: the end stops, penalty (model_.elements().end_stops())
-  // and exact (exact_stops), at the state last set. Their roots follow g0..g4
-  // and a DC motor's g5, the penalty stops' first.
-  int end_stop_root() const { return current_limit_root() ? 6 : 5; }
-  bool has_end_stops() const {
-    return !model_.elements().end_stops().empty() || !model_.elements().exact_stops.empty();
-  }
-  // A penalty stop's contact margin (> 0 exactly where it pushes); an exact
-  // stop's gap while free, its reaction while closed.
-  void end_stop_roots(double* g) const;
-  void end_stop_directions(int* directions) const;
-  // Which stops push at the state last set (a start, a resume: exact stops free).
-  void start_end_stops();
-  // An event of their roots at (t, y): the penalty stops that now push or no
-  // longer do, an exact stop's impact, closing or opening (y changed); its
-  // description ("" if none of their roots).
-  std::string change_end_stops(double t, double* y, const std::vector<int>& root_info);
-  // A closed exact stop holds the load: its position's and velocity's rates 0.
-  void hold_closed_stops(double* ydot) const;
-  // The exact stops' force on the load along +u at the state last set [N].
-  double exact_stop_force() const;
+  // The thread's roots g0..g4; the elements' follow (root_count_).
+  static constexpr int kThreadRoots = 5;
+  // hybrid_rhs.cpp: the elements with events of the model, one line per kind.
+  void make_elements();
+  void add_element(std::unique_ptr<Element> element);
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);
@@ -257,9 +227,6 @@ class DriveHybrid final : public integrate::HybridSystem {
   double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
-  int current_held_ = 0;  // a DC motor's current held at +-current_limit (its sign; 0: free)
-  std::vector<char> stop_pushing_;  // per penalty end stop: it pushes (its root's direction)
-  std::vector<char> stop_closed_;   // per exact end stop: closed (the load held at its face)
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;
@@ -267,6 +234,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   long lcp_solves_ = 0;
   lcp::Workspace lcp_workspace_{2};
   lcp::Options lcp_options_{};
+  // The elements with events (empty: none), and the roots with theirs.
+  std::vector<std::unique_ptr<Element>> elements_;
+  int root_count_ = kThreadRoots;
   std::unique_ptr<ModeSolver> solver_;  // last: it refers to the fields above
 };
 

@@ -1,5 +1,6 @@
-// DriveHybrid (hybrid.hpp): the end stops of the load's travel
-// (elements/end_stop.hpp; docs/physics/end_stops.md).
+// The end stops of the load's travel (elements/end_stop.hpp;
+// docs/physics/end_stops.md) as an element of the event-driven driver
+// (driver_element.hpp): one root per stop, the penalty stops' first.
 //
 // Penalty stops: their force enters the forces through DriveDynamics (a
 // force element); here are their roots, one per stop: its contact margin,
@@ -14,7 +15,7 @@
 // reaction that holds the load at the face (it opens where that falls to 0).
 #include <cmath>
 
-#include "hybrid.hpp"
+#include "driver_element.hpp"
 
 namespace leadscrew::model::drive {
 
@@ -24,109 +25,146 @@ std::string joined(const std::string& a, const std::string& b) {
   return a.empty() ? b : a + ", " + b;
 }
 
+class EndStopsElement final : public DriveHybrid::Element {
+ public:
+  EndStopsElement(DriveHybrid& hybrid, const DriveModel& model)
+      : Element(hybrid),
+        stops_(model.elements().end_stops()),
+        exact_(model.elements().exact_stops),
+        load_(model.load()) {}
+
+  int root_count() const override { return static_cast<int>(stops_.size() + exact_.size()); }
+
+  // A penalty stop's contact margin (> 0 exactly where it pushes); an exact
+  // stop's gap while free, its reaction while closed.
+  void roots(double t, double* g) const override {
+    (void)t;
+    int k = 0;
+    for (const elements::EndStop& stop : stops_)
+      g[k++] = stop.contact_margin(q()[load_], v()[load_]);
+    for (std::size_t i = 0; i < exact_.size(); ++i) {
+      const bool closed = i < closed_.size() && closed_[i];
+      // The reaction side F_load that holds the load at the face (the forces
+      // on the load press it on while > 0).
+      g[k++] = closed ? exact_[i].side * dynamics().forces()[load_] : exact_[i].gap(q()[load_]);
+    }
+  }
+
+  void root_directions(int* directions) const override {
+    // A penalty stop that does not push starts to (rising); one that pushes
+    // releases (falling). The other crossing is the located root's round-off.
+    // An exact stop's gap and reaction both end their state falling.
+    int k = 0;
+    for (std::size_t i = 0; i < stops_.size(); ++i)
+      directions[k++] = i < pushing_.size() && pushing_[i] ? -1 : 1;
+    for (std::size_t i = 0; i < exact_.size(); ++i) directions[k++] = -1;
+  }
+
+  // Which stops push at the state last set (a start, a resume: exact stops
+  // free).
+  void start(double t, const double* y) override {
+    (void)t;
+    (void)y;
+    pushing_.assign(stops_.size(), 0);
+    for (std::size_t i = 0; i < stops_.size(); ++i)
+      pushing_[i] = stops_[i].contact_margin(q()[load_], v()[load_]) > 0.0;
+    // The scene starts the load between the stops; a resumed run (the
+    // stepper's next piece) starts closed where the last left the load held
+    // at a face and the forces still press it there.
+    closed_.assign(exact_.size(), 0);
+    for (std::size_t i = 0; i < exact_.size(); ++i)
+      closed_[i] = exact_[i].gap(q()[load_]) <= 0.0 && v()[load_] == 0.0 &&
+                   exact_[i].side * dynamics().forces()[load_] >= 0.0;
+  }
+
+  // The penalty stops that now push or no longer do, an exact stop's
+  // impact, closing or opening (y changed). A stop's force jumps (c d' at
+  // the onset; an exact stop's impact or closing), so the friction mode is
+  // decided anew, as at a penalty flank.
+  Event handle(double t, double* y, const int* root_info) override {
+    std::string kind;
+    pushing_.resize(stops_.size(), 0);
+    for (std::size_t i = 0; i < stops_.size(); ++i) {
+      const int info = root_info[i];
+      if (info == 0) continue;
+      pushing_[i] = info > 0;
+      kind = joined(kind, stops_[i].name + (info > 0 ? " contact" : " release"));
+    }
+    closed_.resize(exact_.size(), 0);
+    for (std::size_t i = 0; i < exact_.size(); ++i) {
+      if (root_info[stops_.size() + i] >= 0) continue;  // (falling only)
+      const elements::ExactEndStop& stop = exact_[i];
+      set(t, y);
+      if (closed_[i]) {
+        closed_[i] = 0;
+        kind = joined(kind, stop.name + " opens");
+        continue;
+      }
+      const double approach = v()[load_];
+      if (stop.side * approach < 0.0) continue;  // leaving: no impact (round-off of the gap)
+      const double mass = model().mass()[load_];
+      double after = -stop.restitution * approach;
+      q()[load_] = stop.position;  // the root's round-off onto the face
+      // A rebound below the bounce threshold closes the contact where the
+      // forces press the load on (else it leaves at that speed).
+      const bool close = std::abs(after) <= bounce_threshold() &&
+                         stop.side * dynamics().forces()[load_] >= 0.0;
+      if (close) after = 0.0;
+      v()[load_] = after;
+      impact_loss() += 0.5 * mass * (approach * approach - after * after);
+      layout().compress(q(), v(), y);
+      closed_[i] = close;
+      kind = joined(kind, stop.name + (close ? " impact, closed" : " impact"));
+    }
+    return {kind, true};
+  }
+
+  // A closed exact stop holds the load: its position's and velocity's rates 0.
+  void rates(double t, const double* y, double* ydot, double* energy) const override {
+    (void)t;
+    (void)y;
+    (void)energy;
+    const StateLayout& layout = this->layout();
+    for (std::size_t i = 0; i < closed_.size(); ++i) {
+      if (!closed_[i]) continue;
+      const int np = static_cast<int>(layout.positions().size());
+      for (int k = 0; k < np; ++k)
+        if (layout.positions()[k] == load_) ydot[k] = 0.0;
+      for (std::size_t k = 0; k < layout.velocities().size(); ++k)
+        if (layout.velocities()[k] == load_) ydot[np + static_cast<int>(k)] = 0.0;
+    }
+  }
+
+  // The exact stops' force on the load along +u [N] (the penalty stops'
+  // follows from q and v, write_drive_channels): a closed stop balances the
+  // forces on the held load.
+  void output(double t, const double* y, ChannelState& state) const override {
+    (void)t;
+    (void)y;
+    if (exact_.empty()) return;
+    state.stop_force = 0.0;
+    for (std::size_t i = 0; i < closed_.size(); ++i)
+      if (closed_[i]) {
+        state.stop_force = -dynamics().forces()[load_];
+        return;
+      }
+  }
+
+ private:
+  const std::vector<elements::EndStop>& stops_;
+  const std::vector<elements::ExactEndStop>& exact_;
+  int load_;
+  std::vector<char> pushing_;  // per penalty stop: it pushes (its root's direction)
+  std::vector<char> closed_;   // per exact stop: closed (the load held at its face)
+};
+
 }  // namespace
 
-void DriveHybrid::end_stop_roots(double* g) const {
-  const int load = model_.load();
-  int k = end_stop_root();
-  for (const elements::EndStop& stop : model_.elements().end_stops())
-    g[k++] = stop.contact_margin(q_[load], v_[load]);
-  const auto& exact = model_.elements().exact_stops;
-  for (std::size_t i = 0; i < exact.size(); ++i) {
-    const bool closed = i < stop_closed_.size() && stop_closed_[i];
-    // The reaction side F_load that holds the load at the face (the forces
-    // on the load press it on while > 0).
-    g[k++] = closed ? exact[i].side * dynamics_.forces()[load] : exact[i].gap(q_[load]);
-  }
-}
-
-void DriveHybrid::end_stop_directions(int* directions) const {
-  // A penalty stop that does not push starts to (rising); one that pushes
-  // releases (falling). The other crossing is the located root's round-off.
-  // An exact stop's gap and reaction both end their state falling.
-  const std::size_t count = model_.elements().end_stops().size();
-  int k = end_stop_root();
-  for (std::size_t i = 0; i < count; ++i)
-    directions[k++] = i < stop_pushing_.size() && stop_pushing_[i] ? -1 : 1;
-  for (std::size_t i = 0; i < model_.elements().exact_stops.size(); ++i) directions[k++] = -1;
-}
-
-void DriveHybrid::start_end_stops() {
-  const auto& stops = model_.elements().end_stops();
-  stop_pushing_.assign(stops.size(), 0);
-  const int load = model_.load();
-  for (std::size_t i = 0; i < stops.size(); ++i)
-    stop_pushing_[i] = stops[i].contact_margin(q_[load], v_[load]) > 0.0;
-  // The scene starts the load between the stops; a resumed run (the stepper's
-  // next piece) starts closed where the last left the load held at a face
-  // and the forces still press it there.
-  const auto& exact = model_.elements().exact_stops;
-  stop_closed_.assign(exact.size(), 0);
-  for (std::size_t i = 0; i < exact.size(); ++i)
-    stop_closed_[i] = exact[i].gap(q_[load]) <= 0.0 && v_[load] == 0.0 &&
-                      exact[i].side * dynamics_.forces()[load] >= 0.0;
-}
-
-std::string DriveHybrid::change_end_stops(double t, double* y,
-                                          const std::vector<int>& root_info) {
-  std::string kind;
-  const auto& stops = model_.elements().end_stops();
-  stop_pushing_.resize(stops.size(), 0);
-  const std::size_t first = static_cast<std::size_t>(end_stop_root());
-  for (std::size_t i = 0; i < stops.size(); ++i) {
-    const int info = root_info[first + i];
-    if (info == 0) continue;
-    stop_pushing_[i] = info > 0;
-    kind = joined(kind, stops[i].name + (info > 0 ? " contact" : " release"));
-  }
-  const auto& exact = model_.elements().exact_stops;
-  stop_closed_.resize(exact.size(), 0);
-  const int load = model_.load();
-  for (std::size_t i = 0; i < exact.size(); ++i) {
-    if (root_info[first + stops.size() + i] >= 0) continue;  // (falling only)
-    const elements::ExactEndStop& stop = exact[i];
-    set(t, y);
-    if (stop_closed_[i]) {
-      stop_closed_[i] = 0;
-      kind = joined(kind, stop.name + " opens");
-      continue;
-    }
-    const double approach = v_[load];
-    if (stop.side * approach < 0.0) continue;  // leaving: no impact (round-off of the gap)
-    const double mass = model_.mass()[load];
-    double after = -stop.restitution * approach;
-    q_[load] = stop.position;  // the root's round-off onto the face
-    // A rebound below the bounce threshold closes the contact where the
-    // forces press the load on (else it leaves at that speed).
-    const bool close = std::abs(after) <= bounce_threshold_ &&
-                       stop.side * dynamics_.forces()[load] >= 0.0;
-    if (close) after = 0.0;
-    v_[load] = after;
-    impact_loss_ += 0.5 * mass * (approach * approach - after * after);
-    layout_.compress(q_, v_, y);
-    stop_closed_[i] = close;
-    kind = joined(kind, stop.name + (close ? " impact, closed" : " impact"));
-  }
-  return kind;
-}
-
-void DriveHybrid::hold_closed_stops(double* ydot) const {
-  const int load = model_.load();
-  for (std::size_t i = 0; i < stop_closed_.size(); ++i) {
-    if (!stop_closed_[i]) continue;
-    const int np = static_cast<int>(layout_.positions().size());
-    for (int k = 0; k < np; ++k)
-      if (layout_.positions()[k] == load) ydot[k] = 0.0;
-    for (std::size_t k = 0; k < layout_.velocities().size(); ++k)
-      if (layout_.velocities()[k] == load) ydot[np + static_cast<int>(k)] = 0.0;
-  }
-}
-
-double DriveHybrid::exact_stop_force() const {
-  // A closed stop balances the forces on the held load.
-  for (std::size_t i = 0; i < stop_closed_.size(); ++i)
-    if (stop_closed_[i]) return -dynamics_.forces()[model_.load()];
-  return 0.0;
+std::unique_ptr<DriveHybrid::Element> make_end_stops_element(DriveHybrid& hybrid,
+                                                             const DriveModel& model) {
+  if (model.elements().end_stops().empty() && model.elements().exact_stops.empty())
+    return nullptr;
+  return std::make_unique<EndStopsElement>(hybrid, model);
 }
 
 }  // namespace leadscrew::model::drive

@@ -1,11 +1,12 @@
 // DriveHybrid (hybrid.hpp): the root functions of the events (friction,
-// flanks, the screw's end) and their directions, the initial mode, and the
-// change of mode at an event.
+// flanks, the screw's end; then the elements' with events, driver_element.hpp)
+// and their directions, the initial mode, and the change of mode at an event.
 #include "hybrid.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include "driver_element.hpp"
 #include "mode_solver.hpp"
 #include "screw_end.hpp"
 
@@ -53,8 +54,8 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
       if (load_root_ >= 0) g[load_root_] = load_root_value(t);
     }
   }
-  if (current_limit_root()) g[5] = current_limit_margin(t);
-  if (has_end_stops()) end_stop_roots(g);
+  for (const std::unique_ptr<Element>& element : elements_)
+    element->roots(t, g + element->first_root());
   if (mode_.contact == ThreadContact::open || mode_.contact == ThreadContact::penalty) {
     g[2] = dynamics_.play() - 0.5 * p_.clearance;
     g[3] = dynamics_.play() + 0.5 * p_.clearance;
@@ -103,8 +104,8 @@ void DriveHybrid::root_directions(int* directions) const {
   directions[2] = open || (penalty && !upper) ? 1 : (penalty ? -1 : 0);
   directions[3] = open || (penalty && !lower) ? -1 : (penalty ? 1 : 0);
   directions[4] = -1;  // the nut reaches an end of the screw
-  if (current_limit_root()) directions[5] = -1;  // the limit reached, or the push ends
-  if (has_end_stops()) end_stop_directions(directions);
+  for (const std::unique_ptr<Element>& element : elements_)
+    element->root_directions(directions + element->first_root());
   if (watch_fold()) directions[2] = directions[3] = -1;  // both fall towards jamming
 }
 
@@ -142,7 +143,7 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
   }
   note_flight_start(t, y);
   start_normal_side();
-  if (has_end_stops()) start_end_stops();
+  for (const std::unique_ptr<Element>& element : elements_) element->start(t, y);
   if (watch_fold()) {
     set(t, y);
     // A start inside the regularized law's Painleve regime (kappa |G_NT| >=
@@ -161,28 +162,34 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
 }
 
 std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int>& root_info) {
-  if (current_limit_root() && root_info[5] != 0) {
-    // The current's hold changes; the mechanical mode only with another root
-    // (g0..g4, or an end stop's after g5).
-    const std::string held = change_current_hold(t, y);
-    bool other = false;
-    for (std::size_t k = 0; k < root_info.size(); ++k)
-      if (k != 5 && root_info[k] != 0) other = true;
-    if (!other) return held;
-  }
   if (root_info[4] != 0) {
     set(t, y);
     nut_left_the_screw(model_, t, model_.nut_position(q_.data()));
   }
   const bool from_zero = stick_from_zero_ && mode_.friction == FrictionMode::stick &&
                          root_info[0] != 0;
-  // An end stop starts or stops pushing: its force jumps (c d' at the onset;
-  // an exact stop's impact or closing), so the friction mode is decided anew
-  // (change_mode) as at a penalty flank.
-  const std::string stops = has_end_stops() ? change_end_stops(t, y, root_info) : std::string();
+  // The elements whose roots fired, in the list's order: their state
+  // changes (y may: an end stop's impact, a current snapped onto its limit).
+  // Where a force jumps (an end stop's onset, impact or closing), the
+  // friction mode is decided anew (change_mode) as at a penalty flank; where
+  // only elements fired and none asks for that (a current limit's hold),
+  // the event is theirs alone.
+  bool decide = std::any_of(root_info.begin(), root_info.begin() + kThreadRoots,
+                            [](int info) { return info != 0; });
+  bool quiet = false;
+  std::string elements_kind, quiet_kind;
+  for (const std::unique_ptr<Element>& element : elements_) {
+    const int* info = root_info.data() + element->first_root();
+    if (std::none_of(info, info + element->root_count(), [](int i) { return i != 0; })) continue;
+    const Element::Event event = element->handle(t, y, info);
+    std::string& into = event.decide_mode ? elements_kind : quiet_kind;
+    if (!event.kind.empty()) into = into.empty() ? event.kind : into + ", " + event.kind;
+    (event.decide_mode ? decide : quiet) = true;
+  }
+  if (quiet && !decide) return quiet_kind;
   std::string kind = change_mode(t, y, root_info);
-  if (!stops.empty()) kind = kind.empty() ? stops : stops + ", " + kind;
-  if (current_limit_root()) recheck_current_hold(t, y);
+  if (!elements_kind.empty()) kind = kind.empty() ? elements_kind : elements_kind + ", " + kind;
+  for (const std::unique_ptr<Element>& element : elements_) element->after_mode_change(t, y);
   note_flight_start(t, y);
   start_mode(t, y);
   // A stick whose cone margin never left zero was no stick phase: the thread

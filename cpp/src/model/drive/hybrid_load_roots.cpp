@@ -2,9 +2,11 @@
 // planned from the loads alone (first_load_crossing, drive_rigid.hpp).
 #include "hybrid.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 
+#include "driver_element.hpp"
 #include "mode_solver.hpp"
 
 namespace leadscrew::model::drive {
@@ -15,9 +17,14 @@ namespace leadscrew::model::drive {
 // or a closed flank, in stick (every coordinate locked) or slip (the
 // friction factor +-mu' is constant).
 bool DriveHybrid::load_driven() const {
-  // (A DC motor's torque k_t i depends on the state: its roots are the state's.)
+  // (An element whose forces depend on its own state, a DC motor's torque
+  // k_t i: its roots are the state's.)
   return model_.elements().forces.empty() && !model_.motor().speed_controlled &&
-         !model_.dc_motor() && !model_.preloaded_nut() && dynamics_.law().plain_coulomb() &&
+         std::all_of(elements_.begin(), elements_.end(),
+                     [](const std::unique_ptr<Element>& element) {
+                       return element->forces_from_loads_alone();
+                     }) &&
+         !model_.preloaded_nut() && dynamics_.law().plain_coulomb() &&
          (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
          (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
 }

@@ -1,9 +1,10 @@
-// DriveHybrid (hybrid.hpp): construction, the right-hand side of the current
-// mode and the output rows (by its mode solver, mode_solver.hpp), the loads'
-// breakpoints and time scales.
+// DriveHybrid (hybrid.hpp): construction (the elements with events, the mode
+// solver), the right-hand side of the current mode and the output rows (by
+// its mode solver, mode_solver.hpp), the loads' breakpoints and time scales.
 #include "hybrid.hpp"
 
 #include "channels.hpp"
+#include "driver_element.hpp"
 #include "mode_solver.hpp"
 
 namespace leadscrew::model::drive {
@@ -24,10 +25,26 @@ DriveHybrid::DriveHybrid(const DriveModel& model, const friction::Law& law,
   v_.setZero(n);
   names_ = drive_channel_names(model);
   saved_state_.resize(static_cast<std::size_t>(layout_.size()));
+  make_elements();
   solver_ = make_mode_solver(*this);
 }
 
 DriveHybrid::~DriveHybrid() = default;
+
+// The elements with events (driver_element.hpp), one line per kind, in this
+// order; each numbers its roots after the thread's g0..g4 and the elements'
+// before it.
+void DriveHybrid::make_elements() {
+  add_element(make_dc_motor_element(*this, model_));
+  add_element(make_end_stops_element(*this, model_));
+}
+
+void DriveHybrid::add_element(std::unique_ptr<Element> element) {
+  if (!element) return;  // the model has none of that kind
+  element->set_first_root(root_count_);
+  root_count_ += element->root_count();
+  elements_.push_back(std::move(element));
+}
 
 void DriveHybrid::rhs(double t, const double* y, double* ydot) { solver_->rhs(t, y, ydot); }
 

@@ -8,7 +8,8 @@
 //             source with current limiting: where |i| reaches i_max and U(t)
 //             would drive it further, it lowers its output to
 //             U_d = R i + k_e omega (L > 0: di/dt = 0, i held at +-i_max; an
-//             event starts and ends the hold, DriveHybrid's root g5), and
+//             event starts and ends the hold: its root in the driver,
+//             drive/hybrid_motor.cpp), and
 //             releases it where U(t) no longer drives |i| up. It never puts
 //             out more than U(t) in magnitude.
 // L = 0:      the quasi-static limit, exact: i = (U(t) - k_e omega) / R,

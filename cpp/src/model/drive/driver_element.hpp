@@ -1,0 +1,128 @@
+// An element of the drive with events of its own in the event-driven driver
+// (DriveHybrid): its root functions, what happens at them, its start at a
+// (re)start of the run, its internal states' rates, its energy terms and its
+// output values. Internal to cpp/src/model (docs/architecture.md, "An element
+// with events").
+//
+// DriveHybrid holds a list of them, built once from the model in
+// DriveHybrid::make_elements (hybrid_rhs.cpp, one line per kind), in that
+// order; a model with none has an empty list and pays nothing, one with any
+// never takes the rigid solver (mode_solver.cpp). Their root functions
+// follow the driver's own g0..g4 (friction, flanks, the screw's end), each
+// element's in one block (first_root), in the list's order. Each kind is a
+// class derived from DriveHybrid::Element in a file of its own:
+//   hybrid_motor.cpp      a DC motor: its current's and copper loss's rates,
+//                         the electrical work, its channels, the current
+//                         limit's root and hold
+//   hybrid_end_stops.cpp  the end stops, penalty and exact: their roots,
+//                         impacts, closed contacts and force
+// An element reads the driver's state through the protected accessors below
+// (the coordinates and the dynamics at the state last set); its calls are
+// virtual (a few per right-hand side, root or event) and allocate nothing
+// in the right-hand side, the roots and the output rows.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "channels.hpp"
+#include "hybrid.hpp"
+
+namespace leadscrew::model::drive {
+
+class DriveHybrid::Element {
+ public:
+  explicit Element(DriveHybrid& hybrid) : h_(hybrid) {}
+  virtual ~Element() = default;
+  Element(const Element&) = delete;
+  Element& operator=(const Element&) = delete;
+
+  // What an event of its roots did (handle).
+  struct Event {
+    std::string kind;          // its description ("" if nothing to report)
+    bool decide_mode = false;  // the mechanical mode is decided anew (a force jumped)
+  };
+
+  // Its root functions: how many (fixed for the run), their values at the
+  // state last set (g[0..root_count()), its own block) and the directions in
+  // which they end its current state (0: both).
+  virtual int root_count() const = 0;
+  virtual void roots(double t, double* g) const = 0;
+  virtual void root_directions(int* directions) const = 0;
+
+  // At an event where one of its roots fired (root_info: its own block, as
+  // integrate::HybridSystem's): its state changes, y may change (an impact,
+  // a value snapped onto a limit). Elements are called in the list's order,
+  // before the thread's mode; where none of the fired roots asks for the
+  // mode to be decided anew (and no root of the thread's), the driver
+  // returns the elements' descriptions at once.
+  virtual Event handle(double t, double* y, const int* root_info) = 0;
+  // After the mechanical mode changed at an event (an impact's jump of the
+  // velocities may end its state at once).
+  virtual void after_mode_change(double t, const double* y) {
+    (void)t;
+    (void)y;
+  }
+
+  // At a start of the run (select_initial_mode, after the thread's mode is
+  // chosen): its state from the state last set. A resumed run (the stepper's
+  // next piece, DriveHybrid::resume) starts its new elements the same way:
+  // what they hold is decided anew from the state.
+  virtual void start(double t, const double* y) {
+    (void)t;
+    (void)y;
+  }
+
+  // The right-hand side (ConstrainedSolver::rhs), after the mechanical part:
+  // its internal states' rates, its terms of the work and loss integrals
+  // (energy: StateLayout's), and what it holds (a closed stop's rates).
+  virtual void rates(double t, const double* y, double* ydot, double* energy) const {
+    (void)t;
+    (void)y;
+    (void)ydot;
+    (void)energy;
+  }
+  // An output row: its values and energy terms in the channels' state.
+  virtual void output(double t, const double* y, ChannelState& state) const {
+    (void)t;
+    (void)y;
+    (void)state;
+  }
+  // Its forces depend on the loads alone (not on its own state): the
+  // rigid drive's load-driven roots (hybrid_load_roots.cpp) may plan ahead.
+  virtual bool forces_from_loads_alone() const { return true; }
+
+  // Its first root's index in the driver's g (set once by the driver).
+  int first_root() const { return first_root_; }
+  void set_first_root(int index) { first_root_ = index; }
+
+ protected:
+  // The driver's state, as last set (DriveHybrid::set or the mode solver's
+  // expand).
+  const DriveModel& model() const { return h_.model_; }
+  const DriveDynamics& dynamics() const { return h_.dynamics_; }
+  const StateLayout& layout() const { return h_.layout_; }
+  const CoordinateVector& q() const { return h_.q_; }
+  const CoordinateVector& v() const { return h_.v_; }
+  CoordinateVector& q() { return h_.q_; }
+  CoordinateVector& v() { return h_.v_; }
+  // Expands y at t into the coordinates and the dynamics' state.
+  void set(double t, const double* y) { h_.set(t, y); }
+  double bounce_threshold() const { return h_.bounce_threshold_; }
+  // The impacts' loss booked so far [J] (an element's impact adds to it).
+  double& impact_loss() { return h_.impact_loss_; }
+
+ private:
+  DriveHybrid& h_;
+  int first_root_ = 0;
+};
+
+// The elements with events of a model, in construction order (one line per
+// kind; a kind returns nullptr where the model has none of it).
+std::unique_ptr<DriveHybrid::Element> make_dc_motor_element(DriveHybrid& hybrid,
+                                                            const DriveModel& model);
+std::unique_ptr<DriveHybrid::Element> make_end_stops_element(DriveHybrid& hybrid,
+                                                             const DriveModel& model);
+
+}  // namespace leadscrew::model::drive

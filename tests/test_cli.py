@@ -36,7 +36,8 @@ def test_check_without_scene_keeps_the_thread_verdicts(capsys):
     assert f"torque to raise 100 N: {ls.raise_torque(t, 0.1, 100.0):.6g} N*m" in out
 
 
-@pytest.mark.parametrize("name", ["default", "thesis_table_5_1", "position_holding"])
+@pytest.mark.parametrize("name", ["default", "thesis_table_5_1", "position_holding",
+                                  "seat_adjuster"])
 def test_check_shipped_scene(capsys, name):
     code, out, err = run_main(capsys, "check", name)
     assert code == 0 and err == ""
@@ -49,6 +50,30 @@ def test_check_shipped_scene(capsys, name):
     for key, value in scene.derived().items():
         assert f"{key} = {value:.6g}" in out
     assert "dynamic jamming" in out
+
+
+def test_check_reports_the_drive_train(capsys, tmp_path):
+    # (A review: check ignored the motor, the stops and the preload.)
+    code, out, _ = run_main(capsys, "check", "seat_adjuster")
+    assert code == 0
+    seat = shipped.load("seat_adjuster")
+    stall = ls.studies.motor_characteristics(seat, [100.0], t_end=0.2, progress=False)
+    assert f"stall load from rest (rigid drive, plain nut) {stall.attrs['summary']['stall_load']:.6g} N" in out
+    assert "stall current 20 A, stall torque 0.6 N*m, no-load speed 400 rad/s" in out
+    assert "gear stage: ideal, n = 5" in out
+    assert "end stops: lower -0.01 m, upper 0.23 m (from the load's start), contact penalty" in out
+    # A preloaded nut: the efficiency raising the scene's static load, closed form.
+    d = shipped.load("default").to_dict()
+    d["concept"], d["nut"]["preload"] = "rigid", 40.0
+    d["friction"].pop("mu_static", None)
+    d["loads"] = {"drive_torque": 0.0, "axial_force": 25.0}
+    path = tmp_path / "preloaded.toml"
+    ls.Scene.from_dict(d).to_toml(path)
+    code, out, _ = run_main(capsys, "check", str(path))
+    t, mu = ls.Scene.from_dict(d).thread, d["friction"]["mu"]
+    alpha, rho = t.lead_angle, math.atan(mu / math.cos(t.flank_angle / 2))
+    eta = 25.0 * math.tan(alpha) / (65.0 * math.tan(alpha + rho) + 40.0 * math.tan(rho - alpha))
+    assert code == 0 and f"preloaded split nut: P = 40 N; efficiency raising 25 N {eta:.6g}" in out
 
 
 def jamming_line(out, index):
@@ -432,3 +457,14 @@ def test_the_commands_in_the_scene_headers_run(tmp_path, capsys, argv):
 
 def test_every_scene_header_advertises_a_command():
     assert {argv[1] for argv in header_commands()} == set(shipped.available())
+
+
+def test_the_run_figure_shows_a_dc_motors_current_and_the_stop_force():
+    from leadscrew.cli_output import _plot_time_series
+
+    result = ls.simulate(shipped.load("seat_adjuster"), 0.6, t_eval=np.linspace(0, 0.6, 61))
+    figure = _plot_time_series(result, "seat_adjuster")
+    assert len(figure.axes) == 5 and figure.axes[4].get_ylabel() == "motor current [A]"
+    assert "end stop" in [line.get_label() for line in figure.axes[2].get_lines()]
+    plain = _plot_time_series(ls.simulate(shipped.load("default"), 0.1), "default")
+    assert len(plain.axes) == 4

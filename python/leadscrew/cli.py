@@ -106,12 +106,57 @@ _DERIVED_UNITS = {
 }
 
 
+def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
+    """The drive train's elements in ``check``: the preloaded nut's efficiency,
+    the DC motor's stall and no-load values (behind the gear stage), the end
+    stops (docs/physics/)."""
+    lines = []
+    mu = d["friction"]["mu"]
+    preload = d["nut"].get("preload", 0.0)
+    force = scene.model().parameters.axial_force(0.0)
+    if preload > 0.0:
+        at = abs(force) if force != 0.0 else preload
+        eta = float(_core.preloaded_efficiency_array(scene.thread, mu, at, [preload])[0])
+        lines.append(f"preloaded split nut: P = {preload:.6g} N; efficiency raising "
+                     f"{at:.6g} N {eta:.6g} (without the preload "
+                     f"{_thread.efficiency(scene.thread, mu):.6g})")
+    n = d["gear"]["ratio"] if "gear" in d else 1.0
+    if "gear" in d:
+        lines.append(f"gear stage: {d['gear']['type']}, n = {n:g} (the rotor turns n times per "
+                     "turn of the driven part)")
+    motor = d.get("motor")
+    voltage = motor.get("voltage") if motor else None
+    if isinstance(voltage, dict) and voltage.get("type") == "constant":
+        voltage = voltage["value"]
+    if motor and isinstance(voltage, float):
+        k_t, k_e = motor["torque_constant"], motor.get("back_emf_constant",
+                                                          motor["torque_constant"])
+        current = abs(voltage) / motor["resistance"]
+        if "current_limit" in motor:
+            current = min(current, motor["current_limit"])
+        mu_static = d["friction"].get("mu_static", mu)
+        stall_load = abs(n) * k_t * current / _core.raise_torque(scene.thread, mu_static, 1.0)
+        lines.append(f"DC motor at {voltage:g} V: stall current {current:.6g} A, stall torque "
+                     f"{k_t * current:.6g} N*m, no-load speed {abs(voltage) / k_e:.6g} rad/s; "
+                     f"stall load from rest (rigid drive, plain nut) {stall_load:.6g} N")
+    stops = d.get("end_stops")
+    if stops:
+        where = ", ".join(f"{side} {stops[side]:.6g} m" for side in ("lower", "upper")
+                          if side in stops)
+        lines.append(f"end stops: {where} (from the load's start), contact {stops['contact']}"
+                     + (f", stiffness {stops['stiffness']:.6g} N/m, damping "
+                        f"{stops['damping']:.6g} N*s/m" if stops["contact"] == "penalty" else
+                        f", restitution {stops['restitution']:.6g}"))
+    return lines
+
+
 def _scene_report(name: str, scene) -> List[str]:
     """What ``check SCENE`` prints, computed whole before anything is printed."""
     d = scene.to_dict()
     lines = [f"scene {name}: valid, {scene!r}"]
     lines += _thread_verdicts(scene.thread, d["friction"]["mu"], d["thread"]["flank_angle"],
                               d["thread"]["hand"])
+    lines += _drive_train_report(scene, d)
     J, m = _rigid_equivalent(scene)
     rotating, translating = (("rotor + screw", "nut + load") if d["drive"] == "screw"
                              else ("rotor + nut", "screw + load"))

@@ -23,12 +23,14 @@ __all__: list = []  # the command line's internals: leadscrew.cli.main is the en
 
 
 def _plot_time_series(result, title: str):
-    """Load position, rotor speed, forces and drive torque over time (a Figure)."""
+    """Load position, rotor speed, forces (with an end stop's), drive torque and
+    a DC motor's current over time (a Figure)."""
     from matplotlib.figure import Figure
 
     t = result.t
-    figure = Figure(figsize=(8.0, 9.0), layout="constrained")
-    axes = figure.subplots(4, 1, sharex=True)
+    motor = "motor_current" in result  # a DC motor: its current in a panel of its own
+    figure = Figure(figsize=(8.0, 11.0 if motor else 9.0), layout="constrained")
+    axes = figure.subplots(5 if motor else 4, 1, sharex=True)
     axes[0].plot(t, result["u_load"] * 1e3, color="C0")
     if "stick" in result and len(t) > 1:
         stick = result["stick"] > 0.5
@@ -40,14 +42,17 @@ def _plot_time_series(result, title: str):
     axes[1].plot(t, result["omega_drive"], color="C1")
     axes[1].set_ylabel("rotor speed [rad/s]")
     for name, label in (("axial_force", "axial load F"), ("normal_force", "flank normal N"),
-                        ("friction_force", "flank friction T")):
+                        ("friction_force", "flank friction T"), ("stop_force", "end stop")):
         if name in result:
             axes[2].plot(t, result[name], label=label)
     axes[2].set_ylabel("force [N]")
     axes[2].legend(loc="best")
     axes[3].plot(t, result["drive_torque"] * 1e3, color="C3")
     axes[3].set_ylabel("drive torque [N*mm]")
-    axes[3].set_xlabel("time t [s]")
+    if motor:
+        axes[4].plot(t, result["motor_current"], color="C4")
+        axes[4].set_ylabel("motor current [A]")
+    axes[-1].set_xlabel("time t [s]")
     for ax in axes:
         ax.grid(True, alpha=0.3)
     figure.suptitle(title, fontsize="medium")

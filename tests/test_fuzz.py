@@ -76,8 +76,11 @@ def test_generator_is_deterministic_and_covers_the_space():
                         ("law", {"coulomb", "arctan_velocity", "arctan_acceleration", "stribeck",
                              "lugre"}),
                         ("contact", {"none", "exact", "bistop", "cubic"}),
-                        ("motor", {"torque", "speed"})]:
+                        ("motor", {"torque", "speed", "dc"})]:
         assert {c["tags"][tag] for c in drawn} == values, tag
+    # Issue 19's elements (a DC motor, a gear stage, end stops, a preloaded nut).
+    trains = {part for c in drawn for part in c["tags"]["train"].split("+")}
+    assert trains == {"none", "dc_motor", "gear", "end_stops", "preload"}
     integrators = {c["tags"]["integrator"] for c in drawn}
     assert integrators >= {"event_driven", "moreau", "default", "cvode_bdf", "cvode_adams",
                            "dopri5", "verner6", "rk_dopri5", "rk_verner6"}

@@ -64,6 +64,8 @@ distributions from about 500 runs, gaps and violations from two runs of
   dip by its local error. Observed: up to 3.6e-6 E_ref at rtol 1e-8 (a
   penalty contact); a loss falling by more is booked wrongly.
 - ``friction_cone`` (every law): |friction_force| <= mu' |normal_force|
+  (with a preloaded nut of preload P: mu' (|normal_force| + 2 P / (cos a -
+  mu' sin a)), both halves' friction bounded by the triangle inequality)
   (1 + 1e-6) + 1e-9 F_sys + 1e-9 N, mu' = mu / cos(flank_angle / 2): the
   arctan laws stay inside too (|(2/pi) atan| < 1). In slip the two sides are
   equal to round-off, a stick phase leaves the cone at a root located to the
@@ -308,9 +310,21 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     # friction cone (every law but LuGre's: |kappa| < mu_static' for the
     # regularized laws too; plus the viscous term)
     floor = CONE_FLOOR * f_sys + FORCE_FLOOR
+    # A preloaded split nut (docs/physics/preloaded_nut.md): both halves rub,
+    # the bound is mu' (|N - N_B| + |N_B|) with half B's normal force
+    # |N_B| = P / (cos a - s mu' sin a) for the slip sign s; bounded here
+    # independently of the simulator's split by mu' (|N| + 2 max_s |N_B|).
+    preload = float(scene.get("nut", {}).get("preload", 0.0) or 0.0)
+    if preload > 0.0:
+        thread = scene["thread"]
+        alpha = math.atan(float(thread["pitch"]) * int(thread.get("starts", 1))
+                          / (math.pi * float(thread["mean_diameter"])))
+        half_b = preload / (math.cos(alpha) - mu_cone * math.sin(alpha))
+    else:
+        half_b = 0.0
     if law != "lugre":
-        excess = np.where(pointwise, np.abs(force) - mu_cone * np.abs(normal) * (1 + CONE_REL)
-                          - viscous * np.abs(slip), -np.inf)
+        excess = np.where(pointwise, np.abs(force) - mu_cone * (np.abs(normal) + 2 * half_b)
+                          * (1 + CONE_REL) - viscous * np.abs(slip), -np.inf)
         i = int(np.argmax(excess))
         report["friction_cone"] = _entry(
             excess[i] <= floor, excess[i], floor, t[i],

@@ -17,7 +17,9 @@ about 70 deg, the three friction laws, no play or play with exact (Newton
 restitution), ``bistop`` or ``cubic`` contacts, every integrator that fits the
 law and contact (event_driven, moreau with its ``dt``, the ODE integrators),
 torque- or speed-controlled motors (constant, sine, table, reversing speed),
-axial forces, initial rotor speeds and play positions; geometry, material,
+axial forces, initial rotor speeds and play positions, and issue 19's elements
+where the scene takes them (a DC motor, an ideal gear stage, penalty end stops,
+a preloaded nut; drawn from a stream of their own); geometry, material,
 masses and loads log-uniform over plausible ranges, with the edges the schema
 allows (mu = 0, no load mass, restitution 0 and 1, a nut starting on a flank)
 and some values given as unit strings. The rest carry one or two hostile
@@ -523,6 +525,52 @@ def _make_hostile(r, scene: dict, options: dict) -> dict:
 
 # --- the strategy -----------------------------------------------------------
 
+def _drive_train(r, scene: dict, options: dict, speed_controlled: bool, t_end: float) -> str:
+    """Issue 19's elements, drawn from a stream of their own (the other draws
+    of a seed stay as they were): a DC motor instead of the torque, an ideal
+    gear stage, penalty end stops, a preloaded nut; each where the scene and
+    the options take it (what they refuse is tested where the element is).
+    Returns the tag: the elements added, "+"-joined, or "none"."""
+    added = []
+    integrator = options.get("integrator")
+    initial = scene.get("initial", {})
+    relaxed = initial.get("state", "relaxed") == "relaxed"
+    if r.chance(0.1) and not speed_controlled and integrator != "moreau" and relaxed:
+        scene["loads"].pop("drive_torque", None)
+        motor = {"type": "dc", "voltage": r.signed(r.log_uniform(1.0, 48.0)),
+                 "resistance": r.log_uniform(0.1, 10.0),
+                 "torque_constant": r.log_uniform(0.005, 0.2)}
+        if r.chance(0.7):
+            motor["inductance"] = r.log_uniform(1e-5, 1e-2)
+        if r.chance(0.3):
+            motor["current_limit"] = r.log_uniform(0.5, 20.0)
+        scene["motor"] = motor
+        added.append("dc_motor")
+    if r.chance(0.1):
+        scene["gear"] = {"ratio": r.signed(r.log_uniform(0.2, 20.0))}
+        added.append("gear")
+    if r.chance(0.1) and integrator != "moreau" and relaxed:
+        room = min(scene["nut"]["position"] - scene["nut"]["length"] / 2,
+                   scene["screw"]["length"] - scene["nut"]["position"]
+                   - scene["nut"]["length"] / 2)
+        stops = {"stiffness": r.log_uniform(1e4, 1e9),
+                 "damping": 0.0 if r.chance(0.2) else r.log_uniform(1.0, 1e4)}
+        for side, sign in (("lower", -1.0), ("upper", 1.0)):
+            if r.chance(0.7):
+                stops[side] = sign * r.log_uniform(1e-5, max(2e-5, 0.5 * room))
+        if "lower" not in stops and "upper" not in stops:
+            stops["lower"] = -r.log_uniform(1e-5, max(2e-5, 0.5 * room))
+        scene["end_stops"] = stops
+        added.append("end_stops")
+    friction = scene["friction"]
+    if (r.chance(0.6) and scene["concept"] == "rigid" and friction["law"] == "coulomb"
+            and relaxed and integrator in (None, "event_driven")):
+        friction.pop("mu_static", None)  # (a preloaded nut takes plain Coulomb friction)
+        scene["nut"]["preload"] = r.log_uniform(1.0, 2000.0)
+        added.append("preload")
+    return "+".join(added) or "none"
+
+
 def make_case(case_seed: int, hostile_share: float = 0.15) -> dict:
     """The case of the seed ``case_seed`` (module docstring); the same seed
     gives the same case (it is stored in the case as ``"seed"``)."""
@@ -554,12 +602,14 @@ def make_case(case_seed: int, hostile_share: float = 0.15) -> dict:
     contact = backlash["contact"] if backlash else None
     options = _options(r, scene["friction"]["law"], contact, t_end,
                        _shortest_sine_period(scene["loads"]))
+    train = _drive_train(_Draw([case_seed, 19]), scene, options, speed_controlled, t_end)
     if r.chance(0.05):
         _as_unit_strings(r, scene)
     tags = {"concept": concept, "drive": scene.get("drive", "screw"),
             "law": scene["friction"]["law"], "contact": contact or "none",
             "integrator": options.get("integrator") or "default",
-            "motor": "speed" if speed_controlled else "torque"}
+            "motor": "speed" if speed_controlled else ("dc" if "motor" in scene else "torque"),
+            "train": train}
     hostile = []
     if r.chance(hostile_share):
         hostile.append(_make_hostile(r, scene, options))

@@ -107,6 +107,10 @@ def test_the_figure_draws_the_closed_form_over_a_fine_grid_with_the_legend_off_t
     figure.canvas.draw()
     legend = ax.get_legend().get_window_extent()
     assert not legend.overlaps(ax.get_window_extent())
+    # The efficiency on its own 0..1 scale (autoscaled, its curve hid the speed's).
+    twin = next(other for other in figure.axes
+                if any(line.get_label() == "efficiency (closed form)" for line in other.get_lines()))
+    assert twin.get_ylim() == (0.0, 1.0)
 
 
 @pytest.mark.parametrize("change, kwargs, match", [

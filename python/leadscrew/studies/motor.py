@@ -386,9 +386,12 @@ def plot_motor_characteristics(frame: pd.DataFrame, ax: Optional[Any] = None):
     efficiency = ax.twinx()
     efficiency.spines["right"].set_position(("axes", 1.12))
     efficiency.plot(load, frame["efficiency"], "^", color="C2", label="efficiency (simulated)")
-    efficiency.plot(curve["load"], curve["efficiency"], "-", color="C2",
+    efficiency.plot(curve["load"], curve["efficiency"], "--", color="C2",
                     label="efficiency (closed form)")
     efficiency.set_ylabel("efficiency [1]", color="C2")
+    # On its own scale from 0 to 1 (autoscaled, a curve of the shape of the
+    # speed's hid the speed under it: a review).
+    efficiency.set_ylim(0.0, 1.0)
     stall = frame.attrs.get("summary", {}).get("stall_load")
     if stall is not None and math.isfinite(stall):
         ax.axvline(stall, color="k", linestyle=":", label=f"stall load {stall:.4g} N")

@@ -120,25 +120,19 @@ def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
         lines.append(f"preloaded split nut: P = {preload:.6g} N; efficiency raising "
                      f"{at:.6g} N {eta:.6g} (without the preload "
                      f"{_thread.efficiency(scene.thread, mu):.6g})")
-    n = d["gear"]["ratio"] if "gear" in d else 1.0
     if "gear" in d:
-        lines.append(f"gear stage: {d['gear']['type']}, n = {n:g} (the rotor turns n times per "
-                     "turn of the driven part)")
-    motor = d.get("motor")
-    voltage = motor.get("voltage") if motor else None
-    if isinstance(voltage, dict) and voltage.get("type") == "constant":
-        voltage = voltage["value"]
-    if motor and isinstance(voltage, float):
-        k_t, k_e = motor["torque_constant"], motor.get("back_emf_constant",
-                                                          motor["torque_constant"])
-        current = abs(voltage) / motor["resistance"]
-        if "current_limit" in motor:
-            current = min(current, motor["current_limit"])
-        mu_static = d["friction"].get("mu_static", mu)
-        stall_load = abs(n) * k_t * current / _core.raise_torque(scene.thread, mu_static, 1.0)
-        lines.append(f"DC motor at {voltage:g} V: stall current {current:.6g} A, stall torque "
-                     f"{k_t * current:.6g} N*m, no-load speed {abs(voltage) / k_e:.6g} rad/s; "
-                     f"stall load from rest (rigid drive, plain nut) {stall_load:.6g} N")
+        lines.append(f"gear stage: {d['gear']['type']}, n = {d['gear']['ratio']:g} (the rotor "
+                     "turns n times per turn of the driven part)")
+    from .studies import motor as _motor  # (the studies' closed forms: pandas, on demand)
+
+    voltage = _motor.constant_voltage(scene)
+    if voltage is not None:
+        motor = d["motor"]
+        stall = _motor.stall_from_rest(scene, voltage)
+        k_e = motor.get("back_emf_constant", motor["torque_constant"])
+        lines.append(f"DC motor at {voltage:g} V: stall current {stall['current']:.6g} A, stall "
+                     f"torque {stall['torque']:.6g} N*m, no-load speed {abs(voltage) / k_e:.6g} "
+                     f"rad/s; stall load from rest (rigid drive, plain nut) {stall['load']:.6g} N")
     stops = d.get("end_stops")
     if stops:
         where = ", ".join(f"{side} {stops[side]:.6g} m" for side in ("lower", "upper")

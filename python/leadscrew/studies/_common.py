@@ -62,6 +62,27 @@ def as_scene(scene: Any, gear: bool = False) -> Scene:
     return out
 
 
+def constant_value(load: Any) -> Optional[float]:
+    """The value of a scene's load (or motor voltage) entry where it is
+    constant: a number, ``{"type": "constant", "value": ...}`` or a
+    :class:`~leadscrew.Constant`; None for any other excitation."""
+    from ..excitation import Constant
+
+    if isinstance(load, numbers.Real) and not isinstance(load, bool):
+        return float(load)
+    if isinstance(load, dict) and load.get("type") == "constant":
+        return float(load["value"])
+    if isinstance(load, Constant):
+        return float(load.value)
+    return None
+
+
+def gear_ratio(scene: Scene) -> float:
+    """The ratio n of the scene's gear stage: the rotor turns n times per turn
+    of the driven part (n < 0: reversing; 1 without a stage)."""
+    return scene["gear"]["ratio"] if "gear" in scene else 1.0
+
+
 def in_unit(name: str, value: Any, unit: Optional[str]) -> Any:
     """A study argument given as a string with a unit (``"20 N"``, ``"5 Hz"``)
     as a number in ``unit``, as a scene's field (:func:`leadscrew.units.to_si`);

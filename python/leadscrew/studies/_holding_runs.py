@@ -15,16 +15,16 @@ under a static axial force. :mod:`leadscrew.studies.position`
 from __future__ import annotations
 
 import math
-import numbers
 from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from ..excitation import Constant, Sine, check_load_unit
+from ..excitation import Sine, check_load_unit
 from ..scene import _DEFAULT_DRIVE_TORQUE, Scene
 from ..simulation import simulate
 from ..thread import lower_torque, raise_torque
-from ._common import as_scene, check_count, check_finite, check_positive, in_unit
+from ._common import (as_scene, check_count, check_finite, check_positive, constant_value,
+                      in_unit)
 
 __all__ = ["cycle_response", "alternating_scene", "static_holding_band", "check_cycles"]
 
@@ -74,12 +74,9 @@ def _constant_torque(scene: Scene) -> float:
         raise ValueError("loads.drive_speed is invalid for a position-holding study: the "
                          "drive must be torque-controlled (loads.drive_torque, constant)")
     torque = loads.get("drive_torque", _DEFAULT_DRIVE_TORQUE)
-    if isinstance(torque, numbers.Real):
-        return float(torque)
-    if isinstance(torque, dict) and torque.get("type") == "constant":
-        return float(torque["value"])
-    if isinstance(torque, Constant):
-        return float(torque.value)
+    value = constant_value(torque)
+    if value is not None:
+        return value
     raise ValueError(f"loads.drive_torque = {torque!r} is invalid for a position-holding "
                      "study: must be constant (the torque held by the thread)")
 

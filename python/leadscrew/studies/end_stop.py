@@ -39,7 +39,8 @@ import pandas as pd
 from .. import _core
 from ..errors import SimulationError
 from ..simulation import simulate
-from ._common import annotate, as_scene, axes, check_count, check_positive, frame_of
+from ._common import (annotate, as_scene, axes, check_count, check_positive, constant_value,
+                      frame_of, gear_ratio)
 from ._sweep import _progress_bar
 
 __all__ = ["end_stop_jam", "plot_end_stop_jam"]
@@ -76,12 +77,11 @@ def _drive(scene) -> Tuple[str, float]:
                              "speed drives through any stop; give loads.drive_torque or a "
                              "DC motor")
         kind, key, value = "torque", "loads.drive_torque", loads.get("drive_torque", 0.0)
-    if isinstance(value, dict) and value.get("type") == "constant":
-        value = value["value"]
-    if not isinstance(value, float) or value == 0.0:
+    constant = constant_value(value)
+    if constant is None or constant == 0.0:
         raise ValueError(f"{key} = {value!r} is invalid for end_stop_jam: must be a nonzero "
                          "constant (it drives the load into the stop)")
-    return kind, value
+    return kind, constant
 
 
 def _with_drive(scene, kind: str, forward: float, reverse: Optional[float], t_drive: float,
@@ -114,11 +114,6 @@ def _require_self_locking(scene) -> None:
                          "jams: the stop pushes the drive back as soon as the drive lets go")
 
 
-def _gear_ratio(scene) -> float:
-    """|n| of the scene's ideal gear stage (1: none)."""
-    return abs(scene["gear"]["ratio"]) if "gear" in scene else 1.0
-
-
 def _closed_form(scene, kind: str, clamp: float) -> Dict[str, float]:
     """T_b = F r_m tan(rho_s' - alpha) on the driven part and, with a DC motor,
     U_b = R T_b / (|n| k_t)."""
@@ -129,7 +124,7 @@ def _closed_form(scene, kind: str, clamp: float) -> Dict[str, float]:
     if kind == "voltage":
         motor = scene["motor"]
         limit = motor.get("current_limit", math.inf)
-        current = torque / (_gear_ratio(scene) * motor["torque_constant"])
+        current = torque / (abs(gear_ratio(scene)) * motor["torque_constant"])
         out["breakaway_voltage_closed_form"] = (math.inf if current > limit
                                                 else motor["resistance"] * current)
     return out
@@ -271,7 +266,7 @@ def end_stop_jam(
     thread_force = abs(float(pushing["stop_force"][-1]) + float(pushing["axial_force"][-1]))
     closed = _closed_form(scene, kind, thread_force)
     # (in the units of the reverse drive: the rotor's torque, or the voltage)
-    n = _gear_ratio(scene)
+    n = abs(gear_ratio(scene))
     estimate = (closed["breakaway_voltage_closed_form"] if kind == "voltage"
                 else closed["breakaway_torque_closed_form"] / n)
     # The bracket: the forward drive itself holds (the run's state at t_drive);

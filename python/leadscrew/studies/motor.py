@@ -46,7 +46,7 @@ import pandas as pd
 from .. import _core
 from ._batch import DriveBatch
 from ._common import (annotate, as_scene, axes, check_grid, check_positive, check_window,
-                      frame_of, with_tolerances)
+                      constant_value, frame_of, gear_ratio, with_tolerances)
 from ._sweep import SerialExecutor, default_workers, run_batches, run_chunks
 
 __all__ = ["motor_characteristics", "plot_motor_characteristics"]
@@ -62,21 +62,24 @@ _CHANNELS = ("omega_drive", "motor_current", "motor_voltage", "v_load", "work_dr
 _OMEGA, _CURRENT, _VOLTAGE, _VLOAD, _WORK, _AXIAL, _COPPER, _MAGNETIC = range(len(_CHANNELS))
 
 
+def constant_voltage(scene) -> Optional[float]:
+    """The scene's DC motor voltage [V] where it is constant; None without a
+    motor or with a voltage that varies."""
+    return constant_value(scene["motor"]["voltage"]) if "motor" in scene else None
+
+
 def _voltage(scene) -> float:
     """The scene's motor voltage, a constant [V].
 
     Raises:
         ValueError: the scene has no DC motor, or its voltage is not constant.
     """
-    motor = scene["motor"] if "motor" in scene else None
-    if motor is None:
+    if "motor" not in scene:
         raise ValueError("scene has no motor section: motor_characteristics needs a DC motor "
                          "(motor = {type = \"dc\", voltage, resistance, ...})")
-    voltage = motor["voltage"]
-    if isinstance(voltage, dict) and voltage.get("type") == "constant":
-        voltage = voltage["value"]
-    if not isinstance(voltage, float):
-        raise ValueError(f"motor.voltage = {voltage!r} is invalid for motor_characteristics: "
+    voltage = constant_voltage(scene)
+    if voltage is None:
+        raise ValueError(f"motor.voltage = {scene['motor']['voltage']!r} is invalid for motor_characteristics: "
                          "must be a constant voltage (the steady state it reaches)")
     if voltage == 0.0:
         raise ValueError("motor.voltage = 0.0 is invalid for motor_characteristics: must be "
@@ -95,11 +98,6 @@ def _motor_constants(scene, voltage: float) -> Tuple[float, float, float, float]
     return resistance, k_t, k_e, stall_current
 
 
-def _gear_ratio(scene) -> float:
-    """The ratio n of the scene's ideal gear stage (1: none)."""
-    return scene["gear"]["ratio"] if "gear" in scene else 1.0
-
-
 def _thread_torques(scene) -> Dict[str, float]:
     """The rigid drive's torques on the rotor per newton of axial load [N*m/N =
     m]: to raise and to lower it, with mu (moving) and with mu_static (from
@@ -109,11 +107,22 @@ def _thread_torques(scene) -> Dict[str, float]:
     mu = friction["mu"]
     mu_static = friction.get("mu_static", mu)
     thread = scene.thread
-    n = abs(_gear_ratio(scene))
+    n = abs(gear_ratio(scene))
     return {"raise": _core.raise_torque(thread, mu, 1.0) / n,
             "raise_static": _core.raise_torque(thread, mu_static, 1.0) / n,
             "lower": _core.lower_torque(thread, mu, 1.0) / n,
             "lower_static": _core.lower_torque(thread, mu_static, 1.0) / n}
+
+
+def stall_from_rest(scene, voltage: float) -> Dict[str, float]:
+    """The rigid drive's stall from rest at a constant ``voltage`` (plain nut,
+    behind the scene's gear stage): the stall ``current`` min(|U| / R, i_max)
+    [A], its ``torque`` k_t i on the rotor [N*m], and the axial ``load`` [N]
+    whose raise torque with mu_static that torque just reaches."""
+    _, k_t, _, current = _motor_constants(scene, voltage)
+    torque = k_t * current
+    return {"current": current, "torque": torque,
+            "load": torque / _thread_torques(scene)["raise_static"]}
 
 
 def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
@@ -131,7 +140,8 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
     """
     resistance, k_t, k_e, stall_current = _motor_constants(scene, voltage)
     torques = _thread_torques(scene)
-    stall_torque = k_t * stall_current
+    stall = stall_from_rest(scene, voltage)
+    stall_torque = stall["torque"]
     raising = loads * torques["raise_static"] < stall_torque
     back_driven = ~raising & (-loads * torques["lower_static"] > stall_torque)
     torque = np.where(back_driven, -loads * torques["lower"], loads * torques["raise"])
@@ -144,7 +154,7 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
     # (stalled: the driver puts out R i at rest, U itself without a limit)
     power = np.where(stalled, resistance * stall_current ** 2, abs(voltage) * current)
     # (the load's travel per radian of the rotor)
-    lead_per_rad = scene.thread.lead / (2.0 * math.pi * abs(_gear_ratio(scene)))
+    lead_per_rad = scene.thread.lead / (2.0 * math.pi * abs(gear_ratio(scene)))
     with np.errstate(divide="ignore", invalid="ignore"):
         # Motoring only: 0 at rest, NaN where the load is lowered (it gives power).
         efficiency = np.where(raising, loads * lead_per_rad * speed / power,
@@ -156,7 +166,7 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
     return {"speed": sign * speed, "current": sign * current, "input_power": power,
             "efficiency": efficiency, "stalled": stalled, "mode": mode,
             "stall_torque": stall_torque,
-            "stall_load": stall_torque / torques["raise_static"],
+            "stall_load": stall["load"],
             "stall_load_moving": stall_torque / torques["raise"],
             "back_drive_load": stall_torque / holding if holding > 0.0 else math.inf}
 
@@ -299,7 +309,7 @@ def motor_characteristics(
     # (docs/physics/drive_models.md): the load to raise acts along +x then.
     # A reversing gear stage (n < 0) turns the driven part the other way.
     raising = (scene.thread.hand_sign * math.copysign(1.0, voltage) *
-               math.copysign(1.0, _gear_ratio(scene)))
+               math.copysign(1.0, gear_ratio(scene)))
     # The train's characteristic runs free: the scene's end stops (if any) are
     # left out, so that each load reaches its steady state (end_stop_jam runs
     # the drive into them).

@@ -39,8 +39,8 @@ import pandas as pd
 
 from .. import _core
 from ..thread import lower_torque, raise_torque
-from ._common import (annotate, as_scene, axes, check_grid, check_positive, numeric_or_nan,
-                      with_tolerances)
+from ._common import (annotate, as_scene, axes, check_grid, check_positive, constant_value,
+                      numeric_or_nan, with_tolerances)
 from ._holding_runs import (_alternating_excitation, _constant_torque, _scene_sine,
                             alternating_scene, check_cycles, cycle_response)
 from ._sweep import run_cases
@@ -262,11 +262,9 @@ def preload_tradeoff(
 
 def _static_force(scene) -> float:
     """The scene's static axial force [N]: a constant, or a sine's offset (0 otherwise)."""
-    force = scene["loads"].get("axial_force", 0.0)
-    if isinstance(force, (int, float)):
-        return float(force)
-    if isinstance(force, dict) and force.get("type") == "constant":
-        return float(force["value"])
+    value = constant_value(scene["loads"].get("axial_force", 0.0))
+    if value is not None:
+        return value
     sine = _scene_sine(scene)
     return float(sine["offset"]) if sine else 0.0
 

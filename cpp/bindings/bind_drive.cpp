@@ -342,6 +342,7 @@ void bind_drive(py::module_& m) {
       .def_property_readonly("parameters", &model::DriveModel::parameters);
 
   m.def("drive_integrators", &model::drive_integrators, py::arg("parameters"));
+  m.attr("smallest_gear_ratio") = model::elements::kSmallestGearRatio;
   def_drive_call(
       m, "simulate_drive",
       [](const model::DriveModel& drive, const model::DriveSimulationOptions& options,

@@ -58,9 +58,9 @@ _DENSITY_RANGE_DOC = ", in [1, 1e5] kg/m^3: from aerogels to beyond osmium (22,5
 # carried it); the others are optional, each law checks its own.
 _FRICTION_COMMON = ("mu", "k_v")
 # The gear stage's types (the core runs 'ideal'; the others are refused for
-# now) and the smallest |gear.ratio| (the core's kSmallestGearRatio).
+# now) and the smallest |gear.ratio| (the core's, elements/gear.hpp).
 _GEAR_TYPES = ("ideal", "lossy", "worm")
-_SMALLEST_GEAR_RATIO = 1e-4
+_SMALLEST_GEAR_RATIO = _core.smallest_gear_ratio
 
 
 @functools.lru_cache(maxsize=None)

@@ -260,6 +260,29 @@ def test_invalid_motor_raises_naming_the_key(key, value, match):
         ls.Scene.from_dict(motor_scene(**{key: value}))
 
 
+@pytest.mark.parametrize("factor, refused", [(0.5, True), (2.0, False)])
+def test_a_motor_faster_than_any_built_is_refused_naming_its_keys(factor, refused):
+    """The motor's mechanical time constant J R / (k_t k_e) below 1 us, or its
+    electrical L / R below 1 ns, is a unit's mistake (the fastest motors have
+    about 1 ms and 1 us): refused naming the inputs, where the run would have
+    ground to a solver failure naming none (review of issue 19: k_t = 1e6
+    N m/A). At twice the bound the model builds."""
+    inertia = ls.Scene.from_dict(motor_scene())["rotor"]["inertia"]
+    k = np.sqrt(inertia * R / (factor * 1e-6))  # J R / k^2 = factor * 1e-6 s
+    strong = ls.Scene.from_dict(motor_scene(torque_constant=k))
+    fast = ls.Scene.from_dict(motor_scene(inductance=factor * 1e-9 * R))
+    if not refused:
+        strong.model(), fast.model()
+        return
+    with pytest.raises(ValueError, match=r"motor\.torque_constant = .*, motor\.resistance = 2 "
+                                         r"and rotor\.inertia = .* are invalid together: .*"
+                                         r"mechanical time constant .* must be at least 1e-06 s"):
+        strong.model()
+    with pytest.raises(ValueError, match=r"motor\.inductance = .* is invalid: .* electrical time "
+                                         r"constant .* must be at least 1e-09 s"):
+        ls.simulate(fast, 0.01)
+
+
 @pytest.mark.parametrize("missing", ["type", "voltage", "resistance", "torque_constant"])
 def test_missing_motor_field_raises(missing):
     scene = motor_scene()

@@ -16,6 +16,44 @@ namespace {
 
 // The preloaded split nut of p (nut.preload > 0) on the thread without play
 // of the rigid concept; elsewhere refused with what is supported.
+// The DC motor's own time constants, its rotor alone (before a gear): the
+// mechanical J R / (k_t k_e) (the back-EMF's damping of the rotor) and the
+// electrical L / R. The fastest motors built have about 1 ms and 1 us
+// (coreless micro motors); a thousand times below, the values are a unit's
+// mistake, and the run would grind through ever shorter steps to a solver
+// failure that names no input (a torque constant of 1e6 N m/A: 9 s to
+// CV_TOO_MUCH_WORK on the seat adjuster; 1e3, 3e-12 s: 5.6 s to the same).
+// Issue 19's review.
+constexpr double kShortestMechanicalTimeConstant = 1e-6;  // [s]
+constexpr double kShortestElectricalTimeConstant = 1e-9;  // [s]
+
+void require_plausible_dc_motor(const DriveParameters& p, const DcMotor& m) {
+  const double mechanical =
+      p.rotor_inertia * m.resistance / (m.torque_constant * m.back_emf_constant);
+  if (!(mechanical >= kShortestMechanicalTimeConstant))
+    throw InvalidArgument(
+        "motor.torque_constant = " + format_value(p.motor_torque_constant) +
+        (p.motor_back_emf_constant < 0.0
+             ? std::string()
+             : ", motor.back_emf_constant = " + format_value(p.motor_back_emf_constant)) +
+        ", motor.resistance = " + format_value(m.resistance) + " and rotor.inertia = " +
+        format_value(p.rotor_inertia) +
+        " are invalid together: with them the DC motor's mechanical time constant "
+        "rotor.inertia * motor.resistance / (motor.torque_constant * "
+        "motor.back_emf_constant) comes to " +
+        format_value(mechanical) + " s: must be at least " +
+        format_value(kShortestMechanicalTimeConstant) +
+        " s (the fastest motors built have about 1e-3 s: check the units)");
+  if (m.inductance > 0.0 && !(m.inductance / m.resistance >= kShortestElectricalTimeConstant))
+    throw InvalidArgument("motor.inductance = " + format_value(m.inductance) +
+                          " is invalid: with it the DC motor's electrical time constant "
+                          "motor.inductance / motor.resistance comes to " +
+                          format_value(m.inductance / m.resistance) + " s: must be at least " +
+                          format_value(kShortestElectricalTimeConstant) +
+                          " s (the fastest motors built have about 1e-6 s), or 0 (the "
+                          "quasi-static limit, exact: no current dynamics)");
+}
+
 void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
@@ -364,6 +402,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
                               : require_positive("motor.back_emf_constant",
                                                  p.motor_back_emf_constant);
     m.current_limit = require_nonnegative("motor.current_limit", p.motor_current_limit);
+    require_plausible_dc_motor(p, m);
     // Behind a gear: the motor as its coordinate sees it (gear.hpp).
     m.torque_constant = gear.driven_torque(m.torque_constant);
     m.back_emf_constant = gear.driven_torque(m.back_emf_constant);

@@ -760,6 +760,7 @@ def test_a_newton_iterate_off_the_screw_does_not_end_the_run():
                                                  r"\(nut position 0\.0(099999|100000)\d* m") as error:
         ls.simulate(scene, 2.0)
     assert 0.40423 < error.value.time < 0.40424
+    assert isinstance(error.value, ls.NutOffScrewError)
     with pytest.raises(ls.SimulationError) as other:
         ls.simulate(scene, 2.0, integrator="rk_verner6")
     assert abs(other.value.time - error.value.time) < 1e-9
@@ -779,6 +780,7 @@ def test_the_nut_wound_to_the_near_end_ends_the_run_there(drive):
                              r"0\.0(099999|100000)\d* m") as error:
         ls.simulate(scene, 1.0)
     assert 0.0 < error.value.time < 0.2
+    assert isinstance(error.value, ls.NutOffScrewError)  # the end of the travel, by its type
     with pytest.raises(ValueError, match=r"nut.position = 0.01 is invalid: must be in "
                                          r"\(nut.length / 2, screw.length - nut.length / 2\)"):
         scene.replace(nut={"position": 0.01})
@@ -803,6 +805,8 @@ def test_the_nut_runs_off_the_far_end_of_the_screw_as_an_error(drive):
     with pytest.raises(ls.SimulationError, match="the nut reached the end of the screw") as moreau:
         ls.simulate(scene, 1.0, integrator="moreau", dt=1e-4)
     assert error.value.time <= moreau.value.time < error.value.time + 0.01
+    assert isinstance(error.value, ls.NutOffScrewError)
+    assert isinstance(moreau.value, ls.NutOffScrewError)
     params = ls.scenes.load("thesis_table_5_1").replace(drive=drive).model().parameters
     with pytest.raises(ValueError, match="nut.position = 0.5 is invalid: must be < screw.length"):
         params.nut_position = 0.5
@@ -822,6 +826,7 @@ def _run_off_time(scene, integrator=None, **options):
     with pytest.raises(ls.SimulationError, match=r"the nut reached the end of the screw \(nut "
                                                  r"position ") as error:
         ls.simulate(scene, 10.0, **options)
+    assert isinstance(error.value, ls.NutOffScrewError)
     return error.value.time
 
 

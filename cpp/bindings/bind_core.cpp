@@ -13,6 +13,7 @@ namespace {
 // released (no static destructor runs after Python has finalized).
 PyObject* simulation_error_type = nullptr;
 PyObject* jamming_error_type = nullptr;
+PyObject* nut_off_screw_error_type = nullptr;
 PyObject* no_equilibrium_error_type = nullptr;
 
 void raise_with_attributes(PyObject* type, const SimulationError& e) {
@@ -30,13 +31,17 @@ void PythonMonitor::report(double t) {
 }
 
 void bind_core(py::module_& m) {
-  // SimulationError derives from RuntimeError; JammingError from SimulationError.
+  // SimulationError derives from RuntimeError; JammingError and NutOffScrewError
+  // from SimulationError.
   simulation_error_type = PyErr_NewException("leadscrew._core.SimulationError",
                                              PyExc_RuntimeError, nullptr);
   jamming_error_type =
       PyErr_NewException("leadscrew._core.JammingError", simulation_error_type, nullptr);
   m.add_object("SimulationError", py::handle(simulation_error_type));
   m.add_object("JammingError", py::handle(jamming_error_type));
+  nut_off_screw_error_type = PyErr_NewException("leadscrew._core.NutOffScrewError",
+                                                simulation_error_type, nullptr);
+  m.add_object("NutOffScrewError", py::handle(nut_off_screw_error_type));
   // NoEquilibriumError derives from ValueError: the start asked for does not exist.
   no_equilibrium_error_type = PyErr_NewException("leadscrew._core.NoEquilibriumError",
                                                  PyExc_ValueError, nullptr);
@@ -48,6 +53,8 @@ void bind_core(py::module_& m) {
       PyErr_SetString(no_equilibrium_error_type, e.what());
     } catch (const JammingError& e) {
       raise_with_attributes(jamming_error_type, e);
+    } catch (const NutOffScrew& e) {
+      raise_with_attributes(nut_off_screw_error_type, e);
     } catch (const SimulationError& e) {
       raise_with_attributes(simulation_error_type, e);
     }

@@ -4,7 +4,8 @@ SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
 from . import fmi, integrate, lcp, scene, scenes, studies, units
-from .errors import JammingError, NoEquilibriumError, SimulationError, StudyWarning
+from .errors import (JammingError, NoEquilibriumError, NutOffScrewError, SimulationError,
+                     StudyWarning)
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
 from .scene import Scene
@@ -77,6 +78,7 @@ __all__ = [
     "Event",
     "SimulationError",
     "JammingError",
+    "NutOffScrewError",
     "NoEquilibriumError",
     "StudyWarning",
     "fmi",

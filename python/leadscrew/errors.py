@@ -1,8 +1,9 @@
 """Exceptions raised by leadscrew."""
 
-from ._core import JammingError, NoEquilibriumError, SimulationError
+from ._core import JammingError, NoEquilibriumError, NutOffScrewError, SimulationError
 
-__all__ = ["SimulationError", "JammingError", "NoEquilibriumError", "StudyWarning"]
+__all__ = ["SimulationError", "JammingError", "NutOffScrewError", "NoEquilibriumError",
+           "StudyWarning"]
 
 SimulationError.__doc__ = """A solver failed during a simulation.
 
@@ -13,6 +14,12 @@ Attributes:
 JammingError.__doc__ = """A self-locking drive jams dynamically (Painleve paradox).
 
 No consistent flank-contact mode exists. Attributes as SimulationError.
+"""
+NutOffScrewError.__doc__ = """The nut ran off the screw: its end reached the screw's end.
+
+The run ends there (beyond it the thread no longer holds the nut); the
+end of a drive's travel, not a solver's failure. Attributes as
+SimulationError (``time``: when the nut's end reached the screw's).
 """
 NoEquilibriumError.__doc__ = """A start in static equilibrium (``initial.state =
 'equilibrium'``) that the loads at t = 0 do not admit: holding them at rest

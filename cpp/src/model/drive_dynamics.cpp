@@ -147,7 +147,7 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   // Either drive: the nut is a point of the screw in (0, L) (the scene checks
   // the initial position alike); beyond an end it is off the screw.
   if (model_.springs_on_screw() && !(a > 0.0 && a < model_.parameters().screw_length)) {
-    throw OutsideDomain(t, model_.nut_off_screw(a), DriveModel::kNutOffScrewHint);
+    throw NutOffScrew(t, model_.nut_off_screw(a), DriveModel::kNutOffScrewHint);
   }
   // The elements' forces, grouped by type: the force elements (springs,
   // dampers and supports), the motor's torque, the axial load.

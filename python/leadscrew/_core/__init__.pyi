@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DerivedQuantities', 'DriveBatch', 'DriveBatchResult', 'DriveGeometry', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'check_nut_on_screw', 'cosim_variables', 'derive_drive', 'derived_quantities', 'derived_quantity_problem', 'drive_integrators', 'efficiency', 'efficiency_array', 'first_derived_problem', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'preloaded_efficiency_array', 'raise_torque', 'read_core_spec', 'rigid_jamming_margins', 'scene_choices', 'simulate_block', 'simulate_drive', 'smallest_gear_ratio', 'spring_frequency_problem', 'write_core_spec']
+__all__: list[str] = ['DerivedQuantities', 'DriveBatch', 'DriveBatchResult', 'DriveGeometry', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'NutOffScrewError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'check_nut_on_screw', 'cosim_variables', 'derive_drive', 'derived_quantities', 'derived_quantity_problem', 'drive_integrators', 'efficiency', 'efficiency_array', 'first_derived_problem', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'preloaded_efficiency_array', 'raise_torque', 'read_core_spec', 'rigid_jamming_margins', 'scene_choices', 'simulate_block', 'simulate_drive', 'smallest_gear_ratio', 'spring_frequency_problem', 'write_core_spec']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -22,6 +22,14 @@ class JammingError(SimulationError):
     A self-locking drive jams dynamically (Painleve paradox).
     
     No consistent flank-contact mode exists. Attributes as SimulationError.
+    """
+class NutOffScrewError(SimulationError):
+    """
+    The nut ran off the screw: its end reached the screw's end.
+    
+    The run ends there (beyond it the thread no longer holds the nut); the
+    end of a drive's travel, not a solver's failure. Attributes as
+    SimulationError (``time``: when the nut's end reached the screw's).
     """
 class NoEquilibriumError(ValueError):
     """

@@ -37,7 +37,7 @@ import numpy as np
 import pandas as pd
 
 from .. import _core
-from ..errors import SimulationError
+from ..errors import NutOffScrewError, SimulationError
 from ..simulation import simulate
 from ._common import (annotate, as_scene, axes, check_count, check_positive, constant_value,
                       frame_of, gear_ratio)
@@ -245,7 +245,7 @@ def end_stop_jam(
                               t_end, **options)
         except SimulationError as error:
             # Only a load that left the stop runs the nut to the screw's end.
-            free = error.time > t_drive and "the nut reached the end of the screw" in str(error)
+            free = error.time > t_drive and isinstance(error, NutOffScrewError)
             rows.append({"reverse": x, "broke_free": free, "stop_force_end": math.nan,
                          "error": None if free else f"{type(error).__name__}: {error}"})
             return free

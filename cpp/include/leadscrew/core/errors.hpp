@@ -5,6 +5,7 @@
 //   NoEquilibrium                             -> leadscrew.NoEquilibriumError (a ValueError)
 //   SimulationError                           -> leadscrew.SimulationError
 //   JammingError                              -> leadscrew.JammingError (a SimulationError)
+//   NutOffScrew                               -> leadscrew.NutOffScrewError (a SimulationError)
 #pragma once
 
 #include <stdexcept>
@@ -49,6 +50,18 @@ class SimulationError : public std::runtime_error {
 class OutsideDomain : public SimulationError {
  public:
   using SimulationError::SimulationError;
+};
+
+// The nut ran off the screw: its end reached the screw's end (a drive's
+// domain ends there: beyond it the thread no longer holds the nut). Thrown
+// at the located event, or by a right-hand side at a trial state (an
+// OutsideDomain: retried, and raised only where the integrator gives up
+// there). leadscrew.NutOffScrewError, so that a caller (a study driving to
+// the end of the travel) tells it from a solver's failure without reading
+// the message.
+class NutOffScrew : public OutsideDomain {
+ public:
+  using OutsideDomain::OutsideDomain;
 };
 
 // A self-locking drive that jams dynamically: no consistent flank-contact mode

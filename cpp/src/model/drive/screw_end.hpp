@@ -15,7 +15,7 @@ namespace leadscrew::model::drive {
 // smaller steps (CVODE ground to max_steps within a millimetre of the end).
 [[noreturn]] inline void nut_left_the_screw(const DriveModel& model, double t,
                                             double nut_position) {
-  throw SimulationError(t, model.nut_off_screw(nut_position), DriveModel::kNutOffScrewHint);
+  throw NutOffScrew(t, model.nut_off_screw(nut_position), DriveModel::kNutOffScrewHint);
 }
 
 }  // namespace leadscrew::model::drive

@@ -215,10 +215,11 @@ SCHEMA: Dict[str, Any] = {
                          "preloaded_nut.md). 0: a plain nut. The half on the flank the axial "
                          "load presses at t = 0 carries the load plus P, the other P; both slip "
                          "together, so the torque to raise a load F is r_m [(F + P) "
-                         "tan(alpha + rho') + P tan(rho' - alpha)]. Supported on concept "
-                         "'rigid' with friction.law 'coulomb' (no mu_static), the event-driven "
-                         "integrator and initial.state 'relaxed'; there it closes a backlash "
-                         "(the thread without play, initial.play_position ignored)", "N", 0.0,
+                         "tan(alpha + rho') + P tan(rho' - alpha)]. Supported with friction.law "
+                         "'coulomb' (no mu_static), the event-driven integrator and "
+                         "initial.state 'relaxed', on concept 'rigid' (there it closes a "
+                         "backlash: the thread without play, initial.play_position ignored) "
+                         "and on the flexible concepts without play", "N", 0.0,
                          **NONNEGATIVE),
         "preload_stiffness": Field("rate of the split nut's spring (its axial stiffness "
                                    "between the halves; on the rigid concept the spring force "

@@ -22,13 +22,14 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   if (p.nut_preload == 0.0) return;
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
-      ": a preloaded nut is supported on the rigid concept (concept = \"rigid\") with exact "
-      "Coulomb friction (friction.law = \"coulomb\", no mu_static) and initial.state = "
-      "\"relaxed\"";
-  if (p.concept != Concept::rigid)
-    throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) + "\"" +
-                          supported + " (the flexible concepts' lift-off of a half is not "
-                          "modelled)");
+      ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
+      "without play, with exact Coulomb friction (friction.law = \"coulomb\", no mu_static) "
+      "and initial.state = \"relaxed\"";
+  if (p.concept != Concept::rigid && p.backlash != BacklashContact::none)
+    throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) +
+                          "\" and backlash.contact = \"" + backlash_contact_name(p.backlash) +
+                          "\"" + supported + " (a half lifting off its flank into the play is "
+                          "not modelled)");
   if (!e.thread->law().plain_coulomb()) {
     if (p.friction == "coulomb")  // Coulomb's law with a static coefficient above mu
       throw InvalidArgument("friction.mu_static = " + format_value(e.thread->law().mu_static()) +
@@ -54,7 +55,11 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   // Half A carries the axial load at t = 0 (its flank: the sign of the normal
   // force the load alone puts on the screw); half B bears on the other flank.
   // No load at t = 0: half A on the flank of lambda_N > 0.
-  const double force = p.axial_force(0.0) * e.thread->normal()[e.load.coordinate];
+  // (The thread's normal on the translating part: on the load where that
+  // part is rigid, on its contact body where it is flexible.)
+  double translating_normal = 0.0;
+  for (const int i : e.translating_group) translating_normal += e.thread->normal()[i];
+  const double force = p.axial_force(0.0) * translating_normal;
   const int loaded_side = force > 0.0 ? -1 : 1;
   nut.side = -loaded_side;
   e.preloaded_nut = nut;

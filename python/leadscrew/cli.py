@@ -106,6 +106,22 @@ _DERIVED_UNITS = {
 }
 
 
+def _lift_off_report(scene, d: Dict[str, Any], preload: float) -> List[str]:
+    """A preloaded nut with penalty play on a flexible concept: where half A
+    lifts off (docs/physics/preloaded_nut.md, "Lift-off"). The core starts
+    the nut assembled, half A's flank penetrated to d_0 at the preload: its
+    play position is c/2 + d_0."""
+    if d["concept"] == "rigid" or d.get("backlash", {}).get("contact") not in ("bistop", "cubic"):
+        return []
+    parameters = scene.model().parameters
+    penetration = abs(parameters.play_position) - 0.5 * parameters.clearance
+    rate = d["nut"]["preload_stiffness"]
+    return [f"lift-off: half A leaves its flank where the spring carries P + k_p d_0 = "
+            f"{preload + rate * penetration:.6g} N (d_0 = {penetration:.6g} m, the flank's "
+            f"penetration at P); beyond, the spring's {rate:.6g} N/m alone until the play "
+            f"{parameters.clearance:.6g} m is taken up"]
+
+
 def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
     """The drive train's elements in ``check``: the preloaded nut's efficiency,
     the DC motor's stall and no-load values (behind the gear stage), the end
@@ -120,6 +136,7 @@ def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
         lines.append(f"preloaded split nut: P = {preload:.6g} N; efficiency raising "
                      f"{at:.6g} N {eta:.6g} (without the preload "
                      f"{_thread.efficiency(scene.thread, mu):.6g})")
+        lines.extend(_lift_off_report(scene, d, preload))
     if "gear" in d:
         lines.append(f"gear stage: {d['gear']['type']}, n = {d['gear']['ratio']:g} (the rotor "
                      "turns n times per turn of the driven part)")

@@ -108,18 +108,17 @@ _DERIVED_UNITS = {
 
 def _lift_off_report(scene, d: Dict[str, Any], preload: float) -> List[str]:
     """A preloaded nut with penalty play on a flexible concept: where half A
-    lifts off (docs/physics/preloaded_nut.md, "Lift-off"). The core starts
-    the nut assembled, half A's flank penetrated to d_0 at the preload: its
-    play position is c/2 + d_0."""
-    if d["concept"] == "rigid" or d.get("backlash", {}).get("contact") not in ("bistop", "cubic"):
+    lifts off (docs/physics/preloaded_nut.md, "Lift-off")."""
+    from .studies.preload import lift_off_spring_force
+
+    lift_off = lift_off_spring_force(scene)
+    if lift_off is None:
         return []
-    parameters = scene.model().parameters
-    penetration = abs(parameters.play_position) - 0.5 * parameters.clearance
-    rate = d["nut"]["preload_stiffness"]
+    spring, penetration = lift_off
     return [f"lift-off: half A leaves its flank where the spring carries P + k_p d_0 = "
-            f"{preload + rate * penetration:.6g} N (d_0 = {penetration:.6g} m, the flank's "
-            f"penetration at P); beyond, the spring's {rate:.6g} N/m alone until the play "
-            f"{parameters.clearance:.6g} m is taken up"]
+            f"{spring:.6g} N (d_0 = {penetration:.6g} m, the flank's penetration at P); "
+            f"beyond, the spring's {d['nut']['preload_stiffness']:.6g} N/m alone until the "
+            f"play {d['backlash']['axial']:.6g} m is taken up"]
 
 
 def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:

@@ -468,3 +468,22 @@ def test_the_run_figure_shows_a_dc_motors_current_and_the_stop_force():
     assert "end stop" in [line.get_label() for line in figure.axes[2].get_lines()]
     plain = _plot_time_series(ls.simulate(shipped.load("default"), 0.1), "default")
     assert len(plain.axes) == 4
+
+
+def test_check_reports_the_preloaded_nuts_lift_off(capsys, tmp_path):
+    # A preloaded nut with penalty play on a flexible concept: the spring's
+    # force where half A lifts off, P (1 + k_p / k_c) on a linear flank
+    # (docs/physics/preloaded_nut.md, "Lift-off").
+    d = shipped.load("default").to_dict()
+    d["concept"] = "flexible_nut"
+    d["nut"].update(preload=50.0, preload_stiffness=1e6)
+    d["friction"].pop("mu_static", None)
+    d["friction"]["law"] = "coulomb"
+    d["backlash"] = {"axial": 1e-4, "contact": "bistop", "stiffness": 1e7, "exponent": 1.0}
+    d["loads"] = {"drive_torque": 0.0, "axial_force": -25.0}
+    path = tmp_path / "lift_off.toml"
+    ls.Scene.from_dict(d).to_toml(path)
+    code, out, _ = run_main(capsys, "check", str(path))
+    assert code == 0
+    assert "lift-off: half A leaves its flank where the spring carries P + k_p d_0 = 55 N" in out
+    assert "(d_0 = 5e-06 m" in out

@@ -106,6 +106,21 @@ _DERIVED_UNITS = {
 }
 
 
+def _lift_off_report(scene, d: Dict[str, Any], preload: float) -> List[str]:
+    """A preloaded nut with penalty play on a flexible concept: where half A
+    lifts off (docs/physics/preloaded_nut.md, "Lift-off")."""
+    from .studies.preload import lift_off_spring_force
+
+    lift_off = lift_off_spring_force(scene)
+    if lift_off is None:
+        return []
+    spring, penetration = lift_off
+    return [f"lift-off: half A leaves its flank where the spring carries P + k_p d_0 = "
+            f"{spring:.6g} N (d_0 = {penetration:.6g} m, the flank's penetration at P); "
+            f"beyond, the spring's {d['nut']['preload_stiffness']:.6g} N/m alone until the "
+            f"play {d['backlash']['axial']:.6g} m is taken up"]
+
+
 def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
     """The drive train's elements in ``check``: the preloaded nut's efficiency,
     the DC motor's stall and no-load values (behind the gear stage), the end
@@ -120,6 +135,7 @@ def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
         lines.append(f"preloaded split nut: P = {preload:.6g} N; efficiency raising "
                      f"{at:.6g} N {eta:.6g} (without the preload "
                      f"{_thread.efficiency(scene.thread, mu):.6g})")
+        lines.extend(_lift_off_report(scene, d, preload))
     if "gear" in d:
         lines.append(f"gear stage: {d['gear']['type']}, n = {d['gear']['ratio']:g} (the rotor "
                      "turns n times per turn of the driven part)")

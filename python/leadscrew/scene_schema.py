@@ -215,15 +215,22 @@ SCHEMA: Dict[str, Any] = {
                          "preloaded_nut.md). 0: a plain nut. The half on the flank the axial "
                          "load presses at t = 0 carries the load plus P, the other P; both slip "
                          "together, so the torque to raise a load F is r_m [(F + P) "
-                         "tan(alpha + rho') + P tan(rho' - alpha)]. Supported on concept "
-                         "'rigid' with friction.law 'coulomb' (no mu_static), the event-driven "
-                         "integrator and initial.state 'relaxed'; there it closes a backlash "
-                         "(the thread without play, initial.play_position ignored)", "N", 0.0,
+                         "tan(alpha + rho') + P tan(rho' - alpha)]. Supported with friction.law "
+                         "'coulomb' (no mu_static), the event-driven integrator and "
+                         "initial.state 'relaxed', on concept 'rigid' (there it closes a "
+                         "backlash: the thread without play, initial.play_position ignored) "
+                         "and on the flexible concepts, without play or with "
+                         "backlash.contact 'bistop' or 'cubic': there half A is the nut "
+                         "body on its penalty flank, which lifts off beyond the load the "
+                         "preload holds, and the play comes back (the nut starts assembled, "
+                         "initial.play_position ignored)", "N", 0.0,
                          **NONNEGATIVE),
         "preload_stiffness": Field("rate of the split nut's spring (its axial stiffness "
                                    "between the halves; on the rigid concept the spring force "
-                                   "stays P and the rate is reported, not simulated). 0: not "
-                                   "given", "N/m", 0.0, **NONNEGATIVE),
+                                   "stays P and the rate is reported, not simulated; with play "
+                                   "on a flexible concept it carries the load beyond lift-off "
+                                   "and must be > 0). 0: not given", "N/m", 0.0,
+                                   **NONNEGATIVE),
     },
     "rotor": {
         "inertia": Field("rotor inertia about the screw axis", "kg*m^2", 1e-5, **POSITIVE),

@@ -401,7 +401,7 @@ _CHANNELS_BY_UNIT = {
     "m/s": ("v", "slip_velocity"),
     "m/s^2": ("acceleration",),
     "N": ("force", "axial_force", "normal_force", "friction_force", "spring_force",
-          "stop_force"),
+          "stop_force", "preload_force", "normal_force_a", "flank_normal"),
     "N*m": ("drive_torque",),
     "A": ("motor_current",),
     "V": ("motor_voltage",),

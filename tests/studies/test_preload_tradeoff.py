@@ -95,7 +95,9 @@ def test_units_and_plot(frame):
 
 
 @pytest.mark.parametrize("changes, arguments, match", [
-    ({"concept": "flexible_nut"}, {}, r"concept = 'flexible_nut' is invalid for preload_tradeoff"),
+    ({"concept": "flexible_nut", "backlash": {"axial": 1e-4, "contact": "exact"}},
+     {"preloads": [0.0, 40.0]}, r"nut\.preload = 40 is invalid with concept = \"flexible_nut\" and backlash\.contact = "
+     r"\"exact\""),
     ({}, {"preloads": [-1.0]}, "preloads"),
     ({}, {"load": 0.0}, "load"),
 ])
@@ -127,3 +129,46 @@ def test_motor_characteristics_refuses_a_preloaded_nut():
     with pytest.raises(ValueError, match=r"nut\.preload = 50\.0 is invalid for "
                                          r"motor_characteristics: must be 0"):
         ls.studies.motor_characteristics(d, [10.0], progress=False)
+
+
+@pytest.mark.parametrize("backlash", [None, {"axial": 1e-4, "contact": "bistop"}])
+def test_a_flexible_concept_simulates_stiffness_and_creep(backlash):
+    # flexible_nut, without play and with penalty play (half A lifts off):
+    # the stiffness at the load from the simulation; the preload that holds
+    # the reversed peak (R = 30 - 10 = 20 N) stops the creep.
+    changes = {"concept": "flexible_nut"}
+    if backlash:
+        changes["backlash"] = backlash
+    flexible = scene(**changes)
+    frame = preload_tradeoff(flexible, [0.0, 10.0, 40.0], cycles=4, points_per_cycle=40,
+                             progress=False)
+    assert frame["error"].isna().all()
+    stiffness, creep = frame["axial_stiffness"].to_numpy(), frame["creep_per_cycle"].to_numpy()
+    assert abs(creep[0]) > 1e-6 and abs(creep[2]) < 1e-3 * abs(creep[0])
+    # (the rigid band holds the torque at P = 40, not below)
+    assert list(frame["holds_closed_form"]) == [False, False, True]
+    eta, closed = frame["efficiency"].to_numpy(), frame["efficiency_closed_form"].to_numpy()
+    assert np.all(np.diff(eta) < 0.0)
+    held = frame["held_reverse_load"].to_numpy()
+    if backlash:
+        # The play rattles at P = 0; at P = 10 half A lifts off at the
+        # reversed peak (P + k_p d_0 < 20 N), at P = 40 it holds: stiffer.
+        assert np.all(np.diff(stiffness) > 0.0) and stiffness[1] > 5 * stiffness[0]
+        # In steady raising the spring relaxes by half A's added penetration
+        # (S < P): a little above the closed form at P.
+        assert np.all(eta >= closed - 1e-4 * closed)
+        np.testing.assert_allclose(eta, closed, rtol=5e-2)
+        lift_off = [ls.studies.lift_off_spring_force(flexible.replace(nut={"preload": p}))
+                    for p in (10.0, 40.0)]
+        np.testing.assert_array_equal(held[1:], [value[0] for value in lift_off])
+        assert held[0] == 0.0 and held[1] < 20.0 < held[2] and np.all(held[1:] > [10.0, 40.0])
+        assert lift_off[1][1] == pytest.approx(
+            abs(flexible.replace(nut={"preload": 40.0}).model().parameters.play_position)
+            - 0.5e-4, rel=1e-12)
+    else:
+        # Without play the thread holds the nut at any preload: the nut's
+        # axial spring at the load, whatever P.
+        nut = flexible.derived()["nut_axial_stiffness"]
+        np.testing.assert_allclose(stiffness, nut, rtol=1e-2)
+        np.testing.assert_allclose(eta, closed, rtol=1e-3)
+        np.testing.assert_array_equal(held, [0.0, 10.0, 40.0])

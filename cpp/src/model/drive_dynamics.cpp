@@ -174,10 +174,17 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   slip_noise_ = 64.0 * std::numeric_limits<double>::epsilon() *
                 thread.tangent().cwiseProduct(v).cwiseAbs().sum();
   thread.penalty_force(play_, play_rate_, penalty_);
+  // A preloaded nut's lift-off spring (elements/preloaded_nut.hpp).
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut(); nut && nut->lift_off)
+    preload_spring_ = nut->spring_force(play_);
 }
 
 double DriveDynamics::contact_energy() const noexcept {
-  return model_.thread_pair().contact_energy(penalty_.penetration);
+  double energy = model_.thread_pair().contact_energy(penalty_.penetration);
+  // A lift-off nut's spring S^2 / (2 k_p) (elements/preloaded_nut.hpp).
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut(); nut && nut->lift_off)
+    energy += nut->spring_energy(play_);
+  return energy;
 }
 
 double DriveDynamics::kinetic_energy() const {
@@ -223,11 +230,22 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   // T_B^s) of the slip's direction, the multiplier half A's normal force.
   const elements::PreloadedNut* nut = model_.preloaded_nut();
   const bool preload_half = nut && normal_multiplier && spec.friction == FrictionMode::slip;
+  // A lift-off nut on penalty flanks: half B a given force in every mode,
+  // the spring's along grad(e) (its slip force in slip).
+  const bool lift_off_half = nut && nut->lift_off && spec.contact == ThreadContact::penalty;
+  const bool lift_off_slip = lift_off_half && spec.friction == FrictionMode::slip;
+  const double lift_off_normal =
+      !lift_off_half ? 0.0
+      : lift_off_slip ? nut->normal(spec.slip_sign, preload_spring_)
+                      : nut->side * preload_spring_ / nut->cos_lead;
+  const double lift_off_friction =
+      lift_off_slip ? nut->split_friction(spec.slip_sign, preload_spring_) : 0.0;
   auto evaluate = [&](double kappa, double given_tangential, ModeSolution& out) {
     CoordinateVector f = forces_;
     f += (given_tangential + viscous) * tangent;
     if (preload_half)
       f += nut->normal(spec.slip_sign) * normal + nut->friction(spec.slip_sign) * tangent;
+    if (lift_off_half) f += lift_off_normal * normal + lift_off_friction * tangent;
     double normal_force = 0.0;
     if (spec.contact == ThreadContact::penalty) {
       normal_force = penalty_.normal_force;
@@ -274,6 +292,11 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       out.preload_normal = nut->normal(spec.slip_sign);
       out.normal_force += out.preload_normal;
       out.friction_force += nut->friction(spec.slip_sign);
+    }
+    if (lift_off_half) {
+      out.preload_normal = lift_off_normal;
+      out.normal_force += lift_off_normal;
+      out.friction_force += lift_off_friction;
     }
     out.motor_torque = motor.speed_controlled ? lambda[rotor_row] : applied_torque_;
     out.slip_acceleration = tangent.dot(out.acceleration);

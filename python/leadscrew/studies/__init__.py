@@ -66,7 +66,8 @@ from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep,
 from .drive_efficiency import efficiency_vs_mu, plot_efficiency_vs_mu
 from .end_stop import end_stop_jam, plot_end_stop_jam
 from .motor import motor_characteristics, plot_motor_characteristics
-from .preload import plot_preload_tradeoff, preload_tradeoff, preloaded_holding_band
+from .preload import (lift_off_spring_force, plot_preload_tradeoff, preload_tradeoff,
+                      preloaded_holding_band)
 from .holding import (
     alternating_scene,
     cycle_response,

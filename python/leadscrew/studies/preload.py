@@ -2,7 +2,9 @@
 
 The thesis's design compromise in one table: "a higher preload leads to a
 worse efficiency", but it holds the load against reversal and vibration.
-For each preload P of ``nut.preload`` on the scene's rigid drive:
+For each preload P of ``nut.preload`` on the scene's drive (the rigid
+concept's closed forms below; on the flexible concepts the axial stiffness
+comes from the simulation, last item):
 
 - **efficiency**: a speed-controlled motor raises the static load ``load``
   (the scene's static axial force by default) as in
@@ -26,6 +28,21 @@ For each preload P of ``nut.preload`` on the scene's rigid drive:
   (raise and lower torques of both halves) contains the drive torque at both
   extremes of the force, so the drive never slips (a stuck rigid drive is in
   static equilibrium: exact).
+
+On the flexible concepts (``flexible_nut``, ``flexible``, without play or
+with penalty play, where half A lifts off: docs/physics/preloaded_nut.md,
+"Lift-off") the efficiency and creep runs are the same simulations;
+``axial_stiffness`` is the simulated secant stiffness at the load, the
+vibration's force range 2 A over the range of the load's place beyond the
+thread's, u_load + h p phi_drive (the creep is the thread's turning), in
+the settled cycles: the nut's and screw's springs, the play and, beyond
+the lift-off, the split nut's spring; without play the thread holds the
+nut at any preload (no lift-off), and
+``held_reverse_load`` is where half A lifts off, P + k_p d_0
+(:func:`lift_off_spring_force`; P without play). ``efficiency_closed_form``
+and ``holds_closed_form`` stay the rigid drive's (the flexible drive's
+quasi-static thread forces; with play the spring's force in steady raising
+is P less k_p times half A's added penetration).
 """
 
 from __future__ import annotations
@@ -45,7 +62,8 @@ from ._holding_runs import (_alternating_excitation, _constant_torque, _scene_si
                             alternating_scene, check_cycles, cycle_response)
 from ._sweep import run_cases
 
-__all__ = ["preload_tradeoff", "plot_preload_tradeoff", "preloaded_holding_band"]
+__all__ = ["preload_tradeoff", "plot_preload_tradeoff", "preloaded_holding_band",
+           "lift_off_spring_force"]
 
 UNITS = {"preload": "N", "efficiency": "1", "efficiency_closed_form": "1",
          "relative_error": "1", "held_reverse_load": "N", "axial_stiffness": "N/m",
@@ -119,12 +137,48 @@ def _case(preload: float, scene, load: float, speed: float, t_end: float, amplit
     preloaded = scene.replace(nut={"preload": preload})
     out = _efficiency_case(preloaded, load, speed, t_end, options)
     excited = alternating_scene(preloaded, amplitude, frequency, offset=-load)
+    flexible = scene["concept"] != "rigid"
     creep = cycle_response(excited, frequency, cycles, settle_cycles, points_per_cycle,
-                           **options)
+                           series=flexible, **options)
     out["creep_per_cycle"] = creep["creep_per_cycle"]
     out["max_displacement"] = creep["max_displacement"]
     out["wall_time"] += creep["wall_time"]
+    if flexible:
+        # The simulated secant stiffness at the load: the force's range 2 A
+        # over the range of the load's place beyond the thread's, u_load +
+        # h p phi_drive (the springs' deflections and the play; the creep is
+        # the thread's turning), in the settled cycles.
+        result, thread = creep["result"], scene.thread
+        settled = creep["t"] >= settle_cycles / frequency
+        place = result["u_load"] + thread.hand_sign * thread.lead_per_radian * result["phi_drive"]
+        out["axial_stiffness"] = 2.0 * amplitude / float(np.ptp(place[settled]))
     return out
+
+
+def lift_off_spring_force(scene: Any) -> Optional[Tuple[float, float]]:
+    """Where half A of a preloaded nut with penalty play on a flexible concept
+    lifts off (docs/physics/preloaded_nut.md, "Lift-off"): the spring's force
+    P + k_p d_0 [N] and d_0 [m], half A's flank penetrated at the preload (the
+    core starts the nut assembled there: its play position is c/2 + d_0).
+
+    Args:
+        scene: a :class:`~leadscrew.Scene` (or scene dict) with ``nut.preload`` > 0.
+
+    Returns:
+        (P + k_p d_0, d_0), or None where half A does not lift off (the rigid
+        concept, no play, no preload).
+
+    Raises:
+        ValueError: the scene's check.
+    """
+    scene = as_scene(scene)
+    preload = float(scene["nut"]["preload"])
+    contact = scene["backlash"]["contact"] if "backlash" in scene else None
+    if scene["concept"] == "rigid" or contact not in ("bistop", "cubic") or preload <= 0.0:
+        return None
+    parameters = scene.model().parameters
+    penetration = abs(parameters.play_position) - 0.5 * parameters.clearance
+    return preload + float(scene["nut"]["preload_stiffness"]) * penetration, penetration
 
 
 def preload_tradeoff(
@@ -146,15 +200,14 @@ def preload_tradeoff(
 ) -> pd.DataFrame:
     """Efficiency, axial stiffness and creep against the split nut's preload.
 
-    Each preload runs the scene (rigid concept, exact Coulomb: what a
-    preloaded nut supports) with ``nut.preload`` = P twice: raising the
+    Each preload runs the scene (exact Coulomb: what a preloaded nut
+    supports; any concept, the flexible ones' stiffness simulated) with ``nut.preload`` = P twice: raising the
     static load ``load`` at ``speed``, and at rest under the load plus the
     vibration with the scene's constant drive torque (module docstring).
     The static load presses along -x, so half A bears on its flank.
 
     Args:
-        scene: a :class:`~leadscrew.Scene` (or scene dict), concept "rigid"
-            with a constant ``loads.drive_torque`` (the torque the drive holds
+        scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant ``loads.drive_torque`` (the torque the drive holds
             against; 0 for a scene without one).
         preloads: the preloads P [N], >= 0.
         load: the static load [N], > 0 (default: the magnitude of the scene's
@@ -186,14 +239,12 @@ def preload_tradeoff(
         ``excitation_from``, ``raised``, ``raised_reasons``.
 
     Raises:
-        ValueError: invalid scene (not rigid, no constant drive torque, no
-            static load and no ``load``) or arguments.
+        ValueError: invalid scene (what a preloaded nut refuses, no
+            constant drive torque, no static load and no ``load``) or
+            arguments.
         TypeError: an unknown keyword in ``simulate_options``.
     """
     scene = as_scene(scene)
-    if scene["concept"] != "rigid":
-        raise ValueError(f"concept = {scene['concept']!r} is invalid for preload_tradeoff: a "
-                         "preloaded nut is supported on the rigid concept (concept = 'rigid')")
     preloads = check_grid("preloads", preloads, allow_zero=True, unit="N")
     if "motor" in scene:
         raise ValueError("motor = {'type': 'dc', ...} is invalid for preload_tradeoff: its "
@@ -227,10 +278,16 @@ def preload_tradeoff(
     stiffness = float(scene["nut"]["preload_stiffness"])
     reversed_load = max(0.0, amplitude - load)  # the vibration's peak on half B's side
     rows = []
+    flexible = scene["concept"] != "rigid"
     for preload, expected, outcome in zip(preloads, closed, outcomes):
         value = outcome.value or {}
         eta = numeric_or_nan(value.get("efficiency"))
-        if preload >= reversed_load:
+        held = preload
+        if flexible:  # simulated; half A lifts off at the spring's P + k_p d_0
+            secant = numeric_or_nan(value.get("axial_stiffness"))
+            lift_off = lift_off_spring_force(scene.replace(nut={"preload": preload}))
+            held = lift_off[0] if lift_off else preload
+        elif preload >= reversed_load:
             secant = math.inf
         else:
             secant = (stiffness * reversed_load / (reversed_load - preload) if stiffness > 0
@@ -244,7 +301,7 @@ def preload_tradeoff(
         rows.append({
             "preload": preload, "efficiency": eta, "efficiency_closed_form": float(expected),
             "relative_error": abs(eta - expected) / expected if expected > 0 else abs(eta),
-            "held_reverse_load": preload, "axial_stiffness": secant,
+            "held_reverse_load": held, "axial_stiffness": secant,
             "creep_per_cycle": numeric_or_nan(value.get("creep_per_cycle")),
             "max_displacement": numeric_or_nan(value.get("max_displacement")),
             "holds_closed_form": all(low < torque < high or low == torque == high

@@ -187,6 +187,9 @@ class DriveDynamics {
   // small has no reliable sign (64 ulp of the sum |W_T,i v_i| it cancels).
   double slip_noise() const noexcept { return slip_noise_; }
   double penalty_normal_force() const noexcept { return penalty_.normal_force; }
+  // A preloaded nut's lift-off spring force S at the state last set [N]
+  // (elements/preloaded_nut.hpp; 0 without one).
+  double preload_spring_force() const noexcept { return preload_spring_; }
   double elastic_energy() const noexcept { return elastic_; }
   // Potential of the penalty flanks at the state last set: evaluated on request
   // (outputs and the energy account), not in every set_state of the right-hand side.
@@ -246,6 +249,7 @@ class DriveDynamics {
   double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0, slip_noise_ = 0.0;
   double elastic_ = 0.0;
   elements::ThreadPair::Penalty penalty_;  // the penalty flanks at the state set
+  double preload_spring_ = 0.0;            // a lift-off nut's spring force S
   double damping_power_ = 0.0;
   double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;

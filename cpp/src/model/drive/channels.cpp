@@ -25,6 +25,10 @@ std::vector<std::string> drive_channel_names(const DriveModel& model) {
   }
   // The end stops' force on the load along +u (elements/end_stop.hpp).
   if (model.parameters().end_stops != EndStopContact::none) names.push_back("stop_force");
+  // A lift-off preloaded nut (elements/preloaded_nut.hpp).
+  if (model.preloaded_nut() && model.preloaded_nut()->lift_off)
+    for (const char* name : {"preload_force", "normal_force_a", "flank_normal"})
+      names.push_back(name);
   const int n = model.coordinate_count();
   for (int i = 1; i < n - 1; ++i) {
     const std::string& name = model.coordinate_names()[i];
@@ -85,6 +89,11 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
     for (const elements::EndStop& stop : model.elements().end_stops())
       stop_force += stop.force_on_load(q[model.load()], v[model.load()]);
     out[k++] = stop_force;
+  }
+  if (model.preloaded_nut() && model.preloaded_nut()->lift_off) {
+    out[k++] = state.preload_force;
+    out[k++] = state.normal_force_a;
+    out[k++] = state.flank_normal;
   }
   for (int i = 1; i < n - 1; ++i) {
     out[k++] = q[i];

@@ -35,6 +35,9 @@ struct ChannelState {
   // The exact end stops' force on the load [N] (the penalty stops' follows
   // from q and v).
   double stop_force = 0.0;
+  // A lift-off preloaded nut's: the spring force S [N], half A's normal
+  // force [N] and |N_A| + |N_B| [N] (elements/preloaded_nut.hpp).
+  double preload_force = 0.0, normal_force_a = 0.0, flank_normal = 0.0;
 };
 
 // From the state last set in dynamics.

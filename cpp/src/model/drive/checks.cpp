@@ -61,10 +61,17 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   }
   spec.load_forces = {"axial_force"};
   spec.load_torques = {"drive_torque"};
-  if (const elements::PreloadedNut* nut = model.preloaded_nut())
+  if (const elements::PreloadedNut* nut = model.preloaded_nut(); nut && nut->lift_off) {
+    // A lift-off nut: its channel |N_A| + |N_B| (half A's force is the
+    // penalty flanks', the spring's changes with the play), its spring's rate.
+    spec.normal = "flank_normal";
+    stiffness += nut->stiffness;
+    spec.force_factor = std::sqrt(2.0 * stiffness);
+  } else if (nut) {
     spec.flank_normal = [nut = *nut](double normal, double friction) {
       return nut.flank_normal(normal, friction);
     };
+  }
   // (the drive torque is the rotor's: n times it acts on the driven part)
   spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
   spec.length_scale = p.screw_length;

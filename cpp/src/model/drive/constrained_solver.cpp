@@ -55,6 +55,14 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
     ydot[bristle + 1] = stored;
     energy[kFrictionLoss] -= stored;
   }
+  // A lift-off nut's half B slipping on its own flank: its friction works on
+  // its slip gamma_T - sin(a) e', not on gamma_T (preloaded_nut.hpp).
+  if (const elements::PreloadedNut* nut = model.preloaded_nut();
+      nut && nut->lift_off && h_.mode_.friction == FrictionMode::slip &&
+      h_.mode_.contact == ThreadContact::penalty)
+    energy[kFrictionLoss] += nut->sin_lead *
+                             nut->split_friction(h_.mode_.slip_sign, dynamics.preload_spring_force()) *
+                             dynamics.play_rate();
   energy[kDampingLoss] = dynamics.damping_power();
   energy[kContactLoss] = dynamics.contact_loss_power();
   for (const std::unique_ptr<Element>& element : h_.elements_) element->rates(t, y, ydot, energy);
@@ -79,6 +87,19 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
   if (forces.stick) state.slip_velocity = 0.0;
   for (const std::unique_ptr<Element>& element : h_.elements_) element->output(t, y, state);
+  // A lift-off nut: its spring, half A's normal force and both halves' (the
+  // normal force mu' multiplies, half B at its slip's or the stick force's edge).
+  if (const elements::PreloadedNut* nut = h_.model_.preloaded_nut(); nut && nut->lift_off) {
+    const DriveDynamics& dynamics = h_.dynamics_;
+    state.preload_force = dynamics.preload_spring_force();
+    state.normal_force_a = dynamics.penalty_normal_force();
+    state.flank_normal =
+        h_.mode_.friction == FrictionMode::slip
+            ? std::abs(state.normal_force_a) +
+                  std::abs(nut->normal(h_.mode_.slip_sign, state.preload_force))
+            : nut->split_flank_normal(state.normal_force_a, state.preload_force,
+                                      s.friction_force);
+  }
   return state;
 }
 

@@ -32,6 +32,11 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
         // cone by construction): the stick ends where the prescribed slip
         // leaves zero, either way.
         g[0] = std::abs(solver_->slip_velocity(y));
+      } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut() &&
+                 model_.preloaded_nut()->lift_off) {
+        g[0] = model_.preloaded_nut()->split_stick_margin(
+            dynamics_.penalty_normal_force(), dynamics_.preload_spring_force(), s.friction_force);
+        if (g[0] > 0.0) stick_from_zero_ = false;
       } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut()) {
         g[0] = model_.preloaded_nut()->stick_margin(s.normal_force, s.friction_force);
         if (g[0] > 0.0) stick_from_zero_ = false;
@@ -303,6 +308,11 @@ std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>
     // A penalty flank is entered (upper rising, lower falling) or left.
     touching_ = root_info[2] > 0 || root_info[3] < 0;
     kind = touching_ ? "flank contact" : "flank separation";
+    // A lift-off nut stuck keeps its friction across the crossing (half B's):
+    // stick or slip from exactly zero slip, not from the slip's round-off.
+    if (mode_.friction == FrictionMode::stick && model_.preloaded_nut() &&
+        model_.preloaded_nut()->lift_off)
+      zero_slip = true;
   }
   if (mode_.contact != ThreadContact::open) decide_friction(t, y, zero_slip, hint);
   slip_noise_event_ = root_info[0] != 0 && before.friction == FrictionMode::slip &&

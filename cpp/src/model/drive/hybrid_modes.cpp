@@ -96,8 +96,11 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   const bool regularized = resolution != friction::Resolution::set_valued;
   // A regularized law's friction on a penalty flank follows its penetration
   // (zero where it has none): no contact mode to track.
+  // (A lift-off nut's half B bears on its flank in open play too: friction.)
+  const elements::PreloadedNut* lift_off = model_.preloaded_nut();
+  if (lift_off && !lift_off->lift_off) lift_off = nullptr;
   if (mode_.contact == ThreadContact::open || model_.effective_mu() == 0.0 ||
-      (mode_.contact == ThreadContact::penalty && !touching_ && !regularized)) {
+      (mode_.contact == ThreadContact::penalty && !touching_ && !regularized && !lift_off)) {
     // No contact (an open play, or a penalty flank not penetrated), or a
     // frictionless flank: no stick, no slip, no friction events.
     mode_.friction = FrictionMode::none;
@@ -176,10 +179,16 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   // admissible even with the larger coefficient).
   if (const elements::PreloadedNut* nut = model_.preloaded_nut()) {
     // The preloaded nut: the LCP's decision by its three cases (its bound
-    // depends on the slip's direction; preloaded_nut.hpp).
-    const friction::FlankLcpResult r = nut->decide(c, d, alpha, beta);
+    // depends on the slip's direction; preloaded_nut.hpp). Lift-off: half
+    // A's normal force is the penalty flanks' (given), the edges constants.
+    const friction::FlankLcpResult r =
+        lift_off ? nut->decide_split(c, d, dynamics_.penalty_normal_force(),
+                                     dynamics_.preload_spring_force())
+                 : nut->decide(c, d, alpha, beta);
     ++lcp_solves_;
-    if (!r.consistent) jam("the preloaded nut's friction has no unique edge (Painleve regime)");
+    if (!r.consistent)
+      jam(lift_off ? "the preloaded nut's friction has no slip acceleration to decide by"
+                   : "the preloaded nut's friction has no unique edge (Painleve regime)");
     const int direction = sign_of(r.slip_acceleration);
     mode_.friction = direction == 0 && hint == 0 ? FrictionMode::stick : FrictionMode::slip;
     mode_.slip_sign = mode_.friction == FrictionMode::stick ? 0 : direction != 0 ? direction : hint;

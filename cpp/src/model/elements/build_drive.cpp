@@ -60,13 +60,15 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   if (p.nut_preload == 0.0) return;
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
-      ": a preloaded nut is supported on the rigid concept (concept = \"rigid\") with exact "
-      "Coulomb friction (friction.law = \"coulomb\", no mu_static) and initial.state = "
-      "\"relaxed\"";
-  if (p.concept != Concept::rigid)
-    throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) + "\"" +
-                          supported + " (the flexible concepts' lift-off of a half is not "
-                          "modelled)");
+      ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
+      "without play or with penalty flanks (backlash.contact = \"bistop\" or \"cubic\"), "
+      "with exact Coulomb friction (friction.law = \"coulomb\", no mu_static) and "
+      "initial.state = \"relaxed\"";
+  if (p.concept != Concept::rigid && p.backlash == BacklashContact::exact)
+    throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) +
+                          "\" and backlash.contact = \"exact\"" + supported +
+                          " (half A lifting off into exact play, its impacts with the spring's "
+                          "half on the other flank, is not modelled)");
   if (!e.thread->law().plain_coulomb()) {
     if (p.friction == "coulomb")  // Coulomb's law with a static coefficient above mu
       throw InvalidArgument("friction.mu_static = " + format_value(e.thread->law().mu_static()) +
@@ -92,9 +94,26 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   // Half A carries the axial load at t = 0 (its flank: the sign of the normal
   // force the load alone puts on the screw); half B bears on the other flank.
   // No load at t = 0: half A on the flank of lambda_N > 0.
-  const double force = p.axial_force(0.0) * e.thread->normal()[e.load.coordinate];
+  // (The thread's normal on the translating part: on the load where that
+  // part is rigid, on its contact body where it is flexible.)
+  double translating_normal = 0.0;
+  for (const int i : e.translating_group) translating_normal += e.thread->normal()[i];
+  const double force = p.axial_force(0.0) * translating_normal;
   const int loaded_side = force > 0.0 ? -1 : 1;
   nut.side = -loaded_side;
+  if (p.concept != Concept::rigid && p.backlash != BacklashContact::none) {
+    // Lift-off (preloaded_nut.hpp): half A, the nut body, on its penalty
+    // flank penetrated as far as the preload presses it.
+    if (!(p.nut_preload_stiffness > 0.0))
+      throw InvalidArgument("nut.preload_stiffness = " + format_value(p.nut_preload_stiffness) +
+                            " is invalid with nut.preload = " + format_value(p.nut_preload) +
+                            " and backlash.contact = \"" + backlash_contact_name(p.backlash) +
+                            "\" on concept = \"" + concept_name(p.concept) +
+                            "\": must be > 0 where the halves can move apart (the spring "
+                            "carries the load beyond what the preload holds)");
+    nut.lift_off = true;
+    nut.closing = 0.5 * p.clearance + e.thread->penetration_for(p.nut_preload);
+  }
   e.preloaded_nut = nut;
 }
 
@@ -375,7 +394,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
     require_finite(s.name + " damping", s.damping);
   }
 
-  e.thread.emplace(p, std::move(law), c, e.coordinate_count());
+  e.thread.emplace(p, law, c, e.coordinate_count());
   e.motor = Motor{rotor, p.speed_controlled, p.drive_torque, p.drive_speed, gear};
   if (p.dc_motor) {
     // The DC motor drives the rotor alone (the torque-controlled Motor applies 0).
@@ -411,6 +430,13 @@ DriveElements build_drive_elements(DriveParameters& p) {
   }
   e.load = AxialLoad{load, p.axial_force};
   build_preloaded_nut(p, e);
+  if (e.preloaded_nut && e.preloaded_nut->lift_off) {
+    // The assembled nut: half A on its flank at the preload (e_0 = -b
+    // closing, b = -side; initial.play_position is ignored, as on the rigid
+    // concept).
+    p.play_position = e.preloaded_nut->side * e.preloaded_nut->closing;
+    e.thread.emplace(p, law, c, e.coordinate_count());
+  }
   add_end_stops(p, load, e);
   return e;
 }

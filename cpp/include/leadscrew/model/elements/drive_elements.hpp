@@ -91,7 +91,7 @@ struct DriveElements {
   Motor motor;
   std::optional<DcMotor> dc_motor;  // on the rotor, its torque k_t i (Motor applies 0)
   AxialLoad load;
-  std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (rigid concept)
+  std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (any concept)
   std::vector<ExactEndStop> exact_stops;  // end_stops.contact = "exact" (not force elements)
   // The coordinates that turn with the rotor and those that translate with
   // the load in a rigid-body motion of the drive (consistent_velocity).

@@ -158,6 +158,78 @@ struct PreloadedNut {
     r.consistent = true;
     return r;
   }
+
+  // --- Lift-off: the flexible concepts with penalty flanks
+  // (docs/physics/preloaded_nut.md, "Lift-off"). Half A is the nut body's
+  // flank contact across the play (the thread pair's penalty flanks); half
+  // B a massless half on its own flank, taken rigid, sprung against the body
+  // by S = max(0, P + k_p (b e + closing)) with b = -side the direction of
+  // half B's flank in the play e and closing = c/2 + d_0 (d_0: half A's
+  // flank penetrated at P, the assembled nut's play e_0 = -b closing).
+  // Both halves slip with the thread's slip velocity (one friction mode). In
+  // slip s half B is the rigid concept's given force at S,
+  // N_B^s(S) W_N + T_B^s(S) W_T = side S grad(e) + T_B^s (W_T - sin(a) grad(e)):
+  // its friction works on its own slip gamma_T - sin(a) e' (it sits on its
+  // flank), the driver books that loss. In stick (and without friction) it
+  // is the spring's force side S grad(e), its friction in the stick force.
+  bool lift_off = false;
+  double closing = 0.0;  // c/2 + d_0 [m]
+
+  // The spring's force S [N] at the play e and its energy S^2 / (2 k_p) [J].
+  double spring_force(double play) const noexcept {
+    return std::max(0.0, preload + stiffness * (closing - side * play));
+  }
+  double spring_energy(double play) const noexcept {
+    const double force = spring_force(play);
+    return force * force / (2.0 * stiffness);
+  }
+  // Half B's normal force [N] on its flank at the spring force S while the
+  // nut slips in the direction s (its axial balance, as normal(s) at P).
+  double normal(int s, double spring) const noexcept {
+    return side * spring / (cos_lead - s * side * mu * sin_lead);
+  }
+  // The friction bound of slip s with half A's normal force N_A (the penalty
+  // flanks') and the spring force S: mu' (|N_A| + |N_B^s(S)|).
+  double split_bound(int s, double normal_a, double spring) const noexcept {
+    return mu * (std::abs(normal_a) + std::abs(normal(s, spring)));
+  }
+  // Half B's friction force in slip s.
+  double split_friction(int s, double spring) const noexcept {
+    return -s * mu * std::abs(normal(s, spring));
+  }
+  // The stick cone's margin at the net friction force T (>= 0 inside).
+  double split_stick_margin(double normal_a, double spring, double friction_force) const noexcept {
+    return (split_bound(-1, normal_a, spring) - friction_force) *
+           (split_bound(1, normal_a, spring) + friction_force);
+  }
+  // |N_A| + |N_B| with half B at the edge T heads for (the checks' normal).
+  double split_flank_normal(double normal_a, double spring, double friction_force) const noexcept {
+    return std::abs(normal_a) + std::abs(normal(edge_of(friction_force), spring));
+  }
+  // Stick or slip at zero slip (the LCP's three cases): with the slip
+  // acceleration x = c + d T, the edges T_+ = -b_+ and T_- = b_- are
+  // constants (half A's normal force is the penalty flanks', given).
+  friction::FlankLcpResult decide_split(double c, double d, double normal_a,
+                                        double spring) const {
+    friction::FlankLcpResult r;
+    if (!(d > 0.0)) return r;
+    r.status = lcp::Status::solved;
+    r.consistent = true;
+    const double up = -split_bound(1, normal_a, spring), down = split_bound(-1, normal_a, spring);
+    const double x_up = c + d * up, x_down = c + d * down;
+    if (x_up > 0.0) {
+      r.friction_force = up;
+      r.slip_acceleration = x_up;
+    } else if (x_down < 0.0) {
+      r.friction_force = down;
+      r.slip_acceleration = x_down;
+    } else {
+      r.friction_force = -c / d;
+      r.slip_acceleration = 0.0;
+    }
+    r.normal_force = normal_a;
+    return r;
+  }
 };
 
 // The steady raising efficiency of the rigid drive with a preloaded nut

@@ -286,8 +286,10 @@ void bind_drive(py::module_& m) {
   parameters.def_property(
       "gear", [](const DriveParameters& p) { return model::gear_type_name(p.gear); },
       [](DriveParameters& p, const std::string& v) { p.gear = model::parse_gear_type(v); },
-      "the gear stage between the rotor and the driven part: 'none' or 'ideal' (gear_ratio "
-      "rotor turns per turn of the driven part)");
+      "the gear stage between the rotor and the driven part: 'none', 'ideal' (gear_ratio "
+      "rotor turns per turn of the driven part), 'lossy' (gear_efficiency, "
+      "gear_efficiency_backdrive) or 'worm' (gear_lead_angle, gear_mu, gear_mu_static, "
+      "gear_flank_angle)");
   parameters.def_property(
       "end_stops",
       [](const DriveParameters& p) { return model::end_stop_contact_name(p.end_stops); },

@@ -35,6 +35,8 @@ struct ChannelState {
   // The exact end stops' force on the load [N] (the penalty stops' follows
   // from q and v).
   double stop_force = 0.0;
+  // The train's friction stages' loss integrals [J] (train_friction.hpp).
+  double motor_friction_loss = 0.0, gear_loss = 0.0;
 };
 
 // From the state last set in dynamics.

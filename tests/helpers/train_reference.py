@@ -1,0 +1,87 @@
+"""Closed forms of the drive train's friction stages on the rigid drive
+without play (issue 19, items 1 and 2; docs/physics/gear.md, "Friction
+stages"), written from the rotor's and the driven side's equations of
+motion, independent of the leadscrew package. SI units.
+
+The rotor (inertia J_r, motor torque T, Coulomb friction T_c) turns n times
+the driven part (angle phi, the screw with the thread and the load); every
+contact slips with the sign s of phi'. On phi:
+
+  rotor         n^2 J_r phi'' = U - x,       U = n T - |n| T_c s
+  stage         x = k tau_b                  (k = 1 / eta where the power flows
+                                              to the driven part, tau_b s > 0;
+                                              k = eta_b where it flows back)
+  driven side   phi'' = a tau_b + b F        (the bare rigid drive without the
+                                              rotor, rigid_drive_reference's
+                                              slip mode eps, its rotor inertia 0)
+
+so phi'' = (a U + k b F) / (k + a n^2 J_r). A combination (eps, power flow)
+is consistent where the thread's normal force has the sign eps assumes and
+tau_b s the stage's. A worm is the lossy law with eta = tan(g) / tan(g + rho'),
+eta_b = tan(g - rho') / tan(g), rho' = atan(mu / cos(beta_w / 2)).
+
+At a steady slip (phi'' = 0) the driven part takes its bare steady torque
+T_d (dc_motor_reference.steady_torque) = tau_b, so the rotor's torque is
+T = (k T_d + |n| T_c s) / n: the train's efficiency raising is eta times the
+thread's (with T_c = 0).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+from . import dc_motor_reference
+from .rigid_drive_reference import RigidDrive
+
+__all__ = ["worm_efficiencies", "slip_acceleration", "steady_rotor_torque"]
+
+
+def worm_efficiencies(lead_angle: float, mu: float, flank_angle: float):
+    """(eta, eta_b) of a worm of lead angle gamma [rad], coefficient mu and
+    included flank angle beta_w [rad]."""
+    rho = math.atan(mu / math.cos(flank_angle / 2))
+    return (math.tan(lead_angle) / math.tan(lead_angle + rho),
+            math.tan(lead_angle - rho) / math.tan(lead_angle))
+
+
+def _ratio(stage_sign: int, efficiency: float, efficiency_backdrive: float) -> float:
+    return 1.0 / efficiency if stage_sign > 0 else efficiency_backdrive
+
+
+def slip_acceleration(drive: RigidDrive, ratio: float, torque: float, force: float,
+                      direction: int, friction_torque: float = 0.0, efficiency: float = 1.0,
+                      efficiency_backdrive: float = 1.0) -> list:
+    """The accelerations phi'' [rad/s^2] of the driven part of every
+    consistent combination in a slip of sign ``direction``: the rotor of
+    ``drive`` (drive.rotor_inertia its own) behind the stage of ratio n,
+    under the rotor's torque T and the axial force F."""
+    driven = dataclasses.replace(drive, rotor_inertia=0.0)
+    reflected = ratio * ratio * drive.rotor_inertia
+    s = direction
+    u = ratio * torque - abs(ratio) * friction_torque * s
+    found = []
+    for eps in (1.0, -1.0):
+        a, b = driven.a(eps), driven.b(eps)
+        for stage_sign in (1, -1):
+            k = _ratio(stage_sign, efficiency, efficiency_backdrive)
+            acceleration = (a * u + k * b * force) / (k + a * reflected)
+            tau_b = (acceleration - b * force) / a
+            normal = float(driven.K(tau_b, force)) / (driven.cos_alpha * driven.delta(eps))
+            if normal != 0.0 and driven.h * s * math.copysign(1.0, normal) != eps:
+                continue
+            if stage_sign * s * tau_b < 0.0:
+                continue
+            found.append(acceleration)
+    return found
+
+
+def steady_rotor_torque(drive: RigidDrive, ratio: float, force: float, direction: int,
+                        friction_torque: float = 0.0, efficiency: float = 1.0,
+                        efficiency_backdrive: float = 1.0) -> float:
+    """The rotor's torque [N m] that keeps the driven part slipping at a
+    constant speed of the sign ``direction`` under the axial force F."""
+    driven_torque = dc_motor_reference.steady_torque(drive, force, direction)
+    stage_sign = 1 if driven_torque * direction > 0.0 else -1
+    k = _ratio(stage_sign, efficiency, efficiency_backdrive)
+    return (k * driven_torque + abs(ratio) * friction_torque * direction) / ratio

@@ -7,7 +7,9 @@ steady states and the train's efficiency, their self-locking, a worm that
 back-drives, the energy account with each stage's loss, the refusals, and
 the scene's fields."""
 
+import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
@@ -94,11 +96,11 @@ def test_zero_friction_torque_runs_bit_identically():
         np.testing.assert_array_equal(plain[name], zero[name], err_msg=name)
 
 
-def torque_ramp_run(friction_torque, ratio=3.0):
-    """The rigid drive behind an ideal stage at rest under F, its rotor's
-    torque ramped from 0 (torque-controlled: motor.friction_torque through
-    the core's parameters, the scene's motor section being the DC motor's)."""
-    scene = thesis_scene(rotor={"inertia": 1e-6}, gear={"type": "ideal", "ratio": ratio},
+def torque_ramp_run(friction_torque, gear):
+    """The rigid drive behind a stage at rest under F, its rotor's torque
+    ramped from 0 (torque-controlled: motor.friction_torque through the
+    core's parameters, the scene's motor section being the DC motor's)."""
+    scene = thesis_scene(rotor={"inertia": 1e-6}, gear=gear,
                          loads={"drive_torque": {"type": "table", "times": [0.0, 1.0],
                                                  "values": [0.0, 0.1]},
                                 "axial_force": -F})
@@ -111,17 +113,26 @@ def torque_ramp_run(friction_torque, ratio=3.0):
     return s, result
 
 
-def test_motor_friction_raises_the_breakaway_torque_by_its_value():
+@pytest.mark.parametrize("gear", [
+    {"type": "ideal", "ratio": 3.0},
+    {**LOSSY, "ratio": 3.0},
+    {**WORM, "ratio": 3.0, "mu_static": 0.08},
+])
+def test_breakaway_torque_through_the_train(gear):
     """The drive at rest starts where the rotor's torque reaches the raise
-    torque through the stage, T_d / n, plus the motor's friction T_c."""
+    torque through the stage at its static efficiency (a worm's from
+    mu_static), T_d / (n eta_static), plus the motor's friction T_c; T_c
+    raises it by itself."""
     t_c = 1e-3
-    s, result = torque_ramp_run(t_c)
+    s, result = torque_ramp_run(t_c, gear)
+    static = {**gear, "mu": gear["mu_static"]} if "mu_static" in gear else gear
+    eta, eta_b = efficiencies(static)
     drive = dc_motor_reference.rigid_drive(s.to_dict(), s.derived())
-    breakaway = reference.steady_rotor_torque(drive, 3.0, -F, 1, t_c)
+    breakaway = reference.steady_rotor_torque(drive, 3.0, -F, 1, t_c, eta, eta_b)
     start = result.events[0]
     assert start.kind == "stick->slip+"
     assert 0.1 * start.time == pytest.approx(breakaway, rel=1e-9)
-    _, plain = torque_ramp_run(0.0)
+    _, plain = torque_ramp_run(0.0, gear)
     assert 0.1 * (start.time - plain.events[0].time) == pytest.approx(t_c, rel=1e-9)
     assert "motor_friction_loss" in result.channels
     assert_losses_never_fall(result)
@@ -296,3 +307,57 @@ def test_the_stage_round_trips_through_toml_and_the_core_spec(tmp_path):
     assert (parameters.gear_mu, parameters.gear_mu_static) == (0.08, 0.1)
     assert parameters.gear_lead_angle == pytest.approx(math.radians(5.0), rel=1e-15)
     assert "gear" in ls.scene_schema.describe_schema()
+
+
+def test_check_reports_the_stage(capsys, tmp_path):
+    """``leadscrew check`` reports the stage's efficiencies (the worm's from
+    mu and mu_static), whether it is self-locking, and the motor's friction."""
+    from helpers.cli_runs import run_main
+
+    gear = {"type": "worm", "ratio": 40.0, "lead_angle": math.radians(4.0), "mu": 0.08,
+            "mu_static": 0.1}
+    scene = thesis_scene(loads={"axial_force": F}, gear=gear,
+                         motor={**DC_MOTOR, "friction_torque": 1e-3})
+    scene["loads"].pop("drive_torque")
+    path = tmp_path / "worm.toml"
+    ls.Scene.from_dict(scene).to_toml(path)
+    code, out, err = run_main(capsys, "check", str(path))
+    assert code == 0 and err == ""
+    eta, eta_b = efficiencies(gear)
+    eta_s, eta_b_s = reference.worm_efficiencies(gear["lead_angle"], 0.1, DEFAULT_FLANK)
+    assert eta_b < 0.0
+    assert (f"  efficiency {eta:.6g} rotor -> driven part, {eta_b:.6g} back (at breakaway "
+            f"{eta_s:.6g}, {eta_b_s:.6g}); self-locking: yes") in out
+    assert "motor friction: 0.001 N*m on the rotor" in out
+    lossy = thesis_scene(gear=LOSSY)
+    ls.Scene.from_dict(lossy).to_toml(path)
+    code, out, _ = run_main(capsys, "check", str(path))
+    assert "  efficiency 0.7 rotor -> driven part, 0.4 back; self-locking: no" in out
+
+
+@pytest.mark.parametrize("rotor_inertia, jams", [(1e-7, True), (1e-4, False)])
+def test_a_light_rotor_behind_a_self_locking_stage_jams(rotor_inertia, jams):
+    """The stage's Painleve paradox: where eta_b + n^2 J_rotor a_driven <= 0
+    (a_driven the driven side's acceleration per unit torque on it), driving
+    forward makes the forward combination and the backward one (both sides
+    pushing into the stage, a negative effective inertia) consistent at
+    once: JammingError naming the stage's margin. A heavier rotor runs."""
+    gear = {"type": "lossy", "ratio": 3.0, "efficiency": 0.5, "efficiency_backdrive": -0.16}
+    scene = thesis_scene(rotor={"inertia": rotor_inertia}, gear=gear,
+                         friction={"law": "coulomb", "mu": 0.005},
+                         loads={"drive_torque": 0.01, "axial_force": 5.0})
+    s = ls.Scene.from_dict(scene)
+    drive = dc_motor_reference.rigid_drive(s.to_dict(), s.derived())
+    driven = dataclasses.replace(drive, rotor_inertia=0.0)
+    margin = min(-0.16 + 9.0 * rotor_inertia * driven.a(eps) for eps in (1.0, -1.0))
+    assert (margin <= 0.0) == jams
+    if not jams:
+        result = ls.simulate(s, 0.1)
+        assert result["omega_drive"][-1] > 0.0
+        assert_losses_never_fall(result)
+        return
+    with pytest.raises(ls.JammingError) as info:
+        ls.simulate(s, 0.1)
+    found = re.search(r"the gear stage's Painleve margin eta_b \+ n\^2 J_rotor a_driven = "
+                      r"(\S+) \(<= 0", str(info.value))
+    assert found and float(found.group(1)) == pytest.approx(margin, rel=1e-9)

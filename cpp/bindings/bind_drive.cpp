@@ -323,6 +323,26 @@ void bind_drive(py::module_& m) {
                                return out;
                              })
       .def_property_readonly("effective_mu", &model::DriveModel::effective_mu)
+      .def_property_readonly(
+          "train_friction",
+          [](const model::DriveModel& d) -> py::object {
+            const model::elements::TrainFriction* f = d.train_friction();
+            if (!f) return py::none();
+            py::dict out;
+            out["motor_friction_torque"] = f->motor_friction;
+            out["stage"] = f->stage;
+            out["efficiency"] = f->efficiency;
+            out["efficiency_backdrive"] = f->efficiency_backdrive;
+            out["efficiency_static"] = f->efficiency_static;
+            out["efficiency_backdrive_static"] = f->efficiency_backdrive_static;
+            out["self_locking"] = f->self_locking();
+            return out;
+          },
+          "The train's friction stages (docs/physics/gear.md, \"Friction stages\"), None "
+          "without: dict with motor_friction_torque [N m] (on the rotor), stage (a lossy or "
+          "worm stage), the stage's efficiencies forward and backward in slip and at "
+          "breakaway (a worm's from mu and mu_static; 1 without a stage), and self_locking "
+          "(the backward one at breakaway <= 0).")
       .def(
           "initial_state",
           [](const model::DriveModel& d) {

@@ -138,15 +138,17 @@ class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
   void rhs(double t, const double* y, double* ydot) override;
   ChannelState output(double t, const double* y, ContactForces& forces) override;
 
-  // At the state set, at zero slip: the direction in which a slip starts
-  // consistently (+-1), or 0 where neither does (stick); `hint` (+-1: a
-  // stick's root fired for that direction) is taken where neither starts.
+  // At the state set, at zero slip: 0 where the train can stick (the static
+  // test, stick_margin >= 0, and hint 0), else the direction in which a
+  // slip starts consistently (+-1; both, or two combinations: JammingError);
+  // `hint` (+-1: a stick's root fired for that direction) is taken where
+  // neither starts.
   int breakaway(int hint);
-  // In stick, at the state set: min over the directions s of -s phi''_s,
-  // the breakaway acceleration of the consistent combination (positive
-  // while neither starts; 1 for a direction where none is consistent).
+  // At the state set: the static stick test's margin, >= 0 iff some split
+  // of the holding torque between the motor's friction, the stage (its
+  // static efficiencies) and the thread (its cone) holds the loads.
   double stick_margin();
-  // The direction whose breakaway is nearer (the stick root's).
+  // The direction in which the loads leave the static test (its smaller margin).
   int exit_direction();
   // In slip, at the state set: the stage's torque on the driven part tau_b
   // (its sign is the power flow's with the slip's; a root where it changes).
@@ -171,6 +173,9 @@ class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
   double coordinate_torque() const;
   Solution slip(int s, bool breakaway, double torque, double force);
   Solution stick(double torque, double force) const;
+  void thread_holds(double force, double& lo, double& hi) const;
+  void static_margins(double& up, double& down) const;
+  std::string stage_regime(bool breakaway) const;
   Solution solve();
 
   const elements::TrainFriction& train_;

@@ -18,8 +18,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "driver_element.hpp"
+#include "leadscrew/core/validate.hpp"
 #include "mode_solver.hpp"
 
 namespace leadscrew::model::drive {
@@ -58,8 +60,9 @@ double DriveHybrid::TrainSolver::coordinate_torque() const {
   return torque;
 }
 
-// The consistent combination of the signs in a slip s (breakaway: the
-// stages' static coefficients, at rest); count 0: none.
+// The consistent combination of the signs in a slip s (breakaway: a start
+// at rest, with the stages' static coefficients, accelerating in s); count
+// 0: none, > 1: several with different motions.
 DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::slip(int s, bool breakaway,
                                                                   double torque, double force) {
   const double R = train_.rotor_inertia;
@@ -83,6 +86,7 @@ DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::slip(int s, bool br
       x.friction_force = c.friction_q * Q + c.friction_f * force;
       if (sigma * x.normal_force < 0.0) continue;
       if (train_.stage && stage_sign * s * x.stage_torque < 0.0) continue;
+      if (breakaway && !(s * x.acceleration > 0.0)) continue;  // no start in s
       if (best.count > 0 &&
           std::abs(x.acceleration - best.acceleration) >
               kSameMotion * (std::abs(x.acceleration) + std::abs(best.acceleration))) {
@@ -104,33 +108,61 @@ DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::slip(int s, bool br
   return best;
 }
 
+// The torques Q on phi the thread holds at rest under the axial force F:
+// its stick cone |T| <= mu' |N| as an interval of Q (the edges T = +-mu' N;
+// a single point, 0, without F).
+void DriveHybrid::TrainSolver::thread_holds(double force, double& lo, double& hi) const {
+  lo = hi = 0.0;
+  if (force == 0.0) return;
+  const double mu = h_.stick_mu();
+  const LoadCoefficients& N = stick_.normal_force;
+  const LoadCoefficients& T = stick_.friction_force;
+  const double plus =
+      -(T.per_force - mu * N.per_force) * force / (T.per_torque - mu * N.per_torque);
+  const double minus =
+      -(T.per_force + mu * N.per_force) * force / (T.per_torque + mu * N.per_torque);
+  lo = std::min(plus, minus);
+  hi = std::max(plus, minus);
+}
+
+// The static stick test (Coulomb's static solution, exact): the train holds
+// at rest iff some split of the holding torque keeps every contact in its
+// set: the thread's torque tau_b in [lo, hi] (thread_holds), the stage's
+// rotor-side torque x between eta_b tau_b and tau_b / eta (its static
+// efficiencies), and x within |n| T_c of the motor's torque U. Over tau_b in
+// [lo, hi] the stage's x fill [m_lo, m_hi] (the segments' ends are concave
+// and convex in tau_b: their extremes are at lo or hi), so the margins of
+// both directions are m_hi - (U - |n| T_c) and (U + |n| T_c) - m_lo.
+void DriveHybrid::TrainSolver::static_margins(double& up, double& down) const {
+  const double torque = coordinate_torque();
+  const double force = h_.p_.axial_force(h_.dynamics_.time());
+  double lo, hi;
+  thread_holds(force, lo, hi);
+  const double k_forward = train_.torque_ratio(1, true), k_backward = train_.torque_ratio(-1, true);
+  double m_lo = std::numeric_limits<double>::infinity(), m_hi = -m_lo;
+  for (double tau : {lo, hi}) {
+    const double a = k_backward * tau, b = k_forward * tau;
+    m_lo = std::min(m_lo, std::min(a, b));
+    m_hi = std::max(m_hi, std::max(a, b));
+  }
+  const double c = train_.motor_friction_bound();
+  up = m_hi - (torque - c);
+  down = (torque + c) - m_lo;
+}
+
 // Stick: the thread carries as much of the motor's torque as its cone
 // allows; the stage and the motor's friction hold the rest (the split
 // between serial friction contacts at rest is statically indeterminate).
 DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::stick(double torque,
                                                                    double force) const {
-  const double mu = h_.stick_mu();
-  const LoadCoefficients& N = stick_.normal_force;
-  const LoadCoefficients& T = stick_.friction_force;
-  double held = torque;
-  if (std::abs(T(torque, force)) > mu * std::abs(N(torque, force))) {
-    // The torques on phi at the cone's two edges T = +-mu' N, for this F.
-    double lo = 0.0, hi = 0.0;
-    if (force != 0.0) {
-      const double plus = -(T.per_force - mu * N.per_force) * force /
-                          (T.per_torque - mu * N.per_torque);
-      const double minus = -(T.per_force + mu * N.per_force) * force /
-                           (T.per_torque + mu * N.per_torque);
-      lo = std::min(plus, minus);
-      hi = std::max(plus, minus);
-    }
-    held = std::clamp(torque, lo, hi);
-  }
+  double lo, hi;
+  thread_holds(force, lo, hi);
+  const double held = std::clamp(torque, lo, hi);
   Solution x;
   x.torque = torque / train_.ratio;
   x.axial_force = force;
-  x.normal_force = N(held, force);
-  x.friction_force = T(held, force);
+  x.normal_force = stick_.normal_force(held, force);
+  x.friction_force = stick_.friction_force(held, force);
   x.stage_torque = held;
   x.count = 1;
   return x;
@@ -142,13 +174,32 @@ DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::solve() {
   if (h_.mode_.friction != FrictionMode::slip) return stick(torque, force);
   Solution x = slip(h_.mode_.slip_sign, false, torque, force);
   if (x.count == 0) h_.jam("no combination of the signs of the thread's normal force and the "
-                           "gear stage's power flow is consistent");
+                           "gear stage's power flow is consistent" + stage_regime(false));
   if (x.count > 1) h_.jam("two combinations of the signs of the thread's normal force and the "
-                          "gear stage's power flow are consistent");
+                          "gear stage's power flow are consistent" + stage_regime(false));
   return x;
 }
 
+// Stick where the static test admits it (with hint 0: not at a stick's
+// root); otherwise the direction whose slip starts consistently.
+// The stage's own Painleve regime, for a jam's report: its backward
+// combination's effective inertia eta_b + n^2 J_rotor a_d (a_d = A / (1 - A R),
+// the driven side's response to a torque on it) is not positive for some
+// slip state: a rotor too light behind a self-locking stage (eta_b <= 0).
+std::string DriveHybrid::TrainSolver::stage_regime(bool breakaway) const {
+  if (!train_.stage) return "";
+  const double R = train_.rotor_inertia, eta_b = train_.torque_ratio(-1, breakaway);
+  double margin = std::numeric_limits<double>::infinity();
+  for (const auto& by_sigma : thread_)
+    for (const ThreadSlip& c : by_sigma) margin = std::min(margin, eta_b + c.a * R / (1.0 - c.a * R));
+  return "; the gear stage's Painleve margin eta_b + n^2 J_rotor a_driven = " +
+         format_value(margin) + (margin <= 0.0 ? " (<= 0: a rotor too light behind a "
+                                                 "self-locking stage)"
+                                               : " (> 0)");
+}
+
 int DriveHybrid::TrainSolver::breakaway(int hint) {
+  if (hint == 0 && stick_margin() >= 0.0) return 0;
   const double torque = coordinate_torque();
   const double force = h_.p_.axial_force(h_.dynamics_.time());
   bool starts[2];
@@ -156,35 +207,28 @@ int DriveHybrid::TrainSolver::breakaway(int hint) {
     const Solution x = slip(s, true, torque, force);
     if (x.count > 1)
       h_.jam("two combinations of the signs of the thread's normal force and the gear stage's "
-             "power flow start a slip at rest");
-    starts[s > 0 ? 0 : 1] = x.count == 1 && s * x.acceleration > 0.0;
+             "power flow start a slip at rest where the train cannot stick" + stage_regime(true));
+    starts[s > 0 ? 0 : 1] = x.count == 1;
   }
-  if (starts[0] && starts[1]) h_.jam("a slip starts consistently in both directions at rest");
+  if (starts[0] && starts[1])
+    h_.jam("a slip starts consistently in both directions at rest" + stage_regime(true));
   if (starts[0]) return 1;
   if (starts[1]) return -1;
-  return hint;
+  // Neither start is consistent at the static test's edge (its round-off):
+  // the direction the loads leave it in.
+  return hint != 0 ? hint : exit_direction();
 }
 
 double DriveHybrid::TrainSolver::stick_margin() {
-  const double torque = coordinate_torque();
-  const double force = h_.p_.axial_force(h_.dynamics_.time());
-  double margin = 1.0;
-  for (int s : {1, -1}) {
-    const Solution x = slip(s, true, torque, force);
-    margin = std::min(margin, x.count == 1 ? -s * x.acceleration : 1.0);
-  }
-  return margin;
+  double up, down;
+  static_margins(up, down);
+  return std::min(up, down);
 }
 
 int DriveHybrid::TrainSolver::exit_direction() {
-  const double torque = coordinate_torque();
-  const double force = h_.p_.axial_force(h_.dynamics_.time());
-  double margin[2];
-  for (int s : {1, -1}) {
-    const Solution x = slip(s, true, torque, force);
-    margin[s > 0 ? 0 : 1] = x.count == 1 ? -s * x.acceleration : 1.0;
-  }
-  return margin[0] <= margin[1] ? 1 : -1;
+  double up, down;
+  static_margins(up, down);
+  return up <= down ? 1 : -1;
 }
 
 double DriveHybrid::TrainSolver::stage_torque() { return solve().stage_torque; }

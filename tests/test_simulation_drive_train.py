@@ -239,6 +239,8 @@ REFUSED = [
     (dict(friction={"law": "arctan_velocity", "mu": 0.3}), LOSSY, "friction.law"),
     (dict(nut={"preload": 20.0}), LOSSY, "nut.preload"),
     (dict(end_stops={"lower": -0.01, "upper": 0.01, "stiffness": 1e6}), WORM, "end_stops"),
+    (dict(initial={"state": "equilibrium"}), LOSSY, "initial.state"),
+    (dict(friction={"law": "coulomb", "mu": 80.0}), LOSSY, "a torque cannot drive the thread"),
 ]
 
 
@@ -306,7 +308,26 @@ def test_the_stage_round_trips_through_toml_and_the_core_spec(tmp_path):
     assert parameters.gear == "worm"
     assert (parameters.gear_mu, parameters.gear_mu_static) == (0.08, 0.1)
     assert parameters.gear_lead_angle == pytest.approx(math.radians(5.0), rel=1e-15)
-    assert "gear" in ls.scene_schema.describe_schema()
+
+
+def test_the_schema_documents_every_stage_field():
+    text = ls.scene_schema.describe_schema()
+    for key, unit in (("type", None), ("efficiency", None), ("efficiency_backdrive", None),
+                      ("lead_angle", "rad"), ("mu", None), ("mu_static", None),
+                      ("flank_angle", "rad")):
+        line = next(line for line in text.splitlines() if line.startswith(f"gear.{key} "))
+        if unit:
+            assert f"[{unit}]" in line
+    line = next(line for line in text.splitlines() if line.startswith("motor.friction_torque"))
+    assert "[N*m] (default 0.0)" in line and "motor_friction_loss" in line
+
+
+def test_a_drive_without_stages_has_no_new_channel():
+    """Without a friction stage nothing is added: no channel (nor state: the
+    stepper's channels are the run's)."""
+    result = ls.simulate(ls.Scene.from_dict(thesis_scene(gear={"ratio": 3.0})), 0.05)
+    assert "gear_loss" not in result.channels and "motor_friction_loss" not in result.channels
+    assert ls.Scene.from_dict(thesis_scene(gear={"ratio": 3.0})).model().train_friction is None
 
 
 def test_check_reports_the_stage(capsys, tmp_path):

@@ -309,7 +309,9 @@ SCHEMA: Dict[str, Any] = {
                                  "rigid concept without play with exact Coulomb friction on "
                                  "the thread (friction.law = 'coulomb' without mu_static), no "
                                  "end stops and no nut.preload (docs/physics/gear.md, "
-                                 "'Friction stages')", "N*m", 0.0, **NONNEGATIVE),
+                                 "'Friction stages'; a torque-controlled rotor takes it "
+                                 "through the core's DriveParameters.motor_friction_torque)",
+                                 "N*m", 0.0, **NONNEGATIVE),
     },
     # (Absent: no gear stage; the rotor turns the driven part directly.)
     "gear": {

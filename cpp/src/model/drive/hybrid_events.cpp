@@ -33,7 +33,7 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
         // leaves zero, either way.
         g[0] = std::abs(solver_->slip_velocity(y));
       } else if (mode_.friction == FrictionMode::stick && train_) {
-        g[0] = train_->stick_margin();  // > 0 while neither direction starts
+        g[0] = train_->stick_margin();  // the static stick test: >= 0 while it holds
         if (g[0] > 0.0) stick_from_zero_ = false;
       } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut()) {
         g[0] = model_.preloaded_nut()->stick_margin(s.normal_force, s.friction_force);

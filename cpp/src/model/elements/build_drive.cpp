@@ -91,6 +91,11 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   if (!e.thread->law().plain_coulomb())
     throw InvalidArgument(what + needs + "; friction.law = \"" + p.friction +
                           "\" (or a friction.mu_static above friction.mu)");
+  const double alpha = p.thread.lead_angle();
+  if (!(std::cos(alpha) - e.thread->effective_mu() * std::sin(alpha) > 0.0))
+    throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
+                          ": a torque cannot drive the thread (mu' >= cot(lead angle)), so its "
+                          "holding torques at rest form no interval");
   if (p.nut_preload > 0.0)
     throw InvalidArgument(what + needs + "; nut.preload = " + format_value(p.nut_preload));
   if (p.end_stops != EndStopContact::none)

@@ -34,7 +34,7 @@ import math
 from . import dc_motor_reference
 from .rigid_drive_reference import RigidDrive
 
-__all__ = ["worm_efficiencies", "slip_acceleration", "steady_rotor_torque"]
+__all__ = ["worm_efficiencies", "slip_acceleration", "steady_rotor_torque", "holds_at_rest"]
 
 
 def worm_efficiencies(lead_angle: float, mu: float, flank_angle: float):
@@ -85,3 +85,27 @@ def steady_rotor_torque(drive: RigidDrive, ratio: float, force: float, direction
     stage_sign = 1 if driven_torque * direction > 0.0 else -1
     k = _ratio(stage_sign, efficiency, efficiency_backdrive)
     return (k * driven_torque + abs(ratio) * friction_torque * direction) / ratio
+
+
+def holds_at_rest(drive: RigidDrive, ratio: float, torque: float, force: float,
+                  friction_torque: float = 0.0, efficiency: float = 1.0,
+                  efficiency_backdrive: float = 1.0, samples: int = 51) -> bool:
+    """Coulomb's static solution: some torque tau_b on the driven part that
+    its thread holds at rest (|T_st| <= mu' |N_st|, the reference's stick
+    forces, linear in tau_b: an interval between the edges T_st = +-mu' N_st)
+    for which the stage's rotor-side torque x (between eta_b tau_b and
+    tau_b / eta) lies within |n| T_c of n T; tau_b sampled over the interval,
+    its edges included."""
+    driven = dataclasses.replace(drive, rotor_inertia=0.0)
+    mu = driven.mu_eff
+    n0, t0 = (float(v) for v in driven.stick_forces(0.0, force))
+    n1, t1 = (float(v) - w for v, w in zip(driven.stick_forces(1.0, force), (n0, t0)))
+    edges = [-(t0 - c * mu * n0) / (t1 - c * mu * n1) for c in (1.0, -1.0)]
+    low_edge, high_edge = min(edges), max(edges)
+    u, c = ratio * torque, abs(ratio) * friction_torque
+    for k in range(samples):
+        tau = low_edge + (high_edge - low_edge) * k / (samples - 1)
+        low, high = sorted((efficiency_backdrive * tau, tau / efficiency))
+        if low <= u + c and high >= u - c:
+            return True
+    return False

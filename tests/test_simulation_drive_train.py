@@ -431,3 +431,37 @@ def test_the_static_stick_test_is_no_start_in_the_regular_regime():
                 assert phi_dd == pytest.approx(starts[0], rel=1e-9)
             simulated += 1
     assert min(outcomes.values()) > 50
+
+
+def test_a_sine_driven_train_meets_the_mode_by_mode_reference():
+    """A sine torque through a lossy stage with the motor's friction, against
+    a thread that self-locks under a constant load: stick, slips both ways,
+    the stage's power flow reversing within them. The friction mode changes
+    (train_reference.simulate: the consistent combination's acceleration
+    integrated mode by mode, the static stick test bisected) to 1e-8 s, the
+    driven part's speed to 1e-9 of its range."""
+    gear = {"type": "lossy", "ratio": 3.0, "efficiency": 0.7, "efficiency_backdrive": 0.4}
+    t_c, amplitude, omega_load = 2e-3, 0.03, 4.0 * math.pi
+    scene = thesis_scene(rotor={"inertia": 1e-5}, gear=gear,
+                         loads={"drive_torque": {"type": "sine", "amplitude": amplitude,
+                                                 "omega": omega_load},
+                                "axial_force": -10.0})
+    s = ls.Scene.from_dict(scene)
+    parameters = s.model().parameters
+    parameters.motor_friction_torque = t_c
+    t = np.linspace(0.0, 1.0, 101)
+    arguments = _drive_arguments(1.0, None, None, 1e-10, 1e-12, None, None, list(t),
+                                 1_000_000, 100_000, None, None, None, None)
+    result = Result(_core.simulate_drive(_core.DriveModel(parameters), **arguments))
+    drive = dc_motor_reference.rigid_drive(s.to_dict(), s.derived())
+    events, omega = reference.simulate(
+        drive, 3.0, lambda time: amplitude * math.sin(omega_load * time), -10.0, 1.0, t_c,
+        0.7, 0.4)
+    ours = [(e.time, e.kind) for e in result.events if "->" in e.kind]
+    assert [kind for _, kind in ours] == [kind for _, kind in events]
+    assert len(events) >= 4
+    assert "gear stage power flow reversal" in [e.kind for e in result.events]
+    assert max(abs(a - b) for (a, _), (b, _) in zip(ours, events)) <= 1e-8
+    speed = np.array([omega(time) for time in result.t])
+    assert np.max(np.abs(result["omega_drive"] / 3.0 - speed)) <= 1e-9 * np.max(np.abs(speed))
+    assert_losses_never_fall(result)

@@ -109,3 +109,83 @@ def holds_at_rest(drive: RigidDrive, ratio: float, torque: float, force: float,
         if low <= u + c and high >= u - c:
             return True
     return False
+
+
+def simulate(drive: RigidDrive, ratio: float, torque, force: float, t_end: float,
+             friction_torque: float = 0.0, efficiency: float = 1.0,
+             efficiency_backdrive: float = 1.0):
+    """The train from rest under the rotor's torque M(t) (a callable) and a
+    constant axial force F, by modes: in a slip the one consistent
+    combination's acceleration (slip_acceleration) integrated by SciPy's
+    DOP853 to its end (phi' = 0), at rest the static stick test
+    (holds_at_rest) scanned and bisected to its end. Returns (events,
+    omega): the mode changes [(time, "stick->slip+"), ...] and phi'(t) as a
+    callable (the driven part's speed)."""
+    from scipy.integrate import solve_ivp
+
+    args = (friction_torque, efficiency, efficiency_backdrive)
+
+    def holds(t):
+        return holds_at_rest(drive, ratio, torque(t), force, *args)
+
+    def start(t):
+        starts = [d for d in (1, -1) if any(a * d > 0.0 for a in slip_acceleration(
+            drive, ratio, torque(t), force, d, *args))]
+        assert len(starts) == 1, (t, starts)
+        return starts[0]
+
+    def acceleration(t, direction):
+        found = slip_acceleration(drive, ratio, torque(t), force, direction, *args)
+        assert len(found) >= 1
+        assert max(found) - min(found) <= 1e-9 * max(abs(a) for a in found) + 1e-300
+        return found[0]
+
+    events, pieces, t = [], [], 0.0
+    mode, omega0 = "stick", 0.0
+    while t < t_end:
+        if mode == "stick":
+            step, after = 1e-4, t
+            while after < t_end and holds(min(after + step, t_end)):
+                after += step
+            if after >= t_end:
+                pieces.append((t, t_end, lambda s: 0.0 * s))
+                break
+            low, high = after, min(after + step, t_end)
+            for _ in range(200):
+                middle = 0.5 * (low + high)
+                if middle in (low, high):
+                    break
+                low, high = (middle, high) if holds(middle) else (low, middle)
+            pieces.append((t, high, lambda s: 0.0 * s))
+            direction = start(high + 1e-9)  # (at its edge a start's phi'' is 0)
+            mode = "slip+" if direction > 0 else "slip-"
+            events.append((high, "stick->" + mode))
+            t, omega0 = high, 0.0
+            continue
+        direction = 1 if mode == "slip+" else -1
+
+        def stopped(s, y):
+            return y[0]
+        stopped.terminal, stopped.direction = True, -direction
+        solution = solve_ivp(lambda s, y: [acceleration(s, direction)], (t, t_end), [omega0],
+                             method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True,
+                             events=stopped)
+        pieces.append((t, solution.t[-1], lambda s, f=solution.sol: f(s)[0]))
+        if solution.status != 1:
+            break
+        t = float(solution.t_events[0][0])
+        before = mode
+        if holds(t):
+            mode = "stick"
+        else:
+            mode = "slip+" if start(t) > 0 else "slip-"
+        events.append((t, before + "->" + mode))
+        omega0 = 0.0
+
+    def omega(s):
+        for begin, end, f in pieces:
+            if begin <= s <= end:
+                return float(f(s))
+        return float(pieces[-1][2](pieces[-1][1]))
+
+    return events, omega

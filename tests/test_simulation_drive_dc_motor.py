@@ -249,7 +249,7 @@ def test_schema_documents_every_motor_field():
     ("torque_constant", 0.0, r"motor\.torque_constant = 0\.0 is invalid"),
     ("back_emf_constant", -0.05, r"motor\.back_emf_constant = -0\.05 is invalid"),
     ("current_limit", 0.0, r"motor\.current_limit = 0\.0 is invalid"),
-    ("friction_torque", 0.01, r"motor\.friction_torque = 0\.01 is invalid"),
+    ("friction_torque", -0.01, r"motor\.friction_torque = -0\.01 is invalid"),
     ("type", "ac", r"motor\.type = 'ac' is invalid"),
     ("voltage", "3 N", r"motor\.voltage"),
     ("resistance", "2 V", r"motor\.resistance"),

@@ -229,10 +229,8 @@ def test_a_stage_of_ratio_one_is_the_drive_without_a_stage(concept):
                      "[-10000, 10000]"),
     ({"ratio": float("nan")}, "gear.ratio = nan is invalid"),
     ({}, "gear.ratio is missing"),
-    ({"ratio": 2.0, "type": "lossy", "efficiency": 0.8},
-     "gear.type = 'lossy' is invalid: must be 'ideal' ('lossy' and 'worm' are not yet "
-     "supported"),
-    ({"ratio": 2.0, "type": "worm"}, "gear.type = 'worm' is invalid"),
+    ({"ratio": 2.0, "type": "lossy"}, "gear.efficiency is missing: gear.type = 'lossy' needs it"),
+    ({"ratio": 2.0, "type": "worm"}, "gear.lead_angle is missing: gear.type = 'worm' needs it"),
     ({"ratio": 2.0, "type": "helical"}, "gear.type = 'helical' is invalid"),
     ({"ratio": 2.0, "efficiency": 0.9}, "gear.efficiency = 0.9 is invalid: must be absent "
                                         "with gear.type = 'ideal'"),
@@ -254,7 +252,7 @@ def test_the_core_checks_the_ratio_too():
     with pytest.raises(ValueError, match=r"gear.ratio = 0 is invalid: must be in \[0.0001, "):
         _core.DriveModel(parameters)
     with pytest.raises(ValueError, match="gear.type"):
-        parameters.gear = "lossy"
+        parameters.gear = "helical"
 
 
 def test_the_gear_round_trips_through_toml_and_the_core_spec(tmp_path):

@@ -286,8 +286,10 @@ void bind_drive(py::module_& m) {
   parameters.def_property(
       "gear", [](const DriveParameters& p) { return model::gear_type_name(p.gear); },
       [](DriveParameters& p, const std::string& v) { p.gear = model::parse_gear_type(v); },
-      "the gear stage between the rotor and the driven part: 'none' or 'ideal' (gear_ratio "
-      "rotor turns per turn of the driven part)");
+      "the gear stage between the rotor and the driven part: 'none', 'ideal' (gear_ratio "
+      "rotor turns per turn of the driven part), 'lossy' (gear_efficiency, "
+      "gear_efficiency_backdrive) or 'worm' (gear_lead_angle, gear_mu, gear_mu_static, "
+      "gear_flank_angle)");
   parameters.def_property(
       "end_stops",
       [](const DriveParameters& p) { return model::end_stop_contact_name(p.end_stops); },
@@ -321,6 +323,26 @@ void bind_drive(py::module_& m) {
                                return out;
                              })
       .def_property_readonly("effective_mu", &model::DriveModel::effective_mu)
+      .def_property_readonly(
+          "train_friction",
+          [](const model::DriveModel& d) -> py::object {
+            const model::elements::TrainFriction* f = d.train_friction();
+            if (!f) return py::none();
+            py::dict out;
+            out["motor_friction_torque"] = f->motor_friction;
+            out["stage"] = f->stage;
+            out["efficiency"] = f->efficiency;
+            out["efficiency_backdrive"] = f->efficiency_backdrive;
+            out["efficiency_static"] = f->efficiency_static;
+            out["efficiency_backdrive_static"] = f->efficiency_backdrive_static;
+            out["self_locking"] = f->self_locking();
+            return out;
+          },
+          "The train's friction stages (docs/physics/gear.md, \"Friction stages\"), None "
+          "without: dict with motor_friction_torque [N m] (on the rotor), stage (a lossy or "
+          "worm stage), the stage's efficiencies forward and backward in slip and at "
+          "breakaway (a worm's from mu and mu_static; 1 without a stage), and self_locking "
+          "(the backward one at breakaway <= 0).")
       .def(
           "initial_state",
           [](const model::DriveModel& d) {

@@ -139,6 +139,18 @@ def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
     if "gear" in d:
         lines.append(f"gear stage: {d['gear']['type']}, n = {d['gear']['ratio']:g} (the rotor "
                      "turns n times per turn of the driven part)")
+    train = scene.model().train_friction
+    if train is not None and train["stage"]:
+        static = ("" if train["efficiency_static"] == train["efficiency"] and
+                  train["efficiency_backdrive_static"] == train["efficiency_backdrive"] else
+                  f" (at breakaway {train['efficiency_static']:.6g}, "
+                  f"{train['efficiency_backdrive_static']:.6g})")
+        lines.append(f"  efficiency {train['efficiency']:.6g} rotor -> driven part, "
+                     f"{train['efficiency_backdrive']:.6g} back{static}; self-locking: "
+                     + ("yes (it holds the driven side with a free rotor)"
+                        if train["self_locking"] else "no"))
+    if train is not None and train["motor_friction_torque"] > 0.0:
+        lines.append(f"motor friction: {train['motor_friction_torque']:.6g} N*m on the rotor")
     from .studies import motor as _motor  # (the studies' closed forms: pandas, on demand)
 
     voltage = _motor.constant_voltage(scene)

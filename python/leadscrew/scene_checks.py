@@ -181,30 +181,36 @@ def _check_consistency(data: Dict[str, Any]) -> None:
 
 
 def _check_gear(gear: Dict[str, Any]) -> None:
-    """The gear section's rules: a supported type, a nonzero ratio, the
-    efficiencies only for a lossy stage.
+    """The gear section's rules: a nonzero ratio, each type's own fields
+    (the efficiencies for 'lossy', the worm's for 'worm'; their ranges and
+    where a lossy or worm stage runs are the core's checks).
 
     Raises:
         ValueError: naming the key at fault, its value and the valid range.
     """
-    if gear["type"] != "ideal":
-        _fail("gear.type", gear["type"], "'ideal' ('lossy' and 'worm' are not yet supported: "
-              "their set-valued friction on the stage needs a second friction element in the "
-              "driver)")
     ratio = gear["ratio"]
     if abs(ratio) < _SMALLEST_GEAR_RATIO:
         _fail("gear.ratio", ratio, f"in [{_SMALLEST_GEAR_RATIO:g}, {1 / _SMALLEST_GEAR_RATIO:g}] "
               f"or in [-{1 / _SMALLEST_GEAR_RATIO:g}, -{_SMALLEST_GEAR_RATIO:g}] (rotor turns per "
               "turn of the driven part; < 0 a reversing stage)")
-    for key in ("efficiency", "efficiency_backdrive"):
-        if key in gear:
-            _fail(f"gear.{key}", gear[key], "absent with gear.type = 'ideal' (an ideal stage "
-                  "loses nothing)")
+    kind = gear["type"]
+    fields = {"lossy": ("efficiency", "efficiency_backdrive"),
+              "worm": ("lead_angle", "mu", "mu_static", "flank_angle")}
+    required = {"lossy": ("efficiency",), "worm": ("lead_angle", "mu")}
+    for key in ("efficiency", "efficiency_backdrive", "lead_angle", "mu", "mu_static",
+                "flank_angle"):
+        if key in gear and key not in fields.get(kind, ()):
+            owner = "lossy" if key.startswith("efficiency") else "worm"
+            _fail(f"gear.{key}", gear[key], f"absent with gear.type = {kind!r} (a field of "
+                  f"gear.type = {owner!r})")
+    for key in required.get(kind, ()):
+        if key not in gear:
+            raise ValueError(f"gear.{key} is missing: gear.type = {kind!r} needs it")
 
 
 def _check_motor(data: Dict[str, Any]) -> None:
     """The motor section's rules across sections: exclusive with the drive
-    loads, no equilibrium start, no friction torque yet.
+    loads, no equilibrium start.
 
     Raises:
         ValueError: naming the keys at fault and their values.
@@ -214,9 +220,6 @@ def _check_motor(data: Dict[str, Any]) -> None:
         if key in loads:
             raise ValueError(f"loads.{key} = {loads[key]!r} is invalid with motor.type = "
                              f"{motor['type']!r}: give either motor or loads.{key}, not both")
-    if motor["friction_torque"] != 0.0:
-        _fail("motor.friction_torque", motor["friction_torque"],
-              "0 (the motor's own Coulomb friction is not modelled yet)")
     if data["initial"]["state"] == "equilibrium":
         raise ValueError("initial.state = 'equilibrium' is invalid with motor.type = "
                          f"{motor['type']!r}: the run starts with the current at 0 (use "

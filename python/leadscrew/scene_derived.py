@@ -287,10 +287,19 @@ def _core_parameters(data: Dict[str, Any],
         p.motor_torque_constant = motor["torque_constant"]
         p.motor_back_emf_constant = motor.get("back_emf_constant", -1.0)
         p.motor_current_limit = motor.get("current_limit", 0.0)
+        p.motor_friction_torque = motor["friction_torque"]
     gear = data.get("gear")
     if gear is not None:
         p.gear = gear["type"]
         p.gear_ratio = gear["ratio"]
+        if gear["type"] == "lossy":
+            p.gear_efficiency = gear["efficiency"]
+            p.gear_efficiency_backdrive = gear.get("efficiency_backdrive", gear["efficiency"])
+        elif gear["type"] == "worm":
+            p.gear_lead_angle = gear["lead_angle"]
+            p.gear_mu = gear["mu"]
+            p.gear_mu_static = gear.get("mu_static", -1.0)
+            p.gear_flank_angle = gear.get("flank_angle", p.gear_flank_angle)
     stops = data.get("end_stops")
     if stops is not None:
         p.end_stops = stops["contact"]

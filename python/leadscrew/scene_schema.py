@@ -57,8 +57,9 @@ _DENSITY_RANGE_DOC = ", in [1, 1e5] kg/m^3: from aerogels to beyond osmium (22,5
 # k_v with its default even where the law takes none, as scenes have always
 # carried it); the others are optional, each law checks its own.
 _FRICTION_COMMON = ("mu", "k_v")
-# The gear stage's types (the core runs 'ideal'; the others are refused for
-# now) and the smallest |gear.ratio| (the core's, elements/gear.hpp).
+# The gear stage's types ('lossy' and 'worm' on the rigid drive without play,
+# elements/train_friction.hpp) and the smallest |gear.ratio| (the core's,
+# elements/gear.hpp).
 _GEAR_TYPES = ("ideal", "lossy", "worm")
 _SMALLEST_GEAR_RATIO = _core.smallest_gear_ratio
 
@@ -307,10 +308,17 @@ SCHEMA: Dict[str, Any] = {
                                "holding |i| = i_max (an event starts and ends the hold; "
                                "inductance 0: i clamped to +-i_max), and never puts out more "
                                "than U(t) (absent: no limit)", "A", OPTIONAL, **POSITIVE),
-        "friction_torque": Field("the motor's own Coulomb friction torque: not modelled yet, "
-                                 "must be 0 (a value is refused rather than approximated; "
-                                 "put the motor's friction into friction.mu for now)", "N*m",
-                                 0.0, **NONNEGATIVE),
+        "friction_torque": Field("the motor's own Coulomb friction torque T_c on the rotor: "
+                                 "it opposes the rotor's slip with |T_c| and holds up to T_c "
+                                 "at rest (one coefficient, no normal force); its loss is the "
+                                 "channel motor_friction_loss [J]. 0: none (the drive runs "
+                                 "bit-identically to a motor without the key). > 0 needs the "
+                                 "rigid concept without play with exact Coulomb friction on "
+                                 "the thread (friction.law = 'coulomb' without mu_static), no "
+                                 "end stops and no nut.preload (docs/physics/gear.md, "
+                                 "'Friction stages'; a torque-controlled rotor takes it "
+                                 "through the core's DriveParameters.motor_friction_torque)",
+                                 "N*m", 0.0, **NONNEGATIVE),
     },
     # (Absent: no gear stage; the rotor turns the driven part directly.)
     "gear": {
@@ -322,20 +330,46 @@ SCHEMA: Dict[str, Any] = {
                       "speed); the channels phi_drive [rad], omega_drive [rad/s] and "
                       "drive_torque [N*m] and initial.rotor_angle / rotor_speed stay the "
                       "rotor's, loads.drive_torque and loads.drive_speed act on the rotor. "
-                      "'lossy' (Modelica's LossyGear: efficiency, efficiency_backdrive) and "
-                      "'worm' are not yet supported (refused)", "", "ideal", kind="choice",
-                      choices=_GEAR_TYPES),
+                      "'lossy': the same ratio with Modelica's LossyGear losses (efficiency "
+                      "where the power flows from the rotor to the driven part, "
+                      "efficiency_backdrive where it flows back; stuck where the torques lie "
+                      "within what the losses hold). 'worm': a worm pair with exact Coulomb "
+                      "friction (lead_angle, mu, mu_static, flank_angle), the lossy law with "
+                      "the efficiencies tan(lead_angle) / tan(lead_angle + rho') and "
+                      "tan(lead_angle - rho') / tan(lead_angle), rho' = atan(mu / "
+                      "cos(flank_angle / 2)) (self-locking where the second is <= 0). "
+                      "'lossy' and 'worm' book their loss in the channel gear_loss [J] and "
+                      "need the rigid concept without play with exact Coulomb friction on "
+                      "the thread, no end stops and no nut.preload", "", "ideal",
+                      kind="choice", choices=_GEAR_TYPES),
         "ratio": Field("gear ratio n: the rotor turns n times per turn of the driven part "
                        "(n > 1 a reduction); n < 0 is a reversing stage (the driven part "
                        "turns the other way); |n| in [1e-4, 1e4]", "", None,
                        low=-1.0 / _SMALLEST_GEAR_RATIO, high=1.0 / _SMALLEST_GEAR_RATIO),
-        "efficiency": Field("type 'lossy' (not yet supported): the efficiency where the power "
-                            "flows from the rotor to the driven part, in (0, 1]", "", OPTIONAL,
+        "efficiency": Field("type 'lossy' (required there): the efficiency eta where the "
+                            "power flows from the rotor to the driven part (the driven part "
+                            "gets eta n times the rotor's torque), in (0, 1]", "", OPTIONAL,
                             low=0.0, high=1.0, low_open=True),
-        "efficiency_backdrive": Field("type 'lossy' (not yet supported): the efficiency where "
-                                      "the power flows from the driven part to the rotor, "
-                                      "at most 1 (<= 0: the stage is self-locking)", "",
-                                      OPTIONAL, high=1.0),
+        "efficiency_backdrive": Field("type 'lossy': the efficiency eta_b where the power "
+                                      "flows from the driven part to the rotor (the rotor "
+                                      "gets eta_b times the driven part's torque / n), at "
+                                      "most 1; <= 0: the stage is self-locking (it holds "
+                                      "whatever the driven side pushes, and lowering needs "
+                                      "the motor to drive)", "", OPTIONAL,
+                                      default_doc="gear.efficiency", high=1.0),
+        "lead_angle": Field("type 'worm' (required there): the worm's lead angle gamma, in "
+                            "(0, pi/2) (gamma + atan(mu_static / cos(flank_angle / 2)) below "
+                            "pi/2: the worm can drive)", "rad", OPTIONAL, low=0.0,
+                            high=math.pi / 2, low_open=True, high_open=True),
+        "mu": Field("type 'worm' (required there): the worm flank's coefficient of "
+                    "(kinetic) friction", "", OPTIONAL, **NONNEGATIVE),
+        "mu_static": Field("type 'worm': its static coefficient at breakaway, at least mu",
+                           "", OPTIONAL, default_doc="gear.mu", **NONNEGATIVE),
+        "flank_angle": Field("type 'worm': the worm thread's included flank angle beta_w (as "
+                             "thread.flank_angle: mu' = mu / cos(beta_w / 2)); 40 deg is the "
+                             "standard 20 deg pressure angle", "rad", OPTIONAL,
+                             default_doc="40 deg (0.6981 rad)", low=0.0, high=math.pi,
+                             high_open=True),
     },
     # (Absent: no end stops; the load travels until the nut leaves the screw.)
     "end_stops": {

@@ -56,6 +56,13 @@ const std::vector<ScalarField>& scalar_fields() {
       LEADSCREW_FIELD(rotor_speed),
       LEADSCREW_FIELD(play_position),
       LEADSCREW_FIELD(gear_ratio),
+      LEADSCREW_FIELD(motor_friction_torque),
+      LEADSCREW_FIELD(gear_efficiency),
+      LEADSCREW_FIELD(gear_efficiency_backdrive),
+      LEADSCREW_FIELD(gear_lead_angle),
+      LEADSCREW_FIELD(gear_mu),
+      LEADSCREW_FIELD(gear_mu_static),
+      LEADSCREW_FIELD(gear_flank_angle),
   };
 #undef LEADSCREW_FIELD
   return fields;
@@ -85,7 +92,7 @@ const std::vector<std::string>& initial_state_names() {
 }
 
 const std::vector<std::string>& gear_type_names() {
-  static const std::vector<std::string> names = {"none", "ideal"};
+  static const std::vector<std::string> names = {"none", "ideal", "lossy", "worm"};
   return names;
 }
 

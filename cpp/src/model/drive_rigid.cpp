@@ -15,7 +15,11 @@ namespace leadscrew::model {
 // function of time (not a DC motor's k_t i: its current is a state, and its
 // drive runs the general path, whose roots see the state), exact Coulomb.
 bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dynamics) {
-  return model.bilateral_thread() && !model.motor().speed_controlled && !model.dc_motor() &&
+  return !model.dc_motor() && !model.train_friction() && applies_to_thread(model, dynamics);
+}
+
+bool RigidDriveModes::applies_to_thread(const DriveModel& model, const DriveDynamics& dynamics) {
+  return model.bilateral_thread() && !model.motor().speed_controlled &&
          !model.preloaded_nut() &&
          dynamics.law().plain_coulomb() && model.elements().forces.empty() &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
@@ -23,7 +27,7 @@ bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dyna
 }
 
 RigidDriveModes::RigidDriveModes(const DriveModel& model, DriveDynamics& dynamics) {
-  if (!applies(model, dynamics))
+  if (!applies_to_thread(model, dynamics))
     throw InvalidArgument("RigidDriveModes needs the torque-driven rigid drive without play "
                           "with exact Coulomb friction outside the Painleve regime");
   const int n = model.coordinate_count();

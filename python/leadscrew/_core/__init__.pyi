@@ -303,10 +303,46 @@ class DriveParameters:
     @property
     def gear(self) -> str:
         """
-        the gear stage between the rotor and the driven part: 'none' or 'ideal' (gear_ratio rotor turns per turn of the driven part)
+        the gear stage between the rotor and the driven part: 'none', 'ideal' (gear_ratio rotor turns per turn of the driven part), 'lossy' (gear_efficiency, gear_efficiency_backdrive) or 'worm' (gear_lead_angle, gear_mu, gear_mu_static, gear_flank_angle)
         """
     @gear.setter
     def gear(self, arg1: str) -> None:
+        ...
+    @property
+    def gear_efficiency(self) -> float:
+        ...
+    @gear_efficiency.setter
+    def gear_efficiency(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gear_efficiency_backdrive(self) -> float:
+        ...
+    @gear_efficiency_backdrive.setter
+    def gear_efficiency_backdrive(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gear_flank_angle(self) -> float:
+        ...
+    @gear_flank_angle.setter
+    def gear_flank_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gear_lead_angle(self) -> float:
+        ...
+    @gear_lead_angle.setter
+    def gear_lead_angle(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gear_mu(self) -> float:
+        ...
+    @gear_mu.setter
+    def gear_mu(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def gear_mu_static(self) -> float:
+        ...
+    @gear_mu_static.setter
+    def gear_mu_static(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def gear_ratio(self) -> float:
@@ -337,6 +373,12 @@ class DriveParameters:
         ...
     @motor_current_limit.setter
     def motor_current_limit(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def motor_friction_torque(self) -> float:
+        ...
+    @motor_friction_torque.setter
+    def motor_friction_torque(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def motor_inductance(self) -> float:
@@ -746,6 +788,11 @@ class DriveModel:
     @property
     def mass(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
+    @property
+    def train_friction(self) -> typing.Any:
+        """
+        The train's friction stages (docs/physics/gear.md, "Friction stages"), None without: dict with motor_friction_torque [N m] (on the rotor), stage (a lossy or worm stage), the stage's efficiencies forward and backward in slip and at breakaway (a worm's from mu and mu_static; 1 without a stage), and self_locking (the backward one at breakaway <= 0).
+        """
     @property
     def parameters(self) -> DriveParameters:
         ...

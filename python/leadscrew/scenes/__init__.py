@@ -14,7 +14,8 @@
   turning, through a 5:1 stage, the POM nut of a Tr 8x1.5 steel spindle with
   0.1 mm play; a 90 kg seat between penalty end stops 240 mm apart, 10 mm from
   its rear stop; flexible spindle and nut, exact Coulomb friction with
-  mu_static. (Its stage is ideal: the worm stage is not built yet.)
+  mu_static. (Its stage is ideal: the worm stage runs on the rigid concept without play
+  only.)
 
 Each file states in its comments where every value comes from. Use them as
 templates: ``leadscrew.scenes.path(name)`` is the file.

@@ -31,7 +31,13 @@ Behind an ideal gear stage of ratio n (section ``gear``; the rotor turns n
 times per turn of the driven part) the rotor supplies the driven part's torque
 over |n|, T = F r_m tan(alpha + rho') / |n|, and turns |n| times as fast:
 v = omega lead / (2 pi |n|) (docs/physics/gear.md). A reversing stage (n < 0)
-raises the load in the other direction.
+raises the load in the other direction. Through a lossy or worm stage (on the
+rigid concept without play) the rotor supplies that torque over eta (at
+breakaway the stage's static efficiency), and a lowering load turns it back
+only where the thread and the stage both pass power back (eta_b times the
+thread's holding torque); the motor's own friction T_c (``motor.friction_torque``)
+adds to the torque the motor gives raising and holds with it against a
+back-driving load (docs/physics/gear.md, "Friction stages").
 """
 
 from __future__ import annotations
@@ -101,28 +107,46 @@ def _motor_constants(scene, voltage: float) -> Tuple[float, float, float, float]
 def _thread_torques(scene) -> Dict[str, float]:
     """The rigid drive's torques on the rotor per newton of axial load [N*m/N =
     m]: to raise and to lower it, with mu (moving) and with mu_static (from
-    rest), over |n| behind a gear stage; a negative lowering torque: the thread
-    back-drives (tan(alpha) > mu')."""
+    rest), over |n| behind a gear stage (over n eta raising through a lossy or
+    worm stage, times eta_b lowering: at breakaway with its static
+    efficiencies); a negative lowering torque: the train back-drives (the
+    thread with tan(alpha) > mu' behind a stage with eta_b > 0). ``motor``:
+    the motor's own friction torque T_c [N*m] (docs/physics/gear.md,
+    "Friction stages")."""
     friction = scene["friction"]
     mu = friction["mu"]
     mu_static = friction.get("mu_static", mu)
     thread = scene.thread
     n = abs(gear_ratio(scene))
-    return {"raise": _core.raise_torque(thread, mu, 1.0) / n,
-            "raise_static": _core.raise_torque(thread, mu_static, 1.0) / n,
-            "lower": _core.lower_torque(thread, mu, 1.0) / n,
-            "lower_static": _core.lower_torque(thread, mu_static, 1.0) / n}
+    train = scene.model().train_friction or {
+        "motor_friction_torque": 0.0, "efficiency": 1.0, "efficiency_backdrive": 1.0,
+        "efficiency_static": 1.0, "efficiency_backdrive_static": 1.0}
+
+    def lower(mu_thread, backdrive):
+        # The lowering load turns the rotor only where the thread and the
+        # stage both pass power back.
+        torque = _core.lower_torque(thread, mu_thread, 1.0) / n
+        return torque * backdrive if torque < 0.0 and backdrive > 0.0 else abs(torque)
+
+    return {"raise": _core.raise_torque(thread, mu, 1.0) / (n * train["efficiency"]),
+            "raise_static": (_core.raise_torque(thread, mu_static, 1.0) /
+                             (n * train["efficiency_static"])),
+            "lower": lower(mu, train["efficiency_backdrive"]),
+            "lower_static": lower(mu_static, train["efficiency_backdrive_static"]),
+            "motor": train["motor_friction_torque"]}
 
 
 def stall_from_rest(scene, voltage: float) -> Dict[str, float]:
     """The rigid drive's stall from rest at a constant ``voltage`` (plain nut,
     behind the scene's gear stage): the stall ``current`` min(|U| / R, i_max)
     [A], its ``torque`` k_t i on the rotor [N*m], and the axial ``load`` [N]
-    whose raise torque with mu_static that torque just reaches."""
+    whose raise torque with mu_static (plus the motor's friction) that torque
+    just reaches."""
     _, k_t, _, current = _motor_constants(scene, voltage)
     torque = k_t * current
+    torques = _thread_torques(scene)
     return {"current": current, "torque": torque,
-            "load": torque / _thread_torques(scene)["raise_static"]}
+            "load": max(torque - torques["motor"], 0.0) / torques["raise_static"]}
 
 
 def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
@@ -142,9 +166,11 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
     torques = _thread_torques(scene)
     stall = stall_from_rest(scene, voltage)
     stall_torque = stall["torque"]
-    raising = loads * torques["raise_static"] < stall_torque
-    back_driven = ~raising & (-loads * torques["lower_static"] > stall_torque)
-    torque = np.where(back_driven, -loads * torques["lower"], loads * torques["raise"])
+    friction = torques["motor"]  # the motor's own: against the motion either way
+    raising = loads * torques["raise_static"] + friction < stall_torque
+    back_driven = ~raising & (-loads * torques["lower_static"] > stall_torque + friction)
+    torque = np.where(back_driven, -loads * torques["lower"] - friction,
+                      loads * torques["raise"] + friction)
     current = torque / k_t
     limit = scene["motor"].get("current_limit", math.inf)
     runaway = back_driven & (current > limit)
@@ -167,8 +193,9 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
             "efficiency": efficiency, "stalled": stalled, "mode": mode,
             "stall_torque": stall_torque,
             "stall_load": stall["load"],
-            "stall_load_moving": stall_torque / torques["raise"],
-            "back_drive_load": stall_torque / holding if holding > 0.0 else math.inf}
+            "stall_load_moving": max(stall_torque - friction, 0.0) / torques["raise"],
+            "back_drive_load": ((stall_torque + friction) / holding if holding > 0.0
+                                else math.inf)}
 
 
 def _closed_form_curve(scene, loads: np.ndarray, voltage: float,

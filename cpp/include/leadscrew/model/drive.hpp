@@ -51,8 +51,10 @@ enum class BacklashContact { none, exact, bistop, cubic };
 // loads at t = 0 (drive_equilibrium.hpp).
 enum class InitialState { relaxed, equilibrium };
 // The gear stage between the rotor and the driven part (gear.type;
-// elements/gear.hpp): none, or an ideal kinematic ratio.
-enum class GearType { none, ideal };
+// elements/gear.hpp): none, an ideal kinematic ratio, or a stage with
+// friction (elements/train_friction.hpp): Modelica's LossyGear with constant
+// efficiencies, or a worm pair with exact Coulomb friction.
+enum class GearType { none, ideal, lossy, worm };
 // The end stops' contact (end_stops.contact; none: no end stops).
 enum class EndStopContact { none, penalty, exact };
 
@@ -125,12 +127,28 @@ struct DriveParameters {
   double motor_torque_constant = 0.0;   // k_t [N m/A]
   double motor_back_emf_constant = -1.0;  // k_e [V s/rad]; < 0: k_t
   double motor_current_limit = 0.0;     // i_max [A]; 0: none
+  // The motor's own Coulomb friction on the rotor (motor.friction_torque;
+  // elements/train_friction.hpp) [N m]; 0: none. Torque-controlled or DC
+  // motor on the rigid drive without play.
+  double motor_friction_torque = 0.0;
   // A gear stage between the rotor and the driven part (elements/gear.hpp;
   // scene section `gear`): the rotor turns gear_ratio times per turn of the
   // driven part (< 0: a reversing stage). Without one (GearType::none) the
   // ratio must be 1.
   GearType gear = GearType::none;
   double gear_ratio = 1.0;
+  // gear.type = "lossy": the efficiencies eta (rotor -> driven part) in
+  // (0, 1] and eta_b (driven part -> rotor) <= 1 (<= 0: self-locking).
+  double gear_efficiency = 1.0;
+  double gear_efficiency_backdrive = 1.0;
+  // gear.type = "worm": its lead angle gamma [rad] in (0, pi/2), its
+  // coefficients mu >= 0 and mu_static (< 0: mu), its included flank
+  // angle beta_w [rad] in [0, pi) (mu' = mu / cos(beta_w / 2), as the
+  // thread's; 40 degrees: the standard 20 degree pressure angle).
+  double gear_lead_angle = 0.0;
+  double gear_mu = 0.0;
+  double gear_mu_static = -1.0;
+  double gear_flank_angle = 0.6981317007977318;  // 40 degrees
   // A preloaded split nut (elements/preloaded_nut.hpp; scene keys
   // nut.preload, nut.preload_stiffness): the halves' spring force P [N]
   // (0: none) and its rate [N/m] (0: not given).
@@ -185,6 +203,11 @@ class DriveModel {
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
   // The gear stage between the rotor and the rotor's coordinate (ratio 1: none).
   const elements::Gear& gear() const noexcept { return e_.motor.gear; }
+  // The train's friction stages besides the thread (nullptr: none): the
+  // motor's Coulomb friction, a lossy or worm stage (train_friction.hpp).
+  const elements::TrainFriction* train_friction() const noexcept {
+    return e_.train_friction ? &*e_.train_friction : nullptr;
+  }
   // The preloaded split nut on the thread (nullptr: none, the plain thread).
   const elements::PreloadedNut* preloaded_nut() const noexcept {
     return e_.preloaded_nut ? &*e_.preloaded_nut : nullptr;

@@ -67,6 +67,11 @@ class RigidDriveModes {
   // True if the model is the torque-driven rigid drive without play with exact
   // Coulomb friction and no Painleve regime (dynamics: the model's workspace).
   static bool applies(const DriveModel& model, const DriveDynamics& dynamics);
+  // The same with the rotor's torque from any motor but a speed-controlled
+  // one (a DC motor's k_t i: the coefficients are per unit torque whatever
+  // gives it) and a model without the train's friction stages or with them
+  // (DriveHybrid::TrainSolver).
+  static bool applies_to_thread(const DriveModel& model, const DriveDynamics& dynamics);
 
   // Computes the coefficients of every mode with dynamics (its state is reset).
   RigidDriveModes(const DriveModel& model, DriveDynamics& dynamics);

@@ -39,6 +39,9 @@ std::vector<std::string> drive_channel_names(const DriveModel& model) {
                            "contact_loss", "impact_loss"})
     names.push_back(name);
   if (dc) names.push_back("copper_loss");
+  const elements::TrainFriction* train = model.train_friction();
+  if (train && train->motor_friction_present()) names.push_back("motor_friction_loss");
+  if (train && train->stage) names.push_back("gear_loss");
   names.push_back("kinetic");
   names.push_back("elastic");
   if (dc) names.push_back("magnetic_energy");
@@ -104,6 +107,9 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
   for (int e = 0; e < kEnergyCount; ++e) out[k++] = energy[e];
   out[k++] = impact_loss;
   if (dc) out[k++] = state.copper_loss;
+  const elements::TrainFriction* train = model.train_friction();
+  if (train && train->motor_friction_present()) out[k++] = state.motor_friction_loss;
+  if (train && train->stage) out[k++] = state.gear_loss;
   out[k++] = kinetic;
   out[k++] = elastic;
   // (A DC motor's current, and so its magnetic energy, starts at 0.)
@@ -111,7 +117,7 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
   out[k++] = energy[kWorkDrive] + energy[kWorkAxial] -
              (kinetic - kinetic0 + elastic - elastic0 + energy[kFrictionLoss] +
               energy[kDampingLoss] + energy[kContactLoss] + impact_loss + state.copper_loss +
-              state.magnetic);
+              state.magnetic + state.motor_friction_loss + state.gear_loss);
 }
 
 }  // namespace leadscrew::model::drive

@@ -38,6 +38,8 @@ struct ChannelState {
   // A lift-off preloaded nut's: the spring force S [N], half A's normal
   // force [N] and |N_A| + |N_B| [N] (elements/preloaded_nut.hpp).
   double preload_force = 0.0, normal_force_a = 0.0, flank_normal = 0.0;
+  // The train's friction stages' loss integrals [J] (train_friction.hpp).
+  double motor_friction_loss = 0.0, gear_loss = 0.0;
 };
 
 // From the state last set in dynamics.

@@ -59,6 +59,14 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
     spec.losses.push_back("copper_loss");
     spec.quadratures += 1;
   }
+  // The train's friction stages: each loss its own channel, never falling.
+  if (const elements::TrainFriction* train = model.train_friction()) {
+    for (const char* name : {"motor_friction_loss", "gear_loss"}) {
+      if (name[0] == 'm' ? !train->motor_friction_present() : !train->stage) continue;
+      spec.losses.push_back(name);
+      spec.quadratures += 1;
+    }
+  }
   spec.load_forces = {"axial_force"};
   spec.load_torques = {"drive_torque"};
   if (const elements::PreloadedNut* nut = model.preloaded_nut(); nut && nut->lift_off) {

@@ -121,7 +121,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   // or a specialisation chosen from the model's structure).
   class ModeSolver;
   class ConstrainedSolver;
+  class RigidDofSolver;  // RigidSolver's and TrainSolver's shared part
   class RigidSolver;
+  class TrainSolver;
   static std::unique_ptr<ModeSolver> make_mode_solver(DriveHybrid& hybrid);
 
   // The thread's roots g0..g4; the elements' follow (root_count_).
@@ -167,6 +169,11 @@ class DriveHybrid final : public integrate::HybridSystem {
   void decide_friction(double t, double* y, bool at_zero_slip, int hint);
   void start_normal_side();
   double flank_change_root(double normal_force);
+  // The train's friction stages (TrainSolver): stick or slip at zero slip by
+  // the breakaway test; the stage's power flow reversing in slip (the root
+  // of its torque on the driven part, as flank_change_root's).
+  void decide_train(double t, double* y, bool at_zero_slip, int hint);
+  double stage_reversal_root(double stage_torque);
 
   // hybrid_impacts.cpp
   // The direction in which an impact and put_back_inside move the
@@ -218,6 +225,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   double saved_impact_loss_ = 0.0;   // and impact_loss_
   double flight_start_excess_ = 0.0;  // the play beyond a flank at the start of a flight
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
+  int stage_side_ = 0;     // sign of the friction stage's torque on the driven part (train_)
   double last_unique_time_ = 0.0;  // eq. (3.15) last seen with one solution (jam_acceleration_law)
   // round-off of the slip velocity against a slip mode's sign at its start
   double slip_offset_ = 0.0;
@@ -237,6 +245,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // The elements with events (empty: none), and the roots with theirs.
   std::vector<std::unique_ptr<Element>> elements_;
   int root_count_ = kThreadRoots;
+  TrainSolver* train_ = nullptr;  // solver_, where the model has friction stages
   std::unique_ptr<ModeSolver> solver_;  // last: it refers to the fields above
 };
 

@@ -36,6 +36,8 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
                  model_.preloaded_nut()->lift_off) {
         g[0] = model_.preloaded_nut()->split_stick_margin(
             dynamics_.penalty_normal_force(), dynamics_.preload_spring_force(), s.friction_force);
+      } else if (mode_.friction == FrictionMode::stick && train_) {
+        g[0] = train_->stick_margin();  // the static stick test: >= 0 while it holds
         if (g[0] > 0.0) stick_from_zero_ = false;
       } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut()) {
         g[0] = model_.preloaded_nut()->stick_margin(s.normal_force, s.friction_force);
@@ -46,6 +48,8 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
       }
       if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
         g[1] = flank_change_root(s.normal_force - s.preload_normal);
+      if (train_ && train_->has_stage() && mode_.friction == FrictionMode::slip)
+        g[2] = stage_reversal_root(train_->stage_torque());
       if (watch_fold()) {
         // The regularized law's paradox: the margin min over sigma of
         // G_NN - sigma kappa G_NT, and the current branch's denominator
@@ -112,6 +116,7 @@ void DriveHybrid::root_directions(int* directions) const {
   for (const std::unique_ptr<Element>& element : elements_)
     element->root_directions(directions + element->first_root());
   if (watch_fold()) directions[2] = directions[3] = -1;  // both fall towards jamming
+  if (train_) directions[2] = -1;  // the stage's torque falls through zero on its side
 }
 
 void DriveHybrid::select_initial_mode(double t, double* y) {
@@ -234,7 +239,11 @@ void DriveHybrid::start_mode(double t, const double* y) {
   }
   slip_noise_event_ = false;
   stick_from_zero_ = false;
-  if (mode_.friction == FrictionMode::stick) {
+  if (mode_.friction == FrictionMode::stick && train_) {
+    solver_->expand(t, y);
+    const ThreadForces s = solver_->forces(t, y);
+    stick_from_zero_ = s.normal_force == 0.0 && s.friction_force == 0.0;
+  } else if (mode_.friction == FrictionMode::stick) {
     const ModeSolution s = solve_current();
     stick_from_zero_ = s.normal_force == 0.0 && s.friction_force == 0.0;
   }
@@ -297,13 +306,16 @@ std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>
     if (mode_.friction == FrictionMode::stick) {
       // Leaving the friction cone: slip starts against the friction force
       // that stick needed.
-      const ModeSolution s = solve_current();
-      hint = -sign_of(s.friction_force);
+      hint = train_ ? train_->exit_direction() : -sign_of(solve_current().friction_force);
     }
   } else if (mode_.contact == ThreadContact::bilateral && root_info[1] != 0) {
     normal_side_ = -normal_side_;
     layout_.compress(q_, v_, y);
     return "flank change";
+  } else if (train_ && root_info[2] != 0) {
+    stage_side_ = -stage_side_;
+    layout_.compress(q_, v_, y);
+    return "gear stage power flow reversal";
   } else if (mode_.contact == ThreadContact::penalty && (root_info[2] != 0 || root_info[3] != 0)) {
     // A penalty flank is entered (upper rising, lower falling) or left.
     touching_ = root_info[2] > 0 || root_info[3] < 0;

@@ -19,7 +19,10 @@ namespace leadscrew::model::drive {
 bool DriveHybrid::load_driven() const {
   // (An element whose forces depend on its own state, a DC motor's torque
   // k_t i: its roots are the state's.)
-  return model_.elements().forces.empty() && !model_.motor().speed_controlled &&
+  // (The train's friction stages: the motor's friction is a constant term,
+  // and the stage's sign a state's; their roots are sampled.)
+  return train_ == nullptr && model_.elements().forces.empty() &&
+         !model_.motor().speed_controlled &&
          std::all_of(elements_.begin(), elements_.end(),
                      [](const std::unique_ptr<Element>& element) {
                        return element->forces_from_loads_alone();

@@ -5,6 +5,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/friction/flank_lcp.hpp"
+#include "mode_solver.hpp"
 
 namespace leadscrew::model::drive {
 
@@ -92,6 +93,10 @@ void DriveHybrid::open_if_pulling() {
 // Stick or slip: from the slip velocity, or at zero slip by the flank LCP.
 void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hint) {
   (void)t;
+  if (train_) {
+    decide_train(t, y, at_zero_slip, hint);
+    return;
+  }
   const friction::Resolution resolution = dynamics_.law().resolution();
   const bool regularized = resolution != friction::Resolution::set_valued;
   // A regularized law's friction on a penalty flank follows its penetration
@@ -263,6 +268,13 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
 // set): its sign is the flank in contact; exactly zero leaves it open.
 void DriveHybrid::start_normal_side() {
   normal_side_ = 0;
+  stage_side_ = 0;
+  if (train_) {
+    if (mode_.friction != FrictionMode::slip) return;
+    normal_side_ = sign_of(solver_->forces(dynamics_.time(), nullptr).normal_force);
+    if (train_->has_stage()) stage_side_ = sign_of(train_->stage_torque());
+    return;
+  }
   if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick &&
       mode_.friction != FrictionMode::none)
     normal_side_ = sign_of(solve_current().loaded_normal());
@@ -278,6 +290,32 @@ void DriveHybrid::start_normal_side() {
 double DriveHybrid::flank_change_root(double normal_force) {
   if (normal_side_ == 0) normal_side_ = sign_of(normal_force);
   return normal_side_ != 0 ? normal_side_ * normal_force : 0.0;
+}
+
+// The train's friction stages (mode_solver.hpp, TrainSolver): every contact
+// slips with the one speed, so the mode is the train's. At zero slip (the
+// velocity projected onto exactly zero) the breakaway test decides.
+void DriveHybrid::decide_train(double t, double* y, bool at_zero_slip, int hint) {
+  mode_.contact = ThreadContact::bilateral;
+  if (!at_zero_slip && std::abs(dynamics_.slip_velocity()) > dynamics_.slip_noise()) {
+    mode_.friction = FrictionMode::slip;
+    mode_.slip_sign = sign_of(dynamics_.slip_velocity());
+    return;
+  }
+  ModeSpec base = spec(1);
+  base.friction = FrictionMode::none;
+  dynamics_.project_zero_slip(base, v_);
+  layout_.compress(q_, v_, y);
+  set(t, y);
+  const int direction = train_->breakaway(hint);
+  mode_.friction = direction == 0 ? FrictionMode::stick : FrictionMode::slip;
+  mode_.slip_sign = direction;
+}
+
+// As flank_change_root, for the stage's torque on the driven part.
+double DriveHybrid::stage_reversal_root(double stage_torque) {
+  if (stage_side_ == 0) stage_side_ = sign_of(stage_torque);
+  return stage_side_ != 0 ? stage_side_ * stage_torque : 0.0;
 }
 
 }  // namespace leadscrew::model::drive

@@ -62,14 +62,17 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   const bool penalty =
       p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
   return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact,
-                         p.nut_preload > 0.0, p.end_stops != EndStopContact::none);
+                         p.nut_preload > 0.0 || p.motor_friction_torque > 0.0 ||
+                             p.gear == GearType::lossy || p.gear == GearType::worm,
+                         p.end_stops != EndStopContact::none);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
   return integrators_for(p.friction, thread.penalty(), thread.exact_play(),
-                         model.preloaded_nut() != nullptr, p.end_stops != EndStopContact::none);
+                         model.preloaded_nut() != nullptr || model.train_friction() != nullptr,
+                         p.end_stops != EndStopContact::none);
 }
 
 namespace {
@@ -109,6 +112,14 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                           format_value(p.nut_preload) +
                           " N: a preloaded nut runs with exact Coulomb friction on the "
                           "event-driven scheme only (integrator = \"event_driven\")");
+  if (model.train_friction() && integrator != "event_driven")
+    throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with " +
+                          (model.train_friction()->stage
+                               ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+                               : "motor.friction_torque = " +
+                                     format_value(p.motor_friction_torque)) +
+                          ": the train's friction stages run with exact Coulomb friction on "
+                          "the event-driven scheme only (integrator = \"event_driven\")");
   if (integrator == "moreau" && p.end_stops != EndStopContact::none)
     throw InvalidArgument(
         "integrator = \"moreau\" is invalid with end_stops: Moreau-Jean's iteration matrix "

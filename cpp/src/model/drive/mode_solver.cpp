@@ -2,6 +2,9 @@
 // structure: the one place that picks a specialisation of the driver.
 #include "mode_solver.hpp"
 
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+
 namespace leadscrew::model::drive {
 
 // The rigid drive without play (one degree of freedom, no force element, a
@@ -11,6 +14,19 @@ namespace leadscrew::model::drive {
 // general one. The rigid solver has no states or rates but the rotor's: it
 // takes no element with events (DriveHybrid::Element; built before this).
 std::unique_ptr<DriveHybrid::ModeSolver> DriveHybrid::make_mode_solver(DriveHybrid& hybrid) {
+  if (hybrid.model_.train_friction()) {
+    // The parameters' checks (build_drive_elements) admit the friction
+    // stages where this holds but for the thread's Painleve regime.
+    if (!RigidDriveModes::applies_to_thread(hybrid.model_, hybrid.dynamics_))
+      throw InvalidArgument("the train's friction stages (gear.type = \"" +
+                            gear_type_name(hybrid.p_.gear) + "\", motor.friction_torque = " +
+                            format_value(hybrid.p_.motor_friction_torque) +
+                            ") are invalid here: they need the rigid drive without play with "
+                            "the thread outside the Painleve regime (mu' |G_NT| < G_NN)");
+    auto solver = std::make_unique<TrainSolver>(hybrid);
+    hybrid.train_ = solver.get();
+    return solver;
+  }
   if (hybrid.elements_.empty() && RigidDriveModes::applies(hybrid.model_, hybrid.dynamics_))
     return std::make_unique<RigidSolver>(hybrid);
   return std::make_unique<ConstrainedSolver>(hybrid);

@@ -10,6 +10,8 @@
 //   constrained_solver.cpp  ConstrainedSolver: any model; y expanded by
 //                           StateLayout, the mode solved by DriveDynamics'
 //                           constrained solve (DriveHybrid::solve_current)
+//   train_solver.cpp        TrainSolver: the rigid drive without play with
+//                           the train's friction stages (a DC motor too)
 //   rigid_solver.cpp        RigidSolver: the rigid drive without play, one
 //                           degree of freedom (RigidDriveModes::applies); y =
 //                           [phi, omega, energy integrals], every mode in
@@ -79,20 +81,31 @@ class DriveHybrid::ConstrainedSolver final : public DriveHybrid::ModeSolver {
   RigidModeCoefficients coefficients(int sigma) override;
 };
 
-class DriveHybrid::RigidSolver final : public DriveHybrid::ModeSolver {
+// What the rigid drive without play's solvers share: one degree of freedom,
+// y = [phi, omega, ...], the thread's modes in closed form (RigidDriveModes,
+// computed with the hybrid's DriveDynamics: its state is reset).
+class DriveHybrid::RigidDofSolver : public DriveHybrid::ModeSolver {
  public:
-  // Computes the modes' coefficients with the hybrid's DriveDynamics (its
-  // state is reset); the model must be one RigidDriveModes applies to.
-  explicit RigidSolver(DriveHybrid& hybrid);
-  void expand(double t, const double* y) override;
+  explicit RigidDofSolver(DriveHybrid& hybrid)
+      : ModeSolver(hybrid), rigid_(hybrid.model_, hybrid.dynamics_) {}
   double slip_velocity(const double* y) const override {
     return rigid_.slip_per_speed() * y[1];
   }
+  double slip_resolution() const override;
+  RigidModeCoefficients coefficients(int sigma) override;
+
+ protected:
+  RigidDriveModes rigid_;
+};
+
+class DriveHybrid::RigidSolver final : public DriveHybrid::RigidDofSolver {
+ public:
+  // The model must be one RigidDriveModes applies to.
+  explicit RigidSolver(DriveHybrid& hybrid);
+  void expand(double t, const double* y) override;
   ThreadForces forces(double t, const double* y) override;
   void rhs(double t, const double* y, double* ydot) override;
   ChannelState output(double t, const double* y, ContactForces& forces) override;
-  double slip_resolution() const override;
-  RigidModeCoefficients coefficients(int sigma) override;
 
  private:
   struct Solution {
@@ -101,9 +114,74 @@ class DriveHybrid::RigidSolver final : public DriveHybrid::ModeSolver {
   };
   Solution solve(double t, const double* y);
 
-  RigidDriveModes rigid_;
   double loads_time_;  // the loads last evaluated (NaN: none yet)
   double torque_ = 0.0, axial_force_ = 0.0;
+};
+
+// The rigid drive without play with the train's friction stages
+// (elements/train_friction.hpp: the motor's Coulomb friction, a lossy or worm
+// stage), driven by a torque or a DC motor: one degree of freedom whose
+// contacts (motor, stage, thread) stick and slip together. In slip with sign
+// s each contact's friction opposes the slip and its size follows the sign
+// of what it transmits (the thread's normal force sigma, the stage's power
+// flow); for each combination of the signs the acceleration and the forces
+// are linear in the loads (the thread's from RigidDriveModes), and the one
+// consistent combination is kept (none or several: JammingError). At zero
+// slip the drive sticks while neither direction's start is consistent
+// (breakaway, with the stages' static coefficients). Chosen by
+// make_mode_solver for every model with friction stages (train_solver.cpp).
+class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
+ public:
+  explicit TrainSolver(DriveHybrid& hybrid);
+  void expand(double t, const double* y) override { h_.set(t, y); }
+  ThreadForces forces(double t, const double* y) override;
+  void rhs(double t, const double* y, double* ydot) override;
+  ChannelState output(double t, const double* y, ContactForces& forces) override;
+
+  // At the state set, at zero slip: 0 where the train can stick (the static
+  // test, stick_margin >= 0, and hint 0), else the direction in which a
+  // slip starts consistently (+-1; both, or two combinations: JammingError);
+  // `hint` (+-1: a stick's root fired for that direction) is taken where
+  // neither starts.
+  int breakaway(int hint);
+  // At the state set: the static stick test's margin, >= 0 iff some split
+  // of the holding torque between the motor's friction, the stage (its
+  // static efficiencies) and the thread (its cone) holds the loads.
+  double stick_margin();
+  // The direction in which the loads leave the static test (its smaller margin).
+  int exit_direction();
+  // In slip, at the state set: the stage's torque on the driven part tau_b
+  // (its sign is the power flow's with the slip's; a root where it changes).
+  double stage_torque();
+  // A stage whose law changes with the power flow's sign (a lossless one
+  // does not: no root).
+  bool has_stage() const noexcept {
+    return train_.stage && !(train_.efficiency == 1.0 && train_.efficiency_backdrive == 1.0);
+  }
+
+ private:
+  struct Solution {
+    double torque = 0.0, axial_force = 0.0;  // on the rotor (the motor's), on the load
+    double acceleration = 0.0, normal_force = 0.0, friction_force = 0.0;
+    double stage_torque = 0.0, stage_loss = 0.0;  // tau_b, (k - 1) tau_b on phi [N m]
+    int count = 0;  // consistent combinations found (slip)
+  };
+  // The thread's slip response per unit torque on phi and per unit axial force.
+  struct ThreadSlip {
+    double a = 0.0, b = 0.0, normal_q = 0.0, normal_f = 0.0, friction_q = 0.0, friction_f = 0.0;
+  };
+  double coordinate_torque() const;
+  Solution slip(int s, bool breakaway, double torque, double force);
+  Solution stick(double torque, double force) const;
+  void thread_holds(double force, double& lo, double& hi) const;
+  void static_margins(double& up, double& down) const;
+  std::string stage_regime(bool breakaway) const;
+  Solution solve();
+
+  const elements::TrainFriction& train_;
+  ThreadSlip thread_[2][2];  // [s > 0 ? 0 : 1][sigma > 0 ? 0 : 1]
+  RigidModeCoefficients stick_;  // per unit torque on phi
+  int stage_guess_ = 1;
 };
 
 }  // namespace leadscrew::model::drive

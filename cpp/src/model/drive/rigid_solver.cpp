@@ -10,8 +10,7 @@
 namespace leadscrew::model::drive {
 
 DriveHybrid::RigidSolver::RigidSolver(DriveHybrid& hybrid)
-    : ModeSolver(hybrid),
-      rigid_(hybrid.model_, hybrid.dynamics_),
+    : RigidDofSolver(hybrid),
       loads_time_(std::numeric_limits<double>::quiet_NaN()) {}
 
 void DriveHybrid::RigidSolver::expand(double t, const double* y) {
@@ -89,11 +88,11 @@ ChannelState DriveHybrid::RigidSolver::output(double t, const double* y, Contact
           0.0};
 }
 
-double DriveHybrid::RigidSolver::slip_resolution() const {
+double DriveHybrid::RigidDofSolver::slip_resolution() const {
   return std::abs(rigid_.slip_per_speed()) * h_.integrator_options_.atol;
 }
 
-RigidModeCoefficients DriveHybrid::RigidSolver::coefficients(int sigma) {
+RigidModeCoefficients DriveHybrid::RigidDofSolver::coefficients(int sigma) {
   return rigid_.coefficients(h_.mode_.friction, h_.mode_.slip_sign, sigma);
 }
 

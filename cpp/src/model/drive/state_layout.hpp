@@ -29,6 +29,10 @@ class StateLayout {
     for (int i : positions_)
       if (!(speed && i == model.rotor())) velocities_.push_back(i);
     if (const elements::DcMotor* dc = model.dc_motor()) motor_states_ = dc->has_state() ? 2 : 1;
+    if (const elements::TrainFriction* f = model.train_friction()) {
+      if (f->motor_friction_present()) motor_friction_loss_ = motor_offset() + motor_states_;
+      if (f->stage) gear_loss_ = motor_offset() + motor_states_ + (motor_friction_loss_ >= 0);
+    }
   }
   int size() const { return energy_offset() + kEnergyCount; }
   // The bristle deflection's index (-1: none).
@@ -39,7 +43,13 @@ class StateLayout {
   // copper loss integral's (-1: no DC motor).
   int motor_current() const { return motor_states_ == 2 ? motor_offset() : -1; }
   int copper_loss() const { return motor_states_ > 0 ? motor_offset() + motor_states_ - 1 : -1; }
-  int energy_offset() const { return motor_offset() + motor_states_; }
+  // The train's friction stages' loss integrals (train_friction.hpp), after
+  // the motor's states: the motor's friction and the stage's (-1: none).
+  int motor_friction_loss() const { return motor_friction_loss_; }
+  int gear_loss() const { return gear_loss_; }
+  int energy_offset() const {
+    return motor_offset() + motor_states_ + (motor_friction_loss_ >= 0) + (gear_loss_ >= 0);
+  }
 
   void expand(double t, const double* y, CoordinateVector& q, CoordinateVector& v) const {
     const int n = model_.coordinate_count();
@@ -76,6 +86,7 @@ class StateLayout {
   const DriveModel& model_;
   bool bristle_;
   int motor_states_ = 0;
+  int motor_friction_loss_ = -1, gear_loss_ = -1;
   std::vector<int> positions_, velocities_;
 };
 

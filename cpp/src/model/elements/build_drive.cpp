@@ -54,6 +54,95 @@ void require_plausible_dc_motor(const DriveParameters& p, const DcMotor& m) {
                           "quasi-static limit, exact: no current dynamics)");
 }
 
+// The train's friction stages (train_friction.hpp): the motor's Coulomb
+// friction and a lossy or worm stage, checked here alone (one rule, one
+// place; the scene only converts). They run on the rigid drive without play
+// alone, where every contact slips with one speed.
+void build_train_friction(const DriveParameters& p, DriveElements& e) {
+  require_finite("motor.friction_torque", p.motor_friction_torque);
+  require_nonnegative("motor.friction_torque", p.motor_friction_torque);
+  const bool stage = p.gear == GearType::lossy || p.gear == GearType::worm;
+  if (p.motor_friction_torque == 0.0 && !stage) return;
+  TrainFriction f;
+  f.ratio = e.motor.gear.ratio;
+  f.rotor_inertia = e.motor.gear.reflected_inertia(p.rotor_inertia);
+  f.motor_friction = p.motor_friction_torque;
+  if (p.gear == GearType::lossy) {
+    f.stage = true;
+    require_finite("gear.efficiency", p.gear_efficiency);
+    if (!(p.gear_efficiency > 0.0 && p.gear_efficiency <= 1.0))
+      throw InvalidArgument("gear.efficiency = " + format_value(p.gear_efficiency) +
+                            " is invalid: must be in (0, 1]");
+    require_finite("gear.efficiency_backdrive", p.gear_efficiency_backdrive);
+    if (!(p.gear_efficiency_backdrive <= 1.0))
+      throw InvalidArgument("gear.efficiency_backdrive = " +
+                            format_value(p.gear_efficiency_backdrive) +
+                            " is invalid: must be at most 1 (<= 0: self-locking)");
+    f.efficiency = f.efficiency_static = p.gear_efficiency;
+    f.efficiency_backdrive = f.efficiency_backdrive_static = p.gear_efficiency_backdrive;
+  } else if (p.gear == GearType::worm) {
+    f.stage = f.worm = true;
+    constexpr double kRightAngle = 1.5707963267948966;
+    require_finite("gear.lead_angle", p.gear_lead_angle);
+    if (!(p.gear_lead_angle > 0.0 && p.gear_lead_angle < kRightAngle))
+      throw InvalidArgument("gear.lead_angle = " + format_value(p.gear_lead_angle) +
+                            " is invalid: must be in (0, pi/2) rad");
+    require_finite("gear.flank_angle", p.gear_flank_angle);
+    if (!(p.gear_flank_angle >= 0.0 && p.gear_flank_angle < 2.0 * kRightAngle))
+      throw InvalidArgument("gear.flank_angle = " + format_value(p.gear_flank_angle) +
+                            " is invalid: must be in [0, pi) rad (the included angle)");
+    require_finite("gear.mu", p.gear_mu);
+    require_nonnegative("gear.mu", p.gear_mu);
+    const double mu_static = p.gear_mu_static < 0.0 ? p.gear_mu : p.gear_mu_static;
+    require_finite("gear.mu_static", mu_static);
+    if (!(mu_static >= p.gear_mu))
+      throw InvalidArgument("gear.mu_static = " + format_value(mu_static) +
+                            " is invalid: must be at least gear.mu = " + format_value(p.gear_mu));
+    const double factor = 1.0 / std::cos(0.5 * p.gear_flank_angle);
+    // Driven by the worm at all: gamma + rho'_static < pi/2.
+    if (!(p.gear_lead_angle + std::atan(mu_static * factor) < kRightAngle))
+      throw InvalidArgument("gear.lead_angle = " + format_value(p.gear_lead_angle) +
+                            " is invalid with gear.mu_static = " + format_value(mu_static) +
+                            ": the worm cannot be driven (lead angle + atan(mu_static / "
+                            "cos(flank_angle / 2)) must stay below pi/2)");
+    f.efficiency = TrainFriction::worm_efficiency(p.gear_lead_angle, p.gear_mu * factor);
+    f.efficiency_backdrive =
+        TrainFriction::worm_efficiency_backdrive(p.gear_lead_angle, p.gear_mu * factor);
+    f.efficiency_static = TrainFriction::worm_efficiency(p.gear_lead_angle, mu_static * factor);
+    f.efficiency_backdrive_static =
+        TrainFriction::worm_efficiency_backdrive(p.gear_lead_angle, mu_static * factor);
+  }
+  const std::string what = stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+                                 : "motor.friction_torque = " + format_value(p.motor_friction_torque);
+  const std::string needs = " is invalid: needs the rigid concept without play, driven by a "
+                            "torque (loads.drive_torque) or a DC motor, with exact Coulomb "
+                            "friction on the thread (one set of contacts slipping with one "
+                            "speed)";
+  if (p.concept != Concept::rigid)
+    throw InvalidArgument(what + needs + "; concept = \"" + concept_name(p.concept) + "\"");
+  if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
+    throw InvalidArgument(what + needs + "; backlash.axial = " + format_value(p.clearance) +
+                          " (play)");
+  if (p.speed_controlled)
+    throw InvalidArgument(what + needs + "; loads.drive_speed prescribes the speed (a motor's "
+                          "friction is absorbed by it)");
+  if (!e.thread->law().plain_coulomb())
+    throw InvalidArgument(what + needs + "; friction.law = \"" + p.friction +
+                          "\" (or a friction.mu_static above friction.mu)");
+  const double alpha = p.thread.lead_angle();
+  if (!(std::cos(alpha) - e.thread->effective_mu() * std::sin(alpha) > 0.0))
+    throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
+                          ": a torque cannot drive the thread (mu' >= cot(lead angle)), so its "
+                          "holding torques at rest form no interval");
+  if (p.nut_preload > 0.0)
+    throw InvalidArgument(what + needs + "; nut.preload = " + format_value(p.nut_preload));
+  if (p.end_stops != EndStopContact::none)
+    throw InvalidArgument(what + needs + "; end_stops (their contact is a further element)");
+  if (p.initial_state == InitialState::equilibrium)
+    throw InvalidArgument(what + needs + "; initial.state = \"equilibrium\" (use \"relaxed\")");
+  e.train_friction = f;
+}
+
 void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
@@ -438,6 +527,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
     e.thread.emplace(p, law, c, e.coordinate_count());
   }
   add_end_stops(p, load, e);
+  build_train_friction(p, e);
   return e;
 }
 

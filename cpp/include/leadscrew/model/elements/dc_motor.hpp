@@ -22,8 +22,8 @@
 //             drive's work books it (work_drive = int (U_d i + (k_t - k_e)
 //             i omega) dt), so that the account closes and says so.
 // The current starts at 0 (the driver switched on at t = 0). The motor's own
-// Coulomb friction (motor.friction_torque) is not modelled yet: the scene
-// refuses a nonzero value rather than approximate it.
+// Coulomb friction (motor.friction_torque) is a friction stage of the train
+// (train_friction.hpp), on the rigid drive without play.
 #pragma once
 
 #include <algorithm>

@@ -31,6 +31,7 @@
 #include "leadscrew/model/elements/end_stop.hpp"
 #include "leadscrew/model/elements/motor.hpp"
 #include "leadscrew/model/elements/preloaded_nut.hpp"
+#include "leadscrew/model/elements/train_friction.hpp"
 #include "leadscrew/model/elements/rigid_body.hpp"
 #include "leadscrew/model/elements/spring_damper.hpp"
 #include "leadscrew/model/elements/thread_pair.hpp"
@@ -92,6 +93,8 @@ struct DriveElements {
   std::optional<DcMotor> dc_motor;  // on the rotor, its torque k_t i (Motor applies 0)
   AxialLoad load;
   std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (any concept)
+  // The motor's friction and a lossy or worm stage (rigid drive without play).
+  std::optional<TrainFriction> train_friction;
   std::vector<ExactEndStop> exact_stops;  // end_stops.contact = "exact" (not force elements)
   // The coordinates that turn with the rotor and those that translate with
   // the load in a rigid-body motion of the drive (consistent_velocity).

@@ -278,7 +278,8 @@ def test_a_motor_faster_than_any_built_is_refused_naming_its_keys(factor, refuse
                                          r"and rotor\.inertia = .* are invalid together: .*"
                                          r"mechanical time constant .* must be at least 1e-06 s"):
         strong.model()
-    with pytest.raises(ValueError, match=r"motor\.inductance = .* is invalid: .* electrical time "
+    with pytest.raises(ValueError, match=r"motor\.inductance = .* and motor\.resistance = 2 are invalid "
+                                         r"together: .* electrical time "
                                          r"constant .* must be at least 1e-09 s"):
         ls.simulate(fast, 0.01)
 

@@ -46,7 +46,9 @@ void require_plausible_dc_motor(const DriveParameters& p, const DcMotor& m) {
         " s (the fastest motors built have about 1e-3 s: check the units)");
   if (m.inductance > 0.0 && !(m.inductance / m.resistance >= kShortestElectricalTimeConstant))
     throw InvalidArgument("motor.inductance = " + format_value(m.inductance) +
-                          " is invalid: with it the DC motor's electrical time constant "
+                          " and motor.resistance = " + format_value(m.resistance) +
+                          " are invalid together: with them the DC motor's electrical time "
+                          "constant "
                           "motor.inductance / motor.resistance comes to " +
                           format_value(m.inductance / m.resistance) + " s: must be at least " +
                           format_value(kShortestElectricalTimeConstant) +

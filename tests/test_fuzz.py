@@ -78,9 +78,14 @@ def test_generator_is_deterministic_and_covers_the_space():
                         ("contact", {"none", "exact", "bistop", "cubic"}),
                         ("motor", {"torque", "speed", "dc"})]:
         assert {c["tags"][tag] for c in drawn} == values, tag
-    # Issue 19's elements (a DC motor, a gear stage, end stops, a preloaded nut).
+    # Issue 19's elements (a DC motor, an ideal gear stage, end stops, a
+    # preloaded nut, a lossy or worm stage, the motor's friction), and the
+    # preloaded nut on every concept.
     trains = {part for c in drawn for part in c["tags"]["train"].split("+")}
-    assert trains == {"none", "dc_motor", "gear", "end_stops", "preload"}
+    assert trains == {"none", "dc_motor", "gear", "end_stops", "preload", "stage",
+                      "motor_friction"}
+    assert {c["tags"]["concept"] for c in drawn if "preload" in c["tags"]["train"]} == {
+        "rigid", "flexible_nut", "flexible"}
     integrators = {c["tags"]["integrator"] for c in drawn}
     assert integrators >= {"event_driven", "moreau", "default", "cvode_bdf", "cvode_adams",
                            "dopri5", "verner6", "rk_dopri5", "rk_verner6"}

@@ -55,7 +55,8 @@ distributions from about 500 runs, gaps and violations from two runs of
   lets friction do positive work by construction (its energy balance is
   checked).
 - ``friction_loss`` (not for ``arctan_acceleration``) and ``other_losses``
-  (damping_loss, contact_loss, impact_loss): a loss never falls between two
+  (damping_loss, contact_loss, impact_loss, and the train stages'
+  motor_friction_loss and gear_loss where present): a loss never falls between two
   output points, nor lies below zero, by more than max(1e-5, 1e3 rtol) E_ref
   + 1e-15 J (Moreau-Jean: 1e-5 E_ref). They are integrals of non-negative
   rates, but computed as quadratures whose Runge-Kutta weights have both
@@ -65,7 +66,8 @@ distributions from about 500 runs, gaps and violations from two runs of
   penalty contact); a loss falling by more is booked wrongly.
 - ``friction_cone`` (every law): |friction_force| <= mu' |normal_force|
   (with a preloaded nut of preload P: mu' (|normal_force| + 2 P / (cos a -
-  mu' sin a)), both halves' friction bounded by the triangle inequality)
+  mu' sin a)), both halves' friction bounded by the triangle inequality;
+  with lift-off, P the largest of P and the spring force preload_force)
   (1 + 1e-6) + 1e-9 F_sys + 1e-9 N, mu' = mu / cos(flank_angle / 2): the
   arctan laws stay inside too (|(2/pi) atan| < 1). In slip the two sides are
   equal to round-off, a stick phase leaves the cone at a root located to the
@@ -262,7 +264,10 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     f_sys = max(f_ref, n_ref, float(np.max(np.abs(ch["axial_force"]))),
                 torque / radius if radius > 0 else 0.0)
     v_ref = float(np.max(np.abs(slip)))
-    losses = ("friction_loss", "damping_loss", "contact_loss", "impact_loss")
+    # (the train's stages book their own: the motor's friction and a lossy
+    # or worm stage, docs/physics/gear.md)
+    losses = ("friction_loss", "damping_loss", "contact_loss", "impact_loss") + tuple(
+        name for name in ("motor_friction_loss", "gear_loss") if name in ch)
     e_ref = max(float(np.max(np.abs(ch["work_drive"]) + np.abs(ch["work_axial"]))),
                 float(np.max(ch["kinetic"] + ch["elastic"])),
                 float(np.max(sum(ch[name] for name in losses))), ENERGY_FLOOR)
@@ -315,6 +320,10 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     # |N_B| = P / (cos a - s mu' sin a) for the slip sign s; bounded here
     # independently of the simulator's split by mu' (|N| + 2 max_s |N_B|).
     preload = float(scene.get("nut", {}).get("preload", 0.0) or 0.0)
+    if preload > 0.0 and "preload_force" in ch:
+        # With lift-off (flexible, penalty play) half B's spring force S
+        # changes with the play: bounded by its largest value.
+        preload = max(preload, float(np.max(np.abs(ch["preload_force"]))))
     if preload > 0.0:
         thread = scene["thread"]
         alpha = math.atan(float(thread["pitch"]) * int(thread.get("starts", 1))

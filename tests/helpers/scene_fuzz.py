@@ -19,7 +19,9 @@ law and contact (event_driven, moreau with its ``dt``, the ODE integrators),
 torque- or speed-controlled motors (constant, sine, table, reversing speed),
 axial forces, initial rotor speeds and play positions, and issue 19's elements
 where the scene takes them (a DC motor, an ideal gear stage, penalty end stops,
-a preloaded nut; drawn from a stream of their own); geometry, material,
+a preloaded nut, on the flexible concepts with lift-off in penalty play, a
+lossy or worm stage and the motor's friction on the rigid drive without play;
+drawn from a stream of their own); geometry, material,
 masses and loads log-uniform over plausible ranges, with the edges the schema
 allows (mu = 0, no load mass, restitution 0 and 1, a nut starting on a flank)
 and some values given as unit strings. The rest carry one or two hostile
@@ -563,10 +565,49 @@ def _drive_train(r, scene: dict, options: dict, speed_controlled: bool, t_end: f
         scene["end_stops"] = stops
         added.append("end_stops")
     friction = scene["friction"]
-    if (r.chance(0.6) and scene["concept"] == "rigid" and friction["law"] == "coulomb"
+    backlash = scene.get("backlash")
+    # The train's friction stages (docs/physics/gear.md, "Friction stages"):
+    # the rigid drive without play, plain Coulomb, torque or DC motor,
+    # event-driven, no preload or stops.
+    # (Rare among the cases as drawn: a stage's case takes plain Coulomb
+    # friction where the options leave the integrator to the scene.)
+    train_fits = (scene["concept"] == "rigid" and backlash is None and not speed_controlled
+                  and relaxed and "end_stops" not in added
+                  and (integrator is None
+                       or (integrator == "event_driven" and friction["law"] == "coulomb")))
+    if r.chance(0.8) and train_fits:
+        for key in list(friction):
+            if key not in ("law", "mu"):
+                del friction[key]
+        friction["law"] = "coulomb"
+        ratio = r.signed(r.log_uniform(0.2, 60.0))
+        if r.chance(0.5):
+            scene["gear"] = {"type": "lossy", "ratio": ratio,
+                             "efficiency": r.uniform(0.2, 1.0),
+                             "efficiency_backdrive": r.uniform(-1.0, 1.0)}
+        else:
+            gear = {"type": "worm", "ratio": ratio,
+                    "lead_angle": r.uniform(0.02, 0.6), "mu": r.uniform(0.0, 0.4)}
+            if r.chance(0.3):
+                gear["mu_static"] = gear["mu"] * r.uniform(1.0, 1.5)
+            if r.chance(0.3):
+                gear["flank_angle"] = r.uniform(0.0, 1.0)
+            scene["gear"] = gear
+        added = [name for name in added if name != "gear"] + ["stage"]
+        if "motor" in scene and r.chance(0.5):
+            scene["motor"]["friction_torque"] = r.log_uniform(1e-5, 0.05)
+            added.append("motor_friction")
+    # A preloaded nut: on the rigid concept (its play closed), on the flexible
+    # ones without play or with penalty play (half A lifts off, its spring
+    # carries the load: preload_stiffness > 0 there).
+    preload_fits = scene["concept"] == "rigid" or backlash is None or backlash["contact"] in (
+        "bistop", "cubic")
+    if (r.chance(0.6) and preload_fits and friction["law"] == "coulomb" and "stage" not in added
             and relaxed and integrator in (None, "event_driven")):
         friction.pop("mu_static", None)  # (a preloaded nut takes plain Coulomb friction)
         scene["nut"]["preload"] = r.log_uniform(1.0, 2000.0)
+        if scene["concept"] != "rigid" and backlash is not None:
+            scene["nut"]["preload_stiffness"] = r.log_uniform(1e5, 1e9)
         added.append("preload")
     return "+".join(added) or "none"
 

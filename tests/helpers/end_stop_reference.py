@@ -26,7 +26,7 @@ import numpy as np
 from . import thread_reference
 
 __all__ = ["static_deflection", "clamp_force", "breakaway_torque", "pushing_force",
-           "elastic_energy", "loss_power"]
+           "elastic_energy", "loss_power", "train_clamp_force", "train_breakaway_torque"]
 
 
 def static_deflection(force: float, stiffness: float) -> float:
@@ -69,3 +69,32 @@ def loss_power(d, rate, stiffness: float, damping: float):
     d, rate = np.asarray(d, float), np.asarray(rate, float)
     force = pushing_force(d, rate, stiffness, damping)
     return np.where(d > 0.0, (force - stiffness * d) * rate, 0.0)
+
+
+# --- through the train's friction stages (docs/physics/gear.md, "End stops") --
+#
+# Behind a stage of ratio n and forward efficiency eta and a motor with its
+# own Coulomb friction T_c, the motor's torque T needed to move the thread's
+# torque T_thread forward (the motor driving, the power flowing to the
+# driven part) is T = T_thread / (n eta) + T_c.
+
+
+def train_clamp_force(motor_torque: float, thread: dict, mu: float, ratio: float,
+                      efficiency: float, friction_torque: float = 0.0) -> float:
+    """The quasi-static clamp F [N] at which the train needs the motor's torque
+    T [N m] (its stall torque k_t U / R, or k_t i_max): F r_m tan(alpha + rho')
+    / (n eta) + T_c = T."""
+    unit = thread_reference.raise_torque(thread["pitch"], thread["mean_diameter"], mu, 1.0,
+                                         thread.get("starts", 1),
+                                         thread.get("flank_angle", 0.0))
+    return (abs(motor_torque) - friction_torque) * abs(ratio) * efficiency / unit
+
+
+def train_breakaway_torque(clamp: float, thread: dict, mu_static: float, ratio: float,
+                           efficiency_static: float, friction_torque: float = 0.0) -> float:
+    """The motor's torque [N m] that breaks a clamp F [N] free through the
+    train: the thread's lowering torque with mu_static, T_b = F r_m tan(rho_s'
+    - alpha) (> 0: self-locking), taken forward through the stage with its
+    static efficiency, plus T_c: T_b / (n eta_static) + T_c."""
+    return (breakaway_torque(clamp, thread, mu_static) / (abs(ratio) * efficiency_static)
+            + friction_torque)

@@ -91,10 +91,24 @@ def train_clamp_force(motor_torque: float, thread: dict, mu: float, ratio: float
 
 
 def train_breakaway_torque(clamp: float, thread: dict, mu_static: float, ratio: float,
-                           efficiency_static: float, friction_torque: float = 0.0) -> float:
-    """The motor's torque [N m] that breaks a clamp F [N] free through the
-    train: the thread's lowering torque with mu_static, T_b = F r_m tan(rho_s'
-    - alpha) (> 0: self-locking), taken forward through the stage with its
-    static efficiency, plus T_c: T_b / (n eta_static) + T_c."""
-    return (breakaway_torque(clamp, thread, mu_static) / (abs(ratio) * efficiency_static)
-            + friction_torque)
+                           efficiency_static: float, friction_torque: float = 0.0,
+                           efficiency_backdrive_static: float = 1.0):
+    """(the motor's torque [N m], the driven part's [N m]) that break a clamp
+    F [N] free through the train, by Coulomb's static solution: at rest the
+    thread holds any torque tau on the driven part between -T_b (T_b = F r_m
+    tan(rho_s' - alpha), its lowering torque with mu_static) and T_r (F r_m
+    tan(alpha + rho_s'), its raising torque), the stage passes x = k tau on
+    its input with k between eta_b,static and 1 / eta_static (its extremes
+    at the ends), and the motor's friction holds |n| T_c: the motor moves the
+    clamp back beyond the largest -k tau, plus T_c. A self-locking thread
+    driven back through the stage: T_b / (n eta_static) + T_c; a self-locking
+    stage (eta_b,static < 0) locked by the thread's holding at its raising
+    edge: |eta_b,static| T_r / n + T_c, where that is larger."""
+    low = -breakaway_torque(clamp, thread, mu_static)
+    high = thread_reference.raise_torque(thread["pitch"], thread["mean_diameter"], mu_static,
+                                         clamp, thread.get("starts", 1),
+                                         thread.get("flank_angle", 0.0))
+    splits = [(-k * tau, abs(tau)) for k in (efficiency_backdrive_static, 1.0 / efficiency_static)
+              for tau in (low, high)]
+    held, driven = max(splits)
+    return held / abs(ratio) + friction_torque, driven

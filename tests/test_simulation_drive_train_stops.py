@@ -132,3 +132,37 @@ def test_exact_stops_stay_refused_with_a_stage():
     with pytest.raises(ValueError, match="end_stops.contact = 'exact' is invalid with concept "
                                          "= 'rigid'"):
         ls.Scene.from_dict(scene).model()
+
+
+def test_the_train_and_stop_channels_have_their_units():
+    # (leadscrew run wrote no result of a train: motor_friction_loss and
+    # gear_loss had no unit.)
+    result = ls.simulate(ls.Scene.from_dict(stop_scene(friction_torque=2e-3)), 0.05)
+    units = result.units()
+    assert units["motor_friction_loss"] == units["gear_loss"] == "J"
+    assert units["stop_force"] == "N"
+    assert list(result.to_frame().columns) == list(units)
+
+
+def test_the_shipped_worm_seat_adjuster_runs_into_its_stop_and_stalls():
+    # The seat's motor stalls against the rear stop through the self-locking
+    # worm: the clamp where the train needs the stall torque, the stop's force
+    # and the 80 N axial load on the thread together:
+    # (F_stop + F_axial) r_m tan(alpha + rho') / (n eta) + T_c = k_t U / R.
+    scene = ls.scenes.load("seat_adjuster_worm")
+    d = scene.to_dict()
+    one = ls.simulate(scene, 1.0)  # the CLI's default run
+    assert [e.kind for e in one.events] == ["stick->slip+", "lower end stop contact"]
+    motor, gear = d["motor"], d["gear"]
+    stall = motor["voltage"] / motor["resistance"]
+    assert one["motor_current"][-1] > 0.99 * stall
+    result = ls.simulate(scene, 2.0, rtol=1e-10, atol=1e-12)
+    eta = train_reference.worm_efficiencies(gear["lead_angle"], gear["mu"],
+                                            gear["flank_angle"])[0]
+    thread = reference.train_clamp_force(motor["torque_constant"] * stall, d["thread"],
+                                         d["friction"]["mu"], gear["ratio"], eta,
+                                         motor["friction_torque"])
+    assert result["stop_force"][-1] + d["loads"]["axial_force"] == pytest.approx(thread,
+                                                                                rel=1e-6)
+    assert result["motor_current"][-1] == pytest.approx(stall, rel=1e-6)
+    assert failed(check_result(result, d, {"t_end": 2.0, "rtol": 1e-10, "atol": 1e-12})) == []

@@ -166,3 +166,32 @@ def test_the_shipped_worm_seat_adjuster_runs_into_its_stop_and_stalls():
                                                                                 rel=1e-6)
     assert result["motor_current"][-1] == pytest.approx(stall, rel=1e-6)
     assert failed(check_result(result, d, {"t_end": 2.0, "rtol": 1e-10, "atol": 1e-12})) == []
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+def test_a_nut_driven_train_raises_and_clamps_as_the_closed_form(drive):
+    # The rotor turning the nut (drive = "nut"): the slip's sign is minus
+    # phi''s there, which the motor's friction, the stage's power flow and a
+    # start's direction follow (every nut-driven train ran into max_steps at
+    # its start before). Raising 80 N at 12 V through the worm: the steady
+    # current T / k_t, T = (F r_m tan(alpha + rho') / eta + |n| T_c) / n; then
+    # the stall at the stop as the shipped scene's.
+    d = ls.scenes.load("seat_adjuster_worm").to_dict()
+    d["drive"] = drive
+    motor, gear = d["motor"], d["gear"]
+    eta = train_reference.worm_efficiencies(gear["lead_angle"], gear["mu"],
+                                            gear["flank_angle"])[0]
+    unit = reference.train_clamp_force(1.0 + motor["friction_torque"], d["thread"],
+                                       d["friction"]["mu"], gear["ratio"], eta,
+                                       motor["friction_torque"])  # F per N m of the motor
+    free = {key: value for key, value in d.items() if key != "end_stops"}
+    steady = ls.simulate(ls.Scene.from_dict(free), 0.3, rtol=1e-10, atol=1e-12)
+    torque = d["loads"]["axial_force"] / unit + motor["friction_torque"]
+    assert steady["motor_current"][-1] == pytest.approx(torque / motor["torque_constant"],
+                                                        rel=1e-6)
+    assert steady["v_load"][-1] < 0.0  # (+12 V moves the seat rearward, uphill)
+    clamped = ls.simulate(ls.Scene.from_dict(d), 2.0, rtol=1e-10, atol=1e-12)
+    stall = motor["voltage"] / motor["resistance"]
+    force = (motor["torque_constant"] * stall - motor["friction_torque"]) * unit
+    assert clamped["stop_force"][-1] + d["loads"]["axial_force"] == pytest.approx(force,
+                                                                                 rel=1e-6)

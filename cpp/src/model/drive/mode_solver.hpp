@@ -183,6 +183,11 @@ class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
 
   const elements::TrainFriction& train_;
   const std::vector<elements::EndStop>& stops_;  // the penalty end stops (on the load)
+  // The sign of phi' in a slip of sign +1 (gamma_T = slip_per_speed phi'):
+  // -1 where the rotor turns the nut (drive = "nut"). The motor's friction,
+  // the stage's power flow and a start's acceleration go with phi', the
+  // thread's coefficients and the mode's sign with the slip.
+  int phi_per_slip_ = 1;
   ThreadSlip thread_[2][2];  // [s > 0 ? 0 : 1][sigma > 0 ? 0 : 1]
   RigidModeCoefficients stick_;  // per unit torque on phi
   int stage_guess_ = 1;

@@ -37,7 +37,8 @@ constexpr double kSameMotion = 1e-9;
 DriveHybrid::TrainSolver::TrainSolver(DriveHybrid& hybrid)
     : RigidDofSolver(hybrid),
       train_(*hybrid.model_.train_friction()),
-      stops_(hybrid.model_.elements().end_stops()) {
+      stops_(hybrid.model_.elements().end_stops()),
+      phi_per_slip_(rigid_.slip_per_speed() < 0.0 ? -1 : 1) {
   // RigidDriveModes' coefficients are per unit torque on the rotor (n on phi).
   const double n = train_.ratio;
   for (int s : {1, -1})
@@ -82,7 +83,8 @@ double DriveHybrid::TrainSolver::load_force() const {
 DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::slip(int s, bool breakaway,
                                                                   double torque, double force) {
   const double R = train_.rotor_inertia;
-  const double U = torque - train_.motor_friction_bound() * s;
+  const int d = s * phi_per_slip_;  // the sign of phi'
+  const double U = torque - train_.motor_friction_bound() * d;
   Solution best;
   const int sigma_first = h_.sigma_guess_, stage_first = train_.stage ? stage_guess_ : 1;
   for (int i = 0; i < 2; ++i) {
@@ -101,8 +103,8 @@ DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::slip(int s, bool br
       x.normal_force = c.normal_q * Q + c.normal_f * force;
       x.friction_force = c.friction_q * Q + c.friction_f * force;
       if (sigma * x.normal_force < 0.0) continue;
-      if (train_.stage && stage_sign * s * x.stage_torque < 0.0) continue;
-      if (breakaway && !(s * x.acceleration > 0.0)) continue;  // no start in s
+      if (train_.stage && stage_sign * d * x.stage_torque < 0.0) continue;
+      if (breakaway && !(d * x.acceleration > 0.0)) continue;  // no start in s
       if (best.count > 0 &&
           std::abs(x.acceleration - best.acceleration) >
               kSameMotion * (std::abs(x.acceleration) + std::abs(best.acceleration))) {
@@ -252,7 +254,7 @@ double DriveHybrid::TrainSolver::stick_margin() {
 int DriveHybrid::TrainSolver::exit_direction() {
   double up, down;
   static_margins(up, down);
-  return up <= down ? 1 : -1;
+  return (up <= down ? 1 : -1) * phi_per_slip_;  // (the margins' directions are phi's)
 }
 
 double DriveHybrid::TrainSolver::stage_torque() { return solve().stage_torque; }

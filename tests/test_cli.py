@@ -37,7 +37,7 @@ def test_check_without_scene_keeps_the_thread_verdicts(capsys):
 
 
 @pytest.mark.parametrize("name", ["default", "thesis_table_5_1", "position_holding",
-                                  "seat_adjuster"])
+                                  "seat_adjuster", "seat_adjuster_worm"])
 def test_check_shipped_scene(capsys, name):
     code, out, err = run_main(capsys, "check", name)
     assert code == 0 and err == ""
@@ -45,7 +45,7 @@ def test_check_shipped_scene(capsys, name):
     d = scene.to_dict()
     t = scene.thread
     assert f"scene {name}: valid" in out
-    assert re.search(r"self-locking .*:\s+yes", out)  # all three are self-locking
+    assert re.search(r"self-locking .*:\s+yes", out)  # all of them are self-locking
     assert f"efficiency forward {ls.efficiency(t, d['friction']['mu']):.6g}" in out
     for key, value in scene.derived().items():
         assert f"{key} = {value:.6g}" in out

@@ -9,6 +9,10 @@
    (arctan_velocity, k_v = 1e4 s/m) and penalty stops: wall time (median of
    `--repeats`), events and the run's largest stop force; ratios against the
    first variant of each concept.
+   The worm scene (seat_adjuster_worm: the rigid concept through its
+   self-locking worm and the motor's friction) runs the same 2 s with exact
+   Coulomb friction and penalty stops (the train's friction stages take no
+   other), its ratio against the rigid concept's first run.
 2. 50 reversing runs of end_stop_jam's sequence (into the stop, then each of
    50 reverse voltages) serially and on a thread pool of 2 workers (each
    leadscrew.simulate releases the GIL): wall time and the ratio.
@@ -59,6 +63,12 @@ def variants(concept):
     return out
 
 
+def worm_scene():
+    """seat_adjuster_worm with the back-and-forth voltage (rigid, exact
+    Coulomb, penalty stops)."""
+    return ls.scenes.load("seat_adjuster_worm").replace(motor={"voltage": BACK_AND_FORTH})
+
+
 def timed(scene, repeats):
     times, result = [], None
     for _ in range(repeats):
@@ -93,6 +103,7 @@ def main():
     print("## Seat adjuster: 2 s to the rear stop and back (+12 V, then -12 V at 1 s)\n")
     print("| concept | run | wall time [ms] | ratio | events | largest stop force [N] |")
     print("|---|---|---|---|---|---|")
+    rigid = None
     for concept in ("rigid", "flexible_nut", "flexible"):
         reference = None
         for name, scene in variants(concept):
@@ -101,6 +112,11 @@ def main():
             print(f"| {concept} | {name} | {1e3 * wall:.1f} | {wall / reference:.2f} | "
                   f"{len(result.events)} | {np.max(np.abs(result['stop_force'])):.0f} |",
                   flush=True)
+        rigid = rigid or reference
+    wall, result = timed(worm_scene(), args.repeats)
+    print(f"| rigid, worm (seat_adjuster_worm) | Coulomb, penalty stops | {1e3 * wall:.1f} | "
+          f"{wall / rigid:.2f} | {len(result.events)} | "
+          f"{np.max(np.abs(result['stop_force'])):.0f} |", flush=True)
     voltages = np.linspace(1.0, 12.0, 50)
     serial, freed = reversing_runs(voltages, 1)
     pooled, freed_pool = reversing_runs(voltages, 2)

@@ -407,7 +407,7 @@ _CHANNELS_BY_UNIT = {
     "V": ("motor_voltage",),
     "J": ("work_drive", "work_axial", "work_force", "friction_loss", "damping_loss",
           "contact_loss", "impact_loss", "copper_loss", "kinetic", "elastic",
-          "magnetic_energy", "energy_residual"),
+          "magnetic_energy", "energy_residual", "motor_friction_loss", "gear_loss"),
     "": ("stick",),  # a flag: 1 stick, 0 slip
 }
 _CHANNEL_UNITS = {name: unit for unit, names in _CHANNELS_BY_UNIT.items() for name in names}

@@ -26,7 +26,7 @@ import numpy as np
 from . import thread_reference
 
 __all__ = ["static_deflection", "clamp_force", "breakaway_torque", "pushing_force",
-           "elastic_energy", "loss_power"]
+           "elastic_energy", "loss_power", "train_clamp_force", "train_breakaway_torque"]
 
 
 def static_deflection(force: float, stiffness: float) -> float:
@@ -69,3 +69,46 @@ def loss_power(d, rate, stiffness: float, damping: float):
     d, rate = np.asarray(d, float), np.asarray(rate, float)
     force = pushing_force(d, rate, stiffness, damping)
     return np.where(d > 0.0, (force - stiffness * d) * rate, 0.0)
+
+
+# --- through the train's friction stages (docs/physics/gear.md, "End stops") --
+#
+# Behind a stage of ratio n and forward efficiency eta and a motor with its
+# own Coulomb friction T_c, the motor's torque T needed to move the thread's
+# torque T_thread forward (the motor driving, the power flowing to the
+# driven part) is T = T_thread / (n eta) + T_c.
+
+
+def train_clamp_force(motor_torque: float, thread: dict, mu: float, ratio: float,
+                      efficiency: float, friction_torque: float = 0.0) -> float:
+    """The quasi-static clamp F [N] at which the train needs the motor's torque
+    T [N m] (its stall torque k_t U / R, or k_t i_max): F r_m tan(alpha + rho')
+    / (n eta) + T_c = T."""
+    unit = thread_reference.raise_torque(thread["pitch"], thread["mean_diameter"], mu, 1.0,
+                                         thread.get("starts", 1),
+                                         thread.get("flank_angle", 0.0))
+    return (abs(motor_torque) - friction_torque) * abs(ratio) * efficiency / unit
+
+
+def train_breakaway_torque(clamp: float, thread: dict, mu_static: float, ratio: float,
+                           efficiency_static: float, friction_torque: float = 0.0,
+                           efficiency_backdrive_static: float = 1.0):
+    """(the motor's torque [N m], the driven part's [N m]) that break a clamp
+    F [N] free through the train, by Coulomb's static solution: at rest the
+    thread holds any torque tau on the driven part between -T_b (T_b = F r_m
+    tan(rho_s' - alpha), its lowering torque with mu_static) and T_r (F r_m
+    tan(alpha + rho_s'), its raising torque), the stage passes x = k tau on
+    its input with k between eta_b,static and 1 / eta_static (its extremes
+    at the ends), and the motor's friction holds |n| T_c: the motor moves the
+    clamp back beyond the largest -k tau, plus T_c. A self-locking thread
+    driven back through the stage: T_b / (n eta_static) + T_c; a self-locking
+    stage (eta_b,static < 0) locked by the thread's holding at its raising
+    edge: |eta_b,static| T_r / n + T_c, where that is larger."""
+    low = -breakaway_torque(clamp, thread, mu_static)
+    high = thread_reference.raise_torque(thread["pitch"], thread["mean_diameter"], mu_static,
+                                         clamp, thread.get("starts", 1),
+                                         thread.get("flank_angle", 0.0))
+    splits = [(-k * tau, abs(tau)) for k in (efficiency_backdrive_static, 1.0 / efficiency_static)
+              for tau in (low, high)]
+    held, driven = max(splits)
+    return held / abs(ratio) + friction_torque, driven

@@ -11,6 +11,7 @@ import pytest
 
 import leadscrew as ls
 from helpers import end_stop_reference as reference
+from helpers import train_reference
 from helpers.scenes import thesis_scene
 
 STOPS = {"lower": -2e-4, "stiffness": 1e8, "damping": 1e4}  # 0.2 mm of run-up
@@ -211,4 +212,68 @@ def test_exact_stops_are_refused_naming_the_contact():
              "end_stops": {"lower": "-2 mm", "contact": "exact"}}
     with pytest.raises(ValueError, match=r"end_stops.contact = 'exact' is invalid for "
                                          r"end_stop_jam: must be 'penalty'"):
+        ls.studies.end_stop_jam(scene, progress=False)
+
+
+# --- through the train's friction stages (docs/physics/gear.md, "End stops
+# through the stages") ---------------------------------------------------------
+
+# A self-locking worm (mu' = 0.106 > tan 0.06; its static mu' 0.128).
+WORM = {"type": "worm", "ratio": 10.0, "lead_angle": 0.06, "mu": 0.1, "mu_static": 0.12,
+        "flank_angle": math.radians(40.0)}
+TRAIN_STOPS = {"lower": -1e-4, "stiffness": 1e8, "damping": 1e6}  # damped: no overshoot
+
+
+def train_scene(mu=0.3, friction_torque=2e-3):
+    d = thesis_scene(thread={"flank_angle": 0.0}, friction={"mu": mu},
+                     loads={"axial_force": 0.0}, gear=WORM, end_stops=TRAIN_STOPS,
+                     motor={"type": "dc", "voltage": U, "resistance": R, "inductance": L,
+                            "torque_constant": KT, "friction_torque": friction_torque})
+    d["loads"].pop("drive_torque")
+    return d
+
+
+@pytest.mark.parametrize("mu", [0.3, 0.01])
+@pytest.mark.parametrize("friction_torque", [0.0, 2e-3])
+def test_breakaway_voltage_through_a_self_locking_worm_matches_the_closed_form(mu,
+                                                                               friction_torque):
+    # The motor moves the clamp back through the worm at rest beyond every
+    # static split (Coulomb's static solution): a self-locking thread (mu =
+    # 0.3) driven back through the worm with its static efficiency; behind a
+    # thread the load back-drives (mu = 0.01) the worm is locked by the
+    # thread's holding at its raising edge (the torque the drive left in the
+    # train at the stall), |eta_b,static| T_r / n; plus T_c. U_b = R T / k_t.
+    scene = train_scene(mu, friction_torque)
+    # (t_drive: the back-EMF's approach settles, the train sticks at the clamp)
+    frame = ls.studies.end_stop_jam(scene, t_drive=1.0, t_reverse=0.1, progress=False)
+    summary = frame.attrs["summary"]
+    eta_s, eta_bs = train_reference.worm_efficiencies(WORM["lead_angle"], WORM["mu_static"],
+                                                      WORM["flank_angle"])
+    assert eta_bs < 0.0
+    clamp = summary["thread_force"]
+    motor_torque, driven = reference.train_breakaway_torque(
+        clamp, scene["thread"], mu, WORM["ratio"], eta_s, friction_torque, eta_bs)
+    lowering = reference.breakaway_torque(clamp, scene["thread"], mu)
+    if mu == 0.3:  # the thread driven back: T_b / (n eta_static) + T_c
+        assert motor_torque == pytest.approx(lowering / (10.0 * eta_s) + friction_torque,
+                                             rel=1e-12)
+    else:  # T_b < 0: the worm locked by the thread's raising edge
+        assert lowering < 0.0 and driven > abs(lowering)
+    assert summary["breakaway_motor_torque_closed_form"] == pytest.approx(motor_torque,
+                                                                          rel=1e-12)
+    assert summary["breakaway_voltage_closed_form"] == pytest.approx(R * motor_torque / KT,
+                                                                     rel=1e-12)
+    assert summary["breakaway_voltage"] == pytest.approx(R * motor_torque / KT, rel=1e-6)
+    assert summary["breakaway_motor_torque"] == pytest.approx(motor_torque, rel=1e-6)
+    assert summary["breakaway_torque_closed_form"] == pytest.approx(driven, rel=1e-12)
+    assert summary["breakaway_torque"] == pytest.approx(driven, rel=1e-6)
+    assert summary["peak_current"] == pytest.approx(U / R, rel=1e-6)
+    bisection_is_consistent(frame, "reverse_voltage")
+
+
+def test_a_train_that_back_drives_is_refused():
+    # A thread that back-drives behind a worm that does too: nothing jams.
+    scene = train_scene(mu=0.01)
+    scene["gear"] = {**WORM, "lead_angle": 0.3, "mu": 0.05, "mu_static": 0.05}
+    with pytest.raises(ValueError, match="no self-locking gear stage holds it"):
         ls.studies.end_stop_jam(scene, progress=False)

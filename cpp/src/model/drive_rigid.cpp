@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "leadscrew/core/errors.hpp"
@@ -18,10 +19,25 @@ bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dyna
   return !model.dc_motor() && !model.train_friction() && applies_to_thread(model, dynamics);
 }
 
+// The train's friction stages take penalty end stops besides (their force
+// is one more axial force on the load, TrainSolver); the coefficients are
+// per unit load, the stops' force not among them.
+namespace {
+bool no_force_elements_but_train_stops(const DriveModel& model) {
+  if (model.elements().forces.empty()) return true;
+  if (!model.train_friction()) return false;
+  bool others = false;
+  model.elements().forces.for_each([&](const auto& element) {
+    if (!std::is_same_v<std::decay_t<decltype(element)>, elements::EndStop>) others = true;
+  });
+  return !others;
+}
+}  // namespace
+
 bool RigidDriveModes::applies_to_thread(const DriveModel& model, const DriveDynamics& dynamics) {
   return model.bilateral_thread() && !model.motor().speed_controlled &&
          !model.preloaded_nut() &&
-         dynamics.law().plain_coulomb() && model.elements().forces.empty() &&
+         dynamics.law().plain_coulomb() && no_force_elements_but_train_stops(model) &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();
 }

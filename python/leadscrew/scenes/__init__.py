@@ -16,6 +16,10 @@
   its rear stop; flexible spindle and nut, exact Coulomb friction with
   mu_static. (Its stage is ideal: the worm stage runs on the rigid concept without play
   only.)
+- ``seat_adjuster_worm``: the same seat adjuster with its real reduction on the
+  rigid concept without play: a self-locking 10:1 worm stage, the motor's own
+  friction, a spindle turned by the worm wheel, penalty end stops; the seat
+  runs 5 mm into its rear stop, where the motor stalls and the thread clamps.
 
 Each file states in its comments where every value comes from. Use them as
 templates: ``leadscrew.scenes.path(name)`` is the file.

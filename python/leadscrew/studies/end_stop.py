@@ -26,6 +26,21 @@ Behind an ideal gear stage of ratio n (section ``gear``) the drive's torque
 and the DC motor act on the rotor: the breakaway torque on the driven part
 T_b takes T_b / |n| on the rotor, U_b = R T_b / (|n| k_t). The study reports
 ``breakaway_torque`` on the driven part either way.
+
+Through the train's friction stages (a lossy or worm stage, the motor's
+friction T_c: the rigid drive without play, docs/physics/gear.md, "End
+stops through the stages") the breakaway is the static stick test's edge:
+at rest the thread holds any torque tau on the driven part between -T_b and
+T_r = F r_m tan(alpha + rho_s') (its lowering and raising torques with
+mu_static), the stage passes x = k tau with k between eta_b,static and
+1 / eta_static, and the motor moves the clamp back beyond the largest
+|k| |tau| of them, plus T_c: T_b / (|n| eta_static) + T_c where the thread
+is self-locking and the motor drives it back, or |eta_b,static| T_r / |n| +
+T_c where a self-locking stage is locked by the thread holding at its
+raising edge (the torque a drive into the stop leaves in the train), the
+larger. Then U_b = R T_motor / k_t. ``breakaway_torque`` is that split's
+torque on the driven part (T_b, or T_r); ``breakaway_motor_torque`` the
+motor's.
 """
 
 from __future__ import annotations
@@ -50,6 +65,7 @@ UNITS = {"reverse_torque": "N*m", "reverse_voltage": "V", "broke_free": "",
 _SUMMARY_UNITS = {"clamp_force": "N", "thread_force": "N", "peak_clamp_force": "N",
                   "peak_current": "A",
                   "breakaway_torque": "N*m", "breakaway_torque_closed_form": "N*m",
+                  "breakaway_motor_torque": "N*m", "breakaway_motor_torque_closed_form": "N*m",
                   "breakaway_voltage": "V", "breakaway_voltage_closed_form": "V",
                   "t_drive": "s", "t_reverse": "s", "runs": "1"}
 
@@ -99,32 +115,69 @@ def _with_drive(scene, kind: str, forward: float, reverse: Optional[float], t_dr
     return scene.replace(loads={"drive_torque": value})
 
 
+def _train(scene) -> Dict[str, float]:
+    """The train's friction stages' static efficiencies and the motor's
+    friction T_c [N*m] (an ideal stage or none: 1, 1, 0)."""
+    train = scene.model().train_friction
+    if not train:
+        return {"efficiency_static": 1.0, "efficiency_backdrive_static": 1.0,
+                "motor_friction_torque": 0.0}
+    return {name: train[name] for name in ("efficiency_static", "efficiency_backdrive_static",
+                                           "motor_friction_torque")}
+
+
+def _breakaway_split(scene, clamp: float) -> Tuple[float, float]:
+    """(the torque on the driven part [N*m], |k|) at the breakaway of a clamp
+    F [N]: the static stick test's edge (docs/physics/gear.md, "End stops
+    through the stages"). At rest the thread holds the torques tau in
+    [-T_b, T_r] (T_b = F r_m tan(rho_s' - alpha), T_r = F r_m tan(alpha +
+    rho_s'): its lowering and raising torques with mu_static) and the stage
+    passes x = k tau with k between eta_b,static and 1 / eta_static; the
+    motor moves the clamp back where its torque on the stage's input exceeds
+    the largest -x of them all, |k| |tau| (an ideal stage or none: T_b)."""
+    friction = scene["friction"]
+    mu_static = friction.get("mu_static", friction["mu"])
+    train = _train(scene)
+    low = -float(_core.lower_torque(scene.thread, mu_static, clamp))
+    high = float(_core.raise_torque(scene.thread, mu_static, clamp))
+    forward, backward = 1.0 / train["efficiency_static"], train["efficiency_backdrive_static"]
+    k, tau = min(((backward, low), (backward, high), (forward, low), (forward, high)),
+                 key=lambda split: split[0] * split[1])
+    return abs(tau), abs(k)
+
+
 def _require_self_locking(scene) -> None:
-    """A thread that holds a clamp by itself: tan(alpha) < mu_static'.
+    """A thread that holds a clamp by itself, tan(alpha) < mu_static', or a
+    self-locking stage of the train (eta_b,static <= 0) that holds it.
 
     Raises:
-        ValueError: the thread back-drives (nothing jams: the stop pushes the
+        ValueError: the train back-drives (nothing jams: the stop pushes the
             drive back once the drive lets go).
     """
     friction = scene["friction"]
     mu_static = friction.get("mu_static", friction["mu"])
+    if _train(scene)["efficiency_backdrive_static"] <= 0.0:
+        return
     if not _core.lower_torque(scene.thread, mu_static, 1.0) > 0.0:
         raise ValueError(f"friction.mu_static = {mu_static!r} is invalid for end_stop_jam: the "
-                         "thread is not self-locking (tan(alpha) >= mu_static'), so nothing "
-                         "jams: the stop pushes the drive back as soon as the drive lets go")
+                         "thread is not self-locking (tan(alpha) >= mu_static') and no "
+                         "self-locking gear stage holds it, so nothing jams: the stop pushes "
+                         "the drive back as soon as the drive lets go")
 
 
 def _closed_form(scene, kind: str, clamp: float) -> Dict[str, float]:
-    """T_b = F r_m tan(rho_s' - alpha) on the driven part and, with a DC motor,
-    U_b = R T_b / (|n| k_t)."""
-    friction = scene["friction"]
-    mu_static = friction.get("mu_static", friction["mu"])
-    torque = float(_core.lower_torque(scene.thread, mu_static, clamp))
-    out = {"breakaway_torque_closed_form": torque, "breakaway_voltage_closed_form": math.nan}
+    """The breakaway's torque on the driven part T (T_b = F r_m tan(rho_s' -
+    alpha) without friction stages: _breakaway_split), the motor's torque
+    |k| T / |n| + T_c (``breakaway_motor_torque_closed_form``) and, with a DC
+    motor, U_b = R (|k| T + |n| T_c) / (|n| k_t)."""
+    torque, k = _breakaway_split(scene, clamp)
+    n, friction_torque = abs(gear_ratio(scene)), _train(scene)["motor_friction_torque"]
+    out = {"breakaway_torque_closed_form": torque, "breakaway_voltage_closed_form": math.nan,
+           "breakaway_motor_torque_closed_form": k * torque / n + friction_torque}
     if kind == "voltage":
         motor = scene["motor"]
         limit = motor.get("current_limit", math.inf)
-        current = torque / (abs(gear_ratio(scene)) * motor["torque_constant"])
+        current = (k * torque + n * friction_torque) / (n * motor["torque_constant"])
         out["breakaway_voltage_closed_form"] = (math.inf if current > limit
                                                 else motor["resistance"] * current)
     return out
@@ -148,7 +201,9 @@ def end_stop_jam(
         scene: a :class:`~leadscrew.Scene` (or dict) with penalty
             ``end_stops`` and a constant ``loads.drive_torque`` or a DC motor
             (``motor``) at a constant voltage, which drive the load into a
-            stop within ``t_drive``.
+            stop within ``t_drive``; a gear stage of any type (a lossy or
+            worm stage and the motor's friction on the rigid concept
+            without play).
         t_drive: the time the drive pushes [s], > 0: the load reaches the
             stop and the clamp settles.
         t_reverse: the time the reverse torque or voltage is held [s], > 0.
@@ -178,7 +233,12 @@ def end_stop_jam(
         ``peak_clamp_force`` [N], ``peak_current`` [A] (NaN without a DC
         motor), ``breakaway_torque`` [N*m] (on the driven part, |n| times the rotor's behind a gear stage; with a DC
         motor |n| k_t times the current at rest, min(U_b / R, i_max)),
-        ``breakaway_torque_closed_form`` [N*m], ``breakaway_voltage`` and
+        ``breakaway_torque_closed_form`` [N*m] (through the train's
+        friction stages: the thread's torque the motor's gives through the
+        stage's static efficiency, less its friction),
+        ``breakaway_motor_torque`` and ``breakaway_motor_torque_closed_form``
+        [N*m] (the motor's torque on the rotor: k_t i, or the reverse
+        torque; k T_b / |n| + T_c), ``breakaway_voltage`` and
         ``breakaway_voltage_closed_form`` [V] (NaN without a DC motor; inf
         where the current limit cannot reach the torque), ``bracket`` (the
         last held and the first freeing reverse [N*m or V]; inf: none freed),
@@ -188,7 +248,8 @@ def end_stop_jam(
 
     Raises:
         ValueError: no penalty end stops, a drive that is not a nonzero
-            constant, a thread that is not self-locking, invalid times or
+            constant, a thread that is not self-locking behind a stage that
+            is not either, invalid times or
             runs (naming the argument), or the load does not rest clamped
             against a stop at ``t_drive``.
     """
@@ -268,7 +329,7 @@ def end_stop_jam(
     # (in the units of the reverse drive: the rotor's torque, or the voltage)
     n = abs(gear_ratio(scene))
     estimate = (closed["breakaway_voltage_closed_form"] if kind == "voltage"
-                else closed["breakaway_torque_closed_form"] / n)
+                else closed["breakaway_motor_torque_closed_form"])
     # The bracket: the forward drive itself holds (the run's state at t_drive);
     # the reverse is doubled from max(|forward|, the closed form) until it frees.
     low = -abs(forward)
@@ -300,15 +361,22 @@ def end_stop_jam(
                "peak_current": peak_current, **closed,
                "bracket": (low, high if found else math.inf),
                "t_drive": t_drive, "t_reverse": t_reverse, "runs": len(rows)}
+    # The motor's torque at the breakaway and the driven part's through the
+    # train's branch (an ideal stage or none: n times the motor's).
+    k = _breakaway_split(scene, thread_force)[1]
+    friction_torque = _train(scene)["motor_friction_torque"]
     if kind == "voltage":
         motor = scene["motor"]
         current = min(breakaway / motor["resistance"], motor.get("current_limit", math.inf))
         summary["breakaway_voltage"] = breakaway
-        summary["breakaway_torque"] = (n * motor["torque_constant"] * current if found
-                                       else math.inf)
+        motor_torque = motor["torque_constant"] * current if found else math.inf
+        summary["breakaway_torque"] = (n * (motor["torque_constant"] * current - friction_torque)
+                                       / k if found else math.inf)
     else:
         summary["breakaway_voltage"] = math.nan
-        summary["breakaway_torque"] = n * breakaway
+        motor_torque = breakaway
+        summary["breakaway_torque"] = n * (breakaway - friction_torque) / k
+    summary["breakaway_motor_torque"] = motor_torque
     column = "reverse_voltage" if kind == "voltage" else "reverse_torque"
     frame = frame_of({column: [row["reverse"] for row in rows],
                       "broke_free": [row["broke_free"] for row in rows],

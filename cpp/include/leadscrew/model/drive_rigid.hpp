@@ -70,7 +70,8 @@ class RigidDriveModes {
   // The same with the rotor's torque from any motor but a speed-controlled
   // one (a DC motor's k_t i: the coefficients are per unit torque whatever
   // gives it) and a model without the train's friction stages or with them
-  // (DriveHybrid::TrainSolver).
+  // (DriveHybrid::TrainSolver), whose penalty end stops (force elements of
+  // the load's state alone) it takes besides: one more axial force.
   static bool applies_to_thread(const DriveModel& model, const DriveDynamics& dynamics);
 
   // Computes the coefficients of every mode with dynamics (its state is reset).

@@ -171,6 +171,9 @@ class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
     double a = 0.0, b = 0.0, normal_q = 0.0, normal_f = 0.0, friction_q = 0.0, friction_f = 0.0;
   };
   double coordinate_torque() const;
+  // The axial force on the load along +u at the state set [N]: the scene's
+  // axial load and the penalty end stops' force (stop_force; 0 without).
+  double load_force() const;
   Solution slip(int s, bool breakaway, double torque, double force);
   Solution stick(double torque, double force) const;
   void thread_holds(double force, double& lo, double& hi) const;
@@ -179,6 +182,12 @@ class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
   Solution solve();
 
   const elements::TrainFriction& train_;
+  const std::vector<elements::EndStop>& stops_;  // the penalty end stops (on the load)
+  // The sign of phi' in a slip of sign +1 (gamma_T = slip_per_speed phi'):
+  // -1 where the rotor turns the nut (drive = "nut"). The motor's friction,
+  // the stage's power flow and a start's acceleration go with phi', the
+  // thread's coefficients and the mode's sign with the slip.
+  int phi_per_slip_ = 1;
   ThreadSlip thread_[2][2];  // [s > 0 ? 0 : 1][sigma > 0 ? 0 : 1]
   RigidModeCoefficients stick_;  // per unit torque on phi
   int stage_guess_ = 1;

@@ -35,7 +35,10 @@ constexpr double kSameMotion = 1e-9;
 }  // namespace
 
 DriveHybrid::TrainSolver::TrainSolver(DriveHybrid& hybrid)
-    : RigidDofSolver(hybrid), train_(*hybrid.model_.train_friction()) {
+    : RigidDofSolver(hybrid),
+      train_(*hybrid.model_.train_friction()),
+      stops_(hybrid.model_.elements().end_stops()),
+      phi_per_slip_(rigid_.slip_per_speed() < 0.0 ? -1 : 1) {
   // RigidDriveModes' coefficients are per unit torque on the rotor (n on phi).
   const double n = train_.ratio;
   for (int s : {1, -1})
@@ -60,13 +63,28 @@ double DriveHybrid::TrainSolver::coordinate_torque() const {
   return torque;
 }
 
+// The penalty end stops push the load by a force of its state alone
+// (elements/end_stop.hpp): one more axial force on the train, F = the
+// scene's axial load + the stops' force. In stick the state is frozen, so
+// the stops' force is constant there (docs/physics/gear.md, "End stops
+// through the stages").
+double DriveHybrid::TrainSolver::load_force() const {
+  double force = h_.p_.axial_force(h_.dynamics_.time());
+  if (stops_.empty()) return force;
+  const int load = h_.model_.load();
+  for (const elements::EndStop& stop : stops_)
+    force += stop.force_on_load(h_.q_[load], h_.v_[load]);
+  return force;
+}
+
 // The consistent combination of the signs in a slip s (breakaway: a start
 // at rest, with the stages' static coefficients, accelerating in s); count
 // 0: none, > 1: several with different motions.
 DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::slip(int s, bool breakaway,
                                                                   double torque, double force) {
   const double R = train_.rotor_inertia;
-  const double U = torque - train_.motor_friction_bound() * s;
+  const int d = s * phi_per_slip_;  // the sign of phi'
+  const double U = torque - train_.motor_friction_bound() * d;
   Solution best;
   const int sigma_first = h_.sigma_guess_, stage_first = train_.stage ? stage_guess_ : 1;
   for (int i = 0; i < 2; ++i) {
@@ -85,8 +103,8 @@ DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::slip(int s, bool br
       x.normal_force = c.normal_q * Q + c.normal_f * force;
       x.friction_force = c.friction_q * Q + c.friction_f * force;
       if (sigma * x.normal_force < 0.0) continue;
-      if (train_.stage && stage_sign * s * x.stage_torque < 0.0) continue;
-      if (breakaway && !(s * x.acceleration > 0.0)) continue;  // no start in s
+      if (train_.stage && stage_sign * d * x.stage_torque < 0.0) continue;
+      if (breakaway && !(d * x.acceleration > 0.0)) continue;  // no start in s
       if (best.count > 0 &&
           std::abs(x.acceleration - best.acceleration) >
               kSameMotion * (std::abs(x.acceleration) + std::abs(best.acceleration))) {
@@ -135,7 +153,7 @@ void DriveHybrid::TrainSolver::thread_holds(double force, double& lo, double& hi
 // both directions are m_hi - (U - |n| T_c) and (U + |n| T_c) - m_lo.
 void DriveHybrid::TrainSolver::static_margins(double& up, double& down) const {
   const double torque = coordinate_torque();
-  const double force = h_.p_.axial_force(h_.dynamics_.time());
+  const double force = load_force();
   double lo, hi;
   thread_holds(force, lo, hi);
   const double k_forward = train_.torque_ratio(1, true), k_backward = train_.torque_ratio(-1, true);
@@ -170,9 +188,17 @@ DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::stick(double torque
 
 DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::solve() {
   const double torque = coordinate_torque();
-  const double force = h_.p_.axial_force(h_.dynamics_.time());
-  if (h_.mode_.friction != FrictionMode::slip) return stick(torque, force);
+  const double force = load_force();
+  // (axial_force: the scene's axial load alone, whose work is work_axial;
+  // the stops' work is their elastic energy and loss.)
+  const double axial = stops_.empty() ? force : h_.p_.axial_force(h_.dynamics_.time());
+  if (h_.mode_.friction != FrictionMode::slip) {
+    Solution x = stick(torque, force);
+    x.axial_force = axial;
+    return x;
+  }
   Solution x = slip(h_.mode_.slip_sign, false, torque, force);
+  x.axial_force = axial;
   if (x.count == 0) h_.jam("no combination of the signs of the thread's normal force and the "
                            "gear stage's power flow is consistent" + stage_regime(false));
   if (x.count > 1) h_.jam("two combinations of the signs of the thread's normal force and the "
@@ -201,7 +227,7 @@ std::string DriveHybrid::TrainSolver::stage_regime(bool breakaway) const {
 int DriveHybrid::TrainSolver::breakaway(int hint) {
   if (hint == 0 && stick_margin() >= 0.0) return 0;
   const double torque = coordinate_torque();
-  const double force = h_.p_.axial_force(h_.dynamics_.time());
+  const double force = load_force();
   bool starts[2];
   for (int s : {1, -1}) {
     const Solution x = slip(s, true, torque, force);
@@ -228,7 +254,7 @@ double DriveHybrid::TrainSolver::stick_margin() {
 int DriveHybrid::TrainSolver::exit_direction() {
   double up, down;
   static_margins(up, down);
-  return up <= down ? 1 : -1;
+  return (up <= down ? 1 : -1) * phi_per_slip_;  // (the margins' directions are phi's)
 }
 
 double DriveHybrid::TrainSolver::stage_torque() { return solve().stage_torque; }
@@ -253,7 +279,9 @@ void DriveHybrid::TrainSolver::rhs(double t, const double* y, double* ydot) {
   energy[kWorkAxial] = x.axial_force * rigid_.load_per_angle() * omega;
   energy[kFrictionLoss] =
       slipping ? -x.friction_force * rigid_.slip_per_speed() * omega : 0.0;
-  energy[kDampingLoss] = 0.0;
+  // The penalty stops' loss (the dynamics' damping power at the state set:
+  // theirs alone on the rigid drive); their elastic energy is the output's.
+  energy[kDampingLoss] = stops_.empty() ? 0.0 : h_.dynamics_.damping_power();
   energy[kContactLoss] = 0.0;
   if (layout.motor_friction_loss() >= 0)
     ydot[layout.motor_friction_loss()] =

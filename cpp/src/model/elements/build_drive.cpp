@@ -138,8 +138,10 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
                           "holding torques at rest form no interval");
   if (p.nut_preload > 0.0)
     throw InvalidArgument(what + needs + "; nut.preload = " + format_value(p.nut_preload));
-  if (p.end_stops != EndStopContact::none)
-    throw InvalidArgument(what + needs + "; end_stops (their contact is a further element)");
+  // Penalty end stops are one more axial force on the train (TrainSolver);
+  // exact ones are refused on the rigid concept already (add_end_stops).
+  if (p.end_stops == EndStopContact::exact)
+    throw InvalidArgument(what + needs + "; end_stops.contact = \"exact\" (use \"penalty\")");
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(what + needs + "; initial.state = \"equilibrium\" (use \"relaxed\")");
   e.train_friction = f;

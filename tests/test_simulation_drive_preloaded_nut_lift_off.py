@@ -225,3 +225,32 @@ def test_refused_with_play(changes, message):
         scene[key] = value
     with pytest.raises(ValueError, match=message):
         ls.simulate(ls.Scene.from_dict(scene), 0.01)
+
+
+def test_half_b_slipping_against_the_nut_is_refused_with_the_model_limit():
+    """Both halves share one friction mode: half B's friction takes the nut's
+    slip direction and works on its own slip gamma_T - sin(a) e'. A slowly
+    driven split nut under strong vibration in its play (a new user's
+    review: 200 N at 50 Hz, 0.1 rad/s) makes half B slip against the nut:
+    that friction would push and its loss falls. The run raises a
+    SimulationError that names the model's limit (not the tolerances: the
+    same at rtol 1e-10), and check=False returns the result, whose friction
+    loss indeed falls."""
+    scene = ls.scenes.load("thesis_table_5_1").to_dict()
+    scene.update(concept="flexible_nut",
+                 backlash={"axial": 1e-4, "contact": "bistop", "stiffness": 1e7, "exponent": 1},
+                 nut={"preload": 50.0, "preload_stiffness": 1e6},
+                 loads={"axial_force": {"type": "sine", "amplitude": 200.0,
+                                        "omega": 2 * np.pi * 50, "offset": -10.0},
+                        "drive_speed": 0.1},
+                 initial={})
+    s = ls.Scene.from_dict(scene)
+    for options in ({}, {"rtol": 1e-10, "atol": 1e-14}):
+        with pytest.raises(ls.SimulationError, match=r"the preloaded nut's half B slips against "
+                                                     r"the nut's slip .* one friction mode"):
+            ls.simulate(s, 0.02, **options)
+    unchecked = ls.simulate(s, 0.02, check=False)
+    loss = np.asarray(unchecked["friction_loss"])
+    fall = float(np.max(np.maximum.accumulate(loss) - loss))  # the loss the check caught
+    assert not unchecked.checks["friction_loss"]["passed"]
+    assert fall > unchecked.checks["friction_loss"]["bound"]

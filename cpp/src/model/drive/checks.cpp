@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/model/result_checks.hpp"
 #include "state_layout.hpp"
@@ -84,7 +86,27 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
   spec.length_scale = p.screw_length;
   check_result(spec, result);
-  if (options.check) integrate::enforce_checks(result);
+  if (!options.check) return;
+  // A lift-off nut's half B books its friction on its own slip gamma_T -
+  // sin(a) e' with the direction of the nut's slip (one friction mode for
+  // both halves, preloaded_nut.hpp): where the play's motion reverses half
+  // B's own slip against the nut's, that friction would push, and its loss
+  // falls. The check catches it; the reason is the model's limit, not the
+  // tolerances (a new user's review: vibration of 200 N at 50 Hz on a
+  // slowly driven split nut in bistop play).
+  const elements::PreloadedNut* nut = model.preloaded_nut();
+  if (nut && nut->lift_off)
+    for (const integrate::InvariantCheck& check : result.checks)
+      if (check.applies && !check.passed && std::string(check.name) == "friction_loss")
+        throw SimulationError(
+            check.time,
+            "the preloaded nut's half B slips against the nut's slip (its friction loss falls "
+            "by " + format_value(check.value) + " J against the bound " +
+            format_value(check.bound) + " J): the halves slip apart, which the model's one "
+            "friction mode for both halves does not resolve",
+            "docs/physics/preloaded_nut.md, \"Lift-off\"; a stiffer nut.preload_stiffness "
+            "or a larger nut.preload keeps half A on its flank");
+  integrate::enforce_checks(result);
 }
 
 }  // namespace leadscrew::model::drive

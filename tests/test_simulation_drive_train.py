@@ -237,6 +237,10 @@ REFUSED = [
     (dict(backlash={"axial": 1e-5}), WORM, "gear.type = \"worm\" is invalid: needs the rigid "
      "concept without play"),
     (dict(friction={"law": "arctan_velocity", "mu": 0.3}), LOSSY, "friction.law"),
+    # (a new user's review: the message named the valid law, not mu_static)
+    (dict(friction={"law": "coulomb", "mu": 0.12, "mu_static": 0.15}), WORM,
+     "; friction.mu_static = 0.15 (the stages take plain Coulomb friction on the thread: no "
+     "mu_static above friction.mu = 0.12)"),
     (dict(nut={"preload": 20.0}), LOSSY, "nut.preload"),
     # (Penalty end stops run with the stages now; exact ones are refused on
     # the rigid concept: tests/test_simulation_drive_train_stops.py.)
@@ -257,14 +261,15 @@ def test_motor_friction_elsewhere_is_refused_naming_the_key():
     scene = thesis_scene(concept="flexible_nut", loads={"axial_force": F},
                          motor={**DC_MOTOR, "friction_torque": 1e-3})
     scene["loads"].pop("drive_torque")
-    with pytest.raises(ValueError, match=r"motor\.friction_torque = 0\.001 is invalid: needs the "
+    with pytest.raises(ValueError, match=r"motor\.friction_torque = 0\.001 N m is invalid: "
+                                         "needs the "
                                          "rigid concept without play"):
         ls.Scene.from_dict(scene).model()
     speed = thesis_scene(loads={"drive_speed": 1.0})
     speed["loads"].pop("drive_torque")
     parameters = ls.Scene.from_dict(speed).model().parameters
     parameters.motor_friction_torque = 1e-3
-    with pytest.raises(ValueError, match=r"motor\.friction_torque = 0\.001 is invalid.*"
+    with pytest.raises(ValueError, match=r"motor\.friction_torque = 0\.001 N m is invalid.*"
                                          "loads.drive_speed prescribes the speed"):
         _core.DriveModel(parameters)
 
@@ -286,8 +291,8 @@ def test_other_integrators_are_refused(integrator):
                                   "gear.type = 'worm'"),
     ({**LOSSY, "mu": 0.1}, "gear.mu = 0.1 is invalid: must be absent with gear.type = 'lossy'"),
     ({**WORM, "mu_static": 0.01}, "gear.mu_static = 0.01 is invalid: must be at least gear.mu"),
-    ({**WORM, "lead_angle": 1.5, "mu": 0.5}, "gear.lead_angle = 1.5 is invalid with "
-                                             "gear.mu_static = 0.5: the worm cannot be driven"),
+    ({**WORM, "lead_angle": 1.5, "mu": 0.5}, "gear.lead_angle = 1.5 rad is invalid "
+                                             "with gear.mu = 0.5: the worm cannot be driven"),
 ])
 def test_invalid_stage_fields_raise_naming_the_key(gear, message):
     with pytest.raises(ValueError) as info:

@@ -273,8 +273,8 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
 
   // losses: damping, contact, impact (the friction loss above).
   integrate::InvariantCheck other = make_check(
-      "losses", "the damping, contact and impact losses never fall (beyond their "
-                "integration error)", "J");
+      "losses", "the other losses (damping, contact, impact; the train's motor_friction_loss "
+                "and gear_loss) never fall (beyond their integration error)", "J");
   std::vector<double> other_tolerance(other_losses.size());
   for (std::size_t j = 0; j < other_losses.size(); ++j)
     other_tolerance[j] =

@@ -103,10 +103,12 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
     const double factor = 1.0 / std::cos(0.5 * p.gear_flank_angle);
     // Driven by the worm at all: gamma + rho'_static < pi/2.
     if (!(p.gear_lead_angle + std::atan(mu_static * factor) < kRightAngle))
-      throw InvalidArgument("gear.lead_angle = " + format_value(p.gear_lead_angle) +
-                            " is invalid with gear.mu_static = " + format_value(mu_static) +
-                            ": the worm cannot be driven (lead angle + atan(mu_static / "
-                            "cos(flank_angle / 2)) must stay below pi/2)");
+      throw InvalidArgument(
+          "gear.lead_angle = " + format_value(p.gear_lead_angle) + " rad is invalid with " +
+          (p.gear_mu_static < 0.0 ? "gear.mu = " : "gear.mu_static = ") +
+          format_value(mu_static) +
+          ": the worm cannot be driven (lead angle + atan(mu_static / cos(flank_angle / 2)) "
+          "must stay below pi/2 rad; gear.mu_static defaults to gear.mu)");
     f.efficiency = TrainFriction::worm_efficiency(p.gear_lead_angle, p.gear_mu * factor);
     f.efficiency_backdrive =
         TrainFriction::worm_efficiency_backdrive(p.gear_lead_angle, p.gear_mu * factor);
@@ -115,7 +117,8 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
         TrainFriction::worm_efficiency_backdrive(p.gear_lead_angle, mu_static * factor);
   }
   const std::string what = stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-                                 : "motor.friction_torque = " + format_value(p.motor_friction_torque);
+                                 : "motor.friction_torque = " +
+                                       format_value(p.motor_friction_torque) + " N m";
   const std::string needs = " is invalid: needs the rigid concept without play, driven by a "
                             "torque (loads.drive_torque) or a DC motor, with exact Coulomb "
                             "friction on the thread (one set of contacts slipping with one "
@@ -129,8 +132,14 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
     throw InvalidArgument(what + needs + "; loads.drive_speed prescribes the speed (a motor's "
                           "friction is absorbed by it)");
   if (!e.thread->law().plain_coulomb())
-    throw InvalidArgument(what + needs + "; friction.law = \"" + p.friction +
-                          "\" (or a friction.mu_static above friction.mu)");
+    throw InvalidArgument(what + needs + "; " +
+                          (p.friction == "coulomb"
+                               ? "friction.mu_static = " +
+                                     format_value(e.thread->law().mu_static()) +
+                                     " (the stages take plain Coulomb friction on the thread: "
+                                     "no mu_static above friction.mu = " + format_value(p.mu) +
+                                     ")"
+                               : "friction.law = \"" + p.friction + "\""));
   const double alpha = p.thread.lead_angle();
   if (!(std::cos(alpha) - e.thread->effective_mu() * std::sin(alpha) > 0.0))
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +

@@ -446,3 +446,15 @@ def test_moreau_refuses_a_step_that_makes_the_current_alternate(inductance):
     for options in ({"dt": min(dt, largest)}, {"dt": dt, "theta": 1.0}):
         result = ls.simulate(scene, 0.02, integrator="moreau", **options)
         assert np.max(np.abs(result["motor_current"])) <= U / R * (1 + 1e-9), options
+
+
+def test_a_derived_problem_beside_a_motor_names_its_input():
+    """A derived quantity gone wrong (the nut's mass of a denormal nut.length)
+    in a scene with a DC motor: the inputs are blamed by setting each back to
+    its reference, and the motor's required fields have none (the fuzz run
+    found a KeyError 'motor.resistance' there). The message names nut.length."""
+    scene = motor_scene()
+    scene.update(concept="flexible_nut")
+    scene["nut"] = {**scene.get("nut", {}), "length": 5e-324}
+    with pytest.raises(ValueError, match=r"nut\.length = 5e-324"):
+        ls.simulate(ls.Scene.from_dict(scene), 0.01)

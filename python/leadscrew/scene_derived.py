@@ -208,6 +208,8 @@ def _blamed(data: Dict[str, Any], still_bad: Callable[[Dict[str, Any]], bool],
         for key, f in entry.items():
             if f.kind not in ("float", "int") or key not in data[section]:
                 continue
+            if f.default is None and f"{section}.{key}" not in _REFERENCE_VALUES:
+                continue  # (a required field of a section with no reference: the motor's)
             if data[section][key] != _reference_value(section, key, f):
                 candidates.append(f"{section}.{key}")
     culprits = [path for path in candidates if not still_bad(_changed(data, [path]))]

@@ -277,3 +277,19 @@ def test_a_train_that_back_drives_is_refused():
     scene["gear"] = {**WORM, "lead_angle": 0.3, "mu": 0.05, "mu_static": 0.05}
     with pytest.raises(ValueError, match="no self-locking gear stage holds it"):
         ls.studies.end_stop_jam(scene, progress=False)
+
+
+@pytest.mark.parametrize("t_reverse", [0.05, 1.0])
+def test_the_worm_seat_breaks_free_at_the_closed_form_whatever_t_reverse(t_reverse):
+    """The shipped worm seat (rigid, no play) creeps back from its stop at a
+    few mm/s: the stop lets go of the load only after it travelled F/k back.
+    With the stop's release as the only sign of breaking free, t_reverse =
+    0.2 s read 6.87 V against the closed form's 4.10 V (a silent wrong
+    answer). On the rigid drive without play a thread slipping away from the
+    stop at the run's end has broken free: the answer no longer depends on
+    t_reverse."""
+    frame = ls.studies.end_stop_jam(ls.scenes.load("seat_adjuster_worm"), t_drive=1.5,
+                                    t_reverse=t_reverse, progress=False)
+    summary = frame.attrs["summary"]
+    assert summary["breakaway_voltage"] == pytest.approx(
+        summary["breakaway_voltage_closed_form"], rel=1e-6)

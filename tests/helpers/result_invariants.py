@@ -108,8 +108,11 @@ distributions from about 500 runs, gaps and violations from two runs of
   % of the Moreau runs create less than 1.1e-3 E_ref; the rest up to 5.5e-2
   (issue 17, reproduction 10: a step that does not resolve the scene).
 - ``flank_penetration`` (exact play only): gap >= -bound, the flanks are
-  unilateral. Event-driven: bound 1e-3 c_a (the simulator's own
-  ``kFlankTolerance``, drive/hybrid.hpp; observed at most 1e-5 c_a).
+  unilateral. Event-driven: bound 1e-3 c_a + 10 atol (the simulator's own
+  ``kFlankTolerance``, drive/hybrid.hpp, and the positions' absolute
+  tolerance, as docs/physics/result_checks.md documents; observed at most
+  1e-5 c_a until a 10,000-case run met 1.4e-3 c_a = 0.6 atol: a rigid drive
+  with exact play and penalty end stops, speed-controlled).
   Moreau-Jean keeps the flanks at the velocity level, so a contact closes
   one step late: bound min(c_a, 1e-3 c_a + 3 dt max |d play / dt|), the
   latter from the output points (observed: up to 2.9 steps of it; beyond
@@ -413,7 +416,9 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     if backlash is not None and backlash["contact"] == "exact" and "gap" in ch:
         clearance = float(backlash["axial"])
         gap = ch["gap"]
-        bound = FLANK_REL * clearance
+        # (event-driven: the free flight's tolerance and the positions'
+        # absolute tolerance, docs/physics/result_checks.md, flank_gap)
+        bound = FLANK_REL * clearance + (0.0 if moreau else 10.0 * atol)
         if moreau:
             steps = np.diff(t)
             moving = steps > 0

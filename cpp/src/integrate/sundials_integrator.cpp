@@ -107,7 +107,9 @@ AdvanceResult SundialsIntegrator::advance_until(double t_out, double t_stop,
   const int flag = evolve_solver(t_out, one_step, &t_reached);
   if (flag < 0) {
     bridge_.rethrow_pending();
-    t_ = solver_time();
+    // (ARKODE reports a NaN time where its step size became NaN, from a
+    // state of 1e300: the failure is at the last time it reached.)
+    if (const double failed_at = solver_time(); std::isfinite(failed_at)) t_ = failed_at;
     throw_solver_failure(t_, flag, flag_name(flag), name_, implicit_, bridge_, options_);
   }
   for (int i = 0; i < bridge_.size; ++i) {

@@ -209,6 +209,18 @@ def test_cases_a_long_run_failed_now_pass(case_seed, what):
     assert outcome["outcome"] in ALLOWED, (what, outcome)
 
 
+@pytest.mark.parametrize("case_seed", [406739, 92707])
+def test_a_trial_stage_off_the_screw_does_not_end_an_own_runge_kutta_run(case_seed):
+    """Flexible drives on rk_verner6 / rk_dopri5 whose first step's trial
+    stage put the nut beyond the screw's end (15 mm off, in 0.1 ms) ended
+    with NutOffScrewError at that stage, where the run of 2026-11-27 01:00
+    had answered: the own Runge-Kutta engines now reject such a step as a
+    non-finite one and shorten it (as the SUNDIALS integrators retry), and
+    raise only where shorter steps meet the screw's end too."""
+    outcome = run_case(make_case(case_seed))
+    assert outcome["outcome"] == "passed", outcome
+
+
 def test_failures_are_the_outcomes_not_allowed():
     assert set(FAILURES) | ALLOWED == set(OUTCOMES)
     assert ALLOWED == {"passed", "value_error_named", "simulation_error", "self_check_raised",

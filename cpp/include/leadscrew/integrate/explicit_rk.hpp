@@ -42,6 +42,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -114,6 +115,7 @@ class ExplicitRungeKutta final : public Integrator {
   // y_out = y + h sum b_j k_j. Returns false if a value is not finite.
   bool stages(double t, const double* y, double h, double* k, double* y_out);
   StepOutcome attempt(double h, double* error_square);
+  StepOutcome attempt_stages(double h, double* error_square);  // attempt without the catch
   // Chooses the fixed-size kernels for (n_, s_), if there are any, and the
   // system's own stage loop (OdeSystem::explicit_rk_stages), if it has one.
   void select_kernels(const OdeSystem& system);
@@ -152,6 +154,10 @@ class ExplicitRungeKutta final : public Integrator {
   bool probe_step_ = false;         // the next step is the first after a (re)start
   float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
+  // The last OutsideDomain a trial stage raised (null: none since the last
+  // accepted step): rejected as a non-finite stage, raised where shorter
+  // steps meet it too.
+  std::exception_ptr outside_;
 
   // One allocation (initialize) holds every array below; the pointers are
   // swapped, never the data. y_start_, k_ (stages), y_new_ and

@@ -174,6 +174,7 @@ class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
   // The axial force on the load along +u at the state set [N]: the scene's
   // axial load and the penalty end stops' force (stop_force; 0 without).
   double load_force() const;
+  double stop_force() const;  // the penalty stops' force on the load [N] (0: none)
   Solution slip(int s, bool breakaway, double torque, double force);
   Solution stick(double torque, double force) const;
   void thread_holds(double force, double& lo, double& hi) const;

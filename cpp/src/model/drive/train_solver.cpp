@@ -69,8 +69,11 @@ double DriveHybrid::TrainSolver::coordinate_torque() const {
 // the stops' force is constant there (docs/physics/gear.md, "End stops
 // through the stages").
 double DriveHybrid::TrainSolver::load_force() const {
-  double force = h_.p_.axial_force(h_.dynamics_.time());
-  if (stops_.empty()) return force;
+  return h_.p_.axial_force(h_.dynamics_.time()) + stop_force();
+}
+
+double DriveHybrid::TrainSolver::stop_force() const {
+  double force = 0.0;
   const int load = h_.model_.load();
   for (const elements::EndStop& stop : stops_)
     force += stop.force_on_load(h_.q_[load], h_.v_[load]);
@@ -188,10 +191,10 @@ DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::stick(double torque
 
 DriveHybrid::TrainSolver::Solution DriveHybrid::TrainSolver::solve() {
   const double torque = coordinate_torque();
-  const double force = load_force();
   // (axial_force: the scene's axial load alone, whose work is work_axial;
   // the stops' work is their elastic energy and loss.)
-  const double axial = stops_.empty() ? force : h_.p_.axial_force(h_.dynamics_.time());
+  const double axial = h_.p_.axial_force(h_.dynamics_.time());
+  const double force = axial + stop_force();
   if (h_.mode_.friction != FrictionMode::slip) {
     Solution x = stick(torque, force);
     x.axial_force = axial;

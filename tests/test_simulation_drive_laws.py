@@ -206,8 +206,13 @@ def test_every_law_dissipates_and_closes_the_account(law, concept, mu, static_ex
         return  # a named outcome, not a returned answer
     work = max(np.abs(result["work_drive"]).max() + np.abs(result["work_axial"]).max(), 1e-12)
     assert np.max(np.abs(result["energy_residual"])) < 1e-5 * work
+    # A loss is a quadrature of a non-negative rate, interpolated by CVODE
+    # at the output times: it may dip by its local error, rtol of its scale
+    # (docs/physics/result_checks.md, "losses"). 1e-9 of the work, below
+    # rtol = 1e-8, failed a LuGre drive whose friction loss dipped by
+    # 1.5e-9 of the work (hypothesis's draw in CI, 2026-11-27).
     for loss in ("friction_loss", "damping_loss", "contact_loss", "impact_loss"):
-        assert np.all(np.diff(result[loss]) >= -1e-9 * work), loss
+        assert np.all(np.diff(result[loss]) >= -1e-8 * work), loss
     if law != "lugre":
         power = result["friction_force"] * result["slip_velocity"]
         assert np.all(power <= 1e-9 * work)

@@ -22,7 +22,12 @@ namespace {
 // `kSpring`: the block has the stick-slip oscillator's spring (stiffness >
 // 0). Without it (the thesis's block) the right-hand side skips the spring's
 // terms: 10 % of the exact block's run (issue 17's benchmark).
-template <bool kSpring>
+// `kPlain`: the law is plain Coulomb without a viscous term (one
+// coefficient: the slip force is the constant mu m g), the thesis's block;
+// its right-hand side skips the general law's speed-dependent terms
+// (callgrind, the block benchmark: 27k of its 550k instructions per call,
+// 30 per right-hand side; issue 17's benchmark).
+template <bool kSpring, bool kPlain>
 class ExactBlock final : public integrate::HybridSystem {
  public:
   ExactBlock(const FrictionBlock& block, const friction::Law& law)
@@ -154,11 +159,14 @@ class ExactBlock final : public integrate::HybridSystem {
   // right-hand side cost the exact block 4 % of its run. Plain Coulomb's
   // slip coefficient is its mu, the same number slip_mu returns.)
   double friction_force(double applied, double velocity) const {
-    const double speed = std::abs(velocity);
     // Stick: whatever keeps the block at rest (|A| <= mu_static N).
     if (mode_ == Mode::stick) return applied;
-    const double magnitude = plain_ ? plain_slip_force_ + viscous_ * speed
-                                    : law_.slip_mu(speed) * normal_force_ + viscous_ * speed;
+    double magnitude = plain_slip_force_;
+    if constexpr (!kPlain) {
+      const double speed = std::abs(velocity);
+      magnitude = plain_ ? plain_slip_force_ + viscous_ * speed
+                         : law_.slip_mu(speed) * normal_force_ + viscous_ * speed;
+    }
     return mode_ == Mode::slip_positive ? magnitude : -magnitude;
   }
 
@@ -206,8 +214,13 @@ class ExactBlock final : public integrate::HybridSystem {
 
 std::unique_ptr<integrate::HybridSystem> make_exact_block(const FrictionBlock& block,
                                                           const friction::Law& law) {
-  if (block.stiffness > 0.0) return std::make_unique<ExactBlock<true>>(block, law);
-  return std::make_unique<ExactBlock<false>>(block, law);
+  const bool plain = law.plain_coulomb();
+  if (block.stiffness > 0.0) {
+    if (plain) return std::make_unique<ExactBlock<true, true>>(block, law);
+    return std::make_unique<ExactBlock<true, false>>(block, law);
+  }
+  if (plain) return std::make_unique<ExactBlock<false, true>>(block, law);
+  return std::make_unique<ExactBlock<false, false>>(block, law);
 }
 
 }  // namespace leadscrew::model::block

@@ -280,3 +280,24 @@ def test_options_the_integrator_would_ignore_are_refused(options, message):
     left_out = {key: (None if key not in ("friction", "integrator") else value)
                 for key, value in options.items()}
     ls.simulate(block(6.0), 1.0, t_eval=[1.0], **left_out)
+
+
+def test_simulate_passes_the_core_its_arguments_in_the_bindings_order():
+    # simulate calls the core's simulate_block by position (faster than by
+    # keyword): its order must be the binding's, name for name.
+    import re
+
+    from leadscrew import _core
+    from leadscrew.simulation import _BLOCK_CALL
+
+    signature = _core.simulate_block.__doc__.split("\n")[0]
+    names = re.findall(r"(\w+): ", signature[signature.index("(") + 1:])
+    assert tuple(names) == _BLOCK_CALL
+    # and each option reaches the core as given: a wrong rtol is named
+    block = ls.FrictionBlock(1.0, 0.3, 10.0, 1.0)
+    with pytest.raises(ValueError, match="rtol"):
+        ls.simulate(block, 0.1, rtol=-1.0)
+    with pytest.raises(ValueError, match="atol"):
+        ls.simulate(block, 0.1, atol=-1.0)
+    with pytest.raises(ValueError, match="theta"):
+        ls.simulate(block, 0.1, integrator="moreau", theta=2.0)

@@ -639,10 +639,13 @@ def simulate(
             law["k_v"] = _real("k_v", k_v)
         elif "k_v" in takes:
             law["k_v"] = 100.0  # the block's default gain (the thesis's Table 3.1 range)
+        arguments.update(block=model, friction=friction, law=law, check=_flag("check", check))
         with _progress_bar(progress, arguments["t_end"]) as report:
-            return Result(_core.simulate_block(
-                model, friction=friction, law=law, check=_flag("check", check),
-                progress=report, **arguments))
+            arguments["progress"] = report
+            # By position: pybind11 interns each keyword's name per call
+            # (12k of the block's 530k instructions per call; issue 17's
+            # benchmark).
+            return Result(_core.simulate_block(*[arguments[name] for name in _BLOCK_CALL]))
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
         for name, value in law_parameters.items():
@@ -659,6 +662,11 @@ def simulate(
             return Result(_core.simulate_drive(drive, progress=report, **arguments))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
+
+# The core's simulate_block's parameters, in its order (bind_model.cpp).
+_BLOCK_CALL = ("block", "t_end", "friction", "integrator", "law", "rtol", "atol", "dt", "theta",
+               "t_eval", "max_steps", "max_events", "max_step", "first_step", "max_order",
+               "check", "progress")
 
 # simulate's parameters by name (its **law_parameters left out) and the keys
 # of a Scene's friction section (what a Scene takes of a law's parameters).

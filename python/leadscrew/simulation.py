@@ -7,6 +7,7 @@ import functools
 import inspect
 import math
 import numbers
+import operator
 from typing import Any, Callable, Dict, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
@@ -645,7 +646,7 @@ def simulate(
             # By position: pybind11 interns each keyword's name per call
             # (12k of the block's 530k instructions per call; issue 17's
             # benchmark).
-            return Result(_core.simulate_block(*[arguments[name] for name in _BLOCK_CALL]))
+            return Result(_core.simulate_block(*_block_call(arguments)))
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
         for name, value in law_parameters.items():
@@ -667,6 +668,7 @@ def simulate(
 _BLOCK_CALL = ("block", "t_end", "friction", "integrator", "law", "rtol", "atol", "dt", "theta",
                "t_eval", "max_steps", "max_events", "max_step", "first_step", "max_order",
                "check", "progress")
+_block_call = operator.itemgetter(*_BLOCK_CALL)  # those arguments from a dict, in that order
 
 # simulate's parameters by name (its **law_parameters left out) and the keys
 # of a Scene's friction section (what a Scene takes of a law's parameters).

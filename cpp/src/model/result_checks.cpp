@@ -14,6 +14,27 @@ namespace {
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
+// The checks' working memory [doubles]: kept by the thread between runs up
+// to kKeptScratch (512 KB), beyond that the run's own. (Freed after every
+// run, a buffer at the heap's top let glibc trim the heap and the next run
+// fault its pages in again: the friction block's checks took 20-30 % of its
+// call's time for 8 % of its instructions; issue 17's benchmark.)
+class ScratchBuffer {
+ public:
+  explicit ScratchBuffer(std::size_t size) {
+    static constexpr std::size_t kKeptScratch = std::size_t{1} << 16;
+    thread_local std::vector<double> kept;
+    std::vector<double>& buffer = size <= kKeptScratch ? kept : own_;
+    if (buffer.size() < size) buffer.resize(size);
+    data_ = buffer.data();
+  }
+  double* data() { return data_; }
+
+ private:
+  std::vector<double> own_;
+  double* data_ = nullptr;
+};
+
 // Whether every value is finite. v - v is 0 for a finite v and NaN for an
 // infinite or NaN one; four independent sums of it vectorize. (Measured on
 // the friction block's 1,300 values: 1.1k instructions against 5.3k for a
@@ -112,8 +133,12 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   // row-to-column assignment cost 7 per value; issue 17's benchmark.)
   const auto rows = static_cast<Eigen::Index>(n);
   const auto width = static_cast<Eigen::Index>(channels);
-  Eigen::MatrixXd table(rows, width + 1);
+  // The columns, the friction and normal forces, the energy flow and the
+  // slip band in one buffer (ScratchBuffer).
+  ScratchBuffer scratch(n * (channels + 1) + 4 * n);
+  Eigen::Map<Eigen::MatrixXd> table(scratch.data(), rows, width + 1);
   table.col(width).setZero();
+  double* const extra = scratch.data() + n * (channels + 1);
   std::vector<bool> copied(channels, false);
   auto column = [&](const std::string& name) {
     const int k = result.channel_index(name);
@@ -141,11 +166,10 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   const double* const time = result.time.data();
   // The friction force on the slipping body, and the normal force mu'
   // multiplies (a preloaded nut's halves: flank_normal).
-  const Eigen::ArrayXd friction_force = spec.friction_sign * array(column(spec.friction));
-  Eigen::ArrayXd normal_force;
+  Eigen::Map<Eigen::ArrayXd> friction_force(extra, rows), normal_force(extra + n, rows);
+  friction_force = spec.friction_sign * array(column(spec.friction));
   if (spec.flank_normal) {
     const double* normal_channel = column(spec.normal);
-    normal_force.resize(rows);
     for (Eigen::Index i = 0; i < rows; ++i)
       normal_force[i] = spec.flank_normal(normal_channel[i], friction_force[i]);
   } else {
@@ -167,7 +191,8 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   // bound; the largest applied force (a torque over its lever), play rate
   // and each other loss (those `losses` checks; the friction loss has its
   // own check).
-  Eigen::ArrayXd flow = Eigen::ArrayXd::Zero(rows);
+  Eigen::Map<Eigen::ArrayXd> flow(extra + 2 * n, rows);
+  flow.setZero();
   for (const auto* names : {&spec.work, &spec.stored, &spec.losses})
     for (const auto& name : *names)
       if (result.channel_index(name) >= 0) flow += array(column(name)).abs();
@@ -340,9 +365,8 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   // The force checks' slip band per row (< 0: a row at an event's root,
   // skipped): what is resolved, plus the slip's rate toward its neighbours
   // times the root's time resolution (not for time stepping).
-  std::vector<double> band;
+  double* const band = extra + 3 * n;
   if (pointwise_forces) {
-    band.resize(n);
     double rate_before = 0.0;  // |slip change| / dt over the interval to the row before
     for (std::size_t i = 0; i < n; ++i) {
       double rate_after = 0.0;

@@ -16,11 +16,10 @@ namespace {
 
 // The integrators that fit the friction law `friction` on a thread pair with
 // penalty flanks, exact flanks, or (neither) no play; a preloaded nut runs on
-// the event-driven scheme only, and with end stops (`no_moreau`) Moreau-Jean
-// is out (its iteration matrix does not see a stop's contact).
+// the event-driven scheme only. End stops run on every scheme the thread
+// pair admits (Moreau-Jean: moreau.hpp).
 const std::vector<std::string>& integrators_for(const std::string& friction, bool penalty,
-                                                bool exact_play, bool preloaded,
-                                                bool no_moreau) {
+                                                bool exact_play, bool preloaded) {
   // From the law's type (friction/law.hpp): a set-valued law runs in the
   // event-driven scheme, in Moreau-Jean's time stepping, and where it has a
   // regularization in the ODE methods; a smooth law in the ODE methods and
@@ -48,9 +47,9 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
   if (preloaded) return event_driven_only;
   if (type.time_stepping) {  // set-valued
     if (penalty) return type.ode ? set_valued_ode : event_driven_only;
-    if (exact_play) return no_moreau ? event_driven_only : with_moreau;
-    if (type.ode) return no_moreau ? set_valued_ode : set_valued_all;
-    return no_moreau ? event_driven_only : with_moreau;
+    if (exact_play) return with_moreau;
+    if (type.ode) return set_valued_all;
+    return with_moreau;
   }
   if (exact_play) return event_driven_only;
   return smooth;
@@ -63,16 +62,14 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
       p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
   return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact,
                          p.nut_preload > 0.0 || p.motor_friction_torque > 0.0 ||
-                             p.gear == GearType::lossy || p.gear == GearType::worm,
-                         p.end_stops != EndStopContact::none);
+                             p.gear == GearType::lossy || p.gear == GearType::worm);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
   return integrators_for(p.friction, thread.penalty(), thread.exact_play(),
-                         model.preloaded_nut() != nullptr || model.train_friction() != nullptr,
-                         p.end_stops != EndStopContact::none);
+                         model.preloaded_nut() != nullptr || model.train_friction() != nullptr);
 }
 
 namespace {
@@ -120,12 +117,6 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                                      format_value(p.motor_friction_torque)) +
                           ": the train's friction stages run with exact Coulomb friction on "
                           "the event-driven scheme only (integrator = \"event_driven\")");
-  if (integrator == "moreau" && p.end_stops != EndStopContact::none)
-    throw InvalidArgument(
-        "integrator = \"moreau\" is invalid with end_stops: Moreau-Jean's iteration matrix "
-        "takes the force elements' stiffness, which a penalty stop has only in contact, and "
-        "an exact stop would be a second contact of its step (use \"event_driven\", which "
-        "locates the stop's contact and release, or an ODE method)");
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,
                    (p.backlash != BacklashContact::none

@@ -8,6 +8,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/model/elements/drive_elements.hpp"
 #include "leadscrew/model/simulation_checks.hpp"
 
 namespace leadscrew::model {
@@ -57,19 +58,37 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
 
 }  // namespace
 
+namespace {
+
+// The train's friction stages (train_friction.hpp): both schemes on the
+// rigid drive without play with plain Coulomb friction, Moreau-Jean alone
+// elsewhere (its obstacle).
+const std::vector<std::string>& train_integrators(const std::string& obstacle) {
+  static const std::vector<std::string> both = {"event_driven", "moreau"};
+  static const std::vector<std::string> moreau_only = {"moreau"};
+  return obstacle.empty() ? both : moreau_only;
+}
+
+}  // namespace
+
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+  if (p.nut_preload == 0.0 &&
+      (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
+    return train_integrators(
+        elements::train_event_driven_obstacle(p, *elements::ThreadPair::make_law(p)));
   const bool penalty =
       p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
   return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact,
-                         p.nut_preload > 0.0 || p.motor_friction_torque > 0.0 ||
-                             p.gear == GearType::lossy || p.gear == GearType::worm);
+                         p.nut_preload > 0.0);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
+  if (model.train_friction() && !model.preloaded_nut())
+    return train_integrators(model.train_friction()->event_driven_obstacle);
   return integrators_for(p.friction, thread.penalty(), thread.exact_play(),
-                         model.preloaded_nut() != nullptr || model.train_friction() != nullptr);
+                         model.preloaded_nut() != nullptr);
 }
 
 namespace {
@@ -109,14 +128,23 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                           format_value(p.nut_preload) +
                           " N: a preloaded nut runs with exact Coulomb friction on the "
                           "event-driven scheme only (integrator = \"event_driven\")");
-  if (model.train_friction() && integrator != "event_driven")
-    throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with " +
-                          (model.train_friction()->stage
-                               ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-                               : "motor.friction_torque = " +
-                                     format_value(p.motor_friction_torque)) +
-                          ": the train's friction stages run with exact Coulomb friction on "
-                          "the event-driven scheme only (integrator = \"event_driven\")");
+  if (const elements::TrainFriction* train = model.train_friction();
+      train && integrator != "moreau" &&
+      (integrator != "event_driven" || !train->event_driven_obstacle.empty())) {
+    const std::string what = train->stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+                                          : "motor.friction_torque = " +
+                                                format_value(p.motor_friction_torque);
+    throw InvalidArgument(
+        "integrator = \"" + integrator + "\" is invalid with " + what +
+        (integrator == "event_driven"
+             ? ": the event-driven scheme runs the train's friction stages on the rigid concept "
+               "without play with plain Coulomb friction on the thread only (every contact "
+               "slipping with one speed), here " + train->event_driven_obstacle +
+                   "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
+             : ": the train's friction stages run with exact Coulomb friction on Moreau-Jean "
+               "(integrator = \"moreau\") and, on the rigid concept without play, the "
+               "event-driven scheme (integrator = \"event_driven\")"));
+  }
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,
                    (p.backlash != BacklashContact::none

@@ -150,6 +150,19 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     stop_target_[k] = exact[k].gap(u0) > 0.0 ? exact[k].side * exact[k].restitution * du0 : 0.0;
   }
   bool released[kMaxStops] = {false, false};
+  // The rotor's friction contact (the motor's friction, a lossy or worm
+  // stage: train_friction.hpp), a second friction contact of the step.
+  const elements::TrainFriction* train = model_.train_friction();
+  RotorBalance balance;
+  RotorMode rotor_mode;
+  if (train != nullptr) {
+    balance.inertia = train->rotor_inertia;
+    balance.w0 = v0[model_.rotor()];
+    balance.h0 = h * model_.motor().applied_torque(t + theta * h) +
+                 (dc != nullptr ? h * dc->torque(current.mean) : 0.0);
+    balance.h1 = dc != nullptr ? h * dc->torque(current.mean_slope) : 0.0;
+    balance.friction = h * train->motor_friction_bound();
+  }
 
   Impulses impulses;
   bool stick = false, contact = false;
@@ -176,11 +189,16 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
                       stop.damping * stop.side * du0);
     }
     free_ = solver_.solve(rhs);
-    contact = contact_at_start;
-    if (contact)
-      impulses = solve_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
-                              contact, stick);
-    if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
+    if (train != nullptr) {
+      impulses = solve_train(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, balance,
+                             contact_at_start, contact, stick, rotor_mode);
+    } else {
+      contact = contact_at_start;
+      if (contact)
+        impulses = solve_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
+                                contact, stick);
+      if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
+    }
     if (pass >= 8 || !update_stops(h, theta, v0, impulses, released)) break;
   }
   v_ = impulses.velocity;
@@ -259,6 +277,24 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
       energy[kDampingLoss] += std::max(0.0, 0.5 * stop.stiffness * (d0 * d0 - d1 * d1));
     }
   }
+  if (train != nullptr) {
+    // The rotor's friction impulse Q = P_c + Lambda on -e_rotor: in a slip
+    // the motor's friction P_c = s B and the stage's loss Lambda = Q - P_c
+    // book their dissipation at the step's end speed (>= 0, as the
+    // thread's -P_T gamma+); a stuck rotor ends at rest (no loss). The
+    // booking's difference from the scheme's work -Q w_theta,
+    // (1 - theta) Q (w+ - w0), joins the friction term the checks allow
+    // (ResultCheckSpec::step_friction_excess).
+    const double w1 = v_[model_.rotor()];
+    const double friction = rotor_mode.slip != 0 ? rotor_mode.slip * balance.friction : 0.0;
+    const double stage = rotor_mode.slip != 0 ? impulses.train - friction : 0.0;
+    if (const int k = layout_.motor_friction_loss(); k >= 0) y_next[k] = y[k] + friction * w1;
+    // (A flow within its round-off, a stage that transmits nothing, books
+    // no loss of the other sign.)
+    if (const int k = layout_.gear_loss(); k >= 0) y_next[k] = y[k] + std::max(0.0, stage * w1);
+    friction_excess_ +=
+        std::max(0.0, (1.0 - theta) * impulses.train * (w1 - v0[model_.rotor()]));
+  }
   last_stop_force_ = 0.0;
   for (std::size_t k = 0; k < exact.size(); ++k)
     if (stop_active_[k]) last_stop_force_ -= exact[k].side * impulses.stop[k] / h;
@@ -273,6 +309,97 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   last_.motor_torque = model_.gear().rotor_torque(last_.motor_torque);
   last_.stick = contact && stick;
   return restituting;
+}
+
+// The rotor's friction row for a mode (RotorMode), with the rotor's
+// balance Y(w) and k = x / tau_b the stage's torque ratio (1 / eta forward,
+// eta_b backward; 1 without a stage): stick w+ = 0; slip with sign s,
+// P_c = s B and the stage's X = k P_b with X = Y - P_c, P_b = Y - Q, i.e.
+//   k Q - (k - 1) Y(w+) = s B.
+void DriveMoreau::set_rotor_row(const RotorMode& mode, const RotorBalance& balance) {
+  rotor_row_ = true;
+  if (mode.slip == 0) {
+    rotor_a_w_ = 1.0, rotor_a_q_ = 0.0, rotor_r_ = 0.0;
+    return;
+  }
+  const double k = model_.train_friction()->torque_ratio(mode.flow, mode.breakaway);
+  rotor_a_w_ = (k - 1.0) * (balance.inertia - balance.h1);
+  rotor_a_q_ = k;
+  rotor_r_ = mode.slip * balance.friction + (k - 1.0) * (balance.inertia * balance.w0 + balance.h0);
+}
+
+// Whether the step's impulses fit the rotor's mode: a slip's speed and the
+// stage's power flow have the mode's signs; a stick's Q splits into the
+// motor's friction in [-B, B] and a stage loss in the stage's static set,
+//   Lambda between (eta_b,s - 1) P_b and (1 / eta_s - 1) P_b.
+bool DriveMoreau::rotor_consistent(const RotorMode& mode, const RotorBalance& balance,
+                                   const Impulses& impulses) const {
+  const elements::TrainFriction& train = *model_.train_friction();
+  const int r = model_.rotor();
+  const double w = impulses.velocity[r], q = impulses.train;
+  const double transmitted = balance.at(mode.slip == 0 ? 0.0 : w) - q;  // P_b
+  // The round-off of the impulses on the rotor's coordinate (the thread's
+  // too): a flow's sign within it is either (a thread in free flight
+  // transmits nothing).
+  const double slack =
+      64.0 * std::numeric_limits<double>::epsilon() *
+      (std::abs(q) + std::abs(transmitted) + balance.friction + std::abs(balance.h0) +
+       std::abs(balance.inertia * balance.w0) + std::abs(balance.inertia * w) +
+       std::abs(impulses.normal * model_.normal_direction()[r]) +
+       std::abs(impulses.friction * model_.tangent_direction()[r]));
+  if (mode.slip != 0) {
+    if (!(mode.slip * w > 0.0)) return false;
+    return !train.stage || mode.flow * mode.slip * transmitted >= -slack;
+  }
+  const double forward = (train.torque_ratio(1, true) - 1.0) * transmitted;
+  const double backward = (train.torque_ratio(-1, true) - 1.0) * transmitted;
+  return q >= std::min(forward, backward) - balance.friction - slack &&
+         q <= std::max(forward, backward) + balance.friction + slack;
+}
+
+// The step's impulses with the rotor's friction contact: the thread's
+// contact solved (solve_thread) for each mode of the rotor's contact in
+// turn, stick first (with the static efficiencies), then the slips (with
+// the slip's, then, breaking away, the static ones), until one is
+// consistent (rotor_consistent). A mode whose thread problem has no
+// consistent impulse is not the step's; where no mode is consistent the
+// first mode's failure, or a JammingError, is raised.
+DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
+                                               const CoordinateVector& v0, double normal_target,
+                                               double rotor_target, int sigma_fixed,
+                                               const RotorBalance& balance, bool contact_at_start,
+                                               bool& contact, bool& stick, RotorMode& mode) {
+  const bool stage = model_.train_friction()->stage;
+  static constexpr RotorMode kModes[] = {
+      {0, 1, true},   {1, 1, false},  {1, -1, false}, {-1, 1, false}, {-1, -1, false},
+      {1, 1, true},   {1, -1, true},  {-1, 1, true},  {-1, -1, true}};
+  std::string failure;
+  for (const RotorMode& candidate : kModes) {
+    if (!stage && candidate.flow < 0) continue;  // (one slip per sign without a stage)
+    set_rotor_row(candidate, balance);
+    Impulses impulses;
+    try {
+      contact = contact_at_start;
+      stick = false;
+      if (contact)
+        impulses = solve_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
+                                contact, stick);
+      if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
+    } catch (const SimulationError& e) {  // (JammingError too)
+      if (failure.empty()) failure = e.what();
+      continue;
+    }
+    if (rotor_consistent(candidate, balance, impulses)) {
+      mode = candidate;
+      rotor_row_ = false;
+      return impulses;
+    }
+  }
+  rotor_row_ = false;
+  throw JammingError(t, "no consistent mode of the rotor's friction contact (the motor's "
+                        "friction and the gear stage) with the thread's in the Moreau-Jean "
+                        "step" + (failure.empty() ? std::string() : "; " + failure),
+                     "shorten dt, or reduce the friction");
 }
 
 // The end stops' active sets from the step's result (impulses, at free_):
@@ -349,20 +476,40 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                           "use dt < " + format_value(resolving_step(h, theta)) + " s");
   int found = 0;
   friction::FlankLcpResult chosen;
-  // The motor prescribes every velocity (DriveDynamics::slip_prescribed):
-  // the step's slip velocity c decides, friction cannot change it.
-  const double slip_noise =
-      64.0 * std::numeric_limits<double>::epsilon() *
-      model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum();
+  // The motor (DriveDynamics::slip_prescribed) or the rotor's stuck
+  // contact (below) prescribes every velocity: the step's slip velocity c
+  // decides, friction cannot change it.
+
   // One coefficient: the LCP decides stick and slip. A static one
   // above the kinetic one: stick where the impulse that sticks lies in
   // mu_static''s cone, else the LCP at the slip's coefficient at the
   // step's start speed (Stribeck's curve, explicit in the speed).
   // (In the Painleve regime the LCP may find no impulse where the stick
   // holds: a stick that is admissible is taken then too.)
+  // The rotor's friction row where it fixes the rotor's speed (a stuck
+  // rotor; a stage of eta_b = 0 back-driven) may, with the thread's and the
+  // stops' rows, fix every velocity (the rigid drive without play): the
+  // slip is prescribed then, as by a speed-controlled motor, and of the
+  // friction impulses the thread's cone admits the one is taken that leaves
+  // the rotor's contact the least |Q| (the split between serial friction
+  // contacts that stick together is statically indeterminate).
+  int fixed = 1 + (p_.speed_controlled ? 1 : 0) + (rotor_row_ && rotor_a_q_ == 0.0 ? 1 : 0);
+  for (int k = 0; k < kMaxStops; ++k) fixed += stop_active_[k] ? 1 : 0;
+  const bool rotor_prescribes = rotor_row_ && rotor_a_q_ == 0.0 &&
+                                fixed >= model_.coordinate_count();
+  const bool prescribed = dynamics_.slip_prescribed() || rotor_prescribes;
+  // (c's round-off: of the velocities, and where the rotor's contact holds
+  // a drive at rest, of the loads' velocity increments h f / m, free_.)
+  const double slip_noise =
+      64.0 * std::numeric_limits<double>::epsilon() *
+      (model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum() +
+       (rotor_prescribes ? model_.tangent_direction().cwiseProduct(free_).cwiseAbs().sum()
+                         : 0.0));
+  const double motor0 = rotor_prescribes ? without.train : without.rotor;
+  const double motor1 = rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
   double lcp_mu = model_.effective_mu();
   const friction::FlankLcpResult stick_step =
-      dynamics_.slip_prescribed()
+      prescribed
           ? friction::FlankLcpResult{}
           : friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma_fixed);
   bool stuck = false;
@@ -376,10 +523,14 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   }
   for (int k = 0; k < sigma_count && !stuck; ++k) {
     const friction::FlankLcpResult r =
-        dynamics_.slip_prescribed()
+        prescribed
             ? friction::solve_flank_prescribed_slip(
-                  c, std::abs(c) <= slip_noise, alpha, beta, lcp_mu, sigmas[k],
-                  without.rotor, unit.rotor - without.rotor)
+                  c, std::abs(c) <= slip_noise, alpha, beta,
+                  // (held by the rotor's stuck contact at zero slip: the
+                  // static cone, as the train's static test)
+                  rotor_prescribes && std::abs(c) <= slip_noise ? model_.effective_mu_static()
+                                                                : lcp_mu,
+                  sigmas[k], motor0, motor1)
             : solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
                                      lcp_options_);
     ++lcp_solves_;
@@ -423,6 +574,8 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
     if (dc != nullptr)  // the magnetic energy, and the copper loss among the losses
       stored += dc->magnetic_energy(dc->has_state() ? dynamics_.motor_current() : 0.0) +
                 state[layout_.copper_loss()];
+    for (const int k : {layout_.motor_friction_loss(), layout_.gear_loss()})
+      if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -446,6 +599,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   ChannelState state = channel_state(dynamics_);
   if (last_.stick) state.slip_velocity = 0.0;  // the step's stick: zero slip (as above)
   state.stop_force = last_stop_force_;  // the exact stops' (over the last step)
+  if (const int k = layout_.motor_friction_loss(); k >= 0) state.motor_friction_loss = y[k];
+  if (const int k = layout_.gear_loss(); k >= 0) state.gear_loss = y[k];
   if (const elements::DcMotor* dc = model_.dc_motor()) {
     state.motor_current = dynamics_.motor_current();
     state.motor_voltage = last_voltage_;  // over the last step
@@ -537,12 +692,13 @@ void DriveMoreau::check_step(double h, double theta) {
 // constraints: W_N v+ = normal_target (thread), e_rotor v+ = rotor_target.
 DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, double rotor_target,
                                          double tangential) {
+  constexpr int kRows = 3 + kMaxStops;
   const int n = model_.coordinate_count();
   const std::vector<elements::ExactEndStop>& exact = model_.elements().exact_stops;
-  int nc = (thread ? 1 : 0) + (p_.speed_controlled ? 1 : 0);
+  int nc = (thread ? 1 : 0) + (p_.speed_controlled ? 1 : 0) + (rotor_row_ ? 1 : 0);
   for (std::size_t k = 0; k < exact.size(); ++k) nc += stop_active_[k] ? 1 : 0;
   Columns B = Columns::Zero(n, nc);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2 + kMaxStops, 1> r(nc);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> r(nc);
   int row = 0;
   if (thread) {
     B.col(row) = model_.normal_direction();
@@ -559,6 +715,12 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
       B(exact[k].coordinate, row) = -exact[k].side;
       r[row++] = stop_target_[k];
     }
+  // The rotor's friction contact: Q on -e_rotor, its row a_w w+ + a_Q Q = r
+  // (set_rotor_row), the last.
+  if (rotor_row_) {
+    B(model_.rotor(), row) = -1.0;
+    r[row++] = rotor_r_;
+  }
   Impulses out;
   CoordinateVector base = free_;
   if (tangential != 0.0) {
@@ -570,16 +732,24 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
     return out;
   }
   const Columns weighted = solver_.solve(B);
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2 + kMaxStops, 2 + kMaxStops>
-      schur = B.transpose() * weighted;
-  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2 + kMaxStops, 1> lambda =
-      schur.fullPivLu().solve(r - B.transpose() * base);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kRows, kRows> schur =
+      B.transpose() * weighted;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> residual = r - B.transpose() * base;
+  if (rotor_row_) {  // (its row is a_w w+ + a_Q Q = r, not -w+ = r)
+    const int last = nc - 1;
+    schur.row(last) *= -rotor_a_w_;
+    schur(last, last) += rotor_a_q_;
+    residual[last] = rotor_r_ - rotor_a_w_ * base[model_.rotor()];
+  }
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> lambda =
+      schur.fullPivLu().solve(residual);
   out.velocity = base + weighted * lambda;
   row = 0;
   if (thread) out.normal = lambda[row++];
   if (p_.speed_controlled) out.rotor = lambda[row++];
   for (std::size_t k = 0; k < exact.size(); ++k)
     if (stop_active_[k]) out.stop[k] = lambda[row++];
+  if (rotor_row_) out.train = lambda[row++];
   return out;
 }
 

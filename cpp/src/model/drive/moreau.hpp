@@ -57,12 +57,30 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // At most two stops of each kind (lower, upper).
   static constexpr int kMaxStops = 2;
   using Columns = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates,
-                                2 + kMaxStops>;
+                                3 + kMaxStops>;
 
   struct Impulses {
     CoordinateVector velocity;
     double normal = 0.0, friction = 0.0, rotor = 0.0;
     double stop[kMaxStops] = {0.0, 0.0};  // the exact stops' impulses P >= 0 [N s]
+    // The rotor's friction impulse Q = P_c + Lambda (the motor's friction and
+    // the stage's loss) on the rotor's coordinate, against +phi_r [N m s].
+    double train = 0.0;
+  };
+
+  // The rotor's friction contact in a step (train_friction.hpp): stick, or
+  // slip with the sign `slip` and the stage's power flow `flow` (+1: from
+  // the rotor to the driven part), at the slip's or the static efficiencies.
+  struct RotorMode {
+    int slip = 0, flow = 1;
+    bool breakaway = false;
+  };
+  // The rotor's momentum balance over the step without its frictions,
+  // Y(w) = R (w0 - w) + H0 + H1 w (w the rotor's speed at the step's end,
+  // H the motor's impulse): the stage passes P_b = Y - Q to the driven part.
+  struct RotorBalance {
+    double inertia = 0.0, w0 = 0.0, h0 = 0.0, h1 = 0.0, friction = 0.0;  // friction: h |n| T_c
+    double at(double w) const { return inertia * (w0 - w) + h0 + h1 * w; }
   };
 
   // The energy a step from y to y_next creates: what the stored energy
@@ -90,6 +108,15 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
                         double normal_target, double rotor_target, int sigma_fixed,
                         bool& contact, bool& stick);
+  // The step's impulses with the rotor's friction contact (the thread's
+  // LCP for each mode of the rotor's contact until one is consistent).
+  Impulses solve_train(double t, double h, double theta, const CoordinateVector& v0,
+                       double normal_target, double rotor_target, int sigma_fixed,
+                       const RotorBalance& balance, bool contact_at_start, bool& contact,
+                       bool& stick, RotorMode& mode);
+  void set_rotor_row(const RotorMode& mode, const RotorBalance& balance);
+  bool rotor_consistent(const RotorMode& mode, const RotorBalance& balance,
+                        const Impulses& impulses) const;
   // The end stops' active sets of the step from its result: true where
   // they changed (the step is solved again).
   bool update_stops(double h, double theta, const CoordinateVector& v0, const Impulses& impulses,
@@ -109,6 +136,10 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   bool stop_active_[kMaxStops] = {false, false};
   double stop_target_[kMaxStops] = {0.0, 0.0};
   double last_stop_force_ = 0.0;  // the exact stops' impulse / h on the load along +u [N]
+  // The rotor's friction row of the step's constraint solve (active: the
+  // model has train friction): a_w w+ + a_Q Q = r, Q on -e_rotor.
+  bool rotor_row_ = false;
+  double rotor_a_w_ = 0.0, rotor_a_q_ = 0.0, rotor_r_ = 0.0;
   double last_voltage_ = 0.0;
   double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]  // a DC motor's driver voltage over the last step [V]
   double kinetic0_ = 0.0, elastic0_ = 0.0;

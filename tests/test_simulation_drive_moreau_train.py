@@ -16,6 +16,7 @@ import pytest
 
 import leadscrew as ls
 from helpers import dc_motor_reference
+from helpers import end_stop_reference
 from helpers import train_reference as reference
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
@@ -175,6 +176,53 @@ def test_the_train_efficiency_is_the_product_of_the_stages(concept, gear):
     eta, _ = efficiencies(gear)
     assert efficiency == pytest.approx(eta * ls.efficiency(s.thread, 0.3), rel=1e-9)
     assert_checked(result, scene, dt, 2.0)
+
+
+def test_a_worm_breaks_away_at_its_static_efficiency():
+    # A torque ramp on the rotor against an axial load, through a
+    # self-locking worm with mu_static = 1.5 mu: the train sticks (the
+    # static efficiencies, the thread's static cone) until the event-driven
+    # TrainSolver's breakaway (tested against the closed form T_d / n k_s),
+    # and the first step that slips is the step that contains it.
+    gear = {**SELF_LOCKING_WORM, "mu_static": 0.15}
+    scene = thesis_scene(rotor={"inertia": 1e-6}, nut={"position": 0.25}, gear=gear,
+                         loads={"drive_torque": {"type": "table", "times": [0.0, 1.0],
+                                                 "values": [0.0, 0.05]},
+                                "axial_force": -20.0})
+    s = ls.Scene.from_dict(scene)
+    exact = ls.simulate(s, 1.0)
+    assert [e.kind for e in exact.events] == ["stick->slip+"]
+    breakaway = exact.events[0].time
+    for dt in (1e-3, 1e-4):
+        result = ls.simulate(s, 1.0, integrator="moreau", dt=dt)
+        moving = np.flatnonzero(np.abs(result["omega_drive"]) > 1e-9)
+        assert result.t[moving[0]] - dt <= breakaway <= result.t[moving[0]]
+        assert np.max(np.abs(result["omega_drive"][:moving[0]])) <= 1e-12  # (round-off)
+        assert_checked(result, scene, dt, 1.0)
+
+
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut"])
+@pytest.mark.parametrize("friction_torque", [0.0, 2e-3])
+def test_a_stalled_motor_clamps_through_the_worm_at_the_closed_form(concept, friction_torque):
+    # A DC motor drives the load through a self-locking worm into a penalty
+    # stop (damped well beyond critical, from its face) and stalls where
+    # F r_m tan(alpha + rho') / (n eta) + T_c = k_t U / R (gear.md, "The clamp
+    # of a stalled motor"): the step's fixed point, to round-off.
+    dt = 1e-4
+    worm = {"type": "worm", "ratio": 10.0, "lead_angle": 0.06, "mu": 0.1,
+            "flank_angle": DEFAULT_FLANK}
+    thread = {"pitch": 1e-3, "mean_diameter": 20e-3, "flank_angle": 0.0}
+    scene = thesis_scene(concept=concept, thread=thread, friction={"mu": 0.3},
+                         loads={"axial_force": 0.0}, gear=worm,
+                         end_stops={"lower": -1e-9, "stiffness": 1e7, "damping": 3e5},
+                         motor={**DC_MOTOR, "friction_torque": friction_torque})
+    scene["loads"].pop("drive_torque")
+    result = ls.simulate(ls.Scene.from_dict(scene), 1.5, integrator="moreau", dt=dt)
+    clamp = end_stop_reference.train_clamp_force(KT * U / R, thread, 0.3, 10.0,
+                                                 efficiencies(worm)[0], friction_torque)
+    assert result["stop_force"][-1] == pytest.approx(clamp, rel=1e-12)
+    assert result["motor_current"][-1] == pytest.approx(U / R, rel=1e-12)
+    assert_checked(result, scene, dt, 1.5)
 
 
 def test_the_flexible_seat_adjuster_runs_with_its_worm():

@@ -153,8 +153,8 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   // The rotor's friction contact (the motor's friction, a lossy or worm
   // stage: train_friction.hpp), a second friction contact of the step.
   const elements::TrainFriction* train = model_.train_friction();
-  RotorBalance balance;
-  RotorMode rotor_mode;
+  moreau_contacts::RotorBalance balance;
+  moreau_contacts::RotorMode rotor_mode;
   if (train != nullptr) {
     balance.inertia = train->rotor_inertia;
     balance.w0 = v0[model_.rotor()];
@@ -266,17 +266,9 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   // with d0 > 0 (no force over the step) loses the elastic energy it gives
   // up. The exact stops' impulses P dissipate -P g'_theta >= 0 (theta >= 1/2,
   // e <= 1), which the residual takes, as the flanks' impacts.
-  const double du_theta = v_theta[load];
-  for (std::size_t k = 0; k < stops.size(); ++k) {
-    const elements::EndStop& stop = stops[k];
-    if (engaged_[k]) {
-      energy[kDampingLoss] += h * stop.damping * du_theta * du_theta;
-    } else {
-      const double d0 = std::max(stop.penetration(u0), 0.0);
-      const double d1 = std::max(stop.penetration(q_[load]), 0.0);
-      energy[kDampingLoss] += std::max(0.0, 0.5 * stop.stiffness * (d0 * d0 - d1 * d1));
-    }
-  }
+  for (std::size_t k = 0; k < stops.size(); ++k)
+    energy[kDampingLoss] += moreau_contacts::penalty_stop_loss(stops[k], engaged_[k], u0,
+                                                               q_[load], v_theta[load], h);
   if (train != nullptr) {
     // The rotor's friction impulse Q = P_c + Lambda on -e_rotor: in a slip
     // the motor's friction P_c = s B and the stage's loss Lambda = Q - P_c
@@ -311,72 +303,26 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   return restituting;
 }
 
-// The rotor's friction row for a mode (RotorMode), with the rotor's
-// balance Y(w) and k = x / tau_b the stage's torque ratio (1 / eta forward,
-// eta_b backward; 1 without a stage): stick w+ = 0; slip with sign s,
-// P_c = s B and the stage's X = k P_b with X = Y - P_c, P_b = Y - Q, i.e.
-//   k Q - (k - 1) Y(w+) = s B.
-void DriveMoreau::set_rotor_row(const RotorMode& mode, const RotorBalance& balance) {
-  rotor_row_ = true;
-  if (mode.slip == 0) {
-    rotor_a_w_ = 1.0, rotor_a_q_ = 0.0, rotor_r_ = 0.0;
-    return;
-  }
-  const double k = model_.train_friction()->torque_ratio(mode.flow, mode.breakaway);
-  rotor_a_w_ = (k - 1.0) * (balance.inertia - balance.h1);
-  rotor_a_q_ = k;
-  rotor_r_ = mode.slip * balance.friction + (k - 1.0) * (balance.inertia * balance.w0 + balance.h0);
-}
-
-// Whether the step's impulses fit the rotor's mode: a slip's speed and the
-// stage's power flow have the mode's signs; a stick's Q splits into the
-// motor's friction in [-B, B] and a stage loss in the stage's static set,
-//   Lambda between (eta_b,s - 1) P_b and (1 / eta_s - 1) P_b.
-bool DriveMoreau::rotor_consistent(const RotorMode& mode, const RotorBalance& balance,
-                                   const Impulses& impulses) const {
-  const elements::TrainFriction& train = *model_.train_friction();
-  const int r = model_.rotor();
-  const double w = impulses.velocity[r], q = impulses.train;
-  const double transmitted = balance.at(mode.slip == 0 ? 0.0 : w) - q;  // P_b
-  // The round-off of the impulses on the rotor's coordinate (the thread's
-  // too): a flow's sign within it is either (a thread in free flight
-  // transmits nothing).
-  const double slack =
-      64.0 * std::numeric_limits<double>::epsilon() *
-      (std::abs(q) + std::abs(transmitted) + balance.friction + std::abs(balance.h0) +
-       std::abs(balance.inertia * balance.w0) + std::abs(balance.inertia * w) +
-       std::abs(impulses.normal * model_.normal_direction()[r]) +
-       std::abs(impulses.friction * model_.tangent_direction()[r]));
-  if (mode.slip != 0) {
-    if (!(mode.slip * w > 0.0)) return false;
-    return !train.stage || mode.flow * mode.slip * transmitted >= -slack;
-  }
-  const double forward = (train.torque_ratio(1, true) - 1.0) * transmitted;
-  const double backward = (train.torque_ratio(-1, true) - 1.0) * transmitted;
-  return q >= std::min(forward, backward) - balance.friction - slack &&
-         q <= std::max(forward, backward) + balance.friction + slack;
-}
-
 // The step's impulses with the rotor's friction contact: the thread's
 // contact solved (solve_thread) for each mode of the rotor's contact in
 // turn, stick first (with the static efficiencies), then the slips (with
 // the slip's, then, breaking away, the static ones), until one is
-// consistent (rotor_consistent). A mode whose thread problem has no
+// consistent (RotorBalance::consistent). A mode whose thread problem has no
 // consistent impulse is not the step's; where no mode is consistent the
 // first mode's failure, or a JammingError, is raised.
 DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
                                                const CoordinateVector& v0, double normal_target,
                                                double rotor_target, int sigma_fixed,
-                                               const RotorBalance& balance, bool contact_at_start,
-                                               bool& contact, bool& stick, RotorMode& mode) {
-  const bool stage = model_.train_friction()->stage;
-  static constexpr RotorMode kModes[] = {
-      {0, 1, true},   {1, 1, false},  {1, -1, false}, {-1, 1, false}, {-1, -1, false},
-      {1, 1, true},   {1, -1, true},  {-1, 1, true},  {-1, -1, true}};
+                                               const moreau_contacts::RotorBalance& balance,
+                                               bool contact_at_start, bool& contact, bool& stick,
+                                               moreau_contacts::RotorMode& mode) {
+  const elements::TrainFriction& train = *model_.train_friction();
+  const int r = model_.rotor();
   std::string failure;
-  for (const RotorMode& candidate : kModes) {
-    if (!stage && candidate.flow < 0) continue;  // (one slip per sign without a stage)
-    set_rotor_row(candidate, balance);
+  for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
+    if (!train.stage && candidate.flow < 0) continue;  // (one slip per sign without a stage)
+    rotor_row_ = true;
+    rotor_ = balance.row(train, candidate);
     Impulses impulses;
     try {
       contact = contact_at_start;
@@ -389,7 +335,9 @@ DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
       if (failure.empty()) failure = e.what();
       continue;
     }
-    if (rotor_consistent(candidate, balance, impulses)) {
+    const double other = std::abs(impulses.normal * model_.normal_direction()[r]) +
+                         std::abs(impulses.friction * model_.tangent_direction()[r]);
+    if (balance.consistent(train, candidate, impulses.velocity[r], impulses.train, other)) {
       mode = candidate;
       rotor_row_ = false;
       return impulses;
@@ -417,8 +365,7 @@ bool DriveMoreau::update_stops(double h, double theta, const CoordinateVector& v
   for (std::size_t k = 0; k < stops.size(); ++k) {
     const elements::EndStop& stop = stops[k];
     const double d0 = stop.penetration(u0), rate = stop.side * du_theta;
-    const double force =
-        stop.stiffness * (std::max(d0, 0.0) + theta * h * rate) + stop.damping * rate;
+    const double force = moreau_contacts::penalty_stop_force(stop, u0, du_theta, h, theta);
     if (engaged_[k] && !(force > 0.0)) {
       engaged_[k] = false;
       released[k] = true;
@@ -493,9 +440,9 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // friction impulses the thread's cone admits the one is taken that leaves
   // the rotor's contact the least |Q| (the split between serial friction
   // contacts that stick together is statically indeterminate).
-  int fixed = 1 + (p_.speed_controlled ? 1 : 0) + (rotor_row_ && rotor_a_q_ == 0.0 ? 1 : 0);
+  int fixed = 1 + (p_.speed_controlled ? 1 : 0) + (rotor_row_ && rotor_.fixes_speed() ? 1 : 0);
   for (int k = 0; k < kMaxStops; ++k) fixed += stop_active_[k] ? 1 : 0;
-  const bool rotor_prescribes = rotor_row_ && rotor_a_q_ == 0.0 &&
+  const bool rotor_prescribes = rotor_row_ && rotor_.fixes_speed() &&
                                 fixed >= model_.coordinate_count();
   const bool prescribed = dynamics_.slip_prescribed() || rotor_prescribes;
   // (c's round-off: of the velocities, and where the rotor's contact holds
@@ -715,11 +662,11 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
       B(exact[k].coordinate, row) = -exact[k].side;
       r[row++] = stop_target_[k];
     }
-  // The rotor's friction contact: Q on -e_rotor, its row a_w w+ + a_Q Q = r
-  // (set_rotor_row), the last.
+  // The rotor's friction contact: Q on -e_rotor, its row a_w w+ + a_q Q = r
+  // (moreau_contacts::RotorRow), the last.
   if (rotor_row_) {
     B(model_.rotor(), row) = -1.0;
-    r[row++] = rotor_r_;
+    r[row++] = rotor_.r;
   }
   Impulses out;
   CoordinateVector base = free_;
@@ -735,11 +682,11 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kRows, kRows> schur =
       B.transpose() * weighted;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> residual = r - B.transpose() * base;
-  if (rotor_row_) {  // (its row is a_w w+ + a_Q Q = r, not -w+ = r)
+  if (rotor_row_) {  // (its row is a_w w+ + a_q Q = r, not -w+ = r)
     const int last = nc - 1;
-    schur.row(last) *= -rotor_a_w_;
-    schur(last, last) += rotor_a_q_;
-    residual[last] = rotor_r_ - rotor_a_w_ * base[model_.rotor()];
+    schur.row(last) *= -rotor_.a_w;
+    schur(last, last) += rotor_.a_q;
+    residual[last] = rotor_.r - rotor_.a_w * base[model_.rotor()];
   }
   const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> lambda =
       schur.fullPivLu().solve(residual);

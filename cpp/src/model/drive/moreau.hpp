@@ -11,6 +11,7 @@
 #include "leadscrew/lcp/workspace.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
+#include "moreau_contacts.hpp"
 #include "state_layout.hpp"
 
 namespace leadscrew::model::drive {
@@ -68,21 +69,6 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     double train = 0.0;
   };
 
-  // The rotor's friction contact in a step (train_friction.hpp): stick, or
-  // slip with the sign `slip` and the stage's power flow `flow` (+1: from
-  // the rotor to the driven part), at the slip's or the static efficiencies.
-  struct RotorMode {
-    int slip = 0, flow = 1;
-    bool breakaway = false;
-  };
-  // The rotor's momentum balance over the step without its frictions,
-  // Y(w) = R (w0 - w) + H0 + H1 w (w the rotor's speed at the step's end,
-  // H the motor's impulse): the stage passes P_b = Y - Q to the driven part.
-  struct RotorBalance {
-    double inertia = 0.0, w0 = 0.0, h0 = 0.0, h1 = 0.0, friction = 0.0;  // friction: h |n| T_c
-    double at(double w) const { return inertia * (w0 - w) + h0 + h1 * w; }
-  };
-
   // The energy a step from y to y_next creates: what the stored energy
   // gains beyond the work in less the losses booked (the residual's fall),
   // and the round-off of that account (of its largest term).
@@ -112,11 +98,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // LCP for each mode of the rotor's contact until one is consistent).
   Impulses solve_train(double t, double h, double theta, const CoordinateVector& v0,
                        double normal_target, double rotor_target, int sigma_fixed,
-                       const RotorBalance& balance, bool contact_at_start, bool& contact,
-                       bool& stick, RotorMode& mode);
-  void set_rotor_row(const RotorMode& mode, const RotorBalance& balance);
-  bool rotor_consistent(const RotorMode& mode, const RotorBalance& balance,
-                        const Impulses& impulses) const;
+                       const moreau_contacts::RotorBalance& balance, bool contact_at_start,
+                       bool& contact, bool& stick, moreau_contacts::RotorMode& mode);
   // The end stops' active sets of the step from its result: true where
   // they changed (the step is solved again).
   bool update_stops(double h, double theta, const CoordinateVector& v0, const Impulses& impulses,
@@ -137,9 +120,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   double stop_target_[kMaxStops] = {0.0, 0.0};
   double last_stop_force_ = 0.0;  // the exact stops' impulse / h on the load along +u [N]
   // The rotor's friction row of the step's constraint solve (active: the
-  // model has train friction): a_w w+ + a_Q Q = r, Q on -e_rotor.
+  // model has train friction and a mode is being tried).
   bool rotor_row_ = false;
-  double rotor_a_w_ = 0.0, rotor_a_q_ = 0.0, rotor_r_ = 0.0;
+  moreau_contacts::RotorRow rotor_;
   double last_voltage_ = 0.0;
   double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]  // a DC motor's driver voltage over the last step [V]
   double kinetic0_ = 0.0, elastic0_ = 0.0;

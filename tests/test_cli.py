@@ -37,7 +37,8 @@ def test_check_without_scene_keeps_the_thread_verdicts(capsys):
 
 
 @pytest.mark.parametrize("name", ["default", "thesis_table_5_1", "position_holding",
-                                  "seat_adjuster", "seat_adjuster_worm"])
+                                  "seat_adjuster", "seat_adjuster_worm",
+                                  "seat_adjuster_worm_flexible"])
 def test_check_shipped_scene(capsys, name):
     code, out, err = run_main(capsys, "check", name)
     assert code == 0 and err == ""

@@ -475,7 +475,8 @@ def test_a_directory_is_called_a_directory(tmp_path):
 
 def test_shipped_scenes_are_listed_and_found():
     assert shipped.available() == ["default", "position_holding", "seat_adjuster",
-                                   "seat_adjuster_worm", "thesis_table_5_1"]
+                                   "seat_adjuster_worm", "seat_adjuster_worm_flexible",
+                                   "thesis_table_5_1"]
     for name in shipped.available():
         path = shipped.path(name)
         assert path.is_file() and path.suffix == ".toml"
@@ -485,7 +486,8 @@ def test_shipped_scenes_are_listed_and_found():
 
 
 @pytest.mark.parametrize("name", ["default", "position_holding", "seat_adjuster",
-                                  "seat_adjuster_worm", "thesis_table_5_1"])
+                                  "seat_adjuster_worm", "seat_adjuster_worm_flexible",
+                                  "thesis_table_5_1"])
 def test_shipped_scenes_round_trip(tmp_path, name):
     scene = shipped.load(name)
     path = tmp_path / f"{name}.toml"

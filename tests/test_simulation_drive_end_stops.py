@@ -183,10 +183,11 @@ def test_the_core_checks_the_stops_too():
         parameters.end_stops = "rubber"
 
 
-def test_moreau_jean_and_an_equilibrium_start_are_refused():
+def test_an_equilibrium_start_is_refused_and_moreau_jean_runs():
+    # (Moreau-Jean takes end stops since issue 19's stages:
+    # tests/test_simulation_drive_moreau_stops.py.)
     scene = ls.Scene.from_dict(thesis_scene(end_stops={"upper": 0.1, "stiffness": K}))
-    with pytest.raises(ValueError, match='integrator = "moreau" is invalid with end_stops'):
-        ls.simulate(scene, 0.01, integrator="moreau")
+    assert "stop_force" in ls.simulate(scene, 0.01, integrator="moreau", dt=1e-4).channels
     with pytest.raises(ValueError, match="initial.state = 'equilibrium' is invalid with end_stops"):
         ls.Scene.from_dict(thesis_scene(end_stops={"upper": 0.1, "stiffness": K},
                                         initial={"state": "equilibrium"}))
@@ -335,16 +336,19 @@ def test_the_stepper_carries_the_stops_across_its_pieces(stops):
 
 def test_the_integrators_listed_with_end_stops_are_the_ones_that_run():
     # One list, the true one (issue 17 item 16): a review found "moreau" listed, then refused.
-    for friction, expected in [({"law": "coulomb", "mu": 0.3}, ["event_driven"]),
+    # Moreau-Jean runs end stops with the set-valued laws (moreau.hpp).
+    for friction, expected in [({"law": "coulomb", "mu": 0.3}, ["event_driven", "moreau"]),
                                ({"law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}, None)]:
         scene = ls.Scene.from_dict(thesis_scene(concept="rigid", friction=friction,
                                                 end_stops={"lower": -0.01, "stiffness": 1e7}))
         listed = ls._core.drive_integrators(scene.model().parameters)
-        assert "moreau" not in listed
         if expected is not None:
             assert listed == expected
+        else:
+            assert "moreau" not in listed  # (a smooth law)
         for integrator in listed:
-            options = {} if integrator == "event_driven" else {"rtol": 1e-6, "atol": 1e-9}
+            options = ({} if integrator == "event_driven" else {"dt": 1e-5}
+                       if integrator == "moreau" else {"rtol": 1e-6, "atol": 1e-9})
             ls.simulate(scene, 0.002, integrator=integrator, max_steps=200_000, **options)
     with pytest.raises(ValueError, match=r"integrator = \"cvode_bdf\" is invalid for "
                                          r"friction\.law = \"coulomb\" and end_stops: must be "

@@ -201,8 +201,7 @@ def test_a_worm_above_its_friction_angle_back_drives():
     eta, eta_b = efficiencies(gear)
     assert eta_b > 0.0
     drive = dc_motor_reference.rigid_drive(s.to_dict(), s.derived())
-    starts = [a for direction in (1, -1) for a in reference.slip_acceleration(
-        drive, 10.0, 0.0, -50.0, direction, 0.0, eta, eta_b) if a * direction > 0.0]
+    starts = reference.consistent_starts(drive, 10.0, 0.0, -50.0, 0.0, eta, eta_b)
     assert len(starts) == 1
     np.testing.assert_allclose(result["omega_drive"], 10.0 * starts[0] * result.t, rtol=1e-9,
                                atol=1e-12)
@@ -232,20 +231,14 @@ def test_lowering_through_a_stage_that_back_drives(gear):
 
 
 REFUSED = [
-    (dict(concept="flexible_nut"), LOSSY, "gear.type = \"lossy\" is invalid: needs the rigid "
-     "concept without play"),
-    (dict(backlash={"axial": 1e-5}), WORM, "gear.type = \"worm\" is invalid: needs the rigid "
-     "concept without play"),
     (dict(friction={"law": "arctan_velocity", "mu": 0.3}), LOSSY, "friction.law"),
-    # (a new user's review: the message named the valid law, not mu_static)
-    (dict(friction={"law": "coulomb", "mu": 0.12, "mu_static": 0.15}), WORM,
-     "; friction.mu_static = 0.15 (the stages take plain Coulomb friction on the thread: no "
-     "mu_static above friction.mu = 0.12)"),
     (dict(nut={"preload": 20.0}), LOSSY, "nut.preload"),
     # (Penalty end stops run with the stages now; exact ones are refused on
     # the rigid concept: tests/test_simulation_drive_train_stops.py.)
     (dict(initial={"state": "equilibrium"}), LOSSY, "initial.state"),
     (dict(friction={"law": "coulomb", "mu": 80.0}), LOSSY, "a torque cannot drive the thread"),
+    # (Penalty flanks run on the ODE methods alone, which take no stage.)
+    (dict(backlash={"axial": 1e-5, "contact": "bistop"}), WORM, 'backlash.contact = "bistop"'),
 ]
 
 
@@ -257,14 +250,40 @@ def test_a_stage_elsewhere_is_refused_naming_the_key(changes, gear, message):
     assert "gear.type" in str(info.value)
 
 
+# Off the rigid drive without play, or with a static coefficient on the
+# thread, the stages run on Moreau-Jean alone (its default there):
+# tests/test_simulation_drive_moreau_train.py.
+MOREAU_ONLY = [
+    (dict(concept="flexible_nut"), LOSSY, 'here concept = "flexible_nut"'),
+    (dict(backlash={"axial": 1e-5}), WORM, "here backlash.axial = 1e-05 (play)"),
+    # (a new user's review: the message named the valid law, not mu_static)
+    (dict(friction={"law": "coulomb", "mu": 0.12, "mu_static": 0.15}), WORM,
+     "here friction.mu_static = 0.15 above friction.mu = 0.12"),
+]
+
+
+@pytest.mark.parametrize("changes, gear, message", MOREAU_ONLY)
+def test_the_event_driven_scheme_refuses_a_stage_elsewhere_naming_moreau(changes, gear, message):
+    scene = ls.Scene.from_dict(thesis_scene(gear=gear, **changes))
+    assert _core.drive_integrators(scene.model().parameters) == ["moreau"]
+    with pytest.raises(ValueError) as info:
+        ls.simulate(scene, 0.01, integrator="event_driven")
+    text = str(info.value)
+    assert text.startswith(f'integrator = "event_driven" is invalid with gear.type = '
+                           f'"{gear["type"]}": the event-driven scheme runs the train\'s '
+                           "friction stages on the rigid concept without play")
+    assert message in text and 'use integrator = "moreau"' in text
+    assert ls.simulate(scene, 0.05).integrator == "moreau"  # the default
+
+
 def test_motor_friction_elsewhere_is_refused_naming_the_key():
     scene = thesis_scene(concept="flexible_nut", loads={"axial_force": F},
                          motor={**DC_MOTOR, "friction_torque": 1e-3})
     scene["loads"].pop("drive_torque")
-    with pytest.raises(ValueError, match=r"motor\.friction_torque = 0\.001 N m is invalid: "
-                                         "needs the "
-                                         "rigid concept without play"):
-        ls.Scene.from_dict(scene).model()
+    with pytest.raises(ValueError, match=r"integrator = \"event_driven\" is invalid with "
+                                         r"motor\.friction_torque = 0\.001: .* here concept = "
+                                         r"\"flexible_nut\"; use integrator = \"moreau\""):
+        ls.simulate(ls.Scene.from_dict(scene), 0.01, integrator="event_driven")
     speed = thesis_scene(loads={"drive_speed": 1.0})
     speed["loads"].pop("drive_torque")
     parameters = ls.Scene.from_dict(speed).model().parameters
@@ -274,12 +293,12 @@ def test_motor_friction_elsewhere_is_refused_naming_the_key():
         _core.DriveModel(parameters)
 
 
-@pytest.mark.parametrize("integrator", ["moreau", "dopri5"])
-def test_other_integrators_are_refused(integrator):
-    with pytest.raises(ValueError, match=rf"integrator = \"{integrator}\" is invalid with "
-                                         r"gear\.type = \"lossy\""):
-        ls.simulate(ls.Scene.from_dict(thesis_scene(gear=LOSSY)), 0.01, integrator=integrator,
-                    dt=1e-4)
+def test_other_integrators_are_refused():
+    # (Moreau-Jean runs the stages: tests/test_simulation_drive_moreau_train.py.)
+    with pytest.raises(ValueError, match=r"integrator = \"dopri5\" is invalid with "
+                                         r"gear\.type = \"lossy\": the train's friction stages "
+                                         r"run with exact Coulomb friction on Moreau-Jean"):
+        ls.simulate(ls.Scene.from_dict(thesis_scene(gear=LOSSY)), 0.01, integrator="dopri5")
 
 
 @pytest.mark.parametrize("gear, message", [

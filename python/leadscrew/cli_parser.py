@@ -108,7 +108,8 @@ def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
 def _parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="leadscrew", description="Lead-screw drive simulator. SCENE is a TOML "
                      "scene file or the name of a shipped scene (default, thesis_table_5_1, "
-                     "position_holding, seat_adjuster, seat_adjuster_worm).")
+                     "position_holding, seat_adjuster, seat_adjuster_worm, "
+                     "seat_adjuster_worm_flexible).")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
     parser.add_argument("--version", action="version", version=f"leadscrew {__version__}",
                         help="print the version and exit")

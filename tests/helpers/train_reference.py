@@ -34,7 +34,8 @@ import math
 from . import dc_motor_reference
 from .rigid_drive_reference import RigidDrive
 
-__all__ = ["worm_efficiencies", "slip_acceleration", "steady_rotor_torque", "holds_at_rest"]
+__all__ = ["worm_efficiencies", "slip_acceleration", "consistent_starts",
+           "steady_rotor_torque", "holds_at_rest"]
 
 
 def worm_efficiencies(lead_angle: float, mu: float, flank_angle: float):
@@ -74,6 +75,18 @@ def slip_acceleration(drive: RigidDrive, ratio: float, torque: float, force: flo
                 continue
             found.append(acceleration)
     return found
+
+
+def consistent_starts(drive: RigidDrive, ratio: float, torque: float, force: float,
+                      friction_torque: float = 0.0, efficiency: float = 1.0,
+                      efficiency_backdrive: float = 1.0) -> list:
+    """The accelerations phi'' [rad/s^2] from rest of every consistent slip
+    combination in either direction (slip_acceleration's whose sign is the
+    slip's): one where the train starts, none where it holds."""
+    return [a for direction in (1, -1)
+            for a in slip_acceleration(drive, ratio, torque, force, direction, friction_torque,
+                                       efficiency, efficiency_backdrive)
+            if a * direction > 0.0]
 
 
 def steady_rotor_torque(drive: RigidDrive, ratio: float, force: float, direction: int,

@@ -8,6 +8,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/model/elements/drive_elements.hpp"
 #include "leadscrew/model/simulation_checks.hpp"
 
 namespace leadscrew::model {
@@ -16,11 +17,10 @@ namespace {
 
 // The integrators that fit the friction law `friction` on a thread pair with
 // penalty flanks, exact flanks, or (neither) no play; a preloaded nut runs on
-// the event-driven scheme only, and with end stops (`no_moreau`) Moreau-Jean
-// is out (its iteration matrix does not see a stop's contact).
+// the event-driven scheme only. End stops run on every scheme the thread
+// pair admits (Moreau-Jean: moreau.hpp).
 const std::vector<std::string>& integrators_for(const std::string& friction, bool penalty,
-                                                bool exact_play, bool preloaded,
-                                                bool no_moreau) {
+                                                bool exact_play, bool preloaded) {
   // From the law's type (friction/law.hpp): a set-valued law runs in the
   // event-driven scheme, in Moreau-Jean's time stepping, and where it has a
   // regularization in the ODE methods; a smooth law in the ODE methods and
@@ -48,9 +48,9 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
   if (preloaded) return event_driven_only;
   if (type.time_stepping) {  // set-valued
     if (penalty) return type.ode ? set_valued_ode : event_driven_only;
-    if (exact_play) return no_moreau ? event_driven_only : with_moreau;
-    if (type.ode) return no_moreau ? set_valued_ode : set_valued_all;
-    return no_moreau ? event_driven_only : with_moreau;
+    if (exact_play) return with_moreau;
+    if (type.ode) return set_valued_all;
+    return with_moreau;
   }
   if (exact_play) return event_driven_only;
   return smooth;
@@ -58,21 +58,37 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
 
 }  // namespace
 
+namespace {
+
+// The train's friction stages (train_friction.hpp): both schemes on the
+// rigid drive without play with plain Coulomb friction, Moreau-Jean alone
+// elsewhere (its obstacle).
+const std::vector<std::string>& train_integrators(const std::string& obstacle) {
+  static const std::vector<std::string> both = {"event_driven", "moreau"};
+  static const std::vector<std::string> moreau_only = {"moreau"};
+  return obstacle.empty() ? both : moreau_only;
+}
+
+}  // namespace
+
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+  if (p.nut_preload == 0.0 &&
+      (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
+    return train_integrators(
+        elements::train_event_driven_obstacle(p, *elements::ThreadPair::make_law(p)));
   const bool penalty =
       p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
   return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact,
-                         p.nut_preload > 0.0 || p.motor_friction_torque > 0.0 ||
-                             p.gear == GearType::lossy || p.gear == GearType::worm,
-                         p.end_stops != EndStopContact::none);
+                         p.nut_preload > 0.0);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
+  if (model.train_friction() && !model.preloaded_nut())
+    return train_integrators(model.train_friction()->event_driven_obstacle);
   return integrators_for(p.friction, thread.penalty(), thread.exact_play(),
-                         model.preloaded_nut() != nullptr || model.train_friction() != nullptr,
-                         p.end_stops != EndStopContact::none);
+                         model.preloaded_nut() != nullptr);
 }
 
 namespace {
@@ -112,20 +128,23 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                           format_value(p.nut_preload) +
                           " N: a preloaded nut runs with exact Coulomb friction on the "
                           "event-driven scheme only (integrator = \"event_driven\")");
-  if (model.train_friction() && integrator != "event_driven")
-    throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with " +
-                          (model.train_friction()->stage
-                               ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-                               : "motor.friction_torque = " +
-                                     format_value(p.motor_friction_torque)) +
-                          ": the train's friction stages run with exact Coulomb friction on "
-                          "the event-driven scheme only (integrator = \"event_driven\")");
-  if (integrator == "moreau" && p.end_stops != EndStopContact::none)
+  if (const elements::TrainFriction* train = model.train_friction();
+      train && integrator != "moreau" &&
+      (integrator != "event_driven" || !train->event_driven_obstacle.empty())) {
+    const std::string what = train->stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+                                          : "motor.friction_torque = " +
+                                                format_value(p.motor_friction_torque);
     throw InvalidArgument(
-        "integrator = \"moreau\" is invalid with end_stops: Moreau-Jean's iteration matrix "
-        "takes the force elements' stiffness, which a penalty stop has only in contact, and "
-        "an exact stop would be a second contact of its step (use \"event_driven\", which "
-        "locates the stop's contact and release, or an ODE method)");
+        "integrator = \"" + integrator + "\" is invalid with " + what +
+        (integrator == "event_driven"
+             ? ": the event-driven scheme runs the train's friction stages on the rigid concept "
+               "without play with plain Coulomb friction on the thread only (every contact "
+               "slipping with one speed), here " + train->event_driven_obstacle +
+                   "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
+             : ": the train's friction stages run with exact Coulomb friction on Moreau-Jean "
+               "(integrator = \"moreau\") and, on the rigid concept without play, the "
+               "event-driven scheme (integrator = \"event_driven\")"));
+  }
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,
                    (p.backlash != BacklashContact::none

@@ -106,20 +106,9 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     current = dc->theta_step(dc->voltage(t + theta * h), h, theta, dynamics_.motor_current(),
                              v0[dc->rotor], held);
 
-  // Iteration matrix and free velocity.
-  Square stiffness, damping;
-  assemble(h, theta, stiffness, damping,
-           dc != nullptr ? -h * dc->torque(current.mean_slope) : 0.0);
-  CoordinateVector rhs = model_.mass().cwiseProduct(v0) + h * dynamics_.forces() -
-                         theta * (1.0 - theta) * h * h * (stiffness * v0) +
-                         theta * h * (damping * v0);
-  if (dc != nullptr)
-    rhs[dc->rotor] += h * (dc->torque(current.mean) - dc->torque(dynamics_.motor_current()));
-  free_ = solver_.solve(rhs);
-
   // Which thread contact is active in this step.
   int sigma_fixed = 0;  // 0: bilateral (sign free); +-1: a flank
-  bool contact = true;
+  bool contact_at_start = true;
   double normal_target = 0.0;
   if (model_.thread_pair().exact_play()) {
     const double half = 0.5 * p_.clearance;
@@ -129,7 +118,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     } else if (predicted >= half) {
       sigma_fixed = -1;
     } else {
-      contact = false;
+      contact_at_start = false;
     }
     // Newton's restitution where this step closes the flank (the play
     // inside the clearance at its start); a flank already closed stays so
@@ -139,103 +128,79 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     // account created energy (up to 1e3 of the work).
     const bool closing = std::abs(play0) < half;
     normal_target = closing ? -restitution * model_.normal_direction().dot(v0) : 0.0;
-    restituting = contact && closing && restitution > 0.0;
+    restituting = contact_at_start && closing && restitution > 0.0;
   }
   const double rotor_target =
       p_.speed_controlled ? model_.motor().prescribed_speed(t + h) : 0.0;
 
-  Impulses impulses;
-  bool stick = false;
-  if (contact) {
-    // The flank's sign, or both (no allocation: this runs every step).
-    const int sigmas[2] = {sigma_fixed != 0 ? sigma_fixed : 1, -1};
-    const int sigma_count = sigma_fixed != 0 ? 1 : 2;
-    const Impulses without = solve(true, normal_target, rotor_target, 0.0);
-    const Impulses unit = solve(true, normal_target, rotor_target, 1.0);
-    double c = model_.tangent_direction().dot(without.velocity);
-    double d = model_.tangent_direction().dot(unit.velocity) - c;
-    double beta = without.normal;
-    double alpha = unit.normal - beta;
-    // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
-    // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
-    // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
-    // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
-    // a stuck step (gamma+ = 0) has no viscous impulse.
-    const friction::Law& law = dynamics_.law();
-    const double viscous_step = law.viscous() * h;
-    const double viscous_scale = 1.0 / (1.0 + viscous_step * d);
-    const double viscous_c = c;
-    if (viscous_step > 0.0) {
-      beta -= alpha * viscous_step * c * viscous_scale;
-      c *= viscous_scale;
-      d *= viscous_scale;
-      alpha *= viscous_scale;
-    }
-    if (model_.effective_max_mu() * std::abs(alpha) >= 1.0 && !dynamics_.painleve_possible())
-      throw SimulationError(t,
-                            "dt = " + format_value(h) + " s is too long for the stiffness of "
-                            "this drive here: " + step_too_long(theta, alpha),
-                            "use dt < " + format_value(resolving_step(h, theta)) + " s");
-    int found = 0;
-    friction::FlankLcpResult chosen;
-    // The motor prescribes every velocity (DriveDynamics::slip_prescribed):
-    // the step's slip velocity c decides, friction cannot change it.
-    const double slip_noise =
-        64.0 * std::numeric_limits<double>::epsilon() *
-        model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum();
-    // One coefficient: the LCP decides stick and slip. A static one
-    // above the kinetic one: stick where the impulse that sticks lies in
-    // mu_static''s cone, else the LCP at the slip's coefficient at the
-    // step's start speed (Stribeck's curve, explicit in the speed).
-    // (In the Painleve regime the LCP may find no impulse where the stick
-    // holds: a stick that is admissible is taken then too.)
-    double lcp_mu = model_.effective_mu();
-    const friction::FlankLcpResult stick_step =
-        dynamics_.slip_prescribed()
-            ? friction::FlankLcpResult{}
-            : friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma_fixed);
-    bool stuck = false;
-    if (!law.plain_coulomb()) {
-      if (stick_step.consistent) {
-        chosen = stick_step;
-        stuck = true;
-        found = 1;
-      }
-      lcp_mu = law.slip_mu(std::abs(model_.tangent_direction().dot(v0))) * model_.flank_factor();
-    }
-    for (int k = 0; k < sigma_count && !stuck; ++k) {
-      const friction::FlankLcpResult r =
-          dynamics_.slip_prescribed()
-              ? friction::solve_flank_prescribed_slip(
-                    c, std::abs(c) <= slip_noise, alpha, beta, lcp_mu, sigmas[k],
-                    without.rotor, unit.rotor - without.rotor)
-              : solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
-                                       lcp_options_);
-      ++lcp_solves_;
-      if (!r.consistent) continue;
-      if (found == 0) chosen = r;
-      ++found;
-    }
-    if (found == 0 && stick_step.consistent) {
-      chosen = stick_step;
-      found = 1;
-    }
-    // The viscous impulse on top of the cone's (zero where stuck).
-    if (viscous_step > 0.0 && found > 0)
-      chosen.friction_force = (chosen.friction_force - viscous_step * viscous_c) * viscous_scale;
-    if (found == 0 && sigma_fixed != 0) {
-      contact = false;  // the flank separates: no impulse on it
-    } else if (found == 0) {
-      throw JammingError(t, "dynamic jamming: no consistent flank impulse in the "
-                            "Moreau-Jean step; " + dynamics_.jamming_report(),
-                         "reduce the friction or change the inertia ratio");
-    } else {
-      impulses = solve(true, normal_target, rotor_target, chosen.friction_force);
-      impulses.friction = chosen.friction_force;
-      stick = chosen.slip_acceleration == 0.0;
-    }
+
+  // The end stops' active sets at the step's start: a penalty stop engaged
+  // where it penetrates at the start or the start's velocity carries the
+  // load into it within the step; an exact stop active where the predicted
+  // position closes its gap, with Newton's target on the step that closes
+  // it (the gap open at the start), else 0 (a closed contact stays closed).
+  const int load = model_.load();
+  const std::vector<elements::EndStop>& stops = model_.elements().end_stops();
+  const std::vector<elements::ExactEndStop>& exact = model_.elements().exact_stops;
+  const double u0 = q0[load], du0 = v0[load];
+  for (std::size_t k = 0; k < stops.size(); ++k)
+    engaged_[k] = stops[k].penetration(u0) > 0.0 || stops[k].penetration(u0 + h * du0) > 0.0;
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    stop_active_[k] = exact[k].gap(u0 + h * du0) <= 0.0;
+    stop_target_[k] = exact[k].gap(u0) > 0.0 ? exact[k].side * exact[k].restitution * du0 : 0.0;
   }
-  if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
+  bool released[kMaxStops] = {false, false};
+  // The rotor's friction contact (the motor's friction, a lossy or worm
+  // stage: train_friction.hpp), a second friction contact of the step.
+  const elements::TrainFriction* train = model_.train_friction();
+  moreau_contacts::RotorBalance balance;
+  moreau_contacts::RotorMode rotor_mode;
+  if (train != nullptr) {
+    balance.inertia = train->rotor_inertia;
+    balance.w0 = v0[model_.rotor()];
+    balance.h0 = h * model_.motor().applied_torque(t + theta * h) +
+                 (dc != nullptr ? h * dc->torque(current.mean) : 0.0);
+    balance.h1 = dc != nullptr ? h * dc->torque(current.mean_slope) : 0.0;
+    balance.friction = h * train->motor_friction_bound();
+  }
+
+  Impulses impulses;
+  bool stick = false, contact = false;
+  for (int pass = 0;; ++pass) {
+    // Iteration matrix and free velocity.
+    Square stiffness, damping;
+    assemble(h, theta, stiffness, damping,
+             dc != nullptr ? -h * dc->torque(current.mean_slope) : 0.0);
+    CoordinateVector rhs = model_.mass().cwiseProduct(v0) + h * dynamics_.forces() -
+                           theta * (1.0 - theta) * h * h * (stiffness * v0) +
+                           theta * h * (damping * v0);
+    if (dc != nullptr)
+      rhs[dc->rotor] += h * (dc->torque(current.mean) - dc->torque(dynamics_.motor_current()));
+    // A penalty stop's force over the step: 0 where not engaged, else the
+    // linear Kelvin-Voigt force k (d0+ + theta dd) + c d'_theta (its
+    // increments through W), measured from the face or, engaging within
+    // the step, from the step's start.
+    for (std::size_t k = 0; k < stops.size(); ++k) {
+      const elements::EndStop& stop = stops[k];
+      rhs[load] += h * stop.side * stop.pushing_force(u0, du0);
+      if (engaged_[k])
+        rhs[load] -= h * stop.side *
+                     (stop.stiffness * std::max(stop.penetration(u0), 0.0) +
+                      stop.damping * stop.side * du0);
+    }
+    free_ = solver_.solve(rhs);
+    if (train != nullptr) {
+      impulses = solve_train(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, balance,
+                             contact_at_start, contact, stick, rotor_mode);
+    } else {
+      contact = contact_at_start;
+      if (contact)
+        impulses = solve_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
+                                contact, stick);
+      if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
+    }
+    if (pass >= 8 || !update_stops(h, theta, v0, impulses, released)) break;
+  }
   v_ = impulses.velocity;
   if (model_.thread_pair().exact_play() && !contact)
     impulses.normal = 0.0, impulses.friction = 0.0;
@@ -295,6 +260,36 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   model_.elements().forces.for_each(
       [&](const auto& element) { damping_power += element.damping_power(v_theta); });
   energy[kDampingLoss] += h * damping_power;
+  // The penalty stops' loss (as end_stop.hpp's power F d' - k d d'): an
+  // engaged stop's damper, h c d'_theta^2 (its spring's part is the
+  // scheme's numerical dissipation, as every spring's); a stop released
+  // with d0 > 0 (no force over the step) loses the elastic energy it gives
+  // up. The exact stops' impulses P dissipate -P g'_theta >= 0 (theta >= 1/2,
+  // e <= 1), which the residual takes, as the flanks' impacts.
+  for (std::size_t k = 0; k < stops.size(); ++k)
+    energy[kDampingLoss] += moreau_contacts::penalty_stop_loss(stops[k], engaged_[k], u0,
+                                                               q_[load], v_theta[load], h);
+  if (train != nullptr) {
+    // The rotor's friction impulse Q = P_c + Lambda on -e_rotor: in a slip
+    // the motor's friction P_c = s B and the stage's loss Lambda = Q - P_c
+    // book their dissipation at the step's end speed (>= 0, as the
+    // thread's -P_T gamma+); a stuck rotor ends at rest (no loss). The
+    // booking's difference from the scheme's work -Q w_theta,
+    // (1 - theta) Q (w+ - w0), joins the friction term the checks allow
+    // (ResultCheckSpec::step_friction_excess).
+    const double w1 = v_[model_.rotor()];
+    const double friction = rotor_mode.slip != 0 ? rotor_mode.slip * balance.friction : 0.0;
+    const double stage = rotor_mode.slip != 0 ? impulses.train - friction : 0.0;
+    if (const int k = layout_.motor_friction_loss(); k >= 0) y_next[k] = y[k] + friction * w1;
+    // (A flow within its round-off, a stage that transmits nothing, books
+    // no loss of the other sign.)
+    if (const int k = layout_.gear_loss(); k >= 0) y_next[k] = y[k] + std::max(0.0, stage * w1);
+    friction_excess_ +=
+        std::max(0.0, (1.0 - theta) * impulses.train * (w1 - v0[model_.rotor()]));
+  }
+  last_stop_force_ = 0.0;
+  for (std::size_t k = 0; k < exact.size(); ++k)
+    if (stop_active_[k]) last_stop_force_ -= exact[k].side * impulses.stop[k] / h;
   last_.normal = impulses.normal / h;
   last_.friction = impulses.friction / h;
   last_.motor_torque =
@@ -306,6 +301,209 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   last_.motor_torque = model_.gear().rotor_torque(last_.motor_torque);
   last_.stick = contact && stick;
   return restituting;
+}
+
+// The step's impulses with the rotor's friction contact: the thread's
+// contact solved (solve_thread) for each mode of the rotor's contact in
+// turn, stick first (with the static efficiencies), then the slips (with
+// the slip's, then, breaking away, the static ones), until one is
+// consistent (RotorBalance::consistent). A mode whose thread problem has no
+// consistent impulse is not the step's; where no mode is consistent the
+// first mode's failure, or a JammingError, is raised.
+DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
+                                               const CoordinateVector& v0, double normal_target,
+                                               double rotor_target, int sigma_fixed,
+                                               const moreau_contacts::RotorBalance& balance,
+                                               bool contact_at_start, bool& contact, bool& stick,
+                                               moreau_contacts::RotorMode& mode) {
+  const elements::TrainFriction& train = *model_.train_friction();
+  const int r = model_.rotor();
+  std::string failure;
+  for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
+    if (!train.stage && candidate.flow < 0) continue;  // (one slip per sign without a stage)
+    rotor_row_ = true;
+    rotor_ = balance.row(train, candidate);
+    Impulses impulses;
+    try {
+      contact = contact_at_start;
+      stick = false;
+      if (contact)
+        impulses = solve_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
+                                contact, stick);
+      if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
+    } catch (const SimulationError& e) {  // (JammingError too)
+      if (failure.empty()) failure = e.what();
+      continue;
+    }
+    const double other = std::abs(impulses.normal * model_.normal_direction()[r]) +
+                         std::abs(impulses.friction * model_.tangent_direction()[r]);
+    if (balance.consistent(train, candidate, impulses.velocity[r], impulses.train, other)) {
+      mode = candidate;
+      rotor_row_ = false;
+      return impulses;
+    }
+  }
+  rotor_row_ = false;
+  throw JammingError(t, "no consistent mode of the rotor's friction contact (the motor's "
+                        "friction and the gear stage) with the thread's in the Moreau-Jean "
+                        "step" + (failure.empty() ? std::string() : "; " + failure),
+                     "shorten dt, or reduce the friction");
+}
+
+// The end stops' active sets from the step's result (impulses, at free_):
+// an engaged penalty stop whose force over the step would pull is released
+// (for the rest of the step), a free one the step carries into its face
+// engaged; an active exact stop whose impulse would pull is released.
+// True where a set changed.
+bool DriveMoreau::update_stops(double h, double theta, const CoordinateVector& v0,
+                               const Impulses& impulses, bool* released) {
+  const int load = model_.load();
+  const double u0 = q_[load];
+  const double du_theta = (1.0 - theta) * v0[load] + theta * impulses.velocity[load];
+  bool changed = false;
+  const std::vector<elements::EndStop>& stops = model_.elements().end_stops();
+  for (std::size_t k = 0; k < stops.size(); ++k) {
+    const elements::EndStop& stop = stops[k];
+    const double d0 = stop.penetration(u0), rate = stop.side * du_theta;
+    const double force = moreau_contacts::penalty_stop_force(stop, u0, du_theta, h, theta);
+    if (engaged_[k] && !(force > 0.0)) {
+      engaged_[k] = false;
+      released[k] = true;
+      changed = true;
+    } else if (!engaged_[k] && !released[k] && d0 + h * rate > 0.0 && force > 0.0) {
+      engaged_[k] = true;
+      changed = true;
+    }
+  }
+  const std::vector<elements::ExactEndStop>& exact = model_.elements().exact_stops;
+  for (std::size_t k = 0; k < exact.size(); ++k)
+    if (stop_active_[k] && impulses.stop[k] < 0.0) {
+      stop_active_[k] = false;
+      changed = true;
+    }
+  return changed;
+}
+
+// The thread's contact and friction impulses of the step at free_ (the flank
+// LCP on the velocity level, two-step stick, implicit viscous term).
+DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta,
+                                                const CoordinateVector& v0, double normal_target,
+                                                double rotor_target, int sigma_fixed,
+                                                bool& contact, bool& stick) {
+  Impulses impulses;
+  stick = false;
+  // The flank's sign, or both (no allocation: this runs every step).
+  const int sigmas[2] = {sigma_fixed != 0 ? sigma_fixed : 1, -1};
+  const int sigma_count = sigma_fixed != 0 ? 1 : 2;
+  const Impulses without = solve(true, normal_target, rotor_target, 0.0);
+  const Impulses unit = solve(true, normal_target, rotor_target, 1.0);
+  double c = model_.tangent_direction().dot(without.velocity);
+  double d = model_.tangent_direction().dot(unit.velocity) - c;
+  double beta = without.normal;
+  double alpha = unit.normal - beta;
+  // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
+  // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
+  // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
+  // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
+  // a stuck step (gamma+ = 0) has no viscous impulse.
+  const friction::Law& law = dynamics_.law();
+  const double viscous_step = law.viscous() * h;
+  const double viscous_scale = 1.0 / (1.0 + viscous_step * d);
+  const double viscous_c = c;
+  if (viscous_step > 0.0) {
+    beta -= alpha * viscous_step * c * viscous_scale;
+    c *= viscous_scale;
+    d *= viscous_scale;
+    alpha *= viscous_scale;
+  }
+  if (model_.effective_max_mu() * std::abs(alpha) >= 1.0 && !dynamics_.painleve_possible())
+    throw SimulationError(t,
+                          "dt = " + format_value(h) + " s is too long for the stiffness of "
+                          "this drive here: " + step_too_long(theta, alpha),
+                          "use dt < " + format_value(resolving_step(h, theta)) + " s");
+  int found = 0;
+  friction::FlankLcpResult chosen;
+  // The motor (DriveDynamics::slip_prescribed) or the rotor's stuck
+  // contact (below) prescribes every velocity: the step's slip velocity c
+  // decides, friction cannot change it.
+
+  // One coefficient: the LCP decides stick and slip. A static one
+  // above the kinetic one: stick where the impulse that sticks lies in
+  // mu_static''s cone, else the LCP at the slip's coefficient at the
+  // step's start speed (Stribeck's curve, explicit in the speed).
+  // (In the Painleve regime the LCP may find no impulse where the stick
+  // holds: a stick that is admissible is taken then too.)
+  // The rotor's friction row where it fixes the rotor's speed (a stuck
+  // rotor; a stage of eta_b = 0 back-driven) may, with the thread's and the
+  // stops' rows, fix every velocity (the rigid drive without play): the
+  // slip is prescribed then, as by a speed-controlled motor, and of the
+  // friction impulses the thread's cone admits the one is taken that leaves
+  // the rotor's contact the least |Q| (the split between serial friction
+  // contacts that stick together is statically indeterminate).
+  int fixed = 1 + (p_.speed_controlled ? 1 : 0) + (rotor_row_ && rotor_.fixes_speed() ? 1 : 0);
+  for (int k = 0; k < kMaxStops; ++k) fixed += stop_active_[k] ? 1 : 0;
+  const bool rotor_prescribes = rotor_row_ && rotor_.fixes_speed() &&
+                                fixed >= model_.coordinate_count();
+  const bool prescribed = dynamics_.slip_prescribed() || rotor_prescribes;
+  // (c's round-off: of the velocities, and where the rotor's contact holds
+  // a drive at rest, of the loads' velocity increments h f / m, free_.)
+  const double slip_noise =
+      64.0 * std::numeric_limits<double>::epsilon() *
+      (model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum() +
+       (rotor_prescribes ? model_.tangent_direction().cwiseProduct(free_).cwiseAbs().sum()
+                         : 0.0));
+  const double motor0 = rotor_prescribes ? without.train : without.rotor;
+  const double motor1 = rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
+  double lcp_mu = model_.effective_mu();
+  const friction::FlankLcpResult stick_step =
+      prescribed
+          ? friction::FlankLcpResult{}
+          : friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma_fixed);
+  bool stuck = false;
+  if (!law.plain_coulomb()) {
+    if (stick_step.consistent) {
+      chosen = stick_step;
+      stuck = true;
+      found = 1;
+    }
+    lcp_mu = law.slip_mu(std::abs(model_.tangent_direction().dot(v0))) * model_.flank_factor();
+  }
+  for (int k = 0; k < sigma_count && !stuck; ++k) {
+    const friction::FlankLcpResult r =
+        prescribed
+            ? friction::solve_flank_prescribed_slip(
+                  c, std::abs(c) <= slip_noise, alpha, beta,
+                  // (held by the rotor's stuck contact at zero slip: the
+                  // static cone, as the train's static test)
+                  rotor_prescribes && std::abs(c) <= slip_noise ? model_.effective_mu_static()
+                                                                : lcp_mu,
+                  sigmas[k], motor0, motor1)
+            : solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
+                                     lcp_options_);
+    ++lcp_solves_;
+    if (!r.consistent) continue;
+    if (found == 0) chosen = r;
+    ++found;
+  }
+  if (found == 0 && stick_step.consistent) {
+    chosen = stick_step;
+    found = 1;
+  }
+  // The viscous impulse on top of the cone's (zero where stuck).
+  if (viscous_step > 0.0 && found > 0)
+    chosen.friction_force = (chosen.friction_force - viscous_step * viscous_c) * viscous_scale;
+  if (found == 0 && sigma_fixed != 0) {
+    contact = false;  // the flank separates: no impulse on it
+  } else if (found == 0) {
+    throw JammingError(t, "dynamic jamming: no consistent flank impulse in the "
+                          "Moreau-Jean step; " + dynamics_.jamming_report(),
+                       "reduce the friction or change the inertia ratio");
+  } else {
+    impulses = solve(true, normal_target, rotor_target, chosen.friction_force);
+    impulses.friction = chosen.friction_force;
+    stick = chosen.slip_acceleration == 0.0;
+  }
+  return impulses;
 }
 
 // The energy a step from y to y_next creates (StepAccount).
@@ -323,6 +521,8 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
     if (dc != nullptr)  // the magnetic energy, and the copper loss among the losses
       stored += dc->magnetic_energy(dc->has_state() ? dynamics_.motor_current() : 0.0) +
                 state[layout_.copper_loss()];
+    for (const int k : {layout_.motor_friction_loss(), layout_.gear_loss()})
+      if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -345,6 +545,9 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   // account: what the work and the named losses leave over.
   ChannelState state = channel_state(dynamics_);
   if (last_.stick) state.slip_velocity = 0.0;  // the step's stick: zero slip (as above)
+  state.stop_force = last_stop_force_;  // the exact stops' (over the last step)
+  if (const int k = layout_.motor_friction_loss(); k >= 0) state.motor_friction_loss = y[k];
+  if (const int k = layout_.gear_loss(); k >= 0) state.gear_loss = y[k];
   if (const elements::DcMotor* dc = model_.dc_motor()) {
     state.motor_current = dynamics_.motor_current();
     state.motor_voltage = last_voltage_;  // over the last step
@@ -367,6 +570,13 @@ void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& da
     element.add_stiffness(stiffness, a);
     element.add_damping(damping);
   });
+  // The penalty stops this step engages (their k and c; zero otherwise).
+  const std::vector<elements::EndStop>& stops = model_.elements().end_stops();
+  for (std::size_t k = 0; k < stops.size(); ++k)
+    if (engaged_[k]) {
+      stiffness(stops[k].coordinate, stops[k].coordinate) += stops[k].stiffness;
+      damping(stops[k].coordinate, stops[k].coordinate) += stops[k].damping;
+    }
   Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
   iteration.diagonal() += model_.mass();
   iteration(model_.rotor(), model_.rotor()) += rotor_damping;
@@ -429,11 +639,13 @@ void DriveMoreau::check_step(double h, double theta) {
 // constraints: W_N v+ = normal_target (thread), e_rotor v+ = rotor_target.
 DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, double rotor_target,
                                          double tangential) {
+  constexpr int kRows = 3 + kMaxStops;
   const int n = model_.coordinate_count();
-  const int nc = (thread ? 1 : 0) + (p_.speed_controlled ? 1 : 0);
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, 2> B =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, 2>::Zero(n, nc);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1> r(nc);
+  const std::vector<elements::ExactEndStop>& exact = model_.elements().exact_stops;
+  int nc = (thread ? 1 : 0) + (p_.speed_controlled ? 1 : 0) + (rotor_row_ ? 1 : 0);
+  for (std::size_t k = 0; k < exact.size(); ++k) nc += stop_active_[k] ? 1 : 0;
+  Columns B = Columns::Zero(n, nc);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> r(nc);
   int row = 0;
   if (thread) {
     B.col(row) = model_.normal_direction();
@@ -442,6 +654,19 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
   if (p_.speed_controlled) {
     B(model_.rotor(), row) = 1.0;
     r[row++] = rotor_target;
+  }
+  // An active exact stop: its impulse P pushes the load off the face
+  // (-side along u), its row -side u'+ = its target.
+  for (std::size_t k = 0; k < exact.size(); ++k)
+    if (stop_active_[k]) {
+      B(exact[k].coordinate, row) = -exact[k].side;
+      r[row++] = stop_target_[k];
+    }
+  // The rotor's friction contact: Q on -e_rotor, its row a_w w+ + a_q Q = r
+  // (moreau_contacts::RotorRow), the last.
+  if (rotor_row_) {
+    B(model_.rotor(), row) = -1.0;
+    r[row++] = rotor_.r;
   }
   Impulses out;
   CoordinateVector base = free_;
@@ -453,16 +678,25 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
     out.velocity = base;
     return out;
   }
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, 2> weighted =
-      solver_.solve(B);
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2> schur =
+  const Columns weighted = solver_.solve(B);
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kRows, kRows> schur =
       B.transpose() * weighted;
-  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1> lambda =
-      schur.fullPivLu().solve(r - B.transpose() * base);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> residual = r - B.transpose() * base;
+  if (rotor_row_) {  // (its row is a_w w+ + a_q Q = r, not -w+ = r)
+    const int last = nc - 1;
+    schur.row(last) *= -rotor_.a_w;
+    schur(last, last) += rotor_.a_q;
+    residual[last] = rotor_.r - rotor_.a_w * base[model_.rotor()];
+  }
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> lambda =
+      schur.fullPivLu().solve(residual);
   out.velocity = base + weighted * lambda;
   row = 0;
   if (thread) out.normal = lambda[row++];
   if (p_.speed_controlled) out.rotor = lambda[row++];
+  for (std::size_t k = 0; k < exact.size(); ++k)
+    if (stop_active_[k]) out.stop[k] = lambda[row++];
+  if (rotor_row_) out.train = lambda[row++];
   return out;
 }
 

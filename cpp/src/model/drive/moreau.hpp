@@ -11,6 +11,7 @@
 #include "leadscrew/lcp/workspace.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
+#include "moreau_contacts.hpp"
 #include "state_layout.hpp"
 
 namespace leadscrew::model::drive {
@@ -24,6 +25,13 @@ namespace leadscrew::model::drive {
 // or on a flank the predicted position closes, with Newton's law
 // W_N v+ = -e W_N v), the friction impulse from the flank LCP on the velocity
 // level (maximal dissipation), and the speed-controlled rotor's.
+// End stops (docs/physics/end_stops.md, "Moreau-Jean"): a penalty stop is a
+// force element whose stiffness k and damping c enter W where the step
+// engages it (its force over the step k (d0+ + theta dd) + c d'_theta > 0, a
+// switch decided per step by an active set); an exact stop is a unilateral
+// velocity constraint on the load, active where the step's predicted
+// position closes its gap, with Newton's law u'+ = -e u' on the step that
+// closes it and an impulse >= 0 (else released).
 class DriveMoreau final : public integrate::TimeSteppingSystem {
  public:
   explicit DriveMoreau(const DriveModel& model);
@@ -47,9 +55,18 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   using Square =
       Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, kMaxCoordinates>;
 
+  // At most two stops of each kind (lower, upper).
+  static constexpr int kMaxStops = 2;
+  using Columns = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates,
+                                3 + kMaxStops>;
+
   struct Impulses {
     CoordinateVector velocity;
     double normal = 0.0, friction = 0.0, rotor = 0.0;
+    double stop[kMaxStops] = {0.0, 0.0};  // the exact stops' impulses P >= 0 [N s]
+    // The rotor's friction impulse Q = P_c + Lambda (the motor's friction and
+    // the stage's loss) on the rotor's coordinate, against +phi_r [N m s].
+    double train = 0.0;
   };
 
   // The energy a step from y to y_next creates: what the stored energy
@@ -72,6 +89,21 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   std::string step_too_long(double theta, double alpha);
   double resolving_step(double h, double theta);
   Impulses solve(bool thread, double normal_target, double rotor_target, double tangential);
+  // The thread's contact and friction impulses of the step at free_ (the
+  // flank LCP); contact false where no flank is active or it separates.
+  Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
+                        double normal_target, double rotor_target, int sigma_fixed,
+                        bool& contact, bool& stick);
+  // The step's impulses with the rotor's friction contact (the thread's
+  // LCP for each mode of the rotor's contact until one is consistent).
+  Impulses solve_train(double t, double h, double theta, const CoordinateVector& v0,
+                       double normal_target, double rotor_target, int sigma_fixed,
+                       const moreau_contacts::RotorBalance& balance, bool contact_at_start,
+                       bool& contact, bool& stick, moreau_contacts::RotorMode& mode);
+  // The end stops' active sets of the step from its result: true where
+  // they changed (the step is solved again).
+  bool update_stops(double h, double theta, const CoordinateVector& v0, const Impulses& impulses,
+                    bool* released);
 
   const DriveModel& model_;
   const DriveParameters& p_;
@@ -81,6 +113,16 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   CoordinateVector q_, v_, free_;
   Eigen::LLT<Square> solver_;
   ContactForces last_;
+  // The end stops of this step: a penalty stop engaged (its k, c in W), an
+  // exact one active (a constraint row), its Newton target u'+ [m/s].
+  bool engaged_[kMaxStops] = {false, false};
+  bool stop_active_[kMaxStops] = {false, false};
+  double stop_target_[kMaxStops] = {0.0, 0.0};
+  double last_stop_force_ = 0.0;  // the exact stops' impulse / h on the load along +u [N]
+  // The rotor's friction row of the step's constraint solve (active: the
+  // model has train friction and a mode is being tried).
+  bool rotor_row_ = false;
+  moreau_contacts::RotorRow rotor_;
   double last_voltage_ = 0.0;
   double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]  // a DC motor's driver voltage over the last step [V]
   double kinetic0_ = 0.0, elastic0_ = 0.0;

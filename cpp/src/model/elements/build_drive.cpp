@@ -119,27 +119,24 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   const std::string what = stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
                                  : "motor.friction_torque = " +
                                        format_value(p.motor_friction_torque) + " N m";
-  const std::string needs = " is invalid: needs the rigid concept without play, driven by a "
-                            "torque (loads.drive_torque) or a DC motor, with exact Coulomb "
-                            "friction on the thread (one set of contacts slipping with one "
-                            "speed)";
-  if (p.concept != Concept::rigid)
-    throw InvalidArgument(what + needs + "; concept = \"" + concept_name(p.concept) + "\"");
-  if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
-    throw InvalidArgument(what + needs + "; backlash.axial = " + format_value(p.clearance) +
-                          " (play)");
+  // What nothing runs. (The rigid concept without play and plain Coulomb
+  // friction on the thread runs on both schemes; play, the flexible
+  // concepts and a static coefficient on the thread on Moreau-Jean only:
+  // train_event_driven_obstacle, check_simulation_options.)
+  const std::string needs = " is invalid: needs a torque (loads.drive_torque) or a DC motor, "
+                            "exact Coulomb friction on the thread and exact flanks or none "
+                            "(the event-driven scheme on the rigid concept without play, "
+                            "Moreau-Jean on every concept)";
   if (p.speed_controlled)
     throw InvalidArgument(what + needs + "; loads.drive_speed prescribes the speed (a motor's "
                           "friction is absorbed by it)");
-  if (!e.thread->law().plain_coulomb())
-    throw InvalidArgument(what + needs + "; " +
-                          (p.friction == "coulomb"
-                               ? "friction.mu_static = " +
-                                     format_value(e.thread->law().mu_static()) +
-                                     " (the stages take plain Coulomb friction on the thread: "
-                                     "no mu_static above friction.mu = " + format_value(p.mu) +
-                                     ")"
-                               : "friction.law = \"" + p.friction + "\""));
+  if (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic)
+    throw InvalidArgument(what + needs + "; backlash.contact = \"" +
+                          backlash_contact_name(p.backlash) +
+                          "\" (penalty flanks run on the ODE methods, which take no set-valued "
+                          "stage; use \"exact\" with integrator = \"moreau\")");
+  if (e.thread->law().resolution() != friction::Resolution::set_valued)
+    throw InvalidArgument(what + needs + "; friction.law = \"" + p.friction + "\"");
   const double alpha = p.thread.lead_angle();
   if (!(std::cos(alpha) - e.thread->effective_mu() * std::sin(alpha) > 0.0))
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
@@ -147,12 +144,12 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
                           "holding torques at rest form no interval");
   if (p.nut_preload > 0.0)
     throw InvalidArgument(what + needs + "; nut.preload = " + format_value(p.nut_preload));
-  // Penalty end stops are one more axial force on the train (TrainSolver);
-  // exact ones are refused on the rigid concept already (add_end_stops).
-  if (p.end_stops == EndStopContact::exact)
-    throw InvalidArgument(what + needs + "; end_stops.contact = \"exact\" (use \"penalty\")");
+  // Penalty end stops are one more axial force on the train (TrainSolver,
+  // and Moreau-Jean's); exact ones where the load is a body of its own
+  // (add_end_stops), on Moreau-Jean.
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(what + needs + "; initial.state = \"equilibrium\" (use \"relaxed\")");
+  f.event_driven_obstacle = train_event_driven_obstacle(p, e.thread->law());
   e.train_friction = f;
 }
 
@@ -542,6 +539,21 @@ DriveElements build_drive_elements(DriveParameters& p) {
   add_end_stops(p, load, e);
   build_train_friction(p, e);
   return e;
+}
+
+// Why the event-driven scheme cannot run the train's friction stages of p
+// ("" where it can): its TrainSolver takes the rigid drive without play,
+// whose contacts all slip with one speed, with plain Coulomb friction on
+// the thread.
+std::string train_event_driven_obstacle(const DriveParameters& p, const friction::Law& law) {
+  if (p.concept != Concept::rigid) return "concept = \"" + concept_name(p.concept) + "\"";
+  if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
+    return "backlash.axial = " + format_value(p.clearance) + " (play)";
+  if (!law.plain_coulomb())
+    return p.friction == "coulomb" ? "friction.mu_static = " + format_value(law.mu_static()) +
+                                         " above friction.mu = " + format_value(law.mu())
+                                   : "friction.law = \"" + p.friction + "\"";
+  return "";
 }
 
 }  // namespace leadscrew::model::elements

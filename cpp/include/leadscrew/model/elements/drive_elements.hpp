@@ -111,4 +111,9 @@ struct DriveElements {
 // p: exact contacts without play are the thread without play.
 DriveElements build_drive_elements(DriveParameters& p);
 
+// Why the event-driven scheme cannot run the train's friction stages of p
+// (the concept, play, a thread law beyond plain Coulomb's; "" where it
+// can): they run there on Moreau-Jean only (drive/integrators.cpp).
+std::string train_event_driven_obstacle(const DriveParameters& p, const friction::Law& law);
+
 }  // namespace leadscrew::model::elements

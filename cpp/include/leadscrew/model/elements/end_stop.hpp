@@ -21,9 +21,9 @@
 // As a force element (ForceElements): add_forces, elastic energy and loss
 // power at a state. Its Jacobian depends on the contact, which
 // add_stiffness(K, a) / add_damping(C) / damping_power(v) do not see:
-// they add nothing, and the schemes that need them (Moreau-Jean's iteration
-// matrix and step loss, the static equilibrium's Newton) refuse end stops
-// (check_simulation_options, build_drive_elements).
+// they add nothing. Moreau-Jean decides the contact per step and adds k and
+// c itself (drive/moreau.cpp, DriveMoreau::assemble); the static
+// equilibrium's Newton refuses end stops (build_drive_elements).
 #pragma once
 
 #include <algorithm>

@@ -3,10 +3,14 @@
 // and a lossy or worm gear stage (gear.type = "lossy", "worm";
 // docs/physics/gear.md, "Friction stages").
 //
-// Only on the rigid drive without play: there every contact slips with the
-// one speed phi' (rotor, stage, thread), so the train is one degree of
-// freedom whose friction contacts stick and slip together
-// (DriveHybrid::TrainSolver, cpp/src/model/drive/train_solver.cpp).
+// The event-driven scheme runs it on the rigid drive without play: there
+// every contact slips with the one speed phi' (rotor, stage, thread), so
+// the train is one degree of freedom whose friction contacts stick and slip
+// together (DriveHybrid::TrainSolver, cpp/src/model/drive/train_solver.cpp).
+// Moreau-Jean runs it on every concept, with exact play too: the rotor's
+// contact (the motor's friction and the stage, slipping with the rotor's
+// speed) is a second friction contact of its step beside the thread's
+// (cpp/src/model/drive/moreau.cpp; docs/physics/gear.md, "Moreau-Jean").
 //
 // On the driven part's coordinate phi (the stage's output, gear.hpp) the
 // rotor (reflected inertia R = n^2 J_rotor) and its motor (torque U = n T on
@@ -29,6 +33,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 namespace leadscrew::model::elements {
 
@@ -42,6 +47,9 @@ struct TrainFriction {
   // breakaway (a worm's from mu_static; a lossy stage's are the same).
   double efficiency = 1.0, efficiency_backdrive = 1.0;
   double efficiency_static = 1.0, efficiency_backdrive_static = 1.0;
+  // Why the event-driven scheme cannot run it ("": it can; the concept,
+  // play, the thread's law): elements::train_event_driven_obstacle.
+  std::string event_driven_obstacle;
 
   bool motor_friction_present() const noexcept { return motor_friction > 0.0; }
   // The motor's friction bound on the coordinate, |n| T_c [N m].

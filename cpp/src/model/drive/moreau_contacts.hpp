@@ -1,0 +1,108 @@
+// The contacts of a Moreau-Jean step besides the thread's flank (whose flank
+// LCP is friction/flank_lcp.hpp's), one small struct each: the rotor's
+// friction contact (the motor's Coulomb friction and a lossy or worm stage,
+// elements/train_friction.hpp; docs/physics/gear.md, "Moreau-Jean: the
+// stages on every concept") and a penalty end stop's force over a step
+// (elements/end_stop.hpp; docs/physics/end_stops.md, "Moreau-Jean"). An
+// exact stop is a plain unilateral row of the step's constraint solve
+// (DriveMoreau::solve). Internal to cpp/src/model; used by moreau.cpp.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "leadscrew/model/elements/end_stop.hpp"
+#include "leadscrew/model/elements/train_friction.hpp"
+
+namespace leadscrew::model::drive::moreau_contacts {
+
+// The rotor's friction contact in a step: stick, or slip with the sign
+// `slip` and the stage's power flow `flow` (+1: from the rotor to the
+// driven part), at the slip's or (breakaway) the static efficiencies.
+struct RotorMode {
+  int slip = 0, flow = 1;
+  bool breakaway = false;
+};
+
+// The order the modes are tried in: stick (static sets), the slips, the
+// slips at breakaway.
+inline constexpr RotorMode kRotorModes[] = {
+    {0, 1, true},  {1, 1, false}, {1, -1, false}, {-1, 1, false}, {-1, -1, false},
+    {1, 1, true},  {1, -1, true}, {-1, 1, true},  {-1, -1, true}};
+
+// A row of the step's constraint solve on the rotor's coordinate, its
+// impulse Q along -e_rotor: a_w w+ + a_q Q = r.
+struct RotorRow {
+  double a_w = 0.0, a_q = 0.0, r = 0.0;
+  // It fixes the rotor's speed (no Q in it).
+  bool fixes_speed() const noexcept { return a_q == 0.0; }
+};
+
+// The rotor's momentum balance over the step without its frictions,
+// Y(w) = R (w0 - w) + H0 + H1 w (w the rotor's speed at the step's end, H
+// the motor's impulse, H1 a DC motor's implicit back-EMF term): the stage
+// passes P_b = Y - Q to the driven part, Q = P_c + Lambda the motor's
+// friction impulse and the stage's loss impulse. friction: B = h |n| T_c.
+struct RotorBalance {
+  double inertia = 0.0, w0 = 0.0, h0 = 0.0, h1 = 0.0, friction = 0.0;
+  double at(double w) const noexcept { return inertia * (w0 - w) + h0 + h1 * w; }
+
+  // The row of a mode, with k = x / tau_b the stage's torque ratio (1 / eta
+  // forward, eta_b backward; 1 without a stage): stick w+ = 0; slip with
+  // sign s, P_c = s B and the stage's X = k P_b with X = Y - P_c,
+  // P_b = Y - Q, i.e. k Q - (k - 1) Y(w+) = s B.
+  RotorRow row(const elements::TrainFriction& train, const RotorMode& mode) const noexcept {
+    if (mode.slip == 0) return {1.0, 0.0, 0.0};
+    const double k = train.torque_ratio(mode.flow, mode.breakaway);
+    return {(k - 1.0) * (inertia - h1), k, mode.slip * friction + (k - 1.0) * (inertia * w0 + h0)};
+  }
+
+  // Whether the speed w and the impulse Q a step found fit the mode: a
+  // slip's speed and the stage's power flow have its signs; a stick's Q
+  // splits into the motor's friction in [-B, B] and a stage loss in the
+  // stage's static set, Lambda between (eta_b,s - 1) P_b and
+  // (1 / eta_s - 1) P_b. `other`: the other impulses' size on the rotor's
+  // coordinate (the thread's), for the round-off: a flow's sign within it
+  // is either (a thread in free flight transmits nothing).
+  bool consistent(const elements::TrainFriction& train, const RotorMode& mode, double w, double q,
+                  double other) const noexcept {
+    const double transmitted = at(mode.slip == 0 ? 0.0 : w) - q;  // P_b
+    const double slack = 64.0 * std::numeric_limits<double>::epsilon() *
+                         (std::abs(q) + std::abs(transmitted) + friction + std::abs(h0) +
+                          std::abs(inertia * w0) + std::abs(inertia * w) + other);
+    if (mode.slip != 0) {
+      if (!(mode.slip * w > 0.0)) return false;
+      return !train.stage || mode.flow * mode.slip * transmitted >= -slack;
+    }
+    const double forward = (train.torque_ratio(1, true) - 1.0) * transmitted;
+    const double backward = (train.torque_ratio(-1, true) - 1.0) * transmitted;
+    return q >= std::min(forward, backward) - friction - slack &&
+           q <= std::max(forward, backward) + friction + slack;
+  }
+};
+
+// A penalty stop engaged over a step: its force at the theta point,
+// F_theta = k (d0+ + theta h d'_theta) + c d'_theta, measured from the face,
+// or from the step's start where the step engages it (d0 <= 0), so that
+// engaging creates no energy. du_theta: the load's speed at the theta point.
+inline double penalty_stop_force(const elements::EndStop& stop, double u0, double du_theta,
+                                 double h, double theta) noexcept {
+  const double rate = stop.side * du_theta;
+  return stop.stiffness * (std::max(stop.penetration(u0), 0.0) + theta * h * rate) +
+         stop.damping * rate;
+}
+
+// Its loss over the step: an engaged stop's damper h c d'_theta^2 (its
+// spring's part is the scheme's numerical dissipation, as every spring's);
+// a released one gives up the elastic energy k (d0+^2 - d1+^2) / 2 it loses
+// with no force (as the event-driven scheme's loss after a release).
+inline double penalty_stop_loss(const elements::EndStop& stop, bool engaged, double u0, double u1,
+                                double du_theta, double h) noexcept {
+  if (engaged) return h * stop.damping * du_theta * du_theta;
+  const double d0 = std::max(stop.penetration(u0), 0.0);
+  const double d1 = std::max(stop.penetration(u1), 0.0);
+  return std::max(0.0, 0.5 * stop.stiffness * (d0 * d0 - d1 * d1));
+}
+
+}  // namespace leadscrew::model::drive::moreau_contacts

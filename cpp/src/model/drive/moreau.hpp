@@ -78,6 +78,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   DriveDynamics dynamics_;
   StateLayout layout_;
   std::vector<std::string> names_;
+  // A DC motor's current and copper loss in y, its first channel (-1: none).
+  int current_state_, copper_state_, dc_channel_;
   CoordinateVector q_, v_, free_;
   Eigen::LLT<Square> solver_;
   ContactForces last_;

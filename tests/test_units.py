@@ -37,6 +37,29 @@ def test_every_drive_channel_has_its_unit(layout):
     assert frame.attrs["units"] == units and list(frame.columns) == list(units)
 
 
+@pytest.mark.parametrize("layout", LAYOUTS[:2] + LAYOUTS[-2:],
+                         ids=["rigid-screw-no_play", "rigid-screw-play", "flexible-nut-no_play",
+                              "flexible-nut-play"])
+def test_the_core_declares_every_drive_channel_but_the_coordinates(layout):
+    declared = ls._core.drive_channel_units()
+    r = drive_result(layout)
+    undeclared = [name for name in r.channels if name not in declared]
+    assert undeclared == [name for name in r.channels
+                          if name.partition("_")[0] in ("u", "v", "phi", "omega")
+                          and name not in ("u_load", "v_load", "phi_drive", "omega_drive")]
+
+
+def test_channel_unit_reads_the_core_and_keeps_only_the_rest():
+    """The core's units are channel_unit's; the module's own table holds only
+    channels the core does not declare (the time, the block's own)."""
+    declared = ls._core.drive_channel_units()
+    assert {"motor_current": "A", "motor_voltage": "V", "stop_force": "N",
+            "gear_loss": "J", "bristle_deflection": "m"}.items() <= declared.items()
+    assert {name: ls.units.channel_unit(name) for name in declared} == declared
+    own = {name for names in ls.units._CHANNELS_BY_UNIT.values() for name in names}
+    assert own and not own & set(declared)
+
+
 def test_every_block_channel_has_its_unit():
     r = block_result()
     assert r.units() == {

@@ -112,11 +112,15 @@ void write_drive_channels(const StateLayout& layout, const ChannelState& state,
     out[k++] = 0.5 * p.clearance - std::abs(state.play);
     out[k++] = state.play;
   }
+  // The elements' values, with what follows from the coordinates alone.
+  std::array<double, kMaxElementChannels> values = state.values;
+  for (const Declaration& d : layout.declarations())
+    if (d.add_from_coordinates) d.add_from_coordinates(q, v, values.data() + d.first_channel);
   auto declared = [&](int g) {
     for (const Declaration& d : layout.declarations())
       for (std::size_t c = 0; c < d.channels.size(); ++c)
         if (group(d.channels[c].role) == g)
-          out[k++] = state.values[d.first_channel + static_cast<int>(c)];
+          out[k++] = values[d.first_channel + static_cast<int>(c)];
   };
   declared(0);
   for (int i = 1; i < n - 1; ++i) {
@@ -139,7 +143,7 @@ void write_drive_channels(const StateLayout& layout, const ChannelState& state,
   for (const Declaration& d : layout.declarations())
     for (std::size_t c = 0; c < d.channels.size(); ++c) {
       const Role role = d.channels[c].role;
-      const double value = state.values[d.first_channel + static_cast<int>(c)];
+      const double value = values[d.first_channel + static_cast<int>(c)];
       if (role == Role::work) work += value;
       if (role == Role::loss || role == Role::stored) spent += value;
     }

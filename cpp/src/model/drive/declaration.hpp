@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/drive_dynamics.hpp"
 
 namespace leadscrew::model::drive {
 
@@ -60,13 +61,19 @@ struct Declaration {
   // The normal force the friction coefficient multiplies at a row's normal
   // and friction force (ResultCheckSpec::flank_normal; empty: none).
   std::function<double(double normal, double friction)> flank_normal;
+  // What of its channels' values follows from the row's coordinates alone
+  // (values: its own, from first_channel), added for every driver after
+  // the event-driven driver's elements wrote theirs (Element::output;
+  // Moreau-Jean has none): the penalty end stops' force. Empty: none.
+  std::function<void(const CoordinateVector& q, const CoordinateVector& v, double* values)>
+      add_from_coordinates;
   // Filled by StateLayout: its first state's index in y, its first
   // channel's index in ChannelState::values.
   int first_state = -1, first_channel = -1;
 
   bool empty() const {
     return states.empty() && channels.empty() && momentum_mass == 0.0 && stiffness == 0.0 &&
-           !flank_normal;
+           !flank_normal && !add_from_coordinates;
   }
 };
 

@@ -28,7 +28,16 @@ void declare(const DriveModel& model, bool bristle, Declaration& d) {
   (void)bristle;
   // The stops' force on the load along +u (its energy is the force
   // elements' elastic energy and damping loss, an exact stop's impacts').
-  if (model.parameters().end_stops != EndStopContact::none) d.channels = end_stops_kind().catalog;
+  if (model.parameters().end_stops == EndStopContact::none) return;
+  d.channels = end_stops_kind().catalog;
+  // The penalty stops' force follows from the load's position and speed
+  // (for every driver); an exact stop's is the element's (output).
+  if (model.elements().end_stops().empty()) return;
+  d.add_from_coordinates = [stops = &model.elements().end_stops(), load = model.load()](
+                               const CoordinateVector& q, const CoordinateVector& v,
+                               double* values) {
+    for (const elements::EndStop& stop : *stops) values[0] += stop.force_on_load(q[load], v[load]);
+  };
 }
 
 std::string joined(const std::string& a, const std::string& b) {
@@ -145,24 +154,20 @@ class EndStopsElement final : public DriveHybrid::Element {
     }
   }
 
-  // The stops' force on the load along +u [N]: a closed exact stop
-  // balances the forces on the held load; the penalty stops' follows from
-  // q and v.
+  // The exact stops' force on the load along +u [N]: a closed stop
+  // balances the forces on the held load (the penalty stops' is added from
+  // q and v, the declaration's add_from_coordinates).
   void output(double t, const double* y, const ContactForces& forces,
               ChannelState& state) const override {
     (void)t;
     (void)y;
     (void)forces;
     if (first_channel() < 0) return;
-    double force = 0.0;
     for (std::size_t i = 0; i < closed_.size(); ++i)
       if (closed_[i]) {
-        force = -dynamics().forces()[load_];
-        break;
+        state.values[first_channel()] = -dynamics().forces()[load_];
+        return;
       }
-    for (const elements::EndStop& stop : stops_)
-      force += stop.force_on_load(state.q[load_], state.v[load_]);
-    state.values[first_channel()] = force;
   }
 
  private:

@@ -364,6 +364,17 @@ void bind_drive(py::module_& m) {
       .def_property_readonly("parameters", &model::DriveModel::parameters);
 
   m.def("drive_integrators", &model::drive_integrators, py::arg("parameters"));
+  m.def(
+      "drive_channel_units",
+      [] {
+        py::dict units;
+        for (const auto& [name, unit] : model::drive_channel_units()) units[py::str(name)] = unit;
+        return units;
+      },
+      "The SI unit of every result channel a drive may write, by name (\"m\", \"N*m\", "
+      "\"J\", \"\" for the flag stick), as the core's elements declare them; not the "
+      "coordinates' pairs u_<body>, v_<body>, phi_<body>, omega_<body> beyond u_load, v_load, "
+      "phi_drive and omega_drive.");
   m.attr("smallest_gear_ratio") = model::elements::kSmallestGearRatio;
   def_drive_call(
       m, "simulate_drive",

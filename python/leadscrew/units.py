@@ -40,8 +40,10 @@ The registry is built on first use (about 0.5 s), so scenes of plain numbers
 never pay for it.
 
 :func:`channel_unit` gives the SI unit of a result channel from its name (the
-one table of them: :meth:`leadscrew.Result.to_frame`, the command line's CSV
-and Parquet files use it).
+core's, as the drive's elements declare each channel with its unit; this
+module's for the time and the friction block's own channels:
+:meth:`leadscrew.Result.to_frame`, the command line's CSV and Parquet files
+use it).
 """
 
 from __future__ import annotations
@@ -393,27 +395,34 @@ def load_quantity(name: str, value: Any, units: Sequence[str]) -> Tuple[float, s
 
 # --- units of result channels -------------------------------------------------
 
-# Channels named in full (the friction block's and the drive's, see
-# cpp/src/model/block/block_common.cpp and drive/channels.cpp), by unit.
+# The units of the channels the core does not declare, by unit: the time and
+# the friction block's own (cpp/src/model/block/block_common.cpp). Every
+# drive channel's unit is the core's (_core.drive_channel_units: its
+# elements declare each channel with its unit, cpp/src/model/drive/
+# declaration.hpp); the block's channels of the same name share it.
 _CHANNELS_BY_UNIT = {
     "s": ("t",),
-    "m": ("u", "gap", "play", "bristle_deflection"),
-    "m/s": ("v", "slip_velocity"),
+    "m": ("u",),
+    "m/s": ("v",),
     "m/s^2": ("acceleration",),
-    "N": ("force", "axial_force", "normal_force", "friction_force", "spring_force",
-          "stop_force", "preload_force", "normal_force_a", "flank_normal"),
-    "N*m": ("drive_torque",),
-    "A": ("motor_current",),
-    "V": ("motor_voltage",),
-    "J": ("work_drive", "work_axial", "work_force", "friction_loss", "damping_loss",
-          "contact_loss", "impact_loss", "copper_loss", "kinetic", "elastic",
-          "magnetic_energy", "energy_residual", "motor_friction_loss", "gear_loss"),
-    "": ("stick",),  # a flag: 1 stick, 0 slip
+    "N": ("force", "spring_force"),
+    "J": ("work_force",),
 }
-_CHANNEL_UNITS = {name: unit for unit, names in _CHANNELS_BY_UNIT.items() for name in names}
+_OWN_UNITS = {name: unit for unit, names in _CHANNELS_BY_UNIT.items() for name in names}
 # A body's coordinate and velocity channels, <prefix>_<body>: u_nut, omega_drive.
 _COORDINATE_UNITS = {"u": "m", "v": "m/s", "phi": "rad", "omega": "rad/s"}
 _BODIES = ("rotor", "drive", "screw", "nut", "load")
+
+
+@lru_cache(maxsize=1)
+def _channel_units() -> dict:
+    """Every named channel's unit: the core's declarations, then this module's."""
+    from . import _core
+
+    units = dict(_core.drive_channel_units())
+    for name, unit in _OWN_UNITS.items():
+        units.setdefault(name, unit)
+    return units
 
 
 def channel_unit(name: str) -> str:
@@ -429,13 +438,15 @@ def channel_unit(name: str) -> str:
         (``stick``: 1 while the flank sticks).
 
     Raises:
-        KeyError: a name no model writes (a new channel needs its unit here).
+        KeyError: a name no model writes (a new drive channel declares its
+            unit in the core, cpp/src/model/drive/declaration.hpp).
     """
-    unit = _CHANNEL_UNITS.get(name)
+    units = _channel_units()
+    unit = units.get(name)
     if unit is not None:
         return unit
     prefix, _, body = name.partition("_")
     if body in _BODIES and prefix in _COORDINATE_UNITS:
         return _COORDINATE_UNITS[prefix]
     raise KeyError(f"channel {name!r} has no unit: leadscrew.units.channel_unit knows "
-                   f"{', '.join(_CHANNEL_UNITS)} and <u|v|phi|omega>_<{'|'.join(_BODIES)}>")
+                   f"{', '.join(units)} and <u|v|phi|omega>_<{'|'.join(_BODIES)}>")

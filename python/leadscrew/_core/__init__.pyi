@@ -929,6 +929,10 @@ def derived_quantity_problem(key: str, value: typing.SupportsFloat | typing.Supp
     """
     None if value is in the quantity's range, else what it must be.
     """
+def drive_channel_units() -> dict:
+    """
+    The SI unit of every result channel a drive may write, by name ("m", "N*m", "J", "" for the flag stick), as the core's elements declare them; not the coordinates' pairs u_<body>, v_<body>, phi_<body>, omega_<body> beyond u_load, v_load, phi_drive and omega_drive.
+    """
 def drive_integrators(parameters: DriveParameters) -> list[str]:
     ...
 def efficiency(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0, backdrive: bool = False) -> float:

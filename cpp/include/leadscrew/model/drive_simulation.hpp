@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "leadscrew/integrate/ode.hpp"
@@ -33,6 +34,14 @@ struct DriveSimulationOptions {
 
 // Integrators that fit a model (the first is the default).
 const std::vector<std::string>& drive_integrators(const DriveParameters& parameters);
+
+// The SI unit of every result channel a drive may write, by name ("m", "N*m",
+// "J", "" for the flag stick), as the core's elements declare them
+// (cpp/src/model/drive/declaration.hpp): the base channels and every
+// registered element's. Not the coordinates' pairs u_<body>, v_<body>,
+// phi_<body>, omega_<body> beyond the base's u_load, v_load, phi_drive,
+// omega_drive.
+std::vector<std::pair<std::string, std::string>> drive_channel_units();
 
 // The checks simulate() makes of its options before it integrates, without
 // simulating: the integrator fits the model's friction law and contact;

@@ -3,49 +3,79 @@
 
 #include <cmath>
 
+#include "leadscrew/model/drive_simulation.hpp"
 #include "state_layout.hpp"
 
 namespace leadscrew::model::drive {
 
-std::vector<std::string> drive_channel_names(const DriveModel& model) {
-  std::vector<std::string> names = {"u_load",        "v_load",      "phi_drive",
-                                    "omega_drive",   "drive_torque", "axial_force",
-                                    "normal_force",  "friction_force", "slip_velocity",
-                                    "stick"};
-  if (!model.bilateral_thread()) {
-    names.push_back("gap");
-    names.push_back("play");
-  }
-  if (model.law().resolution() == friction::Resolution::bristle)
-    names.push_back("bristle_deflection");
-  const bool dc = model.dc_motor() != nullptr;
-  if (dc) {
-    names.push_back("motor_current");
-    names.push_back("motor_voltage");
-  }
-  // The end stops' force on the load along +u (elements/end_stop.hpp).
-  if (model.parameters().end_stops != EndStopContact::none) names.push_back("stop_force");
-  // A lift-off preloaded nut (elements/preloaded_nut.hpp).
-  if (model.preloaded_nut() && model.preloaded_nut()->lift_off)
-    for (const char* name : {"preload_force", "normal_force_a", "flank_normal"})
-      names.push_back(name);
+namespace {
+
+// A declared channel's group in the row: 0 the values (after the base's),
+// 1 work and losses (after impact_loss), 2 stored energies (after elastic).
+int group(Role role) {
+  if (role == Role::work || role == Role::loss) return 1;
+  return role == Role::stored ? 2 : 0;
+}
+
+// The thread's play: with play only (not on a bilateral thread).
+const std::vector<ChannelSpec>& play_channels() {
+  static const std::vector<ChannelSpec> channels = {{"gap", "m", Role::none},
+                                                    {"play", "m", Role::none}};
+  return channels;
+}
+
+}  // namespace
+
+const std::vector<ChannelSpec>& base_channels() {
+  static const std::vector<ChannelSpec> channels = {
+      {"u_load", "m", Role::none},
+      {"v_load", "m/s", Role::none},
+      {"phi_drive", "rad", Role::none},
+      {"omega_drive", "rad/s", Role::none},
+      {"drive_torque", "N*m", Role::load_torque},
+      {"axial_force", "N", Role::load_force},
+      {"normal_force", "N", Role::none},
+      {"friction_force", "N", Role::none},
+      {"slip_velocity", "m/s", Role::none},
+      {"stick", "", Role::none}};  // a flag: 1 stick, 0 slip
+  return channels;
+}
+
+const std::vector<ChannelSpec>& account_channels() {
+  static const std::vector<ChannelSpec> channels = {
+      {"work_drive", "J", Role::work},      {"work_axial", "J", Role::work},
+      {"friction_loss", "J", Role::loss},   {"damping_loss", "J", Role::loss},
+      {"contact_loss", "J", Role::loss},    {"impact_loss", "J", Role::loss},
+      {"kinetic", "J", Role::stored},       {"elastic", "J", Role::stored},
+      {"energy_residual", "J", Role::none}};
+  return channels;
+}
+
+std::vector<std::string> drive_channel_names(const StateLayout& layout) {
+  const DriveModel& model = layout.model();
+  std::vector<std::string> names;
+  for (const ChannelSpec& c : base_channels()) names.push_back(c.name);
+  if (!model.bilateral_thread())
+    for (const ChannelSpec& c : play_channels()) names.push_back(c.name);
+  auto declared = [&](int g) {
+    for (const Declaration& d : layout.declarations())
+      for (const ChannelSpec& c : d.channels)
+        if (group(c.role) == g) names.push_back(c.name);
+  };
+  declared(0);
   const int n = model.coordinate_count();
   for (int i = 1; i < n - 1; ++i) {
     const std::string& name = model.coordinate_names()[i];
     names.push_back(name);
     names.push_back((name[0] == 'u' ? "v" : "omega") + name.substr(name.find('_')));
   }
-  for (const char* name : {"work_drive", "work_axial", "friction_loss", "damping_loss",
-                           "contact_loss", "impact_loss"})
-    names.push_back(name);
-  if (dc) names.push_back("copper_loss");
-  const elements::TrainFriction* train = model.train_friction();
-  if (train && train->motor_friction_present()) names.push_back("motor_friction_loss");
-  if (train && train->stage) names.push_back("gear_loss");
-  names.push_back("kinetic");
-  names.push_back("elastic");
-  if (dc) names.push_back("magnetic_energy");
-  names.push_back("energy_residual");
+  const std::vector<ChannelSpec>& account = account_channels();
+  for (int e = 0; e <= kEnergyCount; ++e) names.push_back(account[e].name);  // and impact_loss
+  declared(1);
+  names.push_back(account[kEnergyCount + 1].name);  // kinetic
+  names.push_back(account[kEnergyCount + 2].name);  // elastic
+  declared(2);
+  names.push_back(account[kEnergyCount + 3].name);  // energy_residual
   return names;
 }
 
@@ -59,9 +89,10 @@ ChannelState channel_state(const DriveDynamics& dynamics) {
           dynamics.elastic_energy() + dynamics.contact_energy()};
 }
 
-void write_drive_channels(const DriveModel& model, const ChannelState& state,
+void write_drive_channels(const StateLayout& layout, const ChannelState& state,
                           const ContactForces& forces, const double* energy, double impact_loss,
                           double kinetic0, double elastic0, double* out) {
+  const DriveModel& model = layout.model();
   const DriveParameters& p = model.parameters();
   const CoordinateVector& q = state.q;
   const CoordinateVector& v = state.v;
@@ -81,23 +112,17 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
     out[k++] = 0.5 * p.clearance - std::abs(state.play);
     out[k++] = state.play;
   }
-  if (model.law().resolution() == friction::Resolution::bristle) out[k++] = state.bristle;
-  const bool dc = model.dc_motor() != nullptr;
-  if (dc) {
-    out[k++] = state.motor_current;
-    out[k++] = state.motor_voltage;
-  }
-  if (p.end_stops != EndStopContact::none) {
-    double stop_force = state.stop_force;
-    for (const elements::EndStop& stop : model.elements().end_stops())
-      stop_force += stop.force_on_load(q[model.load()], v[model.load()]);
-    out[k++] = stop_force;
-  }
-  if (model.preloaded_nut() && model.preloaded_nut()->lift_off) {
-    out[k++] = state.preload_force;
-    out[k++] = state.normal_force_a;
-    out[k++] = state.flank_normal;
-  }
+  // The elements' values, with what follows from the coordinates alone.
+  std::array<double, kMaxElementChannels> values = state.values;
+  for (const Declaration& d : layout.declarations())
+    if (d.add_from_coordinates) d.add_from_coordinates(q, v, values.data() + d.first_channel);
+  auto declared = [&](int g) {
+    for (const Declaration& d : layout.declarations())
+      for (std::size_t c = 0; c < d.channels.size(); ++c)
+        if (group(d.channels[c].role) == g)
+          out[k++] = values[d.first_channel + static_cast<int>(c)];
+  };
+  declared(0);
   for (int i = 1; i < n - 1; ++i) {
     out[k++] = q[i];
     out[k++] = v[i];
@@ -106,18 +131,38 @@ void write_drive_channels(const DriveModel& model, const ChannelState& state,
   const double elastic = state.elastic;
   for (int e = 0; e < kEnergyCount; ++e) out[k++] = energy[e];
   out[k++] = impact_loss;
-  if (dc) out[k++] = state.copper_loss;
-  const elements::TrainFriction* train = model.train_friction();
-  if (train && train->motor_friction_present()) out[k++] = state.motor_friction_loss;
-  if (train && train->stage) out[k++] = state.gear_loss;
+  declared(1);
   out[k++] = kinetic;
   out[k++] = elastic;
-  // (A DC motor's current, and so its magnetic energy, starts at 0.)
-  if (dc) out[k++] = state.magnetic;
-  out[k++] = energy[kWorkDrive] + energy[kWorkAxial] -
-             (kinetic - kinetic0 + elastic - elastic0 + energy[kFrictionLoss] +
-              energy[kDampingLoss] + energy[kContactLoss] + impact_loss + state.copper_loss +
-              state.magnetic + state.motor_friction_loss + state.gear_loss);
+  declared(2);
+  // The residual: the work put in less the energy stored and lost, the
+  // elements' terms in their order (a stored energy of theirs starts at 0).
+  double work = energy[kWorkDrive] + energy[kWorkAxial];
+  double spent = kinetic - kinetic0 + elastic - elastic0 + energy[kFrictionLoss] +
+                 energy[kDampingLoss] + energy[kContactLoss] + impact_loss;
+  for (const Declaration& d : layout.declarations())
+    for (std::size_t c = 0; c < d.channels.size(); ++c) {
+      const Role role = d.channels[c].role;
+      const double value = values[d.first_channel + static_cast<int>(c)];
+      if (role == Role::work) work += value;
+      if (role == Role::loss || role == Role::stored) spent += value;
+    }
+  out[k++] = work - spent;
 }
 
 }  // namespace leadscrew::model::drive
+
+namespace leadscrew::model {
+
+std::vector<std::pair<std::string, std::string>> drive_channel_units() {
+  using namespace drive;
+  std::vector<std::pair<std::string, std::string>> units;
+  for (const std::vector<ChannelSpec>* list : {&base_channels(), &play_channels(),
+                                               &account_channels()})
+    for (const ChannelSpec& c : *list) units.emplace_back(c.name, c.unit);
+  for (const ElementKind* kind : element_kinds())
+    for (const ChannelSpec& c : kind->catalog) units.emplace_back(c.name, c.unit);
+  return units;
+}
+
+}  // namespace leadscrew::model

@@ -1,20 +1,31 @@
 // The drive's result channels: their names (the thread and motor forces,
-// the play, the coordinates, the energy account) and the writing of one
-// output row, shared by the event-driven and Moreau-Jean systems. Internal to
-// cpp/src/model.
+// the play, the elements' declared channels, the coordinates, the energy
+// account) and the writing of one output row, shared by the event-driven and
+// Moreau-Jean systems. Internal to cpp/src/model.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
+#include "declaration.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
+#include "state_layout.hpp"
 
 namespace leadscrew::model::drive {
 
+// The base channels every drive writes ahead of the elements' (the thread
+// pair's, the motor's, the axial load's): name, unit, role.
+const std::vector<ChannelSpec>& base_channels();
+// The energy account's channels every drive writes: the work and loss
+// integrals (Energy's order), the impact loss, the stored energies and the
+// residual.
+const std::vector<ChannelSpec>& account_channels();
+
 // The names of a drive's result channels, in the order write_drive_channels
 // writes them.
-std::vector<std::string> drive_channel_names(const DriveModel& model);
+std::vector<std::string> drive_channel_names(const StateLayout& layout);
 
 // Thread and motor forces at an output point (motor_torque: the torque on
 // the rotor, before a gear stage).
@@ -28,25 +39,17 @@ struct ChannelState {
   const CoordinateVector& q;
   const CoordinateVector& v;
   double axial_force = 0.0, slip_velocity = 0.0, play = 0.0, kinetic = 0.0, elastic = 0.0;
-  double bristle = 0.0;  // LuGre's bristle deflection z [m]
-  // A DC motor's: its current [A], the driver's voltage [V], the copper
-  // loss integral [J] and the magnetic energy L i^2 / 2 [J].
-  double motor_current = 0.0, motor_voltage = 0.0, copper_loss = 0.0, magnetic = 0.0;
-  // The exact end stops' force on the load [N] (the penalty stops' follows
-  // from q and v).
-  double stop_force = 0.0;
-  // A lift-off preloaded nut's: the spring force S [N], half A's normal
-  // force [N] and |N_A| + |N_B| [N] (elements/preloaded_nut.hpp).
-  double preload_force = 0.0, normal_force_a = 0.0, flank_normal = 0.0;
-  // The train's friction stages' loss integrals [J] (train_friction.hpp).
-  double motor_friction_loss = 0.0, gear_loss = 0.0;
+  // The elements' declared channels' values, by their index
+  // (Declaration::first_channel, StateLayout::find_channel): each element
+  // writes its own.
+  std::array<double, kMaxElementChannels> values{};
 };
 
 // From the state last set in dynamics.
 ChannelState channel_state(const DriveDynamics& dynamics);
 
 // Writes one output row.
-void write_drive_channels(const DriveModel& model, const ChannelState& state,
+void write_drive_channels(const StateLayout& layout, const ChannelState& state,
                           const ContactForces& forces, const double* energy, double impact_loss,
                           double kinetic0, double elastic0, double* out);
 

@@ -8,6 +8,8 @@
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/model/result_checks.hpp"
+#include "channels.hpp"
+#include "declaration.hpp"
 #include "state_layout.hpp"
 
 namespace leadscrew::model::drive {
@@ -17,10 +19,31 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
                         integrate::SimulationResult& result, double step_play_rate,
                         double step_friction_excess) {
   const DriveParameters& p = model.parameters();
+  // The elements' declarations (declaration.hpp), as the run's layout has them.
+  const std::vector<Declaration> declarations =
+      declare_elements(model, law.resolution() == friction::Resolution::bristle);
   ResultCheckSpec spec;
-  spec.work = {"work_drive", "work_axial"};
-  spec.stored = {"kinetic", "elastic"};
-  spec.losses = {"friction_loss", "damping_loss", "contact_loss", "impact_loss"};
+  // The energy account's channels, the base's then the elements' (each loss
+  // an integral in y: one quadrature each), by their roles.
+  spec.quadratures = kEnergyCount + 1;  // and the impact loss, booked at events
+  auto account = [&](const ChannelSpec& c, bool element) {
+    switch (c.role) {
+      case Role::work: spec.work.push_back(c.name); break;
+      case Role::stored: spec.stored.push_back(c.name); break;
+      case Role::loss:
+        spec.losses.push_back(c.name);
+        spec.quadratures += element ? 1 : 0;
+        break;
+      case Role::load_force: spec.load_forces.push_back(c.name); break;
+      case Role::load_torque: spec.load_torques.push_back(c.name); break;
+      case Role::flank_normal: spec.normal = c.name; break;
+      case Role::none: break;
+    }
+  };
+  for (const std::vector<ChannelSpec>* list : {&base_channels(), &account_channels()})
+    for (const ChannelSpec& c : *list) account(c, false);
+  for (const Declaration& d : declarations)
+    for (const ChannelSpec& c : d.channels) account(c, true);
   spec.t_end = options.output.t_end;
   spec.law = &law;
   spec.coefficient_scale = model.flank_factor();
@@ -37,9 +60,11 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   spec.time_stepping = time_stepping;
   spec.rtol = options.integrator_options.rtol;
   spec.atol = options.integrator_options.atol;
-  // (A DC motor's magnetic energy L i^2 / 2 is kinetic-like: |L i| <= sqrt(2 E L).)
-  const elements::DcMotor* dc = model.dc_motor();
-  spec.momentum_factor = std::sqrt(2.0 * (model.mass().sum() + (dc ? dc->inductance : 0.0)));
+  // (An element's kinetic-like energy, a DC motor's L i^2 / 2: |L i| <= sqrt(2 E L).)
+  double momentum_mass = model.mass().sum();
+  for (const Declaration& d : declarations)
+    if (d.momentum_mass != 0.0) momentum_mass += d.momentum_mass;
+  spec.momentum_factor = std::sqrt(2.0 * momentum_mass);
   // sum |k x| <= sqrt(2 E sum k) for the springs at their stiffest over the
   // screw's length (the stiffness of eq. 4.24 grows toward its ends; the
   // nut's whole length stays on it), and the flank's force for a penalty
@@ -54,34 +79,13 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
     }
     stiffness += k;
   });
+  // The elements' (a lift-off nut's spring), and the normal force their
+  // friction multiplies (a preloaded nut's halves).
+  for (const Declaration& d : declarations) {
+    if (d.stiffness != 0.0) stiffness += d.stiffness;
+    if (d.flank_normal) spec.flank_normal = d.flank_normal;
+  }
   spec.force_factor = std::sqrt(2.0 * stiffness);
-  spec.quadratures = kEnergyCount + 1;  // and the impact loss, booked at events
-  if (dc) {  // the electrical work is work_drive's
-    spec.stored.push_back("magnetic_energy");
-    spec.losses.push_back("copper_loss");
-    spec.quadratures += 1;
-  }
-  // The train's friction stages: each loss its own channel, never falling.
-  if (const elements::TrainFriction* train = model.train_friction()) {
-    for (const char* name : {"motor_friction_loss", "gear_loss"}) {
-      if (name[0] == 'm' ? !train->motor_friction_present() : !train->stage) continue;
-      spec.losses.push_back(name);
-      spec.quadratures += 1;
-    }
-  }
-  spec.load_forces = {"axial_force"};
-  spec.load_torques = {"drive_torque"};
-  if (const elements::PreloadedNut* nut = model.preloaded_nut(); nut && nut->lift_off) {
-    // A lift-off nut: its channel |N_A| + |N_B| (half A's force is the
-    // penalty flanks', the spring's changes with the play), its spring's rate.
-    spec.normal = "flank_normal";
-    stiffness += nut->stiffness;
-    spec.force_factor = std::sqrt(2.0 * stiffness);
-  } else if (nut) {
-    spec.flank_normal = [nut = *nut](double normal, double friction) {
-      return nut.flank_normal(normal, friction);
-    };
-  }
   // (the drive torque is the rotor's: n times it acts on the driven part)
   spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
   spec.length_scale = p.screw_length;

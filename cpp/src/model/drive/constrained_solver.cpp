@@ -1,14 +1,41 @@
 // DriveHybrid::ConstrainedSolver (mode_solver.hpp): any drive model; y
 // expanded by StateLayout, the current mode solved by DriveDynamics'
 // constrained solve (DriveHybrid::solve_current), LuGre's bristle states and
-// their stored energy, the elements' with events rates and output values
-// (driver_element.hpp).
+// their stored energy (their declaration, lugre_bristles_kind), the
+// elements' with events rates and output values (driver_element.hpp).
 #include <cmath>
 
 #include "driver_element.hpp"
 #include "mode_solver.hpp"
 
 namespace leadscrew::model::drive {
+
+const ElementKind& lugre_bristles_kind();
+
+namespace {
+
+// LuGre's bristles (the friction law's, friction/laws/lugre.cpp): the
+// deflection z and its stored energy, states of their own; the deflection a
+// channel (their energy is the elastic channel's).
+void declare_bristles(const DriveModel& model, bool bristle, Declaration& d) {
+  (void)model;
+  if (!bristle) return;
+  d.states = {"bristle_deflection", "bristle_energy"};
+  d.channels = lugre_bristles_kind().catalog;
+}
+
+}  // namespace
+
+const ElementKind& lugre_bristles_kind() {
+  static const ElementKind kind{
+      "lugre_bristles", {{"bristle_deflection", "m", Role::none}}, &declare_bristles};
+  return kind;
+}
+
+DriveHybrid::ConstrainedSolver::ConstrainedSolver(DriveHybrid& hybrid)
+    : ModeSolver(hybrid),
+      bristle_state_(hybrid.layout_.find_state("bristle_deflection")),
+      bristle_channel_(hybrid.layout_.find_channel("bristle_deflection")) {}
 
 double DriveHybrid::ConstrainedSolver::slip_velocity(const double* y) const {
   (void)y;
@@ -38,7 +65,7 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
   energy[kWorkAxial] = model.axial_load().power(dynamics.axial_force(), v);
   energy[kFrictionLoss] =
       h_.mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics.slip_velocity();
-  const int bristle = layout.bristle();
+  const int bristle = bristle_state_;
   if (bristle >= 0) {
     // LuGre's bristles: z' of the law. Of the friction's power, the part
     // |N|' sigma0 z z' is stored in the bristles, not lost; it is
@@ -78,28 +105,16 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   forces.friction = s.friction_force;
   forces.motor_torque = h_.model_.gear().rotor_torque(s.motor_torque);
   ChannelState state = channel_state(h_.dynamics_);
-  const int bristle = h_.layout_.bristle();
+  const int bristle = bristle_state_;
   if (bristle >= 0) {
-    state.bristle = y[bristle];
+    state.values[bristle_channel_] = y[bristle];
     state.elastic += y[bristle + 1];  // the bristles' stored energy
   }
   // Stick holds the slip velocity at zero; the state carries the integrator's
   // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
   if (forces.stick) state.slip_velocity = 0.0;
-  for (const std::unique_ptr<Element>& element : h_.elements_) element->output(t, y, state);
-  // A lift-off nut: its spring, half A's normal force and both halves' (the
-  // normal force mu' multiplies, half B at its slip's or the stick force's edge).
-  if (const elements::PreloadedNut* nut = h_.model_.preloaded_nut(); nut && nut->lift_off) {
-    const DriveDynamics& dynamics = h_.dynamics_;
-    state.preload_force = dynamics.preload_spring_force();
-    state.normal_force_a = dynamics.penalty_normal_force();
-    state.flank_normal =
-        h_.mode_.friction == FrictionMode::slip
-            ? std::abs(state.normal_force_a) +
-                  std::abs(nut->normal(h_.mode_.slip_sign, state.preload_force))
-            : nut->split_flank_normal(state.normal_force_a, state.preload_force,
-                                      s.friction_force);
-  }
+  for (const std::unique_ptr<Element>& element : h_.elements_)
+    element->output(t, y, forces, state);
   return state;
 }
 

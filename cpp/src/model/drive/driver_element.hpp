@@ -5,17 +5,19 @@
 // with events").
 //
 // DriveHybrid holds a list of them, built once from the model in
-// DriveHybrid::make_elements (hybrid_rhs.cpp, one line per kind), in that
-// order; a model with none has an empty list and pays nothing, one with any
+// DriveHybrid::make_elements (hybrid_rhs.cpp) from the registry
+// (element_registry.cpp, one line per kind), in its order; a model with none has an empty list and pays nothing, one with any
 // never takes the rigid solver (mode_solver.cpp). Their root functions
 // follow the driver's own g0..g4 (friction, flanks, the screw's end), each
 // element's in one block (first_root), in the list's order. Each kind is a
-// class derived from DriveHybrid::Element in a file of its own:
+// class derived from DriveHybrid::Element in a file of its own, with its
+// declaration (declaration.hpp: its states in y, its channels):
 //   hybrid_motor.cpp      a DC motor: its current's and copper loss's rates,
 //                         the electrical work, its channels, the current
 //                         limit's root and hold
 //   hybrid_end_stops.cpp  the end stops, penalty and exact: their roots,
 //                         impacts, closed contacts and force
+//   hybrid_preloaded_nut.cpp  a lift-off preloaded nut's channels
 // An element reads the driver's state through the protected accessors below
 // (the coordinates and the dynamics at the state last set); its calls are
 // virtual (a few per right-hand side, root or event) and allocate nothing
@@ -83,19 +85,31 @@ class DriveHybrid::Element {
     (void)ydot;
     (void)energy;
   }
-  // An output row: its values and energy terms in the channels' state.
-  virtual void output(double t, const double* y, ChannelState& state) const {
+  // An output row: its declared channels' values (state.values from
+  // first_channel(), in the order it declared them), at the thread's and
+  // the motor's forces of the row.
+  virtual void output(double t, const double* y, const ContactForces& forces,
+                      ChannelState& state) const {
     (void)t;
     (void)y;
+    (void)forces;
     (void)state;
   }
   // Its forces depend on the loads alone (not on its own state): the
   // rigid drive's load-driven roots (hybrid_load_roots.cpp) may plan ahead.
   virtual bool forces_from_loads_alone() const { return true; }
 
-  // Its first root's index in the driver's g (set once by the driver).
+  // Its first root's index in the driver's g, its first state's in y and
+  // its first channel's in ChannelState::values (its declaration's,
+  // declaration.hpp; -1: it declared none), set once by the driver.
   int first_root() const { return first_root_; }
-  void set_first_root(int index) { first_root_ = index; }
+  int first_state() const { return first_state_; }
+  int first_channel() const { return first_channel_; }
+  void set_slots(int root, int state, int channel) {
+    first_root_ = root;
+    first_state_ = state;
+    first_channel_ = channel;
+  }
 
  protected:
   // The driver's state, as last set (DriveHybrid::set or the mode solver's
@@ -103,6 +117,8 @@ class DriveHybrid::Element {
   const DriveModel& model() const { return h_.model_; }
   const DriveDynamics& dynamics() const { return h_.dynamics_; }
   const StateLayout& layout() const { return h_.layout_; }
+  // The thread's mode (contact, stick or slip, the slip's sign).
+  const Mode& mode() const { return h_.mode_; }
   const CoordinateVector& q() const { return h_.q_; }
   const CoordinateVector& v() const { return h_.v_; }
   CoordinateVector& q() { return h_.q_; }
@@ -115,14 +131,14 @@ class DriveHybrid::Element {
 
  private:
   DriveHybrid& h_;
-  int first_root_ = 0;
+  int first_root_ = 0, first_state_ = -1, first_channel_ = -1;
 };
 
-// The elements with events of a model, in construction order (one line per
-// kind; a kind returns nullptr where the model has none of it).
-std::unique_ptr<DriveHybrid::Element> make_dc_motor_element(DriveHybrid& hybrid,
-                                                            const DriveModel& model);
-std::unique_ptr<DriveHybrid::Element> make_end_stops_element(DriveHybrid& hybrid,
-                                                             const DriveModel& model);
+// A kind's factory (nullptr where the model has none of it), per registered
+// kind in the registry's order (element_registry.cpp; nullptr: a kind
+// without events).
+using ElementFactory = std::unique_ptr<DriveHybrid::Element> (*)(DriveHybrid& hybrid,
+                                                                 const DriveModel& model);
+const std::vector<ElementFactory>& element_factories();
 
 }  // namespace leadscrew::model::drive

@@ -24,6 +24,8 @@
 //                          current limit's root and hold
 //   hybrid_end_stops.cpp   the end stops, penalty and exact: their roots,
 //                          impacts, closed contacts and force
+//   hybrid_preloaded_nut.cpp  a lift-off preloaded nut's channels
+//   element_registry.cpp   the elements' registry (declaration.hpp)
 #pragma once
 
 #include <cmath>
@@ -112,9 +114,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   // side, root and output row starts here: inline).
   void set(double t, const double* y) {
     layout_.expand(t, y, q_, v_);
-    if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
+    if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
     dynamics_.set_state(t, q_, v_);
-    if (layout_.bristle() >= 0) dynamics_.set_bristle(y[layout_.bristle()]);
+    if (bristle_state_ >= 0) dynamics_.set_bristle(y[bristle_state_]);
   }
 
   // mode_solver.hpp: the current mode at a state y (the constrained solve,
@@ -130,7 +132,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   static constexpr int kThreadRoots = 5;
   // hybrid_rhs.cpp: the elements with events of the model, one line per kind.
   void make_elements();
-  void add_element(std::unique_ptr<Element> element);
+  void add_element(std::unique_ptr<Element> element, int kind);
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);
@@ -216,6 +218,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   const DriveParameters& p_;
   DriveDynamics dynamics_;
   StateLayout layout_;
+  // The declared states DriveDynamics reads (set): a DC motor's current
+  // and LuGre's bristle deflection (-1: none), found once by name.
+  int current_state_, bristle_state_;
   double bounce_threshold_;
   bool backlash_;
   bool touching_ = false;  // a penalty flank is penetrated

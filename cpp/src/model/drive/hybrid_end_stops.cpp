@@ -1,6 +1,7 @@
 // The end stops of the load's travel (elements/end_stop.hpp;
 // docs/physics/end_stops.md) as an element of the event-driven driver
-// (driver_element.hpp): one root per stop, the penalty stops' first.
+// (driver_element.hpp): one root per stop, the penalty stops' first; its
+// channel stop_force (declaration.hpp).
 //
 // Penalty stops: their force enters the forces through DriveDynamics (a
 // force element); here are their roots, one per stop: its contact margin,
@@ -19,7 +20,25 @@
 
 namespace leadscrew::model::drive {
 
+const ElementKind& end_stops_kind();
+
 namespace {
+
+void declare(const DriveModel& model, bool bristle, Declaration& d) {
+  (void)bristle;
+  // The stops' force on the load along +u (its energy is the force
+  // elements' elastic energy and damping loss, an exact stop's impacts').
+  if (model.parameters().end_stops == EndStopContact::none) return;
+  d.channels = end_stops_kind().catalog;
+  // The penalty stops' force follows from the load's position and speed
+  // (for every driver); an exact stop's is the element's (output).
+  if (model.elements().end_stops().empty()) return;
+  d.add_from_coordinates = [stops = &model.elements().end_stops(), load = model.load()](
+                               const CoordinateVector& q, const CoordinateVector& v,
+                               double* values) {
+    for (const elements::EndStop& stop : *stops) values[0] += stop.force_on_load(q[load], v[load]);
+  };
+}
 
 std::string joined(const std::string& a, const std::string& b) {
   return a.empty() ? b : a + ", " + b;
@@ -135,17 +154,18 @@ class EndStopsElement final : public DriveHybrid::Element {
     }
   }
 
-  // The exact stops' force on the load along +u [N] (the penalty stops'
-  // follows from q and v, write_drive_channels): a closed stop balances the
-  // forces on the held load.
-  void output(double t, const double* y, ChannelState& state) const override {
+  // The exact stops' force on the load along +u [N]: a closed stop
+  // balances the forces on the held load (the penalty stops' is added from
+  // q and v, the declaration's add_from_coordinates).
+  void output(double t, const double* y, const ContactForces& forces,
+              ChannelState& state) const override {
     (void)t;
     (void)y;
-    if (exact_.empty()) return;
-    state.stop_force = 0.0;
+    (void)forces;
+    if (first_channel() < 0) return;
     for (std::size_t i = 0; i < closed_.size(); ++i)
       if (closed_[i]) {
-        state.stop_force = -dynamics().forces()[load_];
+        state.values[first_channel()] = -dynamics().forces()[load_];
         return;
       }
   }
@@ -159,6 +179,11 @@ class EndStopsElement final : public DriveHybrid::Element {
 };
 
 }  // namespace
+
+const ElementKind& end_stops_kind() {
+  static const ElementKind kind{"end_stops", {{"stop_force", "N", Role::none}}, &declare};
+  return kind;
+}
 
 std::unique_ptr<DriveHybrid::Element> make_end_stops_element(DriveHybrid& hybrid,
                                                              const DriveModel& model) {

@@ -1,5 +1,6 @@
 // A DC motor's current (elements/dc_motor.hpp) as an element of the
-// event-driven driver (driver_element.hpp): its rates and channels, and the
+// event-driven driver (driver_element.hpp): its declaration (its current
+// and copper loss in y, its channels), its rates and channels, and the
 // current limit's root and hold. The motor's torque k_t i enters the forces
 // through DriveDynamics (set_motor_current, set_state), so every mode, root
 // and impact sees it as a state's function.
@@ -9,7 +10,24 @@
 
 namespace leadscrew::model::drive {
 
+const ElementKind& dc_motor_kind();
+
 namespace {
+
+// Its channels (the declaration's, in this order).
+enum Channel { kCurrent, kVoltage, kCopperLoss, kMagnetic };
+
+void declare(const DriveModel& model, bool bristle, Declaration& d) {
+  (void)bristle;
+  const elements::DcMotor* dc = model.dc_motor();
+  if (!dc) return;
+  // With inductance its current is a state; the copper loss is an integral.
+  if (dc->has_state()) d.states.push_back("motor_current");
+  d.states.push_back("copper_loss");
+  d.channels = dc_motor_kind().catalog;
+  // (The magnetic energy L i^2 / 2 is kinetic-like: |L i| <= sqrt(2 E L).)
+  d.momentum_mass = dc->inductance;
+}
 
 class DcMotorElement final : public DriveHybrid::Element {
  public:
@@ -45,23 +63,30 @@ class DcMotorElement final : public DriveHybrid::Element {
     (void)y;
     const double current = dynamics().motor_current();
     const double omega = v()[dc_.rotor];
-    if (layout().motor_current() >= 0)
-      ydot[layout().motor_current()] = held_ != 0 ? 0.0 : dc_.free_rate(t, current, omega);
-    ydot[layout().copper_loss()] = dc_.copper_loss_rate(current);
+    if (dc_.has_state())
+      ydot[current_state()] = held_ != 0 ? 0.0 : dc_.free_rate(t, current, omega);
+    ydot[copper_state()] = dc_.copper_loss_rate(current);
     energy[kWorkDrive] = dc_.work_rate(t, current, omega, held_ != 0);
   }
   // Its channels: current, the driver's voltage, copper loss, magnetic energy.
-  void output(double t, const double* y, ChannelState& state) const override {
+  void output(double t, const double* y, const ContactForces& forces,
+              ChannelState& state) const override {
+    (void)forces;
     const double current = dynamics().motor_current();
-    state.motor_current = current;
-    state.motor_voltage = dc_.terminal_voltage(t, current, v()[dc_.rotor], held_ != 0);
-    state.copper_loss = y[layout().copper_loss()];
-    state.magnetic = dc_.magnetic_energy(current);
+    double* values = state.values.data() + first_channel();
+    values[kCurrent] = current;
+    values[kVoltage] = dc_.terminal_voltage(t, current, v()[dc_.rotor], held_ != 0);
+    values[kCopperLoss] = y[copper_state()];
+    values[kMagnetic] = dc_.magnetic_energy(current);
   }
   // Its torque k_t i depends on the state: its roots are the state's.
   bool forces_from_loads_alone() const override { return false; }
 
  private:
+  // Its states in y: the current (with inductance), then the copper loss.
+  int current_state() const { return first_state(); }
+  int copper_state() const { return first_state() + (dc_.has_state() ? 1 : 0); }
+
   double limit_margin(double t) const {
     const double current = dynamics().motor_current();
     if (held_ == 0) return dc_.current_limit - std::abs(current);
@@ -75,7 +100,7 @@ class DcMotorElement final : public DriveHybrid::Element {
       return "current limit released";
     }
     const int sign = dynamics().motor_current() >= 0.0 ? 1 : -1;
-    y[layout().motor_current()] = sign * dc_.current_limit;  // at the limit, to round-off
+    y[current_state()] = sign * dc_.current_limit;  // at the limit, to round-off
     set(t, y);
     // The current reached the limit driven beyond it (a touch without push
     // stays free).
@@ -90,6 +115,16 @@ class DcMotorElement final : public DriveHybrid::Element {
 };
 
 }  // namespace
+
+const ElementKind& dc_motor_kind() {
+  static const ElementKind kind{"dc_motor",
+                                {{"motor_current", "A", Role::none},
+                                 {"motor_voltage", "V", Role::none},
+                                 {"copper_loss", "J", Role::loss},
+                                 {"magnetic_energy", "J", Role::stored}},
+                                &declare};
+  return kind;
+}
 
 std::unique_ptr<DriveHybrid::Element> make_dc_motor_element(DriveHybrid& hybrid,
                                                             const DriveModel& model) {

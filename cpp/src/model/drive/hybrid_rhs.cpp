@@ -16,6 +16,8 @@ DriveHybrid::DriveHybrid(const DriveModel& model, const friction::Law& law,
       p_(model.parameters()),
       dynamics_(model, &law),
       layout_(model, law.resolution() == friction::Resolution::bristle),
+      current_state_(layout_.find_state("motor_current")),
+      bristle_state_(layout_.find_state("bristle_deflection")),
       bounce_threshold_(bounce_threshold),
       backlash_(!model.bilateral_thread()),
       t_end_(t_end),
@@ -23,7 +25,7 @@ DriveHybrid::DriveHybrid(const DriveModel& model, const friction::Law& law,
   const int n = model.coordinate_count();
   q_.setZero(n);
   v_.setZero(n);
-  names_ = drive_channel_names(model);
+  names_ = drive_channel_names(layout_);
   saved_state_.resize(static_cast<std::size_t>(layout_.size()));
   make_elements();
   solver_ = make_mode_solver(*this);
@@ -31,17 +33,20 @@ DriveHybrid::DriveHybrid(const DriveModel& model, const friction::Law& law,
 
 DriveHybrid::~DriveHybrid() = default;
 
-// The elements with events (driver_element.hpp), one line per kind, in this
-// order; each numbers its roots after the thread's g0..g4 and the elements'
-// before it.
+// The elements with events (driver_element.hpp), from the registry
+// (element_registry.cpp), in its order; each numbers its roots after the
+// thread's g0..g4 and the elements' before it.
 void DriveHybrid::make_elements() {
-  add_element(make_dc_motor_element(*this, model_));
-  add_element(make_end_stops_element(*this, model_));
+  const std::vector<ElementFactory>& factories = element_factories();
+  for (std::size_t kind = 0; kind < factories.size(); ++kind)
+    if (factories[kind]) add_element(factories[kind](*this, model_), static_cast<int>(kind));
 }
 
-void DriveHybrid::add_element(std::unique_ptr<Element> element) {
+void DriveHybrid::add_element(std::unique_ptr<Element> element, int kind) {
   if (!element) return;  // the model has none of that kind
-  element->set_first_root(root_count_);
+  const Declaration* declared = layout_.declaration(kind);
+  element->set_slots(root_count_, declared ? declared->first_state : -1,
+                     declared ? declared->first_channel : -1);
   root_count_ += element->root_count();
   elements_.push_back(std::move(element));
 }
@@ -52,7 +57,7 @@ void DriveHybrid::channels(double t, const double* y, double* out) {
   ContactForces forces;
   forces.stick = mode_.friction == FrictionMode::stick;
   const ChannelState state = solver_->output(t, y, forces);
-  write_drive_channels(model_, state, forces, y + layout_.energy_offset(), impact_loss_,
+  write_drive_channels(layout_, state, forces, y + layout_.energy_offset(), impact_loss_,
                        kinetic0_, elastic0_, out);
 }
 

@@ -71,7 +71,7 @@ class DriveHybrid::ModeSolver {
 
 class DriveHybrid::ConstrainedSolver final : public DriveHybrid::ModeSolver {
  public:
-  explicit ConstrainedSolver(DriveHybrid& hybrid) : ModeSolver(hybrid) {}
+  explicit ConstrainedSolver(DriveHybrid& hybrid);
   void expand(double t, const double* y) override { h_.set(t, y); }
   double slip_velocity(const double* y) const override;
   ThreadForces forces(double t, const double* y) override;
@@ -79,6 +79,11 @@ class DriveHybrid::ConstrainedSolver final : public DriveHybrid::ModeSolver {
   ChannelState output(double t, const double* y, ContactForces& forces) override;
   double slip_resolution() const override;
   RigidModeCoefficients coefficients(int sigma) override;
+
+ private:
+  // LuGre's bristles (lugre_bristles_kind): the deflection's index in y
+  // (its stored energy's follows; -1: none) and its channel's.
+  int bristle_state_, bristle_channel_;
 };
 
 // What the rigid drive without play's solvers share: one degree of freedom,
@@ -183,6 +188,9 @@ class DriveHybrid::TrainSolver final : public DriveHybrid::RigidDofSolver {
   Solution solve();
 
   const elements::TrainFriction& train_;
+  // The stages' loss integrals in y, their channels (train_friction_kind;
+  // -1: none).
+  int motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
   const std::vector<elements::EndStop>& stops_;  // the penalty end stops (on the load)
   // The sign of phi' in a slip of sign +1 (gamma_T = slip_per_speed phi'):
   // -1 where the rotor turns the nut (drive = "nut"). The motor's friction,

@@ -17,7 +17,14 @@ namespace leadscrew::model::drive {
 
 DriveMoreau::DriveMoreau(const DriveModel& model)
     : model_(model), p_(model.parameters()), dynamics_(model), layout_(model, false),
-      names_(drive_channel_names(model)) {
+      names_(drive_channel_names(layout_)), current_state_(layout_.find_state("motor_current")),
+      copper_state_(layout_.find_state("copper_loss")),
+      dc_channel_(layout_.find_channel("motor_current")),
+      stop_channel_(layout_.find_channel("stop_force")),
+      motor_friction_state_(layout_.find_state("motor_friction_loss")),
+      gear_state_(layout_.find_state("gear_loss")),
+      motor_friction_channel_(layout_.find_channel("motor_friction_loss")),
+      gear_channel_(layout_.find_channel("gear_loss")) {
   const int n = model.coordinate_count();
   q_.setZero(n);
   v_.setZero(n);
@@ -75,7 +82,7 @@ bool DriveMoreau::take_step(double t, double h, double theta, const double* y, d
   const elements::DcMotor* dc = model_.dc_motor();
   if (dc == nullptr || !dc->limited()) return restituting;
   layout_.expand(t, y, q_, v_);
-  if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
+  if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
   dynamics_.set_state(t + theta * h, q_, v_);
   const double omega_next = last_omega_next_;
   const elements::DcMotor::ThetaStep free = dc->theta_step(
@@ -94,7 +101,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   const CoordinateVector q0 = q_, v0 = v_;
   bool restituting = false;
   const elements::DcMotor* dc = model_.dc_motor();
-  if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
+  if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
   dynamics_.set_state(t + theta * h, q_, v_);
   const double play0 = dynamics_.play();
   const double play_rate0 = dynamics_.play_rate();
@@ -237,8 +244,8 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     energy[kWorkDrive] += h * (last_voltage_ * i_theta +
                                (dc->torque_constant - dc->back_emf_constant) * i_theta *
                                    omega_theta);
-    y_next[layout_.copper_loss()] = y[layout_.copper_loss()] + h * dc->copper_loss_rate(i_theta);
-    if (dc->has_state()) y_next[layout_.motor_current()] = i_next;
+    y_next[copper_state_] = y[copper_state_] + h * dc->copper_loss_rate(i_theta);
+    if (dc->has_state()) y_next[current_state_] = i_next;
     last_omega_next_ = omega_next;
   }
   energy[kWorkAxial] +=
@@ -280,10 +287,10 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     const double w1 = v_[model_.rotor()];
     const double friction = rotor_mode.slip != 0 ? rotor_mode.slip * balance.friction : 0.0;
     const double stage = rotor_mode.slip != 0 ? impulses.train - friction : 0.0;
-    if (const int k = layout_.motor_friction_loss(); k >= 0) y_next[k] = y[k] + friction * w1;
+    if (const int k = motor_friction_state_; k >= 0) y_next[k] = y[k] + friction * w1;
     // (A flow within its round-off, a stage that transmits nothing, books
     // no loss of the other sign.)
-    if (const int k = layout_.gear_loss(); k >= 0) y_next[k] = y[k] + std::max(0.0, stage * w1);
+    if (const int k = gear_state_; k >= 0) y_next[k] = y[k] + std::max(0.0, stage * w1);
     friction_excess_ +=
         std::max(0.0, (1.0 - theta) * impulses.train * (w1 - v0[model_.rotor()]));
   }
@@ -295,7 +302,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   last_.motor_torque =
       p_.speed_controlled ? impulses.rotor / h : model_.motor().applied_torque(t + h);
   if (dc != nullptr)
-    last_.motor_torque = dc->torque(dc->has_state() ? y_next[layout_.motor_current()]
+    last_.motor_torque = dc->torque(dc->has_state() ? y_next[current_state_]
                                                      : current.mean +
                                                            current.mean_slope * v_[dc->rotor]);
   last_.motor_torque = model_.gear().rotor_torque(last_.motor_torque);
@@ -513,15 +520,14 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
   const elements::DcMotor* dc = model_.dc_motor();
   auto account = [&](double time, const double* state) {
     layout_.expand(time, state, q_, v_);
-    if (layout_.motor_current() >= 0)
-      dynamics_.set_motor_current(state[layout_.motor_current()]);
+    if (current_state_ >= 0) dynamics_.set_motor_current(state[current_state_]);
     dynamics_.set_state(time, q_, v_);
     const double* energy = state + layout_.energy_offset();
     double stored = dynamics_.kinetic_energy() + dynamics_.elastic_energy();
     if (dc != nullptr)  // the magnetic energy, and the copper loss among the losses
       stored += dc->magnetic_energy(dc->has_state() ? dynamics_.motor_current() : 0.0) +
-                state[layout_.copper_loss()];
-    for (const int k : {layout_.motor_friction_loss(), layout_.gear_loss()})
+                state[copper_state_];
+    for (const int k : {motor_friction_state_, gear_state_})
       if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
@@ -538,23 +544,26 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
 
 void DriveMoreau::channels(double t, const double* y, double* out) {
   layout_.expand(t, y, q_, v_);
-  if (layout_.motor_current() >= 0) dynamics_.set_motor_current(y[layout_.motor_current()]);
+  if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
   dynamics_.set_state(t, q_, v_);
   const double* energy = y + layout_.energy_offset();
   // The Moreau-Jean scheme's numerical dissipation (and impacts) closes the
   // account: what the work and the named losses leave over.
   ChannelState state = channel_state(dynamics_);
   if (last_.stick) state.slip_velocity = 0.0;  // the step's stick: zero slip (as above)
-  state.stop_force = last_stop_force_;  // the exact stops' (over the last step)
-  if (const int k = layout_.motor_friction_loss(); k >= 0) state.motor_friction_loss = y[k];
-  if (const int k = layout_.gear_loss(); k >= 0) state.gear_loss = y[k];
-  if (const elements::DcMotor* dc = model_.dc_motor()) {
-    state.motor_current = dynamics_.motor_current();
-    state.motor_voltage = last_voltage_;  // over the last step
-    state.copper_loss = y[layout_.copper_loss()];
-    state.magnetic = dc->has_state() ? dc->magnetic_energy(state.motor_current) : 0.0;
+  // The exact stops' force over the last step (the penalty stops' is added
+  // from the row's coordinates: hybrid_end_stops.cpp's declaration).
+  if (stop_channel_ >= 0) state.values[stop_channel_] = last_stop_force_;
+  if (motor_friction_state_ >= 0) state.values[motor_friction_channel_] = y[motor_friction_state_];
+  if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
+  if (const elements::DcMotor* dc = model_.dc_motor()) {  // its channels (hybrid_motor.cpp)
+    double* values = state.values.data() + dc_channel_;
+    values[0] = dynamics_.motor_current();
+    values[1] = last_voltage_;  // over the last step
+    values[2] = y[copper_state_];
+    values[3] = dc->has_state() ? dc->magnetic_energy(values[0]) : 0.0;
   }
-  write_drive_channels(model_, state, last_, energy, 0.0, kinetic0_,
+  write_drive_channels(layout_, state, last_, energy, 0.0, kinetic0_,
                        elastic0_, out);
 }
 

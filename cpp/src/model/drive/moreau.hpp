@@ -110,6 +110,10 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   DriveDynamics dynamics_;
   StateLayout layout_;
   std::vector<std::string> names_;
+  // A DC motor's current and copper loss in y, its first channel (-1: none).
+  // Slots of the elements' states and channels (declaration.hpp; -1: none).
+  int current_state_, copper_state_, dc_channel_;
+  int stop_channel_, motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
   CoordinateVector q_, v_, free_;
   Eigen::LLT<Square> solver_;
   ContactForces last_;

@@ -1,11 +1,14 @@
 // The event-driven and Moreau-Jean drive systems' state vector y: the
-// independent positions, their velocities, LuGre's bristle states and the
-// work and loss integrals. Internal to cpp/src/model (see
+// independent positions, their velocities, the elements' internal states
+// (declaration.hpp) and the work and loss integrals. Internal to cpp/src/model (see
 // docs/architecture.md); inline, as the right-hand side expands y at every call.
 #pragma once
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "declaration.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
 
@@ -15,40 +18,61 @@ namespace leadscrew::model::drive {
 enum Energy { kWorkDrive = 0, kWorkAxial, kFrictionLoss, kDampingLoss, kContactLoss, kEnergyCount };
 
 // Between the ODE state y = [independent positions, their velocities (not the
-// speed-controlled rotor's), work and loss integrals] and full coordinates.
+// speed-controlled rotor's), the elements' internal states, work and loss
+// integrals] and full coordinates.
 class StateLayout {
  public:
-  // `bristle`: the friction law has LuGre's bristle deflection z, a state
-  // of its own after the velocities, followed by the bristles' stored energy
-  // (DriveHybrid::rhs).
-  // A DC motor (model.dc_motor()) adds its states after those: the armature
-  // current (with inductance) and the copper loss integral.
-  StateLayout(const DriveModel& model, bool bristle) : model_(model), bristle_(bristle) {
+  // `bristle`: the friction law that runs has LuGre's bristle deflection
+  // (a declaration of its own, constrained_solver.cpp). The elements'
+  // states follow the velocities, in the order of their declarations
+  // (declaration.hpp: the registry's, element_registry.cpp), each
+  // element's in the order it declared them; their channels are numbered
+  // the same way (ChannelState::values).
+  StateLayout(const DriveModel& model, bool bristle)
+      : model_(model), declarations_(declare_elements(model, bristle)) {
     const bool speed = model.parameters().speed_controlled;
     positions_ = model.independent();
     for (int i : positions_)
       if (!(speed && i == model.rotor())) velocities_.push_back(i);
-    if (const elements::DcMotor* dc = model.dc_motor()) motor_states_ = dc->has_state() ? 2 : 1;
-    if (const elements::TrainFriction* f = model.train_friction()) {
-      if (f->motor_friction_present()) motor_friction_loss_ = motor_offset() + motor_states_;
-      if (f->stage) gear_loss_ = motor_offset() + motor_states_ + (motor_friction_loss_ >= 0);
+    int state = static_cast<int>(positions_.size() + velocities_.size());
+    int channel = 0;
+    for (Declaration& d : declarations_) {
+      d.first_state = state;
+      d.first_channel = channel;
+      state += static_cast<int>(d.states.size());
+      channel += static_cast<int>(d.channels.size());
     }
+    energy_offset_ = state;
+    if (channel > kMaxElementChannels)
+      throw std::logic_error("the drive's elements declare " + std::to_string(channel) +
+                             " channels, more than kMaxElementChannels (declaration.hpp)");
   }
-  int size() const { return energy_offset() + kEnergyCount; }
-  // The bristle deflection's index (-1: none).
-  int bristle() const {
-    return bristle_ ? static_cast<int>(positions_.size() + velocities_.size()) : -1;
+  int size() const { return energy_offset_ + kEnergyCount; }
+  int energy_offset() const { return energy_offset_; }
+  const DriveModel& model() const { return model_; }
+
+  // The model's declarations (declaration.hpp), slots allocated.
+  const std::vector<Declaration>& declarations() const { return declarations_; }
+  // The declaration of registered kind `kind` (nullptr: the model has none).
+  const Declaration* declaration(int kind) const {
+    for (const Declaration& d : declarations_)
+      if (d.kind == kind) return &d;
+    return nullptr;
   }
-  // The DC motor's current's index (-1: none, or no inductance) and its
-  // copper loss integral's (-1: no DC motor).
-  int motor_current() const { return motor_states_ == 2 ? motor_offset() : -1; }
-  int copper_loss() const { return motor_states_ > 0 ? motor_offset() + motor_states_ - 1 : -1; }
-  // The train's friction stages' loss integrals (train_friction.hpp), after
-  // the motor's states: the motor's friction and the stage's (-1: none).
-  int motor_friction_loss() const { return motor_friction_loss_; }
-  int gear_loss() const { return gear_loss_; }
-  int energy_offset() const {
-    return motor_offset() + motor_states_ + (motor_friction_loss_ >= 0) + (gear_loss_ >= 0);
+  // A declared state's index in y, a declared channel's in
+  // ChannelState::values, by name (-1: not declared). For the build of a
+  // run's system only: its users keep the index.
+  int find_state(const std::string& name) const {
+    for (const Declaration& d : declarations_)
+      for (std::size_t k = 0; k < d.states.size(); ++k)
+        if (name == d.states[k]) return d.first_state + static_cast<int>(k);
+    return -1;
+  }
+  int find_channel(const std::string& name) const {
+    for (const Declaration& d : declarations_)
+      for (std::size_t k = 0; k < d.channels.size(); ++k)
+        if (name == d.channels[k].name) return d.first_channel + static_cast<int>(k);
+    return -1;
   }
 
   void expand(double t, const double* y, CoordinateVector& q, CoordinateVector& v) const {
@@ -79,14 +103,9 @@ class StateLayout {
   const std::vector<int>& velocities() const { return velocities_; }
 
  private:
-  int motor_offset() const {
-    return static_cast<int>(positions_.size() + velocities_.size()) + (bristle_ ? 2 : 0);
-  }
-
   const DriveModel& model_;
-  bool bristle_;
-  int motor_states_ = 0;
-  int motor_friction_loss_ = -1, gear_loss_ = -1;
+  std::vector<Declaration> declarations_;
+  int energy_offset_ = 0;
   std::vector<int> positions_, velocities_;
 };
 

@@ -26,7 +26,29 @@
 
 namespace leadscrew::model::drive {
 
+const ElementKind& train_friction_kind();
+
 namespace {
+
+// Its channels (the catalog's, in this order).
+enum Channel { kMotorFrictionLoss, kGearLoss };
+
+// The train's friction stages (elements/train_friction.hpp): each stage's
+// loss an integral in y and a channel of its own, among the account's losses.
+void declare_train_friction(const DriveModel& model, bool bristle, Declaration& d) {
+  (void)bristle;
+  const elements::TrainFriction* train = model.train_friction();
+  if (!train) return;
+  const std::vector<ChannelSpec>& catalog = train_friction_kind().catalog;
+  if (train->motor_friction_present()) {
+    d.states.push_back("motor_friction_loss");
+    d.channels.push_back(catalog[kMotorFrictionLoss]);
+  }
+  if (train->stage) {
+    d.states.push_back("gear_loss");
+    d.channels.push_back(catalog[kGearLoss]);
+  }
+}
 
 // Two consistent combinations whose accelerations agree to this (a sign at
 // its zero: both give the same motion) are one.
@@ -34,9 +56,21 @@ constexpr double kSameMotion = 1e-9;
 
 }  // namespace
 
+const ElementKind& train_friction_kind() {
+  static const ElementKind kind{"train_friction",
+                                {{"motor_friction_loss", "J", Role::loss},
+                                 {"gear_loss", "J", Role::loss}},
+                                &declare_train_friction};
+  return kind;
+}
+
 DriveHybrid::TrainSolver::TrainSolver(DriveHybrid& hybrid)
     : RigidDofSolver(hybrid),
       train_(*hybrid.model_.train_friction()),
+      motor_friction_state_(hybrid.layout_.find_state("motor_friction_loss")),
+      gear_state_(hybrid.layout_.find_state("gear_loss")),
+      motor_friction_channel_(hybrid.layout_.find_channel("motor_friction_loss")),
+      gear_channel_(hybrid.layout_.find_channel("gear_loss")),
       stops_(hybrid.model_.elements().end_stops()),
       phi_per_slip_(rigid_.slip_per_speed() < 0.0 ? -1 : 1) {
   // RigidDriveModes' coefficients are per unit torque on the rotor (n on phi).
@@ -286,10 +320,9 @@ void DriveHybrid::TrainSolver::rhs(double t, const double* y, double* ydot) {
   // theirs alone on the rigid drive); their elastic energy is the output's.
   energy[kDampingLoss] = stops_.empty() ? 0.0 : h_.dynamics_.damping_power();
   energy[kContactLoss] = 0.0;
-  if (layout.motor_friction_loss() >= 0)
-    ydot[layout.motor_friction_loss()] =
-        slipping ? train_.motor_friction_bound() * std::abs(omega) : 0.0;
-  if (layout.gear_loss() >= 0) ydot[layout.gear_loss()] = slipping ? x.stage_loss * omega : 0.0;
+  if (motor_friction_state_ >= 0)
+    ydot[motor_friction_state_] = slipping ? train_.motor_friction_bound() * std::abs(omega) : 0.0;
+  if (gear_state_ >= 0) ydot[gear_state_] = slipping ? x.stage_loss * omega : 0.0;
   for (const std::unique_ptr<Element>& element : h_.elements_) element->rates(t, y, ydot, energy);
 }
 
@@ -301,10 +334,11 @@ ChannelState DriveHybrid::TrainSolver::output(double t, const double* y, Contact
   forces.motor_torque = x.torque;
   ChannelState state = channel_state(h_.dynamics_);
   if (forces.stick) state.slip_velocity = 0.0;
-  const StateLayout& layout = h_.layout_;
-  if (layout.motor_friction_loss() >= 0) state.motor_friction_loss = y[layout.motor_friction_loss()];
-  if (layout.gear_loss() >= 0) state.gear_loss = y[layout.gear_loss()];
-  for (const std::unique_ptr<Element>& element : h_.elements_) element->output(t, y, state);
+  if (motor_friction_state_ >= 0)
+    state.values[motor_friction_channel_] = y[motor_friction_state_];
+  if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
+  for (const std::unique_ptr<Element>& element : h_.elements_)
+    element->output(t, y, forces, state);
   return state;
 }
 

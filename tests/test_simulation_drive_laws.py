@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings, strategies as st
+from hypothesis import HealthCheck, example, given, settings, strategies as st
 
 import leadscrew as ls
 from helpers import thread_reference as tr
@@ -183,6 +183,8 @@ def test_law_parameters_take_units():
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@example(law="stribeck", concept="flexible_nut", mu=0.25, static_excess=0.28125,
+         velocity=0.03125, viscous=8.0, amplitude=0.0546875)
 @given(law=st.sampled_from(["coulomb", "stribeck", "lugre"]),
        concept=st.sampled_from(["rigid", "flexible_nut"]),
        mu=st.floats(0.02, 0.5), static_excess=st.floats(0.0, 0.5),
@@ -214,5 +216,14 @@ def test_every_law_dissipates_and_closes_the_account(law, concept, mu, static_ex
     for loss in ("friction_loss", "damping_loss", "contact_loss", "impact_loss"):
         assert np.all(np.diff(result[loss]) >= -1e-8 * work), loss
     if law != "lugre":
+        # The row recorded just before an event (its time repeated after
+        # it) holds the state at the located root, where the slip has just
+        # crossed zero by up to its rate times the root's time resolution
+        # (docs/physics/result_checks.md, "friction_power"): a Stribeck
+        # flexible nut ended a slip at -9.3e-12 m/s under -5.3 N (4.9e-11 W
+        # against 1e-9 of a work of 0.045 J; hypothesis's draw, 2026-11-27).
+        # Those rows describe the instant the mode ends: skipped, as the
+        # result checks skip them.
         power = result["friction_force"] * result["slip_velocity"]
-        assert np.all(power <= 1e-9 * work)
+        at_root = np.append(np.diff(result.t) == 0.0, False)
+        assert np.all(power[~at_root] <= 1e-9 * work)

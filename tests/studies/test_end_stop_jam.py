@@ -293,3 +293,31 @@ def test_the_worm_seat_breaks_free_at_the_closed_form_whatever_t_reverse(t_rever
     summary = frame.attrs["summary"]
     assert summary["breakaway_voltage"] == pytest.approx(
         summary["breakaway_voltage_closed_form"], rel=1e-6)
+
+
+def test_a_reverse_run_that_raised_decides_nothing():
+    # A new user's review (2026-11-27): on the flexible worm seat with penalty
+    # stops, Moreau-Jean's default step raises JammingError near the
+    # breakaway for some reverse voltages; the bisection took such a run
+    # for "held" and reported the edge between raising and freeing runs.
+    import warnings
+
+    data = ls.scenes.load("seat_adjuster_worm_flexible").to_dict()
+    data["end_stops"].update({"contact": "penalty", "stiffness": 5e6, "damping": 5e3})
+    data["end_stops"].pop("restitution", None)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        frame = ls.studies.end_stop_jam(ls.Scene.from_dict(data), t_drive=1.0, t_reverse=1.0,
+                                        progress=False)
+    summary = frame.attrs["summary"]
+    raised = frame[frame["error"].notna()]
+    assert len(raised) >= 1 and list(raised["reverse_voltage"]) == summary["undecided"]
+    assert any("decide nothing" in str(w.message) for w in caught)
+    low, high = summary["bracket"]
+    decided = frame[frame["error"].isna()]
+    # the bracket's ends are runs that decided: the last held, the first freeing
+    assert not decided[decided["reverse_voltage"] == low]["broke_free"].any()
+    assert decided[decided["reverse_voltage"] == high]["broke_free"].all()
+    assert summary["breakaway_voltage"] == high
+    # and no run that raised sits at an end of it
+    assert low not in summary["undecided"] and high not in summary["undecided"]

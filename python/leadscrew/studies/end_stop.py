@@ -243,7 +243,10 @@ def end_stop_jam(
         ``breakaway_voltage_closed_form`` [V] (NaN without a DC motor; inf
         where the current limit cannot reach the torque), ``bracket`` (the
         last held and the first freeing reverse [N*m or V]; inf: none freed),
-        ``t_drive`` and ``t_reverse`` [s], ``runs``.
+        ``t_drive`` and ``t_reverse`` [s], ``runs``, ``undecided`` (the
+        reverses whose runs raised [N*m or V]: they decide nothing, the
+        bisection stops at the first such one, so the breakaway is then
+        only known to lie in ``bracket``; their rows carry the message).
         ``attrs["histories"]``: ``t`` [s] and ``stop_force`` [N] of the
         last held and the first freeing run (lists, for the figure).
 
@@ -300,11 +303,12 @@ def end_stop_jam(
     # or the play's motion, not the clamp's release: there the stop must let go.)
     slipping_frees = scene["concept"] == "rigid" and "backlash" not in scene
 
-    def frees(x: float) -> bool:
+    def frees(x: float) -> Optional[bool]:
         """One reversing run: -sign x after t_drive; True if the clamping stop let
         go of the load after the reversal (whatever the load met then: the
         other stop, or the screw's end), or (rigid, without play) the thread
-        slips away from the stop at the run's end."""
+        slips away from the stop at the run's end; None if the run raised
+        (it decides nothing: its row carries the message)."""
         bar.update()
         try:
             result = simulate(_with_drive(running, kind, forward, -sign * x, t_drive, t_end),
@@ -314,11 +318,11 @@ def end_stop_jam(
             free = error.time > t_drive and isinstance(error, NutOffScrewError)
             rows.append({"reverse": x, "broke_free": free, "stop_force_end": math.nan,
                          "error": None if free else f"{type(error).__name__}: {error}"})
-            return free
+            return True if free else None
         except (ValueError, ArithmeticError, RuntimeError) as error:
             rows.append({"reverse": x, "broke_free": False, "stop_force_end": math.nan,
                          "error": f"{type(error).__name__}: {error}"})
-            return False
+            return None
         free = any(event.time > t_drive and f"{clamping} release" in event.kind
                    for event in result.events) or float(result["stop_force"][-1]) == 0.0
         if not free and slipping_frees:
@@ -354,16 +358,31 @@ def end_stop_jam(
     ceiling = math.inf
     if kind == "voltage" and "current_limit" in scene["motor"]:
         ceiling = scene["motor"]["resistance"] * scene["motor"]["current_limit"]
+    # A run that raised decides nothing (a Moreau-Jean step too long for
+    # the stall or the breakaway raises JammingError): the doubling goes on
+    # past it with low where it was, and the bisection stops at it, the
+    # bracket [low, high] the runs that decided (the summary's
+    # `undecided`: the reverses that raised).
+    undecided = []
     while len(rows) < runs:
-        if frees(high):
+        outcome = frees(high)
+        if outcome:
             found = True
             break
+        if outcome is None:
+            undecided.append(high)
         if high > ceiling:
             break
-        low, high = high, 2.0 * high
+        if outcome is not None:
+            low = high
+        high = 2.0 * high
     while found and len(rows) < runs:
         middle = 0.5 * (low + high)
-        if frees(middle):
+        outcome = frees(middle)
+        if outcome is None:
+            undecided.append(middle)
+            break
+        if outcome:
             high = middle
         else:
             low = middle
@@ -374,7 +393,8 @@ def end_stop_jam(
                "peak_clamp_force": float(np.max(np.abs(pushing["stop_force"]))),
                "peak_current": peak_current, **closed,
                "bracket": (low, high if found else math.inf),
-               "t_drive": t_drive, "t_reverse": t_reverse, "runs": len(rows)}
+               "t_drive": t_drive, "t_reverse": t_reverse, "runs": len(rows),
+               "undecided": undecided}
     # The motor's torque at the breakaway and the driven part's through the
     # train's branch (an ideal stage or none: n times the motor's).
     k = _breakaway_split(scene, thread_force)[1]
@@ -399,7 +419,8 @@ def end_stop_jam(
     frame.attrs["histories"] = {name: {"reverse": x, "t": t, "stop_force": f}
                                 for name, (x, t, f) in histories.items()}
     return annotate(frame, UNITS, study="end_stop_jam",
-                    summary_units={**_SUMMARY_UNITS, "bracket": UNITS[column]}, **summary)
+                    summary_units={**_SUMMARY_UNITS, "bracket": UNITS[column],
+                                   "undecided": UNITS[column]}, **summary)
 
 
 def plot_end_stop_jam(frame: pd.DataFrame, ax: Optional[Any] = None):

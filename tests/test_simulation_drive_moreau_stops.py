@@ -199,3 +199,18 @@ def test_exact_stop_closes_holds_the_load_and_opens_when_the_force_reverses():
     assert 0.1 < result.t[pushing[-1]] < 0.11
     assert np.all(result["stop_force"][result.t > 0.11] == 0.0)
     assert_checked(result, scene, dt, 0.2)
+
+
+def test_theta_below_one_half_is_refused_where_springs_are():
+    # theta < 1/2 lets the springs' modes grow from step to step: the flexible
+    # seat at theta = 0.3 ran its nut 0.337 m off the screw and was told to
+    # change the loads (a new user's review, 2026-11-27).
+    flexible = ls.scenes.load("seat_adjuster_worm_flexible")
+    for theta in (0.0, 0.3, 0.49):
+        with pytest.raises(ValueError, match=r"theta = 0\.?[0-9]* is invalid .*springs.*\[0\.5, 1\]"):
+            ls.simulate(flexible, 0.01, integrator="moreau", theta=theta)
+    ls.simulate(flexible, 0.01, integrator="moreau", theta=0.5)
+    # a rigid drive without springs or penalty stops takes any theta in [0, 1]
+    rigid = ls.Scene.from_dict(thesis_scene(concept="rigid"))
+    result = ls.simulate(rigid, 0.01, integrator="moreau", theta=0.3)
+    assert result.integrator == "moreau"

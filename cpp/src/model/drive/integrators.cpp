@@ -112,8 +112,9 @@ void check_step_resolves_armature(const DriveParameters& p, const DriveSimulatio
       ") makes the armature current alternate from step to step where dt > L / (R (1 - theta)) "
       "= " + format_value(largest) + " s (the electrical time constant L / R is " +
       format_value(p.motor_inductance / p.motor_resistance) + " s); use dt <= " +
-      format_value(largest) + " s, theta = 1, motor.inductance = 0 (the quasi-static limit) or "
-      "integrator = \"event_driven\"");
+      format_value(largest) + " s, theta = 1 or motor.inductance = 0 (the quasi-static limit)" +
+      (drive_integrators(p).size() > 1 ? std::string(", or integrator = \"event_driven\"")
+                                       : std::string("; this scene runs on Moreau-Jean only")));
 }
 
 }  // namespace

@@ -293,3 +293,20 @@ def test_the_dc_motors_dt_refusal_still_offers_the_event_driven_scheme_where_it_
         ls.simulate(scene, 0.01, integrator="moreau", dt=0.01)
     assert str(info.value).endswith('(the quasi-static limit), or integrator = "event_driven"')
 
+
+@pytest.mark.parametrize("stage", ["worm", "friction_torque"])
+def test_a_preloaded_nut_with_a_train_stage_is_refused_for_the_stage_first(stage):
+    # (A new user's review: a worm and a preloaded nut were refused in two
+    # rounds, first for friction.mu_static, then for the worm.)
+    scene = ls.scenes.load("seat_adjuster_worm_flexible").to_dict()
+    scene["nut"]["preload"] = 50.0
+    if stage == "friction_torque":  # the motor's friction alone
+        scene["gear"] = {"type": "ideal", "ratio": 10.0}
+        scene["motor"]["friction_torque"] = 2e-3
+    what = 'gear.type = "worm"' if stage == "worm" else "motor.friction_torque = 0.002 N m"
+    with pytest.raises(ValueError) as info:
+        ls.Scene.from_dict(scene).model()
+    assert str(info.value) == (
+        f"nut.preload = 50 N is invalid with {what}: a preloaded nut takes none of the train's "
+        "friction stages (a lossy or worm stage, the motor's friction torque); use "
+        'nut.preload = 0, or gear.type = "ideal" and motor.friction_torque = 0')

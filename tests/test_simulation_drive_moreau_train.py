@@ -254,6 +254,10 @@ def test_what_still_cannot_run_is_refused_naming_the_integrator_that_runs_it():
     assert str(info.value).startswith(
         'integrator = "cvode_bdf" is invalid with gear.type = "worm": the train\'s friction '
         'stages run with exact Coulomb friction on Moreau-Jean (integrator = "moreau")')
+    # (Only Moreau-Jean runs this scene: no other integrator is offered.)
+    assert str(info.value).endswith('; this scene runs on Moreau-Jean only (here concept = '
+                                    '"flexible")')
+    assert "event_driven" not in str(info.value)
     with pytest.raises(ValueError) as info:
         ls.simulate(scene, 0.01, integrator="event_driven")
     assert 'here concept = "flexible"; use integrator = "moreau"' in str(info.value)

@@ -143,8 +143,12 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                "slipping with one speed), here " + train->event_driven_obstacle +
                    "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
              : ": the train's friction stages run with exact Coulomb friction on Moreau-Jean "
-               "(integrator = \"moreau\") and, on the rigid concept without play, the "
-               "event-driven scheme (integrator = \"event_driven\")"));
+               "(integrator = \"moreau\")" +
+                   (train->event_driven_obstacle.empty()
+                        ? std::string(" and, on the rigid concept without play, the "
+                                      "event-driven scheme (integrator = \"event_driven\")")
+                        : "; this scene runs on Moreau-Jean only (here " +
+                              train->event_driven_obstacle + ")")));
   }
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,

@@ -103,6 +103,19 @@ def test_a_bad_scene_gives_an_error_text(capi_check, tmp_path):
     assert line.startswith("error: ") and "missing.toml" in line
 
 
+def test_a_scene_only_moreau_jean_runs_gives_a_plain_error_text(capi_check):
+    """`leadscrew scene resolve` writes a Moreau-only scene with integrator
+    "" (its default); the C API refuses it saying why, without internals."""
+    spec = ls.scenes.load("seat_adjuster_worm_flexible").to_core_toml()
+    assert 'integrator = ""' in spec
+    (line,) = run(capi_check, "toml", spec)
+    assert line.startswith('error: this scene runs only on Moreau-Jean time stepping '
+                           '(integrator = "moreau")'), line
+    assert "FMU export and the C API do not offer Moreau-Jean" in line
+    assert 'the shipped scene "seat_adjuster_worm"' in line
+    assert "stepper" not in line and "drive_integrators" not in line
+
+
 def test_an_unknown_input_gives_an_error_text(capi_check, tmp_path):
     spec = tmp_path / "core.toml"
     ls.scenes.load("default").to_core_toml(spec)

@@ -378,6 +378,25 @@ def test_run_refuses_before_creating_the_output_directory(tmp_path, capsys, argv
     assert not (tmp_path / "nd").exists()
 
 
+@pytest.mark.parametrize("argv, fragments", [
+    (["--rtol", "1e-6"],
+     ["--rtol 1e-06 is invalid with the scene's default integrator moreau",
+      "this scene runs on Moreau-Jean only, so --rtol has no use here: a shorter --dt"]),
+    (["--dt", "0.01"],
+     ["dt = 0.01 s is invalid with motor.inductance = 0.0004 H", "use dt <= 0.00133",
+      "; this scene runs on Moreau-Jean only"]),
+])
+def test_a_moreau_only_scene_offers_no_other_integrator(tmp_path, capsys, argv, fragments):
+    """(A new user's review: seat_adjuster_worm_flexible runs on Moreau-Jean
+    alone, yet its refusals offered event_driven or cvode_bdf.)"""
+    code, out, err = run_main(capsys, "run", "seat_adjuster_worm_flexible", *argv,
+                              "-o", tmp_path / "out")
+    assert code == 2 and out == ""
+    assert_one_line_error(err, *fragments)
+    assert "event_driven" not in err and "cvode" not in err and "other integrators" not in err
+    assert not (tmp_path / "out").exists()
+
+
 def test_run_output_path_that_is_a_file(tmp_path, capsys):
     blocker = tmp_path / "file"
     blocker.write_text("x")

@@ -73,8 +73,28 @@ def test_a_scene_only_moreau_jean_runs_is_not_exported(tmp_path):
     for name in MOREAU_ONLY:
         scene = ls.scenes.load(name)
         assert ls._core.drive_integrators(scene.model().parameters) == ["moreau"]
-        with pytest.raises(ValueError, match=r'integrator = "moreau" is invalid for a stepper'):
+        with pytest.raises(ValueError) as info:
             ls.fmi.export_fmu(constant_inputs(scene), tmp_path / f"{name}.fmu")
+        # (A new user's review: the refusal spoke of "a stepper" and
+        # drive_integrators() though no integrator was set.)
+        message = str(info.value)
+        assert message.startswith('this scene runs only on Moreau-Jean time stepping '
+                                  '(integrator = "moreau"): its gear stage (gear.type = "worm") '
+                                  'with concept = "flexible" runs on nothing else; FMU export '
+                                  'and the C API do not offer Moreau-Jean')
+        assert 'e.g. the shipped scene "seat_adjuster_worm"' in message
+        assert "stepper" not in message and "drive_integrators" not in message
+        assert "seat_adjuster_worm" not in MOREAU_ONLY  # (it exports: the test below)
+
+
+def test_moreau_named_for_a_scene_other_schemes_run_is_refused_naming_them(tmp_path):
+    scene = constant_inputs(ls.scenes.load("default"))
+    with pytest.raises(ValueError) as info:
+        ls.fmi.export_fmu(scene, tmp_path / "default.fmu", integrator="moreau")
+    assert str(info.value).startswith(
+        'integrator = "moreau" is invalid for FMU export and the C API, which do not offer '
+        'Moreau-Jean time stepping: leave integrator out (here "event_driven") or choose one '
+        'of "event_driven"')
 
 
 @pytest.mark.parametrize("name", [n for n in ls.scenes.available() if n not in MOREAU_ONLY])

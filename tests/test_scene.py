@@ -169,6 +169,22 @@ def test_schema_says_a_speed_controlled_drive_starts_at_drive_speed():
     assert "A speed-controlled drive (loads.drive_speed) starts at drive_speed(0)" in line
 
 
+def test_schema_says_which_schemes_run_the_trains_friction_stages():
+    # (A new user's review: the docs said the stages need the rigid concept
+    # without play and no end stops, after Moreau-Jean gained them.)
+    lines = {line.split(" ", 1)[0]: line for line in ls.scene.describe_schema().splitlines()}
+    for key in ("motor.friction_torque", "gear.type"):
+        line = lines[key]
+        assert ("a torque (loads.drive_torque) or a DC motor, a set-valued law on the thread "
+                "(friction.law = 'coulomb' or 'stribeck'), exact flanks or none (not "
+                "backlash.contact 'bistop' or 'cubic'), no nut.preload and initial.state = "
+                "'relaxed'; end stops are allowed. Moreau-Jean (integrator = 'moreau') runs them "
+                "on every concept and play, the event-driven scheme on the rigid concept without "
+                "play with friction.law = 'coulomb' without mu_static; where only Moreau-Jean "
+                "fits, it is the default") in line, key
+        assert "no end stops" not in line, key
+
+
 SPEED_SINE = {"type": "sine", "amplitude": 2.0, "omega": 3.0, "phase": 0.5, "offset": 1.0}
 
 

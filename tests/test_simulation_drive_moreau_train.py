@@ -254,6 +254,63 @@ def test_what_still_cannot_run_is_refused_naming_the_integrator_that_runs_it():
     assert str(info.value).startswith(
         'integrator = "cvode_bdf" is invalid with gear.type = "worm": the train\'s friction '
         'stages run with exact Coulomb friction on Moreau-Jean (integrator = "moreau")')
+    # (Only Moreau-Jean runs this scene: no other integrator is offered.)
+    assert str(info.value).endswith('; this scene runs on Moreau-Jean only (here concept = '
+                                    '"flexible")')
+    assert "event_driven" not in str(info.value)
     with pytest.raises(ValueError) as info:
         ls.simulate(scene, 0.01, integrator="event_driven")
     assert 'here concept = "flexible"; use integrator = "moreau"' in str(info.value)
+
+
+def test_the_flexible_seat_adjusters_refusals_offer_moreau_jean_alone():
+    # (A new user's review: dt = 0.01, rtol and a failed check offered the
+    # event-driven scheme or rtol, which this scene refuses.)
+    scene = ls.scenes.load("seat_adjuster_worm_flexible")
+    with pytest.raises(ValueError) as info:
+        ls.simulate(scene, 0.01, dt=0.01)
+    message = str(info.value)
+    assert message.startswith("dt = 0.01 s is invalid with motor.inductance = 0.0004 H")
+    assert message.endswith("use dt <= 0.0013333333333333335 s, theta = 1 or "
+                            "motor.inductance = 0 (the quasi-static limit); this scene runs on "
+                            "Moreau-Jean only")
+    with pytest.raises(ValueError) as info:
+        ls.simulate(scene, 0.01, rtol=1e-6)
+    message = str(info.value)
+    assert message.startswith("rtol = 1e-06 is invalid with integrator 'moreau' (the default "
+                              "here)")
+    assert message.endswith("this scene runs on Moreau-Jean only, so rtol has no use here: a "
+                            "shorter dt makes the run more accurate")
+    assert "event_driven" not in message and "cvode" not in message
+    # A step too long for the flank impacts fails its check; the hint names dt.
+    with pytest.raises(ls.SimulationError) as info:
+        ls.simulate(scene, 0.5, dt=1e-3)
+    message = str(info.value)
+    assert "the result fails its check 'flank_gap'" in message
+    assert "the run did not resolve the scene (shorten dt)" in message
+    assert "rtol" not in message and "atol" not in message
+
+
+def test_the_dc_motors_dt_refusal_still_offers_the_event_driven_scheme_where_it_runs():
+    scene = ls.Scene.from_dict(dc_scene(LOSSY, 2e-3))  # rigid, no play: both schemes
+    with pytest.raises(ValueError) as info:
+        ls.simulate(scene, 0.01, integrator="moreau", dt=0.01)
+    assert str(info.value).endswith('(the quasi-static limit), or integrator = "event_driven"')
+
+
+@pytest.mark.parametrize("stage", ["worm", "friction_torque"])
+def test_a_preloaded_nut_with_a_train_stage_is_refused_for_the_stage_first(stage):
+    # (A new user's review: a worm and a preloaded nut were refused in two
+    # rounds, first for friction.mu_static, then for the worm.)
+    scene = ls.scenes.load("seat_adjuster_worm_flexible").to_dict()
+    scene["nut"]["preload"] = 50.0
+    if stage == "friction_torque":  # the motor's friction alone
+        scene["gear"] = {"type": "ideal", "ratio": 10.0}
+        scene["motor"]["friction_torque"] = 2e-3
+    what = 'gear.type = "worm"' if stage == "worm" else "motor.friction_torque = 0.002 N m"
+    with pytest.raises(ValueError) as info:
+        ls.Scene.from_dict(scene).model()
+    assert str(info.value) == (
+        f"nut.preload = 50 N is invalid with {what}: a preloaded nut takes none of the train's "
+        "friction stages (a lossy or worm stage, the motor's friction torque); use "
+        'nut.preload = 0, or gear.type = "ideal" and motor.friction_torque = 0')

@@ -268,14 +268,16 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
     from . import _core
     from .simulation import unused_option
 
+    allowed = list(_core.drive_integrators(scene.model().parameters))
     if args.integrator is not None:
         integrator, which = args.integrator, f"--integrator {args.integrator}"
     else:  # the scene's default: the first of the integrators that fit it
-        integrator = _core.drive_integrators(scene.model().parameters)[0]
+        integrator = allowed[0]
         which = f"the scene's default integrator {integrator}"
     given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
     # The rules of leadscrew.simulate, in the command line's spelling.
-    unused = unused_option(integrator, given, scene, spell=lambda name: f"--{name}")
+    unused = unused_option(integrator, given, scene, spell=lambda name: f"--{name}",
+                           moreau_only=allowed == ["moreau"])
     if unused is not None:
         name, _, why = unused
         raise UsageError(f"--{name} {given[name]:g} is invalid with {which}: {why}")

@@ -57,10 +57,20 @@ _DENSITY_RANGE_DOC = ", in [1, 1e5] kg/m^3: from aerogels to beyond osmium (22,5
 # k_v with its default even where the law takes none, as scenes have always
 # carried it); the others are optional, each law checks its own.
 _FRICTION_COMMON = ("mu", "k_v")
-# The gear stage's types ('lossy' and 'worm' on the rigid drive without play,
-# elements/train_friction.hpp) and the smallest |gear.ratio| (the core's,
-# elements/gear.hpp).
+# The gear stage's types (elements/train_friction.hpp) and the smallest
+# |gear.ratio| (the core's, elements/gear.hpp).
 _GEAR_TYPES = ("ideal", "lossy", "worm")
+# What the train's friction stages (motor.friction_torque > 0, gear.type
+# 'lossy' or 'worm') need and which schemes run them (build_train_friction,
+# train_event_driven_obstacle in elements/build_drive.cpp).
+_TRAIN_STAGE_RULE = (
+    "a torque (loads.drive_torque) or a DC motor, a set-valued law on the thread "
+    "(friction.law = 'coulomb' or 'stribeck'), exact flanks or none (not backlash.contact "
+    "'bistop' or 'cubic'), no nut.preload and initial.state = 'relaxed'; end stops are "
+    "allowed. Moreau-Jean (integrator = 'moreau') runs them on every concept and play, the "
+    "event-driven scheme on the rigid concept without play with friction.law = 'coulomb' "
+    "without mu_static; where only Moreau-Jean fits, it is the default "
+    "(docs/physics/gear.md, 'Friction stages')")
 _SMALLEST_GEAR_RATIO = _core.smallest_gear_ratio
 
 
@@ -312,11 +322,8 @@ SCHEMA: Dict[str, Any] = {
                                  "it opposes the rotor's slip with |T_c| and holds up to T_c "
                                  "at rest (one coefficient, no normal force); its loss is the "
                                  "channel motor_friction_loss [J]. 0: none (the drive runs "
-                                 "bit-identically to a motor without the key). > 0 needs the "
-                                 "rigid concept without play with exact Coulomb friction on "
-                                 "the thread (friction.law = 'coulomb' without mu_static), no "
-                                 "end stops and no nut.preload (docs/physics/gear.md, "
-                                 "'Friction stages'; a torque-controlled rotor takes it "
+                                 "bit-identically to a motor without the key). > 0 needs "
+                                 + _TRAIN_STAGE_RULE + " (a torque-controlled rotor takes it "
                                  "through the core's DriveParameters.motor_friction_torque)",
                                  "N*m", 0.0, **NONNEGATIVE),
     },
@@ -339,8 +346,7 @@ SCHEMA: Dict[str, Any] = {
                       "tan(lead_angle - rho') / tan(lead_angle), rho' = atan(mu / "
                       "cos(flank_angle / 2)) (self-locking where the second is <= 0). "
                       "'lossy' and 'worm' book their loss in the channel gear_loss [J] and "
-                      "need the rigid concept without play with exact Coulomb friction on "
-                      "the thread, no end stops and no nut.preload", "", "ideal",
+                      "need " + _TRAIN_STAGE_RULE, "", "ideal",
                       kind="choice", choices=_GEAR_TYPES),
         "ratio": Field("gear ratio n: the rotor turns n times per turn of the driven part "
                        "(n > 1 a reduction); n < 0 is a reversing stage (the driven part "

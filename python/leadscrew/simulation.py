@@ -230,7 +230,7 @@ def _play_of(scene: Scene) -> str:
 
 
 def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene] = None,
-                  spell=str) -> Optional[Tuple[str, bool, str]]:
+                  spell=str, moreau_only: bool = False) -> Optional[Tuple[str, bool, str]]:
     """The first option given that a run would ignore, and why.
 
     ``dt`` and ``theta`` are Moreau-Jean's alone; ``rtol``, ``atol``,
@@ -245,6 +245,8 @@ def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene]
         scene: the Scene that runs (None: a FrictionBlock).
         spell: how the caller spells an option in messages (the command
             line: ``--dt``).
+        moreau_only: whether the model runs on ``"moreau"`` alone (then no
+            other integrator is offered).
 
     Returns:
         ``(name, of_scene, why)``: the option, whether the scene (True) or
@@ -256,8 +258,12 @@ def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene]
             if given.get(name) is not None:
                 return name, False, (
                     f"moreau is a fixed-step scheme without error or step-size control (its "
-                    f"step is {spell('dt')}); {spell(name)} is taken by the other integrators "
-                    "(event_driven, cvode_bdf, ...)")
+                    f"step is {spell('dt')}); " + (
+                        f"this scene runs on Moreau-Jean only, so {spell(name)} has no use "
+                        f"here: a shorter {spell('dt')} makes the run more accurate"
+                        if moreau_only else
+                        f"{spell(name)} is taken by the other integrators (event_driven, "
+                        "cvode_bdf, ...)"))
     else:
         for name in MOREAU_OPTIONS:
             if given.get(name) is not None:
@@ -298,7 +304,7 @@ def _refuse_unused(integrator: str, integrators: Callable[[], Sequence[str]],
     runs = integrator or allowed[0]
     if runs not in allowed:
         return
-    unused = unused_option(runs, given, scene)
+    unused = unused_option(runs, given, scene, moreau_only=list(allowed) == ["moreau"])
     if unused is not None:
         name, of_scene, why = unused
         which = ("for this Scene" if of_scene else f"with integrator {runs!r}"
@@ -549,6 +555,10 @@ def simulate(
             ``"moreau"``; for the regularized laws an ODE integrator:
             ``"cvode_bdf"`` (default), ``"cvode_adams"``, ``"dopri5"``, ...
             (a Scene with exact backlash and a regularized law: ``"event_driven"``).
+            Where only ``"moreau"`` fits a Scene, it is the default: the
+            train's friction stages (``motor.friction_torque``, ``gear.type``
+            ``"lossy"`` or ``"worm"``) anywhere but on the rigid concept
+            without play with plain Coulomb friction (no ``mu_static``).
         rtol, atol: integration tolerances of the ODE and event-driven
             integrators (default 1e-8 and 1e-10; refused with ``"moreau"``).
         dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,

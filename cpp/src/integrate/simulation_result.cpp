@@ -36,8 +36,10 @@ void enforce_checks(const SimulationResult& result) {
         std::string("the result fails its check '") + check.name + "' (" + check.what +
             "): " + format_value(check.value) + unit + " against the bound " +
             format_value(check.bound) + unit,
-        "the run did not resolve the scene (tighten rtol/atol or dt) or met a defect; "
-        "check=False returns the result unchecked, and please report the scene");
+        std::string("the run did not resolve the scene (") +
+            (result.integrator == "moreau" ? "shorten dt" : "tighten rtol/atol") +
+            ") or met a defect; check=False returns the result unchecked, and please report "
+            "the scene");
   }
 }
 

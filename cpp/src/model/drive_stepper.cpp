@@ -12,6 +12,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
+#include "leadscrew/model/elements/train_friction.hpp"
 
 namespace leadscrew::model {
 
@@ -55,12 +56,34 @@ DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions op
   options_.output = integrate::OutputRequest{};
   options_.output.t_end = 1.0;
   integrator_ = drive::chosen_integrator(parameters_, options_);
-  if (integrator_ == "moreau")
-    throw InvalidArgument(
-        "integrator = \"moreau\" is invalid for a stepper: it takes the event-driven scheme "
-        "(\"event_driven\") or an ODE method of drive_integrators()");
   {
     const DriveModel model(parameters_);  // validates the parameters
+    // FMU export and the C API (this stepper's users) run the event-driven
+    // scheme or an ODE method, not Moreau-Jean's time stepping.
+    const std::vector<std::string>& allowed = drive::model_integrators(model);
+    if (integrator_ == "moreau" &&
+        std::find(allowed.begin(), allowed.end(), integrator_) != allowed.end()) {
+      std::vector<std::string> others;
+      for (const std::string& name : allowed)
+        if (name != "moreau") others.push_back(name);
+      if (others.empty()) {  // Moreau-Jean alone: the train's stages elsewhere
+        const elements::TrainFriction* train = model.train_friction();
+        throw InvalidArgument(
+            "this scene runs only on Moreau-Jean time stepping (integrator = \"moreau\")" +
+            (train ? std::string(train->stage ? ": its gear stage (gear.type = \"" +
+                                                    gear_type_name(parameters_.gear) + "\")"
+                                              : ": its motor friction (motor.friction_torque)") +
+                         " with " + train->event_driven_obstacle + " runs on nothing else"
+                   : std::string()) +
+            "; FMU export and the C API do not offer Moreau-Jean: they take a scene the "
+            "event-driven scheme runs, a rigid one without play with plain Coulomb friction "
+            "(e.g. the shipped scene \"seat_adjuster_worm\")");
+      }
+      throw InvalidArgument("integrator = \"moreau\" is invalid for FMU export and the C API, "
+                            "which do not offer Moreau-Jean time stepping: leave integrator out "
+                            "(here \"" + others.front() + "\") or choose one of " +
+                            quoted_list(others));
+    }
     check_simulation_options(model, options_);
   }
   reset();

@@ -112,8 +112,9 @@ void check_step_resolves_armature(const DriveParameters& p, const DriveSimulatio
       ") makes the armature current alternate from step to step where dt > L / (R (1 - theta)) "
       "= " + format_value(largest) + " s (the electrical time constant L / R is " +
       format_value(p.motor_inductance / p.motor_resistance) + " s); use dt <= " +
-      format_value(largest) + " s, theta = 1, motor.inductance = 0 (the quasi-static limit) or "
-      "integrator = \"event_driven\"");
+      format_value(largest) + " s, theta = 1 or motor.inductance = 0 (the quasi-static limit)" +
+      (drive_integrators(p).size() > 1 ? std::string(", or integrator = \"event_driven\"")
+                                       : std::string("; this scene runs on Moreau-Jean only")));
 }
 
 // The theta-method steps the springs (W = M + theta h C + theta^2 h^2 K) in
@@ -162,8 +163,12 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                "slipping with one speed), here " + train->event_driven_obstacle +
                    "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
              : ": the train's friction stages run with exact Coulomb friction on Moreau-Jean "
-               "(integrator = \"moreau\") and, on the rigid concept without play, the "
-               "event-driven scheme (integrator = \"event_driven\")"));
+               "(integrator = \"moreau\")" +
+                   (train->event_driven_obstacle.empty()
+                        ? std::string(" and, on the rigid concept without play, the "
+                                      "event-driven scheme (integrator = \"event_driven\")")
+                        : "; this scene runs on Moreau-Jean only (here " +
+                              train->event_driven_obstacle + ")")));
   }
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,

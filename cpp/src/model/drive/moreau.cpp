@@ -351,10 +351,14 @@ DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
     }
   }
   rotor_row_ = false;
-  throw JammingError(t, "no consistent mode of the rotor's friction contact (the motor's "
-                        "friction and the gear stage) with the thread's in the Moreau-Jean "
-                        "step" + (failure.empty() ? std::string() : "; " + failure),
-                     "shorten dt, or reduce the friction");
+  // (No combination of stick and slip of the rotor's friction, the stage's
+  // power flow and the thread's contact is consistent over the step.)
+  throw JammingError(t, "the motor's friction and the gear stage admit no consistent "
+                        "stick/slip state with the thread's friction over the step of " +
+                            format_value(h) +
+                            " s: the step is too long to resolve the stall or breakaway" +
+                            (failure.empty() ? std::string() : "; " + failure),
+                     "shorten dt (or reduce the friction)");
 }
 
 // The end stops' active sets from the step's result (impulses, at free_):

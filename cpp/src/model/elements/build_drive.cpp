@@ -142,8 +142,7 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
                           ": a torque cannot drive the thread (mu' >= cot(lead angle)), so its "
                           "holding torques at rest form no interval");
-  if (p.nut_preload > 0.0)
-    throw InvalidArgument(what + needs + "; nut.preload = " + format_value(p.nut_preload));
+  // (A preloaded nut: build_preloaded_nut refuses the stages first.)
   // Penalty end stops are one more axial force on the train (TrainSolver,
   // and Moreau-Jean's); exact ones where the load is a body of its own
   // (add_end_stops), on Moreau-Jean.
@@ -157,6 +156,17 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
   if (p.nut_preload == 0.0) return;
+  // The train's friction stages take no preloaded nut (checked first: no
+  // other rule of the nut's is worth meeting before this one).
+  const bool stage = p.gear == GearType::lossy || p.gear == GearType::worm;
+  if (stage || p.motor_friction_torque > 0.0)
+    throw InvalidArgument(
+        "nut.preload = " + format_value(p.nut_preload) + " N is invalid with " +
+        (stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+               : "motor.friction_torque = " + format_value(p.motor_friction_torque) + " N m") +
+        ": a preloaded nut takes none of the train's friction stages (a lossy or worm stage, "
+        "the motor's friction torque); use nut.preload = 0, or gear.type = \"ideal\" and "
+        "motor.friction_torque = 0");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "

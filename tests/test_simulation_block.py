@@ -283,16 +283,18 @@ def test_options_the_integrator_would_ignore_are_refused(options, message):
 
 
 def test_simulate_passes_the_core_its_arguments_in_the_bindings_order():
-    # simulate calls the core's simulate_block by position (faster than by
-    # keyword): its order must be the binding's, name for name.
+    # simulate calls the core's simulate_block and simulate_drive by position
+    # (faster than by keyword): their order must be the bindings', name for name.
     import re
 
     from leadscrew import _core
-    from leadscrew.simulation import _BLOCK_CALL
+    from leadscrew.simulation import _BLOCK_CALL, _DRIVE_CALL
 
-    signature = _core.simulate_block.__doc__.split("\n")[0]
-    names = re.findall(r"(\w+): ", signature[signature.index("(") + 1:])
-    assert tuple(names) == _BLOCK_CALL
+    for function, order in ((_core.simulate_block, _BLOCK_CALL),
+                            (_core.simulate_drive, _DRIVE_CALL)):
+        signature = function.__doc__.split("\n")[0]
+        names = re.findall(r"(\w+): ", signature[signature.index("(") + 1:])
+        assert tuple(names) == order
     # and each option reaches the core as given: a wrong rtol is named
     block = ls.FrictionBlock(1.0, 0.3, 10.0, 1.0)
     with pytest.raises(ValueError, match="rtol"):

@@ -653,9 +653,6 @@ def simulate(
         arguments.update(block=model, friction=friction, law=law, check=_flag("check", check))
         with _progress_bar(progress, arguments["t_end"]) as report:
             arguments["progress"] = report
-            # By position: pybind11 interns each keyword's name per call
-            # (12k of the block's 530k instructions per call; issue 17's
-            # benchmark).
             return Result(_core.simulate_block(*_block_call(arguments)))
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
@@ -669,16 +666,26 @@ def simulate(
         _refuse_unused(arguments["integrator"],
                        functools.partial(_core.drive_integrators, drive.parameters),
                        dict(given, bounce_threshold=bounce_threshold), model)
+        arguments["drive"] = drive
         with _progress_bar(progress, arguments["t_end"]) as report:
-            return Result(_core.simulate_drive(drive, progress=report, **arguments))
+            arguments["progress"] = report
+            return Result(_core.simulate_drive(*_drive_call(arguments)))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
 
-# The core's simulate_block's parameters, in its order (bind_model.cpp).
+# The core's simulate_block's and simulate_drive's parameters, in their
+# order (bind_model.cpp, bind_drive.cpp), and their arguments picked from a
+# dict in that order: simulate passes them by position, as pybind11 interns
+# each keyword's name per call (12k of the block's 530k instructions per
+# call; issue 17's benchmark).
 _BLOCK_CALL = ("block", "t_end", "friction", "integrator", "law", "rtol", "atol", "dt", "theta",
                "t_eval", "max_steps", "max_events", "max_step", "first_step", "max_order",
                "check", "progress")
-_block_call = operator.itemgetter(*_BLOCK_CALL)  # those arguments from a dict, in that order
+_DRIVE_CALL = ("drive", "t_end", "integrator", "smooth_integrator", "rtol", "atol", "dt", "theta",
+               "t_eval", "max_steps", "max_events", "max_step", "first_step", "bounce_threshold",
+               "max_order", "check", "progress")
+_block_call = operator.itemgetter(*_BLOCK_CALL)
+_drive_call = operator.itemgetter(*_DRIVE_CALL)
 
 # simulate's parameters by name (its **law_parameters left out) and the keys
 # of a Scene's friction section (what a Scene takes of a law's parameters).

@@ -35,7 +35,6 @@ class ExactBlock final : public integrate::HybridSystem {
         law_(law),
         force_(block.force),
         kinetic0_(initial_kinetic(block)),
-        plain_(law.plain_coulomb()),
         stick_mu_(law.mu_static()),
         viscous_(law.viscous()),
         normal_force_(block.normal_force()),
@@ -164,8 +163,7 @@ class ExactBlock final : public integrate::HybridSystem {
     double magnitude = plain_slip_force_;
     if constexpr (!kPlain) {
       const double speed = std::abs(velocity);
-      magnitude = plain_ ? plain_slip_force_ + viscous_ * speed
-                         : law_.slip_mu(speed) * normal_force_ + viscous_ * speed;
+      magnitude = law_.slip_mu(speed) * normal_force_ + viscous_ * speed;
     }
     return mode_ == Mode::slip_positive ? magnitude : -magnitude;
   }
@@ -174,7 +172,7 @@ class ExactBlock final : public integrate::HybridSystem {
   // taken where the force sits exactly on the cone's boundary.
   Mode mode_at_rest(double t, const double* y, Mode tie) {
     const double applied = force_(t) + spring_force(t, y);
-    if (!plain_) {
+    if constexpr (!kPlain) {
       if (std::abs(applied) < stick_limit()) return Mode::stick;
       if (std::abs(applied) > stick_limit())
         return applied > 0.0 ? Mode::slip_positive : Mode::slip_negative;
@@ -199,7 +197,6 @@ class ExactBlock final : public integrate::HybridSystem {
   const friction::Law& law_;
   LoadAtTime force_;
   double kinetic0_;
-  bool plain_;
   double stick_mu_;  // mu_static (plain Coulomb: mu)
   double viscous_;   // [N s/m]
   double normal_force_;      // m g [N]

@@ -110,8 +110,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   DriveDynamics dynamics_;
   StateLayout layout_;
   std::vector<std::string> names_;
-  // A DC motor's current and copper loss in y, its first channel (-1: none).
-  // Slots of the elements' states and channels (declaration.hpp; -1: none).
+  // Slots of the elements' states and channels (declaration.hpp; -1: none):
+  // a DC motor's current and copper loss in y and its first channel, the
+  // stops' force, the train's loss integrals and their channels.
   int current_state_, copper_state_, dc_channel_;
   int stop_channel_, motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
   CoordinateVector q_, v_, free_;
@@ -127,8 +128,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // model has train friction and a mode is being tried).
   bool rotor_row_ = false;
   moreau_contacts::RotorRow rotor_;
-  double last_voltage_ = 0.0;
-  double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]  // a DC motor's driver voltage over the last step [V]
+  double last_voltage_ = 0.0;     // a DC motor's driver voltage over the last step [V]
+  double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]
   double kinetic0_ = 0.0, elastic0_ = 0.0;
   double play_rate_ = 0.0, friction_excess_ = 0.0;
   long lcp_solves_ = 0;

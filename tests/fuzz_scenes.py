@@ -27,7 +27,9 @@ message, the violated invariants) for reproduction::
     ls.simulate(ls.Scene.from_dict(case["scene"]), **case["options"])
 
 or ``python3 tests/fuzz_scenes.py --replay FILE`` runs the cases of such a
-file again. It is not a test (pytest does not collect it: no ``test_``
+file again. ``--generator train`` draws issue 19's drive trains instead
+(``tests/helpers/train_fuzz.py``: motor, gear stage, end stops and preloaded
+nut freely against one another and the integrator). It is not a test (pytest does not collect it: no ``test_``
 prefix). Usage (from the repository, with the package on the path)::
 
     PYTHONPATH=python python3 tests/fuzz_scenes.py --cases 10000 --out failures.jsonl
@@ -49,12 +51,18 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from helpers.result_invariants import INVARIANTS  # noqa: E402
 from helpers.scene_fuzz import (ALLOWED, DEFAULT_SEED, OUTCOMES, generate,  # noqa: E402
                                 prepare_parent, run_isolated)
+from helpers.train_fuzz import TRAIN_SEED, generate_train  # noqa: E402
 
 
 def _arguments(argv=None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--cases", type=int, default=10_000, help="number of cases (10000)")
-    parser.add_argument("--seed", type=int, default=DEFAULT_SEED,
+    parser.add_argument("--generator", choices=("scenes", "train"), default="scenes",
+                        help="scenes: helpers/scene_fuzz.py (default); train: "
+                        "helpers/train_fuzz.py, issue 19's drive-train elements drawn freely "
+                        "against one another (no hostile values; its default seed "
+                        f"{TRAIN_SEED})")
+    parser.add_argument("--seed", type=int, default=None,
                         help=f"hypothesis seed of the generator ({DEFAULT_SEED}); runs with "
                         "different seeds share some cases (hypothesis favours small case "
                         "seeds: about 15 %% of two 10,000-case runs): for more cases raise "
@@ -118,7 +126,12 @@ def main(argv=None) -> int:
         cases = _load(args.replay)
         print(f"replaying {len(cases)} cases of {args.replay}", flush=True)
     else:
-        cases = generate(args.cases, args.seed, args.hostile_share)
+        if args.generator == "train":
+            args.seed = TRAIN_SEED if args.seed is None else args.seed
+            cases = generate_train(args.cases, args.seed)
+        else:
+            args.seed = DEFAULT_SEED if args.seed is None else args.seed
+            cases = generate(args.cases, args.seed, args.hostile_share)
         print(f"generated {len(cases)} cases (seed {args.seed}) in "
               f"{time.monotonic() - start:.1f} s", flush=True)
     outcomes = {}

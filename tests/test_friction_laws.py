@@ -63,6 +63,26 @@ def test_a_law_refuses_parameters_it_does_not_take_and_values_out_of_range():
         ls.simulate(block, 0.1, friction="dry")
 
 
+def test_lugre_refuses_mu_zero_where_its_bristle_rate_divides_by_it():
+    """LuGre's z' = v - sigma0 |v| z / mu(v) is 0 / 0 at rest where mu =
+    mu_static = 0: the block and a drive failed with a NaN right-hand side at
+    t = 0 (CV_FIRST_RHSFUNC_ERR, found by the drive-train fuzz); a valid
+    law's mu is > 0, and coulomb's mu = 0 is the frictionless thread."""
+    with pytest.raises(ValueError, match=r"^mu = 0 is invalid: must be a finite number in "
+                                         r"\(0, inf\]"):
+        ls.simulate(ls.FrictionBlock(1.0, 0.0, force=1.0), 0.1, friction="lugre")
+    scene = {"concept": "rigid", "thread": {"pitch": 0.003, "mean_diameter": 0.02},
+             "friction": {"law": "lugre", "mu": 0.0}, "load": {"mass": 5.0},
+             "loads": {"drive_torque": 0.01}}
+    with pytest.raises(ValueError, match=r"^friction.mu = 0 is invalid: must be a finite number "
+                                         r"in \(0, inf\]"):
+        ls.simulate(ls.Scene.from_dict(scene), 0.01)
+    scene["friction"] = {"law": "lugre", "mu": 1e-3}
+    assert ls.simulate(ls.Scene.from_dict(scene), 0.01).checks["energy_balance"]["passed"]
+    scene["friction"] = {"law": "coulomb", "mu": 0.0}
+    assert ls.simulate(ls.Scene.from_dict(scene), 0.01).checks["energy_balance"]["passed"]
+
+
 # --- exact Coulomb with a static coefficient: the stick-slip oscillator -------------
 
 

@@ -442,7 +442,8 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
 def _moreau_friction_excess(result: Any, options: dict, ch: Dict[str, np.ndarray]) -> float:
     """What Moreau-Jean's friction booking may create (docs/physics/
     result_checks.md): the sum over the slipping steps of max(0, -(1 - theta)
-    P_T (gamma_1 - gamma_0)), P_T = h friction_force, first order in dt. From
+    P_T (gamma_1 - gamma_0)), P_T = h friction_force, first order in dt, and
+    the same of the train's rotor contact (below). From
     the output rows where they are the steps (no t_eval); with t_eval the
     steps are not in the output and the simulator's own bound stands in (its
     excess is what that bound holds beyond 1e-3 E)."""
@@ -455,7 +456,23 @@ def _moreau_friction_excess(result: Any, options: dict, ch: Dict[str, np.ndarray
     force, slip = ch["friction_force"][1:], ch["slip_velocity"]
     slipping = ch["stick"][1:] == 0
     terms = -(1 - theta) * h * force * np.diff(slip)
-    return float(np.sum(np.where(slipping, np.maximum(terms, 0.0), 0.0)))
+    excess = float(np.sum(np.where(slipping, np.maximum(terms, 0.0), 0.0)))
+    # The train's rotor contact (the motor's friction, a lossy or worm
+    # stage, docs/physics/gear.md): a slipping step books its impulse Q at
+    # the step's end speed, Q w+ (the loss channels' increment), where the
+    # scheme's work is Q w_theta: (1 - theta) Q (w+ - w0) beyond it. The
+    # rotor turns with the driven part (w = n omega_drive), so Q w+ (w+ -
+    # w0) / w+ is the same in omega_drive. (Slipping steps only: a step
+    # that ends stuck books nothing, and its Q is no channel.)
+    train = [ch[name] for name in ("motor_friction_loss", "gear_loss") if name in ch]
+    if train:
+        booked = np.diff(sum(train))
+        omega = ch["omega_drive"]
+        end = omega[1:]
+        moving = end != 0
+        rotor_terms = (1 - theta) * booked * np.diff(omega) / np.where(moving, end, 1.0)
+        excess += float(np.sum(np.where(moving, np.maximum(rotor_terms, 0.0), 0.0)))
+    return excess
 
 
 def _energy_gradient(scene: dict, ch: Dict[str, np.ndarray]) -> float:

@@ -49,6 +49,11 @@ LawType lugre_law() {
              "friction = -|normal| (sigma0 z + sigma1 z') - viscous slip_velocity, mu(v) "
              "Stribeck's curve";
   type.parameters = stribeck_parameters();
+  // mu > 0: the bristle rate divides by mu(v), which is mu at high slip
+  // speed and mu_static (>= mu) at rest; at mu = mu_static = 0 it is 0 / 0
+  // at rest (a NaN right-hand side at t = 0; a frictionless thread is
+  // coulomb's mu = 0).
+  type.parameters[0].low_open = true;
   const double inf = std::numeric_limits<double>::infinity();
   type.parameters.push_back({"sigma0", "1/m",
                              "bristle stiffness per unit normal force (presliding stiffness "

@@ -234,7 +234,10 @@ SCHEMA: Dict[str, Any] = {
                          "backlash.contact 'bistop' or 'cubic': there half A is the nut "
                          "body on its penalty flank, which lifts off beyond the load the "
                          "preload holds, and the play comes back (the nut starts assembled, "
-                         "initial.play_position ignored)", "N", 0.0,
+                         "initial.play_position ignored). At most 0.1 * the nut's axial "
+                         "stiffness * nut.length (10 % axial strain of the nut body), and "
+                         "with penalty play half A's flank penetration at P below half of "
+                         "thread.pitch (the thread's depth)", "N", 0.0,
                          **NONNEGATIVE),
         "preload_stiffness": Field("rate of the split nut's spring (its axial stiffness "
                                    "between the halves; on the rigid concept the spring force "

@@ -152,6 +152,42 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   e.train_friction = f;
 }
 
+// The largest axial strain of the nut body that a preload may cause: 10 %,
+// beyond the elastic range of every nut material (steel and bronze yield
+// near 0.1 to 0.2 % strain, POM and PA near 2 to 4 %) and of the model's
+// linear springs (eq. 4.17). The preload is carried by the nut halves'
+// cross-section: P / k_nut is their compression, k_nut = E A / l the
+// nut's axial stiffness. (docs/physics/preloaded_nut.md, "Valid preloads".)
+constexpr double kLargestPreloadStrain = 0.1;
+
+// A preload the nut could not carry, refused up front (a preload of 1e12 N
+// on penalty flanks ground to CV_TOO_MUCH_WORK at t = 0.02 s without naming
+// it): the nut body's strain P / (k_nut l_nut) at most kLargestPreloadStrain
+// on every concept, and with lift-off half A's flank penetration at the
+// preload, d_0 = f^-1(P), below the thread's depth (half the pitch for
+// trapezoidal and metric threads: a deeper penetration passes the flanks
+// through each other).
+void require_carried_preload(const DriveParameters& p, const DriveElements& e, bool lift_off) {
+  const double strain_limit = kLargestPreloadStrain * p.nut_axial_stiffness * p.nut_length;
+  if (p.nut_axial_stiffness > 0.0 && !(p.nut_preload <= strain_limit))
+    throw InvalidArgument(
+        "nut.preload = " + format_value(p.nut_preload) + " N is invalid: must be <= " +
+        format_value(strain_limit) + " N, what the nut carries (10 % axial strain of its "
+        "body: 0.1 * nut axial stiffness " + format_value(p.nut_axial_stiffness) +
+        " N/m * nut.length " + format_value(p.nut_length) +
+        " m; beyond it no nut material is elastic)");
+  if (!lift_off) return;
+  const double depth = 0.5 * p.thread.pitch();
+  const double penetration = e.thread->penetration_for(p.nut_preload);
+  if (!(penetration < depth))
+    throw InvalidArgument(
+        "nut.preload = " + format_value(p.nut_preload) + " N is invalid with backlash.contact = \"" +
+        backlash_contact_name(p.backlash) + "\": it presses half A's flank in by " +
+        format_value(penetration) + " m (the flank contact's law at the preload), must be below "
+        "the thread's depth, half of thread.pitch = " + format_value(depth) +
+        " m (lower the preload or raise backlash.stiffness)");
+}
+
 void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
@@ -188,6 +224,8 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
                           " (on the rigid concept the relaxed start at rest is the same state)");
+  require_carried_preload(p, e, p.concept != Concept::rigid && p.backlash != BacklashContact::none &&
+                                    p.backlash != BacklashContact::exact);
   PreloadedNut nut;
   nut.preload = p.nut_preload;
   nut.stiffness = p.nut_preload_stiffness;

@@ -108,11 +108,12 @@ def test_bad_arguments(changes, arguments, match):
 
 
 def test_what_a_preloaded_nut_refuses_is_said_up_front():
-    # (A review: a DC motor scene failed in every row, a mu_static in every row but P = 0's.)
-    with pytest.raises(ValueError, match=r"friction\.mu_static = 0\.4 is invalid with "
-                                         r"nut\.preload = 50"):
-        preload_tradeoff(scene().replace(friction={"mu_static": 0.4}), [0.0, 50.0],
-                         progress=False)
+    # (A review: a DC motor scene failed in every row, a mu_static in every row
+    # but P = 0's; mu_static runs now: a regularized law is what is refused.)
+    with pytest.raises(ValueError, match=r"nut\.preload = 50 is invalid with "
+                                         r"friction\.law = \"arctan_velocity\""):
+        preload_tradeoff(scene().replace(friction={"law": "arctan_velocity", "mu": 0.1}),
+                         [0.0, 50.0], progress=False)
     motor = scene().to_dict()
     motor["loads"].pop("drive_torque")
     motor["motor"] = {"type": "dc", "voltage": 12.0, "resistance": 1.0, "torque_constant": 0.02}
@@ -172,3 +173,26 @@ def test_a_flexible_concept_simulates_stiffness_and_creep(backlash):
         np.testing.assert_allclose(stiffness, nut, rtol=1e-2)
         np.testing.assert_allclose(eta, closed, rtol=1e-3)
         np.testing.assert_array_equal(held, [0.0, 10.0, 40.0])
+
+
+def test_with_mu_static_the_efficiency_is_mus_and_the_band_mu_statics():
+    # Coulomb's law with mu_static: the raise slips at mu' (the closed form's
+    # efficiency), the stuck drive holds up to mu_static' (the band): the
+    # creep is zero exactly where that band holds the torque.
+    static = scene().replace(friction={"mu_static": 0.15})
+    preloads = [0.0, 5.0, 20.0]
+    frame = preload_tradeoff(static, preloads, cycles=4, points_per_cycle=40, progress=False)
+    assert frame["error"].isna().all()
+    thread = ls.Thread(1e-3, 20e-3)
+    mu_eff = reference.effective_mu(0.1, thread.flank_angle)
+    expected = [reference.efficiency(10.0, p, thread.lead_angle, mu_eff) for p in preloads]
+    np.testing.assert_allclose(frame["efficiency"], expected, rtol=1e-9)
+    holds = frame["holds_closed_form"].to_numpy(dtype=bool)
+    creep = frame["creep_per_cycle"].to_numpy()
+    assert not holds[0] and holds[-1]
+    np.testing.assert_array_equal(creep[holds], 0.0)
+    assert np.all(np.abs(creep[~holds]) > 1e-9)
+    # mu_static widens the band: P = 20 N holds with it, and creeps with mu alone.
+    plain = preload_tradeoff(scene(), [20.0], cycles=4, points_per_cycle=40, progress=False)
+    assert holds[2] and not plain["holds_closed_form"][0]
+    assert abs(plain["creep_per_cycle"][0]) > 1e-9

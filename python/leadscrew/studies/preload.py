@@ -90,7 +90,10 @@ def preloaded_holding_band(scene: Any, axial_force: float, preload: float,
     T_raise = [half A against F_A + P] + [half B with P], moving with it
     T_lower = [half A with F_A + P] + [half B against P] (each half a power
     screw: raise_torque, lower_torque; a half whose force is negative bears
-    on its other flank). The band is (-T_lower, T_raise) in the sense that
+    on its other flank), at the stick limit: ``friction.mu_static`` where
+    the scene gives one (the halves break free at mu_static': docs/physics/
+    preloaded_nut.md, "Two coefficients"), else ``mu``. The band is
+    (-T_lower, T_raise) in the sense that
     moves against F_A, mapped to the sign of ``loads.drive_torque`` as in
     :func:`~leadscrew.studies.static_holding_band` (P = 0: that band).
 
@@ -104,7 +107,9 @@ def preloaded_holding_band(scene: Any, axial_force: float, preload: float,
         (low, high) [N*m]: the drive holds iff the torque lies strictly inside.
     """
     scene = as_scene(scene)
-    thread, mu = scene.thread, scene["friction"]["mu"]
+    # A stuck drive breaks free at the stick limit: mu_static where given.
+    friction = scene["friction"]
+    thread, mu = scene.thread, friction.get("mu_static", friction["mu"])
     side = 1.0 if loaded_side > 0 else -1.0
     a_force = side * axial_force + preload
     against = _half_torque(thread, mu, a_force, True) + _half_torque(thread, mu, preload, False)

@@ -207,20 +207,21 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
       "without play or with penalty flanks (backlash.contact = \"bistop\" or \"cubic\"), "
-      "with exact Coulomb friction (friction.law = \"coulomb\", no mu_static) and "
+      "with exact Coulomb friction (friction.law = \"coulomb\", mu_static >= mu) and "
       "initial.state = \"relaxed\"";
   if (p.concept != Concept::rigid && p.backlash == BacklashContact::exact)
     throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) +
                           "\" and backlash.contact = \"exact\"" + supported +
                           " (half A lifting off into exact play, its impacts with the spring's "
                           "half on the other flank, is not modelled)");
-  if (!e.thread->law().plain_coulomb()) {
-    if (p.friction == "coulomb")  // Coulomb's law with a static coefficient above mu
-      throw InvalidArgument("friction.mu_static = " + format_value(e.thread->law().mu_static()) +
-                            " is invalid with nut.preload = " + format_value(p.nut_preload) +
-                            ": must equal friction.mu (or be left out)" + supported);
+  // Exact Coulomb, with one coefficient or with mu_static above mu (the
+  // halves stick at mu_static', slip at mu': preloaded_nut.hpp).
+  const friction::Law& law = e.thread->law();
+  const bool coulomb = law.resolution() == friction::Resolution::set_valued &&
+                       law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
+                       law.slip_mu(1.0) == law.mu() && law.mu_static() >= law.mu();
+  if (!coulomb)
     throw InvalidArgument(preload + "with friction.law = \"" + p.friction + "\"" + supported);
-  }
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
                           " (on the rigid concept the relaxed start at rest is the same state)");
@@ -230,6 +231,7 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   nut.preload = p.nut_preload;
   nut.stiffness = p.nut_preload_stiffness;
   nut.mu = e.thread->effective_mu();
+  nut.mu_static = law.mu_static() * e.thread->flank_factor();
   const double alpha = p.thread.lead_angle();
   nut.cos_lead = std::cos(alpha);
   nut.sin_lead = std::sin(alpha);

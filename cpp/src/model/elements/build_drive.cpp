@@ -213,7 +213,11 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
     throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) +
                           "\" and backlash.contact = \"exact\"" + supported +
                           " (half A lifting off into exact play, its impacts with the spring's "
-                          "half on the other flank, is not modelled)");
+                          "half on the other flank, is not modelled: docs/physics/"
+                          "preloaded_nut.md, \"Exact play: what it takes\"); use "
+                          "backlash.contact = \"bistop\" or \"cubic\" with "
+                          "nut.preload_stiffness > 0, or leave the backlash out (the preload "
+                          "closes the play while it holds the load)");
   // Exact Coulomb, with one coefficient or with mu_static above mu (the
   // halves stick at mu_static', slip at mu': preloaded_nut.hpp).
   const friction::Law& law = e.thread->law();

@@ -118,3 +118,14 @@ def test_the_flexible_concepts_run_with_mu_static(concept, backlash):
     result = ls.simulate(ls.Scene.from_dict(scene), 1.3 * expected / rate)
     stuck = result["stick"] == 1.0
     assert stuck[0] and not stuck[-1] and all_checks_pass(result)
+
+
+def test_a_static_coefficient_that_locks_half_b_is_refused():
+    # mu_static' tan(a) >= 1: half B's flank force at the stick limit has no
+    # finite value (its spring would lock it): refused, naming mu_static.
+    steep = {"pitch": 40e-3, "mean_diameter": 20e-3}  # tan(a) = 0.64
+    scene = static_scene(mu_static=2.0, thread=steep)
+    with pytest.raises(ValueError, match=r"friction\.mu_static = 2 is invalid with "
+                                         r"nut\.preload = 50: mu_static' tan\(lead angle\) = "
+                                         r".* >= 1"):
+        ls.simulate(ls.Scene.from_dict(scene), 0.01)

@@ -244,6 +244,14 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
                           format_value(nut.mu * std::tan(alpha)) +
                           " >= 1: the preload half would lock against its own spring "
                           "(lower friction.mu or the lead)");
+  // The same at the stick limit (the edges at mu_static', preloaded_nut.hpp).
+  if (!(nut.cos_lead - nut.mu_static * nut.sin_lead > 0.0))
+    throw InvalidArgument("friction.mu_static = " + format_value(law.mu_static()) +
+                          " is invalid with nut.preload = " + format_value(p.nut_preload) +
+                          ": mu_static' tan(lead angle) = " +
+                          format_value(nut.mu_static * std::tan(alpha)) +
+                          " >= 1, the preload half would lock against its own spring at rest "
+                          "(must be < 1: lower friction.mu_static or the lead)");
   // Half A carries the axial load at t = 0 (its flank: the sign of the normal
   // force the load alone puts on the screw); half B bears on the other flank.
   // No load at t = 0: half A on the flank of lambda_N > 0.

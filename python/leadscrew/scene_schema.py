@@ -227,14 +227,18 @@ SCHEMA: Dict[str, Any] = {
                          "load presses at t = 0 carries the load plus P, the other P; both slip "
                          "together, so the torque to raise a load F is r_m [(F + P) "
                          "tan(alpha + rho') + P tan(rho' - alpha)]. Supported with friction.law "
-                         "'coulomb' (no mu_static), the event-driven integrator and "
+                         "'coulomb' (mu_static >= mu: the halves stick at mu_static', slip at mu'), "
+                         "the event-driven integrator and "
                          "initial.state 'relaxed', on concept 'rigid' (there it closes a "
                          "backlash: the thread without play, initial.play_position ignored) "
                          "and on the flexible concepts, without play or with "
                          "backlash.contact 'bistop' or 'cubic': there half A is the nut "
                          "body on its penalty flank, which lifts off beyond the load the "
                          "preload holds, and the play comes back (the nut starts assembled, "
-                         "initial.play_position ignored)", "N", 0.0,
+                         "initial.play_position ignored). At most 0.1 * the nut's axial "
+                         "stiffness * nut.length (10 % axial strain of the nut body), and "
+                         "with penalty play half A's flank penetration at P below half of "
+                         "thread.pitch (the thread's depth)", "N", 0.0,
                          **NONNEGATIVE),
         "preload_stiffness": Field("rate of the split nut's spring (its axial stiffness "
                                    "between the halves; on the rigid concept the spring force "

@@ -23,7 +23,7 @@ from ..excitation import Sine, check_load_unit
 from ..scene import _DEFAULT_DRIVE_TORQUE, Scene
 from ..simulation import simulate
 from ..thread import lower_torque, raise_torque
-from ._common import (as_scene, check_count, check_finite, check_positive, constant_value,
+from ._common import (as_scene, check_count, gear_ratio, check_finite, check_positive, constant_value,
                       in_unit)
 
 __all__ = ["cycle_response", "alternating_scene", "static_holding_band", "check_cycles"]
@@ -344,7 +344,9 @@ def cycle_response(scene: Scene, frequency: float, cycles: int, settle_cycles: i
     k = np.arange(settle_cycles, cycles + 1, dtype=float)
     k -= k.mean()
     thread = scene.thread
-    turn = float(np.dot(k, angle - angle.mean()) / np.dot(k, k))
+    # (phi_drive is the rotor's; the driven part turns by phi_drive / n: an
+    # ideal gear stage of ratio n, 1 without one.)
+    turn = float(np.dot(k, angle - angle.mean()) / np.dot(k, k)) / gear_ratio(scene)
     creep = -thread.hand_sign * thread.lead_per_radian * turn
     start = t_eval[first]
     separations = sum(1 for event in result.events

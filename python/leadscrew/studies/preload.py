@@ -43,6 +43,34 @@ nut at any preload (no lift-off), and
 and ``holds_closed_form`` stay the rigid drive's (the flexible drive's
 quasi-static thread forces; with play the spring's force in steady raising
 is P less k_p times half A's added penetration).
+
+The drive train (the shipped ``seat_adjuster``; docs/physics/
+preloaded_nut.md, "The study on a drive train"):
+
+- **a DC motor** is replaced by the study's own drive: the efficiency run
+  prescribes the speed, the creep runs hold the scene's constant
+  ``loads.drive_torque``, 0 for a motor scene (the motor unpowered; a
+  shorted winding's back-EMF braking is left out, so the creep is the
+  larger one). ``attrs["summary"]["motor_replaced"]`` says so.
+- **an ideal gear stage** of ratio n stays: the rotor turns at n times
+  ``speed`` (``speed`` is the driven part's), its torque acts n-fold on the
+  driven part (the holding band compares n M), the creep is the driven
+  part's turning. The closed form of the efficiency stays the thread's;
+  ``train_efficiency`` is the simulated whole train's (every loss of the
+  run: the thread's, and a lossy or worm stage's and a motor's own friction
+  where the core runs them; the ideal stage's equals ``efficiency``). A
+  lossy or worm stage with a preload is refused by the core, which says
+  what to do (``gear.type = "ideal"`` or ``nut.preload = 0``).
+- **exact play on a flexible concept** (``backlash.contact = "exact"``):
+  half A lifting off into the exact play is not modelled, so at P > 0 the
+  study runs the thread without play, the preload closing it as on the
+  rigid concept (``attrs["summary"]["play_closed"]``). That is exact while
+  the load never presses half B's flank beyond the preload: always in the
+  efficiency run (the load presses half A), and in the creep run where the
+  vibration's reversed peak R = A - F is at most P. A row with R > P keeps
+  its efficiency and says in ``error`` that its creep and stiffness need
+  penalty play (``"bistop"`` with ``nut.preload_stiffness``). P = 0 runs
+  the scene's exact play (the plain nut rattles in it).
 """
 
 from __future__ import annotations
@@ -57,7 +85,7 @@ import pandas as pd
 from .. import _core
 from ..thread import lower_torque, raise_torque
 from ._common import (annotate, as_scene, axes, check_grid, check_positive, constant_value,
-                      numeric_or_nan, with_tolerances)
+                      gear_ratio, numeric_or_nan, with_tolerances)
 from ._holding_runs import (_alternating_excitation, _constant_torque, _scene_sine,
                             alternating_scene, check_cycles, cycle_response)
 from ._sweep import run_cases
@@ -66,7 +94,7 @@ __all__ = ["preload_tradeoff", "plot_preload_tradeoff", "preloaded_holding_band"
            "lift_off_spring_force"]
 
 UNITS = {"preload": "N", "efficiency": "1", "efficiency_closed_form": "1",
-         "relative_error": "1", "held_reverse_load": "N", "axial_stiffness": "N/m",
+         "relative_error": "1", "train_efficiency": "1", "held_reverse_load": "N", "axial_stiffness": "N/m",
          "creep_per_cycle": "m", "max_displacement": "m", "holds_closed_form": "",
          "wall_time": "s", "error": ""}
 
@@ -81,8 +109,9 @@ def _half_torque(thread, mu: float, axial: float, against: bool) -> float:
 
 def preloaded_holding_band(scene: Any, axial_force: float, preload: float,
                            loaded_side: float) -> Tuple[float, float]:
-    """Drive torques [N*m] a stuck rigid drive with a preloaded nut holds
-    under a static axial force (docs/physics/preloaded_nut.md, "Holding").
+    """Drive torques [N*m] on the driven part (a gear stage's rotor torque
+    times its ratio) a stuck rigid drive with a preloaded nut holds under a
+    static axial force (docs/physics/preloaded_nut.md, "Holding").
 
     Half A bears on the flank that a force of sign ``loaded_side`` presses
     (the scene's axial force at t = 0), carrying F_A + P with F_A =
@@ -90,7 +119,10 @@ def preloaded_holding_band(scene: Any, axial_force: float, preload: float,
     T_raise = [half A against F_A + P] + [half B with P], moving with it
     T_lower = [half A with F_A + P] + [half B against P] (each half a power
     screw: raise_torque, lower_torque; a half whose force is negative bears
-    on its other flank). The band is (-T_lower, T_raise) in the sense that
+    on its other flank), at the stick limit: ``friction.mu_static`` where
+    the scene gives one (the halves break free at mu_static': docs/physics/
+    preloaded_nut.md, "Two coefficients"), else ``mu``. The band is
+    (-T_lower, T_raise) in the sense that
     moves against F_A, mapped to the sign of ``loads.drive_torque`` as in
     :func:`~leadscrew.studies.static_holding_band` (P = 0: that band).
 
@@ -103,8 +135,10 @@ def preloaded_holding_band(scene: Any, axial_force: float, preload: float,
     Returns:
         (low, high) [N*m]: the drive holds iff the torque lies strictly inside.
     """
-    scene = as_scene(scene)
-    thread, mu = scene.thread, scene["friction"]["mu"]
+    scene = as_scene(scene, gear=True)
+    # A stuck drive breaks free at the stick limit: mu_static where given.
+    friction = scene["friction"]
+    thread, mu = scene.thread, friction.get("mu_static", friction["mu"])
     side = 1.0 if loaded_side > 0 else -1.0
     a_force = side * axial_force + preload
     against = _half_torque(thread, mu, a_force, True) + _half_torque(thread, mu, preload, False)
@@ -120,7 +154,7 @@ def _efficiency_case(scene, load: float, speed: float, t_end: float,
     """eta = 1 - W_friction / W_in over the second half of a raising run."""
     from ..simulation import simulate
 
-    omega = -scene.thread.hand_sign * speed
+    omega = -scene.thread.hand_sign * speed * gear_ratio(scene)  # the rotor's
     running = scene.replace(loads={"drive_torque": None, "drive_speed": omega,
                                    "axial_force": -load},
                             initial={"rotor_speed": omega, "state": "relaxed"})
@@ -128,14 +162,43 @@ def _efficiency_case(scene, load: float, speed: float, t_end: float,
     result = simulate(running, t_end, t_eval=t_eval, **options)
     work = result["work_drive"][2] - result["work_drive"][1]
     loss = result["friction_loss"][2] - result["friction_loss"][1]
-    return {"efficiency": (work - loss) / work, "wall_time": float(result.stats["wall_time"])}
+    # The whole train's: every loss of the run (the thread's, an ideal
+    # stage's none; a lossy or worm stage's and a motor's own friction where
+    # the core runs them).
+    train = loss + sum(result[name][2] - result[name][1] for name in _TRAIN_LOSSES
+                       if name in result.channels)
+    return {"efficiency": (work - loss) / work, "train_efficiency": (work - train) / work,
+            "wall_time": float(result.stats["wall_time"])}
+
+
+#: The train's losses besides the thread's friction (channels of a run).
+_TRAIN_LOSSES = ("gear_loss", "motor_friction_loss")
+
+
+def _closes_the_play(scene, preload: float) -> bool:
+    """Whether the study runs ``scene`` at ``preload`` with the play closed:
+    exact play on a flexible concept with a preload (module docstring)."""
+    contact = scene["backlash"]["contact"] if "backlash" in scene else None
+    return preload > 0.0 and scene["concept"] != "rigid" and contact == "exact"
 
 
 def _case(preload: float, scene, load: float, speed: float, t_end: float, amplitude: float,
           frequency: float, cycles: int, settle_cycles: int, points_per_cycle: int,
           options: Dict[str, Any]) -> Dict[str, Any]:
     preloaded = scene.replace(nut={"preload": preload})
+    closed_play = _closes_the_play(scene, preload)
+    if closed_play:  # the preload closes the exact play (module docstring)
+        preloaded = preloaded.replace(backlash=None)
     out = _efficiency_case(preloaded, load, speed, t_end, options)
+    if closed_play and max(0.0, amplitude - load) > preload:
+        # The vibration presses half B's flank beyond the preload: half A
+        # would lift off into the exact play, which the core does not model.
+        out["error"] = (f"nut.preload = {preload:g} N holds less than the vibration's reversed "
+                        f"peak {amplitude - load:g} N: half A would lift off into the exact "
+                        "play, which is not modelled (docs/physics/preloaded_nut.md); give "
+                        "the scene penalty play (backlash.contact = \"bistop\" with "
+                        "nut.preload_stiffness) for its creep and stiffness")
+        return out
     excited = alternating_scene(preloaded, amplitude, frequency, offset=-load)
     flexible = scene["concept"] != "rigid"
     creep = cycle_response(excited, frequency, cycles, settle_cycles, points_per_cycle,
@@ -150,7 +213,9 @@ def _case(preload: float, scene, load: float, speed: float, t_end: float, amplit
         # the thread's turning), in the settled cycles.
         result, thread = creep["result"], scene.thread
         settled = creep["t"] >= settle_cycles / frequency
-        place = result["u_load"] + thread.hand_sign * thread.lead_per_radian * result["phi_drive"]
+        # (phi_drive is the rotor's: the driven part turns by phi_drive / n.)
+        turned = result["phi_drive"] / gear_ratio(scene)
+        place = result["u_load"] + thread.hand_sign * thread.lead_per_radian * turned
         out["axial_stiffness"] = 2.0 * amplitude / float(np.ptp(place[settled]))
     return out
 
@@ -171,7 +236,7 @@ def lift_off_spring_force(scene: Any) -> Optional[Tuple[float, float]]:
     Raises:
         ValueError: the scene's check.
     """
-    scene = as_scene(scene)
+    scene = as_scene(scene, gear=True)
     preload = float(scene["nut"]["preload"])
     contact = scene["backlash"]["contact"] if "backlash" in scene else None
     if scene["concept"] == "rigid" or contact not in ("bistop", "cubic") or preload <= 0.0:
@@ -208,13 +273,18 @@ def preload_tradeoff(
 
     Args:
         scene: a :class:`~leadscrew.Scene` (or scene dict) with a constant ``loads.drive_torque`` (the torque the drive holds
-            against; 0 for a scene without one).
+            against; 0 for a scene without one), or a DC motor (replaced),
+            an ideal gear stage (module docstring).
         preloads: the preloads P [N], >= 0.
         load: the static load [N], > 0 (default: the magnitude of the scene's
             static axial force, a constant or its sine's offset).
-        speed: rotor speed of the efficiency run [rad/s], > 0.
+        speed: speed of the driven part (the rotor's without a gear stage,
+            the rotor turning at n times it with one) in the efficiency run
+            [rad/s], > 0.
         t_end: duration of the efficiency run [s], > 0 (the rigid drive is
-            steady at once).
+            steady at once; a flexible drive's springs settle over its
+            first part: the seat adjuster's efficiency is within 8 % of
+            the closed form at 0.05 s, 3e-5 at 1 s).
         amplitude: the vibration's amplitude [N], > 0 (default: the scene's
             sine's, else 30 N).
         frequency: its frequency [Hz], > 0 (default: the scene's sine's,
@@ -229,31 +299,39 @@ def preload_tradeoff(
 
     Returns:
         DataFrame with one row per preload: ``preload`` [N], ``efficiency``
-        [1], ``efficiency_closed_form`` [1], ``relative_error`` [1],
+        [1], ``efficiency_closed_form`` [1], ``relative_error`` [1], ``train_efficiency`` [1] (the whole train's),
         ``held_reverse_load`` [N], ``axial_stiffness`` [N/m],
         ``creep_per_cycle`` [m] (signed along +x), ``max_displacement`` [m],
         ``holds_closed_form`` (bool), ``wall_time`` [s, C++] and ``error``
-        (None, or the message of a failed case, whose numbers are NaN).
+        (None, or the message of a failed case, whose numbers are NaN; a
+        row whose creep run is not modelled keeps its efficiency).
         ``attrs["summary"]``: ``load`` [N], ``amplitude`` [N], ``frequency``
         [Hz], ``reversed_load`` [N] (max(0, amplitude - load)), ``drive_torque`` [N*m], ``preload_stiffness`` [N/m],
-        ``excitation_from``, ``raised``, ``raised_reasons``.
+        ``excitation_from``, ``gear_ratio`` [1], ``motor_replaced``,
+        ``play_closed``, ``raised``, ``raised_reasons``.
 
     Raises:
-        ValueError: invalid scene (what a preloaded nut refuses, no
-            constant drive torque, no static load and no ``load``) or
-            arguments.
+        ValueError: invalid scene (what a preloaded nut refuses: a lossy or
+            worm stage, a law other than exact Coulomb, ...; no constant
+            drive torque, no static load and no ``load``) or arguments.
         TypeError: an unknown keyword in ``simulate_options``.
     """
-    scene = as_scene(scene)
+    scene = as_scene(scene, gear=True)
     preloads = check_grid("preloads", preloads, allow_zero=True, unit="N")
-    if "motor" in scene:
-        raise ValueError("motor = {'type': 'dc', ...} is invalid for preload_tradeoff: its "
-                         "efficiency run prescribes the rotor's speed and its creep runs hold "
-                         "the scene's constant loads.drive_torque (leave the motor out)")
-    # What a preloaded nut refuses (the friction law's mu_static, the start, ...),
-    # said once, up front, rather than in every row but P = 0's.
+    # The study drives the driven part itself: a DC motor is replaced by its
+    # own drive (a prescribed speed raising, the scene's constant drive
+    # torque at rest: 0 with the motor unpowered). A gear stage stays: its
+    # ratio scales the rotor's speed and torque (module docstring).
+    motor = scene.to_dict().get("motor")
+    if motor is not None:
+        scene = scene.replace(motor=None)
+    # What a preloaded nut refuses (a lossy or worm stage, the law, the
+    # start, ...), said once, up front, rather than in every row but P = 0's.
     if preloads.max() > 0.0:
-        scene.replace(nut={"preload": float(preloads.max())}).model()
+        largest = scene.replace(nut={"preload": float(preloads.max())})
+        if _closes_the_play(scene, float(preloads.max())):
+            largest = largest.replace(backlash=None)
+        largest.model()
     torque = _constant_torque(scene)
     if load is None:
         load = abs(_static_force(scene))
@@ -282,6 +360,7 @@ def preload_tradeoff(
     for preload, expected, outcome in zip(preloads, closed, outcomes):
         value = outcome.value or {}
         eta = numeric_or_nan(value.get("efficiency"))
+        error = outcome.error or value.get("error")
         held = preload
         if flexible:  # simulated; half A lifts off at the spring's P + k_p d_0
             secant = numeric_or_nan(value.get("axial_stiffness"))
@@ -298,23 +377,27 @@ def preload_tradeoff(
         if forces[0] < preload < forces[1]:
             forces.append(preload)
         bands = [preloaded_holding_band(scene, force, preload, -1.0) for force in forces]
+        driven = torque * gear_ratio(scene)  # the rotor's torque on the driven part
         rows.append({
             "preload": preload, "efficiency": eta, "efficiency_closed_form": float(expected),
             "relative_error": abs(eta - expected) / expected if expected > 0 else abs(eta),
+            "train_efficiency": numeric_or_nan(value.get("train_efficiency")),
             "held_reverse_load": held, "axial_stiffness": secant,
             "creep_per_cycle": numeric_or_nan(value.get("creep_per_cycle")),
             "max_displacement": numeric_or_nan(value.get("max_displacement")),
-            "holds_closed_form": all(low < torque < high or low == torque == high
+            "holds_closed_form": all(low < driven < high or low == driven == high
                                      for low, high in bands),
-            "wall_time": numeric_or_nan(value.get("wall_time")), "error": outcome.error})
+            "wall_time": numeric_or_nan(value.get("wall_time")), "error": error})
     frame = pd.DataFrame(rows, columns=list(UNITS))
     return annotate(frame, UNITS, study="preload_tradeoff",
                     summary_units={"load": "N", "amplitude": "N", "frequency": "Hz",
                                    "reversed_load": "N", "drive_torque": "N*m",
-                                   "preload_stiffness": "N/m"},
+                                   "preload_stiffness": "N/m", "gear_ratio": "1"},
                     load=load, amplitude=amplitude, frequency=frequency,
                     reversed_load=reversed_load, drive_torque=torque,
-                    preload_stiffness=stiffness, excitation_from=excitation_from)
+                    preload_stiffness=stiffness, excitation_from=excitation_from,
+                    gear_ratio=gear_ratio(scene), motor_replaced=motor is not None,
+                    play_closed=_closes_the_play(scene, float(preloads.max())))
 
 
 def _static_force(scene) -> float:

@@ -34,13 +34,13 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
         g[0] = std::abs(solver_->slip_velocity(y));
       } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut() &&
                  model_.preloaded_nut()->lift_off) {
-        g[0] = model_.preloaded_nut()->split_stick_margin(
+        g[0] = model_.preloaded_nut()->sticking().split_stick_margin(
             dynamics_.penalty_normal_force(), dynamics_.preload_spring_force(), s.friction_force);
       } else if (mode_.friction == FrictionMode::stick && train_) {
         g[0] = train_->stick_margin();  // the static stick test: >= 0 while it holds
         if (g[0] > 0.0) stick_from_zero_ = false;
       } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut()) {
-        g[0] = model_.preloaded_nut()->stick_margin(s.normal_force, s.friction_force);
+        g[0] = model_.preloaded_nut()->sticking().stick_margin(s.normal_force, s.friction_force);
         if (g[0] > 0.0) stick_from_zero_ = false;
       } else if (mode_.friction == FrictionMode::stick) {
         g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);

@@ -186,10 +186,23 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
     // The preloaded nut: the LCP's decision by its three cases (its bound
     // depends on the slip's direction; preloaded_nut.hpp). Lift-off: half
     // A's normal force is the penalty flanks' (given), the edges constants.
-    const friction::FlankLcpResult r =
-        lift_off ? nut->decide_split(c, d, dynamics_.penalty_normal_force(),
-                                     dynamics_.preload_spring_force())
-                 : nut->decide(c, d, alpha, beta);
+    // With mu_static above mu: stick where the element at mu_static' sticks
+    // (the two-step test), else the slip's direction at mu'.
+    auto decide = [&](const elements::PreloadedNut& at) {
+      return lift_off ? at.decide_split(c, d, dynamics_.penalty_normal_force(),
+                                        dynamics_.preload_spring_force())
+                      : at.decide(c, d, alpha, beta);
+    };
+    if (nut->two_coefficients() && hint == 0) {
+      const friction::FlankLcpResult rest = decide(nut->sticking());
+      ++lcp_solves_;
+      if (rest.consistent && rest.slip_acceleration == 0.0) {
+        mode_.friction = FrictionMode::stick;
+        mode_.slip_sign = 0;
+        return;
+      }
+    }
+    const friction::FlankLcpResult r = decide(*nut);
     ++lcp_solves_;
     if (!r.consistent)
       jam(lift_off ? "the preloaded nut's friction has no slip acceleration to decide by"

@@ -5,6 +5,7 @@
 // with lift-off, an element of the event-driven driver (driver_element.hpp)
 // without roots: its channels' values. Its forces enter through
 // DriveDynamics (solve, the penalty flank of half A).
+#include <algorithm>
 #include <cmath>
 
 #include "driver_element.hpp"
@@ -29,8 +30,18 @@ void declare(const DriveModel& model, bool bristle, Declaration& d) {
     d.channels = preloaded_nut_kind().catalog;
     d.stiffness = nut->stiffness;
   } else {
+    // With mu_static above mu the cone's bound in stick is the element's at
+    // mu_static' (half B's edge state at mu_static'): where the row does
+    // not slip at mu' (|T| off mu' times the flank normal beyond round-off),
+    // the larger of the two normals, so that mu_static' times it bounds the
+    // stick force. (A slipping row's is mu''s: the law's check.)
     d.flank_normal = [nut = *nut](double normal, double friction) {
-      return nut.flank_normal(normal, friction);
+      const double slipping = nut.flank_normal(normal, friction);
+      if (!nut.two_coefficients() ||
+          std::abs(std::abs(friction) - nut.mu * slipping) <=
+              1e-9 * (std::abs(friction) + nut.mu * slipping))
+        return slipping;
+      return std::max(slipping, nut.sticking().flank_normal(normal, friction));
     };
   }
 }
@@ -67,7 +78,7 @@ class LiftOffNutElement final : public DriveHybrid::Element {
     values[kFlankNormal] =
         mode().friction == FrictionMode::slip
             ? std::abs(normal_a) + std::abs(nut_.normal(mode().slip_sign, preload))
-            : nut_.split_flank_normal(normal_a, preload, forces.friction);
+            : nut_.sticking().split_flank_normal(normal_a, preload, forces.friction);
   }
 
  private:

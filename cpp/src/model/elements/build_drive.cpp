@@ -152,6 +152,42 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   e.train_friction = f;
 }
 
+// The largest axial strain of the nut body that a preload may cause: 10 %,
+// beyond the elastic range of every nut material (steel and bronze yield
+// near 0.1 to 0.2 % strain, POM and PA near 2 to 4 %) and of the model's
+// linear springs (eq. 4.17). The preload is carried by the nut halves'
+// cross-section: P / k_nut is their compression, k_nut = E A / l the
+// nut's axial stiffness. (docs/physics/preloaded_nut.md, "Valid preloads".)
+constexpr double kLargestPreloadStrain = 0.1;
+
+// A preload the nut could not carry, refused up front (a preload of 1e12 N
+// on penalty flanks ground to CV_TOO_MUCH_WORK at t = 0.02 s without naming
+// it): the nut body's strain P / (k_nut l_nut) at most kLargestPreloadStrain
+// on every concept, and with lift-off half A's flank penetration at the
+// preload, d_0 = f^-1(P), below the thread's depth (half the pitch for
+// trapezoidal and metric threads: a deeper penetration passes the flanks
+// through each other).
+void require_carried_preload(const DriveParameters& p, const DriveElements& e, bool lift_off) {
+  const double strain_limit = kLargestPreloadStrain * p.nut_axial_stiffness * p.nut_length;
+  if (p.nut_axial_stiffness > 0.0 && !(p.nut_preload <= strain_limit))
+    throw InvalidArgument(
+        "nut.preload = " + format_value(p.nut_preload) + " N is invalid: must be <= " +
+        format_value(strain_limit) + " N, what the nut carries (10 % axial strain of its "
+        "body: 0.1 * nut axial stiffness " + format_value(p.nut_axial_stiffness) +
+        " N/m * nut.length " + format_value(p.nut_length) +
+        " m; beyond it no nut material is elastic)");
+  if (!lift_off) return;
+  const double depth = 0.5 * p.thread.pitch();
+  const double penetration = e.thread->penetration_for(p.nut_preload);
+  if (!(penetration < depth))
+    throw InvalidArgument(
+        "nut.preload = " + format_value(p.nut_preload) + " N is invalid with backlash.contact = \"" +
+        backlash_contact_name(p.backlash) + "\": it presses half A's flank in by " +
+        format_value(penetration) + " m (the flank contact's law at the preload), must be below "
+        "the thread's depth, half of thread.pitch = " + format_value(depth) +
+        " m (lower the preload or raise backlash.stiffness)");
+}
+
 void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
@@ -171,27 +207,35 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
       "without play or with penalty flanks (backlash.contact = \"bistop\" or \"cubic\"), "
-      "with exact Coulomb friction (friction.law = \"coulomb\", no mu_static) and "
+      "with exact Coulomb friction (friction.law = \"coulomb\", mu_static >= mu) and "
       "initial.state = \"relaxed\"";
   if (p.concept != Concept::rigid && p.backlash == BacklashContact::exact)
     throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) +
                           "\" and backlash.contact = \"exact\"" + supported +
                           " (half A lifting off into exact play, its impacts with the spring's "
-                          "half on the other flank, is not modelled)");
-  if (!e.thread->law().plain_coulomb()) {
-    if (p.friction == "coulomb")  // Coulomb's law with a static coefficient above mu
-      throw InvalidArgument("friction.mu_static = " + format_value(e.thread->law().mu_static()) +
-                            " is invalid with nut.preload = " + format_value(p.nut_preload) +
-                            ": must equal friction.mu (or be left out)" + supported);
+                          "half on the other flank, is not modelled: docs/physics/"
+                          "preloaded_nut.md, \"Exact play: what it takes\"); use "
+                          "backlash.contact = \"bistop\" or \"cubic\" with "
+                          "nut.preload_stiffness > 0, or leave the backlash out (the preload "
+                          "closes the play while it holds the load)");
+  // Exact Coulomb, with one coefficient or with mu_static above mu (the
+  // halves stick at mu_static', slip at mu': preloaded_nut.hpp).
+  const friction::Law& law = e.thread->law();
+  const bool coulomb = law.resolution() == friction::Resolution::set_valued &&
+                       law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
+                       law.slip_mu(1.0) == law.mu() && law.mu_static() >= law.mu();
+  if (!coulomb)
     throw InvalidArgument(preload + "with friction.law = \"" + p.friction + "\"" + supported);
-  }
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
                           " (on the rigid concept the relaxed start at rest is the same state)");
+  require_carried_preload(p, e, p.concept != Concept::rigid && p.backlash != BacklashContact::none &&
+                                    p.backlash != BacklashContact::exact);
   PreloadedNut nut;
   nut.preload = p.nut_preload;
   nut.stiffness = p.nut_preload_stiffness;
   nut.mu = e.thread->effective_mu();
+  nut.mu_static = law.mu_static() * e.thread->flank_factor();
   const double alpha = p.thread.lead_angle();
   nut.cos_lead = std::cos(alpha);
   nut.sin_lead = std::sin(alpha);
@@ -200,6 +244,14 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
                           format_value(nut.mu * std::tan(alpha)) +
                           " >= 1: the preload half would lock against its own spring "
                           "(lower friction.mu or the lead)");
+  // The same at the stick limit (the edges at mu_static', preloaded_nut.hpp).
+  if (!(nut.cos_lead - nut.mu_static * nut.sin_lead > 0.0))
+    throw InvalidArgument("friction.mu_static = " + format_value(law.mu_static()) +
+                          " is invalid with nut.preload = " + format_value(p.nut_preload) +
+                          ": mu_static' tan(lead angle) = " +
+                          format_value(nut.mu_static * std::tan(alpha)) +
+                          " >= 1, the preload half would lock against its own spring at rest "
+                          "(must be < 1: lower friction.mu_static or the lead)");
   // Half A carries the axial load at t = 0 (its flank: the sign of the normal
   // force the load alone puts on the screw); half B bears on the other flank.
   // No load at t = 0: half A on the flank of lambda_N > 0.

@@ -36,8 +36,22 @@ struct PreloadedNut {
   double preload = 0.0;    // P [N] > 0: the spring's axial force between the halves
   double stiffness = 0.0;  // k_p [N/m] >= 0: the spring's rate (0: not given)
   double mu = 0.0;         // mu' = mu / cos(beta / 2)
+  // mu_static' (Coulomb's law with friction.mu_static >= mu): the halves
+  // stick while the friction lies in the bound at mu_static' (half B at its
+  // edge's state at mu_static'), and slip at mu'. Equal to mu: one coefficient.
+  double mu_static = 0.0;
   double cos_lead = 1.0, sin_lead = 0.0;
   int side = -1;  // half B's normal-force sign on the screw (half A's is -side)
+
+  // The element at the stick limit: its bounds, edges and stick margins at
+  // mu_static' (itself where mu_static' <= mu'). The breakaway from stick is
+  // decided by it, the slip's forces by the element itself.
+  PreloadedNut sticking() const noexcept {
+    PreloadedNut at_rest = *this;
+    at_rest.mu = std::max(mu, mu_static);
+    return at_rest;
+  }
+  bool two_coefficients() const noexcept { return mu_static > mu; }
 
   // Half B's normal and friction force while the nut slips in direction s (+-1) [N].
   double normal(int s) const noexcept {
@@ -134,10 +148,13 @@ struct PreloadedNut {
 
   // The same where the motor prescribes the slip (d = 0,
   // friction::solve_flank_prescribed_slip): slip in the direction of c where
-  // c != 0; at c = 0 stick, with the friction force in [T_+, T_-] that
-  // leaves the motor (motor0 + motor1 T) the least torque.
+  // c != 0; at c = 0 stick, with the friction force in [T_+, T_-] (at
+  // mu_static', the stick's band) that leaves the motor (motor0 + motor1 T)
+  // the least torque.
   friction::FlankLcpResult prescribed_slip(double c, bool slip_zero, double alpha, double beta,
                                            double motor0, double motor1) const {
+    if (slip_zero && two_coefficients())
+      return sticking().prescribed_slip(c, true, alpha, beta, motor0, motor1);
     friction::FlankLcpResult r;
     r.status = lcp::Status::solved;
     if (!slip_zero) {

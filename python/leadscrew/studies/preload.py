@@ -77,6 +77,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from typing import Any, Dict, Optional, Sequence, Tuple
 
 import numpy as np
@@ -84,6 +85,7 @@ import pandas as pd
 
 from .. import _core
 from ..thread import lower_torque, raise_torque
+from ..errors import StudyWarning
 from ._common import (annotate, as_scene, axes, check_grid, check_positive, constant_value,
                       gear_ratio, numeric_or_nan, with_tolerances)
 from ._holding_runs import (_alternating_excitation, _constant_torque, _scene_sine,
@@ -94,7 +96,8 @@ __all__ = ["preload_tradeoff", "plot_preload_tradeoff", "preloaded_holding_band"
            "lift_off_spring_force"]
 
 UNITS = {"preload": "N", "efficiency": "1", "efficiency_closed_form": "1",
-         "relative_error": "1", "train_efficiency": "1", "held_reverse_load": "N", "axial_stiffness": "N/m",
+         "relative_error": "1", "train_efficiency": "1", "efficiency_change": "1",
+         "efficiency_t_end": "s", "held_reverse_load": "N", "axial_stiffness": "N/m",
          "creep_per_cycle": "m", "max_displacement": "m", "holds_closed_form": "",
          "wall_time": "s", "error": ""}
 
@@ -151,24 +154,58 @@ def preloaded_holding_band(scene: Any, axial_force: float, preload: float,
 
 def _efficiency_case(scene, load: float, speed: float, t_end: float,
                      options: Dict[str, Any]) -> Dict[str, Any]:
-    """eta = 1 - W_friction / W_in over the second half of a raising run."""
-    from ..simulation import simulate
-
+    """eta = 1 - W_friction / W_in over the second half of a raising run,
+    lengthened (t_end doubled, up to LONGEST_EFFICIENCY_RUN times) until the
+    efficiency is steady over that window."""
     omega = -scene.thread.hand_sign * speed * gear_ratio(scene)  # the rotor's
     running = scene.replace(loads={"drive_torque": None, "drive_speed": omega,
                                    "axial_force": -load},
                             initial={"rotor_speed": omega, "state": "relaxed"})
-    t_eval = np.array([0.0, 0.5 * t_end, t_end])
+    wall_time = 0.0
+    run_end = t_end
+    while True:
+        out = _efficiency_run(running, run_end, options)
+        wall_time += out["wall_time"]
+        if out["efficiency_change"] <= STEADY_CHANGE or run_end >= LONGEST_EFFICIENCY_RUN * t_end:
+            return dict(out, wall_time=wall_time, efficiency_t_end=run_end)
+        run_end *= 2.0
+
+
+#: The efficiency_change beyond which an efficiency run is not steady, and
+#: how much longer than the study's t_end the study lets it run to get there.
+STEADY_CHANGE = 1e-4
+LONGEST_EFFICIENCY_RUN = 32
+
+
+def _efficiency_run(running, t_end: float, options: Dict[str, Any]) -> Dict[str, Any]:
+    """The efficiency over [t_end / 2, t_end] of the raising run ``running``,
+    and its relative change between the halves of that window."""
+    from ..simulation import simulate
+
+    t_eval = np.array([0.0, 0.5 * t_end, 0.75 * t_end, t_end])
     result = simulate(running, t_end, t_eval=t_eval, **options)
-    work = result["work_drive"][2] - result["work_drive"][1]
-    loss = result["friction_loss"][2] - result["friction_loss"][1]
+    work_drive, friction_loss = result["work_drive"], result["friction_loss"]
+    work = work_drive[3] - work_drive[1]
+    loss = friction_loss[3] - friction_loss[1]
     # The whole train's: every loss of the run (the thread's, an ideal
     # stage's none; a lossy or worm stage's and a motor's own friction where
     # the core runs them).
-    train = loss + sum(result[name][2] - result[name][1] for name in _TRAIN_LOSSES
+    train = loss + sum(result[name][3] - result[name][1] for name in _TRAIN_LOSSES
                        if name in result.channels)
-    return {"efficiency": (work - loss) / work, "train_efficiency": (work - train) / work,
-            "wall_time": float(result.stats["wall_time"])}
+    # How steady the run is: the efficiency over each half of the window (a
+    # flexible drive's springs still settling show as a change).
+    # A half without work in (the nut crossing its play) is not steady.
+    efficiency = (work - loss) / work
+    halves = [(work_drive[k + 1] - work_drive[k], friction_loss[k + 1] - friction_loss[k])
+              for k in (1, 2)]
+    if all(half_work > 0.0 for half_work, _ in halves):
+        (work_a, loss_a), (work_b, loss_b) = halves
+        change = abs(loss_a / work_a - loss_b / work_b) / max(abs(efficiency), 1e-300)
+    else:
+        change = math.inf
+    return {"efficiency": efficiency, "train_efficiency": (work - train) / work,
+            "efficiency_change": change, "wall_time": float(result.stats["wall_time"])}
+
 
 
 #: The train's losses besides the thread's friction (channels of a run).
@@ -281,10 +318,14 @@ def preload_tradeoff(
         speed: speed of the driven part (the rotor's without a gear stage,
             the rotor turning at n times it with one) in the efficiency run
             [rad/s], > 0.
-        t_end: duration of the efficiency run [s], > 0 (the rigid drive is
-            steady at once; a flexible drive's springs settle over its
-            first part: the seat adjuster's efficiency is within 8 % of
-            the closed form at 0.05 s, 3e-5 at 1 s).
+        t_end: duration of the efficiency run [s], > 0, its first try:
+            the efficiency is taken over [t_end / 2, t_end], and where it
+            changes by more than 1e-4 between that window's halves (a
+            flexible drive's springs still settling: the seat adjuster's
+            efficiency is 8 % off the closed form at 0.05 s, 3e-5 at 1 s),
+            the run is taken again with t_end doubled, up to 32 times the
+            given one (``efficiency_t_end`` says which; the rigid drive is
+            steady at once).
         amplitude: the vibration's amplitude [N], > 0 (default: the scene's
             sine's, else 30 N).
         frequency: its frequency [Hz], > 0 (default: the scene's sine's,
@@ -299,7 +340,11 @@ def preload_tradeoff(
 
     Returns:
         DataFrame with one row per preload: ``preload`` [N], ``efficiency``
-        [1], ``efficiency_closed_form`` [1], ``relative_error`` [1], ``train_efficiency`` [1] (the whole train's),
+        [1], ``efficiency_closed_form`` [1], ``relative_error`` [1],
+        ``train_efficiency`` [1] (the whole train's), ``efficiency_change``
+        [1] (the efficiency's relative change between the halves of its
+        window: ~0 for a steady run; above 1e-4 at the longest run the
+        study warns), ``efficiency_t_end`` [s] (the run's length it took),
         ``held_reverse_load`` [N], ``axial_stiffness`` [N/m],
         ``creep_per_cycle`` [m] (signed along +x), ``max_displacement`` [m],
         ``holds_closed_form`` (bool), ``wall_time`` [s, C++] and ``error``
@@ -308,7 +353,8 @@ def preload_tradeoff(
         ``attrs["summary"]``: ``load`` [N], ``amplitude`` [N], ``frequency``
         [Hz], ``reversed_load`` [N] (max(0, amplitude - load)), ``drive_torque`` [N*m], ``preload_stiffness`` [N/m],
         ``excitation_from``, ``gear_ratio`` [1], ``motor_replaced``,
-        ``play_closed``, ``raised``, ``raised_reasons``.
+        ``play_closed``, ``unsteady`` (rows whose efficiency_change > 1e-4),
+        ``raised``, ``raised_reasons``.
 
     Raises:
         ValueError: invalid scene (what a preloaded nut refuses: a lossy or
@@ -382,6 +428,8 @@ def preload_tradeoff(
             "preload": preload, "efficiency": eta, "efficiency_closed_form": float(expected),
             "relative_error": abs(eta - expected) / expected if expected > 0 else abs(eta),
             "train_efficiency": numeric_or_nan(value.get("train_efficiency")),
+            "efficiency_change": numeric_or_nan(value.get("efficiency_change")),
+            "efficiency_t_end": numeric_or_nan(value.get("efficiency_t_end")),
             "held_reverse_load": held, "axial_stiffness": secant,
             "creep_per_cycle": numeric_or_nan(value.get("creep_per_cycle")),
             "max_displacement": numeric_or_nan(value.get("max_displacement")),
@@ -389,14 +437,24 @@ def preload_tradeoff(
                                      for low, high in bands),
             "wall_time": numeric_or_nan(value.get("wall_time")), "error": error})
     frame = pd.DataFrame(rows, columns=list(UNITS))
+    unsteady = int((frame["efficiency_change"] > STEADY_CHANGE).sum())
+    if unsteady:
+        warnings.warn(
+            f"preload_tradeoff: in {unsteady} of {len(frame)} rows the efficiency still changed "
+            f"by up to {frame['efficiency_change'].max():.3g} between the halves of its window "
+            f"[t_end / 2, t_end] at {LONGEST_EFFICIENCY_RUN} times t_end = {t_end:g} s: the run "
+            "is not steady and its efficiency is off the steady one by about as much; lengthen "
+            "t_end", StudyWarning, stacklevel=2)
     return annotate(frame, UNITS, study="preload_tradeoff",
                     summary_units={"load": "N", "amplitude": "N", "frequency": "Hz",
                                    "reversed_load": "N", "drive_torque": "N*m",
-                                   "preload_stiffness": "N/m", "gear_ratio": "1"},
+                                   "preload_stiffness": "N/m", "gear_ratio": "1",
+                                   "unsteady": "1"},
                     load=load, amplitude=amplitude, frequency=frequency,
                     reversed_load=reversed_load, drive_torque=torque,
                     preload_stiffness=stiffness, excitation_from=excitation_from,
                     gear_ratio=gear_ratio(scene), motor_replaced=motor is not None,
+                    unsteady=unsteady,
                     play_closed=_closes_the_play(scene, float(preloads.max())))
 
 

@@ -211,7 +211,12 @@ void check_section_ranges(const Section& s) {
       require_choice(s.path(f.key), s.choice(f.key), allowed);
       continue;
     }
-    if (!s.given(f.key)) continue;
+    if (!s.given(f.key)) {
+      if (f.presence == SectionField::Presence::required)
+        throw InvalidArgument(s.path(f.key) + " is missing: " + f.doc +
+                              (*f.unit ? std::string(" [") + f.unit + "]" : std::string()));
+      continue;
+    }
     const double v = s.number(f.key);
     const bool above = f.low_open ? v > f.low : v >= f.low;
     const bool below = f.high_open ? v < f.high : v <= f.high;

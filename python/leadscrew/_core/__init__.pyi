@@ -380,6 +380,38 @@ class DriveParameters:
     def load_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def load_spring(self) -> bool:
+        """
+        True if the model has the section
+        """
+    @load_spring.setter
+    def load_spring(self, arg1: bool) -> None:
+        ...
+    @property
+    def load_spring_damping(self) -> float:
+        """
+        the damper c in parallel with the spring
+        """
+    @load_spring_damping.setter
+    def load_spring_damping(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load_spring_preload(self) -> float:
+        """
+        the spring's preload P at the load's start (u_load = 0), positive along +x: the force on the load is -(P + k u_load) - c u_load', -P at the start (P > 0 balances an axial force of +P, a hatch's weight along +x; any sign)
+        """
+    @load_spring_preload.setter
+    def load_spring_preload(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load_spring_stiffness(self) -> float:
+        """
+        the spring's stiffness k: its force changes by k per metre of the load's travel
+        """
+    @load_spring_stiffness.setter
+    def load_spring_stiffness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def motor_back_emf_constant(self) -> float:
         ...
     @motor_back_emf_constant.setter

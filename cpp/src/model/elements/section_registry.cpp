@@ -5,7 +5,8 @@
 #include "leadscrew/model/element_section.hpp"
 
 #define LEADSCREW_ELEMENT_SECTIONS(X) \
-  X(end_stops)
+  X(end_stops)                        \
+  X(load_spring)
 
 namespace leadscrew::model {
 

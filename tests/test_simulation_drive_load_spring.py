@@ -144,6 +144,27 @@ def test_the_core_checks_the_spring_too():
         _core.DriveModel(parameters)
 
 
+def test_the_core_takes_the_section_as_the_scene_gives_it():
+    # DriveParameters.sections: the scene's section as is, by name; its
+    # attributes read the same values.
+    from leadscrew import _core
+
+    parameters = ls.Scene.from_dict(free_scene(damping=3.0)).model().parameters
+    assert parameters.sections == {"load_spring": {"stiffness": K, "preload": P, "damping": 3.0}}
+    assert (parameters.load_spring, parameters.load_spring_damping) == (True, 3.0)
+    with pytest.raises(ValueError, match="load_spring.stiffness = 'stiff' is invalid: must be a "
+                                         "number"):
+        parameters.sections = {"load_spring": {"stiffness": "stiff"}}
+    with pytest.raises(ValueError, match="load_spring.length is not a known key"):
+        parameters.sections = {"load_spring": {"length": 1.0}}
+    with pytest.raises(ValueError, match='section "springs" is invalid: must be one of '
+                                         "end_stops, load_spring"):
+        parameters.sections = {"springs": {}}
+    parameters.sections = {}
+    assert parameters.load_spring is False
+    assert _core.DriveModel(parameters).coordinate_names == ["phi_rotor", "u_load"]
+
+
 def test_scene_round_trips_through_toml_and_the_core_spec(tmp_path):
     from leadscrew import _core
 

@@ -250,10 +250,18 @@ model::ElementSection to_section(const model::SectionType& type, const py::dict&
       throw InvalidArgument(std::string(type.name) + "." + key + " is not a known key; " +
                             type.name + " takes " + names);
     }
-    if (type.fields[static_cast<std::size_t>(index)].kind == model::SectionField::Kind::choice)
-      section.choices.emplace_back(key, py::cast<std::string>(value));
-    else
-      section.numbers.emplace_back(key, py::cast<double>(value));
+    const bool is_choice =
+        type.fields[static_cast<std::size_t>(index)].kind == model::SectionField::Kind::choice;
+    try {
+      if (is_choice)
+        section.choices.emplace_back(key, py::cast<std::string>(value));
+      else
+        section.numbers.emplace_back(key, py::cast<double>(value));
+    } catch (const py::cast_error&) {
+      throw InvalidArgument(std::string(type.name) + "." + key + " = " +
+                            std::string(py::repr(value)) + " is invalid: must be " +
+                            (is_choice ? "a name (str)" : "a number (SI)"));
+    }
   }
   return section;
 }

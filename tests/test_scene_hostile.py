@@ -39,8 +39,9 @@ def base_scene(concept, drive, play):
 MOTOR = {"type": "dc", "voltage": 12.0, "resistance": 2.0, "inductance": 1e-3,
          "torque_constant": 0.05}
 
-# End stops (scene section end_stops) for their fields.
+# End stops (scene section end_stops) and a load spring (load_spring) for their fields.
 END_STOPS = {"lower": -0.01, "upper": 0.01, "stiffness": 1e7}
+LOAD_SPRING = {"stiffness": 1e4, "preload": 5.0}
 
 BASES = [(c, d, p) for c in ("rigid", "flexible_nut", "flexible") for d in ("screw", "nut")
          for p in PLAY]
@@ -124,6 +125,8 @@ def test_a_hostile_value_gives_a_valid_scene_or_names_its_key(base, path_unit, d
         d["gear"] = {"ratio": 3.0}
     if path.startswith("end_stops."):  # the stops' fields need stops
         d["end_stops"] = dict(END_STOPS)
+    if path.startswith("load_spring."):  # the spring's fields need a spring
+        d["load_spring"] = dict(LOAD_SPRING)
     d = with_value(d, path, value)
     try:
         scene = ls.Scene.from_dict(d)

@@ -232,6 +232,148 @@ void bind_drive_geometry(py::module_& m) {
 
 }  // namespace
 
+namespace {
+
+// The elements' sections (element_section.hpp): the registry as dicts, the
+// Scene's check of one, DriveParameters.sections and each section's
+// attributes (its presence, its numbers).
+model::ElementSection to_section(const model::SectionType& type, const py::dict& values) {
+  model::ElementSection section;
+  section.present = true;
+  for (const auto& [key_handle, value] : values) {
+    const std::string key = py::str(key_handle);
+    const int index = type.field_index(key);
+    if (index < 0) {
+      std::string names;
+      for (const model::SectionField& f : type.fields)
+        names += (names.empty() ? "" : ", ") + std::string(f.key);
+      throw InvalidArgument(std::string(type.name) + "." + key + " is not a known key; " +
+                            type.name + " takes " + names);
+    }
+    const bool is_choice =
+        type.fields[static_cast<std::size_t>(index)].kind == model::SectionField::Kind::choice;
+    try {
+      if (is_choice)
+        section.choices.emplace_back(key, py::cast<std::string>(value));
+      else
+        section.numbers.emplace_back(key, py::cast<double>(value));
+    } catch (const py::cast_error&) {
+      throw InvalidArgument(std::string(type.name) + "." + key + " = " +
+                            std::string(py::repr(value)) + " is invalid: must be " +
+                            (is_choice ? "a name (str)" : "a number (SI)"));
+    }
+  }
+  return section;
+}
+
+py::dict field_entry(const model::SectionField& f) {
+  using Presence = model::SectionField::Presence;
+  const bool is_choice = f.kind == model::SectionField::Kind::choice;
+  py::dict entry;
+  entry["key"] = f.key;
+  entry["unit"] = f.unit;
+  entry["doc"] = f.doc;
+  entry["kind"] = is_choice ? "choice" : "float";
+  entry["presence"] = f.presence == Presence::required   ? "required"
+                      : f.presence == Presence::optional ? "optional"
+                                                         : "default";
+  entry["default"] = is_choice ? py::object(py::str(f.choices.front()))
+                               : py::object(py::float_(f.value));
+  entry["default_doc"] = f.default_doc;
+  entry["low"] = f.low;
+  entry["high"] = f.high;
+  entry["low_open"] = f.low_open;
+  entry["high_open"] = f.high_open;
+  entry["choices"] = f.choices;
+  entry["attribute"] = f.attribute ? py::object(py::str(f.attribute)) : py::object(py::none());
+  return entry;
+}
+
+void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& parameters) {
+  using model::DriveParameters;
+  m.def(
+      "element_sections",
+      []() {
+        py::list sections;
+        for (const model::SectionType& type : model::element_section_types()) {
+          py::list fields;
+          for (const model::SectionField& f : type.fields) fields.append(field_entry(f));
+          py::dict section;
+          section["name"] = type.name;
+          section["doc"] = type.doc;
+          section["fields"] = fields;
+          section["presence_attribute"] = type.presence_attribute();
+          sections.append(section);
+        }
+        return sections;
+      },
+      "The elements' scene sections (the registry, element_section.hpp): name, doc, "
+      "presence_attribute and fields (key, unit, doc, kind, presence, default, default_doc, "
+      "low, high, low_open, high_open, choices, attribute).");
+  m.def(
+      "check_element_section",
+      [](const std::string& name, const py::dict& values, const DriveParameters& context) {
+        const model::SectionType& type = model::element_section_type(name);
+        model::check_element_section(name, to_section(type, values), context);
+      },
+      py::arg("name"), py::arg("values"), py::arg("context"),
+      "The Scene's check of the section `name` (its values checked field by field, with "
+      "their defaults) across its fields and the sections `context` gives (concept, drive, "
+      "initial_state, ...): ValueError naming the key path, the value and what is allowed.");
+  parameters.def_property(
+      "sections",
+      [](const DriveParameters& p) {
+        py::dict out;
+        for (const auto& [name, section] : p.sections) {
+          if (!section.present) continue;
+          py::dict values;
+          for (const auto& [key, value] : section.numbers) values[py::str(key)] = value;
+          for (const auto& [key, value] : section.choices) values[py::str(key)] = value;
+          out[py::str(name)] = values;
+        }
+        return out;
+      },
+      [](DriveParameters& p, const py::dict& sections) {
+        model::ElementSections out;
+        for (const auto& [name, values] : sections) {
+          const model::SectionType& type = model::element_section_type(py::str(name));
+          out[type.name] = to_section(type, py::cast<py::dict>(values));
+        }
+        p.sections = std::move(out);
+      },
+      "the elements' sections present (element_section.hpp), by name: the values given by key "
+      "(a scene's section as is; the rest take their defaults)");
+  for (const model::SectionType& type : model::element_section_types()) {
+    const model::SectionType* t = &type;
+    if (type.flag != nullptr)
+      parameters.def_property(
+          type.flag,
+          [t](const DriveParameters& p) { return model::find_section(p, t->name) != nullptr; },
+          [t](DriveParameters& p, bool present) {
+            model::set_section_presence(p, *t, present ? "true" : "false");
+          },
+          "True if the model has the section");
+    else
+      parameters.def_property(
+          type.presence_attribute().c_str(),
+          [t](const DriveParameters& p) { return model::section_presence(p, *t); },
+          [t](DriveParameters& p, const std::string& v) { model::set_section_presence(p, *t, v); },
+          "the section's choice ('none': no such section)");
+    for (std::size_t i = 0; i < type.fields.size(); ++i) {
+      const model::SectionField& f = type.fields[i];
+      if (f.kind != model::SectionField::Kind::number || f.attribute == nullptr) continue;
+      const int index = static_cast<int>(i);
+      parameters.def_property(
+          f.attribute,
+          [t, index](const DriveParameters& p) { return model::section_number(p, *t, index); },
+          [t, index](DriveParameters& p, double v) { model::set_section_number(p, *t, index, v); },
+          f.doc);
+    }
+  }
+}
+
+}  // namespace
+
 void bind_drive(py::module_& m) {
   using model::DriveParameters;
   py::class_<DriveParameters> parameters(m, "DriveParameters",
@@ -290,13 +432,7 @@ void bind_drive(py::module_& m) {
       "rotor turns per turn of the driven part), 'lossy' (gear_efficiency, "
       "gear_efficiency_backdrive) or 'worm' (gear_lead_angle, gear_mu, gear_mu_static, "
       "gear_flank_angle)");
-  parameters.def_property(
-      "end_stops",
-      [](const DriveParameters& p) { return model::end_stop_contact_name(p.end_stops); },
-      [](DriveParameters& p, const std::string& v) {
-        p.end_stops = model::parse_end_stop_contact(v);
-      },
-      "the end stops' contact: 'none' (no end stops), 'penalty' or 'exact'");
+  bind_element_sections(m, parameters);
   bind_drive_geometry(m);
 
   py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")

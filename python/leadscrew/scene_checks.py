@@ -17,8 +17,8 @@ from typing import Any, Dict, Optional
 from . import _core
 from .scene_loads import _DEFAULT_ROTOR_SPEED, _check_load, _check_rotor_speed
 from .scene_schema import (OPTIONAL, SCHEMA, _OPTIONAL_SECTIONS, _REQUIRED_SECTIONS,
-                           _UNIT_DEPENDS_ON, Field, _check_friction, _Converted, _fail,
-                           _field_unit, _range_text)
+                           _UNIT_DEPENDS_ON, Field, _check_friction, _Converted,
+                           _element_sections, _fail, _field_unit, _range_text)
 from .scene_schema import _SMALLEST_GEAR_RATIO
 from .units import to_si
 
@@ -147,8 +147,7 @@ def _check_consistency(data: Dict[str, Any]) -> None:
         _check_motor(data)
     if "gear" in data:
         _check_gear(data["gear"])
-    if "end_stops" in data:
-        _check_end_stops(data)
+    _check_element_sections(data)
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
@@ -226,52 +225,25 @@ def _check_motor(data: Dict[str, Any]) -> None:
                          "'relaxed')")
 
 
-def _check_end_stops(data: Dict[str, Any]) -> None:
-    """The end_stops section's rules across its fields and sections: a stop
-    on at least one side, a stiffness for penalty stops, a relaxed start.
+def _check_element_sections(data: Dict[str, Any]) -> None:
+    """The elements' own sections (the end stops, ...): each one's rules
+    across its fields and the other sections, as the core declares them
+    (``_core.check_element_section``; its fields' ranges are checked already).
 
     Raises:
-        ValueError: naming the keys at fault and their values.
+        ValueError: naming the keys at fault, their values and what is allowed.
     """
-    stops = data["end_stops"]
-    if "lower" not in stops and "upper" not in stops:
-        raise ValueError("end_stops = {!r} is invalid: give end_stops.lower [m] (< 0), "
-                         "end_stops.upper [m] (> 0) or both".format(stops))
-    if stops["contact"] == "exact":
-        _check_exact_stops(data)
-    else:
-        if stops["restitution"] != 0.0:
-            _fail("end_stops.restitution", stops["restitution"],
-                  f"0 with end_stops.contact = {stops['contact']!r} (a penalty stop's "
-                  "restitution follows from its stiffness and damping)")
-        if "stiffness" not in stops:
-            raise ValueError("end_stops.stiffness is missing: required with "
-                             f"end_stops.contact = {stops['contact']!r} [N/m]")
-    if data["initial"]["state"] == "equilibrium":
-        raise ValueError("initial.state = 'equilibrium' is invalid with end_stops: the stops "
-                         "are placed relative to the load's start, and the static equilibrium "
-                         "does not take them (use 'relaxed')")
-
-
-def _check_exact_stops(data: Dict[str, Any]) -> None:
-    """Exact stops: on a load hanging on a flexible translating part only (the
-    core's rule, named here first), without a penalty's stiffness or damping.
-
-    Raises:
-        ValueError: naming the keys at fault and their values.
-    """
-    stops = data["end_stops"]
-    for key in ("stiffness", "damping"):
-        if key in stops and not (key == "damping" and stops[key] == 0.0):
-            _fail(f"end_stops.{key}", stops[key], "absent with end_stops.contact = 'exact' "
-                  "(a rigid stop; its impacts take end_stops.restitution)")
-    translating = "nut" if data["drive"] == "screw" else "screw"
-    flexible = (data["concept"] == "flexible"
-                or (data["concept"] == "flexible_nut" and translating == "nut"))
-    if not flexible:
-        raise ValueError(
-            f"end_stops.contact = 'exact' is invalid with concept = {data['concept']!r} and "
-            f"drive = {data['drive']!r}: the load moves with the {translating}, rigid and in "
-            "the thread, and a rigid drive clamped against a rigid stop is statically "
-            "indeterminate (the thread's friction and the stop's force, one equation); use "
-            "end_stops.contact = 'penalty', or a concept where that part is flexible")
+    present = [section["name"] for section in _element_sections() if section["name"] in data]
+    if not present:
+        return
+    # What the sections' rules read of the others.
+    context = _core.DriveParameters()
+    context.concept, context.drive = data["concept"], data["drive"]
+    context.initial_state = data["initial"]["state"]
+    if "gear" in data:
+        context.gear = data["gear"]["type"]
+    if "motor" in data:
+        context.dc_motor = True
+        context.motor_friction_torque = data["motor"]["friction_torque"]
+    for name in present:
+        _core.check_element_section(name, data[name], context)

@@ -9,14 +9,13 @@ made it so (``_blamed``, which asks the core again with inputs set back).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, Callable, Dict, Optional
 
 from . import _core
 from .excitation import checked_callable
 from .scene_loads import _DEFAULT_DRIVE_TORQUE, _DEFAULT_ROTOR_SPEED, _make_excitation
-from .scene_schema import OPTIONAL, SCHEMA, Field, _friction_values
+from .scene_schema import OPTIONAL, SCHEMA, Field, _element_sections, _friction_values
 from .thread import Thread
 
 __all__: list = []  # the scene's internals: Scene.derived() and Scene.model() use them
@@ -302,14 +301,10 @@ def _core_parameters(data: Dict[str, Any],
             p.gear_mu = gear["mu"]
             p.gear_mu_static = gear.get("mu_static", -1.0)
             p.gear_flank_angle = gear.get("flank_angle", p.gear_flank_angle)
-    stops = data.get("end_stops")
-    if stops is not None:
-        p.end_stops = stops["contact"]
-        p.end_stop_lower = stops.get("lower", -math.inf)
-        p.end_stop_upper = stops.get("upper", math.inf)
-        p.end_stop_stiffness = stops.get("stiffness", 0.0)
-        p.end_stop_damping = stops["damping"]
-        p.end_stop_restitution = stops["restitution"]
+    # The elements' own sections (the end stops, ...), as the scene has them:
+    # the core declares, checks and reads them (element_section.hpp).
+    p.sections = {section["name"]: data[section["name"]] for section in _element_sections()
+                  if section["name"] in data}
     init = data["initial"]
     # (A speed-controlled drive starts at drive_speed(0): the core takes that.)
     p.rotor_angle, p.rotor_speed, p.play_position = (

@@ -2,7 +2,9 @@
 
 :data:`SCHEMA` maps each section of a scene to its fields (:class:`Field`: the
 documentation, unit, default and valid range of one key), the friction
-section built from the core's registry of laws; :func:`describe_schema`
+section built from the core's registry of laws and the elements' own
+sections (the end stops, ...) from the core's registry of sections
+(``_core.element_sections()``); :func:`describe_schema`
 prints them. The messages of a refused value (``_fail``, ``_range_text``,
 ``_Converted``) and the fields whose unit depends on others (``_field_unit``)
 live here too, as every check of a scene uses them. The checks themselves are
@@ -118,6 +120,26 @@ def _friction_section() -> Dict[str, Field]:
                                  low_open=parameter["low_open"],
                                  high_open=parameter["high_open"])
     return section
+
+
+@functools.lru_cache(maxsize=None)
+def _element_sections() -> Tuple[dict, ...]:
+    """The core's registry of the elements' own sections
+    (``_core.element_sections()``: the end stops, ...), read once."""
+    return tuple(_core.element_sections())
+
+
+def _element_section(section: dict) -> Dict[str, Field]:
+    """An element's section from its declaration in the core (its fields in
+    order: doc, unit, default, optional or required, range, choices)."""
+    defaults = {"required": None, "optional": OPTIONAL}
+    return {field["key"]: Field(field["doc"], field["unit"],
+                                defaults.get(field["presence"], field["default"]),
+                                kind=field["kind"], low=field["low"], high=field["high"],
+                                low_open=field["low_open"], high_open=field["high_open"],
+                                choices=tuple(field["choices"]),
+                                default_doc=field["default_doc"])
+            for field in section["fields"]}
 
 
 def _friction_values(friction: Dict[str, Any]) -> list:
@@ -381,34 +403,9 @@ SCHEMA: Dict[str, Any] = {
                              default_doc="40 deg (0.6981 rad)", low=0.0, high=math.pi,
                              high_open=True),
     },
-    # (Absent: no end stops; the load travels until the nut leaves the screw.)
-    "end_stops": {
-        "lower": Field("the lower end stop's face: the load's axial position u_load where it "
-                       "touches, relative to the load's start (u_load at t = 0), < 0 "
-                       "(absent: no lower stop; give lower, upper or both)", "m", OPTIONAL,
-                       high=0.0, high_open=True),
-        "upper": Field("the upper end stop's face, relative to the load's start, > 0 (absent: "
-                       "no upper stop)", "m", OPTIONAL, **POSITIVE),
-        "contact": Field("the stops' contact: 'penalty', a one-sided spring-damper on the "
-                         "load against the ground, F = max(0, k d + c d') for a penetration "
-                         "d > 0, which pushes and never pulls; 'exact', a rigid unilateral "
-                         "stop with Newton impacts (restitution), only where the load hangs "
-                         "on a flexible translating part (concept 'flexible', or "
-                         "'flexible_nut' with drive 'screw'; docs/physics/end_stops.md)",
-                         "", "penalty", kind="choice",
-                         choices=("penalty", "exact")),
-        "stiffness": Field("the penalty stop's stiffness k (required with contact = "
-                           "'penalty', absent with 'exact'): the static deflection under a "
-                           "held force F is F / k",
-                           "N/m", OPTIONAL, **POSITIVE),
-        "damping": Field("the penalty stop's damping c in contact (0: an elastic stop, which "
-                         "gives back all it stores)", "N*s/m", 0.0, **NONNEGATIVE),
-        "restitution": Field("Newton restitution coefficient e of an 'exact' stop's "
-                             "impacts, in [0, 1]: the load leaves at e times its approach "
-                             "speed; a rebound below the run's bounce_threshold closes the "
-                             "contact (the load held at the face while the forces press it "
-                             "there)", "", 0.0, low=0.0, high=1.0),
-    },
+    # The elements' own sections (the core's registry, _core.element_sections():
+    # the end stops, ...), each absent where the scene has no such element.
+    **{section["name"]: _element_section(section) for section in _element_sections()},
     "initial": {
         "rotor_angle": Field("rotor angle at t = 0", "rad", 0.0),
         "rotor_speed": Field("rotor angular velocity at t = 0; every body moves consistently "
@@ -438,7 +435,8 @@ SCHEMA: Dict[str, Any] = {
 # Sections that may be absent: then they take their defaults, except backlash
 # (absent: a thread without play) and overrides.
 _REQUIRED_SECTIONS = ("thread", "friction")
-_OPTIONAL_SECTIONS = ("backlash", "motor", "gear", "end_stops")
+_OPTIONAL_SECTIONS = ("backlash", "motor", "gear",
+                      *(section["name"] for section in _element_sections()))
 
 
 def _fail(path: str, value: Any, allowed: str) -> None:

@@ -234,8 +234,15 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
       << "\ninitial_state = " << quoted(initial_state_name(p.initial_state))
       << "\nspeed_controlled = " << (p.speed_controlled ? "true" : "false")
       << "\ndc_motor = " << (p.dc_motor ? "true" : "false")
-      << "\ngear = " << quoted(gear_type_name(p.gear))
-      << "\nend_stops = " << quoted(end_stop_contact_name(p.end_stops)) << "\n";
+      << "\ngear = " << quoted(gear_type_name(p.gear));
+  // The elements' sections (element_section.hpp): each one's presence here,
+  // its numbers in [parameters] by their attributes.
+  for (const SectionType& type : element_section_types()) {
+    const std::string presence = section_presence(p, type);
+    out << "\n" << type.presence_attribute() << " = "
+        << (type.flag != nullptr ? presence : quoted(presence));
+  }
+  out << "\n";
   out << "\n[thread]\npitch = " << number(p.thread.pitch())
       << "\nmean_diameter = " << number(p.thread.mean_diameter())
       << "\nstarts = " << p.thread.starts() << "\nflank_angle = " << number(p.thread.flank_angle())
@@ -245,6 +252,11 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
   out << "\n[parameters]\n";
   for (const ScalarField& field : scalar_fields())
     out << field.name << " = " << number(p.*(field.member)) << "\n";
+  for (const SectionType& type : element_section_types())
+    for (std::size_t i = 0; i < type.fields.size(); ++i)
+      if (type.fields[i].kind == SectionField::Kind::number && type.fields[i].attribute)
+        out << type.fields[i].attribute << " = "
+            << number(section_number(p, type, static_cast<int>(i))) << "\n";
   write_load(out, "drive_torque", p.drive_torque, "N*m");
   write_load(out, "drive_speed", p.drive_speed, "rad/s");
   write_load(out, "axial_force", p.axial_force, "N");
@@ -286,8 +298,19 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
   DriveParameters& p = spec.parameters;
   if (const toml::table* t = r.table(root, "", "drive")) {
     const std::string at = "drive.";
-    r.known(*t, at, {"concept", "drive", "support", "backlash", "initial_state",
-                     "speed_controlled", "dc_motor", "gear", "end_stops"});
+    std::set<std::string> names = {"concept", "drive", "support", "backlash", "initial_state",
+                                   "speed_controlled", "dc_motor", "gear"};
+    for (const SectionType& type : element_section_types()) {
+      const std::string name = type.presence_attribute();
+      names.insert(name);
+      if (type.flag != nullptr) {
+        bool present = false;
+        if (r.flag(*t, at, name, present)) set_section_presence(p, type, present ? "true" : "false");
+      } else {
+        r.choice(*t, at, name, [&](const std::string& v) { set_section_presence(p, type, v); });
+      }
+    }
+    r.known(*t, at, names);
     r.choice(*t, at, "concept", [&](const std::string& v) { p.concept = parse_concept(v); });
     r.choice(*t, at, "drive", [&](const std::string& v) { p.drive = parse_drive(v); });
     r.choice(*t, at, "support", [&](const std::string& v) { p.support = parse_support(v); });
@@ -298,8 +321,6 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.flag(*t, at, "speed_controlled", p.speed_controlled);
     r.flag(*t, at, "dc_motor", p.dc_motor);
     r.choice(*t, at, "gear", [&](const std::string& v) { p.gear = parse_gear_type(v); });
-    r.choice(*t, at, "end_stops",
-             [&](const std::string& v) { p.end_stops = parse_end_stop_contact(v); });
   }
   if (const toml::table* t = r.table(root, "", "thread")) {
     const std::string at = "thread.";
@@ -341,6 +362,15 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
       names.insert(field.name);
       r.real(*t, "parameters.", field.name, p.*(field.member));
     }
+    for (const SectionType& type : element_section_types())
+      for (std::size_t i = 0; i < type.fields.size(); ++i) {
+        const SectionField& f = type.fields[i];
+        if (f.kind != SectionField::Kind::number || f.attribute == nullptr) continue;
+        names.insert(f.attribute);
+        double value = 0.0;
+        if (r.real(*t, "parameters.", f.attribute, value))
+          set_section_number(p, type, static_cast<int>(i), value);
+      }
     r.known(*t, "parameters.", names);
   }
   if (const toml::table* t = r.table(root, "", "loads")) {

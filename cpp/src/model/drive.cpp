@@ -47,11 +47,6 @@ const std::vector<ScalarField>& scalar_fields() {
       LEADSCREW_FIELD(motor_current_limit),
       LEADSCREW_FIELD(nut_preload),
       LEADSCREW_FIELD(nut_preload_stiffness),
-      LEADSCREW_FIELD(end_stop_lower),
-      LEADSCREW_FIELD(end_stop_upper),
-      LEADSCREW_FIELD(end_stop_stiffness),
-      LEADSCREW_FIELD(end_stop_damping),
-      LEADSCREW_FIELD(end_stop_restitution),
       LEADSCREW_FIELD(rotor_angle),
       LEADSCREW_FIELD(rotor_speed),
       LEADSCREW_FIELD(play_position),
@@ -132,18 +127,6 @@ BacklashContact parse_backlash_contact(const std::string& name) {
 
 InitialState parse_initial_state(const std::string& name) {
   return static_cast<InitialState>(require_choice("initial.state", name, initial_state_names()));
-}
-
-const std::vector<std::string>& end_stop_contact_names() {
-  static const std::vector<std::string> names = {"none", "penalty", "exact"};
-  return names;
-}
-std::string end_stop_contact_name(EndStopContact c) {
-  return end_stop_contact_names()[static_cast<int>(c)];
-}
-EndStopContact parse_end_stop_contact(const std::string& name) {
-  return static_cast<EndStopContact>(
-      require_choice("end_stops.contact", name, end_stop_contact_names()));
 }
 
 DriveModel::DriveModel(DriveParameters parameters)

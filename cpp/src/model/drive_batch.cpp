@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <iterator>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -57,6 +58,25 @@ void find_channels(const std::vector<std::string>& requested,
   }
 }
 
+// The elements' sections' numbers by attribute (element_section.hpp), after
+// the scalar fields and the loads.
+struct SectionAttribute {
+  const SectionType* type;
+  int field;
+  const char* name;
+};
+const std::vector<SectionAttribute>& section_attributes() {
+  static const std::vector<SectionAttribute> attributes = [] {
+    std::vector<SectionAttribute> out;
+    for (const SectionType& type : element_section_types())
+      for (std::size_t i = 0; i < type.fields.size(); ++i)
+        if (type.fields[i].kind == SectionField::Kind::number && type.fields[i].attribute)
+          out.push_back({&type, static_cast<int>(i), type.fields[i].attribute});
+    return out;
+  }();
+  return attributes;
+}
+
 }  // namespace
 
 std::string case_failure_name(CaseFailure failure) {
@@ -69,6 +89,7 @@ std::vector<std::string> DriveParameterOverrides::allowed_names() {
   std::vector<std::string> names;
   for (const ScalarField& field : scalar_fields()) names.emplace_back(field.name);
   for (const LoadSetter& load : kLoadSetters) names.emplace_back(load.name);
+  for (const SectionAttribute& a : section_attributes()) names.emplace_back(a.name);
   return names;
 }
 
@@ -109,15 +130,22 @@ void DriveParameterOverrides::apply(const double* values, DriveParameters& p) co
   const std::vector<ScalarField>& scalars = scalar_fields();
   for (std::size_t k = 0; k < fields_.size(); ++k) {
     const std::size_t index = static_cast<std::size_t>(fields_[k]);
+    const std::size_t loads = std::size(kLoadSetters);
     const bool scalar = index < scalars.size();
+    const bool load = !scalar && index < scalars.size() + loads;
+    const SectionAttribute* section =
+        scalar || load ? nullptr : &section_attributes()[index - scalars.size() - loads];
     // No parameter is infinite or NaN (DriveModel checks the ranges of some).
     if (!std::isfinite(values[k]))
-      require_finite(scalar ? scalars[index].name : kLoadSetters[index - scalars.size()].name,
+      require_finite(scalar ? scalars[index].name
+                            : load ? kLoadSetters[index - scalars.size()].name : section->name,
                      values[k]);
     if (scalar)
       p.*scalars[index].member = values[k];
-    else
+    else if (load)
       kLoadSetters[index - scalars.size()].set(p, values[k]);
+    else
+      set_section_number(p, *section->type, section->field, values[k]);
   }
 }
 

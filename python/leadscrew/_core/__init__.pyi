@@ -8,7 +8,7 @@ import numpy.typing
 import typing
 from . import lcp
 from . import integrate
-__all__: list[str] = ['DerivedQuantities', 'DriveBatch', 'DriveBatchResult', 'DriveGeometry', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'NutOffScrewError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_friction_law', 'check_nut_on_screw', 'cosim_variables', 'derive_drive', 'derived_quantities', 'derived_quantity_problem', 'drive_integrators', 'efficiency', 'efficiency_array', 'first_derived_problem', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'preloaded_efficiency_array', 'raise_torque', 'read_core_spec', 'rigid_jamming_margins', 'scene_choices', 'simulate_block', 'simulate_drive', 'smallest_gear_ratio', 'spring_frequency_problem', 'write_core_spec']
+__all__: list[str] = ['DerivedQuantities', 'DriveBatch', 'DriveBatchResult', 'DriveGeometry', 'DriveModel', 'DriveParameters', 'DriveStepper', 'Excitation', 'FrictionBlock', 'JammingError', 'NoEquilibriumError', 'NutOffScrewError', 'SimulationError', 'SimulationResult', 'Thread', 'block_integrators', 'check_drive_options', 'check_element_section', 'check_friction_law', 'check_nut_on_screw', 'cosim_variables', 'derive_drive', 'derived_quantities', 'derived_quantity_problem', 'drive_channel_units', 'drive_integrators', 'efficiency', 'efficiency_array', 'element_sections', 'first_derived_problem', 'friction_laws', 'integrate', 'is_drivable', 'is_drivable_array', 'is_self_locking', 'lcp', 'lower_torque', 'pooled_helper_count', 'preloaded_efficiency_array', 'raise_torque', 'read_core_spec', 'rigid_jamming_margins', 'scene_choices', 'simulate_block', 'simulate_drive', 'smallest_gear_ratio', 'spring_frequency_problem', 'write_core_spec']
 class SimulationError(RuntimeError):
     """
     A solver failed during a simulation.
@@ -200,7 +200,6 @@ class DriveParameters:
     concept: str
     dc_motor: bool
     drive: str
-    end_stops: str
     friction: str
     initial_state: str
     speed_controlled: bool
@@ -264,33 +263,51 @@ class DriveParameters:
         ...
     @property
     def end_stop_damping(self) -> float:
-        ...
+        """
+        the penalty stop's damping c in contact (0: an elastic stop, which gives back all it stores)
+        """
     @end_stop_damping.setter
-    def end_stop_damping(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def end_stop_damping(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def end_stop_lower(self) -> float:
-        ...
+        """
+        the lower end stop's face: the load's axial position u_load where it touches, relative to the load's start (u_load at t = 0), < 0 (absent: no lower stop; give lower, upper or both)
+        """
     @end_stop_lower.setter
-    def end_stop_lower(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def end_stop_lower(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def end_stop_restitution(self) -> float:
-        ...
+        """
+        Newton restitution coefficient e of an 'exact' stop's impacts, in [0, 1]: the load leaves at e times its approach speed; a rebound below the run's bounce_threshold closes the contact (the load held at the face while the forces press it there)
+        """
     @end_stop_restitution.setter
-    def end_stop_restitution(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def end_stop_restitution(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def end_stop_stiffness(self) -> float:
-        ...
+        """
+        the penalty stop's stiffness k (required with contact = 'penalty', absent with 'exact'): the static deflection under a held force F is F / k
+        """
     @end_stop_stiffness.setter
-    def end_stop_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def end_stop_stiffness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def end_stop_upper(self) -> float:
-        ...
+        """
+        the upper end stop's face, relative to the load's start, > 0 (absent: no upper stop)
+        """
     @end_stop_upper.setter
-    def end_stop_upper(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+    def end_stop_upper(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def end_stops(self) -> str:
+        """
+        the section's choice ('none': no such section)
+        """
+    @end_stops.setter
+    def end_stops(self, arg1: str) -> None:
         ...
     @property
     def friction_values(self) -> list[tuple[str, float]]:
@@ -361,6 +378,38 @@ class DriveParameters:
         ...
     @load_mass.setter
     def load_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load_spring(self) -> bool:
+        """
+        True if the model has the section
+        """
+    @load_spring.setter
+    def load_spring(self, arg1: bool) -> None:
+        ...
+    @property
+    def load_spring_damping(self) -> float:
+        """
+        the damper c in parallel with the spring
+        """
+    @load_spring_damping.setter
+    def load_spring_damping(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load_spring_preload(self) -> float:
+        """
+        the spring's preload P at the load's start (u_load = 0), positive along +x: the force on the load is -(P + k u_load) - c u_load', -P at the start (P > 0 balances an axial force of +P, a hatch's weight along +x; any sign)
+        """
+    @load_spring_preload.setter
+    def load_spring_preload(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def load_spring_stiffness(self) -> float:
+        """
+        the spring's stiffness k: its force changes by k per metre of the load's travel
+        """
+    @load_spring_stiffness.setter
+    def load_spring_stiffness(self, arg1: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def motor_back_emf_constant(self) -> float:
@@ -441,6 +490,12 @@ class DriveParameters:
     def nut_mass(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
+    def nut_position(self) -> float:
+        ...
+    @nut_position.setter
+    def nut_position(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
     def nut_preload(self) -> float:
         ...
     @nut_preload.setter
@@ -451,12 +506,6 @@ class DriveParameters:
         ...
     @nut_preload_stiffness.setter
     def nut_preload_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
-        ...
-    @property
-    def nut_position(self) -> float:
-        ...
-    @nut_position.setter
-    def nut_position(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
         ...
     @property
     def nut_torsional_damping(self) -> float:
@@ -553,6 +602,14 @@ class DriveParameters:
         ...
     @screw_torsional_stiffness.setter
     def screw_torsional_stiffness(self, arg0: typing.SupportsFloat | typing.SupportsIndex) -> None:
+        ...
+    @property
+    def sections(self) -> dict:
+        """
+        the elements' sections present (element_section.hpp), by name: the values given by key (a scene's section as is; the rest take their defaults)
+        """
+    @sections.setter
+    def sections(self, arg1: dict) -> None:
         ...
 class DriveGeometry:
     """
@@ -789,16 +846,16 @@ class DriveModel:
     def mass(self) -> typing.Annotated[numpy.typing.NDArray[numpy.float64], "[m, 1]"]:
         ...
     @property
-    def train_friction(self) -> typing.Any:
-        """
-        The train's friction stages (docs/physics/gear.md, "Friction stages"), None without: dict with motor_friction_torque [N m] (on the rotor), stage (a lossy or worm stage), the stage's efficiencies forward and backward in slip and at breakaway (a worm's from mu and mu_static; 1 without a stage), and self_locking (the backward one at breakaway <= 0).
-        """
-    @property
     def parameters(self) -> DriveParameters:
         ...
     @property
     def springs(self) -> list:
         ...
+    @property
+    def train_friction(self) -> typing.Any:
+        """
+        The train's friction stages (docs/physics/gear.md, "Friction stages"), None without: dict with motor_friction_torque [N m] (on the rotor), stage (a lossy or worm stage), the stage's efficiencies forward and backward in slip and at breakaway (a worm's from mu and mu_static; 1 without a stage), and self_locking (the backward one at breakaway <= 0).
+        """
 class DriveStepper:
     """
     A drive advanced piece by piece with its inputs held over each piece (model/drive_stepper.hpp): simulate_drive's event-driven run, its state kept.
@@ -905,6 +962,10 @@ def check_drive_options(drive: DriveModel, t_end: typing.SupportsFloat | typing.
     """
     The checks simulate_drive makes of these options before it integrates, without simulating: ValueError naming the option, its value and the valid range.
     """
+def check_element_section(name: str, values: dict, context: DriveParameters) -> None:
+    """
+    The Scene's check of the section `name` (its values checked field by field, with their defaults) across its fields and the sections `context` gives (concept, drive, initial_state, ...): ValueError naming the key path, the value and what is allowed.
+    """
 def check_friction_law(name: str, values: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]], prefix: str = 'friction.') -> None:
     """
     Raises ValueError naming '<prefix><key>', the value and the range where the law `name` does not take `values` ((key, value) pairs): an unknown key, a missing required one, a value out of range or below the key it may not fall below (mu_static >= mu).
@@ -941,6 +1002,10 @@ def efficiency_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike
     """
     efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); ValueError for a negative or non-finite m.
     """
+def element_sections() -> list:
+    """
+    The elements' scene sections (the registry, element_section.hpp): name, doc, presence_attribute and fields (key, unit, doc, kind, presence, default, default_doc, low, high, low_open, high_open, choices, attribute).
+    """
 def first_derived_problem(values: collections.abc.Sequence[tuple[str, typing.SupportsFloat | typing.SupportsIndex]]) -> typing.Any:
     """
     The key of the first of the (key, value) pairs out of its quantity's range, or None.
@@ -959,14 +1024,14 @@ def is_self_locking(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIn
     ...
 def lower_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
     ...
-def preloaded_efficiency_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], preload: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
-    """
-    The steady raising efficiency of the rigid drive with a preloaded nut, F tan a / [(F + P) tan(a + rho') + P tan(rho' - a)] [1], elementwise over mu [1], load F [N] and preload P [N] (docs/physics/preloaded_nut.md); ValueError for a negative or non-finite value.
-    """
 def pooled_helper_count() -> int:
     """
     Helper threads the process's pool has started so far (the batch's workers
     beyond the calling thread; asleep between calls).
+    """
+def preloaded_efficiency_array(thread: Thread, mu: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], load: typing.Annotated[numpy.typing.ArrayLike, numpy.float64], preload: typing.Annotated[numpy.typing.ArrayLike, numpy.float64]) -> typing.Any:
+    """
+    The steady raising efficiency of the rigid drive with a preloaded nut, F tan a / [(F + P) tan(a + rho') + P tan(rho' - a)] [1], elementwise over mu [1], load F [N] and preload P [N] (docs/physics/preloaded_nut.md); ValueError for a negative or non-finite value.
     """
 def raise_torque(thread: Thread, mu: typing.SupportsFloat | typing.SupportsIndex, load: typing.SupportsFloat | typing.SupportsIndex, collar_mu: typing.SupportsFloat | typing.SupportsIndex = 0.0, collar_diameter: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> float:
     ...

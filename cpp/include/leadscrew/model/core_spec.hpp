@@ -8,10 +8,13 @@
 //
 //   format = "leadscrew-core-spec"
 //   version = 1
-//   [drive]       concept, drive, support, backlash, initial_state, speed_controlled
+//   [drive]       concept, drive, support, backlash, initial_state, speed_controlled,
+//                 dc_motor, gear, and each element section's presence
+//                 (element_section.hpp: end_stops = "none" / "penalty" / "exact")
 //   [thread]      pitch, mean_diameter, starts, flank_angle, hand
 //   [friction]    law, and [friction.values]: the law's other parameters by key
-//   [parameters]  every scalar field of DriveParameters by name (scalar_fields())
+//   [parameters]  every scalar field of DriveParameters by name (scalar_fields()),
+//                 then each element section's numbers by attribute (end_stop_lower, ...)
 //   [loads.drive_torque], [loads.drive_speed], [loads.axial_force]:
 //                 type = "constant" (value), "sine" (amplitude, omega, phase,
 //                 offset) or "table" (times, values)

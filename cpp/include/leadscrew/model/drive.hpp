@@ -37,6 +37,7 @@
 #include "leadscrew/excitation/excitation.hpp"
 #include "leadscrew/friction/law.hpp"
 #include "leadscrew/thread/thread.hpp"
+#include "leadscrew/model/element_section.hpp"
 #include "leadscrew/model/elements/drive_elements.hpp"
 
 namespace leadscrew::model {
@@ -55,8 +56,6 @@ enum class InitialState { relaxed, equilibrium };
 // friction (elements/train_friction.hpp): Modelica's LossyGear with constant
 // efficiencies, or a worm pair with exact Coulomb friction.
 enum class GearType { none, ideal, lossy, worm };
-// The end stops' contact (end_stops.contact; none: no end stops).
-enum class EndStopContact { none, penalty, exact };
 
 // The smallest axial play a thread may have besides none [m].
 constexpr double kSmallestClearance = 1e-12;
@@ -155,15 +154,10 @@ struct DriveParameters {
   double nut_preload = 0.0;
   double nut_preload_stiffness = 0.0;
 
-  // End stops of the load's travel (elements/end_stop.hpp; scene section
-  // `end_stops`): the load's coordinate u_load between end_stop_lower < 0 <
-  // end_stop_upper, relative to its start (-inf / +inf: no stop on that side).
-  EndStopContact end_stops = EndStopContact::none;
-  double end_stop_lower = -std::numeric_limits<double>::infinity();  // [m]
-  double end_stop_upper = std::numeric_limits<double>::infinity();   // [m]
-  double end_stop_stiffness = 0.0;    // k [N/m] (penalty)
-  double end_stop_damping = 0.0;      // c [N s/m] (penalty)
-  double end_stop_restitution = 0.0;  // Newton's e (exact)
+  // The elements' own sections by name (element_section.hpp: the end stops,
+  // ...): present or not, and their values as given. Their builders read
+  // them once, when the model is built.
+  ElementSections sections;
 
   double rotor_angle = 0.0;
   double rotor_speed = 0.0;
@@ -280,7 +274,6 @@ const std::vector<std::string>& support_names();
 const std::vector<std::string>& backlash_contact_names();  // "none" first
 const std::vector<std::string>& initial_state_names();
 const std::vector<std::string>& gear_type_names();  // "none" first
-const std::vector<std::string>& end_stop_contact_names();  // "none" first
 std::string concept_name(Concept c);
 std::string drive_name(DrivenPart d);
 std::string support_name(ScrewSupport s);
@@ -293,7 +286,5 @@ ScrewSupport parse_support(const std::string& name);
 BacklashContact parse_backlash_contact(const std::string& name);  // "none" allowed
 InitialState parse_initial_state(const std::string& name);
 GearType parse_gear_type(const std::string& name);  // "none" allowed
-std::string end_stop_contact_name(EndStopContact c);
-EndStopContact parse_end_stop_contact(const std::string& name);  // "none" allowed
 
 }  // namespace leadscrew::model

@@ -5,6 +5,9 @@
 //   D(name)  declares (const ElementKind& name_kind(), in its own file)
 //   E(name)  declares and has events in the event-driven driver (also
 //            make_name_element, declared here, in the same file)
+// The elements' sections (element_section.hpp) add their kinds after these,
+// from their own registry (section_registry.cpp): an element with a section
+// of its own needs no line here.
 #include "driver_element.hpp"
 
 #define LEADSCREW_DRIVE_ELEMENTS(D, E) \
@@ -26,8 +29,14 @@ LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_DECLARE_KIND, LEADSCREW_DECLARE_EVENTS)
 
 const std::vector<const ElementKind*>& element_kinds() {
 #define LEADSCREW_KIND(name) &name##_kind(),
-  static const std::vector<const ElementKind*> kinds = {
-      LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_KIND, LEADSCREW_KIND)};
+  static const std::vector<const ElementKind*> kinds = [] {
+    std::vector<const ElementKind*> out = {LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_KIND, LEADSCREW_KIND)};
+    // Then the elements' sections' kinds (element_section.hpp), in their
+    // registry's order: no events (no factory).
+    for (const SectionType& type : element_section_types())
+      if (type.kind != nullptr) out.push_back(&type.kind());
+    return out;
+  }();
 #undef LEADSCREW_KIND
   return kinds;
 }

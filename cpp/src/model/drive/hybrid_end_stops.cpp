@@ -28,7 +28,7 @@ void declare(const DriveModel& model, bool bristle, Declaration& d) {
   (void)bristle;
   // The stops' force on the load along +u (its energy is the force
   // elements' elastic energy and damping loss, an exact stop's impacts').
-  if (model.parameters().end_stops == EndStopContact::none) return;
+  if (model.elements().end_stops().empty() && model.elements().exact_stops.empty()) return;
   d.channels = end_stops_kind().catalog;
   // The penalty stops' force follows from the load's position and speed
   // (for every driver); an exact stop's is the element's (output).

@@ -127,12 +127,13 @@ void check_step_resolves_armature(const DriveParameters& p, const DriveSimulatio
 void check_theta_stable_with_springs(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   if (!(options.theta < 0.5)) return;
-  const bool springs = !model.springs().empty() || !model.elements().end_stops().empty();
-  if (!springs) return;
+  if (model.elements().forces.empty()) return;
   throw InvalidArgument(
       "theta = " + format_value(options.theta) +
       " is invalid for this drive: its springs (" +
-      (!model.springs().empty() ? "the flexible screw's or nut's" : "the penalty end stops'") +
+      (!model.springs().empty()              ? "the flexible screw's or nut's"
+       : !model.elements().end_stops().empty() ? "the penalty end stops'"
+                                               : "its force elements'") +
       ") need theta in [0.5, 1], where Moreau-Jean's theta-method is stable at every step "
       "(below 0.5 their modes grow from step to step)");
 }
@@ -176,7 +177,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                         ? "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" with "
                         : std::string()) +
                        "friction.law = \"" + p.friction + "\"" +
-                       (p.end_stops != EndStopContact::none ? " and end_stops" : ""));
+                       (find_section(p, "end_stops") ? " and end_stops" : ""));
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   integrate::validate_output_request(options.output, 0.0);
   if (options.max_events < 0)

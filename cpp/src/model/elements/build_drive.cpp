@@ -145,7 +145,7 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   // (A preloaded nut: build_preloaded_nut refuses the stages first.)
   // Penalty end stops are one more axial force on the train (TrainSolver,
   // and Moreau-Jean's); exact ones where the load is a body of its own
-  // (add_end_stops), on Moreau-Jean.
+  // (elements/end_stops.cpp), on Moreau-Jean.
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(what + needs + "; initial.state = \"equilibrium\" (use \"relaxed\")");
   f.event_driven_obstacle = train_event_driven_obstacle(p, e.thread->law());
@@ -276,70 +276,6 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
     nut.closing = 0.5 * p.clearance + e.thread->penetration_for(p.nut_preload);
   }
   e.preloaded_nut = nut;
-}
-
-// The end stops of the load's travel (end_stops; elements/end_stop.hpp),
-// their values checked: lower < 0 < upper, relative to the load's start,
-// which a relaxed start puts at u_load = 0.
-void add_end_stops(const DriveParameters& p, int load, DriveElements& e) {
-  if (p.end_stops == EndStopContact::none) return;
-  const double lower = p.end_stop_lower, upper = p.end_stop_upper;
-  if (!(lower < 0.0))
-    throw InvalidArgument("end_stops.lower = " + format_value(lower) +
-                          " m is invalid: must be < 0 (relative to the load's start; -inf: "
-                          "no lower stop)");
-  if (!(upper > 0.0))
-    throw InvalidArgument("end_stops.upper = " + format_value(upper) +
-                          " m is invalid: must be > 0 (relative to the load's start; inf: "
-                          "no upper stop)");
-  if (std::isinf(lower) && std::isinf(upper))
-    throw InvalidArgument("end_stops = \"" + end_stop_contact_name(p.end_stops) +
-                          "\" is invalid without end_stops.lower or end_stops.upper: give "
-                          "either or both");
-  // What end stops do not take yet.
-  const char* refused =
-      p.initial_state == InitialState::equilibrium
-          ? "initial.state = \"equilibrium\" is invalid with end_stops: the stops are placed "
-            "relative to the load's start, and the static equilibrium does not take them (use "
-            "\"relaxed\")"
-          : nullptr;
-  if (refused != nullptr) throw InvalidArgument(refused);
-  if (p.end_stops == EndStopContact::exact) {
-    // The load alone meets the stop: no constraint may tie it to other
-    // coordinates (a rigid translating part carries the thread: a rigid
-    // drive clamped against a rigid stop is statically indeterminate).
-    if (e.thread->play_gradient()[load] != 0.0)
-      throw InvalidArgument(
-          "end_stops.contact = \"exact\" is invalid with concept = \"" +
-          concept_name(p.concept) + "\" and drive = \"" + drive_name(p.drive) +
-          "\": the load moves with the " + (p.drive == DrivenPart::screw ? "nut" : "screw") +
-          ", rigid and in the thread, and a rigid drive clamped against a rigid stop is "
-          "statically indeterminate (the thread's friction and the stop's force, one "
-          "equation); use end_stops.contact = \"penalty\", or a concept where that part is "
-          "flexible (the load on its spring)");
-    require_in_range("end_stops.restitution", p.end_stop_restitution, 0.0, 1.0);
-    for (const int side : {-1, 1}) {
-      const double position = side < 0 ? lower : upper;
-      if (std::isinf(position)) continue;
-      e.exact_stops.push_back({side < 0 ? "lower end stop" : "upper end stop", load, side,
-                               position, p.end_stop_restitution});
-    }
-    return;
-  }
-  require_positive("end_stops.stiffness", p.end_stop_stiffness);
-  require_nonnegative("end_stops.damping", p.end_stop_damping);
-  for (const int side : {-1, 1}) {
-    const double position = side < 0 ? lower : upper;
-    if (std::isinf(position)) continue;
-    EndStop stop;
-    stop.name = side < 0 ? "lower end stop" : "upper end stop";
-    stop.coordinate = load;
-    stop.side = side;
-    stop.position = position;
-    stop.stiffness = p.end_stop_stiffness;
-    stop.damping = p.end_stop_damping;
-    e.forces.of<EndStop>().push_back(stop);
-  }
 }
 
 }  // namespace
@@ -598,7 +534,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
     p.play_position = e.preloaded_nut->side * e.preloaded_nut->closing;
     e.thread.emplace(p, law, c, e.coordinate_count());
   }
-  add_end_stops(p, load, e);
+  build_element_sections(p, e);  // the elements' own sections (end stops, ...)
   build_train_friction(p, e);
   return e;
 }

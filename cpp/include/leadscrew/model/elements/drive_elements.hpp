@@ -12,6 +12,9 @@
 //                      Motor's; the rotor reflected onto its coordinate)
 //   preloaded_nut.hpp  PreloadedNut: the split nut's preload half on the thread without play
 //   end_stop.hpp       EndStop: a penalty end stop of the load's travel (a force element)
+//   section_force.hpp  SectionForce: a force element defined in a source file of its own
+//                      with its scene section (cpp/src/model/elements/<name>.cpp: the
+//                      load spring)
 // The lists are grouped by type (no virtual call per scalar in the
 // right-hand side): DriveDynamics loops over each. The force elements (the
 // springs today; an end stop, a gear's compliance) are one registry line.
@@ -33,6 +36,7 @@
 #include "leadscrew/model/elements/preloaded_nut.hpp"
 #include "leadscrew/model/elements/train_friction.hpp"
 #include "leadscrew/model/elements/rigid_body.hpp"
+#include "leadscrew/model/elements/section_force.hpp"
 #include "leadscrew/model/elements/spring_damper.hpp"
 #include "leadscrew/model/elements/thread_pair.hpp"
 
@@ -82,7 +86,7 @@ struct ForceElementLists {
 };
 
 // The registry of force elements: a new one is its file and its type here.
-using ForceElements = ForceElementLists<SpringDamper, EndStop>;
+using ForceElements = ForceElementLists<SpringDamper, EndStop, SectionForce>;
 
 struct DriveElements {
   std::vector<std::string> coordinates;  // their names, in order

@@ -1,0 +1,142 @@
+// The end stops' scene section (element_section.hpp; elements/end_stop.hpp,
+// docs/physics/end_stops.md): its fields, its rules across fields and
+// sections, and the stops it builds on the load. (Absent: no end stops; the
+// load travels until the nut leaves the screw.)
+#include <cmath>
+#include <limits>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/element_section.hpp"
+
+namespace leadscrew::model {
+
+namespace {
+
+void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
+  if (!s.given("lower") && !s.given("upper"))
+    throw InvalidArgument("end_stops = " + m.section(s) +
+                          " is invalid without end_stops.lower or end_stops.upper: give "
+                          "end_stops.lower [m] (< 0), end_stops.upper [m] (> 0) or both");
+  const std::string& contact = s.choice("contact");
+  if (contact == "exact") {
+    for (const char* key : {"stiffness", "damping"})
+      if (key[0] == 's' ? s.given(key) : s.number(key) != 0.0)
+        throw InvalidArgument(s.path(key) + " = " + m.number(s.number(key)) +
+                              " is invalid: must be absent with end_stops.contact = " +
+                              m.text("exact") +
+                              " (a rigid stop; its impacts take end_stops.restitution)");
+    // The load alone meets the stop: no constraint may tie it to other
+    // coordinates (a rigid translating part carries the thread: a rigid
+    // drive clamped against a rigid stop is statically indeterminate).
+    const bool screw_driven = p.drive == DrivenPart::screw;
+    const bool flexible = p.concept == Concept::flexible ||
+                          (p.concept == Concept::flexible_nut && screw_driven);
+    if (!flexible)
+      throw InvalidArgument(
+          "end_stops.contact = " + m.text("exact") + " is invalid with concept = " +
+          m.text(concept_name(p.concept)) + " and drive = " + m.text(drive_name(p.drive)) +
+          ": the load moves with the " + (screw_driven ? "nut" : "screw") +
+          ", rigid and in the thread, and a rigid drive clamped against a rigid stop is "
+          "statically indeterminate (the thread's friction and the stop's force, one "
+          "equation); use end_stops.contact = " + m.text("penalty") +
+          ", or a concept where that part is flexible (the load on its spring)");
+  } else {
+    if (s.number("restitution") != 0.0)
+      throw InvalidArgument("end_stops.restitution = " + m.number(s.number("restitution")) +
+                            " is invalid: must be 0 with end_stops.contact = " +
+                            m.text(contact) +
+                            " (a penalty stop's restitution follows from its stiffness and "
+                            "damping)");
+    if (!s.given("stiffness"))
+      throw InvalidArgument("end_stops.stiffness is missing: required with end_stops.contact = " +
+                            m.text(contact) + " [N/m]");
+  }
+  if (p.initial_state == InitialState::equilibrium)
+    throw InvalidArgument("initial.state = " + m.text("equilibrium") +
+                          " is invalid with end_stops: the stops are placed relative to the "
+                          "load's start, and the static equilibrium does not take them (use " +
+                          m.text("relaxed") + ")");
+}
+
+// The stops on the load, lower < 0 < upper relative to its start, which a
+// relaxed start puts at u_load = 0.
+void build(const Section& s, const DriveParameters& p, elements::DriveElements& e) {
+  (void)p;
+  const int load = e.load.coordinate;
+  const bool exact = s.choice("contact") == "exact";
+  for (const int side : {-1, 1}) {
+    const double position = s.number(side < 0 ? "lower" : "upper");
+    if (std::isinf(position)) continue;
+    const char* name = side < 0 ? "lower end stop" : "upper end stop";
+    if (exact) {
+      e.exact_stops.push_back({name, load, side, position, s.number("restitution")});
+      continue;
+    }
+    elements::EndStop stop;
+    stop.name = name;
+    stop.coordinate = load;
+    stop.side = side;
+    stop.position = position;
+    stop.stiffness = s.number("stiffness");
+    stop.damping = s.number("damping");
+    e.forces.of<elements::EndStop>().push_back(stop);
+  }
+}
+
+}  // namespace
+
+SectionType end_stops_section() {
+  const double inf = std::numeric_limits<double>::infinity();
+  SectionType type;
+  type.name = "end_stops";
+  type.doc = "(Absent: no end stops; the load travels until the nut leaves "
+                                "the screw.)";
+  type.fields = {
+      number("lower", "m",
+             "the lower end stop's face: the load's axial position u_load where it touches, "
+             "relative to the load's start (u_load at t = 0), < 0 (absent: no lower stop; give "
+             "lower, upper or both)")
+          .optional(-inf)
+          .below(0.0)
+          .named("end_stop_lower"),
+      number("upper", "m",
+             "the upper end stop's face, relative to the load's start, > 0 (absent: no upper "
+             "stop)")
+          .optional(inf)
+          .above(0.0)
+          .named("end_stop_upper"),
+      choice("contact", {"penalty", "exact"},
+             "the stops' contact: 'penalty', a one-sided spring-damper on the load against the "
+             "ground, F = max(0, k d + c d') for a penetration d > 0, which pushes and never "
+             "pulls; 'exact', a rigid unilateral stop with Newton impacts (restitution), only "
+             "where the load hangs on a flexible translating part (concept 'flexible', or "
+             "'flexible_nut' with drive 'screw'; docs/physics/end_stops.md)")
+          .named("end_stops"),
+      number("stiffness", "N/m",
+             "the penalty stop's stiffness k (required with contact = 'penalty', absent with "
+             "'exact'): the static deflection under a held force F is F / k")
+          .optional(0.0)
+          .above(0.0)
+          .named("end_stop_stiffness"),
+      number("damping", "N*s/m",
+             "the penalty stop's damping c in contact (0: an elastic stop, which gives back all "
+             "it stores)")
+          .defaults(0.0)
+          .at_least(0.0)
+          .named("end_stop_damping"),
+      number("restitution", "",
+             "Newton restitution coefficient e of an 'exact' stop's impacts, in [0, 1]: the "
+             "load leaves at e times its approach speed; a rebound below the run's "
+             "bounce_threshold closes the contact (the load held at the face while the forces "
+             "press it there)")
+          .defaults(0.0)
+          .range(0.0, 1.0)
+          .named("end_stop_restitution"),
+  };
+  type.check = &check;
+  type.build = &build;
+  return type;
+}
+
+}  // namespace leadscrew::model

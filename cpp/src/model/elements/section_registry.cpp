@@ -1,0 +1,25 @@
+// The elements' scene sections, one line each: X(name) for a section
+// declared by `SectionType name_section()` in its element's file
+// (element_section.hpp; cpp/src/model/elements/name.cpp). The order is the
+// scene schema's and the core spec's.
+#include "leadscrew/model/element_section.hpp"
+
+#define LEADSCREW_ELEMENT_SECTIONS(X) \
+  X(end_stops)                        \
+  X(load_spring)
+
+namespace leadscrew::model {
+
+#define LEADSCREW_DECLARE_SECTION(name) SectionType name##_section();
+LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_DECLARE_SECTION)
+#undef LEADSCREW_DECLARE_SECTION
+
+const std::vector<SectionType>& element_section_types() {
+#define LEADSCREW_LIST_SECTION(name) name##_section(),
+  static const std::vector<SectionType> types = {
+      LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_LIST_SECTION)};
+#undef LEADSCREW_LIST_SECTION
+  return types;
+}
+
+}  // namespace leadscrew::model

@@ -61,6 +61,19 @@ def test_a_law_refuses_parameters_it_does_not_take_and_values_out_of_range():
         ls.simulate(ls.FrictionBlock(1.0, 0.3, mu_static=0.5), 0.1, friction="arctan_velocity")
     with pytest.raises(ValueError, match=r"friction = \"dry\" is invalid"):
         ls.simulate(block, 0.1, friction="dry")
+    # The block carries its coefficients: as keywords they would override
+    # them silently (a new user's mu=0.1 on a block of mu 0.3 ran at 0.1).
+    for key in ("mu", "mu_static"):
+        with pytest.raises(ValueError, match=f"^{key} = 0.1 is invalid as a keyword of simulate "
+                                             f"for a FrictionBlock: the block carries its {key}"):
+            ls.simulate(block, 0.1, friction="stribeck", **{key: 0.1})
+
+
+def test_the_public_registry_is_the_cores():
+    assert ls.friction_laws() == list(_core.friction_laws())
+    assert [law["name"] for law in ls.friction_laws()] == [
+        "coulomb", "arctan_velocity", "arctan_acceleration", "stribeck", "lugre"]
+    assert "load_spring" in ls.describe_schema() and "lugre" in ls.describe_schema()
 
 
 def test_lugre_refuses_mu_zero_where_its_bristle_rate_divides_by_it():

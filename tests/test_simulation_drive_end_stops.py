@@ -173,7 +173,7 @@ def test_the_core_checks_the_stops_too():
         _core.DriveModel(parameters)
     parameters.end_stop_lower = -0.01
     parameters.end_stop_stiffness = 0.0
-    with pytest.raises(ValueError, match="end_stops.stiffness"):
+    with pytest.raises(ValueError, match="end_stops.stiffness = 0 N/m is invalid: must be > 0"):
         _core.DriveModel(parameters)
     parameters.end_stop_lower = -math.inf
     parameters.end_stop_stiffness = K

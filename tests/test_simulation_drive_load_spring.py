@@ -137,6 +137,11 @@ def test_the_core_checks_the_spring_too():
     parameters.load_spring_stiffness = -5.0
     with pytest.raises(ValueError, match="load_spring.stiffness = -5 N/m is invalid: must be > 0"):
         _core.DriveModel(parameters)
+    # Given as 0 (the value its absence stands for) it is out of range, as
+    # the Scene says, not missing.
+    parameters.load_spring_stiffness = 0.0
+    with pytest.raises(ValueError, match="load_spring.stiffness = 0 N/m is invalid: must be > 0"):
+        _core.DriveModel(parameters)
     parameters.load_spring_stiffness = K
     parameters.gear = "lossy"
     parameters.gear_efficiency = 0.8

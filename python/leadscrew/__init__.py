@@ -9,6 +9,7 @@ from .errors import (JammingError, NoEquilibriumError, NutOffScrewError, Simulat
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
 from .scene import Scene
+from .scene_schema import describe_schema, friction_laws
 from .simulation import Event, Result, simulate
 from .thread import (
     Thread,
@@ -73,6 +74,8 @@ __all__ = [
     "Table",
     "FrictionBlock",
     "Scene",
+    "describe_schema",
+    "friction_laws",
     "simulate",
     "Result",
     "Event",

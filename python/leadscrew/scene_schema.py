@@ -13,15 +13,16 @@ in :mod:`leadscrew.scene_checks`, the loads in :mod:`leadscrew.scene_loads`.
 
 from __future__ import annotations
 
+import copy
 import functools
 import json
 import math
 from dataclasses import dataclass
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple
 
 from . import _core
 
-__all__ = ["Field", "OPTIONAL", "SCHEMA", "describe_schema"]
+__all__ = ["Field", "OPTIONAL", "SCHEMA", "describe_schema", "friction_laws"]
 
 
 @dataclass(frozen=True)
@@ -82,6 +83,21 @@ def _friction_registry() -> Tuple[dict, ...]:
     read once: it does not change while the module lives, and building it
     costs 40 us a call (twice a block's simulation, which takes 25 us)."""
     return tuple(_core.friction_laws())
+
+
+def friction_laws() -> List[dict]:
+    """The friction laws of the registry, in its order.
+
+    Returns:
+        One dict per law: ``name``, ``doc`` (what it is), and its
+        ``parameters``, each a dict with ``key``, ``unit`` (SI, ``""`` for a
+        pure number), ``doc``, ``default`` (None: required or taken from
+        ``default_from``, another key, as ``mu_static`` takes ``mu``) and its
+        range. A scene's ``friction`` section takes the law's keys; a
+        FrictionBlock's ``simulate`` takes them as keywords (its ``mu`` and
+        ``mu_static`` belong to the block).
+    """
+    return copy.deepcopy(list(_friction_registry()))
 
 
 def _friction_law_entry(name: str) -> Optional[dict]:

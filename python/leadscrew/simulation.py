@@ -643,6 +643,12 @@ def simulate(
                 arguments["integrator"] = integrators()[0]
         takes = [p["key"] for p in entry["parameters"]] if entry is not None else []
         for name, value in law_parameters.items():  # no law's parameter (a law's: the core)
+            if name in _BLOCK_COEFFICIENTS:
+                # (given here they would override the block's own silently)
+                raise ValueError(f"{name} = {value!r} is invalid as a keyword of simulate for a "
+                                 f"FrictionBlock: the block carries its {name} "
+                                 "(ls.FrictionBlock(mass, mu, ..., mu_static=...)); build the "
+                                 "block with it")
             if takes and name not in _law_keys():
                 raise _unknown_block_option(name, value, friction, takes)
         law = {name: _real(name, value) for name, value in law_parameters.items()}
@@ -672,6 +678,10 @@ def simulate(
             return Result(_core.simulate_drive(*_drive_call(arguments)))
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
+
+# The friction coefficients a FrictionBlock carries itself (not keywords of
+# simulate, as the law's other parameters are).
+_BLOCK_COEFFICIENTS = ("mu", "mu_static")
 
 # The core's simulate_block's and simulate_drive's parameters, in their
 # order (bind_model.cpp, bind_drive.cpp), and their arguments picked from a

@@ -162,6 +162,7 @@ Section::Section(const SectionType& type, const ElementSection& given) : type_(&
       choices_.emplace_back();
       given_.push_back(found && (f.presence == SectionField::Presence::defaulted ||
                                  !absent_value(f, v)));
+      supplied_.push_back(found);
     } else {
       std::string v = f.choices.front();
       for (const auto& [key, value] : given.choices)
@@ -169,6 +170,7 @@ Section::Section(const SectionType& type, const ElementSection& given) : type_(&
       numbers_.push_back(0.0);
       choices_.push_back(v);
       given_.push_back(found);
+      supplied_.push_back(found);
     }
   }
 }
@@ -176,6 +178,11 @@ Section::Section(const SectionType& type, const ElementSection& given) : type_(&
 bool Section::given(const char* key) const {
   const int i = type_->field_index(key);
   return i >= 0 && given_[static_cast<std::size_t>(i)];
+}
+
+bool Section::supplied(const char* key) const {
+  const int i = type_->field_index(key);
+  return i >= 0 && supplied_[static_cast<std::size_t>(i)];
 }
 
 double Section::number(const char* key) const {
@@ -212,10 +219,10 @@ void check_section_ranges(const Section& s) {
       continue;
     }
     if (!s.given(f.key)) {
-      if (f.presence == SectionField::Presence::required)
+      if (f.presence == SectionField::Presence::required && !s.supplied(f.key))
         throw InvalidArgument(s.path(f.key) + " is missing: " + f.doc +
                               (*f.unit ? std::string(" [") + f.unit + "]" : std::string()));
-      continue;
+      if (f.presence != SectionField::Presence::required) continue;
     }
     const double v = s.number(f.key);
     const bool above = f.low_open ? v > f.low : v >= f.low;

@@ -126,6 +126,9 @@ class Section {
   const SectionType& type() const noexcept { return *type_; }
   // True if the key was given and differs from what its absence means.
   bool given(const char* key) const;
+  // True if the key was given at all (also at the value its absence
+  // means: a required stiffness given as 0 is out of range, not missing).
+  bool supplied(const char* key) const;
   double number(const char* key) const;
   const std::string& choice(const char* key) const;
   std::string path(const char* key) const { return std::string(type_->name) + "." + key; }
@@ -134,7 +137,7 @@ class Section {
   const SectionType* type_;
   std::vector<double> numbers_;
   std::vector<std::string> choices_;
-  std::vector<bool> given_;
+  std::vector<bool> given_, supplied_;
 };
 
 // The registry, in its order (section_registry.cpp).

@@ -20,8 +20,10 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
                           "end_stops.lower [m] (< 0), end_stops.upper [m] (> 0) or both");
   const std::string& contact = s.choice("contact");
   if (contact == "exact") {
+    // (A stiffness is given where it differs from its absence; the damping
+    // where it is not 0, its default.)
     for (const char* key : {"stiffness", "damping"})
-      if (key[0] == 's' ? s.given(key) : s.number(key) != 0.0)
+      if (s.given(key) && s.number(key) != 0.0)
         throw InvalidArgument(s.path(key) + " = " + m.number(s.number(key)) +
                               " is invalid: must be absent with end_stops.contact = " +
                               m.text("exact") +
@@ -48,9 +50,13 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
                             m.text(contact) +
                             " (a penalty stop's restitution follows from its stiffness and "
                             "damping)");
-    if (!s.given("stiffness"))
+    if (!s.supplied("stiffness"))
       throw InvalidArgument("end_stops.stiffness is missing: required with end_stops.contact = " +
                             m.text(contact) + " [N/m]");
+    if (!(s.number("stiffness") > 0.0))
+      throw InvalidArgument("end_stops.stiffness = " + m.number(s.number("stiffness")) +
+                            " N/m is invalid: must be > 0 with end_stops.contact = " +
+                            m.text(contact));
   }
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument("initial.state = " + m.text("equilibrium") +

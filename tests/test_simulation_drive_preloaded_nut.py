@@ -198,9 +198,6 @@ def test_energy_account_closes_and_friction_never_pushes():
      r"nut\.preload = -1\.0 is invalid: must be a finite number >= 0"),
     ({"nut": {"preload_stiffness": -1.0}},
      r"nut\.preload_stiffness = -1\.0 is invalid: must be a finite number >= 0"),
-    ({"concept": "flexible_nut", "backlash": {"contact": "exact", "axial": 1e-4}},
-     r"nut\.preload = 10 is invalid with concept = \"flexible_nut\" and backlash\.contact = "
-     r"\"exact\".*supported on the rigid concept"),
     ({"friction": {"law": "arctan_velocity", "mu": 0.3}},
      r"nut\.preload = 10 is invalid with friction\.law = \"arctan_velocity\""),
     ({"initial": {"state": "equilibrium", "rotor_speed": 0.0}},

@@ -24,7 +24,8 @@
 //                          current limit's root and hold
 //   hybrid_end_stops.cpp   the end stops, penalty and exact: their roots,
 //                          impacts, closed contacts and force
-//   hybrid_preloaded_nut.cpp  a lift-off preloaded nut's channels
+//   hybrid_preloaded_nut.cpp  a lift-off preloaded nut's channels; the guard of
+//                             half A with exact play closed by the preload
 //   element_registry.cpp   the elements' registry (declaration.hpp)
 #pragma once
 
@@ -171,6 +172,13 @@ class DriveHybrid final : public integrate::HybridSystem {
   void decide_friction(double t, double* y, bool at_zero_slip, int hint);
   void start_normal_side();
   double flank_change_root(double normal_force);
+  // A preloaded nut closing exact play (hybrid_preloaded_nut.cpp): the nut
+  // where the thread is closed by it (nullptr otherwise), half A's normal
+  // force on its own flank in the current mode at the net normal force (the
+  // root g1, >= 0 while it bears), and the SimulationError where it lifts off.
+  const elements::PreloadedNut* closing_nut() const;
+  double half_a_bearing(double normal_force) const;
+  [[noreturn]] void half_a_lifts_off(double t) const;
   // The train's friction stages (TrainSolver): stick or slip at zero slip by
   // the breakaway test; the stage's power flow reversing in slip (the root
   // of its torque on the driven part, as flank_change_root's).

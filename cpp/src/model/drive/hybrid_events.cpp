@@ -17,9 +17,12 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
   solver_->expand(t, y);
   g[4] = model_.screw_end_margin(model_.nut_position(q_.data()));
   const bool active = mode_.contact != ThreadContact::open;
+  const elements::PreloadedNut* closing = closing_nut();
   // A closed flank is watched for its normal force falling through zero
-  // whatever the friction (a frictionless one too: it must open).
-  if (active && (mode_.friction != FrictionMode::none || mode_.contact == ThreadContact::closed)) {
+  // whatever the friction (a frictionless one too: it must open), and so is
+  // half A of a preloaded nut closing exact play.
+  if (active && (mode_.friction != FrictionMode::none || mode_.contact == ThreadContact::closed ||
+                 closing)) {
     if (mode_.friction == FrictionMode::slip) g[0] = solver_->slip_velocity(y) - slip_offset_;
     const bool need_forces = mode_.friction == FrictionMode::stick ||
                              mode_.contact == ThreadContact::closed ||
@@ -48,6 +51,8 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
       }
       if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
         g[1] = flank_change_root(s.normal_force - s.preload_normal);
+      // Half A lifting off into the closed exact play: an error at its root.
+      if (closing) g[1] = half_a_bearing(s.normal_force);
       if (train_ && train_->has_stage() && mode_.friction == FrictionMode::slip)
         g[2] = stage_reversal_root(train_->stage_torque());
       if (watch_fold()) {
@@ -247,12 +252,17 @@ void DriveHybrid::start_mode(double t, const double* y) {
     const ModeSolution s = solve_current();
     stick_from_zero_ = s.normal_force == 0.0 && s.friction_force == 0.0;
   }
+  // A mode of a preloaded nut closing exact play that starts with half A
+  // pulling on its flank (half B's force changes with the mode): it lifts
+  // off here.
+  if (closing_nut() && half_a_bearing(solve_current().normal_force) < 0.0) half_a_lifts_off(t);
 }
 
 // handle_event without the planning of the next mode's load-driven roots.
 std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>& root_info) {
   set(t, y);
   const Mode before = mode_;
+  if (closing_nut() && root_info[1] != 0) half_a_lifts_off(t);
   if (watch_fold() && root_info[2] != 0) {
     solve_current();
     // The other sign's denominator passes through zero (the current branch

@@ -4,11 +4,15 @@
 // bound; without, the normal force the friction coefficient multiplies) and,
 // with lift-off, an element of the event-driven driver (driver_element.hpp)
 // without roots: its channels' values. Its forces enter through
-// DriveDynamics (solve, the penalty flank of half A).
+// DriveDynamics (solve, the penalty flank of half A). With exact play closed
+// by the preload (PreloadedNut::closes_exact_play) the driver's guard of
+// half A's flank: its root g1 and the SimulationError where it lifts off.
 #include <algorithm>
 #include <cmath>
 
 #include "driver_element.hpp"
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
 
 namespace leadscrew::model::drive {
 
@@ -86,6 +90,28 @@ class LiftOffNutElement final : public DriveHybrid::Element {
 };
 
 }  // namespace
+
+const elements::PreloadedNut* DriveHybrid::closing_nut() const {
+  const elements::PreloadedNut* nut = model_.preloaded_nut();
+  return nut && nut->closes_exact_play && mode_.contact == ThreadContact::bilateral ? nut
+                                                                                   : nullptr;
+}
+
+double DriveHybrid::half_a_bearing(double normal_force) const {
+  const int s = mode_.friction == FrictionMode::slip ? mode_.slip_sign : 0;
+  return model_.preloaded_nut()->half_a_bearing(s, normal_force);
+}
+
+void DriveHybrid::half_a_lifts_off(double t) const {
+  throw SimulationError(
+      t,
+      "half A of the preloaded nut lifts off its flank into the exact play (its normal force on "
+      "the flank reached zero: the load on half B's side exceeds what the preload of " +
+          format_value(model_.preloaded_nut()->preload) +
+          " N holds), which is not modelled with backlash.contact = \"exact\"",
+      "use backlash.contact = \"bistop\" or \"cubic\" with nut.preload_stiffness > 0 to "
+      "simulate the lift-off, or a larger nut.preload");
+}
 
 const ElementKind& preloaded_nut_kind() {
   static const ElementKind kind{"preloaded_nut",

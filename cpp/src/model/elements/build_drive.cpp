@@ -15,7 +15,9 @@ namespace leadscrew::model::elements {
 namespace {
 
 // The preloaded split nut of p (nut.preload > 0) on the thread without play
-// of the rigid concept; elsewhere refused with what is supported.
+// (the rigid concept's, the flexible concepts' with or without exact play
+// closed) or on penalty play (lift-off); elsewhere refused with what is
+// supported.
 // The DC motor's own time constants, its rotor alone (before a gear): the
 // mechanical J R / (k_t k_e) (the back-EMF's damping of the rotor) and the
 // electrical L / R. The fastest motors built have about 1 ms and 1 us
@@ -206,18 +208,10 @@ void build_preloaded_nut(const DriveParameters& p, DriveElements& e) {
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
-      "without play or with penalty flanks (backlash.contact = \"bistop\" or \"cubic\"), "
+      "without play, with exact play (closed by the preload) or with penalty flanks "
+      "(backlash.contact = \"bistop\" or \"cubic\"), "
       "with exact Coulomb friction (friction.law = \"coulomb\", mu_static >= mu) and "
       "initial.state = \"relaxed\"";
-  if (p.concept != Concept::rigid && p.backlash == BacklashContact::exact)
-    throw InvalidArgument(preload + "with concept = \"" + concept_name(p.concept) +
-                          "\" and backlash.contact = \"exact\"" + supported +
-                          " (half A lifting off into exact play, its impacts with the spring's "
-                          "half on the other flank, is not modelled: docs/physics/"
-                          "preloaded_nut.md, \"Exact play: what it takes\"); use "
-                          "backlash.contact = \"bistop\" or \"cubic\" with "
-                          "nut.preload_stiffness > 0, or leave the backlash out (the preload "
-                          "closes the play while it holds the load)");
   // Exact Coulomb, with one coefficient or with mu_static above mu (the
   // halves stick at mu_static', slip at mu': preloaded_nut.hpp).
   const friction::Law& law = e.thread->law();
@@ -296,8 +290,13 @@ DriveElements build_drive_elements(DriveParameters& p) {
   if (p.backlash == BacklashContact::exact && p.clearance == 0.0)
     p.backlash = BacklashContact::none;
   // A preloaded split nut on the rigid concept closes the play: its halves
-  // bear on both flanks (preloaded_nut.hpp), the thread without play.
-  if (p.nut_preload > 0.0 && p.concept == Concept::rigid && p.backlash != BacklashContact::none) {
+  // bear on both flanks (preloaded_nut.hpp), the thread without play. So
+  // does it exact play on the flexible concepts, while half A bears on its
+  // flank (the driver raises where it would lift off: closes_exact_play).
+  const bool closes_exact_play = p.nut_preload > 0.0 && p.concept != Concept::rigid &&
+                                 p.backlash == BacklashContact::exact;
+  if (p.nut_preload > 0.0 && (p.concept == Concept::rigid || closes_exact_play) &&
+      p.backlash != BacklashContact::none) {
     p.backlash = BacklashContact::none;
     p.play_position = 0.0;
   }
@@ -527,6 +526,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
   }
   e.load = AxialLoad{load, p.axial_force};
   build_preloaded_nut(p, e);
+  if (e.preloaded_nut) e.preloaded_nut->closes_exact_play = closes_exact_play;
   if (e.preloaded_nut && e.preloaded_nut->lift_off) {
     // The assembled nut: half A on its flank at the preload (e_0 = -b
     // closing, b = -side; initial.play_position is ignored, as on the rigid

@@ -192,6 +192,23 @@ struct PreloadedNut {
   bool lift_off = false;
   double closing = 0.0;  // c/2 + d_0 [m]
 
+  // Exact play on a flexible concept, closed by the preload (docs/physics/
+  // preloaded_nut.md, "Exact play closed by the preload"): the element
+  // without play, exact while half A bears on its flank. Half A lifting off
+  // into the play is not modelled: the driver watches half A's normal force
+  // on its flank (half_a_bearing) and raises a SimulationError where it
+  // reaches zero.
+  bool closes_exact_play = false;
+  // Half A's normal force toward its own flank [N] (>= 0 while it bears) at
+  // the net normal force N: half B at N_B^s in slip s = +-1, at its spring's
+  // force side P / cos(a) along W_N (side P grad(e)) in stick or without
+  // friction (s = 0). Quasi-statically in stick, with the thread's force
+  // axial, it is zero at the axial load P / cos^2(a) on half B's side.
+  double half_a_bearing(int s, double normal_force) const noexcept {
+    const double b = s == 0 ? side * preload / cos_lead : normal(s);
+    return -side * (normal_force - b);
+  }
+
   // The spring's force S [N] at the play e and its energy S^2 / (2 k_p) [J].
   double spring_force(double play) const noexcept {
     return std::max(0.0, preload + stiffness * (closing - side * play));

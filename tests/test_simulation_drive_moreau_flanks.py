@@ -1,7 +1,7 @@
 """Moreau-Jean on penalty flanks (backlash.contact 'bistop' and 'cubic') with a
 set-valued law (issue 19; docs/physics/drive_models.md, "Moreau-Jean on
 penalty flanks"): first-order convergence to the event-driven run of the
-same drive, a self-locking thread holding in its play, mu = 0 as the
+same drive (coulomb, with mu_static, stribeck), a self-locking thread holding in its play, mu = 0 as the
 frictionless run, the train's friction stages on a drive with penalty play
 (a self-locking worm holds, a 30 degree worm runs away, the DC motor's
 steady state through a lossy stage against the closed form), and the energy
@@ -88,6 +88,18 @@ def test_a_static_coefficient_converges_too(contact):
                                          [1e-5, 5e-6, 2.5e-6, 1.25e-6])
     assert 0.9 < slope < 1.25, (errors, slope)
     assert np.all(np.diff(np.abs(errors)) < 0.0), errors
+
+
+@pytest.mark.parametrize("contact", CONTACTS)
+def test_stribecks_law_converges_too(contact):
+    # Stribeck's curve (explicit in the step's start speed) and its viscous
+    # term (implicit) on penalty flanks: first order (fitted 1.00).
+    scene = rattling_scene(contact)
+    scene["friction"] = {"law": "stribeck", "mu": 0.1, "mu_static": 0.15,
+                         "stribeck_velocity": 0.01, "viscous": 0.5}
+    slope, errors = friction_loss_errors(scene, 0.2, [1e-5, 5e-6, 2.5e-6, 1.25e-6])
+    assert 0.98 < slope < 1.02, (errors, slope)
+    assert np.all(np.abs(orders(errors) - 1.0) < 0.05), errors
 
 
 @pytest.mark.parametrize("contact", CONTACTS)

@@ -175,10 +175,11 @@ def test_schema_says_which_schemes_run_the_trains_friction_stages():
     lines = {line.split(" ", 1)[0]: line for line in ls.scene.describe_schema().splitlines()}
     for key in ("motor.friction_torque", "gear.type"):
         line = lines[key]
+        # (Penalty flanks run with the stages on Moreau-Jean now.)
         assert ("a torque (loads.drive_torque) or a DC motor, a set-valued law on the thread "
-                "(friction.law = 'coulomb' or 'stribeck'), exact flanks or none (not "
-                "backlash.contact 'bistop' or 'cubic'), no nut.preload and initial.state = "
-                "'relaxed'; end stops are allowed. Moreau-Jean (integrator = 'moreau') runs them "
+                "(friction.law = 'coulomb' or 'stribeck'), no nut.preload and initial.state = "
+                "'relaxed'; end stops and every play (backlash.contact 'exact', 'bistop' or "
+                "'cubic') are allowed. Moreau-Jean (integrator = 'moreau') runs them "
                 "on every concept and play, the event-driven scheme on the rigid concept without "
                 "play with friction.law = 'coulomb' without mu_static; where only Moreau-Jean "
                 "fits, it is the default") in line, key

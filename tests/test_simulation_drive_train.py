@@ -237,8 +237,8 @@ REFUSED = [
     # the rigid concept: tests/test_simulation_drive_train_stops.py.)
     (dict(initial={"state": "equilibrium"}), LOSSY, "initial.state"),
     (dict(friction={"law": "coulomb", "mu": 80.0}), LOSSY, "a torque cannot drive the thread"),
-    # (Penalty flanks run on the ODE methods alone, which take no stage.)
-    (dict(backlash={"axial": 1e-5, "contact": "bistop"}), WORM, 'backlash.contact = "bistop"'),
+    # (Penalty flanks run with the stages on Moreau-Jean now:
+    # tests/test_simulation_drive_moreau_flanks.py.)
 ]
 
 

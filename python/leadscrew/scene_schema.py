@@ -68,9 +68,9 @@ _GEAR_TYPES = ("ideal", "lossy", "worm")
 # train_event_driven_obstacle in elements/build_drive.cpp).
 _TRAIN_STAGE_RULE = (
     "a torque (loads.drive_torque) or a DC motor, a set-valued law on the thread "
-    "(friction.law = 'coulomb' or 'stribeck'), exact flanks or none (not backlash.contact "
-    "'bistop' or 'cubic'), no nut.preload and initial.state = 'relaxed'; end stops are "
-    "allowed. Moreau-Jean (integrator = 'moreau') runs them on every concept and play, the "
+    "(friction.law = 'coulomb' or 'stribeck'), no nut.preload and initial.state = "
+    "'relaxed'; end stops and every play (backlash.contact 'exact', 'bistop' or 'cubic') "
+    "are allowed. Moreau-Jean (integrator = 'moreau') runs them on every concept and play, the "
     "event-driven scheme on the rigid concept without play with friction.law = 'coulomb' "
     "without mu_static; where only Moreau-Jean fits, it is the default "
     "(docs/physics/gear.md, 'Friction stages')")
@@ -212,7 +212,10 @@ SCHEMA: Dict[str, Any] = {
                        None, **NONNEGATIVE),
         "contact": Field("flank contact across the play: 'exact' (unilateral contacts, Newton "
                          "impacts), 'bistop' (Adams BISTOP penalty), 'cubic' (smooth cubic "
-                         "penalty, cf. thesis Fig. 2.6)", "", "exact", kind="choice",
+                         "penalty, cf. thesis Fig. 2.6); with friction.law 'coulomb' or "
+                         "'stribeck' each runs on integrator 'event_driven' and 'moreau', the "
+                         "penalty flanks with 'stribeck' also on the ODE integrators", "",
+                         "exact", kind="choice",
                          choices=_CHOICES["backlash.contact"]),
         "restitution": Field("Newton restitution coefficient of flank impacts ('exact')", "",
                              0.0, low=0.0, high=1.0),

@@ -552,13 +552,16 @@ def simulate(
             ``"arctan_acceleration"`` (eq. 3.15). A Scene carries its
             friction law (``friction.law``).
         integrator: for ``"coulomb"``: ``"event_driven"`` (default) or
-            ``"moreau"``; for the regularized laws an ODE integrator:
+            ``"moreau"`` (a Scene without play, with exact flanks or with
+            penalty flanks, ``backlash.contact`` ``"bistop"`` or
+            ``"cubic"``); for the regularized laws an ODE integrator:
             ``"cvode_bdf"`` (default), ``"cvode_adams"``, ``"dopri5"``, ...
             (a Scene with exact backlash and a regularized law: ``"event_driven"``).
             Where only ``"moreau"`` fits a Scene, it is the default: the
             train's friction stages (``motor.friction_torque``, ``gear.type``
             ``"lossy"`` or ``"worm"``) anywhere but on the rigid concept
-            without play with plain Coulomb friction (no ``mu_static``).
+            without play with plain Coulomb friction (no ``mu_static``):
+            on the flexible concepts and with exact or penalty play.
         rtol, atol: integration tolerances of the ODE and event-driven
             integrators (default 1e-8 and 1e-10; refused with ``"moreau"``).
         dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,

@@ -110,14 +110,13 @@ HOSTILE_KINDS = ("nan", "inf", "-inf", "negative", "zero", "denormal", "huge", "
 def fitting_integrators(law: str, contact: Optional[str]) -> Tuple[str, ...]:
     """The integrators ``simulate`` runs for a friction law and a flank
     contact (None: no play): a set-valued law (coulomb, stribeck) is
-    event-driven or Moreau-Jean (Moreau-Jean only with exact flanks, not
-    penalty ones), stribeck also in the ODE integrators (regularized) but for
+    event-driven or Moreau-Jean (without play, on exact and on penalty
+    flanks), stribeck also in the ODE integrators (regularized) but for
     exact play; a smooth law with exact flanks is event-driven; otherwise an
     ODE integrator or event-driven."""
     if law in SET_VALUED_LAWS:
         regularized = ODE_INTEGRATORS if law == "stribeck" and contact != "exact" else ()
-        moreau = ("moreau",) if contact in (None, "exact") else ()
-        return ("event_driven",) + moreau + regularized
+        return ("event_driven", "moreau") + regularized
     if contact == "exact":
         return ("event_driven",)
     return ODE_INTEGRATORS + ("event_driven",)

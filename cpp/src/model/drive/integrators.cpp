@@ -16,17 +16,17 @@ namespace leadscrew::model {
 namespace {
 
 // The integrators that fit the friction law `friction` on a thread pair with
-// penalty flanks, exact flanks, or (neither) no play; a preloaded nut runs on
-// the event-driven scheme only. End stops run on every scheme the thread
+// exact flanks, or penalty flanks or no play (the same list); a preloaded nut
+// runs on the event-driven scheme only. End stops run on every scheme the thread
 // pair admits (Moreau-Jean: moreau.hpp).
-const std::vector<std::string>& integrators_for(const std::string& friction, bool penalty,
-                                                bool exact_play, bool preloaded) {
+const std::vector<std::string>& integrators_for(const std::string& friction, bool exact_play,
+                                                bool preloaded) {
   // From the law's type (friction/law.hpp): a set-valued law runs in the
-  // event-driven scheme, in Moreau-Jean's time stepping, and where it has a
+  // event-driven scheme, in Moreau-Jean's time stepping (without play, on
+  // exact flanks and on penalty flanks: moreau.hpp), and where it has a
   // regularization in the ODE methods; a smooth law in the ODE methods and
-  // the event-driven scheme. Moreau-Jean's step handles exact flank contacts
-  // only (not penalty flanks), and exact play needs the event-driven
-  // scheme's flank events with every law but for Moreau-Jean's.
+  // the event-driven scheme. Exact play needs the event-driven scheme's
+  // flank events with every law but for Moreau-Jean's.
   static const std::vector<std::string> event_driven_only = {"event_driven"};
   static const std::vector<std::string> with_moreau = {"event_driven", "moreau"};
   static const std::vector<std::string> smooth = [] {
@@ -39,15 +39,9 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
     for (const std::string& name : integrate::integrator_names()) names.push_back(name);
     return names;
   }();
-  static const std::vector<std::string> set_valued_ode = [] {
-    std::vector<std::string> names = {"event_driven"};
-    for (const std::string& name : integrate::integrator_names()) names.push_back(name);
-    return names;
-  }();
   const friction::LawType& type = friction::law_type(friction);
   if (preloaded) return event_driven_only;
   if (type.time_stepping) {  // set-valued
-    if (penalty) return type.ode ? set_valued_ode : event_driven_only;
     if (exact_play) return with_moreau;
     if (type.ode) return set_valued_all;
     return with_moreau;
@@ -76,10 +70,7 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
       (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
     return train_integrators(
         elements::train_event_driven_obstacle(p, *elements::ThreadPair::make_law(p)));
-  const bool penalty =
-      p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic;
-  return integrators_for(p.friction, penalty, p.backlash == BacklashContact::exact,
-                         p.nut_preload > 0.0);
+  return integrators_for(p.friction, p.backlash == BacklashContact::exact, p.nut_preload > 0.0);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
@@ -87,8 +78,7 @@ const std::vector<std::string>& drive::model_integrators(const DriveModel& model
   const DriveParameters& p = model.parameters();
   if (model.train_friction() && !model.preloaded_nut())
     return train_integrators(model.train_friction()->event_driven_obstacle);
-  return integrators_for(p.friction, thread.penalty(), thread.exact_play(),
-                         model.preloaded_nut() != nullptr);
+  return integrators_for(p.friction, thread.exact_play(), model.preloaded_nut() != nullptr);
 }
 
 namespace {
@@ -127,12 +117,14 @@ void check_step_resolves_armature(const DriveParameters& p, const DriveSimulatio
 void check_theta_stable_with_springs(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   if (!(options.theta < 0.5)) return;
-  if (model.elements().forces.empty()) return;
+  const bool penalty_flanks = model.thread_pair().penalty();
+  if (model.elements().forces.empty() && !penalty_flanks) return;
   throw InvalidArgument(
       "theta = " + format_value(options.theta) +
       " is invalid for this drive: its springs (" +
-      (!model.springs().empty()              ? "the flexible screw's or nut's"
+      (!model.springs().empty()                ? "the flexible screw's or nut's"
        : !model.elements().end_stops().empty() ? "the penalty end stops'"
+       : penalty_flanks                        ? "the penalty flanks'"
                                                : "its force elements'") +
       ") need theta in [0.5, 1], where Moreau-Jean's theta-method is stable at every step "
       "(below 0.5 their modes grow from step to step)");

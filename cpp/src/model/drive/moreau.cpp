@@ -36,7 +36,7 @@ void DriveMoreau::initialize(double t, const double* y) {
   if (const elements::DcMotor* dc = model_.dc_motor())
     last_voltage_ = dc->terminal_voltage(t, dynamics_.motor_current(), v_[dc->rotor], false);
   kinetic0_ = dynamics_.kinetic_energy();
-  elastic0_ = dynamics_.elastic_energy();
+  elastic0_ = dynamics_.elastic_energy() + dynamics_.contact_energy();
 }
 
 void DriveMoreau::step(double t, double h, double theta, const double* y, double* y_next) {
@@ -137,6 +137,15 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     normal_target = closing ? -restitution * model_.normal_direction().dot(v0) : 0.0;
     restituting = contact_at_start && closing && restitution > 0.0;
   }
+  // A penalty flank: its force over the step linearised at the predicted
+  // end of the play, then at the step's own (update_flank).
+  const elements::ThreadPair& thread = model_.thread_pair();
+  const bool penalty = thread.penalty();
+  if (penalty) {
+    flank_ = moreau_contacts::PenaltyFlank{};
+    flank_.e0 = play0;
+    flank_.linearise(thread, play0 + h * play_rate0);
+  }
   const double rotor_target =
       p_.speed_controlled ? model_.motor().prescribed_speed(t + h) : 0.0;
 
@@ -173,7 +182,12 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
 
   Impulses impulses;
   bool stick = false, contact = false;
+  int stop_passes = 0;
   for (int pass = 0;; ++pass) {
+    if (penalty) {  // (the flank's friction contact: where it pushes)
+      contact_at_start = flank_.active();
+      sigma_fixed = -flank_.side;
+    }
     // Iteration matrix and free velocity.
     Square stiffness, damping;
     assemble(h, theta, stiffness, damping,
@@ -195,6 +209,14 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
                      (stop.stiffness * std::max(stop.penetration(u0), 0.0) +
                       stop.damping * stop.side * du0);
     }
+    // A penalty flank's force over the step, its part at v+ in W (assemble).
+    if (penalty && flank_.active()) {
+      const double g0 = thread.play_gradient().dot(v0);
+      rhs -= h *
+             (flank_.secant + flank_.slope * (flank_.e0 + h * (1.0 - theta) * g0 - flank_.e1k) +
+              flank_.damping * (1.0 - theta) * g0) *
+             thread.play_gradient();
+    }
     free_ = solver_.solve(rhs);
     if (train != nullptr) {
       impulses = solve_train(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, balance,
@@ -206,11 +228,19 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
                                 contact, stick);
       if (!contact) impulses = solve(false, 0.0, rotor_target, 0.0);
     }
-    if (pass >= 8 || !update_stops(h, theta, v0, impulses, released)) break;
+    bool again = stop_passes < 8 && update_stops(h, theta, v0, impulses, released);
+    ++stop_passes;
+    // (Newton on the flank's force: quadratic, a few passes; capped.)
+    if (penalty && pass < 100 && update_flank(h, theta, v0, impulses)) again = true;
+    if (!again) break;
   }
   v_ = impulses.velocity;
   if (model_.thread_pair().exact_play() && !contact)
     impulses.normal = 0.0, impulses.friction = 0.0;
+  if (penalty) {
+    impulses.normal = flank_impulse(h, theta, v0, v_);
+    if (!contact) impulses.friction = 0.0;
+  }
 
   // Positions of the independent coordinates; the layout fills the rest.
   const CoordinateVector v_theta = (1.0 - theta) * v0 + theta * v_;
@@ -276,6 +306,11 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   for (std::size_t k = 0; k < stops.size(); ++k)
     energy[kDampingLoss] += moreau_contacts::penalty_stop_loss(stops[k], engaged_[k], u0,
                                                                q_[load], v_theta[load], h);
+  // A penalty flank's: its damper's, or a released flank's elastic energy
+  // (its spring's work is the potential's change: the discrete gradient).
+  if (penalty)
+    energy[kContactLoss] += flank_.loss(thread, thread.play(q_),
+                                        thread.play_gradient().dot(v_theta), h);
   if (train != nullptr) {
     // The rotor's friction impulse Q = P_c + Lambda on -e_rotor: in a slip
     // the motor's friction P_c = s B and the stage's loss Lambda = Q - P_c
@@ -361,6 +396,55 @@ DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
                      "shorten dt (or reduce the friction)");
 }
 
+double DriveMoreau::flank_impulse(double h, double theta, const CoordinateVector& v0,
+                                  const CoordinateVector& v1) const {
+  const elements::ThreadPair& thread = model_.thread_pair();
+  const double rate = thread.play_gradient().dot((1.0 - theta) * v0 + theta * v1);
+  // (generalized force -F grad e = (-F / cos(a)) W_N)
+  return -h * flank_.force(flank_.e0 + h * rate, rate) / thread.cos_lead();
+}
+
+// The penalty flank from the step's result: released where its force over
+// the step would pull; else linearised again at the step's end where that
+// moved beyond round-off (Newton on the discrete gradient). True where it
+// changed.
+bool DriveMoreau::update_flank(double h, double theta, const CoordinateVector& v0,
+                               const Impulses& impulses) {
+  const elements::ThreadPair& thread = model_.thread_pair();
+  const double rate = thread.play_gradient().dot((1.0 - theta) * v0 + theta * impulses.velocity);
+  const double end = flank_.e0 + h * rate;
+  if (flank_.released) {
+    // (Without a force the step runs into a flank, U(e1) > U(e0): its
+    // spring alone, which pushes.)
+    if (flank_.undamped || !(thread.flank_potential(end) > thread.flank_potential(flank_.e0)))
+      return false;
+    flank_.released = false;
+    flank_.undamped = true;
+    flank_.linearise(thread, flank_.e1k);
+    return true;
+  }
+  if (flank_.active()) {  // (the force at the step's end, not its linearisation's)
+    moreau_contacts::PenaltyFlank at_end = flank_;
+    at_end.linearise(thread, end);
+    if (at_end.side * (at_end.secant + at_end.damping * rate) < 0.0) {
+      flank_.released = true;
+      return true;
+    }
+  }
+  const double scale = std::max(std::abs(flank_.e0), std::abs(end));
+  if (std::abs(end - flank_.e1k) <= 1e-13 * scale) return false;
+  // (The fixed point lies beyond e1k on end's side: the bracket narrows.)
+  (end > flank_.e1k ? flank_.low : flank_.high) = flank_.e1k;
+  if (!(flank_.high - flank_.low > 1e-13 * scale)) return false;
+  const double next = end > flank_.low && end < flank_.high
+                          ? end
+                          : 0.5 * (flank_.low + flank_.high);
+  const moreau_contacts::PenaltyFlank before = flank_;
+  flank_.linearise(thread, next);
+  return flank_.secant != before.secant || flank_.slope != before.slope ||
+         flank_.damping != before.damping;
+}
+
 // The end stops' active sets from the step's result (impulses, at free_):
 // an engaged penalty stop whose force over the step would pull is released
 // (for the rest of the step), a free one the step carries into its face
@@ -406,12 +490,14 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // The flank's sign, or both (no allocation: this runs every step).
   const int sigmas[2] = {sigma_fixed != 0 ? sigma_fixed : 1, -1};
   const int sigma_count = sigma_fixed != 0 ? 1 : 2;
-  const Impulses without = solve(true, normal_target, rotor_target, 0.0);
-  const Impulses unit = solve(true, normal_target, rotor_target, 1.0);
+  // (A penalty flank: no constraint row, its normal impulse the force's.)
+  const bool row = !model_.thread_pair().penalty();
+  const Impulses without = solve(row, normal_target, rotor_target, 0.0);
+  const Impulses unit = solve(row, normal_target, rotor_target, 1.0);
   double c = model_.tangent_direction().dot(without.velocity);
   double d = model_.tangent_direction().dot(unit.velocity) - c;
-  double beta = without.normal;
-  double alpha = unit.normal - beta;
+  double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);
+  double alpha = (row ? unit.normal : flank_impulse(h, theta, v0, unit.velocity)) - beta;
   // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
   // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
   // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
@@ -451,11 +537,13 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // friction impulses the thread's cone admits the one is taken that leaves
   // the rotor's contact the least |Q| (the split between serial friction
   // contacts that stick together is statically indeterminate).
-  int fixed = 1 + (p_.speed_controlled ? 1 : 0) + (rotor_row_ && rotor_.fixes_speed() ? 1 : 0);
+  int fixed = (row ? 1 : 0) + (p_.speed_controlled ? 1 : 0) +
+              (rotor_row_ && rotor_.fixes_speed() ? 1 : 0);
   for (int k = 0; k < kMaxStops; ++k) fixed += stop_active_[k] ? 1 : 0;
   const bool rotor_prescribes = rotor_row_ && rotor_.fixes_speed() &&
                                 fixed >= model_.coordinate_count();
-  const bool prescribed = dynamics_.slip_prescribed() || rotor_prescribes;
+  // (A penalty flank is no constraint: it prescribes no slip.)
+  const bool prescribed = (row && dynamics_.slip_prescribed()) || rotor_prescribes;
   // (c's round-off: of the velocities, and where the rotor's contact holds
   // a drive at rest, of the loads' velocity increments h f / m, free_.)
   const double slip_noise =
@@ -510,7 +598,8 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                           "Moreau-Jean step; " + dynamics_.jamming_report(),
                        "reduce the friction or change the inertia ratio");
   } else {
-    impulses = solve(true, normal_target, rotor_target, chosen.friction_force);
+    impulses = solve(row, normal_target, rotor_target, chosen.friction_force);
+    if (!row) impulses.normal = flank_impulse(h, theta, v0, impulses.velocity);
     impulses.friction = chosen.friction_force;
     stick = chosen.slip_acceleration == 0.0;
   }
@@ -527,7 +616,8 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
     if (current_state_ >= 0) dynamics_.set_motor_current(state[current_state_]);
     dynamics_.set_state(time, q_, v_);
     const double* energy = state + layout_.energy_offset();
-    double stored = dynamics_.kinetic_energy() + dynamics_.elastic_energy();
+    double stored =
+        dynamics_.kinetic_energy() + dynamics_.elastic_energy() + dynamics_.contact_energy();
     if (dc != nullptr)  // the magnetic energy, and the copper loss among the losses
       stored += dc->magnetic_energy(dc->has_state() ? dynamics_.motor_current() : 0.0) +
                 state[copper_state_];
@@ -592,6 +682,11 @@ void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& da
     }
   Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
   iteration.diagonal() += model_.mass();
+  // A penalty flank's force at v+: h theta (h S' + c) grad e grad e^T.
+  if (model_.thread_pair().penalty() && flank_.active()) {
+    const Eigen::VectorXd& g = model_.thread_pair().play_gradient();
+    iteration += (h * theta * (h * flank_.slope + flank_.damping)) * (g * g.transpose());
+  }
   iteration(model_.rotor(), model_.rotor()) += rotor_damping;
   solver_.compute(iteration);
 }
@@ -604,6 +699,11 @@ double DriveMoreau::step_coupling(double h, double theta) {
   Square stiffness, damping;
   assemble(h, theta, stiffness, damping);
   free_ = CoordinateVector::Zero(model_.coordinate_count());
+  if (model_.thread_pair().penalty()) {  // (the flank's force's normal impulse)
+    const CoordinateVector rest = CoordinateVector::Zero(model_.coordinate_count());
+    return flank_impulse(h, theta, rest, solve(false, 0.0, 0.0, 1.0).velocity) -
+           flank_impulse(h, theta, rest, solve(false, 0.0, 0.0, 0.0).velocity);
+  }
   return solve(true, 0.0, 0.0, 1.0).normal - solve(true, 0.0, 0.0, 0.0).normal;
 }
 
@@ -640,6 +740,8 @@ double DriveMoreau::resolving_step(double h, double theta) {
 
 void DriveMoreau::check_step(double h, double theta) {
   if (dynamics_.painleve_possible()) return;  // the drive's own condition decides
+  // (A penalty flank has no constraint row: solve_thread checks its steps.)
+  if (model_.thread_pair().penalty()) return;
   const double alpha = step_coupling(h, theta);
   if (model_.effective_mu() * std::abs(alpha) >= 1.0)
     throw InvalidArgument("dt = " + format_value(h) + " is invalid: must be < " +

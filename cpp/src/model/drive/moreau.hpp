@@ -25,6 +25,10 @@ namespace leadscrew::model::drive {
 // or on a flank the predicted position closes, with Newton's law
 // W_N v+ = -e W_N v), the friction impulse from the flank LCP on the velocity
 // level (maximal dissipation), and the speed-controlled rotor's.
+// Penalty flanks (docs/physics/drive_models.md, "Moreau-Jean on penalty
+// flanks"): a force along the play, the discrete gradient of the flanks'
+// potential over the step (moreau_contacts::PenaltyFlank), with the flank's
+// friction an LCP whose normal impulse is that force's over the step.
 // End stops (docs/physics/end_stops.md, "Moreau-Jean"): a penalty stop is a
 // force element whose stiffness k and damping c enter W where the step
 // engages it (its force over the step k (d0+ + theta dd) + c d'_theta > 0, a
@@ -100,6 +104,13 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
                        double normal_target, double rotor_target, int sigma_fixed,
                        const moreau_contacts::RotorBalance& balance, bool contact_at_start,
                        bool& contact, bool& stick, moreau_contacts::RotorMode& mode);
+  // A penalty flank's normal impulse over the step [N s] at the step's end
+  // velocity v1 (moreau_contacts::PenaltyFlank, along the thread's normal).
+  double flank_impulse(double h, double theta, const CoordinateVector& v0,
+                       const CoordinateVector& v1) const;
+  // The penalty flank's linearisation from the step's result: true where it
+  // changed (released, or the step's end moved: solved again).
+  bool update_flank(double h, double theta, const CoordinateVector& v0, const Impulses& impulses);
   // The end stops' active sets of the step from its result: true where
   // they changed (the step is solved again).
   bool update_stops(double h, double theta, const CoordinateVector& v0, const Impulses& impulses,
@@ -127,6 +138,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // The rotor's friction row of the step's constraint solve (active: the
   // model has train friction and a mode is being tried).
   bool rotor_row_ = false;
+  // A penalty flank's force over this step (bistop, cubic).
+  moreau_contacts::PenaltyFlank flank_;
   moreau_contacts::RotorRow rotor_;
   double last_voltage_ = 0.0;     // a DC motor's driver voltage over the last step [V]
   double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]

@@ -3,7 +3,9 @@
 // friction contact (the motor's Coulomb friction and a lossy or worm stage,
 // elements/train_friction.hpp; docs/physics/gear.md, "Moreau-Jean: the
 // stages on every concept") and a penalty end stop's force over a step
-// (elements/end_stop.hpp; docs/physics/end_stops.md, "Moreau-Jean"). An
+// (elements/end_stop.hpp; docs/physics/end_stops.md, "Moreau-Jean") and a
+// penalty flank's (bistop, cubic: elements/thread_pair.hpp;
+// docs/physics/drive_models.md, "Moreau-Jean on penalty flanks"). An
 // exact stop is a plain unilateral row of the step's constraint solve
 // (DriveMoreau::solve). Internal to cpp/src/model; used by moreau.cpp.
 #pragma once
@@ -13,6 +15,7 @@
 #include <limits>
 
 #include "leadscrew/model/elements/end_stop.hpp"
+#include "leadscrew/model/elements/thread_pair.hpp"
 #include "leadscrew/model/elements/train_friction.hpp"
 
 namespace leadscrew::model::drive::moreau_contacts {
@@ -104,5 +107,62 @@ inline double penalty_stop_loss(const elements::EndStop& stop, bool engaged, dou
   const double d1 = std::max(stop.penetration(u1), 0.0);
   return std::max(0.0, 0.5 * stop.stiffness * (d0 * d0 - d1 * d1));
 }
+
+// A penalty flank over a step: a force along the play e (its generalized
+// force -F grad e), F = S(e1) + c e'_theta with e1 the play at the step's
+// end. Its elastic part is the discrete gradient of the flanks' potential,
+// S(e1) = (U(e1) - U(e0)) / (e1 - e0), whose work over the step, S (e1 -
+// e0), is U's change exactly (for the nonlinear bistop and cubic forces, at
+// any penetration, engaging or leaving a flank within the step); it is
+// linearised at the step's end estimate e1k, S_k + S'_k (e1 - e1k), the
+// slope S'_k >= 0 entering the iteration matrix, and the step solved again
+// at its new end (Newton) until e1 settles. S rises with e1 (U is convex)
+// and the step's end falls with S, so the end a step linearised at x finds
+// lies on the side of x where the fixed point is: those x bracket it, and a
+// Newton iterate outside the bracket is replaced by its midpoint. The damping c of the flank at
+// the step's mid-play (>= 0: its loss h c e'_theta^2). Where the step's
+// force at its end, S(e1) + c e'_theta, would pull, the flank is released
+// for the rest of the step (no force), as a penalty end stop, losing the
+// energy U(e0) - U(e1) >= 0; where the step without a force then runs into
+// the flank, it is engaged again without its damper (the elastic force
+// alone, which always pushes).
+struct PenaltyFlank {
+  double e0 = 0.0, e1k = 0.0;            // the play at the step's start, its end's estimate [m]
+  double secant = 0.0, slope = 0.0;      // S_k [N] and S'_k [N/m] at e1k
+  double damping = 0.0;                  // c [N s/m]
+  int side = 0;                          // the flank: +1 upper (e > 0), -1 lower, 0 none
+  bool released = false, undamped = false;
+  // The bracket of the step's end play [m].
+  double low = -std::numeric_limits<double>::infinity();
+  double high = std::numeric_limits<double>::infinity();
+
+  void linearise(const elements::ThreadPair& thread, double end) noexcept {
+    e1k = end;
+    const double delta = end - e0;
+    const double scale = std::max({std::abs(e0), std::abs(end), 1e-300});
+    if (std::abs(delta) > 1e-7 * scale) {
+      secant = (thread.flank_potential(end) - thread.flank_potential(e0)) / delta;
+      slope = std::max(0.0, (thread.flank_slope(end) - secant) / delta);
+    } else {  // (the midpoint's slope: the secant's limit without its cancellation)
+      secant = thread.flank_slope(0.5 * (e0 + end));
+      slope = 0.5 * thread.flank_curvature(0.5 * (e0 + end));
+    }
+    damping = undamped ? 0.0 : thread.flank_damping(0.5 * (e0 + end));
+    side = secant > 0.0 ? 1 : secant < 0.0 ? -1 : 0;
+    if (side == 0 && damping > 0.0) side = e0 + end > 0.0 ? 1 : -1;
+  }
+  bool active() const noexcept { return !released && side != 0; }
+  // F at the step's end play e1 and the play's rate at the theta point.
+  double force(double end, double rate) const noexcept {
+    if (!active()) return 0.0;
+    return secant + slope * (end - e1k) + damping * rate;
+  }
+  // The step's loss: the damper's, or a released flank's elastic energy.
+  double loss(const elements::ThreadPair& thread, double end, double rate, double h) const {
+    if (active()) return h * damping * rate * rate;
+    if (!released) return 0.0;
+    return std::max(0.0, thread.flank_potential(e0) - thread.flank_potential(end));
+  }
+};
 
 }  // namespace leadscrew::model::drive::moreau_contacts

@@ -125,18 +125,15 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   // friction on the thread runs on both schemes; play, the flexible
   // concepts and a static coefficient on the thread on Moreau-Jean only:
   // train_event_driven_obstacle, check_simulation_options.)
-  const std::string needs = " is invalid: needs a torque (loads.drive_torque) or a DC motor, "
-                            "exact Coulomb friction on the thread and exact flanks or none "
-                            "(the event-driven scheme on the rigid concept without play, "
-                            "Moreau-Jean on every concept)";
+  const std::string needs = " is invalid: needs a torque (loads.drive_torque) or a DC motor "
+                            "and exact Coulomb friction on the thread (the event-driven scheme "
+                            "on the rigid concept without play, Moreau-Jean on every concept "
+                            "and play)";
   if (p.speed_controlled)
     throw InvalidArgument(what + needs + "; loads.drive_speed prescribes the speed (a motor's "
                           "friction is absorbed by it)");
-  if (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic)
-    throw InvalidArgument(what + needs + "; backlash.contact = \"" +
-                          backlash_contact_name(p.backlash) +
-                          "\" (penalty flanks run on the ODE methods, which take no set-valued "
-                          "stage; use \"exact\" with integrator = \"moreau\")");
+  // (Penalty flanks, bistop and cubic, run on Moreau-Jean: a play, the
+  // event-driven scheme's obstacle.)
   if (e.thread->law().resolution() != friction::Resolution::set_valued)
     throw InvalidArgument(what + needs + "; friction.law = \"" + p.friction + "\"");
   const double alpha = p.thread.lead_angle();

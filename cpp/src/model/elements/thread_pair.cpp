@@ -84,13 +84,23 @@ ThreadPair::ThreadPair(const DriveParameters& p, std::shared_ptr<const friction:
   }
 }
 
+double ThreadPair::flank_force(double penetration) const noexcept {
+  const double k = stiffness_;
+  const double depth = depth_;
+  // Adams BISTOP: k d^e (its damping ramped in over the penetration depth).
+  if (bistop_) return k * std::pow(penetration, exponent_);
+  // Cubic onset joining the linear spring k with matching slope at the
+  // depth: a C1 approximation of the dead zone with walls (thesis Fig. 2.6).
+  if (penetration < depth) return k * penetration * penetration * penetration / (3.0 * depth * depth);
+  return k * (penetration - depth) + k * depth / 3.0;
+}
+
 void ThreadPair::penalty_force(double play, double play_rate, Penalty& out) const {
   out.normal_force = 0.0;
   out.penetration[0] = out.penetration[1] = 0.0;
   out.loss_power = 0.0;
   if (!penalty_) return;
   const double half = 0.5 * clearance_;
-  const double k = stiffness_;
   const double depth = depth_;
   double axial = 0.0;  // generalized force along grad e
   for (int flank = 0; flank < 2; ++flank) {
@@ -99,18 +109,7 @@ void ThreadPair::penalty_force(double play, double play_rate, Penalty& out) cons
     if (penetration <= 0.0) continue;
     out.penetration[flank] = penetration;
     const double rate = sign * play_rate;
-    double elastic_force;
-    if (bistop_) {
-      // Adams BISTOP: k d^e, damping ramped in over the penetration depth.
-      elastic_force = k * std::pow(penetration, exponent_);
-    } else if (penetration < depth) {
-      // Cubic onset joining the linear spring k with matching slope at the
-      // depth: a C1 approximation of the dead zone with walls (thesis Fig. 2.6).
-      elastic_force = k * penetration * penetration * penetration / (3.0 * depth * depth);
-    } else {
-      const double beyond = penetration - depth;
-      elastic_force = k * beyond + k * depth / 3.0;
-    }
+    const double elastic_force = flank_force(penetration);
     double force = elastic_force + damping_ * smooth_step(penetration / depth) * rate;
     if (force < 0.0) force = 0.0;  // flanks push, they do not pull
     axial -= sign * force;
@@ -137,6 +136,49 @@ double ThreadPair::contact_energy(const double penetration[2]) const noexcept {
     }
   }
   return energy;
+}
+
+namespace {
+
+// The penetrated flank at the play e: its sign (+1 upper, -1 lower, 0 none)
+// and its penetration d = |e| - c/2 > 0.
+int penetrated_flank(double play, double half, double& penetration) noexcept {
+  penetration = std::abs(play) - half;
+  if (!(penetration > 0.0)) return 0;
+  return play > 0.0 ? 1 : -1;
+}
+
+}  // namespace
+
+double ThreadPair::flank_potential(double play) const noexcept {
+  double d = 0.0;
+  const int flank = penetrated_flank(play, 0.5 * clearance_, d);
+  if (!penalty_ || flank == 0) return 0.0;
+  const double penetration[2] = {flank > 0 ? d : 0.0, flank < 0 ? d : 0.0};
+  return contact_energy(penetration);
+}
+
+double ThreadPair::flank_slope(double play) const noexcept {
+  double d = 0.0;
+  const int flank = penetrated_flank(play, 0.5 * clearance_, d);
+  if (!penalty_ || flank == 0) return 0.0;
+  return flank * flank_force(d);
+}
+
+double ThreadPair::flank_curvature(double play) const noexcept {
+  double d = 0.0;
+  const int flank = penetrated_flank(play, 0.5 * clearance_, d);
+  if (!penalty_ || flank == 0) return 0.0;
+  if (bistop_) return stiffness_ * exponent_ * std::pow(d, exponent_ - 1.0);
+  if (d < depth_) return stiffness_ * d * d / (depth_ * depth_);
+  return stiffness_;
+}
+
+double ThreadPair::flank_damping(double play) const noexcept {
+  double d = 0.0;
+  const int flank = penetrated_flank(play, 0.5 * clearance_, d);
+  if (!penalty_ || flank == 0) return 0.0;
+  return damping_ * smooth_step(d / depth_);
 }
 
 double ThreadPair::penetration_for(double force) const {

@@ -89,6 +89,18 @@ class ThreadPair {
   // (its inverse; 0 for force <= 0).
   double penetration_for(double force) const;
 
+  // The penalty flanks as functions of the play e (Moreau-Jean's step,
+  // drive/moreau_flank.hpp): their potential U(e) (contact_energy), its
+  // slope U'(e) (the elastic force along -grad e) and curvature U''(e), and
+  // the damping coefficient of the flank e penetrates (0 in the play).
+  double flank_potential(double play) const noexcept;
+  double flank_slope(double play) const noexcept;
+  double flank_curvature(double play) const noexcept;
+  double flank_damping(double play) const noexcept;
+  double cos_lead() const noexcept { return cos_lead_; }
+  // A penalty flank's elastic force at the penetration d > 0 [N].
+  double flank_force(double penetration) const noexcept;
+
  private:
   BacklashContact contact_;
   bool bilateral_ = true, penalty_ = false, exact_play_ = false, bistop_ = false;

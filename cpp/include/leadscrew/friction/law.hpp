@@ -1,7 +1,8 @@
 // Friction laws as types: every law of a contact behind one interface, listed
 // in one registry (cpp/src/friction/registry.cpp), from which the scene
-// schema, describe_schema() and the docs take the laws, their parameters,
-// units, defaults and ranges. A new law is one source file under
+// schema, describe_schema() and leadscrew.friction_laws() take the laws,
+// their parameters, units, defaults and ranges (docs/physics/
+// friction_laws.md describes them in words). A new law is one source file under
 // cpp/src/friction/laws/ and one line of the registry.
 //
 // A law gives the friction force of a contact from its flank normal force
@@ -99,6 +100,12 @@ class Law {
   virtual double bristle_rate(double /*slip*/, double /*z*/) const { return 0.0; }
   virtual double bristle_coefficient(double /*slip*/, double /*z*/) const { return 0.0; }
   virtual double bristle_stiffness() const { return 0.0; }  // sigma0 [1/m]
+  // The law's own part of the energy account, per unit normal force: the
+  // energy its internal state stores (LuGre's bristles, sigma0 z^2 / 2 [m])
+  // and the power of the friction that goes into it rather than into the
+  // loss (sigma0 z z' [m/s]); 0 for a law without such a state.
+  virtual double stored_energy(double /*z*/) const { return 0.0; }
+  virtual double storing_power(double /*slip*/, double /*z*/) const { return 0.0; }
   // A set-valued law run by an ODE integrator: its velocity law (nullptr:
   // none, the law needs the event-driven scheme or Moreau-Jean).
   virtual std::unique_ptr<Law> regularized() const { return nullptr; }

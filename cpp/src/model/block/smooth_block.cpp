@@ -59,8 +59,7 @@ class SmoothBlock final : public integrate::HybridSystem {
     row.stick = bristle_ ? std::abs(block_.normal_force() * law_.bristle_stiffness() * z) <
                                law_.slip_mu(std::abs(y[kVelocity])) * block_.normal_force()
                          : std::abs(law_.gain() * y[kVelocity]) <= 1.0;
-    row.bristle_energy =
-        bristle_ ? 0.5 * block_.normal_force() * law_.bristle_stiffness() * z * z : 0.0;
+    row.bristle_energy = bristle_ ? block_.normal_force() * law_.stored_energy(z) : 0.0;
     write_channels(block_, kinetic0_, 0.0, t, y, row, bristle_, out);
   }
 

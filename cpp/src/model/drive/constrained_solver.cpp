@@ -77,7 +77,7 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
     const double z = y[bristle];
     const double rate = dynamics.law().bristle_rate(dynamics.slip_velocity(), z);
     const double stored = std::abs(s.normal_force) * model.flank_factor() *
-                          dynamics.law().bristle_stiffness() * z * rate;
+                          dynamics.law().storing_power(dynamics.slip_velocity(), z);
     ydot[bristle] = rate;
     ydot[bristle + 1] = stored;
     energy[kFrictionLoss] -= stored;

@@ -16,8 +16,11 @@
 //                      with its scene section (cpp/src/model/elements/<name>.cpp: the
 //                      load spring)
 // The lists are grouped by type (no virtual call per scalar in the
-// right-hand side): DriveDynamics loops over each. The force elements (the
-// springs today; an end stop, a gear's compliance) are one registry line.
+// right-hand side): DriveDynamics loops over each. A force element with a
+// scene section of its own is a SectionForce (section_force.hpp: its file
+// and one line of section_registry.cpp); a type in ForceElements is for a
+// force the right-hand side must not reach through a virtual call (the
+// screw's position-dependent springs, the end stops' events).
 //
 // build_drive_elements is the one place where the thesis's concepts (rigid,
 // flexible_nut, flexible; the screw or the nut driven) become elements.
@@ -85,7 +88,8 @@ struct ForceElementLists {
   }
 };
 
-// The registry of force elements: a new one is its file and its type here.
+// The force elements' types (a new element with a scene section is a
+// SectionForce, not a type here).
 using ForceElements = ForceElementLists<SpringDamper, EndStop, SectionForce>;
 
 struct DriveElements {

@@ -95,6 +95,11 @@ def test_units_and_plot(frame):
     assert frame.attrs["units"]["axial_stiffness"] == "N/m"
     ax = plot_preload_tradeoff(frame)
     assert len(ax.lines) == 2
+    # The creep where it is real (the rigid drive's below its holding
+    # preload: 0.25 of its motion per cycle), in um.
+    creep_line = ax.figure.axes[1].get_lines()[0]
+    np.testing.assert_array_equal(creep_line.get_ydata(),
+                                  np.abs(frame["creep_per_cycle"].to_numpy()) * 1e6)
 
 
 @pytest.mark.parametrize("changes, arguments, match", [
@@ -240,6 +245,9 @@ def test_the_shipped_seat_adjuster(seat_frame):
     # model's round-off, u_load's scale 1e-2 m).
     assert frame["holds_closed_form"].all()
     assert np.all(np.abs(frame["creep_per_cycle"]) < 1e-9)
+    # The figure draws that round-off as no creep, not as a trend.
+    creep_line = plot_preload_tradeoff(seat_frame).figure.axes[1].get_lines()[0]
+    np.testing.assert_array_equal(creep_line.get_ydata(), 0.0)
     np.testing.assert_array_equal(frame["held_reverse_load"], [0.0, 20.0, 50.0])
 
 

@@ -61,7 +61,7 @@ from hypothesis import HealthCheck, Phase, given, seed, settings
 from hypothesis import strategies as st
 
 __all__ = ["cases", "make_case", "generate", "run_case", "run_isolated", "run_all_allowed",
-           "dc_motor", "OUTCOMES", "FAILURES",
+           "dc_motor", "travel_room", "OUTCOMES", "FAILURES",
            "HOSTILE_KINDS", "ODE_INTEGRATORS", "fitting_integrators", "names_user_key",
            "user_keys", "DEFAULT_SEED"]
 
@@ -303,6 +303,14 @@ def _speed(r, cap: float, t_end: float):
     return {"type": "table", "times": [0.0, t1, t2], "values": [w, w, -w]}
 
 
+def travel_room(scene: dict) -> float:
+    """The travel [m] the nut has on the screw before either of its ends
+    reaches an end of the screw."""
+    nut, screw = scene["nut"], scene["screw"]
+    return min(nut["position"] - nut["length"] / 2,
+               screw["length"] - nut["position"] - nut["length"] / 2)
+
+
 def _loads(r, scene: dict, t_end: float) -> Tuple[dict, bool]:
     thread = scene["thread"]
     force = r.log_uniform(0.1, 2000.0)
@@ -313,8 +321,7 @@ def _loads(r, scene: dict, t_end: float) -> Tuple[dict, bool]:
     lead = thread.get("starts", 1) * thread["pitch"]
     # Travel the nut has before it leaves the screw (a speed-controlled run
     # that leaves it is a SimulationError, allowed but not what we want).
-    room = min(scene["nut"]["position"] - scene["nut"]["length"] / 2,
-               scene["screw"]["length"] - scene["nut"]["position"] - scene["nut"]["length"] / 2)
+    room = travel_room(scene)
     cap = 2 * math.pi * room / (lead * t_end) * 0.8
     if speed_controlled:
         loads["drive_speed"] = _speed(r, cap, t_end)
@@ -579,9 +586,7 @@ def _drive_train(r, scene: dict, options: dict, speed_controlled: bool, t_end: f
         scene["gear"] = {"ratio": r.signed(r.log_uniform(0.2, 20.0))}
         added.append("gear")
     if r.chance(0.1) and integrator != "moreau" and relaxed:
-        room = min(scene["nut"]["position"] - scene["nut"]["length"] / 2,
-                   scene["screw"]["length"] - scene["nut"]["position"]
-                   - scene["nut"]["length"] / 2)
+        room = travel_room(scene)
         stops = {"stiffness": r.log_uniform(1e4, 1e9),
                  "damping": 0.0 if r.chance(0.2) else r.log_uniform(1.0, 1e4)}
         for side, sign in (("lower", -1.0), ("upper", 1.0)):

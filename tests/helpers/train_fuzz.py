@@ -90,9 +90,7 @@ def _stops(r, scene: dict) -> str:
     kind = r.pick(("none", "exact", "penalty"))
     if kind == "none":
         return kind
-    nut, screw = scene["nut"], scene["screw"]
-    room = min(nut["position"] - nut["length"] / 2,
-               screw["length"] - nut["position"] - nut["length"] / 2)
+    room = base.travel_room(scene)
     stops: Dict[str, Any] = {"contact": kind}
     if kind == "exact":
         if r.chance(0.6):

@@ -160,8 +160,6 @@ Section::Section(const SectionType& type, const ElementSection& given) : type_(&
         if (key == f.key) v = value, found = true;
       numbers_.push_back(v);
       choices_.emplace_back();
-      given_.push_back(found && (f.presence == SectionField::Presence::defaulted ||
-                                 !absent_value(f, v)));
       supplied_.push_back(found);
     } else {
       std::string v = f.choices.front();
@@ -169,7 +167,6 @@ Section::Section(const SectionType& type, const ElementSection& given) : type_(&
         if (key == f.key) v = value, found = true;
       numbers_.push_back(0.0);
       choices_.push_back(v);
-      given_.push_back(found);
       supplied_.push_back(found);
     }
   }
@@ -177,7 +174,12 @@ Section::Section(const SectionType& type, const ElementSection& given) : type_(&
 
 bool Section::given(const char* key) const {
   const int i = type_->field_index(key);
-  return i >= 0 && given_[static_cast<std::size_t>(i)];
+  if (i < 0) return false;
+  const auto k = static_cast<std::size_t>(i);
+  const SectionField& f = type_->fields[k];
+  return supplied_[k] && (f.kind == SectionField::Kind::choice ||
+                          f.presence == SectionField::Presence::defaulted ||
+                          !absent_value(f, numbers_[k]));
 }
 
 bool Section::supplied(const char* key) const {

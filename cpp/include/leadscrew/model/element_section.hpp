@@ -137,7 +137,7 @@ class Section {
   const SectionType* type_;
   std::vector<double> numbers_;
   std::vector<std::string> choices_;
-  std::vector<bool> given_, supplied_;
+  std::vector<bool> supplied_;  // given at all (given(): and not its absence's value)
 };
 
 // The registry, in its order (section_registry.cpp).

@@ -269,3 +269,45 @@ def test_a_step_across_the_play_lands_on_the_far_flank_creating_no_energy():
     result = ls.simulate(ls.Scene.from_dict(scene), t_end, integrator="moreau", dt=dt)
     assert np.max(np.abs(result["play"])) < 1e-4
     assert_checked(result, scene, dt, t_end)
+
+
+# A case of the 3,000-case fuzz run at 3b4501e (seed 20261217, case seed
+# 5670): a step that enters a bistop flank booked its normal impulse but no
+# friction (slip -0.69 m/s, |friction| 0 N against mu' |N| = 79 N). The
+# result check of the law skipped every Moreau-Jean run with mu_static; its
+# slip coefficient is one number (mu) like plain Coulomb's, so the check now
+# takes it and the run raises instead of returning. At dt / 10 the run
+# resolves the engagement and passes.
+ENTERING_FLANK = {'concept': 'rigid',
+     'drive': 'nut',
+     'thread': {'pitch': 0.0012017498012598714,
+                'mean_diameter': 0.0378336853469097,
+                'flank_angle': 0.5235987755982988},
+     'friction': {'law': 'coulomb',
+                  'mu': 0.055063501036908935,
+                  'mu_static': 0.09625143449001745},
+     'backlash': {'axial': 1.9987566782246123e-05,
+                  'contact': 'bistop',
+                  'damping': 29.757956136209188},
+     'screw': {'radius': 0.012884269767129787,
+               'length': 0.1198974161812586,
+               'youngs_modulus': 6358835418.4786005},
+     'nut': {'outer_radius': 0.01798880513775622,
+             'length': 0.008371491478806507,
+             'youngs_modulus': 132702271635.1207,
+             'position': 0.03224959444625368},
+     'rotor': {'inertia': 1.7792103980787456e-06},
+     'load': {'mass': 63.54580454410012},
+     'loads': {'axial_force': {'type': 'sine',
+                               'amplitude': 4.1404622390839805,
+                               'omega': 60.010603487742074},
+               'drive_torque': {'type': 'constant', 'value': 0.08494246916538546}}}
+
+
+def test_a_flank_entered_without_friction_is_not_returned():
+    scene = ls.Scene.from_dict(ENTERING_FLANK)
+    options = dict(integrator="moreau", theta=0.8043044647271645)
+    with pytest.raises(ls.SimulationError, match="friction_law"):
+        ls.simulate(scene, 0.03408153006217774, dt=0.00023514910376130048, **options)
+    result = ls.simulate(scene, 0.03408153006217774, dt=0.000023514910376130048, **options)
+    assert result.checks["friction_law"]["applies"] and result.checks["friction_law"]["passed"]

@@ -19,12 +19,24 @@ with each DIR a directory that holds a built ``leadscrew`` package (e.g. a
 copy of an installed one, or ``python`` of a checkout with its extension
 built in place). ``--rounds``, ``--batch``, ``--cases`` (comma-separated
 names) and ``--output FILE`` (markdown) as usual.
+
+The machine's noise is measured in the same run: a third worker runs the
+BEFORE build again (an A/A control, timed in the same rotation), and the
+table gives its ratio to the first beside after / before. A median's 95 %
+interval comes from the order statistics of the paired ratios (the
+binomial interval of the median, no distribution assumed). "No slower
+beyond the noise" reads: after / before's interval reaches down to the A/A
+control's. Many short rounds measure better than few long ones on this
+machine (its vCPUs change speed within seconds): e.g. ``--rounds 301
+--batch 10``.
 """
 
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
+import math
 import os
 import statistics
 import subprocess
@@ -116,6 +128,19 @@ def round_of(worker: subprocess.Popen, batch: int) -> dict:
     return json.loads(worker.stdout.readline())
 
 
+def median_interval(values: list) -> str:
+    """The median and its 95 % distribution-free interval: the order
+    statistics k and n - 1 - k with k the binomial(n, 1/2) quantile
+    (normal approximation, n >= 10; fewer rounds give the range)."""
+    ordered = sorted(values)
+    n = len(ordered)
+    median = statistics.median(ordered)
+    if n < 10:
+        return f"{median:.3f} [{ordered[0]:.3f}-{ordered[-1]:.3f}]"
+    k = max(0, int(math.floor(n / 2 - 1.96 * math.sqrt(n) / 2)))
+    return f"{median:.3f} [{ordered[k]:.3f}-{ordered[n - 1 - k]:.3f}]"
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("before")
@@ -128,11 +153,14 @@ def main(argv=None) -> int:
     cases = {name: source for name, source in CASES.items()
              if not args.cases or any(part and part in name for part in args.cases.split(","))}
     workers = {"before": start_worker(args.before, cases),
-               "after": start_worker(args.after, cases)}
+               "after": start_worker(args.after, cases),
+               "control": start_worker(args.before, cases)}
     samples = {which: {name: {"inside": [], "call": []} for name in cases} for which in workers}
-    ratios = {name: {"inside": [], "call": []} for name in cases}
+    ratios = {which: {name: {"inside": [], "call": []} for name in cases}
+              for which in ("after", "control")}
+    rotations = list(itertools.permutations(workers))
     for k in range(args.rounds):
-        order = ("before", "after") if k % 2 == 0 else ("after", "before")
+        order = rotations[k % len(rotations)]
         medians = {}
         for which in order:
             got = round_of(workers[which], args.batch)
@@ -142,23 +170,26 @@ def main(argv=None) -> int:
                     samples[which][name][clock] += got[name][clock]
                 medians[which][name] = {clock: statistics.median(got[name][clock])
                                         for clock in ("inside", "call")}
-        for name in cases:
-            for clock in ("inside", "call"):
-                ratios[name][clock].append(medians["after"][name][clock] /
-                                           medians["before"][name][clock])
+        for which in ratios:
+            for name in cases:
+                for clock in ("inside", "call"):
+                    ratios[which][name][clock].append(medians[which][name][clock] /
+                                                      medians["before"][name][clock])
     for worker in workers.values():
         worker.stdin.close()
         worker.wait(timeout=60)
-    lines = ["| case | clock | before (median) | after (median) | after / before (median of "
-             "paired rounds, range) |", "|---|---|---|---|---|"]
+    lines = [f"{args.rounds} rounds of {args.batch} calls; ratios: median of the paired "
+             "rounds [95 % interval of the median]", "",
+             "| case | clock | before (median) | after (median) | after / before | "
+             "A/A control (before again / before) |", "|---|---|---|---|---|---|"]
     for name in cases:
         for clock in ("inside", "call"):
             before = statistics.median(samples["before"][name][clock])
             after = statistics.median(samples["after"][name][clock])
-            r = ratios[name][clock]
             lines.append(f"| {name} | {'C++' if clock == 'inside' else 'Python call'} | "
                          f"{before * 1e6:.1f} us | {after * 1e6:.1f} us | "
-                         f"{statistics.median(r):.3f} ({min(r):.3f}-{max(r):.3f}) |")
+                         f"{median_interval(ratios['after'][name][clock])} | "
+                         f"{median_interval(ratios['control'][name][clock])} |")
     table = "\n".join(lines)
     print(table)
     if args.output:

@@ -177,6 +177,19 @@ def _restore_result(t, channels, data, events, stats, integrator, friction,
 
 
 @functools.lru_cache(maxsize=None)
+def _block_integrators(friction: str) -> Tuple[str, ...]:
+    """The integrators that run a FrictionBlock with the law ``friction``,
+    the default first (the core's list, fixed per law: looked up once)."""
+    return tuple(_core.block_integrators(friction))
+
+
+@functools.lru_cache(maxsize=None)
+def _law_parameter_keys(friction: str) -> Tuple[str, ...]:
+    """The keys of the law's parameters (a law of the registry)."""
+    return tuple(p["key"] for p in _law(friction)["parameters"])
+
+
+@functools.lru_cache(maxsize=None)
 def _law(name: str) -> Optional[dict]:
     """The registry's entry of a friction law (None: no such law; the core
     names the laws); looked up once per name (a scan of the registry took
@@ -640,11 +653,11 @@ def simulate(
                              bounce_threshold=bounce_threshold)
         entry = _law(friction)
         if entry is not None:  # else the core names the laws
-            integrators = functools.partial(_core.block_integrators, friction)
+            integrators = functools.partial(_block_integrators, friction)
             _refuse_unused(arguments["integrator"], integrators, given)
             if not arguments["integrator"]:  # None or "": the first of those that fit
                 arguments["integrator"] = integrators()[0]
-        takes = [p["key"] for p in entry["parameters"]] if entry is not None else []
+        takes = _law_parameter_keys(friction) if entry is not None else ()
         for name, value in law_parameters.items():  # no law's parameter (a law's: the core)
             if name in _BLOCK_COEFFICIENTS:
                 # (given here they would override the block's own silently)
@@ -659,7 +672,11 @@ def simulate(
             law["k_v"] = _real("k_v", k_v)
         elif "k_v" in takes:
             law["k_v"] = 100.0  # the block's default gain (the thesis's Table 3.1 range)
-        arguments.update(block=model, friction=friction, law=law, check=_flag("check", check))
+        arguments.update(block=model, friction=friction, law=law,
+                         check=check if check is True else _flag("check", check))
+        if progress is False:  # the common case: no bar to set up and close
+            arguments["progress"] = None
+            return Result(_core.simulate_block(*_block_call(arguments)))
         with _progress_bar(progress, arguments["t_end"]) as report:
             arguments["progress"] = report
             return Result(_core.simulate_block(*_block_call(arguments)))
@@ -676,6 +693,9 @@ def simulate(
                        functools.partial(_core.drive_integrators, drive.parameters),
                        dict(given, bounce_threshold=bounce_threshold), model)
         arguments["drive"] = drive
+        if progress is False:  # the common case: no bar to set up and close
+            arguments["progress"] = None
+            return Result(_core.simulate_drive(*_drive_call(arguments)))
         with _progress_bar(progress, arguments["t_end"]) as report:
             arguments["progress"] = report
             return Result(_core.simulate_drive(*_drive_call(arguments)))

@@ -161,11 +161,24 @@ def test_schema_documents_every_field():
         assert path in text
 
 
+def test_schema_says_what_is_required_and_the_valid_values():
+    # (A review of issue 18: the lines said "(default required)" and no range.)
+    lines = {line.split(" ", 1)[0]: line for line in ls.scene.describe_schema().splitlines()}
+    assert lines["thread.pitch"].startswith("thread.pitch [m] (required; a finite number > 0): ")
+    assert lines["thread.starts"].startswith("thread.starts (default 1; an integer in [1, 100]): ")
+    assert lines["thread.hand"].startswith("thread.hand (default 'right'; one of 'right', 'left'): ")
+    assert lines["screw.youngs_modulus"].startswith(
+        "screw.youngs_modulus [Pa] (default 210000000000.0; a finite number in [10000, 1e+13]): ")
+    # The elements' own sections (the core's registry) read the same way.
+    assert lines["load_spring.stiffness"].startswith("load_spring.stiffness [N/m] (required; ")
+    assert not any("default required" in line for line in lines.values())
+
+
 def test_schema_says_a_speed_controlled_drive_starts_at_drive_speed():
     line = next(line for line in ls.scene.describe_schema().splitlines()
                 if line.startswith("initial.rotor_speed"))
     assert line.startswith("initial.rotor_speed [rad/s] (default 0, or drive_speed(0) for a "
-                           "speed-controlled drive): ")
+                           "speed-controlled drive; a finite number): ")
     assert "A speed-controlled drive (loads.drive_speed) starts at drive_speed(0)" in line
 
 

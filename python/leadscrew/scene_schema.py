@@ -511,7 +511,9 @@ def _field_unit(section: str, key: str, f: Field, values: Dict[str, Any]) -> str
 
 
 def describe_schema() -> str:
-    """The documentation of every scene field: key path, unit, default, meaning."""
+    """The documentation of every scene field, one line each: key path, unit,
+    whether it is required or its default, its valid values (the range a
+    number is checked against, or the names a choice takes), meaning."""
     lines = []
     for key, entry in SCHEMA.items():
         items = [(key, entry)] if isinstance(entry, Field) else [
@@ -520,11 +522,18 @@ def describe_schema() -> str:
             if f.default is None:
                 default = "required"
             elif f.default_doc:
-                default = f.default_doc
+                default = f"default {f.default_doc}"
             elif f.default is OPTIONAL:
                 default = "optional"
             else:
-                default = repr(f.default)
+                default = f"default {f.default!r}"
+            if f.choices:
+                valid = "one of " + ", ".join(map(repr, f.choices))
+            elif f.kind in ("float", "int"):
+                valid = _range_text(f)
+            else:  # a load: a number, a table, a sine, a callable (see loads)
+                valid = ""
             unit = f" [{f.unit}]" if f.unit else ""
-            lines.append(f"{path}{unit} (default {default}): {f.doc}")
+            valid = f"; {valid}" if valid else ""
+            lines.append(f"{path}{unit} ({default}{valid}): {f.doc}")
     return "\n".join(lines)

@@ -77,6 +77,17 @@ def test_check_reports_the_drive_train(capsys, tmp_path):
     assert code == 0 and f"preloaded split nut: P = 40 N; efficiency raising 25 N {eta:.6g}" in out
 
 
+def test_check_reports_a_load_spring(capsys, tmp_path):
+    # (A review of issue 18: check ignored the elements of the core's registry.)
+    d = shipped.load("default").to_dict()
+    d["load_spring"] = {"stiffness": "2 N/mm", "preload": 5.0}
+    path = tmp_path / "sprung.toml"
+    ls.Scene.from_dict(d).to_toml(path)
+    code, out, _ = run_main(capsys, "check", str(path))
+    assert code == 0
+    assert "load_spring: stiffness 2000 N/m, preload 5 N, damping 0 N*s/m" in out
+
+
 def jamming_line(out, index):
     lines = [line for line in out.splitlines() if line.strip().startswith(("m r^2", "J cot"))]
     return lines[index]

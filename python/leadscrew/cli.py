@@ -172,6 +172,26 @@ def _drive_train_report(scene, d: Dict[str, Any]) -> List[str]:
                      + (f", stiffness {stops['stiffness']:.6g} N/m, damping "
                         f"{stops['damping']:.6g} N*s/m" if stops["contact"] == "penalty" else
                         f", restitution {stops['restitution']:.6g}"))
+    lines.extend(_element_sections_report(d))
+    return lines
+
+
+def _element_sections_report(d: Dict[str, Any]) -> List[str]:
+    """A line per element section of the core's registry the scene has (a
+    load spring, ...), each field with its unit; the end stops have their
+    own line above."""
+    from .scene_schema import SCHEMA, _element_sections
+
+    lines = []
+    for section in _element_sections():
+        name = section["name"]
+        if name == "end_stops" or not d.get(name):
+            continue
+        fields = ", ".join(
+            f"{key} {value:.6g}" + (f" {SCHEMA[name][key].unit}" if SCHEMA[name][key].unit else "")
+            if isinstance(value, (int, float)) else f"{key} {value}"
+            for key, value in d[name].items())
+        lines.append(f"{name}: {fields}")
     return lines
 
 

@@ -207,5 +207,5 @@ def test_schema_documents_every_field():
     for key, unit in (("stiffness", "N/m"), ("preload", "N"), ("damping", "N*s/m")):
         line = next(line for line in text.splitlines() if line.startswith(f"load_spring.{key}"))
         assert line.startswith(f"load_spring.{key} [{unit}]")
-    assert "load_spring.stiffness [N/m] (default required)" in text
+    assert "load_spring.stiffness [N/m] (required; a finite number > 0)" in text
     assert ls.units.channel_unit("load_spring_force") == "N"

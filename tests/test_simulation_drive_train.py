@@ -344,7 +344,7 @@ def test_the_schema_documents_every_stage_field():
         if unit:
             assert f"[{unit}]" in line
     line = next(line for line in text.splitlines() if line.startswith("motor.friction_torque"))
-    assert "[N*m] (default 0.0)" in line and "motor_friction_loss" in line
+    assert "[N*m] (default 0.0; a finite number >= 0)" in line and "motor_friction_loss" in line
 
 
 def test_a_drive_without_stages_has_no_new_channel():

@@ -94,7 +94,7 @@ friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha
 }
 
 DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
-    : model_(model), law_(law ? law : &model.law()) {
+    : model_(model), law_(law ? law : &model.law()), plain_coulomb_(law_->plain_coulomb()) {
   const int n = model.coordinate_count();
   if (n > kMaxCoordinates) throw InvalidArgument("a drive model has at most 6 coordinates");
   q_ = CoordinateVector::Zero(n);
@@ -197,7 +197,7 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
     case FrictionMode::slip:
       // mu' itself for one coefficient (the same bits as before the laws
       // were types); Stribeck's curve at the slip speed otherwise.
-      return spec.slip_sign * (law_->plain_coulomb() ? model_.effective_mu()
+      return spec.slip_sign * (plain_coulomb_ ? model_.effective_mu()
                                                      : law_->slip_mu(std::abs(slip_)) * factor);
     case FrictionMode::regularized_velocity:
       return law_->velocity_coefficient(slip_) * factor;
@@ -607,10 +607,10 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
     // impact's slip speed.
     const friction::FlankLcpResult stick =
         friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma);
-    if (!law_->plain_coulomb() && stick.consistent) {
+    if (!plain_coulomb_ && stick.consistent) {
       r = stick;
     } else {
-      const double mu = law_->plain_coulomb()
+      const double mu = plain_coulomb_
                             ? model_.effective_mu()
                             : law_->slip_mu(std::abs(tangent.dot(v))) * model_.flank_factor();
       r = solve_flank_lcp_scaled(c, d, alpha, beta, mu, sigma, workspace, options);

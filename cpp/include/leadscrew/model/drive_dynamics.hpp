@@ -127,6 +127,10 @@ class DriveDynamics {
   explicit DriveDynamics(const DriveModel& model, const friction::Law* law = nullptr);
 
   const friction::Law& law() const noexcept { return *law_; }
+  // law().plain_coulomb(), kept (the law is fixed; the test is eight
+  // virtual calls, and the root functions and the slip's friction
+  // coefficient asked it at every evaluation: callgrind, the rigid drive).
+  bool plain_coulomb() const noexcept { return plain_coulomb_; }
   // LuGre's bristle deflection z at the state last set (its own state).
   void set_bristle(double z) noexcept { bristle_ = z; }
   double bristle() const noexcept { return bristle_; }
@@ -242,6 +246,7 @@ class DriveDynamics {
 
   const DriveModel& model_;
   const friction::Law* law_;
+  bool plain_coulomb_;
   double bristle_ = 0.0;
   double motor_current_ = 0.0;
   double t_ = 0.0;

@@ -158,7 +158,7 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   // The stick limit mu_static' of the law (mu' itself for one coefficient).
   double stick_mu() const {
-    return dynamics_.law().plain_coulomb() ? model_.effective_mu() : model_.effective_mu_static();
+    return dynamics_.plain_coulomb() ? model_.effective_mu() : model_.effective_mu_static();
   }
 
   // The motor prescribes the slip (DriveDynamics::slip_prescribed) while the

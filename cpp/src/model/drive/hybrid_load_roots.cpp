@@ -27,7 +27,7 @@ bool DriveHybrid::load_driven() const {
                      [](const std::unique_ptr<Element>& element) {
                        return element->forces_from_loads_alone();
                      }) &&
-         !model_.preloaded_nut() && dynamics_.law().plain_coulomb() &&
+         !model_.preloaded_nut() && dynamics_.plain_coulomb() &&
          (mode_.contact == ThreadContact::bilateral || mode_.contact == ThreadContact::closed) &&
          (mode_.friction == FrictionMode::stick || mode_.friction == FrictionMode::slip);
 }

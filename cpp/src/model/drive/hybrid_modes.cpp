@@ -219,7 +219,7 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
                                                                    : 0;
   const bool stick_admissible =
       hint == 0 && friction::flank_stick(c, d, alpha, beta, stick_mu(), stick_side).consistent;
-  if (!law.plain_coulomb()) {
+  if (!dynamics_.plain_coulomb()) {
     if (stick_admissible) {
       mode_.friction = FrictionMode::stick;
       mode_.slip_sign = 0;

@@ -7,7 +7,8 @@
 // penalty flank's (bistop, cubic: elements/thread_pair.hpp;
 // docs/physics/drive_models.md, "Moreau-Jean on penalty flanks"). An
 // exact stop is a plain unilateral row of the step's constraint solve
-// (DriveMoreau::solve). Internal to cpp/src/model; used by moreau.cpp.
+// (DriveMoreau::solve). Internal to cpp/src/model; used by moreau.cpp and
+// moreau_flanks.cpp.
 #pragma once
 
 #include <algorithm>

@@ -540,9 +540,15 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
     chosen = stick_step;
     found = 1;
   }
-  if (found == 0 && !row && !prescribed) {  // (a penalty flank: its slip at the cone's edge)
-    chosen = moreau_contacts::penalty_flank_slip(c, d, alpha, beta, lcp_mu, sigma_fixed);
-    found = chosen.consistent ? 1 : 0;
+  // A penalty flank's slip at the cone's edge (docs/physics/drive_models.md,
+  // "Moreau-Jean on penalty flanks"): where the LCP has none, and in place
+  // of the LCP's, whose values carry its tolerance relative to |c / d| (a
+  // flank force of round-off size, 7e-18 N s against 26 N s, slipped with
+  // its friction outside the cone and along the slip).
+  if (!row && !prescribed && (found == 0 || chosen.slip_acceleration != 0.0)) {
+    const friction::FlankLcpResult edge =
+        moreau_contacts::penalty_flank_slip(c, d, alpha, beta, lcp_mu, sigma_fixed);
+    if (edge.consistent) chosen = edge, found = std::max(found, 1);
   }
   // The viscous impulse on top of the cone's (zero where stuck).
   if (viscous_step > 0.0 && found > 0)

@@ -396,55 +396,6 @@ DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
                      "shorten dt (or reduce the friction)");
 }
 
-double DriveMoreau::flank_impulse(double h, double theta, const CoordinateVector& v0,
-                                  const CoordinateVector& v1) const {
-  const elements::ThreadPair& thread = model_.thread_pair();
-  const double rate = thread.play_gradient().dot((1.0 - theta) * v0 + theta * v1);
-  // (generalized force -F grad e = (-F / cos(a)) W_N)
-  return -h * flank_.force(flank_.e0 + h * rate, rate) / thread.cos_lead();
-}
-
-// The penalty flank from the step's result: released where its force over
-// the step would pull; else linearised again at the step's end where that
-// moved beyond round-off (Newton on the discrete gradient). True where it
-// changed.
-bool DriveMoreau::update_flank(double h, double theta, const CoordinateVector& v0,
-                               const Impulses& impulses) {
-  const elements::ThreadPair& thread = model_.thread_pair();
-  const double rate = thread.play_gradient().dot((1.0 - theta) * v0 + theta * impulses.velocity);
-  const double end = flank_.e0 + h * rate;
-  if (flank_.released) {
-    // (Without a force the step runs into a flank, U(e1) > U(e0): its
-    // spring alone, which pushes.)
-    if (flank_.undamped || !(thread.flank_potential(end) > thread.flank_potential(flank_.e0)))
-      return false;
-    flank_.released = false;
-    flank_.undamped = true;
-    flank_.linearise(thread, flank_.e1k);
-    return true;
-  }
-  if (flank_.active()) {  // (the force at the step's end, not its linearisation's)
-    moreau_contacts::PenaltyFlank at_end = flank_;
-    at_end.linearise(thread, end);
-    if (at_end.side * (at_end.secant + at_end.damping * rate) < 0.0) {
-      flank_.released = true;
-      return true;
-    }
-  }
-  const double scale = std::max(std::abs(flank_.e0), std::abs(end));
-  if (std::abs(end - flank_.e1k) <= 1e-13 * scale) return false;
-  // (The fixed point lies beyond e1k on end's side: the bracket narrows.)
-  (end > flank_.e1k ? flank_.low : flank_.high) = flank_.e1k;
-  if (!(flank_.high - flank_.low > 1e-13 * scale)) return false;
-  const double next = end > flank_.low && end < flank_.high
-                          ? end
-                          : 0.5 * (flank_.low + flank_.high);
-  const moreau_contacts::PenaltyFlank before = flank_;
-  flank_.linearise(thread, next);
-  return flank_.secant != before.secant || flank_.slope != before.slope ||
-         flank_.damping != before.damping;
-}
-
 // The end stops' active sets from the step's result (impulses, at free_):
 // an engaged penalty stop whose force over the step would pull is released
 // (for the rest of the step), a free one the step carries into its face
@@ -498,6 +449,7 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   double d = model_.tangent_direction().dot(unit.velocity) - c;
   double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);
   double alpha = (row ? unit.normal : flank_impulse(h, theta, v0, unit.velocity)) - beta;
+  const double pushing = beta;  // (the normal impulse without friction)
   // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
   // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
   // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
@@ -588,11 +540,30 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
     chosen = stick_step;
     found = 1;
   }
+  // A penalty flank's slip at the cone's edge (docs/physics/drive_models.md,
+  // "Moreau-Jean on penalty flanks"): where the LCP has none, and in place
+  // of the LCP's, whose values carry its tolerance relative to |c / d| (a
+  // flank force of round-off size, 7e-18 N s against 26 N s, slipped with
+  // its friction outside the cone and along the slip).
+  if (!row && !prescribed && (found == 0 || chosen.slip_acceleration != 0.0)) {
+    const friction::FlankLcpResult edge =
+        moreau_contacts::penalty_flank_slip(c, d, alpha, beta, lcp_mu, sigma_fixed);
+    if (edge.consistent) chosen = edge, found = std::max(found, 1);
+  }
   // The viscous impulse on top of the cone's (zero where stuck).
   if (viscous_step > 0.0 && found > 0)
     chosen.friction_force = (chosen.friction_force - viscous_step * viscous_c) * viscous_scale;
-  if (found == 0 && sigma_fixed != 0) {
-    contact = false;  // the flank separates: no impulse on it
+  if (found == 0 && !row && sigma_fixed * pushing >= 0.0 && pushing != 0.0) {
+    // (A penalty flank whose force pushes carries its friction: no
+    // consistent impulse is no separation. Unreachable by the slip above
+    // but where the rotor's stuck contact prescribes the slip, whose
+    // rotor mode is then not the step's: solve_train tries the next.)
+    throw SimulationError(t, "no friction impulse of the Moreau-Jean step is consistent with "
+                             "the penalty flank's normal impulse " + format_value(pushing) +
+                             " N s (dt = " + format_value(h) + " s)",
+                          "shorten dt");
+  } else if (found == 0 && sigma_fixed != 0) {
+    contact = false;  // the flank separates (a penalty flank: its force pulls, released)
   } else if (found == 0) {
     throw JammingError(t, "dynamic jamming: no consistent flank impulse in the "
                           "Moreau-Jean step; " + dynamics_.jamming_report(),

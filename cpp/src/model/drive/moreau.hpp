@@ -1,5 +1,6 @@
 // Moreau-Jean time stepping of a drive (integrate::TimeSteppingSystem), the
-// members in moreau.cpp. Internal to cpp/src/model.
+// members in moreau.cpp (a penalty flank's: moreau_flanks.cpp). Internal to
+// cpp/src/model.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -94,7 +95,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   double resolving_step(double h, double theta);
   Impulses solve(bool thread, double normal_target, double rotor_target, double tangential);
   // The thread's contact and friction impulses of the step at free_ (the
-  // flank LCP); contact false where no flank is active or it separates.
+  // flank LCP); contact false where no flank is active or it separates (a
+  // penalty flank: where its force pulls; one that pushes carries its
+  // friction, or SimulationError).
   Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
                         double normal_target, double rotor_target, int sigma_fixed,
                         bool& contact, bool& stick);

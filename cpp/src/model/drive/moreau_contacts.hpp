@@ -7,13 +7,15 @@
 // penalty flank's (bistop, cubic: elements/thread_pair.hpp;
 // docs/physics/drive_models.md, "Moreau-Jean on penalty flanks"). An
 // exact stop is a plain unilateral row of the step's constraint solve
-// (DriveMoreau::solve). Internal to cpp/src/model; used by moreau.cpp.
+// (DriveMoreau::solve). Internal to cpp/src/model; used by moreau.cpp and
+// moreau_flanks.cpp.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "leadscrew/friction/flank_lcp.hpp"
 #include "leadscrew/model/elements/end_stop.hpp"
 #include "leadscrew/model/elements/thread_pair.hpp"
 #include "leadscrew/model/elements/train_friction.hpp"
@@ -164,5 +166,32 @@ struct PenaltyFlank {
     return std::max(0.0, thread.flank_potential(e0) - thread.flank_potential(end));
   }
 };
+
+// A penalty flank's slip over a step where the flank LCP finds none: the
+// LCP (friction/flank_lcp.hpp) needs 1 + mu sigma alpha > 0, which a step
+// whose springs make the flank's friction impulse a lever on its normal
+// impulse (mu |alpha| >= 1, W's h^2 S' grad e grad e^T dominating the
+// masses) breaks on one edge of the cone. The flank's normal impulse is
+// its force's, pushing without friction (sigma beta >= 0: else the force
+// pulls and the flank is released), and d > 0; then exactly one of stick
+// (flank_stick, tried before) and the two slips at the cone's edges is
+// consistent (docs/physics/drive_models.md, "Moreau-Jean on penalty
+// flanks"), so each edge is tried directly: the slip s at the step's end,
+// P_T = -s mu sigma P_N with P_N = beta + alpha P_T on the side sigma.
+inline friction::FlankLcpResult penalty_flank_slip(double c, double d, double alpha, double beta,
+                                                  double mu, int sigma) noexcept {
+  for (const int s : {1, -1}) {
+    const double coupling = 1.0 + s * mu * sigma * alpha;
+    if (coupling == 0.0) continue;
+    friction::FlankLcpResult r;
+    r.status = lcp::Status::solved;
+    r.friction_force = -s * mu * sigma * beta / coupling;
+    r.normal_force = beta + alpha * r.friction_force;
+    r.slip_acceleration = c + d * r.friction_force;
+    r.consistent = sigma * r.normal_force >= 0.0 && s * r.slip_acceleration > 0.0;
+    if (r.consistent) return r;
+  }
+  return friction::FlankLcpResult{};
+}
 
 }  // namespace leadscrew::model::drive::moreau_contacts

@@ -368,6 +368,27 @@ def test_a_flank_entered_at_a_long_step_carries_its_friction():
     assert abs(coarse - fine) <= 0.1 * abs(fine), (coarse, fine)
 
 
+def test_a_flank_entered_with_a_viscous_law_is_not_refused():
+    # (A review of the fix above: with Stribeck's law and a viscous term the
+    # step that enters the flank, beta of 1e-10 N s, was taken as pushing
+    # before the viscous impulse's shift made it pull, and no edge of the
+    # cone fitted: "no friction impulse ... consistent", shorten dt, at dt,
+    # dt / 10 and dt / 100 alike.) Now every run returns with its checks
+    # passed, friction never pushes the slip, and the travel converges:
+    # dt / 50 and dt / 100 agree to 1.5 %.
+    scene_dict = dict(ENTERING_FLANK, friction={"law": "stribeck", "mu": 0.055, "viscous": 50.0})
+    scene = ls.Scene.from_dict(scene_dict)
+    t_end, dt = 0.034, 2.35e-4
+    travel = {}
+    for step in (dt, dt / 10, dt / 50, dt / 100):
+        result = ls.simulate(scene, t_end, integrator="moreau", dt=step)
+        assert_checked(result, scene_dict, step, t_end)
+        power = result["friction_force"] * result["slip_velocity"]
+        assert np.all(power <= 1e-12 * np.max(np.abs(power)) + 1e-300)
+        travel[step] = result["u_load"][-1]
+    assert abs(travel[dt / 50] - travel[dt / 100]) <= 0.015 * abs(travel[dt / 100]), travel
+
+
 # --- A flank entered from the play, with its friction (property-style)
 
 CHANNEL_CHECKS = ("finite", "event_times", "friction_power", "friction_loss", "friction_cone",

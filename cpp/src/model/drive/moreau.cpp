@@ -449,7 +449,6 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   double d = model_.tangent_direction().dot(unit.velocity) - c;
   double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);
   double alpha = (row ? unit.normal : flank_impulse(h, theta, v0, unit.velocity)) - beta;
-  const double pushing = beta;  // (the normal impulse without friction)
   // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
   // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
   // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
@@ -465,6 +464,12 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
     d *= viscous_scale;
     alpha *= viscous_scale;
   }
+  // The normal impulse with the cone's part of the friction zero (and the
+  // viscous impulse on): a penalty flank pushes where sigma beta > 0 here.
+  // (Taken before the viscous shift, a flank entered within the step, beta
+  // of 1e-10 N s, counted as pushing where the shift had made it pull, and
+  // the step was refused at every dt.)
+  const double pushing = beta;
   if (model_.effective_max_mu() * std::abs(alpha) >= 1.0 && !dynamics_.painleve_possible())
     throw SimulationError(t,
                           "dt = " + format_value(h) + " s is too long for the stiffness of "
@@ -555,9 +560,11 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
     chosen.friction_force = (chosen.friction_force - viscous_step * viscous_c) * viscous_scale;
   if (found == 0 && !row && sigma_fixed * pushing >= 0.0 && pushing != 0.0) {
     // (A penalty flank whose force pushes carries its friction: no
-    // consistent impulse is no separation. Unreachable by the slip above
-    // but where the rotor's stuck contact prescribes the slip, whose
-    // rotor mode is then not the step's: solve_train tries the next.)
+    // consistent impulse is no separation. With the viscous term the
+    // scaled c, d, alpha, beta are the flank LCP's again (s > 0), so the
+    // slip above finds one wherever sigma beta > 0 and d > 0; reached where
+    // the rotor's stuck contact prescribes the slip, whose rotor mode is
+    // then not the step's: solve_train tries the next.)
     throw SimulationError(t, "no friction impulse of the Moreau-Jean step is consistent with "
                              "the penalty flank's normal impulse " + format_value(pushing) +
                              " N s (dt = " + format_value(h) + " s)",

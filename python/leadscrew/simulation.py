@@ -449,6 +449,18 @@ class _progress_bar:
             self._bar.close()
 
 
+def _run_core(simulate_core: Callable, call: Callable, arguments: dict, progress) -> Result:
+    """The core's simulation ``simulate_core(*call(arguments))`` as a
+    Result, under a progress bar where ``progress`` asks for one (without
+    one, the common case, no bar is set up or closed)."""
+    if progress is False:
+        arguments["progress"] = None
+        return Result(simulate_core(*call(arguments)))
+    with _progress_bar(progress, arguments["t_end"]) as report:
+        arguments["progress"] = report
+        return Result(simulate_core(*call(arguments)))
+
+
 def _flag(name: str, value) -> bool:
     """``value`` if it is a bool (or numpy's), naming the option otherwise."""
     value = _scalar(value)
@@ -674,12 +686,7 @@ def simulate(
             law["k_v"] = 100.0  # the block's default gain (the thesis's Table 3.1 range)
         arguments.update(block=model, friction=friction, law=law,
                          check=check if check is True else _flag("check", check))
-        if progress is False:  # the common case: no bar to set up and close
-            arguments["progress"] = None
-            return Result(_core.simulate_block(*_block_call(arguments)))
-        with _progress_bar(progress, arguments["t_end"]) as report:
-            arguments["progress"] = report
-            return Result(_core.simulate_block(*_block_call(arguments)))
+        return _run_core(_core.simulate_block, _block_call, arguments, progress)
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
         for name, value in law_parameters.items():
@@ -693,12 +700,7 @@ def simulate(
                        functools.partial(_core.drive_integrators, drive.parameters),
                        dict(given, bounce_threshold=bounce_threshold), model)
         arguments["drive"] = drive
-        if progress is False:  # the common case: no bar to set up and close
-            arguments["progress"] = None
-            return Result(_core.simulate_drive(*_drive_call(arguments)))
-        with _progress_bar(progress, arguments["t_end"]) as report:
-            arguments["progress"] = report
-            return Result(_core.simulate_drive(*_drive_call(arguments)))
+        return _run_core(_core.simulate_drive, _drive_call, arguments, progress)
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
 

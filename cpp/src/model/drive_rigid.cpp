@@ -37,7 +37,7 @@ bool no_force_elements_but_train_stops(const DriveModel& model) {
 bool RigidDriveModes::applies_to_thread(const DriveModel& model, const DriveDynamics& dynamics) {
   return model.bilateral_thread() && !model.motor().speed_controlled &&
          !model.preloaded_nut() &&
-         dynamics.law().plain_coulomb() && no_force_elements_but_train_stops(model) &&
+         dynamics.plain_coulomb() && no_force_elements_but_train_stops(model) &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();
 }

@@ -516,7 +516,7 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
           ? friction::FlankLcpResult{}
           : friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma_fixed);
   bool stuck = false;
-  if (!law.plain_coulomb()) {
+  if (!dynamics_.plain_coulomb()) {
     if (stick_step.consistent) {
       chosen = stick_step;
       stuck = true;

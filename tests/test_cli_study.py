@@ -350,8 +350,31 @@ def test_every_number_a_study_sums_up_is_printed_with_its_unit(tmp_path, capsys,
     lines = out.splitlines()
     for key, value in summary.items():
         unit = units.get(key, "1")
-        line = f"  {key}: {cli._summary_text(value)}" + ("" if unit in ("", "1") else f" {unit}")
+        empty = isinstance(value, (list, tuple)) and not value  # "none", no unit
+        line = f"  {key}: {cli._summary_text(value)}" + ("" if unit in ("", "1") or empty
+                                                         else f" {unit}")
         assert line in lines, (line, out)
+
+
+def test_an_empty_list_in_a_summary_prints_none_without_its_unit(tmp_path, capsys,
+                                                                 monkeypatch):
+    """Issue 33: end_stop_jam's summary printed 'undecided:  V' (no reverse
+    undecided: an empty value followed by its unit)."""
+    assert cli._summary_text([], "V") == "none" and cli._summary_text((), "") == "none"
+    assert cli._summary_text([1.5, 2.0], "V") == "1.5, 2 V"
+    titles, save_figure = [], ls.studies.save_figure
+
+    def recorded(name, frame, path, title=None, **options):
+        titles.append(title)
+        return save_figure(name, frame, path, title, **options)
+
+    monkeypatch.setattr(ls.studies, "save_figure", recorded)
+    frame, out = run_tiny_study(tmp_path, capsys, monkeypatch, "end_stop_jam")
+    assert frame.attrs["summary"]["undecided"] == []
+    assert "  undecided: none" in out.splitlines()
+    assert not any(line.rstrip().endswith(": V") or ":  " in line for line in out.splitlines())
+    # the figure's title names the study and the scene's file, not the Scene's repr
+    assert titles == ["end_stop_jam on scene"]
 
 
 @pytest.mark.parametrize("name", sorted(TINY_STUDIES))

@@ -255,7 +255,8 @@ def _summary_unit(key: str, frame) -> str:
 
 
 def _summary_text(value: Any, unit: str = "") -> str:
-    """A summary value for the terminal (NaN stays visible), with its unit."""
+    """A summary value for the terminal (NaN stays visible), with its unit; an
+    empty list is "none", without one."""
     import numpy as np
 
     if isinstance(value, np.generic):
@@ -267,8 +268,10 @@ def _summary_text(value: Any, unit: str = "") -> str:
     elif isinstance(value, numbers.Real):
         text = f"{float(value):.6g}"
     elif isinstance(value, (list, tuple)) or hasattr(value, "tolist"):
-        text = ", ".join(_summary_text(v) for v in (value.tolist() if hasattr(value, "tolist")
-                                                     else value))
+        values = value.tolist() if hasattr(value, "tolist") else value
+        if not values:  # an empty list has no value for a unit to follow ("undecided:  V")
+            return "none"
+        text = ", ".join(_summary_text(v) for v in values)
     else:
         return str(value)
     return f"{text} {unit}" if unit else text

@@ -314,3 +314,30 @@ def test_a_preloaded_nut_with_a_train_stage_is_refused_for_the_stage_first(stage
         f"nut.preload = 50 N is invalid with {what}: a preloaded nut takes none of the train's "
         "friction stages (a lossy or worm stage, the motor's friction torque); use "
         'nut.preload = 0, or gear.type = "ideal" and motor.friction_torque = 0')
+
+
+# Issue 31, reproduction 4: a rigid drive without play whose thread is in the
+# Painleve regime (a nut-driven drive, mu = 0.4, a light screw and load) with
+# the motor's friction. The event-driven train solver takes the modes in closed
+# form outside that regime only, so only Moreau-Jean runs the scene: it is the
+# default (docs/physics/gear.md, "Friction stages"), and event_driven is refused
+# naming the regime and the way out.
+PAINLEVE_TRAIN = {"drive": "nut", "thread": {"pitch": 0.002, "mean_diameter": 0.03,
+                                             "hand": "left"},
+                  "friction": {"mu": 0.4},
+                  "motor": {"type": "dc", "voltage": 20.0, "resistance": 3.0,
+                            "torque_constant": 0.04, "friction_torque": 3e-05},
+                  "gear": {"ratio": 0.3}}
+
+
+def test_a_train_in_the_painleve_regime_runs_on_moreau_by_default():
+    scene = ls.Scene.from_dict(PAINLEVE_TRAIN)
+    assert list(ls._core.drive_integrators(scene.model().parameters)) == ["moreau"]
+    result = ls.simulate(scene, 0.5)
+    assert result.integrator == "moreau"
+    assert_checked(result, PAINLEVE_TRAIN, 1e-4, 0.5)
+    assert result["motor_friction_loss"][-1] > 0.0
+    with pytest.raises(ValueError, match=r"integrator = \"event_driven\" is invalid with "
+                                         r"motor\.friction_torque = 3e-05.*Painleve regime.*"
+                                         r"use integrator = \"moreau\""):
+        ls.simulate(scene, 0.5, integrator="event_driven")

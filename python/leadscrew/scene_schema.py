@@ -72,7 +72,8 @@ _TRAIN_STAGE_RULE = (
     "'relaxed'; end stops and every play (backlash.contact 'exact', 'bistop' or 'cubic') "
     "are allowed. Moreau-Jean (integrator = 'moreau') runs them on every concept and play, the "
     "event-driven scheme on the rigid concept without play with friction.law = 'coulomb' "
-    "without mu_static; where only Moreau-Jean fits, it is the default "
+    "without mu_static outside the thread's Painleve regime and without a load spring; "
+    "where only Moreau-Jean fits, it is the default "
     "(docs/physics/gear.md, 'Friction stages')")
 _SMALLEST_GEAR_RATIO = _core.smallest_gear_ratio
 

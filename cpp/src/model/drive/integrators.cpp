@@ -66,10 +66,11 @@ const std::vector<std::string>& train_integrators(const std::string& obstacle) {
 }  // namespace
 
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+  // The train's stages: whether the event-driven scheme runs them needs the
+  // built model (the thread's Painleve regime, from the masses).
   if (p.nut_preload == 0.0 &&
       (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
-    return train_integrators(
-        elements::train_event_driven_obstacle(p, *elements::ThreadPair::make_law(p)));
+    return drive::model_integrators(DriveModel(p));
   return integrators_for(p.friction, p.backlash == BacklashContact::exact, p.nut_preload > 0.0);
 }
 
@@ -135,7 +136,7 @@ void check_theta_stable_with_springs(const DriveModel& model,
 void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
   const std::vector<std::string>& allowed = drive::model_integrators(model);
-  const std::string& integrator = drive::chosen_integrator(p, options);
+  const std::string& integrator = drive::chosen_integrator(model, options);
   // The elements' own reasons first (the list below leaves them out).
   if (model.preloaded_nut() && integrator != "event_driven")
     throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with nut.preload = " +
@@ -210,9 +211,12 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
 namespace drive {
 
 // The integrator simulate() runs ("" in the options: the model's default).
-const std::string& chosen_integrator(const DriveParameters& p,
+// The list's first: the event-driven scheme where it runs the scene, else
+// Moreau-Jean (the train's stages beyond the event-driven scheme's reach:
+// model_integrators), so that a valid scene runs at its defaults.
+const std::string& chosen_integrator(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
-  return options.integrator.empty() ? drive_integrators(p).front() : options.integrator;
+  return options.integrator.empty() ? model_integrators(model).front() : options.integrator;
 }
 
 // The ODE method of the smooth phases: the integrator itself, or inside

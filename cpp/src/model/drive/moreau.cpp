@@ -334,13 +334,9 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     if (stop_active_[k]) last_stop_force_ -= exact[k].side * impulses.stop[k] / h;
   last_.normal = impulses.normal / h;
   last_.friction = impulses.friction / h;
-  last_.motor_torque =
-      p_.speed_controlled ? impulses.rotor / h : model_.motor().applied_torque(t + h);
-  if (dc != nullptr)
-    last_.motor_torque = dc->torque(dc->has_state() ? y_next[current_state_]
-                                                     : current.mean +
-                                                           current.mean_slope * v_[dc->rotor]);
-  last_.motor_torque = model_.gear().rotor_torque(last_.motor_torque);
+  // The speed-controlled rotor's torque is the step's impulse over h; a
+  // torque's or a DC motor's is the row's own (channels).
+  last_.motor_torque = p_.speed_controlled ? model_.gear().rotor_torque(impulses.rotor / h) : 0.0;
   last_.stick = contact && stick;
   return restituting;
 }
@@ -635,8 +631,13 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
     values[2] = y[copper_state_];
     values[3] = dc->has_state() ? dc->magnetic_energy(values[0]) : 0.0;
   }
-  write_drive_channels(layout_, state, last_, energy, 0.0, kinetic0_,
-                       elastic0_, out);
+  // drive_torque, the rotor's: a torque-driven rotor's prescribed torque
+  // and a DC motor's k_t i at the row's state, as the event-driven scheme
+  // reports them (issue 31: the step's impulse over h is not the motor's
+  // torque; the step's work stays its impulse's, booked in step()).
+  ContactForces forces = last_;
+  if (!p_.speed_controlled) forces.motor_torque = model_.gear().rotor_torque(dynamics_.applied_torque());
+  write_drive_channels(layout_, state, forces, energy, 0.0, kinetic0_, elastic0_, out);
 }
 
 // The iteration matrix W = M + theta h C + theta^2 h^2 K at the positions

@@ -268,13 +268,6 @@ def test_the_flexible_seat_adjusters_refusals_offer_moreau_jean_alone():
     # event-driven scheme or rtol, which this scene refuses.)
     scene = ls.scenes.load("seat_adjuster_worm_flexible")
     with pytest.raises(ValueError) as info:
-        ls.simulate(scene, 0.01, dt=0.01)
-    message = str(info.value)
-    assert message.startswith("dt = 0.01 s is invalid with motor.inductance = 0.0004 H")
-    assert message.endswith("use dt <= 0.0013333333333333335 s, theta = 1 or "
-                            "motor.inductance = 0 (the quasi-static limit); this scene runs on "
-                            "Moreau-Jean only")
-    with pytest.raises(ValueError) as info:
         ls.simulate(scene, 0.01, rtol=1e-6)
     message = str(info.value)
     assert message.startswith("rtol = 1e-06 is invalid with integrator 'moreau' (the default "
@@ -289,13 +282,6 @@ def test_the_flexible_seat_adjusters_refusals_offer_moreau_jean_alone():
     assert "the result fails its check 'flank_gap'" in message
     assert "the run did not resolve the scene (shorten dt)" in message
     assert "rtol" not in message and "atol" not in message
-
-
-def test_the_dc_motors_dt_refusal_still_offers_the_event_driven_scheme_where_it_runs():
-    scene = ls.Scene.from_dict(dc_scene(LOSSY, 2e-3))  # rigid, no play: both schemes
-    with pytest.raises(ValueError) as info:
-        ls.simulate(scene, 0.01, integrator="moreau", dt=0.01)
-    assert str(info.value).endswith('(the quasi-static limit), or integrator = "event_driven"')
 
 
 @pytest.mark.parametrize("stage", ["worm", "friction_torque"])

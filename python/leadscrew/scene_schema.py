@@ -363,11 +363,16 @@ SCHEMA: Dict[str, Any] = {
                                    "books)", "V*s/rad", OPTIONAL,
                                    default_doc="motor.torque_constant", **POSITIVE),
         "current_limit": Field("the driver's current limit i_max: a voltage source with "
-                               "current limiting, which where |i| reaches i_max and U(t) would "
-                               "drive it further lowers its output to U_d = R i + k_e omega, "
-                               "holding |i| = i_max (an event starts and ends the hold; "
-                               "inductance 0: i clamped to +-i_max), and never puts out more "
-                               "than U(t) (absent: no limit)", "A", OPTIONAL, **POSITIVE),
+                               "current limiting, bounded by its supply |U_d| <= |U(t)|: "
+                               "where |i| reaches i_max and U(t) would drive it further, it "
+                               "puts out U_d = R i + k_e omega, holding |i| = i_max, as far as "
+                               "the supply reaches; where the back-EMF asks for more (a load "
+                               "driving the rotor) it saturates at -|U(t)| against the "
+                               "current (+|U(t)| for a negative one) and the current passes "
+                               "the limit, i = (U_d - k_e omega) / R at inductance 0 (events "
+                               "start and end the hold and the saturation; "
+                               "docs/physics/dc_motor.md) (absent: no limit)", "A", OPTIONAL,
+                               **POSITIVE),
         "friction_torque": Field("the motor's own Coulomb friction torque T_c on the rotor: "
                                  "it opposes the rotor's slip with |T_c| and holds up to T_c "
                                  "at rest (one coefficient, no normal force); its loss is the "

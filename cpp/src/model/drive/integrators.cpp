@@ -84,30 +84,6 @@ const std::vector<std::string>& drive::model_integrators(const DriveModel& model
 
 namespace {
 
-// Moreau-Jean steps a DC motor's armature, L i' = U - R i - k_e omega, by
-// the theta-method (DcMotor::theta_step): per step the current's own mode
-// is multiplied by (1 - (1 - theta) x) / (1 + theta x), x = dt R / L, which
-// is negative for x > 1 / (1 - theta): the current then alternates from
-// step to step, beyond U / R (a new user's 10 uH armature at dt = 1e-4 s:
-// 10.7 A of a 6 A stall current) while the energy account still closes.
-// Such a step is refused, not obeyed.
-void check_step_resolves_armature(const DriveParameters& p, const DriveSimulationOptions& options) {
-  if (!p.dc_motor || !(p.motor_inductance > 0.0) || !(options.theta < 1.0)) return;
-  const double largest = p.motor_inductance / (p.motor_resistance * (1.0 - options.theta));
-  if (options.dt <= largest) return;
-  throw InvalidArgument(
-      "dt = " + format_value(options.dt) + " s is invalid with motor.inductance = " +
-      format_value(p.motor_inductance) + " H and motor.resistance = " +
-      format_value(p.motor_resistance) + " Ohm: Moreau-Jean's theta-method (theta = " +
-      format_value(options.theta) +
-      ") makes the armature current alternate from step to step where dt > L / (R (1 - theta)) "
-      "= " + format_value(largest) + " s (the electrical time constant L / R is " +
-      format_value(p.motor_inductance / p.motor_resistance) + " s); use dt <= " +
-      format_value(largest) + " s, theta = 1 or motor.inductance = 0 (the quasi-static limit)" +
-      (drive_integrators(p).size() > 1 ? std::string(", or integrator = \"event_driven\"")
-                                       : std::string("; this scene runs on Moreau-Jean only")));
-}
-
 // The theta-method steps the springs (W = M + theta h C + theta^2 h^2 K) in
 // a stable way for every step only where theta >= 1/2; below, a spring's
 // mode grows from step to step unless the step resolves its period, which
@@ -187,7 +163,6 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                                : p.speed_controlled ? &p.drive_speed
                                                     : &p.drive_torque,
                                &p.axial_force});
-    check_step_resolves_armature(p, options);
     check_theta_stable_with_springs(model, options);
     return;
   }

@@ -88,7 +88,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   bool take_step_held(double t, double h, double theta, const double* y, double* y_next,
                       double restitution, int held, double driver_voltage);
   StepAccount energy_created(double t, double h, const double* y, const double* y_next);
-  // (rotor_damping: a DC motor's implicit back-EMF term h k_t |di_theta/domega+|.)
+  // (rotor_damping: a DC motor's implicit back-EMF term h k_t |di_mean/domega+|.)
   void assemble(double h, double theta, Square& stiffness, Square& damping,
                 double rotor_damping = 0.0);
   double step_coupling(double h, double theta);

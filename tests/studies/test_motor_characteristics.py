@@ -114,7 +114,7 @@ def test_the_figure_draws_the_closed_form_over_a_fine_grid_with_the_legend_off_t
 
 
 @pytest.mark.parametrize("change, kwargs, match", [
-    ({"motor": None}, {}, r"scene has no motor section"),
+    ({"motor": None}, {}, r"scene has no DC motor"),
     ({"motor": {"voltage": {"type": "sine", "amplitude": 3.0, "omega": 1.0}}}, {},
      r"motor\.voltage = .* must be a constant voltage"),
     ({}, {"loads": [-1.0]}, r"loads"),

@@ -70,10 +70,16 @@ _CHANNELS = ("omega_drive", "motor_current", "motor_voltage", "v_load", "work_dr
 _OMEGA, _CURRENT, _VOLTAGE, _VLOAD, _WORK, _AXIAL, _COPPER, _MAGNETIC = range(len(_CHANNELS))
 
 
+def has_dc_motor(scene) -> bool:
+    """Whether a DC motor drives the scene's rotor (a motor section without
+    a type gives a torque-driven rotor's friction only)."""
+    return "motor" in scene and scene["motor"].get("type") == "dc"
+
+
 def constant_voltage(scene) -> Optional[float]:
     """The scene's DC motor voltage [V] where it is constant; None without a
-    motor or with a voltage that varies."""
-    return constant_value(scene["motor"]["voltage"]) if "motor" in scene else None
+    DC motor or with a voltage that varies."""
+    return constant_value(scene["motor"]["voltage"]) if has_dc_motor(scene) else None
 
 
 def _voltage(scene) -> float:
@@ -82,8 +88,8 @@ def _voltage(scene) -> float:
     Raises:
         ValueError: the scene has no DC motor, or its voltage is not constant.
     """
-    if "motor" not in scene:
-        raise ValueError("scene has no motor section: motor_characteristics needs a DC motor "
+    if not has_dc_motor(scene):
+        raise ValueError("scene has no DC motor: motor_characteristics needs one "
                          "(motor = {type = \"dc\", voltage, resistance, ...})")
     voltage = constant_voltage(scene)
     if voltage is None:

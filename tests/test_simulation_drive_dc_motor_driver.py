@@ -198,3 +198,28 @@ def test_a_back_emf_constant_apart_from_the_torque_constant(inductance, options)
     assert result["omega_drive"][-1] == pytest.approx(omega, rel=1e-6)
     assert result["drive_torque"][-1] == pytest.approx(torque, rel=1e-6)
     assert_motor_checks_pass(result)
+
+
+def test_the_steppers_next_piece_keeps_the_saturated_limiter():
+    """The stepper (C API, FMU) rebuilds its elements when an input changes;
+    the new limiter takes its mode from the state. The back-driven rotor's
+    current beyond the limit (saturated at -1 V) under a new input of 0.9 V
+    stays saturated at -0.9 V, as one run whose voltage steps there; started
+    free it put out +0.9 V and drove the current toward 10 A."""
+    from leadscrew import _core
+    from leadscrew.simulation import _run_options
+
+    scene = spun(1e-3, rotor_speed=-200.0)
+    stepper = _core.DriveStepper(scene.model(), **_run_options())
+    stepper.advance(0.002)
+    assert stepper.channel("motor_current") > 2.0  # (beyond the limit, saturated)
+    stepper.set_input("motor_voltage", 0.9)
+    stepper.advance(0.004)
+    stepped = {"type": "table", "times": [0.0, 0.002, 0.002 + 1e-12, 0.004],
+               "values": [1.0, 1.0, 0.9, 0.9]}
+    one = ls.simulate(ls.Scene.from_dict({**SPUN, "initial": {"rotor_speed": -200.0},
+                                          "motor": {**SPUN["motor"], "inductance": 1e-3,
+                                                    "voltage": stepped}}), 0.004)
+    assert stepper.channel("motor_voltage") == pytest.approx(-0.9, rel=1e-12)
+    assert one["motor_voltage"][-1] == pytest.approx(-0.9, rel=1e-12)
+    assert stepper.channel("motor_current") == pytest.approx(one["motor_current"][-1], rel=1e-6)

@@ -64,6 +64,22 @@ class DcMotorElement final : public DriveHybrid::Element {
     if (limit_margin(t) < 0.0) limiter_ = decide_at_limit(t, limiter_.side);
   }
 
+  // At a start (the run's, or a resumed piece's new element after an input
+  // changed): the limiter's mode from the state, as its events leave it:
+  // beyond the limit saturated (until the current is back at it), at the
+  // limit decided as at the event, else free. (Started free, a current
+  // beyond the limit lost its limiter: its root starts below zero.)
+  void start(double t, const double* y) override {
+    limiter_ = {};
+    if (!limit_root_) return;
+    set(t, y);
+    const double current = dynamics().motor_current();
+    const int side = current >= 0.0 ? 1 : -1;
+    const double excess = std::abs(current) - dc_.current_limit;
+    if (excess > 0.0) limiter_ = {Limiter::saturated, side};
+    else if (excess == 0.0) limiter_ = decide_at_limit(t, side);
+  }
+
   // Its current's rate, its copper loss rate and the electrical work's rate
   // (which replaces the motor torque's power in the drive's work).
   void rates(double t, const double* y, double* ydot, double* energy) const override {

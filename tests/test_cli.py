@@ -393,9 +393,8 @@ def test_run_refuses_before_creating_the_output_directory(tmp_path, capsys, argv
     (["--rtol", "1e-6"],
      ["--rtol 1e-06 is invalid with the scene's default integrator moreau",
       "this scene runs on Moreau-Jean only, so --rtol has no use here: a shorter --dt"]),
-    (["--dt", "0.01"],
-     ["dt = 0.01 s is invalid with motor.inductance = 0.0004 H", "use dt <= 0.00133",
-      "; this scene runs on Moreau-Jean only"]),
+    (["--theta", "0.3"],
+     ["theta = 0.3 is invalid for this drive", "need theta in [0.5, 1]"]),
 ])
 def test_a_moreau_only_scene_offers_no_other_integrator(tmp_path, capsys, argv, fragments):
     """(A new user's review: seat_adjuster_worm_flexible runs on Moreau-Jean

@@ -194,7 +194,8 @@ def test_schema_says_which_schemes_run_the_trains_friction_stages():
                 "'relaxed'; end stops and every play (backlash.contact 'exact', 'bistop' or "
                 "'cubic') are allowed. Moreau-Jean (integrator = 'moreau') runs them "
                 "on every concept and play, the event-driven scheme on the rigid concept without "
-                "play with friction.law = 'coulomb' without mu_static; where only Moreau-Jean "
+                "play with friction.law = 'coulomb' without mu_static outside the thread's "
+                "Painleve regime and without a load spring; where only Moreau-Jean "
                 "fits, it is the default") in line, key
         assert "no end stops" not in line, key
 

@@ -19,7 +19,7 @@ from .scene_loads import _DEFAULT_ROTOR_SPEED, _check_load, _check_rotor_speed
 from .scene_schema import (OPTIONAL, SCHEMA, _OPTIONAL_SECTIONS, _REQUIRED_SECTIONS,
                            _UNIT_DEPENDS_ON, Field, _check_friction, _Converted,
                            _element_sections, _fail, _field_unit, _range_text)
-from .scene_schema import _SMALLEST_GEAR_RATIO
+from .scene_schema import _SMALLEST_GEAR_RATIO, DC_MOTOR_FIELDS
 from .units import to_si
 
 __all__: list = []  # the scene's internals: leadscrew.Scene is the public face
@@ -208,13 +208,31 @@ def _check_gear(gear: Dict[str, Any]) -> None:
 
 
 def _check_motor(data: Dict[str, Any]) -> None:
-    """The motor section's rules across sections: exclusive with the drive
-    loads, no equilibrium start.
+    """The motor section's rules across sections. A DC motor (type 'dc'):
+    its required fields, exclusive with the drive loads, no equilibrium
+    start. Without a type: the friction_torque of a rotor driven by
+    loads.drive_torque (issue 33), none of a DC motor's fields.
 
     Raises:
         ValueError: naming the keys at fault and their values.
     """
     motor, loads = data["motor"], data["loads"]
+    if "type" not in motor:
+        for key in DC_MOTOR_FIELDS:
+            if key in motor:
+                raise ValueError(
+                    f"motor.type is missing: motor.{key} = {motor[key]!r} is a DC motor's "
+                    "(motor.type = 'dc'); without a type the section gives only the "
+                    "friction_torque of a rotor driven by loads.drive_torque")
+        return
+    section = SCHEMA["motor"]
+    for key in section:
+        if section[key].required_with and key not in motor:
+            f = section[key]
+            raise ValueError(f"motor.{key} is missing: {f.doc}" + (f" [{f.unit}]" if f.unit else ""))
+    # (the DC motor's default inductance, in the section's order)
+    data["motor"] = motor = {key: motor.get(key, 0.0 if key == "inductance" else None)
+                             for key in section if key in motor or key == "inductance"}
     for key in ("drive_torque", "drive_speed"):
         if key in loads:
             raise ValueError(f"loads.{key} = {loads[key]!r} is invalid with motor.type = "
@@ -243,7 +261,7 @@ def _check_element_sections(data: Dict[str, Any]) -> None:
     if "gear" in data:
         context.gear = data["gear"]["type"]
     if "motor" in data:
-        context.dc_motor = True
+        context.dc_motor = data["motor"].get("type") == "dc"
         context.motor_friction_torque = data["motor"]["friction_torque"]
     for name in present:
         _core.check_element_section(name, data[name], context)

@@ -276,7 +276,9 @@ def _core_parameters(data: Dict[str, Any],
     for key in (given, "axial_force"):
         setattr(p, key, _make_excitation(loads.get(key, _DEFAULT_DRIVE_TORQUE), key))
     motor = data.get("motor")
-    if motor is not None:
+    if motor is not None:  # (without a type: a torque-driven rotor's friction only)
+        p.motor_friction_torque = motor["friction_torque"]
+    if motor is not None and motor.get("type") == "dc":
         p.dc_motor = True
         voltage = motor["voltage"]
         p.motor_voltage = (checked_callable("motor.voltage", voltage, "V")
@@ -288,7 +290,6 @@ def _core_parameters(data: Dict[str, Any],
         p.motor_torque_constant = motor["torque_constant"]
         p.motor_back_emf_constant = motor.get("back_emf_constant", -1.0)
         p.motor_current_limit = motor.get("current_limit", 0.0)
-        p.motor_friction_torque = motor["friction_torque"]
     gear = data.get("gear")
     if gear is not None:
         p.gear = gear["type"]

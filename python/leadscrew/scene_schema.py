@@ -40,6 +40,7 @@ class Field:
     high_open: bool = False
     choices: Tuple[str, ...] = ()
     default_doc: str = ""  # the default in words, where it depends on other fields
+    required_with: str = ""  # optional, but required where this holds (its check's)
 
 
 OPTIONAL = object()  # the field may be absent (derived or unused)
@@ -72,9 +73,16 @@ _TRAIN_STAGE_RULE = (
     "'relaxed'; end stops and every play (backlash.contact 'exact', 'bistop' or 'cubic') "
     "are allowed. Moreau-Jean (integrator = 'moreau') runs them on every concept and play, the "
     "event-driven scheme on the rigid concept without play with friction.law = 'coulomb' "
-    "without mu_static; where only Moreau-Jean fits, it is the default "
+    "without mu_static outside the thread's Painleve regime and without a load spring; "
+    "where only Moreau-Jean fits, it is the default "
     "(docs/physics/gear.md, 'Friction stages')")
 _SMALLEST_GEAR_RATIO = _core.smallest_gear_ratio
+# The DC motor's fields: required, or given only, with motor.type = 'dc'
+# (scene_checks._check_motor); without a type the section holds the
+# friction_torque of a rotor driven by loads.drive_torque (issue 33).
+_WITH_DC = "type 'dc'"
+DC_MOTOR_FIELDS = ("voltage", "resistance", "inductance", "torque_constant",
+                   "back_emf_constant", "current_limit")
 
 
 @functools.lru_cache(maxsize=None)
@@ -344,36 +352,44 @@ SCHEMA: Dict[str, Any] = {
                       "loads.drive_speed (exclusive with both): 'dc', a permanent-magnet DC "
                       "motor on the rotor (rotor.inertia is its inertia) with the armature "
                       "L di/dt = U_d - R i - k_e omega and the torque k_t i; its current i "
-                      "starts at 0 (the driver switched on at t = 0)", "", None,
+                      "starts at 0 (the driver switched on at t = 0). Left out: the rotor is "
+                      "driven by loads.drive_torque, and the section gives only its "
+                      "friction_torque (the motor's bearing friction)", "", OPTIONAL,
                       kind="choice", choices=("dc",)),
         "voltage": Field("the driver's voltage U(t): a number, {'type': "
                          "'sine'|'constant'|'table', ...} or an Excitation or callable",
-                         "V", None, kind="load"),
-        "resistance": Field("armature resistance R (terminal to terminal)", "ohm", None,
-                            **POSITIVE),
+                         "V", OPTIONAL, kind="load", required_with=_WITH_DC),
+        "resistance": Field("armature resistance R (terminal to terminal)", "ohm", OPTIONAL,
+                            required_with=_WITH_DC, **POSITIVE),
         "inductance": Field("armature inductance L; 0 is the quasi-static limit, exact: "
-                            "i = (U - k_e omega) / R without a state", "H", 0.0,
-                            **NONNEGATIVE),
+                            "i = (U - k_e omega) / R without a state", "H", OPTIONAL,
+                            default_doc="0 with type 'dc'", **NONNEGATIVE),
         "torque_constant": Field("torque constant k_t: the torque k_t i on the rotor",
-                                 "N*m/A", None, **POSITIVE),
+                                 "N*m/A", OPTIONAL, required_with=_WITH_DC, **POSITIVE),
         "back_emf_constant": Field("back-EMF constant k_e (equal to k_t in SI for a real "
                                    "motor; where they differ the motor converts "
                                    "(k_t - k_e) i omega out of nothing, which work_drive "
                                    "books)", "V*s/rad", OPTIONAL,
                                    default_doc="motor.torque_constant", **POSITIVE),
         "current_limit": Field("the driver's current limit i_max: a voltage source with "
-                               "current limiting, which where |i| reaches i_max and U(t) would "
-                               "drive it further lowers its output to U_d = R i + k_e omega, "
-                               "holding |i| = i_max (an event starts and ends the hold; "
-                               "inductance 0: i clamped to +-i_max), and never puts out more "
-                               "than U(t) (absent: no limit)", "A", OPTIONAL, **POSITIVE),
+                               "current limiting, bounded by its supply |U_d| <= |U(t)|: "
+                               "where |i| reaches i_max and U(t) would drive it further, it "
+                               "puts out U_d = R i + k_e omega, holding |i| = i_max, as far as "
+                               "the supply reaches; where the back-EMF asks for more (a load "
+                               "driving the rotor) it saturates at -|U(t)| against the "
+                               "current (+|U(t)| for a negative one) and the current passes "
+                               "the limit, i = (U_d - k_e omega) / R at inductance 0 (events "
+                               "start and end the hold and the saturation; "
+                               "docs/physics/dc_motor.md) (absent: no limit)", "A", OPTIONAL,
+                               **POSITIVE),
         "friction_torque": Field("the motor's own Coulomb friction torque T_c on the rotor: "
                                  "it opposes the rotor's slip with |T_c| and holds up to T_c "
                                  "at rest (one coefficient, no normal force); its loss is the "
                                  "channel motor_friction_loss [J]. 0: none (the drive runs "
                                  "bit-identically to a motor without the key). > 0 needs "
-                                 + _TRAIN_STAGE_RULE + " (a torque-controlled rotor takes it "
-                                 "through the core's DriveParameters.motor_friction_torque)",
+                                 + _TRAIN_STAGE_RULE + " (a rotor driven by "
+                                 "loads.drive_torque takes it in a motor section without "
+                                 "type: the bearing friction of a torque-driven rotor)",
                                  "N*m", 0.0, **NONNEGATIVE),
     },
     # (Absent: no gear stage; the rotor turns the driven part directly.)
@@ -521,6 +537,8 @@ def describe_schema() -> str:
         for path, f in items:
             if f.default is None:
                 default = "required"
+            elif f.required_with:
+                default = f"required with {f.required_with}"
             elif f.default_doc:
                 default = f"default {f.default_doc}"
             elif f.default is OPTIONAL:

@@ -13,6 +13,10 @@ independent of the leadscrew package. SI units.
 - Stalled rotor (the thread sticks): omega = 0, so
   i(t) = U / R (1 - exp(-t R / L)), the stall current U / R, the electrical
   time constant L / R.
+- A current-limited driver bounded by its supply, |U_d| <= |U| (L = 0): the
+  free current (U - k_e omega) / R where it lies within i_max; beyond, the
+  driver's voltage that holds the limit, R (+-i_max) + k_e omega, clipped to
+  [-|U|, |U|], and the current (U_d - k_e omega) / R that voltage gives.
 """
 
 from __future__ import annotations
@@ -23,7 +27,8 @@ import numpy as np
 
 from .rigid_drive_reference import RigidDrive
 
-__all__ = ["rigid_drive", "steady_torque", "steady_state", "stalled_current"]
+__all__ = ["rigid_drive", "steady_torque", "steady_state", "stalled_current",
+           "limited_driver"]
 
 
 def rigid_drive(scene: dict, derived: dict) -> RigidDrive:
@@ -74,3 +79,16 @@ def stalled_current(t, voltage: float, resistance: float, inductance: float):
     """i(t) = U / R (1 - exp(-t R / L)) [A] with the rotor held (L > 0)."""
     t = np.asarray(t, dtype=float)
     return voltage / resistance * -np.expm1(-t * resistance / inductance)
+
+
+def limited_driver(voltage, omega, resistance: float, back_emf_constant: float,
+                   current_limit: float):
+    """(driver voltage U_d [V], current [A]) of a current-limited driver
+    bounded by its supply |U| without inductance, at the rotor speed omega."""
+    voltage, omega = np.asarray(voltage, dtype=float), np.asarray(omega, dtype=float)
+    emf = back_emf_constant * omega
+    free = (voltage - emf) / resistance
+    side = np.sign(free)
+    hold = np.clip(resistance * side * current_limit + emf, -np.abs(voltage), np.abs(voltage))
+    driver = np.where(np.abs(free) <= current_limit, voltage, hold)
+    return driver, (driver - emf) / resistance

@@ -114,7 +114,7 @@ def test_the_figure_draws_the_closed_form_over_a_fine_grid_with_the_legend_off_t
 
 
 @pytest.mark.parametrize("change, kwargs, match", [
-    ({"motor": None}, {}, r"scene has no motor section"),
+    ({"motor": None}, {}, r"scene has no DC motor"),
     ({"motor": {"voltage": {"type": "sine", "amplitude": 3.0, "omega": 1.0}}}, {},
      r"motor\.voltage = .* must be a constant voltage"),
     ({}, {"loads": [-1.0]}, r"loads"),
@@ -242,6 +242,38 @@ def test_a_back_drivable_thread_is_raised_held_or_back_driven():
     assert lowered.current == pytest.approx(current, rel=1e-6)
     assert lowered.window_change < 1e-5
     assert math.isnan(lowered.efficiency) and math.isnan(lowered.efficiency_closed_form)
+
+
+def test_a_load_back_driving_beyond_the_current_limit_saturates_the_driver():
+    """The back-drivable thread under 400 N with i_max = U / R = 6 A: holding
+    the lowering load takes i = T / k_t > i_max, so the driver holds 6 A
+    while the load speeds the rotor up, until the hold voltage R i_max +
+    k_e omega passes -U; then it saturates at -U (its supply, reversed
+    against the current) and the load settles where (-U - k_e omega) / R =
+    T / k_t: omega = -(U + R T / k_t) / k_e (issue 31: the driver once held
+    the limit there with more than its supply; the closed form said the load
+    runs away)."""
+    voltage = 12.0
+    d = motor_scene(voltage=voltage, current_limit=voltage / R)
+    d["thread"] = {**d["thread"], "pitch": 10e-3, "mean_diameter": 9e-3}
+    d["friction"] = {**d["friction"], "mu": 0.05}
+    # (1.1 m/s at the steady -670 rad/s: 5 s of travel on a 20 m screw, thin
+    # so that the mechanical time constant J_eff R / (k_t k_e) is 0.06 s)
+    d["nut"] = {**d["nut"], "position": 0.18}
+    d["screw"] = {**d.get("screw", {}), "length": 20.0, "radius": 4e-3}
+    scene = ls.Scene.from_dict(d)
+    frame, _, _ = _run_at(voltage, scene, [400.0], 5.0)
+    row = frame.iloc[0]
+    assert row["mode"] == "back_driven_saturated"
+    drive = reference.rigid_drive(scene.to_dict(), scene.derived())
+    current = reference.steady_torque(drive, 400.0, direction=-1.0) / KT
+    omega = -(voltage + R * current) / KT
+    assert current > voltage / R
+    assert row["current_closed_form"] == pytest.approx(current, rel=1e-12)
+    assert row["speed_closed_form"] == pytest.approx(omega, rel=1e-12)
+    assert row["input_power_closed_form"] == pytest.approx(-voltage * current, rel=1e-12)
+    assert row["speed"] == pytest.approx(omega, rel=1e-6)
+    assert row["current"] == pytest.approx(current, rel=1e-6)
 
 
 def test_the_stall_from_rest_takes_mu_static():

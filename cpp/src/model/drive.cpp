@@ -5,7 +5,9 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/drive_dynamics.hpp"
 #include "leadscrew/model/drive_geometry.hpp"
+#include "leadscrew/model/drive_rigid.hpp"
 
 namespace leadscrew::model {
 
@@ -137,6 +139,12 @@ DriveModel::DriveModel(DriveParameters parameters)
   e_.forces.for_each([&](const auto& s) { springs_on_screw_ = springs_on_screw_ || s.on_screw; });
   for (int i = 0; i < n; ++i)
     if (i != eliminated()) independent_.push_back(i);
+  // The event-driven scheme's obstacles to the train's stages that only the
+  // built model tells (the thread's Painleve regime needs the masses): with
+  // one, Moreau-Jean is the scene's default (drive::model_integrators).
+  if (e_.train_friction && e_.train_friction->event_driven_obstacle.empty())
+    e_.train_friction->event_driven_obstacle =
+        RigidDriveModes::train_obstacle(*this, DriveDynamics(*this));
 }
 
 Eigen::VectorXd DriveModel::consistent_velocity(double rotor_speed) const {

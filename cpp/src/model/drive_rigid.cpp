@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
 
 namespace leadscrew::model {
 
@@ -40,6 +41,16 @@ bool RigidDriveModes::applies_to_thread(const DriveModel& model, const DriveDyna
          dynamics.plain_coulomb() && no_force_elements_but_train_stops(model) &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();
+}
+
+std::string RigidDriveModes::train_obstacle(const DriveModel& model,
+                                            const DriveDynamics& dynamics) {
+  if (!no_force_elements_but_train_stops(model))
+    return "a force element besides the end stops (the load spring's)";
+  if (dynamics.painleve_possible())
+    return "the thread in the Painleve regime (mu' |G_NT| / G_NN = " +
+           format_value(model.effective_max_mu() * std::abs(dynamics.coupling())) + " >= 1)";
+  return "";
 }
 
 RigidDriveModes::RigidDriveModes(const DriveModel& model, DriveDynamics& dynamics) {

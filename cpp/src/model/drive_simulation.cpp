@@ -29,7 +29,7 @@ integrate::SimulationResult simulate(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
   check_simulation_options(model, options);
   const DriveParameters& p = model.parameters();
-  const std::string& integrator = chosen_integrator(p, options);
+  const std::string& integrator = chosen_integrator(model, options);
 
   // The law that runs, the state at t = 0 (drive/run_setup.hpp).
   std::unique_ptr<friction::Law> regularization;

@@ -55,9 +55,9 @@ DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions op
   // options need a run length, which a stepper does not have.
   options_.output = integrate::OutputRequest{};
   options_.output.t_end = 1.0;
-  integrator_ = drive::chosen_integrator(parameters_, options_);
   {
     const DriveModel model(parameters_);  // validates the parameters
+    integrator_ = drive::chosen_integrator(model, options_);
     // FMU export and the C API (this stepper's users) run the event-driven
     // scheme or an ODE method, not Moreau-Jean's time stepping.
     const std::vector<std::string>& allowed = drive::model_integrators(model);

@@ -63,6 +63,7 @@ from . import _end_stop_runs as runs_module
 from ._common import (annotate, as_scene, axes, check_count, check_positive, constant_value,
                       frame_of, gear_ratio, with_tolerances)
 from ._sweep import _progress_bar
+from .motor import has_dc_motor
 
 __all__ = ["end_stop_jam", "plot_end_stop_jam"]
 
@@ -93,7 +94,7 @@ def _drive(scene) -> Tuple[str, float]:
         raise ValueError(f"end_stops.contact = {scene['end_stops']['contact']!r} is invalid "
                          "for end_stop_jam: must be 'penalty' (the clamp force of a rigid "
                          "stop depends on compliance the exact stop does not have)")
-    if "motor" in scene:
+    if has_dc_motor(scene):
         kind, key, value = "voltage", "motor.voltage", scene["motor"]["voltage"]
     else:
         loads = scene["loads"]

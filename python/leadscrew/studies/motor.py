@@ -14,8 +14,10 @@ T_s = k_t min(U / R, i_max) and rho_s' = atan(mu_static'),
   T_s < F r_m tan(alpha - rho_s'): the load turns the rotor against the
   voltage; the torque that holds the lowering load, T = F r_m tan(alpha - rho')
   (-:func:`leadscrew.lower_torque`), gives i = T / k_t > U / R and
-  omega = (U - R T / k_t) / k_e < 0 (no steady state where i > i_max: the
-  load runs away);
+  omega = (U - R T / k_t) / k_e < 0; where i > i_max the driver, bounded by
+  its supply, saturates at -U against the current once the back-EMF passes
+  it, and the load settles at omega = -(U + R T / k_t) / k_e
+  (``back_driven_saturated``, the input power -U i: the driver absorbs);
 - else stalled: at rest at the stall current.
 
 The stall load (from rest) is T_s / (r_m tan(alpha + rho_s')); a drive already
@@ -68,10 +70,16 @@ _CHANNELS = ("omega_drive", "motor_current", "motor_voltage", "v_load", "work_dr
 _OMEGA, _CURRENT, _VOLTAGE, _VLOAD, _WORK, _AXIAL, _COPPER, _MAGNETIC = range(len(_CHANNELS))
 
 
+def has_dc_motor(scene) -> bool:
+    """Whether a DC motor drives the scene's rotor (a motor section without
+    a type gives a torque-driven rotor's friction only)."""
+    return "motor" in scene and scene["motor"].get("type") == "dc"
+
+
 def constant_voltage(scene) -> Optional[float]:
     """The scene's DC motor voltage [V] where it is constant; None without a
-    motor or with a voltage that varies."""
-    return constant_value(scene["motor"]["voltage"]) if "motor" in scene else None
+    DC motor or with a voltage that varies."""
+    return constant_value(scene["motor"]["voltage"]) if has_dc_motor(scene) else None
 
 
 def _voltage(scene) -> float:
@@ -80,8 +88,8 @@ def _voltage(scene) -> float:
     Raises:
         ValueError: the scene has no DC motor, or its voltage is not constant.
     """
-    if "motor" not in scene:
-        raise ValueError("scene has no motor section: motor_characteristics needs a DC motor "
+    if not has_dc_motor(scene):
+        raise ValueError("scene has no DC motor: motor_characteristics needs one "
                          "(motor = {type = \"dc\", voltage, resistance, ...})")
     voltage = constant_voltage(scene)
     if voltage is None:
@@ -159,8 +167,12 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
     with mu_static, a thread with tan(alpha) > mu_static'), else it stays at
     rest. Moving, the train needs the torque T with mu: the raise torque
     (raising), or -the lower torque (back-driven: the rotor turns against the
-    voltage, i = T / k_t > U / R, omega < 0). A back-driven steady state
-    needs i <= i_max; beyond it the load runs away (no steady state, NaN).
+    voltage, i = T / k_t > U / R, omega < 0). Beyond i_max the driver holds
+    the limit until the hold voltage R i_max + k_e omega passes its supply
+    -|U|; then it saturates at U_d = -|U| (docs/physics/dc_motor.md, "Beyond
+    the supply") and the load settles where i = (-|U| - k_e omega) / R =
+    T / k_t: omega = -(|U| + R i) / k_e, the driver absorbing |U| i
+    (``back_driven_saturated``).
     """
     resistance, k_t, k_e, stall_current = _motor_constants(scene, voltage)
     torques = _thread_torques(scene)
@@ -173,12 +185,14 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
                       loads * torques["raise"] + friction)
     current = torque / k_t
     limit = scene["motor"].get("current_limit", math.inf)
-    runaway = back_driven & (current > limit)
+    saturated = back_driven & (current > limit)
     stalled = ~raising & ~back_driven
-    current = np.where(stalled, stall_current, np.where(runaway, np.nan, current))
-    speed = np.where(stalled, 0.0, (abs(voltage) - resistance * current) / k_e)
+    current = np.where(stalled, stall_current, current)
+    # (the driver's voltage: |U|, or -|U| saturated against the current)
+    driver = np.where(saturated, -abs(voltage), abs(voltage))
+    speed = np.where(stalled, 0.0, (driver - resistance * current) / k_e)
     # (stalled: the driver puts out R i at rest, U itself without a limit)
-    power = np.where(stalled, resistance * stall_current ** 2, abs(voltage) * current)
+    power = np.where(stalled, resistance * stall_current ** 2, driver * current)
     # (the load's travel per radian of the rotor)
     lead_per_rad = scene.thread.lead / (2.0 * math.pi * abs(gear_ratio(scene)))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -187,7 +201,7 @@ def _closed_form(scene, loads: np.ndarray, voltage: float) -> Dict[str, Any]:
                               np.where(stalled, 0.0, np.nan))
     sign = math.copysign(1.0, voltage)
     mode = np.where(raising, "raising", np.where(stalled, "stalled", np.where(
-        runaway, "runaway", "back_driven"))).astype(object)
+        saturated, "back_driven_saturated", "back_driven"))).astype(object)
     holding = -torques["lower_static"]
     return {"speed": sign * speed, "current": sign * current, "input_power": power,
             "efficiency": efficiency, "stalled": stalled, "mode": mode,
@@ -307,8 +321,10 @@ def motor_characteristics(
         at rest, the stall from rest with mu_static), ``mode`` (closed form:
         ``"raising"``, ``"stalled"``, ``"back_driven"`` (the load turns the
         rotor against the voltage: a thread with tan(alpha) > mu_static') or
-        ``"runaway"`` (back-driven beyond the current limit: no steady
-        state, the closed form's columns NaN)), ``wall_time`` [s], ``error``.
+        ``"back_driven_saturated"`` (back-driven beyond the current limit:
+        the driver saturates at -|U| and the rotor settles at omega =
+        -(|U| + R i) / k_e, faster than unlimited)), ``wall_time`` [s],
+        ``error``.
         ``attrs["summary"]``: ``voltage`` [V], ``stall_load`` [N] (closed
         form, from rest: breakaway with mu_static), ``stall_load_moving``
         [N] (with mu: the load up to which a drive already raising keeps

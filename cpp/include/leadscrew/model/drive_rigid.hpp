@@ -20,6 +20,8 @@
 // path.
 #pragma once
 
+#include <string>
+
 #include <array>
 #include <optional>
 
@@ -73,6 +75,12 @@ class RigidDriveModes {
   // (DriveHybrid::TrainSolver), whose penalty end stops (force elements of
   // the load's state alone) it takes besides: one more axial force.
   static bool applies_to_thread(const DriveModel& model, const DriveDynamics& dynamics);
+  // Why applies_to_thread fails for a model whose parameters the train's
+  // stages admit on the event-driven scheme (elements::train_event_driven_
+  // obstacle: the rigid concept without play, plain Coulomb): a force
+  // element besides the end stops, or the thread's Painleve regime, which
+  // only the masses tell ("" where it holds).
+  static std::string train_obstacle(const DriveModel& model, const DriveDynamics& dynamics);
 
   // Computes the coefficients of every mode with dynamics (its state is reset).
   RigidDriveModes(const DriveModel& model, DriveDynamics& dynamics);

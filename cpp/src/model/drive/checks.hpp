@@ -18,4 +18,10 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
                         integrate::SimulationResult& result, double step_play_rate = 0.0,
                         double step_friction_excess = 0.0);
 
+// A DC motor's checks, appended to result.checks (motor_checks.cpp): its
+// driver's voltage within the supply |U(t)| (driver_voltage) and
+// drive_torque = k_t motor_current (motor_torque).
+void check_dc_motor_result(const DriveModel& model, const DriveSimulationOptions& options,
+                           bool time_stepping, integrate::SimulationResult& result);
+
 }  // namespace leadscrew::model::drive

@@ -4,6 +4,7 @@
 // current limit's root and hold. The motor's torque k_t i enters the forces
 // through DriveDynamics (set_motor_current, set_state), so every mode, root
 // and impact sees it as a state's function.
+#include <algorithm>
 #include <cmath>
 
 #include "driver_element.hpp"
@@ -31,30 +32,52 @@ void declare(const DriveModel& model, bool bristle, Declaration& d) {
 
 class DcMotorElement final : public DriveHybrid::Element {
  public:
+  using Limiter = elements::DcMotor::Limiter;
+
   DcMotorElement(DriveHybrid& hybrid, const elements::DcMotor& dc)
       : Element(hybrid), dc_(dc), limit_root_(dc.has_state() && dc.limited()) {}
 
-  // One root with inductance and a current limit: the margin to the limit,
-  // or while held the driver's push beyond it.
+  // One root with inductance and a current limit: free, the margin to the
+  // limit [A]; holding, the driver's push beyond it or its supply's margin
+  // beyond the hold, whichever ends first [V]; saturated, the current's
+  // excess over the limit [A].
   int root_count() const override { return limit_root_ ? 1 : 0; }
   void roots(double t, double* g) const override {
     if (limit_root_) g[0] = limit_margin(t);
   }
   void root_directions(int* directions) const override {
-    if (limit_root_) directions[0] = -1;  // the limit reached, or the push ends
+    if (limit_root_) directions[0] = -1;  // each margin ends falling through zero
   }
-  // The event holds or releases the current (snapped to the limit); the
-  // mechanical mode changes only with another root.
+  // The event changes the limiter's mode (the current snapped onto the
+  // limit where it reaches it); the mechanical mode changes only with
+  // another root.
   Event handle(double t, double* y, const int* root_info) override {
     (void)root_info;
-    return {change_hold(t, y), false};
+    return {change_limiter(t, y), false};
   }
   // After a mechanical event: an impact's jump of the rotor's speed may end
-  // the driver's push at once (the root would start beyond its zero).
+  // the driver's push, or its supply's reach, at once (the root would start
+  // beyond its zero).
   void after_mode_change(double t, const double* y) override {
-    if (held_ == 0) return;
+    if (limiter_.mode != Limiter::holding) return;
     set(t, y);
-    if (limit_margin(t) < 0.0) held_ = 0;
+    if (limit_margin(t) < 0.0) limiter_ = decide_at_limit(t, limiter_.side);
+  }
+
+  // At a start (the run's, or a resumed piece's new element after an input
+  // changed): the limiter's mode from the state, as its events leave it:
+  // beyond the limit saturated (until the current is back at it), at the
+  // limit decided as at the event, else free. (Started free, a current
+  // beyond the limit lost its limiter: its root starts below zero.)
+  void start(double t, const double* y) override {
+    limiter_ = {};
+    if (!limit_root_) return;
+    set(t, y);
+    const double current = dynamics().motor_current();
+    const int side = current >= 0.0 ? 1 : -1;
+    const double excess = std::abs(current) - dc_.current_limit;
+    if (excess > 0.0) limiter_ = {Limiter::saturated, side};
+    else if (excess == 0.0) limiter_ = decide_at_limit(t, side);
   }
 
   // Its current's rate, its copper loss rate and the electrical work's rate
@@ -63,10 +86,9 @@ class DcMotorElement final : public DriveHybrid::Element {
     (void)y;
     const double current = dynamics().motor_current();
     const double omega = v()[dc_.rotor];
-    if (dc_.has_state())
-      ydot[current_state()] = held_ != 0 ? 0.0 : dc_.free_rate(t, current, omega);
+    if (dc_.has_state()) ydot[current_state()] = dc_.rate(t, current, omega, limiter_);
     ydot[copper_state()] = dc_.copper_loss_rate(current);
-    energy[kWorkDrive] = dc_.work_rate(t, current, omega, held_ != 0);
+    energy[kWorkDrive] = dc_.work_rate(t, current, omega, limiter_);
   }
   // Its channels: current, the driver's voltage, copper loss, magnetic energy.
   void output(double t, const double* y, const ContactForces& forces,
@@ -75,7 +97,7 @@ class DcMotorElement final : public DriveHybrid::Element {
     const double current = dynamics().motor_current();
     double* values = state.values.data() + first_channel();
     values[kCurrent] = current;
-    values[kVoltage] = dc_.terminal_voltage(t, current, v()[dc_.rotor], held_ != 0);
+    values[kVoltage] = dc_.terminal_voltage(t, current, v()[dc_.rotor], limiter_);
     values[kCopperLoss] = y[copper_state()];
     values[kMagnetic] = dc_.magnetic_energy(current);
   }
@@ -88,30 +110,57 @@ class DcMotorElement final : public DriveHybrid::Element {
   int copper_state() const { return first_state() + (dc_.has_state() ? 1 : 0); }
 
   double limit_margin(double t) const {
-    const double current = dynamics().motor_current();
-    if (held_ == 0) return dc_.current_limit - std::abs(current);
-    return held_ * dc_.free_rate(t, current, v()[dc_.rotor]);
+    const double current = dynamics().motor_current(), omega = v()[dc_.rotor];
+    const int side = limiter_.side;
+    switch (limiter_.mode) {
+      case Limiter::holding:
+        return std::min(dc_.push_beyond(t, side, omega), dc_.supply_margin(t, side, omega));
+      case Limiter::saturated: return side * current - dc_.current_limit;
+      default: return dc_.current_limit - std::abs(current);
+    }
   }
 
-  std::string change_hold(double t, double* y) {
+  // The limiter's mode with the current at side i_max: free where U(t)
+  // does not drive it further (a touch without push stays free), holding
+  // where the supply reaches the hold, else saturated (the current passes).
+  Limiter decide_at_limit(double t, int side) const {
+    const double omega = v()[dc_.rotor];
+    if (dc_.push_beyond(t, side, omega) <= 0.0) return {};
+    if (dc_.supply_margin(t, side, omega) < 0.0) return {Limiter::saturated, side};
+    return {Limiter::holding, side};
+  }
+
+  std::string change_limiter(double t, double* y) {
     set(t, y);
-    if (held_ != 0) {
-      held_ = 0;
-      return "current limit released";
+    const Limiter before = limiter_;
+    int side = limiter_.side;
+    if (limiter_.mode == Limiter::holding) {
+      // Which margin ended: the push (released) or the supply's (saturated).
+      const double omega = v()[dc_.rotor];
+      limiter_ = dc_.push_beyond(t, side, omega) <= dc_.supply_margin(t, side, omega)
+                     ? Limiter{}
+                     : Limiter{Limiter::saturated, side};
+    } else {
+      // The current reached the limit (free), or came back to it (saturated).
+      if (limiter_.mode == Limiter::free) side = dynamics().motor_current() >= 0.0 ? 1 : -1;
+      y[current_state()] = side * dc_.current_limit;  // at the limit, to round-off
+      set(t, y);
+      limiter_ = decide_at_limit(t, side);
     }
-    const int sign = dynamics().motor_current() >= 0.0 ? 1 : -1;
-    y[current_state()] = sign * dc_.current_limit;  // at the limit, to round-off
-    set(t, y);
-    // The current reached the limit driven beyond it (a touch without push
-    // stays free).
-    if (sign * dc_.free_rate(t, dynamics().motor_current(), v()[dc_.rotor]) <= 0.0) return "";
-    held_ = sign;
-    return "current limit reached";
+    return describe(before, limiter_);
+  }
+
+  static std::string describe(Limiter before, Limiter after) {
+    if (after.mode == before.mode) return "";
+    if (after.mode == Limiter::holding) return "current limit reached";
+    if (after.mode == Limiter::saturated)
+      return "current limit passed: the back-EMF exceeds the driver's supply";
+    return "current limit released";
   }
 
   const elements::DcMotor& dc_;
-  bool limit_root_;  // with inductance and a current limit
-  int held_ = 0;     // the current held at +-current_limit (its sign; 0: free)
+  bool limit_root_;   // with inductance and a current limit
+  Limiter limiter_;   // the driver's current limiter (free at the start)
 };
 
 }  // namespace

@@ -66,10 +66,11 @@ const std::vector<std::string>& train_integrators(const std::string& obstacle) {
 }  // namespace
 
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
+  // The train's stages: whether the event-driven scheme runs them needs the
+  // built model (the thread's Painleve regime, from the masses).
   if (p.nut_preload == 0.0 &&
       (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
-    return train_integrators(
-        elements::train_event_driven_obstacle(p, *elements::ThreadPair::make_law(p)));
+    return drive::model_integrators(DriveModel(p));
   return integrators_for(p.friction, p.backlash == BacklashContact::exact, p.nut_preload > 0.0);
 }
 
@@ -82,30 +83,6 @@ const std::vector<std::string>& drive::model_integrators(const DriveModel& model
 }
 
 namespace {
-
-// Moreau-Jean steps a DC motor's armature, L i' = U - R i - k_e omega, by
-// the theta-method (DcMotor::theta_step): per step the current's own mode
-// is multiplied by (1 - (1 - theta) x) / (1 + theta x), x = dt R / L, which
-// is negative for x > 1 / (1 - theta): the current then alternates from
-// step to step, beyond U / R (a new user's 10 uH armature at dt = 1e-4 s:
-// 10.7 A of a 6 A stall current) while the energy account still closes.
-// Such a step is refused, not obeyed.
-void check_step_resolves_armature(const DriveParameters& p, const DriveSimulationOptions& options) {
-  if (!p.dc_motor || !(p.motor_inductance > 0.0) || !(options.theta < 1.0)) return;
-  const double largest = p.motor_inductance / (p.motor_resistance * (1.0 - options.theta));
-  if (options.dt <= largest) return;
-  throw InvalidArgument(
-      "dt = " + format_value(options.dt) + " s is invalid with motor.inductance = " +
-      format_value(p.motor_inductance) + " H and motor.resistance = " +
-      format_value(p.motor_resistance) + " Ohm: Moreau-Jean's theta-method (theta = " +
-      format_value(options.theta) +
-      ") makes the armature current alternate from step to step where dt > L / (R (1 - theta)) "
-      "= " + format_value(largest) + " s (the electrical time constant L / R is " +
-      format_value(p.motor_inductance / p.motor_resistance) + " s); use dt <= " +
-      format_value(largest) + " s, theta = 1 or motor.inductance = 0 (the quasi-static limit)" +
-      (drive_integrators(p).size() > 1 ? std::string(", or integrator = \"event_driven\"")
-                                       : std::string("; this scene runs on Moreau-Jean only")));
-}
 
 // The theta-method steps the springs (W = M + theta h C + theta^2 h^2 K) in
 // a stable way for every step only where theta >= 1/2; below, a spring's
@@ -135,7 +112,7 @@ void check_theta_stable_with_springs(const DriveModel& model,
 void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
   const DriveParameters& p = model.parameters();
   const std::vector<std::string>& allowed = drive::model_integrators(model);
-  const std::string& integrator = drive::chosen_integrator(p, options);
+  const std::string& integrator = drive::chosen_integrator(model, options);
   // The elements' own reasons first (the list below leaves them out).
   if (model.preloaded_nut() && integrator != "event_driven")
     throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with nut.preload = " +
@@ -186,7 +163,6 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                                : p.speed_controlled ? &p.drive_speed
                                                     : &p.drive_torque,
                                &p.axial_force});
-    check_step_resolves_armature(p, options);
     check_theta_stable_with_springs(model, options);
     return;
   }
@@ -210,9 +186,12 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
 namespace drive {
 
 // The integrator simulate() runs ("" in the options: the model's default).
-const std::string& chosen_integrator(const DriveParameters& p,
+// The list's first: the event-driven scheme where it runs the scene, else
+// Moreau-Jean (the train's stages beyond the event-driven scheme's reach:
+// model_integrators), so that a valid scene runs at its defaults.
+const std::string& chosen_integrator(const DriveModel& model,
                                      const DriveSimulationOptions& options) {
-  return options.integrator.empty() ? drive_integrators(p).front() : options.integrator;
+  return options.integrator.empty() ? model_integrators(model).front() : options.integrator;
 }
 
 // The ODE method of the smooth phases: the integrator itself, or inside

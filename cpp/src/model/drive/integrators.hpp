@@ -16,7 +16,7 @@
 namespace leadscrew::model::drive {
 
 // The integrator simulate() runs ("" in the options: the model's default).
-const std::string& chosen_integrator(const DriveParameters& p,
+const std::string& chosen_integrator(const DriveModel& model,
                                      const DriveSimulationOptions& options);
 
 // The ODE method of the smooth phases: the integrator itself, or inside

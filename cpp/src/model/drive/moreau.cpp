@@ -34,7 +34,8 @@ void DriveMoreau::initialize(double t, const double* y) {
   layout_.expand(t, y, q_, v_);
   dynamics_.set_state(t, q_, v_);
   if (const elements::DcMotor* dc = model_.dc_motor())
-    last_voltage_ = dc->terminal_voltage(t, dynamics_.motor_current(), v_[dc->rotor], false);
+    last_voltage_ =
+        dc->terminal_voltage(t, dynamics_.motor_current(), v_[dc->rotor], {});
   kinetic0_ = dynamics_.kinetic_energy();
   elastic0_ = dynamics_.elastic_energy() + dynamics_.contact_energy();
 }
@@ -72,31 +73,34 @@ void DriveMoreau::step(double t, double h, double theta, const double* y, double
 }
 
 // One step at restitution e; true where it closes a flank with e > 0. A DC
-// motor's current over the step is implicit (elements::DcMotor::theta_step);
-// where it would pass the driver's limit the step is taken again with the
-// current held there.
+// motor's current over the step is integrated exactly for the step's
+// driver voltage and back-EMF (elements::DcMotor::armature_step); where it
+// would pass the driver's limit the step is taken again with the current
+// held there, and where holding it needs more than the driver's supply
+// |U| (a back-EMF beyond it) once more with the driver saturated at
+// -side |U|: the current then passes the limit (docs/physics/dc_motor.md).
 bool DriveMoreau::take_step(double t, double h, double theta, const double* y, double* y_next,
                             double restitution) {
   const double excess = friction_excess_, play_rate = play_rate_;
-  const bool restituting = take_step_held(t, h, theta, y, y_next, restitution, 0);
   const elements::DcMotor* dc = model_.dc_motor();
-  if (dc == nullptr || !dc->limited()) return restituting;
-  layout_.expand(t, y, q_, v_);
-  if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
-  dynamics_.set_state(t + theta * h, q_, v_);
-  const double omega_next = last_omega_next_;
-  const elements::DcMotor::ThetaStep free = dc->theta_step(
-      dc->voltage(t + theta * h), h, theta, dynamics_.motor_current(), v_[dc->rotor], 0);
-  if (!dc->exceeds(free, omega_next)) return restituting;
-  const double beyond = dc->has_state() ? free.end + free.end_slope * omega_next
-                                        : free.mean + free.mean_slope * omega_next;
-  friction_excess_ = excess;  // (the step is taken again)
-  play_rate_ = play_rate;
-  return take_step_held(t, h, theta, y, y_next, restitution, beyond > 0.0 ? 1 : -1);
+  const double u = dc != nullptr ? dc->voltage(t + theta * h) : 0.0;
+  const bool restituting = take_step_held(t, h, theta, y, y_next, restitution, 0, u);
+  if (dc == nullptr || !dc->limited() || !(std::abs(last_step_current_) > dc->current_limit))
+    return restituting;
+  const int side = last_step_current_ > 0.0 ? 1 : -1;
+  auto retake = [&](int held, double voltage) {
+    friction_excess_ = excess;  // (the step is taken again)
+    play_rate_ = play_rate;
+    return take_step_held(t, h, theta, y, y_next, restitution, held, voltage);
+  };
+  const bool holding = retake(side, u);
+  if (side * last_voltage_ >= -std::abs(u)) return holding;
+  return retake(0, -side * std::abs(u));
 }
 
 bool DriveMoreau::take_step_held(double t, double h, double theta, const double* y,
-                                 double* y_next, double restitution, int held) {
+                                 double* y_next, double restitution, int held,
+                                 double driver_voltage) {
   layout_.expand(t, y, q_, v_);
   const CoordinateVector q0 = q_, v0 = v_;
   bool restituting = false;
@@ -105,13 +109,13 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   dynamics_.set_state(t + theta * h, q_, v_);
   const double play0 = dynamics_.play();
   const double play_rate0 = dynamics_.play_rate();
-  // A DC motor's current over the step, i_theta = mean + mean_slope omega+:
-  // its torque's impulse h k_t i_theta in place of the start's k_t i, its
-  // slope an implicit damping of the rotor.
-  elements::DcMotor::ThetaStep current;
+  // A DC motor's mean current over the step, i_mean = mean + mean_slope
+  // omega+: its torque's impulse h k_t i_mean in place of the start's k_t i,
+  // its slope an implicit damping of the rotor.
+  elements::DcMotor::ArmatureStep current;
   if (dc != nullptr)
-    current = dc->theta_step(dc->voltage(t + theta * h), h, theta, dynamics_.motor_current(),
-                             v0[dc->rotor], held);
+    current = dc->armature_step(driver_voltage, h, theta, dynamics_.motor_current(),
+                                v0[dc->rotor], held);
 
   // Which thread contact is active in this step.
   int sigma_fixed = 0;  // 0: bilateral (sign free); +-1: a flank
@@ -262,21 +266,20 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
                                                  (q_[model_.rotor()] - q0[model_.rotor()]);
   energy[kWorkDrive] += motor;
   if (dc != nullptr) {
-    // The armature over the step: i_theta, i+, and the driver's voltage
-    // U_d = R i_theta + k_e omega_theta + L (i+ - i) / h (U(t + theta h)
-    // unless held), its electrical work and the copper loss.
+    // The armature over the step (exact for its driver voltage and
+    // back-EMF): its mean current, its end, the driver's voltage over it,
+    // the electrical work and the copper loss, which with the magnetic
+    // energy's change close the circuit's account: h U_d i_mean = copper +
+    // d(L i^2 / 2) + h k_e omega_theta i_mean.
     const double omega_next = v_[dc->rotor], omega_theta = v_theta[dc->rotor];
-    const double i_theta = current.mean + current.mean_slope * omega_next;
-    const double i0 = dynamics_.motor_current();
-    const double i_next = dc->has_state() ? current.end + current.end_slope * omega_next : 0.0;
-    last_voltage_ = dc->resistance * i_theta + dc->back_emf_constant * omega_theta +
-                    (dc->has_state() ? dc->inductance * (i_next - i0) / h : 0.0);
-    energy[kWorkDrive] += h * (last_voltage_ * i_theta +
-                               (dc->torque_constant - dc->back_emf_constant) * i_theta *
+    const double i_mean = current.mean_current(omega_next);
+    last_voltage_ = dc->step_voltage(current, omega_theta, omega_next);
+    energy[kWorkDrive] += h * (last_voltage_ * i_mean +
+                               (dc->torque_constant - dc->back_emf_constant) * i_mean *
                                    omega_theta);
-    y_next[copper_state_] = y[copper_state_] + h * dc->copper_loss_rate(i_theta);
-    if (dc->has_state()) y_next[current_state_] = i_next;
-    last_omega_next_ = omega_next;
+    y_next[copper_state_] = y[copper_state_] + dc->step_copper_loss(current, h, omega_next);
+    if (dc->has_state()) y_next[current_state_] = current.end_current(omega_next);
+    last_step_current_ = dc->step_current(current, omega_next);
   }
   energy[kWorkAxial] +=
       p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
@@ -334,13 +337,9 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     if (stop_active_[k]) last_stop_force_ -= exact[k].side * impulses.stop[k] / h;
   last_.normal = impulses.normal / h;
   last_.friction = impulses.friction / h;
-  last_.motor_torque =
-      p_.speed_controlled ? impulses.rotor / h : model_.motor().applied_torque(t + h);
-  if (dc != nullptr)
-    last_.motor_torque = dc->torque(dc->has_state() ? y_next[current_state_]
-                                                     : current.mean +
-                                                           current.mean_slope * v_[dc->rotor]);
-  last_.motor_torque = model_.gear().rotor_torque(last_.motor_torque);
+  // The speed-controlled rotor's torque is the step's impulse over h; a
+  // torque's or a DC motor's is the row's own (channels).
+  last_.motor_torque = p_.speed_controlled ? model_.gear().rotor_torque(impulses.rotor / h) : 0.0;
   last_.stick = contact && stick;
   return restituting;
 }
@@ -635,8 +634,13 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
     values[2] = y[copper_state_];
     values[3] = dc->has_state() ? dc->magnetic_energy(values[0]) : 0.0;
   }
-  write_drive_channels(layout_, state, last_, energy, 0.0, kinetic0_,
-                       elastic0_, out);
+  // drive_torque, the rotor's: a torque-driven rotor's prescribed torque
+  // and a DC motor's k_t i at the row's state, as the event-driven scheme
+  // reports them (issue 31: the step's impulse over h is not the motor's
+  // torque; the step's work stays its impulse's, booked in step()).
+  ContactForces forces = last_;
+  if (!p_.speed_controlled) forces.motor_torque = model_.gear().rotor_torque(dynamics_.applied_torque());
+  write_drive_channels(layout_, state, forces, energy, 0.0, kinetic0_, elastic0_, out);
 }
 
 // The iteration matrix W = M + theta h C + theta^2 h^2 K at the positions

@@ -83,11 +83,12 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
 
   bool take_step(double t, double h, double theta, const double* y, double* y_next,
                  double restitution);
-  // take_step with a DC motor's current held at its limit (sign; 0: free).
+  // take_step with a DC motor's current held at its limit (its side; 0:
+  // free with the driver's voltage over the step).
   bool take_step_held(double t, double h, double theta, const double* y, double* y_next,
-                      double restitution, int held);
+                      double restitution, int held, double driver_voltage);
   StepAccount energy_created(double t, double h, const double* y, const double* y_next);
-  // (rotor_damping: a DC motor's implicit back-EMF term h k_t |di_theta/domega+|.)
+  // (rotor_damping: a DC motor's implicit back-EMF term h k_t |di_mean/domega+|.)
   void assemble(double h, double theta, Square& stiffness, Square& damping,
                 double rotor_damping = 0.0);
   double step_coupling(double h, double theta);
@@ -145,7 +146,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   moreau_contacts::PenaltyFlank flank_;
   moreau_contacts::RotorRow rotor_;
   double last_voltage_ = 0.0;     // a DC motor's driver voltage over the last step [V]
-  double last_omega_next_ = 0.0;  // the rotor's speed at the last step's end [rad/s]
+  // The current the last step's limit is judged on (DcMotor::step_current) [A].
+  double last_step_current_ = 0.0;
   double kinetic0_ = 0.0, elastic0_ = 0.0;
   double play_rate_ = 0.0, friction_excess_ = 0.0;
   long lcp_solves_ = 0;

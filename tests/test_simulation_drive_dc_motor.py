@@ -11,6 +11,7 @@ import pytest
 
 import leadscrew as ls
 from helpers import dc_motor_reference as reference
+from helpers.nested_approx import nested_approx
 from helpers.scenes import thesis_scene
 
 R, KT = 2.0, 0.05  # [Ohm], [N m/A] (= k_e in SI)
@@ -182,7 +183,7 @@ def test_voltage_takes_loads_in_volts(voltage, expected):
     given = scene["motor"]["voltage"]
     if isinstance(expected, float):
         given = given["value"] if isinstance(given, dict) else given
-    assert given == pytest.approx(expected)
+    assert given == nested_approx(expected)
 
 
 @pytest.mark.parametrize("voltage, match", [

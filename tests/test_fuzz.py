@@ -40,6 +40,16 @@ FUZZ_CASES = 300
 # A case that takes longer is a hang (the slowest valid cases stop at their
 # max_steps within about two seconds).
 CASE_TIMEOUT = 8.0
+# Not only refusals: the share of the cases that run and pass. The cases are
+# the fixed seed's and the core is deterministic, so the count moves only
+# when the code does: 210 of the 300 passed at 8fe563d (51 named ValueErrors,
+# 34 SimulationErrors, 3 results refused by their own checks, 2 jams; 251 of
+# the 300 are valid). The margin is one case (a borderline check that a
+# different compiler or libm may round the other way): two cases turned into
+# refusals (what two of the mutants of issue 31 did, unnoticed) fail the
+# test. A change that answers more cases may raise it; one that answers fewer
+# must say why where it lowers it.
+MIN_PASSED = 209
 
 
 def test_jamming_error_is_a_simulation_error():
@@ -51,7 +61,8 @@ def test_fuzz_simulate():
     prepare_parent()
     drawn = generate(FUZZ_CASES, DEFAULT_SEED)
     assert len(drawn) == FUZZ_CASES
-    run_all_allowed(drawn, CASE_TIMEOUT)
+    counts = run_all_allowed(drawn, CASE_TIMEOUT)
+    assert counts["passed"] >= MIN_PASSED, counts
 
 
 # --- the generator -----------------------------------------------------------
@@ -261,7 +272,7 @@ def test_checker_passes_good_results(coulomb_run):
     report = check_result(result, scene, options)
     assert set(report) == {"finite", "time_axis", "event_times", "friction_power",
                            "friction_loss", "other_losses", "friction_cone", "friction_law",
-                           "energy_balance"}
+                           "energy_balance", "motor_torque", "motor_energy"}
     assert set(report) <= set(INVARIANTS)
     # A flexible drive with a regularized law and bistop play, an exact-play
     # drive stepped by Moreau-Jean, and arctan_acceleration pass too.

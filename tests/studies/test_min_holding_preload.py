@@ -540,3 +540,18 @@ def test_the_rigid_seat_drive_reports_its_raised_rows():
         assert summary["bracket_low"] < closed_form <= summary["bracket_high"] * (1 + 1e-12)
         assert summary["bracket_high"] - summary["bracket_low"] <= 1e-3 * summary["bracket_high"]
     assert summary["raised"] == 0
+
+
+def test_a_left_hand_thread_needs_the_mirrored_right_hand_preload(exact):
+    """Issue 31, item 12: the left-hand drive under the torque -M is the
+    mirror image of the right-hand one under M: the same quasi-static
+    preload (the holding band's sides swap with the hand) and the same
+    answer of the search."""
+    left = min_holding_preload(
+        holding_scene(torque=-5e-3, thread={"pitch": 1e-3, "mean_diameter": 20e-3,
+                                            "hand": "left"}),
+        EXCITATION, creep_limit=0.0, progress=False)
+    ours, theirs = left.attrs["summary"], exact.attrs["summary"]
+    assert ours["quasi_static_preload"] == pytest.approx(quasi_static_preload(5e-3), rel=1e-12)
+    assert ours["found"] and ours["converged"]
+    assert ours["min_preload"] == pytest.approx(theirs["min_preload"], rel=1e-12)

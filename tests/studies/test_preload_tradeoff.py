@@ -310,3 +310,19 @@ def test_the_cli_writes_the_seat_adjusters_table_and_figure(tmp_path, capsys):
     frame = pd.read_csv(table, skiprows=[1])
     assert list(frame["preload"]) == [0.0, 20.0, 50.0]
     assert np.all(np.diff(frame["efficiency"]) < 0.0) and frame["error"].isna().all()
+
+
+def test_a_left_hand_thread_trades_off_as_the_mirrored_right_hand_one(frame):
+    """Issue 31, item 12: the mirror image of the right-hand drive under the
+    torque M is the left-hand drive under -M, with the same axial
+    vibration: the same efficiency (raised by the mirrored turn), holding
+    band verdicts, creep per cycle and displacement, preload by preload."""
+    left = preload_tradeoff(scene(torque=2e-2, thread={"pitch": 1e-3, "mean_diameter": 20e-3,
+                                                        "hand": "left"}),
+                            PRELOADS, cycles=4, points_per_cycle=40, progress=False)
+    assert left["error"].isna().all()
+    np.testing.assert_array_equal(left["holds_closed_form"], frame["holds_closed_form"])
+    for column in ("efficiency", "efficiency_closed_form", "creep_per_cycle",
+                   "max_displacement"):
+        np.testing.assert_allclose(left[column], frame[column], rtol=1e-9, atol=1e-15,
+                                   err_msg=column)

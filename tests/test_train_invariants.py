@@ -110,13 +110,16 @@ def test_a_torque_drives_work_is_its_torque_times_the_turn():
 
 def test_lugre_bristles_stay_within_their_bound():
     """Steady sliding: z = mu / sigma0 (the bound's edge); 1e-3 beyond it is
-    issue 31's reproduction 3."""
+    issue 31's reproduction 3. The friction follows LuGre's law exactly."""
     scene = thesis_scene(friction={"law": "lugre", "mu": 0.3, "sigma0": 1e5})
     scene["loads"] = {"drive_speed": 20.0, "axial_force": -10.0}
     run = _run(scene, t_end=0.05, rtol=1e-10, atol=1e-14)
     z = np.array(run[0]["bristle_deflection"])
     assert np.max(np.abs(z)) == pytest.approx(0.3 / 1e5, rel=1e-6)
     assert "lugre_bristle" in _violated(run, bristle_deflection=z * (1 + 1e-3))
+    force = np.array(run[0]["friction_force"])
+    force[len(force) // 2] *= 1 + 1e-6  # off LuGre's law, inside the cone
+    assert _violated(run, friction_force=force) == ["friction_law"]
 
 
 def test_a_load_stays_within_its_exact_stops():

@@ -46,6 +46,13 @@ the physics pages, not from ``Result.checks`` nor from the core:
 - ``lugre_bristle``: |bristle_deflection| <= max(mu, mu_static) / sigma0:
   the set is invariant under z' = v - sigma0 |v| z / mu(|v|) from z = 0
   (docs/physics/friction_laws.md), to 1e-6 of the bound.
+- ``friction_law`` (LuGre, the main checker's entry for the other laws):
+  friction_force = -|N|' (sigma0 z + sigma1 z') - c v where the flanks
+  touch, |N|' = |N| / cos(beta / 2), z' from the bristles' equation at the
+  channels (docs/physics/friction_laws.md), to round-off (1e-9 of the
+  force's scale); with it and the bristles' bound the friction stays in
+  its cone mu_static' |N| + sigma1 |N|' |z'| + c |v|. Not with a preloaded
+  nut (each half's bristles, no one channel).
 - ``stop_travel``: the load stays between its exact stops: lower - b <=
   u_load <= upper + b, b the root's resolution, 1e-9 |face| + 10 atol
   (event-driven and ODE; docs/physics/end_stops.md, "Exact stops": the
@@ -178,21 +185,46 @@ def check_train(result: Any, scene: dict, options: dict, ch: Dict[str, np.ndarra
         report.update(_motor(t, load_times, motor, ch, moreau, theta, rtol, atol))
     else:
         report.update(_torque(t, load_times, scene, ch, moreau, theta, rtol, atol))
-    friction = scene["friction"]
-    if friction["law"] == "lugre" and "bristle_deflection" in ch:
-        mu = float(friction["mu"])
-        mu_static = friction.get("mu_static")
-        largest = max(mu, mu if mu_static is None else float(mu_static))
-        sigma0 = float(friction.get("sigma0") or 1e5)  # the registry's default
-        bound = largest / sigma0 * (1 + BRISTLE_REL)
-        z = np.abs(ch["bristle_deflection"])
-        report["lugre_bristle"] = _worst(
-            "lugre_bristle", t, z, np.full(len(z), bound),
-            lambda i: f"|bristle_deflection| {z[i]:.6g} m > max(mu, mu_static) / sigma0 = "
-                      f"{largest:.4g} / {sigma0:.4g} at t = {t[i]:.6g} s")
+    if scene["friction"]["law"] == "lugre" and "bristle_deflection" in ch:
+        report.update(_lugre(t, scene, ch))
     stops = scene.get("end_stops")
     if stops is not None and "stop_force" in ch:
         report.update(_stops(t, stops, ch, moreau, options, atol))
+    return report
+
+
+def _lugre(t, scene, ch) -> Dict[str, dict]:
+    """LuGre's bristles within their bound, and its law at every output
+    point (module docstring)."""
+    from helpers.result_invariants import stribeck_curve
+
+    friction = scene["friction"]
+    mu = float(friction["mu"])
+    mu_static = friction.get("mu_static")
+    largest = max(mu, mu if mu_static is None else float(mu_static))
+    sigma0 = float(friction.get("sigma0") or 1e5)  # the registry's defaults
+    sigma1 = float(friction.get("sigma1") or 0.0)
+    viscous = float(friction.get("viscous") or 0.0)
+    bound = largest / sigma0 * (1 + BRISTLE_REL)
+    z = ch["bristle_deflection"]
+    report = {"lugre_bristle": _worst(
+        "lugre_bristle", t, np.abs(z), np.full(len(z), bound),
+        lambda i: f"|bristle_deflection| {abs(z[i]):.6g} m > max(mu, mu_static) / sigma0 = "
+                  f"{largest:.4g} / {sigma0:.4g} at t = {t[i]:.6g} s")}
+    if float(scene.get("nut", {}).get("preload", 0.0) or 0.0) > 0.0:
+        return report  # (two halves, each with its bristles: no one channel)
+    slip, normal, force = ch["slip_velocity"], ch["normal_force"], ch["friction_force"]
+    rate = slip - sigma0 * np.abs(slip) * z / stribeck_curve(friction, np.abs(slip))
+    loaded = np.abs(normal) / math.cos(float(scene["thread"]["flank_angle"]) / 2)
+    expected = -loaded * (sigma0 * z + sigma1 * rate) - (np.abs(normal) > 0) * viscous * slip
+    error = np.abs(force - expected)
+    scale = ROUND_OFF_REL * max(float(np.max(np.abs(force))), float(np.max(np.abs(expected))),
+                                1e-300)
+    report["friction_law"] = _worst(
+        "friction_law", t, error, np.full(len(t), scale),
+        lambda i: f"friction {force[i]:.6g} N where LuGre's law gives -|N|' (sigma0 z + sigma1 "
+                  f"z') - c v = {expected[i]:.6g} N (z {z[i]:.4g} m, slip {slip[i]:.4g} m/s, "
+                  f"normal {normal[i]:.6g} N) at t = {t[i]:.6g} s")
     return report
 
 

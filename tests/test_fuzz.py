@@ -253,7 +253,7 @@ def test_checker_passes_good_results(coulomb_run):
     report = check_result(result, scene, options)
     assert set(report) == {"finite", "time_axis", "event_times", "friction_power",
                            "friction_loss", "other_losses", "friction_cone", "friction_law",
-                           "energy_balance", "motor_torque"}
+                           "energy_balance", "kinetic_energy", "motor_torque"}
     assert set(report) <= set(INVARIANTS)
     # A flexible drive with a regularized law and bistop play, an exact-play
     # drive stepped by Moreau-Jean, and arctan_acceleration pass too.

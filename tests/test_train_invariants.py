@@ -99,6 +99,19 @@ def test_the_motors_energies_follow_their_rates(motor_run):
         assert "motor_energy" in _violated(motor_run, magnetic_energy=magnetic)
 
 
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut", "flexible"])
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+def test_the_kinetic_energy_is_the_bodies(concept, drive):
+    """Recomputed from the geometry, through a gear stage (the rotor's speed
+    n times the driven part's)."""
+    run = _run(thesis_scene(concept=concept, drive=drive, backlash={"axial": 1e-4},
+                            gear={"ratio": -3.0}), t_end=0.05)
+    kinetic = np.array(run[0]["kinetic"])
+    assert np.max(kinetic) > 0.0
+    kinetic[int(np.argmax(kinetic))] *= 1 + 1e-6
+    assert "kinetic_energy" in _violated(run, kinetic=kinetic)
+
+
 def test_a_torque_drives_work_is_its_torque_times_the_turn():
     run = _run(thesis_scene(loads={"drive_torque": 0.05, "axial_force": -10.0}), t_end=0.05)
     torque = np.array(run[0]["drive_torque"])

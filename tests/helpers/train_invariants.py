@@ -4,6 +4,14 @@ scene alone (issue 31, "What to build" 3): the part of
 the rotor's drive torque, LuGre's bristles and the end stops. Written from
 the physics pages, not from ``Result.checks`` nor from the core:
 
+- ``kinetic_energy``: kinetic = sum m v^2 / 2 over the bodies, from the
+  scene's geometry (``Scene.derived()``: masses and inertias, as overridden)
+  and the velocity channels (docs/physics/drive_models.md, the models'
+  bodies): the rotor turns at omega_drive and the driven part at
+  omega_drive / n (a gear stage of ratio n reflects the rotor onto it as n^2
+  J); a body rigidly joined to another moves with it (the rigid concept's
+  screw or nut with the rotor and the load, a nut-driven flexible_nut's
+  screw with the load). To 1e-9 of the largest kinetic energy.
 - ``motor_torque``: the rotor's torque channel is the motor's: drive_torque
   = k_t motor_current (docs/physics/dc_motor.md, "Equations"); a torque
   load's rotor reports T(t) (Moreau-Jean: T at the row or at the step's
@@ -80,8 +88,8 @@ import numpy as np
 
 __all__ = ["check_train", "TRAIN_INVARIANTS", "excitation_at"]
 
-TRAIN_INVARIANTS = ("motor_torque", "driver_voltage", "current_limit", "armature",
-                    "motor_energy", "lugre_bristle", "stop_travel", "stop_force")
+TRAIN_INVARIANTS = ("kinetic_energy", "motor_torque", "driver_voltage", "current_limit",
+                    "armature", "motor_energy", "lugre_bristle", "stop_travel", "stop_force")
 
 ROUND_OFF_REL = 1e-9     # of a channel's scale: a quantity the core computes from the state
 LIMIT_SATURATED = 1e-6   # of |U|: the driver at its bound
@@ -180,6 +188,7 @@ def check_train(result: Any, scene: dict, options: dict, ch: Dict[str, np.ndarra
     if interpolated:  # rows between Moreau-Jean's steps: no step relation holds there
         return report
     load_times = _theta_times(t, theta) if moreau else t
+    report["kinetic_energy"] = _kinetic(t, scene, ch)
     motor = scene.get("motor")
     if motor is not None and motor.get("type") == "dc":
         report.update(_motor(t, load_times, motor, ch, moreau, theta, rtol, atol))
@@ -191,6 +200,37 @@ def check_train(result: Any, scene: dict, options: dict, ch: Dict[str, np.ndarra
     if stops is not None and "stop_force" in ch:
         report.update(_stops(t, stops, ch, moreau, options, atol))
     return report
+
+
+def _kinetic(t, scene, ch) -> dict:
+    """kinetic = sum m v^2 / 2 from the geometry (module docstring)."""
+    import leadscrew as ls
+
+    derived = ls.Scene.from_dict(scene).derived()
+    concept, drive = scene["concept"], scene.get("drive", "screw")
+    driven, other = ("screw", "nut") if drive == "screw" else ("nut", "screw")
+    ratio = float(scene.get("gear", {}).get("ratio", 1.0)) if scene.get("gear") else 1.0
+    inertia = float(scene["rotor"]["inertia"]) * ratio ** 2  # on the driven part's angle
+    load = float(scene["load"]["mass"])
+    bodies = []  # (mass or inertia, velocity channel) of the bodies of their own
+    if concept == "rigid" or (concept == "flexible_nut" and drive == "screw"):
+        inertia += derived[f"{driven}_inertia"]  # the driven part turns with the rotor
+    if concept == "rigid":
+        load += derived[f"{other}_mass"]  # the translating part carries the load
+    elif concept == "flexible_nut" and drive == "nut":
+        load += derived["screw_mass"]  # the rigid screw carries the load
+    for part in ("screw", "nut"):
+        for kind, channel in (("mass", f"v_{part}"), ("inertia", f"omega_{part}")):
+            if channel in ch:
+                bodies.append((derived[f"{part}_{kind}"], ch[channel]))
+    expected = 0.5 * (inertia * (ch["omega_drive"] / ratio) ** 2 + load * ch["v_load"] ** 2
+                      + sum(m * v ** 2 for m, v in bodies))
+    kinetic = ch["kinetic"]
+    error = np.abs(kinetic - expected)
+    scale = ROUND_OFF_REL * max(float(np.max(np.abs(expected))), 1e-300)
+    return _worst("kinetic_energy", t, error, np.full(len(t), scale),
+                  lambda i: f"kinetic {kinetic[i]:.6g} J where the bodies' sum m v^2 / 2 is "
+                            f"{expected[i]:.6g} J at t = {t[i]:.6g} s")
 
 
 def _lugre(t, scene, ch) -> Dict[str, dict]:

@@ -5,7 +5,10 @@ preloaded nut) drawn freely against one another, every concept and play, and
 the integrator (the scene's default, event-driven, Moreau-Jean), by
 ``helpers.train_fuzz``. Every case has one of the outcomes issue 17 allows:
 a result that passes its checks (the simulator's and the independent
-``helpers.result_invariants``), a ``ValueError`` naming a key or option the
+``helpers.result_invariants`` with the drive train's own,
+``helpers.train_invariants``: the motor's torque, driver voltage, current
+limit, armature equation and energies, LuGre's bristles and law, the exact
+stops), a ``ValueError`` naming a key or option the
 case set (a combination the core refuses names one of its keys), a
 ``SimulationError`` or a ``JammingError``. ``tests/fuzz_scenes.py
 --generator train`` runs the same generator for thousands of cases."""

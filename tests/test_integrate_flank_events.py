@@ -12,11 +12,14 @@ approaching it at a round-off rate). That was taken for an impact, the flank clo
 pull, and it stayed closed for the rest of the half cycle (the screw ran away:
 rotor angles 10 to 400 times the right one)."""
 
+import math
+
 import numpy as np
 import pytest
 
 import leadscrew as ls
-from helpers.scenes import thesis_scene
+from helpers import thread_reference
+from helpers.scenes import THESIS_THREAD, thesis_scene
 from leadscrew.studies.holding import alternating_scene
 
 INTEGRATORS = ["rk_verner6", "cvode_bdf", "cvode_adams"]
@@ -27,8 +30,30 @@ CASES = [(5.0, 5e-5), (10.0, 5e-5), (20.0, 1e-4), (20.0, 2e-4), (80.0, 1e-4)]
 
 def creep_scene(frequency, clearance):
     scene = ls.Scene.from_dict(thesis_scene(backlash={"axial": clearance},
-                                            loads={"drive_torque": 5e-3, "axial_force": 0.0}))
-    return alternating_scene(scene, 30.0, frequency)
+                                            loads={"drive_torque": TORQUE, "axial_force": 0.0}))
+    return alternating_scene(scene, AMPLITUDE, frequency)
+
+
+TORQUE, AMPLITUDE = 5e-3, 30.0  # [N m] held by the thread, [N] of the axial force
+
+
+def stick_ends(frequency, cycles):
+    """The stick -> slip times of the closed form (tests/helpers/
+    thread_reference.py). Each half cycle k of F = A sin(w t) the load hits a
+    flank (a plastic impact: it sticks) and rests there, so the flank
+    carries F(t) exactly (no inertia force at rest) and the thread holds the
+    torque M while |F| >= M / (torque per newton): raising against F > 0
+    (M > 0 moves the load along -x on a right-hand thread), lowering with F
+    < 0. As |F| falls the stick ends at t = (k pi + pi - asin(F_hold / A)) /
+    w, the thread slips until F passes 0, where the flank opens, and the load
+    crosses the play to the other flank: three events per half cycle, 36 in
+    six cycles, 12 impacts and 12 openings."""
+    thread = (THESIS_THREAD["pitch"], THESIS_THREAD["mean_diameter"], 0.3, 1.0)
+    hold = {1: TORQUE / thread_reference.raise_torque(*thread),
+            -1: TORQUE / thread_reference.lower_torque(*thread)}
+    omega = 2 * math.pi * frequency
+    return np.array([(k * math.pi + math.pi - math.asin(hold[(-1) ** k] / AMPLITUDE)) / omega
+                     for k in range(2 * cycles)])
 
 
 def run(scene, t_end, integrator, rtol=1e-12):
@@ -43,8 +68,11 @@ def test_every_integrator_finds_the_same_flank_events(frequency, clearance):
     results = {name: run(scene, t_end, name) for name in INTEGRATORS}
     reference = results["rk_verner6"]
     kinds = [e.kind for e in reference.events]
+    # (the counts and the stick's ends: stick_ends)
     assert len(kinds) == 36
     assert sum("impact" in k for k in kinds) == 12 and sum(k.endswith("open") for k in kinds) == 12
+    slips = [e.time for e in reference.events if "stick->" in e.kind]
+    np.testing.assert_allclose(slips, stick_ends(frequency, 6), rtol=0, atol=1e-9)
     times = np.array([e.time for e in reference.events])
     for name in INTEGRATORS[1:]:
         result = results[name]

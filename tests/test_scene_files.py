@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 import leadscrew as ls
 import leadscrew.scenes as shipped
+from helpers.nested_approx import nested_approx
 from helpers.scenes import thesis_scene
 from leadscrew import scene as scene_module
 from leadscrew import units
@@ -311,7 +312,7 @@ def test_angle_units_must_match_the_field(changes, message):
                               "phase": 0.0, "offset": 0.0}),
 ])
 def test_matching_angle_units_convert(changes, section, key, expected):
-    assert scene_with(**changes)[section][key] == pytest.approx(expected, rel=1e-15, abs=0)
+    assert scene_with(**changes)[section][key] == nested_approx(expected, rel=1e-15, abs=0)
 
 
 BISTOP = {"axial": 0.2e-3, "contact": "bistop"}

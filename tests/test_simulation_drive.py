@@ -874,14 +874,26 @@ def test_every_concept_ends_where_the_nut_leaves_the_screw(concept, drive, end):
 def test_the_one_degree_of_freedom_path_ends_where_the_nut_leaves_the_screw(drive):
     """The torque-driven rigid drive runs on its own one-degree-of-freedom
     path (RigidDriveModes): it watches the screw's end too. Without friction
-    and under a constant torque the load's displacement is c t^2 exactly; c
-    from a run that ends before the nut leaves gives the time it does."""
+    and under a constant torque M the rotor turns by phi = M t^2 / (2 J_eff)
+    (J_eff = J + m p^2 of the rigid drive, tests/helpers/
+    rigid_drive_reference.py) and the load moves by u = -p phi for either
+    drive (right hand: u_screw - u_nut = p (phi_screw - phi_nut), the load
+    on the translating part): u = c t^2 with c = -p M / (2 J_eff), which
+    gives the time the nut leaves the screw."""
     torque, start = 0.05, 0.03
     scene = ls.Scene.from_dict(thesis_scene(
         drive=drive, nut={"position": start}, friction={"mu": 0.0},
         loads={"drive_torque": torque, "axial_force": 0.0}))
+    d, derived = scene.to_dict(), scene.derived()
+    rigid = reference.RigidDrive(
+        lead=d["thread"]["pitch"] * d["thread"]["starts"],
+        mean_radius=d["thread"]["mean_diameter"] / 2, mu=0.0,
+        rotor_inertia=d["rotor"]["inertia"], screw_inertia=derived["screw_inertia"],
+        screw_mass=derived["screw_mass"], nut_inertia=derived["nut_inertia"],
+        nut_mass=derived["nut_mass"], load_mass=d["load"]["mass"], drive=drive)
+    curvature = -rigid.p * torque / (2 * rigid.J_eff)
     early = ls.simulate(scene, 0.01, rtol=1e-12, atol=1e-14)
-    curvature = early["u_load"][-1] / early.t[-1] ** 2
+    assert early["u_load"][-1] == pytest.approx(curvature * early.t[-1] ** 2, rel=1e-9)
     nut_per_load = 1.0 if drive == "screw" else -1.0
     half = 0.5 * scene["nut"]["length"]
     distance = (start - half if nut_per_load * curvature < 0

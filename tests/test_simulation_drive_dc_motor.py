@@ -11,6 +11,7 @@ import pytest
 
 import leadscrew as ls
 from helpers import dc_motor_reference as reference
+from helpers.nested_approx import nested_approx
 from helpers.scenes import thesis_scene
 
 R, KT = 2.0, 0.05  # [Ohm], [N m/A] (= k_e in SI)
@@ -182,7 +183,7 @@ def test_voltage_takes_loads_in_volts(voltage, expected):
     given = scene["motor"]["voltage"]
     if isinstance(expected, float):
         given = given["value"] if isinstance(given, dict) else given
-    assert given == pytest.approx(expected)
+    assert given == nested_approx(expected)
 
 
 @pytest.mark.parametrize("voltage, match", [
@@ -440,3 +441,32 @@ def test_a_derived_problem_beside_a_motor_names_its_input():
     scene["nut"] = {**scene.get("nut", {}), "length": 5e-324}
     with pytest.raises(ValueError, match=r"nut\.length = 5e-324"):
         ls.simulate(ls.Scene.from_dict(scene), 0.01)
+
+
+KE = 0.6 * KT  # [V s/rad]: a back-EMF constant apart from k_t (issue 31, item 12)
+
+
+@pytest.mark.parametrize("integrator, friction, options", [
+    ("event_driven", {"law": "coulomb", "mu": 0.3}, {}),
+    ("moreau", {"law": "coulomb", "mu": 0.3}, {"dt": 1e-4}),
+    # (an ODE method needs a smooth law: a frictionless flank, whose steady
+    # torque the reference takes from mu = 0 too)
+    ("cvode_bdf", {"law": "arctan_velocity", "mu": 0.0, "k_v": 1e4}, {}),
+])
+def test_steady_state_with_a_back_emf_constant_apart_from_the_torque_constant(
+        integrator, friction, options):
+    """With k_e = k_t almost everywhere, a motor whose back-EMF used k_t (or
+    whose torque used k_e) passed. The steady speed of the closed form,
+    omega = (U - R T / k_t) / k_e (dc_motor.md, "Closed forms"), is 57.68
+    rad/s on the thesis drive (T = 0.0317 N m); with k_t omega as the
+    back-EMF it would be (U - R T / k_t) / k_t = 0.6 of it, 34.61 rad/s,
+    on every integrator."""
+    scene = motor_scene(back_emf_constant=KE)
+    scene["friction"] = friction
+    result = ls.simulate(ls.Scene.from_dict(scene), STEADY_T_END, integrator=integrator,
+                         **options)
+    current, omega, torque = reference.steady_state(rigid_reference(scene), F, U, R, KT, KE)
+    assert omega > 0.0 and torque > 0.0
+    assert result["motor_current"][-1] == pytest.approx(current, rel=1e-6)
+    assert result["omega_drive"][-1] == pytest.approx(omega, rel=1e-6)
+    assert result["drive_torque"][-1] == pytest.approx(torque, rel=1e-6)

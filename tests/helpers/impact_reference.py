@@ -61,3 +61,46 @@ def frictional_impact(mass, normal, tangent, mu, velocity_before, restitution=0.
             found.append((after(p_n, p_t), p_n, p_t, "slip+" if s > 0 else "slip-"))
     assert len(found) == 1, f"{len(found)} consistent impact cases"
     return found[0]
+
+
+def flank_impact(mass, normal, tangent, mu, velocity_before, restitution, closes):
+    """The event-driven scheme's flank impact (docs/physics/result_checks.md,
+    "losses"): :func:`frictional_impact` at restitution e, or, where Newton's
+    restitution with Coulomb friction would create kinetic energy (Kane and
+    Levinson's paradox), at the largest restitution in [0, e] that creates
+    none (an energetic coefficient, Stronge; a plastic frictional impact
+    dissipates, so bisection on [0, e] finds it). Where the flank then
+    closes (``closes``: a bounce too weak to leave it), the normal velocity
+    left (and the slip, where the impact stuck) is taken out by plastic
+    impulses along M^-1 W_N (and M^-1 W_T), so that the closed flank has
+    zero normal velocity (and sticks). Returns what
+    :func:`frictional_impact` returns."""
+    mass = np.asarray(mass, dtype=float)
+    normal = np.asarray(normal, dtype=float)
+    v = np.asarray(velocity_before, dtype=float)
+
+    def kinetic(u):
+        return 0.5 * float(np.sum(mass * u * u))
+
+    before = kinetic(v)
+    round_off = 64 * np.finfo(float).eps * before
+    result = frictional_impact(mass, normal, tangent, mu, v, restitution)
+    if kinetic(result[0]) - before > round_off:
+        low, high = 0.0, restitution
+        for _ in range(60):
+            middle = 0.5 * (low + high)
+            if kinetic(frictional_impact(mass, normal, tangent, mu, v, middle)[0]) - before \
+                    <= round_off:
+                low = middle
+            else:
+                high = middle
+        result = frictional_impact(mass, normal, tangent, mu, v, low)
+    if closes:
+        # Closed: zero normal velocity, and zero slip where the impact stuck
+        # (the closed contact's stick); the least change in the metric of M.
+        rows = [normal] + ([np.asarray(tangent, dtype=float)] if result[3] == "stick" else [])
+        along = np.array([row / mass for row in rows])
+        gram = np.array([[a @ b for b in along * mass] for a in along])
+        impulses = np.linalg.solve(gram, [row @ result[0] for row in rows])
+        result = (result[0] - impulses @ along,) + tuple(result[1:])
+    return result

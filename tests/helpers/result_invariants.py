@@ -120,6 +120,10 @@ distributions from about 500 runs, gaps and violations from two runs of
   c_a), but never the whole clearance beyond a flank; with t_eval, whose
   points miss the steps' rates, the simulator's bound from its steps.
 
+The drive train's invariants (the DC motor, the rotor's torque, LuGre's
+bristles, the end stops) are :mod:`helpers.train_invariants`'s, added to the
+report here.
+
 ``checker`` is no invariant: :func:`helpers.scene_fuzz.run_case` reports a
 result this checker could not read (it raised) under that name.
 """
@@ -131,11 +135,13 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
+from helpers.train_invariants import TRAIN_INVARIANTS, check_train
+
 __all__ = ["check_result", "failed", "INVARIANTS"]
 
 INVARIANTS = ("finite", "time_axis", "event_times", "friction_power", "friction_loss",
               "other_losses", "friction_cone", "friction_law", "energy_balance",
-              "flank_penetration", "checker")
+              "flank_penetration") + TRAIN_INVARIANTS + ("checker",)
 
 END_REL = 1e-9              # of t_end: where the output ends
 POWER_REL = 1e-6            # of F_ref v_ref: friction power
@@ -436,6 +442,8 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
             gap[i] >= -bound, -gap[i], bound, t[i],
             f"the play goes {-gap[i]:.4g} m beyond a flank at t = {t[i]:.6g} s (clearance "
             f"{clearance:.4g} m, bound {bound:.3g} m)")
+    # the drive train's elements (helpers.train_invariants)
+    report.update(check_train(result, scene, options, ch, rtol, atol))
     return report
 
 

@@ -106,6 +106,30 @@ def test_nut_drive_creep_is_the_load_drift():
     np.testing.assert_allclose(drift, out["creep_per_cycle"], rtol=1e-9)
 
 
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+def test_a_left_hand_thread_creeps_as_the_mirrored_right_hand_one(drive):
+    """Issue 31, item 12: no left-hand creep was tested, so a creep per cycle
+    that ignored the thread's hand passed. The mirror image of a right-hand
+    drive under the torque M is the left-hand drive under -M: the rotor
+    turns the other way and the load moves alike, so both creep by the same
+    amount per cycle, and on the rigid drive (back on its flank at each cycle
+    boundary) that is the load's drift per cycle (a measure of its own, from
+    u_load)."""
+    def creep(hand, torque):
+        scene = ls.Scene.from_dict(thesis_scene(
+            drive=drive, load={"mass": 0.5}, backlash={"axial": 2e-4},
+            thread={"pitch": 1e-3, "mean_diameter": 20e-3, "hand": hand},
+            loads={"drive_torque": torque, "axial_force": 0.0}))
+        return cycle_response(alternating_scene(scene, 30.0, 20.0), 20.0, cycles=6,
+                              series=True, rtol=1e-12, atol=1e-14)
+
+    right, left = creep("right", 5e-3), creep("left", -5e-3)
+    assert right["creep_per_cycle"] != 0.0
+    assert left["creep_per_cycle"] == pytest.approx(right["creep_per_cycle"], rel=1e-9)
+    drift = np.diff(left["result"]["u_load"][::100][1:])
+    np.testing.assert_allclose(drift, left["creep_per_cycle"], rtol=1e-9)
+
+
 def test_map_agrees_with_the_line_sweeps(by_backlash, by_frequency):
     frame = creep_map(holding_scene(), [10.0, 20.0], [1e-4, 2e-4, 5e-4], progress=False)
     assert len(frame) == 6

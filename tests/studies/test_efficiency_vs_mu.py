@@ -226,3 +226,20 @@ def test_a_preloaded_nut_shows_its_cost():
     assert frame.attrs["units"]["efficiency_without_preload"] == "1"
     ax = plot_efficiency_vs_mu(frame)
     assert len(ax.lines) == 2 + 2 + 1  # simulated and closed form per load, the plain thread
+
+
+def test_a_left_hand_thread_is_raised_by_the_mirrored_turn(rigid):
+    """Issue 31, item 12 (left-hand threads in the studies whose runs depend
+    on the hand): the study raises the load, which on a left-hand thread
+    takes the rotor's opposite turn (the load moves along -h x per forward
+    turn). The mirror image of the right-hand drive: the same efficiency and
+    load speed, the torque of the opposite sign. Turning as for a right hand
+    would lower the load (a back-driving efficiency)."""
+    left = efficiency_vs_mu(scene(thread={"pitch": 1e-3, "mean_diameter": 20e-3,
+                                          "hand": "left"}), MU, LOADS, progress=False)
+    assert left["error"].isna().all()
+    for column in ("efficiency", "efficiency_closed_form", "load_speed", "friction_loss"):
+        np.testing.assert_allclose(left[column], rigid[column], rtol=1e-12, atol=1e-15,
+                                   err_msg=column)
+    np.testing.assert_allclose(left["drive_torque"], -rigid["drive_torque"], rtol=1e-12,
+                               atol=1e-15)

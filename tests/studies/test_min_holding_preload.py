@@ -12,6 +12,7 @@ import pandas as pd  # noqa: E402
 import pytest  # noqa: E402
 
 import leadscrew as ls  # noqa: E402
+from helpers import thread_reference  # noqa: E402
 from helpers.scenes import thesis_scene  # noqa: E402
 from leadscrew.studies.holding import min_holding_preload, plot_min_holding_preload  # noqa: E402
 
@@ -215,6 +216,19 @@ def seat_scene():
         "loads": {"drive_torque": 5e-3, "axial_force": 0.0}})
 
 
+def seat_quasi_static_preload(amplitude):
+    """The seat drive's quasi-static preload, written independently of the
+    package (tests/helpers/thread_reference.py): the preload along -x must
+    keep the flank loaded against the amplitude and hold the 5 N mm torque,
+    which lowers the load there (right hand, direction -1, as
+    quasi_static_preload above): A + T / (lower torque per newton of the
+    Tr-like thread, p 2 mm, d_m 9 mm, 30 deg flanks, mu 0.15) = A + 13.2849
+    N."""
+    per_newton = thread_reference.lower_torque(2e-3, 9e-3, 0.15, 1.0,
+                                               flank_angle=math.radians(30))
+    return amplitude + 5e-3 / per_newton
+
+
 def seat_preload(omega, amplitude=0.01, **options):
     return min_holding_preload(seat_scene(), {"type": "sine", "amplitude": amplitude,
                                               "omega": omega}, progress=False, **options)
@@ -240,7 +254,7 @@ def test_a_flexible_drive_does_not_depend_on_the_start_up(seat):
         assert s["bracket_low"] < s["quasi_static_preload"] <= s["bracket_high"] * (1 + 1e-12)
         assert s["bracket_high"] - s["bracket_low"] <= 1e-3 * s["bracket_high"]
         answers.append(s["min_preload"])
-    assert s["quasi_static_preload"] == pytest.approx(13.2949, abs=1e-4)
+    assert s["quasi_static_preload"] == pytest.approx(seat_quasi_static_preload(0.01), rel=1e-12)
     assert answers[0] == pytest.approx(answers[1], rel=1e-3)
 
 
@@ -279,7 +293,7 @@ def test_from_relaxed_springs_the_start_up_decides():
     equilibrium it holds."""
     import leadscrew.studies.holding as holding
 
-    preload = 1.05 * 13.2949
+    preload = 1.05 * seat_quasi_static_preload(0.01)
     sine = {"amplitude": 0.01, "omega": 94.25, "phase": 0.0, "offset": 0.0}
     loaded = holding._alternating(seat_scene(), 0.01, 94.25, -preload, None, True, 0.0)
     frequency = 94.25 / (2 * math.pi)
@@ -328,7 +342,7 @@ def test_holding_is_monotonic_over_a_preload_grid():
     assert (np.diff(holds.astype(int)) >= 0).all()  # one switch from failing to holding
     assert s["monotonic"] and s["bracket_verified"]
     assert s["bracket_low"] < s["quasi_static_preload"] <= s["bracket_high"]
-    assert s["quasi_static_preload"] == pytest.approx(18.2849, abs=1e-4)
+    assert s["quasi_static_preload"] == pytest.approx(seat_quasi_static_preload(5.0), rel=1e-12)
 
 
 def test_verdicts_that_contradict_a_threshold_are_reported(monkeypatch):
@@ -508,7 +522,7 @@ def test_the_rigid_seat_drive_reports_its_raised_rows():
     closed form) never evaluates it."""
     scene = seat_scene().replace(concept="rigid")
     excitation = {"type": "sine", "amplitude": 0.01, "omega": 94.25}
-    closed_form = 13.294895419185037
+    closed_form = seat_quasi_static_preload(0.01)
     with pytest.warns(ls.StudyWarning, match=r"min_holding_preload: 7 of 23 rows raised .*"
                                              r"7 SimulationError; first: SimulationError: .*"
                                              r"max_events = 2000"):
@@ -526,3 +540,18 @@ def test_the_rigid_seat_drive_reports_its_raised_rows():
         assert summary["bracket_low"] < closed_form <= summary["bracket_high"] * (1 + 1e-12)
         assert summary["bracket_high"] - summary["bracket_low"] <= 1e-3 * summary["bracket_high"]
     assert summary["raised"] == 0
+
+
+def test_a_left_hand_thread_needs_the_mirrored_right_hand_preload(exact):
+    """Issue 31, item 12: the left-hand drive under the torque -M is the
+    mirror image of the right-hand one under M: the same quasi-static
+    preload (the holding band's sides swap with the hand) and the same
+    answer of the search."""
+    left = min_holding_preload(
+        holding_scene(torque=-5e-3, thread={"pitch": 1e-3, "mean_diameter": 20e-3,
+                                            "hand": "left"}),
+        EXCITATION, creep_limit=0.0, progress=False)
+    ours, theirs = left.attrs["summary"], exact.attrs["summary"]
+    assert ours["quasi_static_preload"] == pytest.approx(quasi_static_preload(5e-3), rel=1e-12)
+    assert ours["found"] and ours["converged"]
+    assert ours["min_preload"] == pytest.approx(theirs["min_preload"], rel=1e-12)

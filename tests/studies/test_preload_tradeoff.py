@@ -310,3 +310,40 @@ def test_the_cli_writes_the_seat_adjusters_table_and_figure(tmp_path, capsys):
     frame = pd.read_csv(table, skiprows=[1])
     assert list(frame["preload"]) == [0.0, 20.0, 50.0]
     assert np.all(np.diff(frame["efficiency"]) < 0.0) and frame["error"].isna().all()
+
+
+def test_a_left_hand_thread_trades_off_as_the_mirrored_right_hand_one(frame):
+    """Issue 31, item 12: the mirror image of the right-hand drive under the
+    torque M is the left-hand drive under -M, with the same axial
+    vibration: the same efficiency (raised by the mirrored turn), holding
+    band verdicts, creep per cycle and displacement, preload by preload."""
+    left = preload_tradeoff(scene(torque=2e-2, thread={"pitch": 1e-3, "mean_diameter": 20e-3,
+                                                        "hand": "left"}),
+                            PRELOADS, cycles=4, points_per_cycle=40, progress=False)
+    assert left["error"].isna().all()
+    np.testing.assert_array_equal(left["holds_closed_form"], frame["holds_closed_form"])
+    for column in ("efficiency", "efficiency_closed_form", "creep_per_cycle",
+                   "max_displacement"):
+        np.testing.assert_allclose(left[column], frame[column], rtol=1e-9, atol=1e-15,
+                                   err_msg=column)
+
+
+def test_a_left_hand_flexible_drive_has_the_mirrored_stiffness():
+    """The stiffness at the load counts the load's place beyond the thread's,
+    u_load + h p phi (the springs' deflections): the left-hand flexible
+    drive under -M, the mirror image of the right-hand one under M, has the
+    same stiffness, creep and efficiency: to 1e-6 (the two runs integrate
+    the mirrored equations at the default rtol of 1e-8, in step sequences
+    that round-off tells apart, and the stiffness divides by the small
+    range of u_load + h p phi: 6e-9 seen); a creep the preload stops (7e-10
+    m per cycle at P = 40 N) to 1e-13 m as well, the rotor's absolute
+    tolerance (atol 1e-10 rad) times p = 1.6e-4 m/rad and a few cycles."""
+    frames = [preload_tradeoff(scene(torque=sign * -2e-2, concept="flexible_nut",
+                                     thread={"pitch": 1e-3, "mean_diameter": 20e-3,
+                                             "hand": hand}),
+                               [0.0, 40.0], cycles=4, points_per_cycle=40, progress=False)
+              for sign, hand in ((1.0, "right"), (-1.0, "left"))]
+    for column, atol in (("axial_stiffness", 0.0), ("creep_per_cycle", 1e-13),
+                         ("efficiency", 0.0)):
+        np.testing.assert_allclose(frames[1][column], frames[0][column], rtol=1e-6,
+                                   atol=atol, err_msg=column)

@@ -39,9 +39,12 @@ the physics pages, not from ``Result.checks`` nor from the core:
   twice that, with the largest |Delta g| of the interval and its two
   neighbours (a rate that turns inside an interval), plus
   the integrator's local error, K (rtol |L i| + L atol) with the energy
-  check's K = 1000. Moreau-Jean: its theta step, L (i+ - i) = h (U_d - R
-  i_theta - k_e omega_theta), x_theta = (1 - theta) x + theta x+, to
-  round-off.
+  check's K = 1000. Moreau-Jean: its exact armature step
+  (dc_motor.md, "Moreau-Jean"), L (i+ - i) = h (U_d - R i_mean - k_e
+  omega_theta) with omega_theta = (1 - theta) omega + theta omega+ held over
+  the step, i_inf = (U_d - k_e omega_theta) / R, x = h R / L and i_mean =
+  i_inf + (i - i_inf) (1 - e^-x) / x: it holds exactly where i+ = i_inf +
+  (i - i_inf) e^-x, to round-off.
 - ``motor_energy``: magnetic_energy = L i^2 / 2 (stored, to round-off), and
   the copper loss and the drive's work as integrals of R i^2 and of U_d i
   + (k_t - k_e) i omega (dc_motor.md, "State and energy account"; a
@@ -49,8 +52,9 @@ the physics pages, not from ``Result.checks`` nor from the core:
   "Energy account"; a varying torque load or a speed drive's reaction
   torque, which output points do not resolve, unchecked on the event-driven
   and ODE integrators), each increment within the trapezoid's bound above
-  (Moreau-Jean: h R i_theta^2 and h (U_d + (k_t - k_e) omega_theta)
-  i_theta, its booking, to round-off).
+  (Moreau-Jean: the exact step's integral of R i^2 (dc_motor.md,
+  "Moreau-Jean") and h (U_d + (k_t - k_e) omega_theta) i_mean, to
+  round-off).
 - ``lugre_bristle``: |bristle_deflection| <= max(mu, mu_static) / sigma0:
   the set is invariant under z' = v - sigma0 |v| z / mu(|v|) from z = 0
   (docs/physics/friction_laws.md), to 1e-6 of the bound.
@@ -374,9 +378,9 @@ def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol) -> Dict[str, dic
         flux = inductance * current
         moreau_rate = None
         if moreau:
-            i_theta = (1 - theta) * current[:-1] + theta * current[1:]
             w_theta = (1 - theta) * omega[:-1] + theta * omega[1:]
-            moreau_rate = voltage[1:] - resistance * i_theta - k_e * w_theta
+            i_mean, _ = _armature_step(t, current, voltage, w_theta, resistance, inductance, k_e)
+            moreau_rate = voltage[1:] - resistance * i_mean - k_e * w_theta
         # The back-EMF's integral is k_e times the rotor's turn, exactly: the
         # rotor's speed may ring between output points (a flexible drive),
         # its angle is a state.
@@ -392,6 +396,25 @@ def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol) -> Dict[str, dic
     report["motor_energy"] = _motor_energy(t, ch, k_t, k_e, resistance, inductance, moreau,
                                            theta, rtol, atol)
     return report
+
+
+def _armature_step(t, current, voltage, w_theta, resistance, inductance, k_e) -> tuple:
+    """Moreau-Jean's exact armature step from each row to the next
+    (dc_motor.md, "Moreau-Jean"), written from the document: L i' = u - R i
+    - k_e omega_theta with u and omega_theta held over the step. Returns the
+    step's mean current and its mean copper loss power (the integral of R
+    i^2 over h), per interval; an interval of zero length (an event's two
+    rows) gives the row's own values."""
+    h = np.diff(t)
+    x = h * resistance / inductance
+    i_inf = (voltage[1:] - k_e * w_theta) / resistance
+    d = current[:-1] - i_inf
+    safe = np.where(x > 0, x, 1.0)
+    f1 = np.where(x > 0, -np.expm1(-safe) / safe, 1.0)        # (1 - e^-x) / x
+    f2 = np.where(x > 0, -np.expm1(-2 * safe) / (2 * safe), 1.0)  # (1 - e^-2x) / 2x
+    i_mean = i_inf + d * f1
+    copper = resistance * (i_inf ** 2 + 2 * i_inf * d * f1 + d ** 2 * f2)
+    return i_mean, copper
 
 
 def _motor_energy(t, ch, k_t, k_e, resistance, inductance, moreau, theta, rtol,
@@ -412,10 +435,14 @@ def _motor_energy(t, ch, k_t, k_e, resistance, inductance, moreau, theta, rtol,
         w_theta = (1 - theta) * omega[:-1] + theta * omega[1:]
         # (inductance 0: the quasi-static current at the theta point,
         # dc_motor.md "Moreau-Jean")
-        i_theta = ((1 - theta) * current[:-1] + theta * current[1:] if inductance > 0
-                   else (voltage[1:] - k_e * w_theta) / resistance)
-        rates["copper_loss"] = (None, resistance * i_theta ** 2)
-        rates["work_drive"] = (None, (voltage[1:] + (k_t - k_e) * w_theta) * i_theta)
+        if inductance > 0:
+            i_mean, copper = _armature_step(t, current, voltage, w_theta, resistance,
+                                            inductance, k_e)
+        else:
+            i_mean = (voltage[1:] - k_e * w_theta) / resistance
+            copper = resistance * i_mean ** 2
+        rates["copper_loss"] = (None, copper)
+        rates["work_drive"] = (None, (voltage[1:] + (k_t - k_e) * w_theta) * i_mean)
     for name, (rate, moreau_rate) in rates.items():
         integral = ch[name]
         misfit, bound = _increments(t, integral, rate, moreau_rate,

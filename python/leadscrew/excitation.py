@@ -13,7 +13,8 @@ their parameters (see :mod:`leadscrew.scene`).
 Their parameters may be strings with units, as in a scene: ``Sine("50 N",
 "15 Hz")``, ``Table(["0 s", "250 ms"], ["0 N*mm", "40 N*mm"])``. The values
 of a load (value, amplitude, offset, a table's values) take a force (N), a
-torque (N*m), an angular velocity (rad/s) or a voltage (V, a DC motor's
+torque (N*m), an angular velocity (rad/s), an acceleration (m/s^2, rad/s^2: a
+base excitation) or a voltage (V, a DC motor's
 ``motor.voltage``), all in the same one: the load
 keeps it as :attr:`unit` (``""`` when they are plain numbers), and a scene
 or a FrictionBlock refuses a load whose unit is not that of the parameter it
@@ -38,8 +39,10 @@ Excitation = _core.Excitation
 
 Number = Union[float, str]
 
-#: The units a load's values may have: those of the loads it drives.
-LOAD_UNITS = ("N", "N*m", "rad/s", "V")
+#: The units a load's values may have: those of the loads it drives (the
+#: accelerations: a base excitation's, ``loads.base_acceleration`` and
+#: ``loads.base_angular_acceleration``).
+LOAD_UNITS = ("N", "N*m", "rad/s", "V", "m/s^2", "rad/s^2")
 
 
 def _load_values(named: Sequence[Tuple[str, Any]]) -> Tuple[List[float], str]:
@@ -87,7 +90,8 @@ def _rebuilt(cls, arguments: tuple, unit: str):
 
 
 def check_load_unit(name: str, load: Any, unit: str) -> None:
-    """Refuse a Constant, Sine or Table given with a unit other than that of
+    """Refuse a Constant, Sine, Table, RandomVibration or Measured given with a
+    unit other than that of
     the parameter it drives.
 
     Args:
@@ -99,7 +103,7 @@ def check_load_unit(name: str, load: Any, unit: str) -> None:
         ValueError: e.g. ``loads.axial_force = Sine(amplitude='50.0 N*m', ...)
         is invalid: its values are a torque (N*m), not a force (N)``.
     """
-    given = getattr(load, "unit", "") if isinstance(load, (Constant, Sine, Table)) else ""
+    given = getattr(load, "unit", "") if isinstance(load, _core.Excitation) else ""
     if given and given != unit:
         raise ValueError(f"{name} = {load!r} is invalid: its values are "
                          f"{dimension_name(given)} ({given}), not {dimension_name(unit)} "

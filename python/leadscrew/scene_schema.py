@@ -337,6 +337,15 @@ SCHEMA: Dict[str, Any] = {
                              "the rotor's angular velocity; the torque it takes is reported",
                              "rad/s", OPTIONAL, kind="load"),
         "axial_force": Field("axial force on the load along +x", "N", 0.0, kind="load"),
+        "base_acceleration": Field("the housing's axial acceleration along +x (vibration of "
+                                   "the body the drive is mounted on): every translating body "
+                                   "feels -m a, outputs stay relative to the housing; e.g. "
+                                   "{'type': 'random', ...} (absent: at rest)", "m/s^2",
+                                   OPTIONAL, kind="load"),
+        "base_angular_acceleration": Field("the housing's angular acceleration about +x: every "
+                                           "rotating body feels -J alpha (not with a gear "
+                                           "stage; absent: at rest)", "rad/s^2", OPTIONAL,
+                                           kind="load"),
     },
     # (Absent: no motor element; loads.drive_torque or loads.drive_speed drive the rotor.)
     "motor": {

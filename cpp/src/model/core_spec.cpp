@@ -14,6 +14,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/thread/thread.hpp"
+#include "leadscrew/model/elements/drive_elements.hpp"
 
 namespace leadscrew::model {
 
@@ -260,6 +261,11 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
   write_load(out, "drive_torque", p.drive_torque, "N*m");
   write_load(out, "drive_speed", p.drive_speed, "rad/s");
   write_load(out, "axial_force", p.axial_force, "N");
+  // The housing's vibration where it has one (a spec without it is at rest).
+  if (!elements::given_base_excitation(p).empty()) {
+    write_load(out, "base_acceleration", p.base_acceleration, "m/s^2");
+    write_load(out, "base_angular_acceleration", p.base_angular_acceleration, "rad/s^2");
+  }
   write_load(out, "motor_voltage", p.motor_voltage, "V");
   const integrate::IntegratorOptions& o = options.integrator_options;
   out << "\n[options]\nintegrator = " << quoted(options.integrator)
@@ -374,7 +380,8 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.known(*t, "parameters.", names);
   }
   if (const toml::table* t = r.table(root, "", "loads")) {
-    r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force", "motor_voltage"});
+    r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force", "motor_voltage",
+                           "base_acceleration", "base_angular_acceleration"});
     if (const toml::table* l = r.table(*t, "loads.", "motor_voltage"))
       p.motor_voltage = r.load(*l, "loads.motor_voltage.");
     if (const toml::table* l = r.table(*t, "loads.", "drive_torque"))
@@ -383,6 +390,10 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
       p.drive_speed = r.load(*l, "loads.drive_speed.");
     if (const toml::table* l = r.table(*t, "loads.", "axial_force"))
       p.axial_force = r.load(*l, "loads.axial_force.");
+    if (const toml::table* l = r.table(*t, "loads.", "base_acceleration"))
+      p.base_acceleration = r.load(*l, "loads.base_acceleration.");
+    if (const toml::table* l = r.table(*t, "loads.", "base_angular_acceleration"))
+      p.base_angular_acceleration = r.load(*l, "loads.base_angular_acceleration.");
   }
   if (const toml::table* t = r.table(root, "", "options")) {
     const std::string at = "options.";

@@ -65,8 +65,8 @@ def test_constant_angular_base_acceleration_is_the_equivalent_drive_torque(optio
 
 
 def _vibrated_holding(concept, contact):
-    """A self-locking drive holding a load against an axial vibration of its
-    housing and a rotational one (flexible concepts: the nut's and
+    """A self-locking drive holding a load against a random axial vibration
+    of its housing and a rotational one (flexible concepts: the nut's and
     the screw's own bodies feel them too)."""
     return ls.Scene.from_dict({
         "concept": concept, "thread": {"pitch": 1.5e-3, "mean_diameter": 7.25e-3},
@@ -74,8 +74,8 @@ def _vibrated_holding(concept, contact):
         "backlash": {"axial": 0.1e-3, "contact": contact},
         "load": {"mass": 5.0},
         "loads": {"axial_force": -50.0,
-                  "base_acceleration": {"type": "sine", "amplitude": "15 m/s^2",
-                                        "omega": "70 Hz"},
+                  "base_acceleration": {"type": "random", "frequencies": [10.0, 200.0],
+                                        "psd": [20.0, 5.0], "seed": 3, "duration": 1.0},
                   "base_angular_acceleration": {"type": "sine", "amplitude": "300 rad/s^2",
                                                 "omega": "40 Hz"}},
     })

@@ -63,6 +63,8 @@ void bind_excitation(py::module_& m) {
            },
            py::arg("t"))
       .def_property_readonly("breakpoints", &Excitation::breakpoints)
+      .def_property_readonly("target_rms", &Excitation::target_rms,
+                             "A random vibration's sqrt(integral of its PSD); 0 otherwise.")
       .def("describe", &Excitation::describe);
 }
 

@@ -269,11 +269,8 @@ class Table(_core.Excitation):
         values = _table_column("values", values, None)
         values, self._unit = (values, "") if isinstance(values, np.ndarray) else \
             _load_values([(f"values[{i}]", v) for i, v in enumerate(values)])
-        times = np.array(times, dtype=float).ravel()
-        values = np.array(values, dtype=float).ravel()
+        times, values = frozen_arrays(times, values)
         super().__init__("table", [], times.tolist(), values.tolist())
-        times.flags.writeable = False
-        values.flags.writeable = False
         self._times = times
         self._values = values
 
@@ -298,6 +295,15 @@ class Table(_core.Excitation):
 
     def __reduce__(self):
         return (_rebuilt, (Table, (self.times, self.values), self.unit))
+
+
+def frozen_arrays(*columns) -> Tuple[np.ndarray, ...]:
+    """Own flat float copies of ``columns``, not writeable: the core holds
+    the values given to a load's constructor."""
+    arrays = tuple(np.array(column, dtype=float).ravel() for column in columns)
+    for array in arrays:
+        array.flags.writeable = False
+    return arrays
 
 
 def _table_column(name: str, items: Any, convert) -> Union[np.ndarray, list]:

@@ -13,7 +13,7 @@ import numbers
 import sys
 from typing import TYPE_CHECKING, Any, Dict
 
-from .scene_loads import _LOAD_ENTRY_UNITS
+from .scene_loads import load_entry_unit
 from .scene_schema import _REQUIRED_SECTIONS, SCHEMA, Field, _fail, _field_unit
 
 if TYPE_CHECKING:
@@ -115,7 +115,7 @@ def _to_toml_text(data: Dict[str, Any]) -> str:
         for path, table, unit in tables:
             lines += ["", f"[{path}]"]
             for key, value in table.items():
-                entry_unit = "" if key == "type" else (_LOAD_ENTRY_UNITS[key] or unit)
+                entry_unit = "" if key == "type" else load_entry_unit(key, unit)
                 lines.append(f"{key} = {_toml_value(f'{path}.{key}', value)}"
                              f"{_unit_comment(entry_unit)}")
     return "\n".join(lines) + "\n"

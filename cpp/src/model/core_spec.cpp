@@ -55,7 +55,7 @@ void write_load(std::ostringstream& out, const char* name, const Excitation& loa
   if (d.kind == "callable")
     throw InvalidArgument(std::string("loads.") + name + " = " + load.describe() +
                           " is invalid in a core spec: a callable cannot be written to a file "
-                          "(use a constant, a sine or a table)");
+                          "(use a constant, a sine, a table, a random vibration or a record)");
   out << "\n[loads." << name << "]  # " << unit << "\ntype = " << quoted(d.kind) << "\n";
   if (d.kind == "constant") {
     out << "value = " << number(d.parameters[0]) << "\n";
@@ -63,9 +63,16 @@ void write_load(std::ostringstream& out, const char* name, const Excitation& loa
     out << "amplitude = " << number(d.parameters[0]) << "\nomega = " << number(d.parameters[1])
         << "  # rad/s\nphase = " << number(d.parameters[2])
         << "  # rad\noffset = " << number(d.parameters[3]) << "\n";
+  } else if (d.kind == "random") {
+    out << "frequencies = " << number_list(d.times) << "  # Hz\npsd = " << number_list(d.values)
+        << "  # (" << unit << ")^2/Hz\nseed = " << number(d.parameters[0])
+        << "\nduration = " << number(d.parameters[1]) << "  # s\n";
   } else {
     out << "times = " << number_list(d.times) << "  # s\nvalues = " << number_list(d.values)
         << "\n";
+    if (d.kind == "measured")
+      out << "scale = " << number(d.parameters[0])
+          << "\nrepeat = " << (d.parameters[1] == 1.0 ? "true" : "false") << "\n";
   }
 }
 
@@ -195,12 +202,27 @@ class Reader {
         known(t, prefix, {"type", "times", "values"});
         return Excitation(TableExcitation{reals(t, prefix, "times"), reals(t, prefix, "values")});
       }
+      if (type == "random") {
+        known(t, prefix, {"type", "frequencies", "psd", "seed", "duration"});
+        RandomVibrationSpec r{reals(t, prefix, "frequencies"), reals(t, prefix, "psd")};
+        real(t, prefix, "seed", r.seed);
+        real(t, prefix, "duration", r.duration);
+        return Excitation(r);
+      }
+      if (type == "measured") {
+        known(t, prefix, {"type", "times", "values", "scale", "repeat"});
+        MeasuredSpec m{reals(t, prefix, "times"), reals(t, prefix, "values")};
+        real(t, prefix, "scale", m.scale);
+        flag(t, prefix, "repeat", m.repeat);
+        return Excitation(m);
+      }
     } catch (const InvalidArgument& e) {
       if (std::string(e.what()).rfind(source_.empty() ? "core spec" : source_, 0) == 0) throw;
       fail(prefix.substr(0, prefix.size() - 1), std::string("is invalid: ") + e.what());
     }
     fail(prefix + "type", "= " + quoted(type) +
-                              " is invalid: must be \"constant\", \"sine\" or \"table\"");
+                              " is invalid: must be \"constant\", \"sine\", \"table\", "
+                              "\"random\" or \"measured\"");
   }
 
   // An enumeration's name through its parser, the error naming the key.

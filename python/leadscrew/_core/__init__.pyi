@@ -130,6 +130,11 @@ class Excitation:
     @property
     def breakpoints(self) -> list[float]:
         ...
+    @property
+    def target_rms(self) -> float:
+        """
+        A random vibration's sqrt(integral of its PSD); 0 otherwise.
+        """
 class SimulationResult:
     def channel(self, name: str) -> typing.Any:
         """

@@ -130,3 +130,13 @@ def test_scene_takes_a_record_from_a_file(tmp_path):
                                          r"must be absent without file"):
         scene.replace(loads={"base_acceleration": {"type": "measured", "times": [0, 1],
                                                    "values": [0, 1], "column": "a"}})
+
+
+def test_pickles_with_its_unit():
+    import pickle
+
+    record = ls.Measured([0.0, 1.0, 2.0], [1.0, 2.0, 0.0], unit="kN", repeat=True, scale=0.5)
+    again = pickle.loads(pickle.dumps(record))
+    assert again.unit == "N" and again.repeat and again.scale == 0.5
+    t = np.linspace(0.0, 5.0, 51)
+    assert np.array_equal(again(t), record(t))

@@ -165,3 +165,16 @@ def test_core_spec_round_trips_a_random_load():
     original = scene.model().parameters
     for key in ("axial_force", "base_acceleration"):
         assert np.array_equal(getattr(parameters, key)(t), getattr(original, key)(t))
+
+
+def test_pickles_with_its_unit():
+    # (studies send loads to worker processes)
+    import pickle
+
+    load = ls.RandomVibration([10.0, 100.0], ["1 (m/s^2)^2/Hz"] * 2, seed=4, duration=2.0)
+    again = pickle.loads(pickle.dumps(load))
+    assert again.unit == "m/s^2" and again.seed == 4
+    t = np.linspace(0.0, 1.0, 11)
+    assert np.array_equal(again(t), load(t))
+    assert load.replace(seed=5).unit == "m/s^2" and not np.array_equal(load.replace(seed=5)(t),
+                                                                        load(t))

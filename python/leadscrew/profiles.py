@@ -20,7 +20,7 @@ from typing import Dict, List, Tuple
 
 from .excitation_sampled import RandomVibration
 
-__all__ = ["Profile", "ProfileWarning", "names", "info", "load"]
+__all__ = ["Profile", "ProfileWarning", "names", "info", "checked", "load"]
 
 
 class ProfileWarning(UserWarning):
@@ -86,6 +86,19 @@ def info(name: str) -> Profile:
     return _PROFILES[name]
 
 
+def checked(name: str, stacklevel: int = 2) -> Profile:
+    """A profile's table, with a :class:`ProfileWarning` if it is unverified.
+
+    Raises:
+        ValueError: an unknown name (as :func:`info`).
+    """
+    profile = info(name)
+    if not profile.verified:
+        warnings.warn(f"profile {name!r} is not verified against {profile.source}: "
+                      f"{profile.note}", ProfileWarning, stacklevel=stacklevel)
+    return profile
+
+
 def load(name: str, seed: int = 0, duration: float = 10.0) -> RandomVibration:
     """A realisation of a named profile, an acceleration in m/s^2.
 
@@ -103,9 +116,6 @@ def load(name: str, seed: int = 0, duration: float = 10.0) -> RandomVibration:
     Warns:
         ProfileWarning: the profile's table is not verified against its source.
     """
-    profile = info(name)
-    if not profile.verified:
-        warnings.warn(f"profile {name!r} is not verified against {profile.source}: "
-                      f"{profile.note}", ProfileWarning, stacklevel=2)
+    profile = checked(name, stacklevel=3)
     psd = [f"{value!r} (m/s^2)^2/Hz" for value in profile.psd]
     return RandomVibration(list(profile.frequencies), psd, seed=seed, duration=duration)

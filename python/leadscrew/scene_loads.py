@@ -184,10 +184,10 @@ def _resolved(path: str, kind: str, value: Dict[str, Any], unit: str) -> Dict[st
         name = value.pop("profile")
         if not isinstance(name, str) or name not in profiles.names():
             _fail(f"{path}.profile", name, "one of " + ", ".join(map(repr, profiles.names())))
-        profile = profiles.info(name)
         if unit != "m/s^2":
-            _fail(f"{path}.profile", profile.name, f"absent: a profile is an acceleration "
-                  f"(m/s^2), {path} is in {unit}")
+            _fail(f"{path}.profile", name, f"absent: a profile is an acceleration (m/s^2), "
+                  f"{path} is in {unit}")
+        profile = profiles.checked(name)
         value["frequencies"], value["psd"] = list(profile.frequencies), list(profile.psd)
     if kind == "measured" and "file" in value:
         if "times" in value or "values" in value:

@@ -329,8 +329,8 @@ SCHEMA: Dict[str, Any] = {
     },
     "loads": {
         "drive_torque": Field("motor torque on the rotor about +x: a number, "
-                              "{'type': 'sine'|'constant'|'table', ...} or an Excitation or "
-                              "callable (default 0 unless drive_speed is given; the default is "
+                              "{'type': 'sine'|'constant'|'table'|'random'|'measured', ...} "
+                              "or an Excitation or callable (default 0 unless drive_speed is given; the default is "
                               "applied in the model, not stored in the scene)", "N*m",
                               OPTIONAL, kind="load"),
         "drive_speed": Field("instead of drive_torque: a speed-controlled motor prescribing "
@@ -356,7 +356,8 @@ SCHEMA: Dict[str, Any] = {
                       "starts at 0 (the driver switched on at t = 0)", "", None,
                       kind="choice", choices=("dc",)),
         "voltage": Field("the driver's voltage U(t): a number, {'type': "
-                         "'sine'|'constant'|'table', ...} or an Excitation or callable",
+                         "'sine'|'constant'|'table'|'random'|'measured', ...} or an "
+                         "Excitation or callable",
                          "V", None, kind="load"),
         "resistance": Field("armature resistance R (terminal to terminal)", "ohm", None,
                             **POSITIVE),

@@ -140,3 +140,15 @@ def test_pickles_with_its_unit():
     assert again.unit == "N" and again.repeat and again.scale == 0.5
     t = np.linspace(0.0, 5.0, 51)
     assert np.array_equal(again(t), record(t))
+
+
+def test_a_scene_file_finds_its_record_beside_it(tmp_path, monkeypatch):
+    t = np.arange(0.0, 0.05, 1e-3)
+    (tmp_path / "data").mkdir()
+    _write_csv(tmp_path / "data" / "body.csv", ["t [s]", "a [m/s^2]"], zip(t, 3.0 * t))
+    scene_text = ls.scenes.load("position_holding").to_toml()
+    scene_text += '\n[loads.base_acceleration]\ntype = "measured"\nfile = "data/body.csv"\n'
+    (tmp_path / "vibrated.toml").write_text(scene_text)
+    monkeypatch.chdir(tmp_path / "data")  # not the scene's directory
+    scene = ls.Scene.from_toml(tmp_path / "vibrated.toml")
+    assert scene.to_dict()["loads"]["base_acceleration"]["values"] == (3.0 * t).tolist()

@@ -88,19 +88,21 @@ Excitation::Excitation(TableExcitation table) {
 }
 
 Excitation::Excitation(const RandomVibrationSpec& random)
-    : definition_(SampledExcitation{realise(random), "random", {random.seed, random.duration},
-                                    random.frequencies, random.psd}) {}
+    : definition_(SampledExcitation{std::make_shared<const SampledExcitation::Data>(
+          SampledExcitation::Data{realise(random), "random", {random.seed, random.duration},
+                                  random.frequencies, random.psd})}) {}
 
 Excitation::Excitation(const MeasuredSpec& measured)
-    : definition_(SampledExcitation{realise(measured), "measured",
-                                    {measured.scale, measured.repeat ? 1.0 : 0.0},
-                                    measured.times, measured.values}) {
+    : definition_(SampledExcitation{std::make_shared<const SampledExcitation::Data>(
+          SampledExcitation::Data{realise(measured), "measured",
+                                  {measured.scale, measured.repeat ? 1.0 : 0.0}, measured.times,
+                                  measured.values})}) {
   // Held outside the record: its slope jumps at both ends.
   if (!measured.repeat) breakpoints_ = {measured.times.front(), measured.times.back()};
 }
 
 double Excitation::target_rms() const {
-  return definition_.index() == 3 ? std::get<3>(definition_).signal.target_rms : 0.0;
+  return definition_.index() == 3 ? std::get<3>(definition_).data->signal.target_rms : 0.0;
 }
 
 Excitation::Excitation(CallableExcitation f) : definition_(std::move(f)) {
@@ -119,7 +121,7 @@ double Excitation::general_value(double t) const {
     const double fraction = (t - times[i - 1]) / (times[i] - times[i - 1]);
     return table.values[i - 1] + fraction * (table.values[i] - table.values[i - 1]);
   }
-  if (definition_.index() == 3) return std::get<3>(definition_).signal.value(t);
+  if (definition_.index() == 3) return std::get<3>(definition_).data->signal.value(t);
   const auto& callable = std::get<kCallable>(definition_);
   const double value = callable.function(t);
   if (!std::isfinite(value))
@@ -146,7 +148,7 @@ double Excitation::time_scale() const {
       // with the ramp after t_end.)
       return std::numeric_limits<double>::infinity();
     case 3:
-      return std::get<3>(definition_).signal.time_scale;
+      return std::get<3>(definition_).data->signal.time_scale;
     default:
       return 0.0;
   }
@@ -197,7 +199,7 @@ double Excitation::derivative(double t) const {
       return (table.values[i] - table.values[i - 1]) / (times[i] - times[i - 1]);
     }
     case 3:
-      return std::get<3>(definition_).signal.derivative(t);
+      return std::get<3>(definition_).data->signal.derivative(t);
     default: {
       const double h = difference_step(t);
       return (general_value(t + h) - general_value(t - h)) / (2.0 * h);
@@ -239,7 +241,7 @@ Excitation::Definition Excitation::definition() const {
     case 2:
       return {"table", {}, std::get<2>(definition_).times, std::get<2>(definition_).values};
     case 3: {
-      const auto& d = std::get<3>(definition_);
+      const auto& d = *std::get<3>(definition_).data;
       return {d.kind, d.parameters, d.times, d.values};
     }
     default:
@@ -264,7 +266,7 @@ std::string Excitation::describe() const {
       out << "Table(" << std::get<2>(definition_).times.size() << " points)";
       break;
     case 3: {
-      const auto& d = std::get<3>(definition_);
+      const auto& d = *std::get<3>(definition_).data;
       if (d.kind == "random")
         out << "RandomVibration(" << d.times.size() << " breakpoints, " << d.times.front()
             << "-" << d.times.back() << " Hz, seed=" << d.parameters[0]

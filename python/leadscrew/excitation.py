@@ -1,7 +1,9 @@
 """Loads as functions of time, shared by every model.
 
 A load argument accepts a :class:`Constant`, :class:`Sine` or :class:`Table`
-(evaluated inside the C++ core), a plain number (a constant), or any Python
+(evaluated inside the C++ core; so are
+:class:`~leadscrew.excitation_sampled.RandomVibration` and
+:class:`~leadscrew.excitation_sampled.Measured`), a plain number (a constant), or any Python
 callable ``f(t) -> float`` (the slow, general fallback: the core calls back
 into Python at every evaluation).
 

@@ -104,6 +104,10 @@ def test_units_of_the_psd():
                                                                      r"invalid: its frequency"),
     (dict(frequencies=[10.0, 2000.0], psd=[1.0, 1.0], duration=1e4), r"duration = 10000 s "
                                                                       r"is invalid.*2\^24"),
+    (dict(frequencies=[10.0, 2000.0], psd=[1.0, 1.0], duration=1e300), r"duration = 1e\+300 s "
+                                                                        r"is invalid.*2\^24"),
+    (dict(frequencies=[10.0, 1e300], psd=[1.0, 1.0]), r"duration = 10 s is invalid with a "
+                                                       r"highest frequency of 1e\+300 Hz"),
     (dict(frequencies=[10.0, 20.0], psd=[1.0, 1.0], seed=-1), r"seed = -1 is invalid"),
     (dict(frequencies=[10.0, 20.0], psd=[1.0, 1.0], seed=1.5), r"seed = 1.5 is invalid"),
 ])

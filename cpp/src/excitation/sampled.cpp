@@ -98,6 +98,14 @@ SampledSignal realise(const RandomVibrationSpec& spec) {
   check_spec(spec);
   const auto& f = spec.frequencies;
   const double T = spec.duration, df = 1.0 / T, low = f.front(), high = f.back();
+  // (Checked before any count is computed: a duration of 1e300 s must not
+  // overflow the doubling below.)
+  if (kSamplesPerPeriod * high * T > static_cast<double>(kMaxSamples))
+    throw InvalidArgument("duration = " + format_value(T) + " s is invalid with a highest "
+                          "frequency of " + format_value(high) + " Hz: the realisation would "
+                          "take more than 2^24 samples; must be at most " +
+                          format_value(static_cast<double>(kMaxSamples) /
+                                       (kSamplesPerPeriod * high)) + " s");
   const auto k_low = static_cast<std::size_t>(std::max(1.0, std::ceil(low * T - 1e-9)));
   const auto k_high = static_cast<std::size_t>(std::floor(high * T + 1e-9));
   if (k_high < k_low)
@@ -106,12 +114,6 @@ SampledSignal realise(const RandomVibrationSpec& spec) {
                           format_value(high) + "] Hz: must be longer");
   std::size_t n = 16;
   while (static_cast<double>(n) < kSamplesPerPeriod * high * T || n < 2 * k_high + 2) n <<= 1;
-  if (n > kMaxSamples)
-    throw InvalidArgument("duration = " + format_value(T) + " s is invalid with a highest "
-                          "frequency of " + format_value(high) + " Hz: the realisation would "
-                          "take more than 2^24 samples; must be at most " +
-                          format_value(static_cast<double>(kMaxSamples) /
-                                       (kSamplesPerPeriod * high)) + " s");
   // Hermitian spectra of the signal and its derivative, packed as x + i x'.
   std::vector<std::complex<double>> a(n);
   std::mt19937_64 generator(static_cast<std::uint64_t>(spec.seed));

@@ -126,6 +126,17 @@ def test_scene_takes_a_record_from_a_file(tmp_path):
     with pytest.raises(ValueError, match=r"loads.axial_force = Measured.* is invalid: its "
                                          r"values are an acceleration \(m/s\^2\), not a force"):
         scene.replace(loads={"axial_force": {"type": "measured", "file": str(path)}})
+    with pytest.raises(ValueError, match=r"loads.base_acceleration.file = 3 is invalid: must be "
+                                         r"the path of a CSV or Parquet file"):
+        scene.replace(loads={"base_acceleration": {"type": "measured", "file": 3}})
+    with pytest.raises(ValueError, match=r"loads.base_acceleration.file = '.*nope.csv' is "
+                                         r"invalid: no such file"):
+        scene.replace(loads={"base_acceleration": {"type": "measured",
+                                                   "file": str(tmp_path / "nope.csv")}})
+    with pytest.raises(ValueError, match=r"loads.base_acceleration.column = 'b' is invalid: "
+                                         r"must be one of \['a'\]"):
+        scene.replace(loads={"base_acceleration": {"type": "measured", "file": str(path),
+                                                   "column": "b"}})
     with pytest.raises(ValueError, match=r"loads.base_acceleration.column = 'a' is invalid: "
                                          r"must be absent without file"):
         scene.replace(loads={"base_acceleration": {"type": "measured", "times": [0, 1],

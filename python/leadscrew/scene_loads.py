@@ -192,8 +192,15 @@ def _resolved(path: str, kind: str, value: Dict[str, Any], unit: str) -> Dict[st
     if kind == "measured" and "file" in value:
         if "times" in value or "values" in value:
             _fail(f"{path}.file", value["file"], "absent where times and values are given")
-        record = Measured.from_file(value.pop("file"), value.pop("column", None),
-                                    value.pop("unit", None))
+        file = value.pop("file")
+        if not isinstance(file, str):
+            _fail(f"{path}.file", file, "the path of a CSV or Parquet file")
+        try:
+            record = Measured.from_file(file, value.pop("column", None), value.pop("unit", None))
+        except ValueError as error:  # (from_file's argument `path` is the key `file` here)
+            text = str(error)
+            text = "file" + text[len("path"):] if text.startswith("path = ") else text
+            raise ValueError(f"{path}.{text}") from None
         check_load_unit(path, record, unit)
         value["times"], value["values"] = record.times.tolist(), record.values.tolist()
     elif kind == "measured" and ("column" in value or "unit" in value):

@@ -97,7 +97,8 @@ def test_loads_take_unit_strings(given, expected, unit):
 @pytest.mark.parametrize("call, message", [
     (lambda: ls.Sine("50 kg", 94.2),
      'amplitude = "50 kg" is invalid: "50 kg" is not a force (N), a torque (N*m), an '
-     "angular velocity or frequency (rad/s) or a voltage (V) (the loads' units)"),
+     "angular velocity or frequency (rad/s), a voltage (V), an acceleration (m/s^2) or an "
+     "angular acceleration (rad/s^2) (the loads' units)"),
     (lambda: ls.Sine("12 V", 94.2, offset="1 N"),
      'offset = "1 N" is invalid: a force (N), but amplitude is a voltage (V): the values '
      "of one load share their unit"),
@@ -107,7 +108,8 @@ def test_loads_take_unit_strings(given, expected, unit):
      "of one load share their unit"),
     (lambda: ls.Sine("40 Nm", 94.2),
      'amplitude = "40 Nm" is invalid: "40 Nm" is not a force (N), a torque (N*m), an angular '
-     "velocity or frequency (rad/s) or a voltage (V) (the loads' units) "
+     "velocity or frequency (rad/s), a voltage (V), an acceleration (m/s^2) or an angular "
+     "acceleration (rad/s^2) (the loads' units) "
      '("Nm" is number_meter to pint, not a newton metre: write "N*m")'),
     (lambda: ls.Constant("12 v"), 'value = "12 v" is invalid: unit \'v\' does not parse: \'v\' '
      'is not defined in the unit registry; units are case-sensitive: write "V" for volt'),

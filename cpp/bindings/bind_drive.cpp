@@ -420,7 +420,18 @@ void bind_drive(py::module_& m) {
           [](DriveParameters& p, py::handle v) { p.motor_voltage = to_excitation(v, "motor.voltage"); })
       .def_property(
           "axial_force", [](const DriveParameters& p) { return p.axial_force; },
-          [](DriveParameters& p, py::handle v) { p.axial_force = to_excitation(v, "loads.axial_force"); });
+          [](DriveParameters& p, py::handle v) { p.axial_force = to_excitation(v, "loads.axial_force"); })
+      .def_property(
+          "base_acceleration", [](const DriveParameters& p) { return p.base_acceleration; },
+          [](DriveParameters& p, py::handle v) {
+            p.base_acceleration = to_excitation(v, "loads.base_acceleration");
+          })
+      .def_property(
+          "base_angular_acceleration",
+          [](const DriveParameters& p) { return p.base_angular_acceleration; },
+          [](DriveParameters& p, py::handle v) {
+            p.base_angular_acceleration = to_excitation(v, "loads.base_angular_acceleration");
+          });
   for (const model::ScalarField& field : model::scalar_fields())
     parameters.def_readwrite(field.name, field.member);
   parameters.def_readwrite("speed_controlled", &DriveParameters::speed_controlled);

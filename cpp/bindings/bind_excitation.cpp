@@ -43,8 +43,8 @@ Excitation to_excitation(py::handle value, const std::string& name) {
   if (PyCallable_Check(value.ptr()))
     return Excitation(wrap_python_callable(py::reinterpret_borrow<py::function>(value)));
   throw InvalidArgument(name + " = " + py::repr(value).cast<std::string>() +
-                        " is invalid: must be a number, a Constant, Sine or Table, or a "
-                        "callable f(t)");
+                        " is invalid: must be a number, a Constant, Sine, Table, "
+                        "RandomVibration or Measured, or a callable f(t)");
 }
 
 void bind_excitation(py::module_& m) {
@@ -63,6 +63,8 @@ void bind_excitation(py::module_& m) {
            },
            py::arg("t"))
       .def_property_readonly("breakpoints", &Excitation::breakpoints)
+      .def_property_readonly("target_rms", &Excitation::target_rms,
+                             "A random vibration's sqrt(integral of its PSD); 0 otherwise.")
       .def("describe", &Excitation::describe);
 }
 

@@ -3,10 +3,11 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
-from . import fmi, integrate, lcp, scene, scenes, studies, units
+from . import fmi, integrate, lcp, profiles, scene, scenes, studies, units
 from .errors import (JammingError, NoEquilibriumError, NutOffScrewError, SimulationError,
                      StudyWarning)
 from .excitation import Constant, Excitation, Sine, Table
+from .excitation_sampled import Measured, RandomVibration
 from .models import FrictionBlock
 from .scene import Scene
 from .scene_schema import describe_schema, friction_laws
@@ -72,6 +73,8 @@ __all__ = [
     "Constant",
     "Sine",
     "Table",
+    "RandomVibration",
+    "Measured",
     "FrictionBlock",
     "Scene",
     "describe_schema",
@@ -87,6 +90,7 @@ __all__ = [
     "fmi",
     "integrate",
     "lcp",
+    "profiles",
     "scene",
     "scenes",
     "studies",

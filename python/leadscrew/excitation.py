@@ -1,7 +1,9 @@
 """Loads as functions of time, shared by every model.
 
 A load argument accepts a :class:`Constant`, :class:`Sine` or :class:`Table`
-(evaluated inside the C++ core), a plain number (a constant), or any Python
+(evaluated inside the C++ core; so are
+:class:`~leadscrew.excitation_sampled.RandomVibration` and
+:class:`~leadscrew.excitation_sampled.Measured`), a plain number (a constant), or any Python
 callable ``f(t) -> float`` (the slow, general fallback: the core calls back
 into Python at every evaluation).
 
@@ -13,7 +15,8 @@ their parameters (see :mod:`leadscrew.scene`).
 Their parameters may be strings with units, as in a scene: ``Sine("50 N",
 "15 Hz")``, ``Table(["0 s", "250 ms"], ["0 N*mm", "40 N*mm"])``. The values
 of a load (value, amplitude, offset, a table's values) take a force (N), a
-torque (N*m), an angular velocity (rad/s) or a voltage (V, a DC motor's
+torque (N*m), an angular velocity (rad/s), an acceleration (m/s^2, rad/s^2: a
+base excitation) or a voltage (V, a DC motor's
 ``motor.voltage``), all in the same one: the load
 keeps it as :attr:`unit` (``""`` when they are plain numbers), and a scene
 or a FrictionBlock refuses a load whose unit is not that of the parameter it
@@ -38,8 +41,10 @@ Excitation = _core.Excitation
 
 Number = Union[float, str]
 
-#: The units a load's values may have: those of the loads it drives.
-LOAD_UNITS = ("N", "N*m", "rad/s", "V")
+#: The units a load's values may have: those of the loads it drives (the
+#: accelerations: a base excitation's, ``loads.base_acceleration`` and
+#: ``loads.base_angular_acceleration``).
+LOAD_UNITS = ("N", "N*m", "rad/s", "V", "m/s^2", "rad/s^2")
 
 
 def _load_values(named: Sequence[Tuple[str, Any]]) -> Tuple[List[float], str]:
@@ -87,7 +92,8 @@ def _rebuilt(cls, arguments: tuple, unit: str):
 
 
 def check_load_unit(name: str, load: Any, unit: str) -> None:
-    """Refuse a Constant, Sine or Table given with a unit other than that of
+    """Refuse a Constant, Sine, Table, RandomVibration or Measured given with a
+    unit other than that of
     the parameter it drives.
 
     Args:
@@ -99,7 +105,7 @@ def check_load_unit(name: str, load: Any, unit: str) -> None:
         ValueError: e.g. ``loads.axial_force = Sine(amplitude='50.0 N*m', ...)
         is invalid: its values are a torque (N*m), not a force (N)``.
     """
-    given = getattr(load, "unit", "") if isinstance(load, (Constant, Sine, Table)) else ""
+    given = getattr(load, "unit", "") if isinstance(load, _core.Excitation) else ""
     if given and given != unit:
         raise ValueError(f"{name} = {load!r} is invalid: its values are "
                          f"{dimension_name(given)} ({given}), not {dimension_name(unit)} "
@@ -265,11 +271,8 @@ class Table(_core.Excitation):
         values = _table_column("values", values, None)
         values, self._unit = (values, "") if isinstance(values, np.ndarray) else \
             _load_values([(f"values[{i}]", v) for i, v in enumerate(values)])
-        times = np.array(times, dtype=float).ravel()
-        values = np.array(values, dtype=float).ravel()
+        times, values = frozen_arrays(times, values)
         super().__init__("table", [], times.tolist(), values.tolist())
-        times.flags.writeable = False
-        values.flags.writeable = False
         self._times = times
         self._values = values
 
@@ -294,6 +297,15 @@ class Table(_core.Excitation):
 
     def __reduce__(self):
         return (_rebuilt, (Table, (self.times, self.values), self.unit))
+
+
+def frozen_arrays(*columns) -> Tuple[np.ndarray, ...]:
+    """Own flat float copies of ``columns``, not writeable: the core holds
+    the values given to a load's constructor."""
+    arrays = tuple(np.array(column, dtype=float).ravel() for column in columns)
+    for array in arrays:
+        array.flags.writeable = False
+    return arrays
 
 
 def _table_column(name: str, items: Any, convert) -> Union[np.ndarray, list]:

@@ -69,7 +69,8 @@ def _refuse_none(path: str, f: Field) -> None:
     if f.kind == "choice":
         allowed = "one of " + ", ".join(repr(c) for c in f.choices)
     elif f.kind == "load":
-        allowed = "a number, a dict with 'type' in constant/sine/table, an Excitation or a callable"
+        allowed = ("a number, a dict with 'type' in constant/sine/table/random/measured, an "
+                   "Excitation or a callable")
     else:
         allowed = _range_text(f) + (f" [{f.unit}]" if f.unit else "")
     if f.default is None:

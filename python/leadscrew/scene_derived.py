@@ -275,6 +275,9 @@ def _core_parameters(data: Dict[str, Any],
     p.speed_controlled = given == "drive_speed"
     for key in (given, "axial_force"):
         setattr(p, key, _make_excitation(loads.get(key, _DEFAULT_DRIVE_TORQUE), key))
+    for key in ("base_acceleration", "base_angular_acceleration"):
+        if key in loads:
+            setattr(p, key, _make_excitation(loads[key], key))
     motor = data.get("motor")
     if motor is not None:  # (without a type: a torque-driven rotor's friction only)
         p.motor_friction_torque = motor["friction_torque"]

@@ -10,10 +10,11 @@ from __future__ import annotations
 import json
 import math
 import numbers
+import os
 import sys
 from typing import TYPE_CHECKING, Any, Dict
 
-from .scene_loads import _LOAD_ENTRY_UNITS
+from .scene_loads import load_entry_unit
 from .scene_schema import _REQUIRED_SECTIONS, SCHEMA, Field, _fail, _field_unit
 
 if TYPE_CHECKING:
@@ -53,10 +54,23 @@ def _from_toml_text(raw: bytes, source: str) -> "Scene":
         raise ValueError(f"{source}: the file {what}: a scene file needs at least the "
                          f"sections {', '.join(f'[{k}]' for k in _REQUIRED_SECTIONS)} "
                          "(leadscrew.scene.describe_schema() lists every field)")
+    _records_beside(d, os.path.dirname(os.path.abspath(source)))
     try:
         return Scene.from_dict(d)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
+
+
+def _records_beside(d: Dict[str, Any], directory: str) -> None:
+    """A measured load's relative ``file`` in a scene file is the file's
+    neighbour: the path is made relative to the scene file's directory (in
+    place; anything else is left for the checks)."""
+    loads = d.get("loads") if isinstance(d.get("loads"), dict) else {}
+    motor = d.get("motor") if isinstance(d.get("motor"), dict) else {}
+    for load in [*loads.values(), motor.get("voltage")]:
+        if isinstance(load, dict) and load.get("type") == "measured" and \
+                isinstance(load.get("file"), str) and not os.path.isabs(load["file"]):
+            load["file"] = os.path.join(directory, load["file"])
 
 
 def _toml_value(path: str, value: Any) -> str:
@@ -115,7 +129,7 @@ def _to_toml_text(data: Dict[str, Any]) -> str:
         for path, table, unit in tables:
             lines += ["", f"[{path}]"]
             for key, value in table.items():
-                entry_unit = "" if key == "type" else (_LOAD_ENTRY_UNITS[key] or unit)
+                entry_unit = "" if key == "type" else load_entry_unit(key, unit)
                 lines.append(f"{key} = {_toml_value(f'{path}.{key}', value)}"
                              f"{_unit_comment(entry_unit)}")
     return "\n".join(lines) + "\n"

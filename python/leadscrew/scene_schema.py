@@ -337,14 +337,23 @@ SCHEMA: Dict[str, Any] = {
     },
     "loads": {
         "drive_torque": Field("motor torque on the rotor about +x: a number, "
-                              "{'type': 'sine'|'constant'|'table', ...} or an Excitation or "
-                              "callable (default 0 unless drive_speed is given; the default is "
+                              "{'type': 'sine'|'constant'|'table'|'random'|'measured', ...} "
+                              "or an Excitation or callable (default 0 unless drive_speed is given; the default is "
                               "applied in the model, not stored in the scene)", "N*m",
                               OPTIONAL, kind="load"),
         "drive_speed": Field("instead of drive_torque: a speed-controlled motor prescribing "
                              "the rotor's angular velocity; the torque it takes is reported",
                              "rad/s", OPTIONAL, kind="load"),
         "axial_force": Field("axial force on the load along +x", "N", 0.0, kind="load"),
+        "base_acceleration": Field("the housing's axial acceleration along +x (vibration of "
+                                   "the body the drive is mounted on): every translating body "
+                                   "feels -m a, outputs stay relative to the housing; e.g. "
+                                   "{'type': 'random', ...} (absent: at rest)", "m/s^2",
+                                   OPTIONAL, kind="load"),
+        "base_angular_acceleration": Field("the housing's angular acceleration about +x: every "
+                                           "rotating body feels -J alpha (not with a gear "
+                                           "stage; absent: at rest)", "rad/s^2", OPTIONAL,
+                                           kind="load"),
     },
     # (Absent: no motor element; loads.drive_torque or loads.drive_speed drive the rotor.)
     "motor": {
@@ -357,7 +366,8 @@ SCHEMA: Dict[str, Any] = {
                       "friction_torque (the motor's bearing friction)", "", OPTIONAL,
                       kind="choice", choices=("dc",)),
         "voltage": Field("the driver's voltage U(t): a number, {'type': "
-                         "'sine'|'constant'|'table', ...} or an Excitation or callable",
+                         "'sine'|'constant'|'table'|'random'|'measured', ...} or an "
+                         "Excitation or callable",
                          "V", OPTIONAL, kind="load", required_with=_WITH_DC),
         "resistance": Field("armature resistance R (terminal to terminal)", "ohm", OPTIONAL,
                             required_with=_WITH_DC, **POSITIVE),

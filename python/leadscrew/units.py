@@ -63,6 +63,8 @@ _DIMENSION_NAMES = (
     ("kg", "a mass"),
     ("s", "a time"),
     ("m/s", "a velocity"),
+    ("m/s^2", "an acceleration"),
+    ("rad/s^2", "an angular acceleration"),
     ("rad/s", "an angular velocity or frequency"),
     ("N", "a force"),
     ("Pa", "a pressure (stress, Young's modulus)"),

@@ -35,9 +35,10 @@ Excitation Excitation::from_kind(const std::string& kind, const std::vector<doub
   auto no_table = [&]() {
     if (!times.empty() || !values.empty())
       throw InvalidArgument("times and values are invalid for kind = \"" + kind +
-                            "\": only a \"table\" takes them");
+                            "\": only a \"table\", \"random\" or \"measured\" takes them");
   };
-  static const std::vector<std::string> kinds = {"constant", "sine", "table"};
+  static const std::vector<std::string> kinds = {"constant", "sine", "table", "random",
+                                                 "measured"};
   switch (require_choice("kind", kind, kinds)) {
     case 0:
       count(1, 1, "[value]");
@@ -52,9 +53,18 @@ Excitation Excitation::from_kind(const std::string& kind, const std::vector<doub
       if (parameters.size() > 3) sine.offset = parameters[3];
       return Excitation(sine);
     }
-    default:
+    case 2:
       count(0, 0, "empty (a table takes times and values)");
       return Excitation(TableExcitation{times, values});
+    case 3:
+      count(2, 2, "[seed, duration] (the frequencies as times, the psd as values)");
+      return Excitation(RandomVibrationSpec{times, values, parameters[0], parameters[1]});
+    default:
+      count(2, 2, "[scale, repeat] (repeat 0 or 1)");
+      if (parameters[1] != 0.0 && parameters[1] != 1.0)
+        throw InvalidArgument("repeat = " + format_value(parameters[1]) +
+                              " is invalid: must be 0 or 1");
+      return Excitation(MeasuredSpec{times, values, parameters[0], parameters[1] == 1.0});
   }
 }
 
@@ -77,8 +87,26 @@ Excitation::Excitation(TableExcitation table) {
   definition_ = std::move(table);
 }
 
+Excitation::Excitation(const RandomVibrationSpec& random)
+    : definition_(SampledExcitation{std::make_shared<const SampledExcitation::Data>(
+          SampledExcitation::Data{realise(random), "random", {random.seed, random.duration},
+                                  random.frequencies, random.psd})}) {}
+
+Excitation::Excitation(const MeasuredSpec& measured)
+    : definition_(SampledExcitation{std::make_shared<const SampledExcitation::Data>(
+          SampledExcitation::Data{realise(measured), "measured",
+                                  {measured.scale, measured.repeat ? 1.0 : 0.0}, measured.times,
+                                  measured.values})}) {
+  // Held outside the record: its slope jumps at both ends.
+  if (!measured.repeat) breakpoints_ = {measured.times.front(), measured.times.back()};
+}
+
+double Excitation::target_rms() const {
+  return definition_.index() == 3 ? std::get<3>(definition_).data->signal.target_rms : 0.0;
+}
+
 Excitation::Excitation(CallableExcitation f) : definition_(std::move(f)) {
-  if (!std::get<3>(definition_).function)
+  if (!std::get<kCallable>(definition_).function)
     throw InvalidArgument("function is invalid: must be callable");
 }
 
@@ -93,7 +121,8 @@ double Excitation::general_value(double t) const {
     const double fraction = (t - times[i - 1]) / (times[i] - times[i - 1]);
     return table.values[i - 1] + fraction * (table.values[i] - table.values[i - 1]);
   }
-  const auto& callable = std::get<3>(definition_);
+  if (definition_.index() == 3) return std::get<3>(definition_).data->signal.value(t);
+  const auto& callable = std::get<kCallable>(definition_);
   const double value = callable.function(t);
   if (!std::isfinite(value))
     throw SimulationError(t, "the excitation " + callable.description + " returned " +
@@ -118,6 +147,8 @@ double Excitation::time_scale() const {
       // scale: a 1e-7 s ramp capped every step of the run at 6e-9 s, even
       // with the ramp after t_end.)
       return std::numeric_limits<double>::infinity();
+    case 3:
+      return std::get<3>(definition_).data->signal.time_scale;
     default:
       return 0.0;
   }
@@ -126,7 +157,7 @@ double Excitation::time_scale() const {
 double Excitation::difference_step(double t) { return 1e-6 * std::max(1.0, std::abs(t)); }
 
 std::optional<Excitation::Jump> Excitation::jump_near(double t, double window) const {
-  if (definition_.index() != 3 || !(window > 0.0) || !std::isfinite(t)) return std::nullopt;
+  if (definition_.index() != kCallable || !(window > 0.0) || !std::isfinite(t)) return std::nullopt;
   double low = t - window, high = t + window;
   double f_low = general_value(low), f_high = general_value(high);
   const double change = std::abs(f_high - f_low);
@@ -167,6 +198,8 @@ double Excitation::derivative(double t) const {
       const std::size_t i = static_cast<std::size_t>(upper - times.begin());
       return (table.values[i] - table.values[i - 1]) / (times[i] - times[i - 1]);
     }
+    case 3:
+      return std::get<3>(definition_).data->signal.derivative(t);
     default: {
       const double h = difference_step(t);
       return (general_value(t + h) - general_value(t - h)) / (2.0 * h);
@@ -175,7 +208,7 @@ double Excitation::derivative(double t) const {
 }
 
 double Excitation::continuous_derivative(double t, const std::string& name) const {
-  if (definition_.index() != 3) return derivative(t);
+  if (definition_.index() != kCallable) return derivative(t);
   const double h = difference_step(t);
   const double before = general_value(t - h), now = general_value(t), after = general_value(t + h);
   const double left = now - before, right = after - now;
@@ -183,7 +216,7 @@ double Excitation::continuous_derivative(double t, const std::string& name) cons
   // curvature times h^2); a step shows in one half alone.
   if (std::abs(left - right) > 0.5 * (std::abs(left) + std::abs(right))) {
     if (const std::optional<Jump> jump = jump_near(t, h)) {
-      const std::string& description = std::get<3>(definition_).description;
+      const std::string& description = std::get<kCallable>(definition_).description;
       throw SimulationError(
           jump->time,
           name + " steps from " + format_value(jump->before) + " to " +
@@ -207,6 +240,10 @@ Excitation::Definition Excitation::definition() const {
     }
     case 2:
       return {"table", {}, std::get<2>(definition_).times, std::get<2>(definition_).values};
+    case 3: {
+      const auto& d = *std::get<3>(definition_).data;
+      return {d.kind, d.parameters, d.times, d.values};
+    }
     default:
       return {"callable", {}, {}, {}};
   }
@@ -228,8 +265,19 @@ std::string Excitation::describe() const {
     case 2:
       out << "Table(" << std::get<2>(definition_).times.size() << " points)";
       break;
+    case 3: {
+      const auto& d = *std::get<3>(definition_).data;
+      if (d.kind == "random")
+        out << "RandomVibration(" << d.times.size() << " breakpoints, " << d.times.front()
+            << "-" << d.times.back() << " Hz, seed=" << d.parameters[0]
+            << ", duration=" << d.parameters[1] << ")";
+      else
+        out << "Measured(" << d.times.size() << " samples, scale=" << d.parameters[0]
+            << (d.parameters[1] == 1.0 ? ", repeated)" : ")");
+      break;
+    }
     default:
-      out << std::get<3>(definition_).description;
+      out << std::get<kCallable>(definition_).description;
   }
   return out.str();
 }

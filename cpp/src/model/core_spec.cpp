@@ -14,6 +14,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/thread/thread.hpp"
+#include "leadscrew/model/elements/drive_elements.hpp"
 
 namespace leadscrew::model {
 
@@ -54,7 +55,7 @@ void write_load(std::ostringstream& out, const char* name, const Excitation& loa
   if (d.kind == "callable")
     throw InvalidArgument(std::string("loads.") + name + " = " + load.describe() +
                           " is invalid in a core spec: a callable cannot be written to a file "
-                          "(use a constant, a sine or a table)");
+                          "(use a constant, a sine, a table, a random vibration or a record)");
   out << "\n[loads." << name << "]  # " << unit << "\ntype = " << quoted(d.kind) << "\n";
   if (d.kind == "constant") {
     out << "value = " << number(d.parameters[0]) << "\n";
@@ -62,9 +63,16 @@ void write_load(std::ostringstream& out, const char* name, const Excitation& loa
     out << "amplitude = " << number(d.parameters[0]) << "\nomega = " << number(d.parameters[1])
         << "  # rad/s\nphase = " << number(d.parameters[2])
         << "  # rad\noffset = " << number(d.parameters[3]) << "\n";
+  } else if (d.kind == "random") {
+    out << "frequencies = " << number_list(d.times) << "  # Hz\npsd = " << number_list(d.values)
+        << "  # (" << unit << ")^2/Hz\nseed = " << number(d.parameters[0])
+        << "\nduration = " << number(d.parameters[1]) << "  # s\n";
   } else {
     out << "times = " << number_list(d.times) << "  # s\nvalues = " << number_list(d.values)
         << "\n";
+    if (d.kind == "measured")
+      out << "scale = " << number(d.parameters[0])
+          << "\nrepeat = " << (d.parameters[1] == 1.0 ? "true" : "false") << "\n";
   }
 }
 
@@ -194,12 +202,27 @@ class Reader {
         known(t, prefix, {"type", "times", "values"});
         return Excitation(TableExcitation{reals(t, prefix, "times"), reals(t, prefix, "values")});
       }
+      if (type == "random") {
+        known(t, prefix, {"type", "frequencies", "psd", "seed", "duration"});
+        RandomVibrationSpec r{reals(t, prefix, "frequencies"), reals(t, prefix, "psd")};
+        real(t, prefix, "seed", r.seed);
+        real(t, prefix, "duration", r.duration);
+        return Excitation(r);
+      }
+      if (type == "measured") {
+        known(t, prefix, {"type", "times", "values", "scale", "repeat"});
+        MeasuredSpec m{reals(t, prefix, "times"), reals(t, prefix, "values")};
+        real(t, prefix, "scale", m.scale);
+        flag(t, prefix, "repeat", m.repeat);
+        return Excitation(m);
+      }
     } catch (const InvalidArgument& e) {
       if (std::string(e.what()).rfind(source_.empty() ? "core spec" : source_, 0) == 0) throw;
       fail(prefix.substr(0, prefix.size() - 1), std::string("is invalid: ") + e.what());
     }
     fail(prefix + "type", "= " + quoted(type) +
-                              " is invalid: must be \"constant\", \"sine\" or \"table\"");
+                              " is invalid: must be \"constant\", \"sine\", \"table\", "
+                              "\"random\" or \"measured\"");
   }
 
   // An enumeration's name through its parser, the error naming the key.
@@ -260,6 +283,11 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
   write_load(out, "drive_torque", p.drive_torque, "N*m");
   write_load(out, "drive_speed", p.drive_speed, "rad/s");
   write_load(out, "axial_force", p.axial_force, "N");
+  // The housing's vibration where it has one (a spec without it is at rest).
+  if (!elements::given_base_excitation(p).empty()) {
+    write_load(out, "base_acceleration", p.base_acceleration, "m/s^2");
+    write_load(out, "base_angular_acceleration", p.base_angular_acceleration, "rad/s^2");
+  }
   write_load(out, "motor_voltage", p.motor_voltage, "V");
   const integrate::IntegratorOptions& o = options.integrator_options;
   out << "\n[options]\nintegrator = " << quoted(options.integrator)
@@ -374,7 +402,8 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.known(*t, "parameters.", names);
   }
   if (const toml::table* t = r.table(root, "", "loads")) {
-    r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force", "motor_voltage"});
+    r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force", "motor_voltage",
+                           "base_acceleration", "base_angular_acceleration"});
     if (const toml::table* l = r.table(*t, "loads.", "motor_voltage"))
       p.motor_voltage = r.load(*l, "loads.motor_voltage.");
     if (const toml::table* l = r.table(*t, "loads.", "drive_torque"))
@@ -383,6 +412,10 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
       p.drive_speed = r.load(*l, "loads.drive_speed.");
     if (const toml::table* l = r.table(*t, "loads.", "axial_force"))
       p.axial_force = r.load(*l, "loads.axial_force.");
+    if (const toml::table* l = r.table(*t, "loads.", "base_acceleration"))
+      p.base_acceleration = r.load(*l, "loads.base_acceleration.");
+    if (const toml::table* l = r.table(*t, "loads.", "base_angular_acceleration"))
+      p.base_angular_acceleration = r.load(*l, "loads.base_angular_acceleration.");
   }
   if (const toml::table* t = r.table(root, "", "options")) {
     const std::string at = "options.";

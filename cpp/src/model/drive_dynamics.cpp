@@ -162,6 +162,10 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   axial_force_ = model_.axial_load().force_at(t);
   forces_[motor.rotor] += applied_torque_;
   forces_[model_.axial_load().coordinate] += axial_force_;
+  if (const elements::BaseExcitation* base = model_.base()) {
+    base->add_forces(t, forces_, base_force_, base_torque_);
+    base_power_ = base->power(t, v);
+  }
   // A prescribed speed's derivative is taken when a mode is solved (solve):
   // Moreau-Jean sets states but never needs it, and takes a step of the
   // speed as an impulse, where a differentiating scheme cannot follow one.

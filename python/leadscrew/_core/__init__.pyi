@@ -130,6 +130,11 @@ class Excitation:
     @property
     def breakpoints(self) -> list[float]:
         ...
+    @property
+    def target_rms(self) -> float:
+        """
+        A random vibration's sqrt(integral of its PSD); 0 otherwise.
+        """
 class SimulationResult:
     def channel(self, name: str) -> typing.Any:
         """
@@ -212,6 +217,18 @@ class DriveParameters:
         ...
     @axial_force.setter
     def axial_force(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def base_acceleration(self) -> Excitation:
+        ...
+    @base_acceleration.setter
+    def base_acceleration(self, arg1: typing.Any) -> None:
+        ...
+    @property
+    def base_angular_acceleration(self) -> Excitation:
+        ...
+    @base_angular_acceleration.setter
+    def base_angular_acceleration(self, arg1: typing.Any) -> None:
         ...
     @property
     def clearance(self) -> float:

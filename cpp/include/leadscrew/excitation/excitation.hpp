@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "leadscrew/excitation/sampled.hpp"
 #include "leadscrew/excitation/sine.hpp"
 
 namespace leadscrew {
@@ -32,6 +33,19 @@ struct TableExcitation {
   std::vector<double> values;
 };
 
+// A random vibration or a measured record (sampled.hpp), with the definition
+// it was made from (for definition() and describe()). Immutable and shared:
+// a copy of the load (the parameters, a model's build) copies a pointer, not
+// its samples (a 10 s realisation of a 2 kHz profile is 6 MB).
+struct SampledExcitation {
+  struct Data {
+    SampledSignal signal;
+    std::string kind;  // "random" or "measured"
+    std::vector<double> parameters, times, values;
+  };
+  std::shared_ptr<const Data> data;
+};
+
 // f(t); may throw (the exception propagates out of the simulation).
 struct CallableExcitation {
   std::function<double(double)> function;
@@ -45,16 +59,21 @@ class Excitation {
   Excitation(SineExcitation s);
   Excitation(TableExcitation table);  // validates: sizes, strictly increasing finite times
   Excitation(CallableExcitation f);
+  Excitation(const RandomVibrationSpec& random);  // validates, realises (sampled.hpp)
+  Excitation(const MeasuredSpec& measured);
 
   // By name, as Python's Excitation(kind, parameters, times, values):
   // "constant" [value], "sine" [amplitude, omega, phase = 0, offset = 0],
-  // "table" (times, values). Wrong counts raise InvalidArgument.
+  // "table" (times, values), "random" ([seed, duration], frequencies [Hz] as
+  // times, psd as values), "measured" ([scale, repeat (0 or 1)], times,
+  // values). Wrong counts raise InvalidArgument.
   static Excitation from_kind(const std::string& kind, const std::vector<double>& parameters,
                               const std::vector<double>& times, const std::vector<double>& values);
 
   // The definition as from_kind takes it: kind "constant" (parameters
   // [value]), "sine" ([amplitude, omega, phase, offset]) or "table" (times,
-  // values); "callable" for a callable, which has no other.
+  // values), "random" or "measured" (as from_kind takes them); "callable"
+  // for a callable, which has no other.
   struct Definition {
     std::string kind;
     std::vector<double> parameters, times, values;
@@ -67,13 +86,16 @@ class Excitation {
         return std::get<0>(definition_).value;
       case 1:
         return sine_value(std::get<1>(definition_), t);
+      case 3:
+        return std::get<3>(definition_).data->signal.value(t);
       default:
         return general_value(t);
     }
   }
 
-  // d/dt of the function: exact for constant, sine and table (the slope to
-  // the right of a knot); a central difference for a callable.
+  // d/dt of the function: exact for constant, sine, table (the slope to
+  // the right of a knot) and a sampled signal (its cubic's); a central
+  // difference for a callable.
   double derivative(double t) const;
 
   // derivative(t) of a load the model differentiates and cannot follow
@@ -88,6 +110,8 @@ class Excitation {
 
   // Shortest time over which the function changes shape between its
   // breakpoints, what an integrator has to resolve there: a sine's period;
+  // a random vibration's period at its highest frequency, twice a record's
+  // shortest sample spacing;
   // +inf for a constant and for a table (linear between its knots, which are
   // breakpoints: however short an interval, no step straddles it); 0 for a
   // callable, which gives no hint. Integrators cap their steps by a fraction
@@ -114,6 +138,10 @@ class Excitation {
   const std::vector<double>& breakpoints() const noexcept { return breakpoints_; }
   std::string describe() const;
 
+  // A random vibration's sqrt(integral of its PSD) (its target RMS); 0 for
+  // every other kind.
+  double target_rms() const;
+
  private:
   // Inline: each Runge-Kutta stage of a sine-loaded model waits for it.
   // excitation::sine instead of std::sin: the same values to within 1 ulp
@@ -125,7 +153,10 @@ class Excitation {
   // The half width of a callable's central difference at t.
   static double difference_step(double t);
 
-  std::variant<ConstantExcitation, SineExcitation, TableExcitation, CallableExcitation>
+  // The callable last: its index is kCallable.
+  static constexpr std::size_t kCallable = 4;
+  std::variant<ConstantExcitation, SineExcitation, TableExcitation, SampledExcitation,
+               CallableExcitation>
       definition_;
   std::vector<double> breakpoints_;
 };

@@ -117,6 +117,11 @@ struct DriveParameters {
   bool speed_controlled = false;
   Excitation drive_speed;
   Excitation axial_force;
+  // The housing's vibration (elements/base_excitation.hpp): its axial
+  // acceleration [m/s^2] and its angular acceleration about the axis
+  // [rad/s^2]; a constant 0 (the default) is none.
+  Excitation base_acceleration;
+  Excitation base_angular_acceleration;
   // A DC motor (elements/dc_motor.hpp; scene section `motor`) drives the
   // rotor instead of drive_torque or drive_speed.
   bool dc_motor = false;
@@ -195,6 +200,8 @@ class DriveModel {
     return e_.dc_motor ? &*e_.dc_motor : nullptr;
   }
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
+  // The housing's vibration (nullptr: none; elements/base_excitation.hpp).
+  const elements::BaseExcitation* base() const noexcept { return e_.base ? &*e_.base : nullptr; }
   // The gear stage between the rotor and the rotor's coordinate (ratio 1: none).
   const elements::Gear& gear() const noexcept { return e_.motor.gear; }
   // The train's friction stages besides the thread (nullptr: none): the

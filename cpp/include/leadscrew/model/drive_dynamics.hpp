@@ -204,6 +204,12 @@ class DriveDynamics {
   // Spring, damper and load forces at the state last set (no thread forces).
   const CoordinateVector& forces() const noexcept { return forces_; }
   double axial_force() const noexcept { return axial_force_; }
+  // The housing's vibration at the state last set (elements/base_excitation.hpp):
+  // its inertial force on the translating bodies -a m, its torque on the
+  // rotating ones -alpha J, and its power (0 without one).
+  double base_force() const noexcept { return base_force_; }
+  double base_torque() const noexcept { return base_torque_; }
+  double base_power() const noexcept { return base_power_; }
   double kinetic_energy() const;
   double friction_factor(const ModeSpec& spec, double slip_acceleration) const;
 
@@ -257,6 +263,7 @@ class DriveDynamics {
   double preload_spring_ = 0.0;            // a lift-off nut's spring force S
   double damping_power_ = 0.0;
   double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
+  double base_force_ = 0.0, base_torque_ = 0.0, base_power_ = 0.0;
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;
   bool painleve_possible_ = false;
   bool slip_prescribed_ = false;

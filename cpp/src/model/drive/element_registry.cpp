@@ -15,7 +15,8 @@
   E(dc_motor)                          \
   E(end_stops)                         \
   E(preloaded_nut)                     \
-  D(train_friction)
+  D(train_friction)                    \
+  D(base_excitation)
 
 namespace leadscrew::model::drive {
 

@@ -21,7 +21,9 @@ bool DriveHybrid::load_driven() const {
   // k_t i: its roots are the state's.)
   // (The train's friction stages: the motor's friction is a constant term,
   // and the stage's sign a state's; their roots are sampled.)
-  return train_ == nullptr && model_.elements().forces.empty() &&
+  // (A base excitation's force is not a drive torque or an axial force: the
+  // sampled margins decide.)
+  return train_ == nullptr && model_.base() == nullptr && model_.elements().forces.empty() &&
          !model_.motor().speed_controlled &&
          std::all_of(elements_.begin(), elements_.end(),
                      [](const std::unique_ptr<Element>& element) {

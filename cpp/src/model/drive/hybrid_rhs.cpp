@@ -67,6 +67,8 @@ std::vector<double> DriveHybrid::breakpoints() const {
                             : p_.speed_controlled ? p_.drive_speed
                                                   : p_.drive_torque;
   times.insert(times.end(), drive.breakpoints().begin(), drive.breakpoints().end());
+  for (const Excitation* base : {&p_.base_acceleration, &p_.base_angular_acceleration})
+    times.insert(times.end(), base->breakpoints().begin(), base->breakpoints().end());
   return times;
 }
 
@@ -75,7 +77,8 @@ double DriveHybrid::max_step_hint() const {
                             : p_.speed_controlled ? p_.drive_speed
                                                   : p_.drive_torque;
   return integrate::max_step_from_time_scales(
-      {drive.time_scale(), p_.axial_force.time_scale()});
+      {drive.time_scale(), p_.axial_force.time_scale(), p_.base_acceleration.time_scale(),
+       p_.base_angular_acceleration.time_scale()});
 }
 
 }  // namespace leadscrew::model::drive

@@ -162,7 +162,8 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                               {p.dc_motor           ? &p.motor_voltage
                                : p.speed_controlled ? &p.drive_speed
                                                     : &p.drive_torque,
-                               &p.axial_force});
+                               &p.axial_force, &p.base_acceleration,
+                               &p.base_angular_acceleration});
     check_theta_stable_with_springs(model, options);
     return;
   }

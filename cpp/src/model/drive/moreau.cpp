@@ -24,7 +24,8 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
       motor_friction_state_(layout_.find_state("motor_friction_loss")),
       gear_state_(layout_.find_state("gear_loss")),
       motor_friction_channel_(layout_.find_channel("motor_friction_loss")),
-      gear_channel_(layout_.find_channel("gear_loss")) {
+      gear_channel_(layout_.find_channel("gear_loss")),
+      base_(layout_) {
   const int n = model.coordinate_count();
   q_.setZero(n);
   v_.setZero(n);
@@ -283,6 +284,11 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   }
   energy[kWorkAxial] +=
       p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
+  // The housing's vibration: its force at t + theta h (the step's) over the
+  // step's displacement.
+  if (base_.state >= 0)
+    y_next[base_.state] =
+        y[base_.state] + model_.base()->power(t + theta * h, CoordinateVector(q_ - q0));
   const double slip = model_.tangent_direction().dot(v_);
   // A sticking step (the LCP's stick basis) ends at zero slip exactly; its
   // computed slip is the round-off of terms of h f / m (1e-17 m/s against
@@ -600,6 +606,7 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
                 state[copper_state_];
     for (const int k : {motor_friction_state_, gear_state_})
       if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
+    if (base_.state >= 0) stored -= state[base_.state];  // (the base's work, with the work)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -627,6 +634,7 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (stop_channel_ >= 0) state.values[stop_channel_] = last_stop_force_;
   if (motor_friction_state_ >= 0) state.values[motor_friction_channel_] = y[motor_friction_state_];
   if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
+  base_.write(dynamics_, y, state);
   if (const elements::DcMotor* dc = model_.dc_motor()) {  // its channels (hybrid_motor.cpp)
     double* values = state.values.data() + dc_channel_;
     values[0] = dynamics_.motor_current();

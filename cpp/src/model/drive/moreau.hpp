@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "base_excitation.hpp"
 #include "channels.hpp"
 #include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/lcp/workspace.hpp"
@@ -130,6 +131,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // stops' force, the train's loss integrals and their channels.
   int current_state_, copper_state_, dc_channel_;
   int stop_channel_, motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
+  BaseSlots base_;  // the housing's vibration (base_excitation.hpp)
   CoordinateVector q_, v_, free_;
   Eigen::LLT<Square> solver_;
   ContactForces last_;

@@ -522,6 +522,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
     e.dc_motor = m;
   }
   e.load = AxialLoad{load, p.axial_force};
+  build_base_excitation(p, e);
   build_preloaded_nut(p, e);
   if (e.preloaded_nut) e.preloaded_nut->closes_exact_play = closes_exact_play;
   if (e.preloaded_nut && e.preloaded_nut->lift_off) {
@@ -548,7 +549,7 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
     return p.friction == "coulomb" ? "friction.mu_static = " + format_value(law.mu_static()) +
                                          " above friction.mu = " + format_value(law.mu())
                                    : "friction.law = \"" + p.friction + "\"";
-  return "";
+  return given_base_excitation(p);
 }
 
 }  // namespace leadscrew::model::elements

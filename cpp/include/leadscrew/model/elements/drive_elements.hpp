@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "leadscrew/model/elements/axial_load.hpp"
+#include "leadscrew/model/elements/base_excitation.hpp"
 #include "leadscrew/model/elements/dc_motor.hpp"
 #include "leadscrew/model/elements/gear.hpp"
 #include "leadscrew/model/elements/end_stop.hpp"
@@ -100,6 +101,7 @@ struct DriveElements {
   Motor motor;
   std::optional<DcMotor> dc_motor;  // on the rotor, its torque k_t i (Motor applies 0)
   AxialLoad load;
+  std::optional<BaseExcitation> base;  // the housing's vibration (absent: at rest)
   std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (any concept)
   // The motor's friction and a lossy or worm stage (rigid drive without play).
   std::optional<TrainFriction> train_friction;
@@ -118,6 +120,14 @@ struct DriveElements {
 // InvalidArgument naming the key, the value and the valid range). Normalizes
 // p: exact contacts without play are the thread without play.
 DriveElements build_drive_elements(DriveParameters& p);
+
+// The housing's vibration of p (loads.base_acceleration,
+// loads.base_angular_acceleration) into e.base, its weights from e's bodies
+// (none where both are a constant 0). Refuses the angular one behind a gear
+// stage (the rotor's axis relative to the screw's is not modelled).
+void build_base_excitation(const DriveParameters& p, DriveElements& e);
+// The first base excitation p gives, as "loads.<key> = <load>"; "" for none.
+std::string given_base_excitation(const DriveParameters& p);
 
 // Why the event-driven scheme cannot run the train's friction stages of p
 // (the concept, play, a thread law beyond plain Coulomb's; "" where it

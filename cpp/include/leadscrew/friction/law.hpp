@@ -109,6 +109,11 @@ class Law {
   // A set-valued law run by an ODE integrator: its velocity law (nullptr:
   // none, the law needs the event-driven scheme or Moreau-Jean).
   virtual std::unique_ptr<Law> regularized() const { return nullptr; }
+  // True if the law exerts no force at all: no coefficient (mu = mu_static
+  // = 0) and no viscous term. Only then has a touching flank no friction
+  // modes; mu = 0 alone leaves a static coefficient's stick and the viscous
+  // force -viscous gamma (docs/physics/friction_laws.md).
+  bool frictionless() const { return max_mu() == 0.0 && viscous() == 0.0; }
   // True if the law is exact Coulomb with one coefficient (mu_static = mu,
   // no viscous term): the thesis's single LCP decides stick and slip.
   bool plain_coulomb() const {

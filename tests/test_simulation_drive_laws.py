@@ -299,3 +299,40 @@ def test_mu_zero_keeps_the_static_coefficient(law, integrator):
     assert np.all(result["stick"][1:] == 1.0)
     assert np.max(np.abs(result["omega_drive"])) < 1e-15
     np.testing.assert_allclose(np.abs(result["friction_force"][1:]), stick_force, rtol=1e-9)
+
+
+# Issue 31, reproduction 3: LuGre on a lightly loaded thread (mu 3e-4 under
+# 410 N, sigma0 1e5 1/m: bristles of 3.7 nm) at the default tolerances.
+LUGRE_BRISTLES = {"thread": {"pitch": 0.0034, "mean_diameter": 0.03},
+                  "loads": {"drive_speed": {"type": "table", "times": [0.0081, 0.022, 0.042],
+                                            "values": [6.2, -1.5, 0.044]},
+                            "axial_force": 410.0}}
+LUGRE_T_END = 0.05754092868574357
+# The bristle state's resolution at the default rtol 1e-8 and atol 1e-10,
+# the result check's: 1000 (rtol + atol) of the bristles' range
+# (docs/physics/result_checks.md, "bristle_bound").
+BRISTLE_RESOLUTION = 1e3 * (1e-8 + 1e-10)
+
+
+@pytest.mark.parametrize("scale", [1, 10, 100])
+def test_lugre_bristles_stay_in_their_invariant_set_at_the_default_tolerances(scale):
+    """|z| <= mu_static / sigma0 (sigma1 = viscous = 0: |T| <= mu_static'
+    |N|) is invariant under the bristle law from z = 0. The deflection, in
+    metres and far below atol, had no error control of its own: 2.38 times
+    its bound at mu = 3e-4 (1.011 at mu x 10), every check passing. The
+    default run agrees with the converged one (rtol 1e-10, atol 1e-14) to
+    the bristle state's resolution."""
+    mu, mu_static, sigma0 = 3e-4 * scale, 3.7e-4 * scale, 1e5
+    scene = ls.Scene.from_dict({**LUGRE_BRISTLES, "friction": {
+        "law": "lugre", "mu": mu, "mu_static": mu_static, "sigma0": sigma0}})
+    result = ls.simulate(scene, LUGRE_T_END)
+    converged = ls.simulate(scene, LUGRE_T_END, rtol=1e-10, atol=1e-14)
+    share = np.max(np.abs(result["bristle_deflection"])) * sigma0 / mu_static
+    assert share <= 1.0 + BRISTLE_RESOLUTION
+    assert share == pytest.approx(
+        np.max(np.abs(converged["bristle_deflection"])) * sigma0 / mu_static,
+        rel=BRISTLE_RESOLUTION)
+    friction_share = np.abs(result["friction_force"]) / (mu_static * np.abs(result["normal_force"]))
+    assert np.max(friction_share) <= 1.0 + BRISTLE_RESOLUTION
+    assert result.checks["bristle_bound"]["passed"]
+    assert result.checks["bristle_friction"]["passed"]

@@ -7,10 +7,14 @@
 #include <Eigen/Core>
 
 #include "leadscrew/friction/law.hpp"
+#include "check_rows.hpp"
 
 namespace leadscrew::model {
 
 namespace {
+
+using check_rows::make_check;
+using check_rows::Worst;
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
@@ -48,30 +52,6 @@ bool all_finite(const double* values, std::size_t count) {
   for (; i < count; ++i) sums[0] += values[i] - values[i];
   return sums[0] == 0.0 && sums[1] == 0.0 && sums[2] == 0.0 && sums[3] == 0.0;
 }
-
-integrate::InvariantCheck make_check(const char* name, const char* what, const char* unit) {
-  integrate::InvariantCheck c;
-  c.name = name;
-  c.what = what;
-  c.unit = unit;
-  return c;
-}
-
-// Keeps the worst excess (value - bound) of an invariant value <= bound.
-struct Worst {
-  integrate::InvariantCheck& check;
-  double excess = -std::numeric_limits<double>::infinity();
-  void offer(double value, double bound, double t) {
-    const double e = value - bound;
-    if (!(e <= excess)) {  // the first, a larger one, or NaN
-      excess = e;
-      check.value = value;
-      check.bound = bound;
-      check.time = t;
-    }
-    if (!(value <= bound)) check.passed = false;
-  }
-};
 
 }  // namespace
 
@@ -446,6 +426,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
                         time[i]);
   for (integrate::InvariantCheck* c : {&power, &loss, &cone, &other, &law, &flank, &balance})
     checks.push_back(*c);
+  check_bristle_bound(spec, result);
 }
 
 }  // namespace leadscrew::model

@@ -25,7 +25,10 @@
 //                   gradient bound over the state (momenta, spring forces,
 //                   one per work or loss integral); for Moreau-Jean time
 //                   stepping, which dissipates by construction, the energy
-//                   it creates (-energy_residual) within 1e-3 of E.
+//                   it creates (-energy_residual) within 1e-3 of E;
+//   bristle_bound   LuGre: |z| <= max(mu, mu_static) / sigma0, the law's
+//                   invariant set, and its friction inside the force that
+//                   allows (bristle_friction).
 #pragma once
 
 #include <functional>
@@ -117,5 +120,11 @@ constexpr double kFrictionBookingShare = 1e-2;
 
 // Fills result.checks. Does not throw (integrate::enforce_checks does).
 void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& result);
+
+// LuGre's bristles (bristle_check.cpp; check_result calls it):
+// bristle_bound, |z| <= max(mu, mu_static) / sigma0 within the bristle
+// state's resolution, and bristle_friction, the friction inside the force
+// that bound allows. Appends both (applies: the law has bristles).
+void check_bristle_bound(const ResultCheckSpec& spec, integrate::SimulationResult& result);
 
 }  // namespace leadscrew::model

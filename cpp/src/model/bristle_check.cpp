@@ -34,10 +34,10 @@ void check_bristle_bound(const ResultCheckSpec& spec, integrate::SimulationResul
       "|friction_force| <= max(mu, mu_static)' |normal_force| + sigma1' |normal_force| |z'| + "
       "viscous |slip_velocity| (LuGre's largest friction, from the bristles' bound)",
       "N");
-  const int z_index = result.channel_index("bristle_deflection");
-  deflection.applies = force.applies = spec.law &&
-                                       spec.law->resolution() == friction::Resolution::bristle &&
-                                       z_index >= 0;
+  // (the law first: the other laws' runs pay no channel lookup)
+  const bool bristle = spec.law && spec.law->resolution() == friction::Resolution::bristle;
+  const int z_index = bristle ? result.channel_index("bristle_deflection") : -1;
+  deflection.applies = force.applies = z_index >= 0;
   if (deflection.applies) {
     const friction::Law& law = *spec.law;
     const std::size_t n = result.point_count(), width = result.channel_count();

@@ -60,7 +60,7 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   // slip), then every pointwise check.
   std::vector<integrate::InvariantCheck>& checks = result.checks;
   checks.clear();
-  checks.reserve(9);
+  checks.reserve(11);  // (with check_bristle_bound's two)
   const std::size_t n = result.point_count();
   const std::size_t channels = result.channel_count();
 

@@ -187,6 +187,29 @@ def test_stribeck_slip_friction_follows_the_curve_and_the_viscous_term():
 # --- LuGre -----------------------------------------------------------------------
 
 
+def test_lugre_bristles_stay_in_their_invariant_set_at_the_default_tolerances():
+    """Issue 31, reproduction 3 on the block: bristles of 3.7 nm (mu 3e-4,
+    mu_static 3.7e-4, sigma0 1e5 1/m) under a force that reverses. Their
+    deflection, in metres below atol, left |z| <= mu_static / sigma0 by
+    1.4 % at the default tolerances; carried at its own scale it stays in,
+    and agrees with the converged run (rtol 1e-10, atol 1e-14) to the
+    bristle state's resolution, 1000 (rtol + atol) (result_checks.md,
+    "bristle_bound")."""
+    mu, mu_static, sigma0 = 3e-4, 3.7e-4, 1e5
+    block = ls.FrictionBlock(1.0, mu, 9.81, ls.Table([0.0, 0.0081, 0.022, 0.042],
+                                                     [0.0, 2.0, -2.0, 0.01]),
+                             mu_static=mu_static)
+    resolution = 1e3 * (1e-8 + 1e-10)
+    result = ls.simulate(block, 0.0575, friction="lugre", sigma0=sigma0)
+    converged = ls.simulate(block, 0.0575, friction="lugre", sigma0=sigma0, rtol=1e-10,
+                            atol=1e-14)
+    share = np.max(np.abs(result["bristle_deflection"])) * sigma0 / mu_static
+    assert share <= 1.0 + resolution
+    assert share == pytest.approx(
+        np.max(np.abs(converged["bristle_deflection"])) * sigma0 / mu_static, rel=resolution)
+    assert result.checks["bristle_bound"]["passed"]
+
+
 def test_lugre_presliding_is_a_spring_of_stiffness_sigma0_normal_force():
     """A small force (1e-3 of the breakaway: the bristles' nonlinearity,
     sigma0 z / mu, stays at that level) displaces the block by F / (sigma0 N)

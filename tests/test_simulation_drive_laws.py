@@ -227,3 +227,112 @@ def test_every_law_dissipates_and_closes_the_account(law, concept, mu, static_ex
         power = result["friction_force"] * result["slip_velocity"]
         at_root = np.append(np.diff(result.t) == 0.0, False)
         assert np.all(power[~at_root] <= 1e-9 * work)
+
+
+# Issue 31, reproduction 7: a drive with mu = 0 and a viscous term (and one
+# with mu = 0 under a static coefficient) was taken as frictionless: no
+# friction at all where the flanks touch.
+ZERO_MU_DRIVE = {"concept": "rigid", "thread": {"pitch": 0.002, "mean_diameter": 0.012},
+                 "load": {"mass": 1.0}, "loads": {"drive_torque": 0.02, "axial_force": -5.0}}
+
+
+def viscous_only_speed(scene, viscous, t):
+    """The rigid drive (drive = 'screw', right-hand, square thread) with a
+    friction force -viscous gamma along the helix and nothing else: the slip
+    speed is gamma = omega r / cos(alpha), so the friction's torque on the
+    rotor is -viscous (r / cos(alpha))^2 omega, and with the power of the
+    axial force F u' = -p F omega the rotor follows
+      (J + m p^2) omega' = M - p F - k omega,  k = viscous (r / cos(alpha))^2,
+    from rest: omega = (M - p F) / k (1 - exp(-k t / (J + m p^2)))."""
+    d, derived = scene.to_dict(), scene.derived()
+    pitch, diameter = d["thread"]["pitch"], d["thread"]["mean_diameter"]
+    p, r, alpha = pitch / (2 * math.pi), diameter / 2, tr.lead_angle(pitch, diameter)
+    inertia = d["rotor"]["inertia"] + derived["screw_inertia"] + (
+        d["load"]["mass"] + derived["nut_mass"]) * p ** 2
+    k = viscous * (r / math.cos(alpha)) ** 2
+    drive = d["loads"]["drive_torque"] - p * d["loads"]["axial_force"]
+    return drive / k * (1.0 - np.exp(-k * np.asarray(t) / inertia))
+
+
+@pytest.mark.parametrize("integrator", ["event_driven", "cvode_bdf", "moreau"])
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut"])
+def test_mu_zero_keeps_the_viscous_term(concept, integrator):
+    """Stribeck with mu = 0 and viscous = 1 N s/m: T = -viscous gamma where
+    the flanks touch (friction_laws.md), at every row and every scheme; the
+    rigid drive's speed is the viscous contact's closed form (the issue's
+    run reported T = 0 against viscous |gamma| = 0.09 N)."""
+    viscous = 1.0
+    scene = ls.Scene.from_dict({**ZERO_MU_DRIVE, "concept": concept,
+                                "friction": {"law": "stribeck", "mu": 0.0, "viscous": viscous}})
+    result = ls.simulate(scene, 0.05, integrator=integrator)
+    slip, friction = result["slip_velocity"], result["friction_force"]
+    assert np.max(np.abs(slip)) > 0.08
+    np.testing.assert_allclose(friction, -viscous * slip, rtol=1e-12, atol=1e-15)
+    # the whole friction power is the loss: viscous gamma^2 >= 0
+    assert np.all(np.diff(result["friction_loss"]) >= 0.0)
+    if concept == "rigid":
+        expected = viscous_only_speed(scene, viscous, result.t)
+        # event-driven and cvode at their tolerances; Moreau-Jean's
+        # first-order error of a step against the time constant
+        # (J + m p^2) / k = 2.0 s: dt / 2.0 s = 5e-5
+        rel = 5e-5 if integrator == "moreau" else 1e-6
+        np.testing.assert_allclose(result["omega_drive"], expected, rtol=rel, atol=1e-12)
+
+
+@pytest.mark.parametrize("law", ["coulomb", "stribeck"])
+@pytest.mark.parametrize("integrator", ["event_driven", "moreau"])
+def test_mu_zero_keeps_the_static_coefficient(law, integrator):
+    """mu = 0 under mu_static = 0.5: the drive at rest sticks where the
+    force that holds it lies in mu_static's cone. The stick force of the
+    rigid drive (rigid_drive_reference's T_st, lam_st): (M / r) cos(alpha)
+    - F sin(alpha) = 0.598 N against a normal force of 4.98 N, 0.12 of it;
+    the event-driven scheme took the thread as frictionless and turned at
+    2.5 rad/s with every check passing."""
+    scene = ls.Scene.from_dict({**ZERO_MU_DRIVE, "loads": {"drive_torque": 0.002,
+                                                           "axial_force": -5.0},
+                                "friction": {"law": law, "mu": 0.0, "mu_static": 0.5}})
+    result = ls.simulate(scene, 0.05, integrator=integrator)
+    alpha, r = tr.lead_angle(0.002, 0.012), 0.006
+    stick_force = 0.002 / r * math.cos(alpha) + 5.0 * math.sin(alpha)
+    stick_normal = 5.0 * math.cos(alpha) - 0.002 / r * math.sin(alpha)
+    assert stick_force < 0.5 * stick_normal
+    assert np.all(result["stick"][1:] == 1.0)
+    assert np.max(np.abs(result["omega_drive"])) < 1e-15
+    np.testing.assert_allclose(np.abs(result["friction_force"][1:]), stick_force, rtol=1e-9)
+
+
+# Issue 31, reproduction 3: LuGre on a lightly loaded thread (mu 3e-4 under
+# 410 N, sigma0 1e5 1/m: bristles of 3.7 nm) at the default tolerances.
+LUGRE_BRISTLES = {"thread": {"pitch": 0.0034, "mean_diameter": 0.03},
+                  "loads": {"drive_speed": {"type": "table", "times": [0.0081, 0.022, 0.042],
+                                            "values": [6.2, -1.5, 0.044]},
+                            "axial_force": 410.0}}
+LUGRE_T_END = 0.05754092868574357
+# The bristle state's resolution at the default rtol 1e-8 and atol 1e-10,
+# the result check's: 1000 (rtol + atol) of the bristles' range
+# (docs/physics/result_checks.md, "bristle_bound").
+BRISTLE_RESOLUTION = 1e3 * (1e-8 + 1e-10)
+
+
+@pytest.mark.parametrize("scale", [1, 10, 100])
+def test_lugre_bristles_stay_in_their_invariant_set_at_the_default_tolerances(scale):
+    """|z| <= mu_static / sigma0 (sigma1 = viscous = 0: |T| <= mu_static'
+    |N|) is invariant under the bristle law from z = 0. The deflection, in
+    metres and far below atol, had no error control of its own: 2.38 times
+    its bound at mu = 3e-4 (1.011 at mu x 10), every check passing. The
+    default run agrees with the converged one (rtol 1e-10, atol 1e-14) to
+    the bristle state's resolution."""
+    mu, mu_static, sigma0 = 3e-4 * scale, 3.7e-4 * scale, 1e5
+    scene = ls.Scene.from_dict({**LUGRE_BRISTLES, "friction": {
+        "law": "lugre", "mu": mu, "mu_static": mu_static, "sigma0": sigma0}})
+    result = ls.simulate(scene, LUGRE_T_END)
+    converged = ls.simulate(scene, LUGRE_T_END, rtol=1e-10, atol=1e-14)
+    share = np.max(np.abs(result["bristle_deflection"])) * sigma0 / mu_static
+    assert share <= 1.0 + BRISTLE_RESOLUTION
+    assert share == pytest.approx(
+        np.max(np.abs(converged["bristle_deflection"])) * sigma0 / mu_static,
+        rel=BRISTLE_RESOLUTION)
+    friction_share = np.abs(result["friction_force"]) / (mu_static * np.abs(result["normal_force"]))
+    assert np.max(friction_share) <= 1.0 + BRISTLE_RESOLUTION
+    assert result.checks["bristle_bound"]["passed"]
+    assert result.checks["bristle_friction"]["passed"]

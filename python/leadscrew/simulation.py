@@ -589,6 +589,9 @@ def simulate(
             on the flexible concepts and with exact or penalty play.
         rtol, atol: integration tolerances of the ODE and event-driven
             integrators (default 1e-8 and 1e-10; refused with ``"moreau"``).
+            A Scene whose law runs velocity-regularized refuses an atol
+            whose slip velocity spans 1/20 of its stick band 1 / k_v
+            (docs/physics/result_checks.md, "Options refused before a run").
         dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,
             1e-4 for a Scene; refused with the other integrators).
         t_eval: output times [s], at least one, in [0, t_end]; default

@@ -129,6 +129,7 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
   spec.time_step = spec.time_stepping ? options.dt : 0.0;
   spec.rtol = options.integrator_options.rtol;
   spec.atol = options.integrator_options.atol;
+  spec.rows_are_steps = options.output.t_eval.empty();
   spec.momentum_factor = std::sqrt(2.0 * block.mass);
   spec.force_factor = std::sqrt(2.0 * block.stiffness);
   spec.quadratures = block::kStateSize - 2;

@@ -100,6 +100,13 @@ class Law {
   virtual double bristle_rate(double /*slip*/, double /*z*/) const { return 0.0; }
   virtual double bristle_coefficient(double /*slip*/, double /*z*/) const { return 0.0; }
   virtual double bristle_stiffness() const { return 0.0; }  // sigma0 [1/m]
+  // The largest deflection the bristles reach from rest [m],
+  // max(mu, mu_static) / sigma0 (0: no bristles): the set |z| <= it is
+  // invariant under z' = gamma - sigma0 |gamma| z / mu(|gamma|), since on
+  // its boundary z' points inward wherever mu(|gamma|) <= max(mu, mu_static).
+  // The integrators carry z / bristle_range(), a state of size 1, whose
+  // error they control at its own scale (docs/physics/friction_laws.md).
+  virtual double bristle_range() const { return 0.0; }
   // The law's own part of the energy account, per unit normal force: the
   // energy its internal state stores (LuGre's bristles, sigma0 z^2 / 2 [m])
   // and the power of the friction that goes into it rather than into the
@@ -109,6 +116,11 @@ class Law {
   // A set-valued law run by an ODE integrator: its velocity law (nullptr:
   // none, the law needs the event-driven scheme or Moreau-Jean).
   virtual std::unique_ptr<Law> regularized() const { return nullptr; }
+  // True if the law exerts no force at all: no coefficient (mu = mu_static
+  // = 0) and no viscous term. Only then has a touching flank no friction
+  // modes; mu = 0 alone leaves a static coefficient's stick and the viscous
+  // force -viscous gamma (docs/physics/friction_laws.md).
+  bool frictionless() const { return max_mu() == 0.0 && viscous() == 0.0; }
   // True if the law is exact Coulomb with one coefficient (mu_static = mu,
   // no viscous term): the thesis's single LCP decides stick and slip.
   bool plain_coulomb() const {

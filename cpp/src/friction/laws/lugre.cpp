@@ -29,6 +29,9 @@ class LuGre final : public Law {
     return sigma0_ * z + sigma1_ * bristle_rate(slip, z);
   }
   double bristle_stiffness() const override { return sigma0_; }
+  double bristle_range() const override {
+    return std::max(curve_.mu, curve_.mu_static) / sigma0_;
+  }
   // The bristle energy sigma0 z^2 / 2 per unit normal force is elastic
   // energy of the account; the friction's power sigma0 z z' goes into it.
   double stored_energy(double z) const override { return 0.5 * sigma0_ * z * z; }

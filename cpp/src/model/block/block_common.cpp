@@ -43,7 +43,7 @@ void write_channels(const FrictionBlock& block, double kinetic0, double /*elasti
   out[10] = y[kWorkForce] - friction_loss - (kinetic - kinetic0) - elastic;
   out[11] = spring;
   out[12] = elastic;
-  if (bristle) out[13] = y[kBristle];
+  if (bristle) out[13] = row.bristle_deflection;
 }
 
 }  // namespace leadscrew::model::block

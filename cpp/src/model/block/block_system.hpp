@@ -18,7 +18,8 @@
 namespace leadscrew::model::block {
 
 // State: position, velocity, the two work integrals, and LuGre's bristle
-// deflection (kBristle) where the law has it.
+// state (kBristle: the deflection over friction::Law::bristle_range) where
+// the law has it.
 enum State { kPosition = 0, kVelocity = 1, kWorkForce = 2, kFrictionLoss = 3, kStateSize = 4 };
 constexpr int kBristle = 4;
 
@@ -32,6 +33,7 @@ struct Row {
   double friction = 0.0;      // lambda_T (opposing +u)
   bool stick = false;
   double bristle_energy = 0.0;  // LuGre's |N| sigma0 z^2 / 2
+  double bristle_deflection = 0.0;  // LuGre's z [m]
 };
 
 // Writes a row of channel_names(bristle): the state y at t, and `row`.

@@ -5,7 +5,9 @@
 //   bristle:   z' = v - sigma0 |v| z / mu(|v|),
 //              lambda_T = N (sigma0 z + sigma1 z') + viscous v.
 // The state integrates lambda_T v as the friction's power; the bristles'
-// energy N sigma0 z^2 / 2 is elastic (block_common.cpp).
+// energy N sigma0 z^2 / 2 is elastic (block_common.cpp). The bristle state
+// is z / bristle_range (friction::Law::bristle_range), of size 1: its error
+// is controlled at its own scale, not at atol in metres.
 #include <cmath>
 
 #include "block_system.hpp"
@@ -20,6 +22,7 @@ class SmoothBlock final : public integrate::HybridSystem {
       : block_(block),
         law_(law),
         bristle_(law.resolution() == friction::Resolution::bristle),
+        bristle_range_(law.bristle_range()),
         force_(block.force),
         kinetic0_(initial_kinetic(block)) {}
 
@@ -31,12 +34,12 @@ class SmoothBlock final : public integrate::HybridSystem {
     const double force = force_(t);
     const double spring = block_.spring_force(t, y[kPosition]);
     double bristle_rate = 0.0;
-    const double friction = friction_force(velocity, bristle_ ? y[kBristle] : 0.0, bristle_rate);
+    const double friction = friction_force(velocity, deflection(y), bristle_rate);
     ydot[kPosition] = velocity;
     ydot[kVelocity] = (force + spring - friction) / block_.mass;
     ydot[kWorkForce] = applied_power(block_, force, spring, velocity);
     ydot[kFrictionLoss] = friction * velocity;
-    if (bristle_) ydot[kBristle] = bristle_rate;
+    if (bristle_) ydot[kBristle] = bristle_rate / bristle_range_;
   }
 
   void select_initial_mode(double, double*) override {}
@@ -51,7 +54,7 @@ class SmoothBlock final : public integrate::HybridSystem {
     row.force = force_(t);
     const double spring = block_.spring_force(t, y[kPosition]);
     double bristle_rate = 0.0;
-    const double z = bristle_ ? y[kBristle] : 0.0;
+    const double z = deflection(y);
     row.friction = friction_force(y[kVelocity], z, bristle_rate);
     row.acceleration = (row.force + spring - row.friction) / block_.mass;
     // "stick": within the law's regularization band, or (LuGre) the
@@ -60,12 +63,16 @@ class SmoothBlock final : public integrate::HybridSystem {
                                law_.slip_mu(std::abs(y[kVelocity])) * block_.normal_force()
                          : std::abs(law_.gain() * y[kVelocity]) <= 1.0;
     row.bristle_energy = bristle_ ? block_.normal_force() * law_.stored_energy(z) : 0.0;
+    row.bristle_deflection = z;
     write_channels(block_, kinetic0_, 0.0, t, y, row, bristle_, out);
   }
 
   std::vector<double> breakpoints() const override { return block_.force.breakpoints(); }
 
  private:
+  // The bristles' deflection z [m] from the state (0 without bristles).
+  double deflection(const double* y) const { return bristle_ ? y[kBristle] * bristle_range_ : 0.0; }
+
   double friction_force(double velocity, double z, double& bristle_rate) const {
     const double normal = block_.normal_force();
     if (bristle_) {
@@ -78,6 +85,7 @@ class SmoothBlock final : public integrate::HybridSystem {
   const FrictionBlock& block_;
   const friction::Law& law_;
   bool bristle_;
+  double bristle_range_;
   LoadAtTime force_;
   double kinetic0_;
 };

@@ -60,6 +60,7 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   spec.time_stepping = time_stepping;
   spec.rtol = options.integrator_options.rtol;
   spec.atol = options.integrator_options.atol;
+  spec.rows_are_steps = options.output.t_eval.empty();
   // (An element's kinetic-like energy, a DC motor's L i^2 / 2: |L i| <= sqrt(2 E L).)
   double momentum_mass = model.mass().sum();
   for (const Declaration& d : declarations)

@@ -21,7 +21,8 @@ namespace {
 void declare_bristles(const DriveModel& model, bool bristle, Declaration& d) {
   (void)model;
   if (!bristle) return;
-  d.states = {"bristle_deflection", "bristle_energy"};
+  // z / bristle_range (in [-1, 1]: its error controlled at its own scale)
+  d.states = {"bristle_share", "bristle_energy"};
   d.channels = lugre_bristles_kind().catalog;
 }
 
@@ -35,7 +36,7 @@ const ElementKind& lugre_bristles_kind() {
 
 DriveHybrid::ConstrainedSolver::ConstrainedSolver(DriveHybrid& hybrid)
     : ModeSolver(hybrid),
-      bristle_state_(hybrid.layout_.find_state("bristle_deflection")),
+      bristle_state_(hybrid.layout_.find_state("bristle_share")),
       bristle_channel_(hybrid.layout_.find_channel("bristle_deflection")),
       base_(hybrid.layout_) {}
 
@@ -76,11 +77,11 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
     // deflected bristle. What remains, |N|' (sigma0^2 |gamma| z^2 / mu(|gamma|)
     // + sigma1 z' gamma) + viscous gamma^2, is the loss (sigma1 z' gamma can be
     // negative: LuGre is passive only for small sigma1).
-    const double z = y[bristle];
+    const double z = dynamics.bristle();  // y[bristle] * bristle_range (set)
     const double rate = dynamics.law().bristle_rate(dynamics.slip_velocity(), z);
     const double stored = std::abs(s.normal_force) * model.flank_factor() *
                           dynamics.law().storing_power(dynamics.slip_velocity(), z);
-    ydot[bristle] = rate;
+    ydot[bristle] = rate / h_.bristle_range_;
     ydot[bristle + 1] = stored;
     energy[kFrictionLoss] -= stored;
   }
@@ -110,7 +111,7 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   ChannelState state = channel_state(h_.dynamics_);
   const int bristle = bristle_state_;
   if (bristle >= 0) {
-    state.values[bristle_channel_] = y[bristle];
+    state.values[bristle_channel_] = h_.dynamics_.bristle();  // z (set)
     state.elastic += y[bristle + 1];  // the bristles' stored energy
   }
   // Stick holds the slip velocity at zero; the state carries the integrator's

@@ -117,7 +117,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     layout_.expand(t, y, q_, v_);
     if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
     dynamics_.set_state(t, q_, v_);
-    if (bristle_state_ >= 0) dynamics_.set_bristle(y[bristle_state_]);
+    if (bristle_state_ >= 0) dynamics_.set_bristle(y[bristle_state_] * bristle_range_);
   }
 
   // mode_solver.hpp: the current mode at a state y (the constrained solve,
@@ -227,8 +227,12 @@ class DriveHybrid final : public integrate::HybridSystem {
   DriveDynamics dynamics_;
   StateLayout layout_;
   // The declared states DriveDynamics reads (set): a DC motor's current
-  // and LuGre's bristle deflection (-1: none), found once by name.
+  // and LuGre's bristle state (-1: none), found once by name. The bristle
+  // state is z / bristle_range_ (friction::Law::bristle_range): a
+  // deflection of nanometres, carried in metres, had its error controlled
+  // by atol alone and left its invariant bound (issue 31, reproduction 3).
   int current_state_, bristle_state_;
+  double bristle_range_;
   double bounce_threshold_;
   bool backlash_;
   bool touching_ = false;  // a penalty flank is penetrated

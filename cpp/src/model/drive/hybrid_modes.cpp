@@ -104,10 +104,11 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   // (A lift-off nut's half B bears on its flank in open play too: friction.)
   const elements::PreloadedNut* lift_off = model_.preloaded_nut();
   if (lift_off && !lift_off->lift_off) lift_off = nullptr;
-  if (mode_.contact == ThreadContact::open || model_.effective_mu() == 0.0 ||
+  if (mode_.contact == ThreadContact::open || dynamics_.law().frictionless() ||
       (mode_.contact == ThreadContact::penalty && !touching_ && !regularized && !lift_off)) {
     // No contact (an open play, or a penalty flank not penetrated), or a
-    // frictionless flank: no stick, no slip, no friction events.
+    // frictionless law (no coefficient, no viscous term): no stick, no
+    // slip, no friction events.
     mode_.friction = FrictionMode::none;
     mode_.slip_sign = 0;
     open_if_pulling();

@@ -168,6 +168,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
     return;
   }
   check_meaningful_tolerances(options.integrator_options, options.output.t_end);
+  drive::check_slip_resolved(model, integrator, options);
   if (!options.smooth_integrator.empty())
     require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
   // What make_integrator checks as the smooth phases start, the method's

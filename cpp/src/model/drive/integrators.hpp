@@ -34,6 +34,13 @@ std::string ode_method(const DriveModel& model, const std::string& integrator,
 // from its thread pair's kind of play and its friction law.
 const std::vector<std::string>& model_integrators(const DriveModel& model);
 
+// A velocity-regularized law (arctan_velocity; a set-valued law's
+// regularization in an ODE method) needs the slip velocity resolved within
+// its stick band: InvalidArgument naming atol where k_v |W_T| atol > 0.05
+// (slip_resolution_check.cpp).
+void check_slip_resolved(const DriveModel& model, const std::string& integrator,
+                         const DriveSimulationOptions& options);
+
 // Moreau-Jean's dt, theta and step count from the options.
 integrate::MoreauOptions moreau_options(const DriveSimulationOptions& options);
 

@@ -154,7 +154,7 @@ class ExplicitRungeKutta final : public Integrator {
   bool probe_step_ = false;         // the next step is the first after a (re)start
   float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
-  // The last OutsideDomain a trial stage raised (null: none since the last
+  // The last RefusedState a trial stage raised (null: none since the last
   // accepted step): rejected as a non-finite stage, raised where shorter
   // steps meet it too.
   std::exception_ptr outside_;

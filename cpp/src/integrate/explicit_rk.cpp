@@ -469,7 +469,8 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       probe_step_ = false;
     }
     ++stats_.steps;
-    if (!fixed && stiffness_.stiff_after(tableau_, stats_.steps, n_, k_, f_end_))
+    if (!fixed && stiffness_.due() &&
+        stiffness_.stiff_after(tableau_, stats_.steps, n_, k_, f_end_))
       stop_if_stiff(h, t_new, t_out);
     if (!fixed) {
       // PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.

@@ -39,10 +39,22 @@ int stiffness_stage(const ButcherTableau& tableau);
 
 class StiffnessTest {
  public:
-  void reset() { suspected_ = 0, non_stiff_ = 0, h_lambda_ = 0.0, stiff_since_ = 0; }
-  // After the `accepted`-th accepted step, with its stages k (stage-major,
-  // n states each) and f_end = f(t + h, y_new): true where the problem has
-  // now looked stiff for kStiffSteps tested steps in a row.
+  void reset() {
+    suspected_ = 0, non_stiff_ = 0, h_lambda_ = 0.0, stiff_since_ = 0;
+    countdown_ = kStiffnessInterval;
+  }
+  // Whether the step just accepted is tested: every kStiffnessInterval-th,
+  // and every one while suspected (inline: one decrement per step).
+  bool due() {
+    if (suspected_ > 0) return true;
+    if (--countdown_ > 0) return false;
+    countdown_ = kStiffnessInterval;
+    return true;
+  }
+  // After the `accepted`-th accepted step (one that is due), with its
+  // stages k (stage-major, n states each) and f_end = f(t + h, y_new): true
+  // where the problem has now looked stiff for kStiffSteps tested steps in a
+  // row.
   bool stiff_after(const ButcherTableau& tableau, long accepted, int n, const double* k,
                    const double* f_end);
   // The last estimate of h lambda (tableau.stiffness_threshold: where a step
@@ -57,6 +69,7 @@ class StiffnessTest {
   int non_stiff_ = 0;
   double h_lambda_ = 0.0;
   long stiff_since_ = 0;
+  long countdown_ = kStiffnessInterval;
 };
 
 }  // namespace leadscrew::integrate

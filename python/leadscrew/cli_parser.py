@@ -98,8 +98,7 @@ def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
                              "with the others)")
     parser.add_argument("--max-steps", type=int, default=None,
                         help="bound on integrator steps, Moreau's fixed steps t_end / dt too "
-                             "(default 1000000; a lightly damped drive rattling in its play "
-                             "may need more)")
+                             "(default 1e6 per simulated second, at least 1e6)")
     parser.add_argument("--points", type=int, default=DEFAULT_POINTS,
                         help=f"output points, evenly spaced over [0, t_end] (default "
                              f"{DEFAULT_POINTS}); 0 writes every integrator step and event")

@@ -83,6 +83,8 @@ void check_tableau(const ButcherTableau& t) {
 
 ButcherTableau checked_tableau(ButcherTableau tableau) {
   check_tableau(tableau);
+  tableau.stiffness_stage = stiffness_stage(tableau);
+  tableau.stiffness_threshold = kStiffShareOfBoundary * real_stability_boundary(tableau);
   return tableau;
 }
 
@@ -128,6 +130,7 @@ void ExplicitRungeKutta::initialize(OdeSystem& system, double t0,
   weights_ = take(stages);
   root_info_.assign(m, 0);
   stats_ = IntegratorStats{};
+  stiffness_.reset();
   h_ = options_.first_step;  // 0: estimated at the first step
   system_ = &system;
   start(t0, y0);
@@ -305,13 +308,15 @@ bool ExplicitRungeKutta::stages(double t, const double* y, double h, double* k, 
 ExplicitRungeKutta::StepOutcome ExplicitRungeKutta::attempt(double h, double* error_square) {
   try {
     return attempt_stages(h, error_square);
-  } catch (const OutsideDomain&) {
-    // A trial state off the model's domain (a stage of a step too long put
-    // the nut beyond the screw's end): rejected as a non-finite stage, and
-    // raised only where shorter steps meet it too, as the SUNDIALS
-    // integrators do (sundials_context.cpp). A fuzz run found flexible
-    // drives on rk_verner6 ended at their first step's stage, the nut
-    // 15 mm off a screw it never left.
+  } catch (const RefusedState&) {
+    // A trial state the model refuses (a stage of a step too long put the
+    // nut beyond the screw's end, or left the flank no consistent normal
+    // force: core/errors.hpp): rejected as a non-finite stage, and raised
+    // only where shorter steps meet it too, as the SUNDIALS integrators do
+    // (sundials_context.cpp). A fuzz run found flexible drives on
+    // rk_verner6 ended at their first step's stage, the nut 15 mm off a
+    // screw it never left, and a flexible LuGre drive on rk_dopri5 "jammed"
+    // at its first step's last stage (t = 1e-4 s) at every rtol.
     outside_ = std::current_exception();
     return StepOutcome::nonfinite;
   }
@@ -464,6 +469,9 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       probe_step_ = false;
     }
     ++stats_.steps;
+    if (!fixed && stiffness_.due() &&
+        stiffness_.stiff_after(tableau_, stats_.steps, n_, k_, f_end_))
+      stop_if_stiff(h, t_new, t_out);
     if (!fixed) {
       // PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.
       double factor = safety * static_cast<double>(std::exp(
@@ -498,6 +506,36 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       return {t_, AdvanceStatus::reached};
     }
   }
+}
+
+// The problem looked stiff for kStiffSteps tested steps in a row (its step
+// size h held by the method's stability, rk_stiffness.hpp): where the
+// time from t to t_out at that step size takes more steps than
+// max_steps leaves, and the stiffness has lasted for kStiffnessInterval
+// steps (or 1 % of max_steps, if less: a short stiff phase is no reason to
+// stop), the run would not finish at the step size stability allows: it
+// stops now with the hint to use an implicit method, not after max_steps
+// steps (a flexible drive on rk_verner6 took over a minute to reach
+// RK_TOO_MUCH_WORK). One whose rest fits the budget goes on.
+void ExplicitRungeKutta::stop_if_stiff(double h, double t, double t_out) const {
+  const double remaining = t_out - t;
+  const double steps_needed = remaining / h;
+  const double steps_left = static_cast<double>(options_.max_steps - stats_.steps);
+  const long lasting = std::min(kStiffnessInterval, options_.max_steps / 100);
+  if (!(steps_needed > steps_left) || stiffness_.stiff_steps(stats_.steps) < lasting) return;
+  fail("RK_STIFF",
+       "the problem is stiff for this explicit method: its step size is held at h = " +
+           format_value(h) + " s by the method's stability (h lambda = " +
+           format_value(stiffness_.h_lambda()) + " against its stability boundary " +
+           format_value(tableau_.stiffness_threshold / kStiffShareOfBoundary) + " over the last " +
+           std::to_string(stiffness_.stiff_steps(stats_.steps) + kStiffSteps) +
+           " steps), and the " +
+           format_value(remaining) + " s left to t = " + format_value(t_out) +
+           " would take some " + format_value(steps_needed) + " steps, beyond the " +
+           format_value(steps_left) + " that max_steps leaves",
+       "use an implicit method, whose step stiffness does not limit: cvode_bdf (simulate's "
+       "integrator, or smooth_integrator inside integrator = \"event_driven\"; solve_ode's "
+       "method)");
 }
 
 double ExplicitRungeKutta::hidden_crossing() {

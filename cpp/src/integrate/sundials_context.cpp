@@ -215,7 +215,7 @@ void CallbackBridge::clear_all() noexcept {
 }
 
 void CallbackBridge::rethrow_pending() {
-  // An OutsideDomain only when it ended the call (outside_limit reached): a
+  // A refusal only when it ended the call (outside_limit reached): a
   // retried one is no reason for a failure of another kind (max_steps, ...).
   std::exception_ptr e =
       pending_ ? pending_ : (outside_rhs_ >= outside_limit ? outside_ : nullptr);
@@ -255,8 +255,9 @@ int CallbackBridge::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_dat
       return self->nonfinite_rhs_ < nonfinite_limit ? 1 : -1;
     }
     return 0;
-  } catch (const OutsideDomain&) {
-    // A trial state off the model's domain: retried with a smaller step.
+  } catch (const RefusedState&) {
+    // A trial state off the model's domain, or one without a consistent
+    // contact mode (core/errors.hpp): retried with a smaller step.
     if (!self->outside_) self->outside_t_ = t;
     self->outside_ = std::current_exception();
     return ++self->outside_rhs_ < outside_limit ? 1 : -1;

@@ -120,18 +120,16 @@ std::optional<double> curvature_bound(const Excitation& load) {
   return std::hypot(load.derivative(0.0), load.derivative(0.25 * scale)) * omega;
 }
 
-constexpr long kMaxScanSteps = 1000000;
-
 }  // namespace
 
-std::optional<double> first_load_crossing(const Excitation& torque, const Excitation& force,
+std::optional<LoadCrossing> first_load_crossing(const Excitation& torque, const Excitation& force,
                                           const LoadCoefficients* functions, int count,
                                           double t0, double t_end) {
   const std::optional<double> torque_curvature = curvature_bound(torque);
   const std::optional<double> force_curvature = curvature_bound(force);
   if (!torque_curvature || !force_curvature) return std::nullopt;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  if (!(t_end > t0)) return kInfinity;
+  if (!(t_end > t0)) return LoadCrossing{};
   // The knots of table loads: f' jumps there, so a Taylor bound holds only
   // between them.
   std::vector<double> knots;
@@ -158,10 +156,10 @@ std::optional<double> first_load_crossing(const Excitation& torque, const Excita
   std::size_t next_knot = 0;
   // The loads and their slopes at t, shared by the functions.
   double torque_now = torque(t), force_now = force(t);
-  for (long step = 0; step < kMaxScanSteps; ++step) {
+  for (long step = 0; step < kLoadScanSteps; ++step) {
     while (knots[next_knot] <= t && next_knot + 1 < knots.size()) ++next_knot;
     const double segment_end = knots[next_knot];
-    if (t >= t_end) return kInfinity;
+    if (t >= t_end) return LoadCrossing{};
     // The largest step over which every lower bound stays positive.
     const double torque_slope = torque.derivative(t), force_slope = force.derivative(t);
     double h = segment_end - t;
@@ -192,13 +190,12 @@ std::optional<double> first_load_crossing(const Excitation& torque, const Excita
           4.0 * std::numeric_limits<double>::epsilon() * std::abs(t_next));
       crossing = std::min(crossing, located);
     }
-    if (crossing < kInfinity) return crossing;
+    if (crossing < kInfinity) return LoadCrossing{crossing, true};
     t = t_next;
     torque_now = torque_next;
     force_now = force_next;
   }
-  throw SimulationError(t, "the scan for the first zero of a load-driven root function did not end",
-                        "the loads may cancel exactly in the thread forces; use other loads");
+  return LoadCrossing{t, false};  // the horizon: no crossing before t
 }
 
 }  // namespace leadscrew::model

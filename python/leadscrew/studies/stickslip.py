@@ -9,7 +9,6 @@ in steps with pauses, the pattern Fig. 5.1 shows for the rigid concept.
 
 from __future__ import annotations
 
-import math
 from typing import Any, List, Optional, Sequence, Tuple
 
 import numpy as np
@@ -34,12 +33,6 @@ UNITS = {
 #: Output points of a run when neither ``points`` nor ``t_eval`` is given
 #: (as ``leadscrew run``'s default).
 DEFAULT_POINTS = 2001
-
-#: The default bound on integrator steps per simulated second (simulate's
-#: max_steps holds for a whole run of any length): the default 2 s of the
-#: shipped position_holding scene, a flexible drive rattling in its play,
-#: take 1.3 million steps.
-STEPS_PER_SECOND = 1_000_000
 
 # Units of the summary (attrs["summary_units"]).
 SUMMARY_UNITS = {"stick_phases": "1", "slip_phases": "1", "stick_fraction": "1", "events": "1",
@@ -174,8 +167,8 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
         progress: accepted as by every study; one simulation shows no bar.
         **simulate_options: passed on to :func:`leadscrew.simulate`
             (``integrator``, ``t_eval`` instead of ``points``, ...;
-            ``max_steps`` defaults to 1e6 per simulated second, at least
-            1e6).
+            ``max_steps`` defaults to simulate's, 1e6 per simulated
+            second, at least 1e6).
 
     Returns:
         DataFrame with columns ``t`` [s], ``u_load`` [m], ``v_load`` [m/s],
@@ -203,8 +196,6 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
             raise ValueError("points = 1 is invalid: must be 0 (every step and event) or >= 2")
         if points:
             simulate_options["t_eval"] = np.linspace(0.0, t_end, points)
-    simulate_options.setdefault("max_steps", min(math.ceil(STEPS_PER_SECOND * max(t_end, 1.0)),
-                                                 2 ** 62))
     if executor is None:
         result = simulate(scene, t_end, **with_tolerances(simulate_options, rtol, atol))
     else:  # result() raises the simulation's own exception

@@ -42,12 +42,21 @@ class SimulationError : public std::runtime_error {
   std::string reason_;
 };
 
-// A state outside the model's domain (the nut off the screw). Thrown by a
-// right-hand side it may be a trial state of a step that overshot (an
-// implicit method's predictor or Newton iterate): the SUNDIALS integrators
-// retry with a smaller step, as for a non-finite right-hand side, and raise
-// it only if they give up there.
-class OutsideDomain : public SimulationError {
+// What a right-hand side refuses of the state it was given (OutsideDomain,
+// JammingAtState). Thrown there, the state may be a trial state of a step
+// that overshot (a stage of an explicit step, an implicit method's predictor
+// or Newton iterate), not the trajectory's: every integrator retries with a
+// smaller step, as for a non-finite right-hand side, and raises the error
+// only where shorter steps meet it too. A marker: the errors are
+// SimulationErrors through their other base.
+class RefusedState {
+ public:
+  virtual ~RefusedState() = default;
+};
+
+// A state outside the model's domain (the nut off the screw); a refused
+// state (above) where a right-hand side throws it.
+class OutsideDomain : public SimulationError, public RefusedState {
  public:
   using SimulationError::SimulationError;
 };
@@ -69,6 +78,17 @@ class NutOffScrew : public OutsideDomain {
 class JammingError : public SimulationError {
  public:
   using SimulationError::SimulationError;
+};
+
+// No consistent flank-contact mode at the state the drive was given (the
+// normal force's sign): a JammingError, and a refused state (above) where a
+// right-hand side meets it, so that an integrator's trial state (a stage of
+// a step too long, far off the trajectory) does not end the run. A fuzz
+// run's flexible LuGre drive "jammed" at rk_dopri5's first trial stage,
+// velocities of 6.8e4, where every other integrator answered.
+class JammingAtState : public JammingError, public RefusedState {
+ public:
+  using JammingError::JammingError;
 };
 
 }  // namespace leadscrew

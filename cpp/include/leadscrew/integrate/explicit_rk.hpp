@@ -33,6 +33,9 @@
 //
 // Failures raise SimulationError with flag names in SUNDIALS' style:
 //   RK_TOO_MUCH_WORK  max_steps steps since initialize
+//   RK_STIFF          the step size held by the method's stability (Hairer's
+//                     stiffness test, rk_stiffness.hpp) for 1,000 steps, and
+//                     the rest to t_out beyond what max_steps leaves at it
 //   RK_ERR_FAILURE    the step fell to the roundoff level of t, or 100 error
 //                     test failures in a row
 //   RK_RHSFUNC_FAIL   f not finite at the current state, or in 64 trial steps
@@ -47,6 +50,7 @@
 #include <vector>
 
 #include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/integrate/rk_stiffness.hpp"
 
 namespace leadscrew::integrate {
 
@@ -68,6 +72,12 @@ struct ButcherTableau {
   // Fills w[0..stages) and *w_end.
   void (*dense_weights)(double theta, const ButcherTableau& tableau, double* w,
                         double* w_end) = nullptr;
+  // Hairer's stiffness test (rk_stiffness.hpp), set by checked_tableau: the
+  // stage it compares with f(t_n+1, y_n+1) (-1: none, no test) and the h
+  // lambda beyond which a step counts as held by stability (0.98 of the
+  // stability boundary on the negative real axis).
+  int stiffness_stage = -1;
+  double stiffness_threshold = 0.0;
 };
 
 // Cubic Hermite interpolation between (y_n, f_n) and (y_n+1, f_n+1): a
@@ -78,7 +88,7 @@ void hermite_dense_weights(double theta, const ButcherTableau& tableau, double* 
 // Throws InvalidArgument if the tableau is inconsistent (sizes, explicitness,
 // row sums a_i. = c_i, sum b = 1, sum e = 0, FSAL rows).
 void check_tableau(const ButcherTableau& tableau);
-// The tableau, after check_tableau.
+// The tableau, after check_tableau, with its stiffness test's data.
 ButcherTableau checked_tableau(ButcherTableau tableau);
 
 class ExplicitRungeKutta final : public Integrator {
@@ -132,6 +142,9 @@ class ExplicitRungeKutta final : public Integrator {
   // After an accepted step with a sign change of some root function between
   // g_start_ and g_end_: locates the earliest root; y_ and t_ move there.
   void locate_root();
+  // Raises RK_STIFF where a stiff problem cannot get from t to t_out
+  // within max_steps.
+  void stop_if_stiff(double h, double t, double t_out) const;
   [[noreturn]] void fail(const std::string& flag, const std::string& meaning,
                          const std::string& hint) const;
 
@@ -154,7 +167,8 @@ class ExplicitRungeKutta final : public Integrator {
   bool probe_step_ = false;         // the next step is the first after a (re)start
   float log_error_old_ = 0.0f;      // log of the previous error norm (PI controller)
   int nonfinite_count_ = 0;
-  // The last OutsideDomain a trial stage raised (null: none since the last
+  StiffnessTest stiffness_;  // Hairer's test (rk_stiffness.hpp)
+  // The last RefusedState a trial stage raised (null: none since the last
   // accepted step): rejected as a non-finite stage, raised where shorter
   // steps meet it too.
   std::exception_ptr outside_;

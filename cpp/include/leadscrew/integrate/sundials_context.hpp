@@ -102,13 +102,14 @@ class SolverMemory {
 // nonfinite_limit such values since the last (re)start the failure becomes
 // unrecoverable: a model that is undefined beyond some time would otherwise
 // be approached in ever smaller steps until max_steps is exhausted.
-// An OutsideDomain exception from the right-hand side (a state off the model's
-// domain) is recoverable too: a trial state of an overshooting step, such as
-// an implicit method's Newton iterate with an outdated Jacobian, is no reason
+// A RefusedState exception from the right-hand side (a state off the model's
+// domain, or without a consistent contact mode: core/errors.hpp) is
+// recoverable too: a trial state of an overshooting step, such as an
+// implicit method's Newton iterate with an outdated Jacobian, is no reason
 // to stop. A retry ends before the failed trial's time T; outside_limit
 // failures before the solver gets past T mean that the solution itself
 // reaches the boundary of the domain there: the failure becomes
-// unrecoverable and the OutsideDomain error is rethrown.
+// unrecoverable and the refusal is rethrown.
 class CallbackBridge {
  public:
   static constexpr int message_capacity = 512;
@@ -126,7 +127,7 @@ class CallbackBridge {
   // At a (re)start: also forgets the non-finite values seen so far.
   void clear_all() noexcept;
   // Rethrows an exception the system threw during the last solver call, or
-  // the OutsideDomain error that made it unrecoverable.
+  // the refusal (RefusedState) that made it unrecoverable.
   void rethrow_pending();
   // A sentence on the non-finite values the system produced (empty: none).
   std::string nonfinite_report() const;
@@ -140,9 +141,9 @@ class CallbackBridge {
 
  private:
   std::exception_ptr pending_;
-  std::exception_ptr outside_;  // the last OutsideDomain (null: none, or got past it)
+  std::exception_ptr outside_;  // the last refusal (null: none, or got past it)
   double outside_t_ = 0.0;      // the time of the first of them (T above)
-  int outside_rhs_ = 0;         // OutsideDomain failures before getting past T
+  int outside_rhs_ = 0;         // refusals before getting past T
   int nonfinite_rhs_ = 0;   // count since the last (re)start
   bool nonfinite_root_ = false;
   double nonfinite_t_ = 0.0;  // time of the first one

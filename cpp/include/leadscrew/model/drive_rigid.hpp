@@ -23,6 +23,7 @@
 #include <string>
 
 #include <array>
+#include <limits>
 #include <optional>
 
 #include "leadscrew/model/drive.hpp"
@@ -45,10 +46,22 @@ struct RigidModeCoefficients {
   LoadCoefficients friction_force;  // lambda_T on the screw [N]
 };
 
+// What a scan of load-driven functions found (first_load_crossing).
+struct LoadCrossing {
+  // The crossing (found), or where the scan stopped without one: +inf where
+  // it reached t_end (none in the run), else its horizon, from which a scan
+  // goes on.
+  double time = std::numeric_limits<double>::infinity();
+  bool found = false;
+};
+
 // The first time in (t0, t_end] at which one of `count` load-driven functions
 // f_k(t) = functions[k](M(t), F(t)) falls below zero (f_k >= 0 at t0 is
-// assumed; a function already <= 0 there and falling crosses at t0), or +inf
-// if none does. In a mode of the rigid drive the thread forces are linear in
+// assumed; a function already <= 0 there and falling crosses at t0), or none
+// (time +inf) if none does; a scan stops at a horizon of kLoadScanSteps
+// steps (a mode that lasts for 1e5 load periods scans on from there: one
+// scan to t_end took O(t_end) per mode start and ended a run of the shipped
+// default scene at t_end = 3e5 s in an error). In a mode of the rigid drive the thread forces are linear in
 // the loads (RigidModeCoefficients), and in stick the state is frozen, so the
 // stick-cone margin and the normal force's side are such functions of time
 // alone: a step bound of a fraction of the load period cannot see an
@@ -59,8 +72,9 @@ struct RigidModeCoefficients {
 // 1e-12 of the loads' time scale is taken for a touch. The zero is then
 // located by Illinois to round-off. nullopt: a load gives no bound on its
 // curvature (a callable); the caller keeps the root function sampled at the
-// integrator's steps. Every loop is bounded (SimulationError beyond).
-std::optional<double> first_load_crossing(const Excitation& torque, const Excitation& force,
+// integrator's steps. Every loop is bounded.
+constexpr long kLoadScanSteps = 10000;
+std::optional<LoadCrossing> first_load_crossing(const Excitation& torque, const Excitation& force,
                                           const LoadCoefficients* functions, int count,
                                           double t0, double t_end);
 

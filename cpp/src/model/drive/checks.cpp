@@ -92,6 +92,8 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   spec.length_scale = p.screw_length;
   check_result(spec, result);
   check_dc_motor_result(model, options, time_stepping, result);
+  if (result.checks.front().passed)  // (finite: else the others are not compared)
+    result.checks.push_back(exact_stop_check(model, options, time_stepping, result));
   if (!options.check) return;
   // A lift-off nut's half B books its friction on its own slip gamma_T -
   // sin(a) e' with the direction of the nut's slip (one friction mode for

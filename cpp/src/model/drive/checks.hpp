@@ -24,4 +24,11 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
 void check_dc_motor_result(const DriveModel& model, const DriveSimulationOptions& options,
                            bool time_stepping, integrate::SimulationResult& result);
 
+// The check exact_stops: the load's position against the exact end stops'
+// faces (exact_stop_check.cpp; applies only where the model has them).
+integrate::InvariantCheck exact_stop_check(const DriveModel& model,
+                                           const DriveSimulationOptions& options,
+                                           bool time_stepping,
+                                           const integrate::SimulationResult& result);
+
 }  // namespace leadscrew::model::drive

@@ -142,6 +142,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // hybrid_load_roots.cpp
   bool load_driven() const;
   void plan_load_roots(double t);
+  bool load_scan_horizon(double t, const std::vector<int>& root_info);
   double load_root_value(double t) const {
     return std::isfinite(load_root_time_) ? load_root_time_ - t : 1.0;
   }
@@ -250,6 +251,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   bool stick_from_zero_ = false;  // a stick mode whose cone margin has not left zero
   int load_root_ = -1;     // the root function replaced by a load-driven crossing (-1: none)
   double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
+  bool load_root_horizon_ = false;  // load_root_time_ is the scan's horizon, no crossing
   double t_end_;
   integrate::IntegratorOptions integrator_options_;
   Mode mode_;

@@ -120,7 +120,19 @@ class EndStopsElement final : public DriveHybrid::Element {
         continue;
       }
       const double approach = v()[load_];
-      if (stop.side * approach < 0.0) continue;  // leaving: no impact (round-off of the gap)
+      if (stop.side * approach < 0.0) {
+        // Leaving: no impact, the gap's fall is the integrator's round-off
+        // (a rebound whose flight is below its tolerance). The load goes
+        // back onto the face: left beyond it, the gap would start the next
+        // piece below 0 and its root, which ends the free flight only
+        // falling through 0, could never fire again (the load passed the
+        // stop after a decaying run of bounces: 0.215 mm through it).
+        if (stop.gap(q()[load_]) < 0.0) {
+          q()[load_] = stop.position;
+          layout().compress(q(), v(), y);
+        }
+        continue;
+      }
       const double mass = model().mass()[load_];
       double after = -stop.restitution * approach;
       q()[load_] = stop.position;  // the root's round-off onto the face

@@ -177,6 +177,7 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
 }
 
 std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int>& root_info) {
+  if (load_scan_horizon(t, root_info)) return std::string();
   if (root_info[4] != 0) {
     set(t, y);
     nut_left_the_screw(model_, t, model_.nut_position(q_.data()));

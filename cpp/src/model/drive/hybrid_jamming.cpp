@@ -151,8 +151,10 @@ void DriveHybrid::jam_acceleration_law(int count) {
       "friction law); reduce the friction or change the inertia ratio");
 }
 
+// At the state set: a JammingAtState, which an integrator retries where a
+// right-hand side meets it at a trial state (core/errors.hpp).
 void DriveHybrid::jam(const std::string& what) const {
-  throw JammingError(dynamics_.time(),
+  throw JammingAtState(dynamics_.time(),
                      "dynamic jamming: " + what + "; " + dynamics_.jamming_report(),
                      "the drive self-locks dynamically (Painleve paradox); reduce the "
                      "friction or change the inertia ratio");

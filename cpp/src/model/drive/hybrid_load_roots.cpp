@@ -71,11 +71,25 @@ void DriveHybrid::plan_load_roots(double t) {
     functions[count++] = {side * c.normal_force.per_torque, side * c.normal_force.per_force};
     slot = 1;
   }
-  const std::optional<double> crossing =
+  const std::optional<LoadCrossing> crossing =
       first_load_crossing(p_.drive_torque, p_.axial_force, functions, count, t, t_end_);
   if (!crossing) return;  // a callable load: no curvature bound
   load_root_ = slot;
-  load_root_time_ = *crossing;
+  load_root_time_ = crossing->time;
+  // No crossing before the scan's horizon: its root falls through zero
+  // there too, and the scan goes on from it, the mode unchanged
+  // (load_scan_horizon).
+  load_root_horizon_ = !crossing->found;
+}
+
+// The load-driven root fired at the scan's horizon alone (no crossing of
+// the mode's own): the scan goes on from there, no event.
+bool DriveHybrid::load_scan_horizon(double t, const std::vector<int>& root_info) {
+  if (load_root_ < 0 || !load_root_horizon_ || root_info[load_root_] == 0) return false;
+  for (std::size_t i = 0; i < root_info.size(); ++i)
+    if (root_info[i] != 0 && static_cast<int>(i) != load_root_) return false;
+  plan_load_roots(t);
+  return true;
 }
 
 }  // namespace leadscrew::model::drive

@@ -29,6 +29,7 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
   const int n = model.coordinate_count();
   q_.setZero(n);
   v_.setZero(n);
+  iteration_.directions(model.play_gradient(), model.tangent_direction());
 }
 
 void DriveMoreau::initialize(double t, const double* y) {
@@ -188,32 +189,44 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   Impulses impulses;
   bool stick = false, contact = false;
   int stop_passes = 0;
+  // The iteration matrix, its stiffness and damping and the right-hand
+  // side without the penalty flank's force: assembled on the first pass
+  // and where the engaged penalty stops changed; the flank's part (its
+  // linearisation moves from pass to pass) is W's rank-one term.
+  Square stiffness, damping;
+  CoordinateVector rhs_base;
+  bool assembled[kMaxStops] = {false, false};
   for (int pass = 0;; ++pass) {
     if (penalty) {  // (the flank's friction contact: where it pushes)
       contact_at_start = flank_.active();
       sigma_fixed = -flank_.side;
     }
     // Iteration matrix and free velocity.
-    Square stiffness, damping;
-    assemble(h, theta, stiffness, damping,
-             dc != nullptr ? -h * dc->torque(current.mean_slope) : 0.0);
-    CoordinateVector rhs = model_.mass().cwiseProduct(v0) + h * dynamics_.forces() -
-                           theta * (1.0 - theta) * h * h * (stiffness * v0) +
-                           theta * h * (damping * v0);
-    if (dc != nullptr)
-      rhs[dc->rotor] += h * (dc->torque(current.mean) - dc->torque(dynamics_.motor_current()));
-    // A penalty stop's force over the step: 0 where not engaged, else the
-    // linear Kelvin-Voigt force k (d0+ + theta dd) + c d'_theta (its
-    // increments through W), measured from the face or, engaging within
-    // the step, from the step's start.
-    for (std::size_t k = 0; k < stops.size(); ++k) {
-      const elements::EndStop& stop = stops[k];
-      rhs[load] += h * stop.side * stop.pushing_force(u0, du0);
-      if (engaged_[k])
-        rhs[load] -= h * stop.side *
-                     (stop.stiffness * std::max(stop.penetration(u0), 0.0) +
-                      stop.damping * stop.side * du0);
+    if (pass == 0 || !std::equal(engaged_, engaged_ + kMaxStops, assembled)) {
+      std::copy(engaged_, engaged_ + kMaxStops, assembled);
+      assemble(h, theta, stiffness, damping,
+               dc != nullptr ? -h * dc->torque(current.mean_slope) : 0.0);
+      rhs_base = model_.mass().cwiseProduct(v0) + h * dynamics_.forces() -
+                 theta * (1.0 - theta) * h * h * (stiffness * v0) + theta * h * (damping * v0);
+      if (dc != nullptr)
+        rhs_base[dc->rotor] +=
+            h * (dc->torque(current.mean) - dc->torque(dynamics_.motor_current()));
+      // A penalty stop's force over the step: 0 where not engaged, else the
+      // linear Kelvin-Voigt force k (d0+ + theta dd) + c d'_theta (its
+      // increments through W), measured from the face or, engaging within
+      // the step, from the step's start.
+      for (std::size_t k = 0; k < stops.size(); ++k) {
+        const elements::EndStop& stop = stops[k];
+        rhs_base[load] += h * stop.side * stop.pushing_force(u0, du0);
+        if (engaged_[k])
+          rhs_base[load] -= h * stop.side *
+                            (stop.stiffness * std::max(stop.penetration(u0), 0.0) +
+                             stop.damping * stop.side * du0);
+      }
+    } else {
+      iteration_.set_rank_one(flank_coefficient(h, theta));
     }
+    CoordinateVector rhs = rhs_base;
     // A penalty flank's force over the step, its part at v+ in W (assemble).
     if (penalty && flank_.active()) {
       const double g0 = thread.play_gradient().dot(v0);
@@ -222,7 +235,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
               flank_.damping * (1.0 - theta) * g0) *
              thread.play_gradient();
     }
-    free_ = solver_.solve(rhs);
+    free_ = iteration_.solve(rhs);
     if (train != nullptr) {
       impulses = solve_train(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, balance,
                              contact_at_start, contact, stick, rotor_mode);
@@ -652,7 +665,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
 }
 
 // The iteration matrix W = M + theta h C + theta^2 h^2 K at the positions
-// q_ (factored into solver_), and its stiffness and damping matrices.
+// q_ (iteration_: factorized where it changed), and its stiffness and
+// damping matrices.
 void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& damping,
                            double rotor_damping) {
   const int n = model_.coordinate_count();
@@ -672,72 +686,8 @@ void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& da
     }
   Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
   iteration.diagonal() += model_.mass();
-  // A penalty flank's force at v+: h theta (h S' + c) grad e grad e^T.
-  if (model_.thread_pair().penalty() && flank_.active()) {
-    const Eigen::VectorXd& g = model_.thread_pair().play_gradient();
-    iteration += (h * theta * (h * flank_.slope + flank_.damping)) * (g * g.transpose());
-  }
   iteration(model_.rotor(), model_.rotor()) += rotor_damping;
-  solver_.compute(iteration);
-}
-
-// The step's coupling of the flank's friction impulse into its normal
-// impulse, alpha = dP_N / dP_T, at the positions q_: W^-1 in place of
-// M^-1 in the Delassus terms, alpha = -G~_NT / G~_NN (the rotor held
-// where speed-controlled). For h -> 0 it is the drive's own.
-double DriveMoreau::step_coupling(double h, double theta) {
-  Square stiffness, damping;
-  assemble(h, theta, stiffness, damping);
-  free_ = CoordinateVector::Zero(model_.coordinate_count());
-  if (model_.thread_pair().penalty()) {  // (the flank's force's normal impulse)
-    const CoordinateVector rest = CoordinateVector::Zero(model_.coordinate_count());
-    return flank_impulse(h, theta, rest, solve(false, 0.0, 0.0, 1.0).velocity) -
-           flank_impulse(h, theta, rest, solve(false, 0.0, 0.0, 0.0).velocity);
-  }
-  return solve(true, 0.0, 0.0, 1.0).normal - solve(true, 0.0, 0.0, 0.0).normal;
-}
-
-// A Moreau-Jean step whose flank problem has mu' |alpha| >= 1 has the
-// Painleve paradox's structure although the drive has not (mu' |G_NT| <
-// G_NN): the springs' stiffness in W (theta^2 h^2 K) dominates the masses
-// and turns the flank's friction into a lever on its own normal impulse.
-// No consistent impulse, or a spurious one, follows: a jam of the time
-// discretization, not of the drive (dt 7e-4 s "jammed" a flexible nut at
-// rest that dt 3e-4 s and the event-driven scheme run).
-std::string DriveMoreau::step_too_long(double theta, double alpha) {
-  return "in the Moreau-Jean step (iteration matrix W = M + theta h C + theta^2 h^2 K, "
-         "theta = " + format_value(theta) + ") the flank's "
-         "friction impulse drives its own normal impulse, mu' |G~_NT| / G~_NN = " +
-         format_value(model_.effective_mu() * std::abs(alpha)) +
-         " >= 1, a jam of the time discretization that the drive does not have (mu' |G_NT| "
-         "/ G_NN = " +
-         format_value(model_.effective_mu() * std::abs(dynamics_.coupling())) +
-         " with the masses alone)";
-}
-
-// The longest step up to h whose flank coupling stays below 1 / mu' at q_
-// (bisection; the coupling falls to the drive's own as h -> 0).
-double DriveMoreau::resolving_step(double h, double theta) {
-  const CoordinateVector free = free_;
-  double low = 0.0, high = h;
-  for (int iteration = 0; iteration < 60; ++iteration) {
-    const double middle = 0.5 * (low + high);
-    (model_.effective_mu() * std::abs(step_coupling(middle, theta)) < 1.0 ? low : high) = middle;
-  }
-  free_ = free;
-  return low;
-}
-
-void DriveMoreau::check_step(double h, double theta) {
-  if (dynamics_.painleve_possible()) return;  // the drive's own condition decides
-  // (A penalty flank has no constraint row: solve_thread checks its steps.)
-  if (model_.thread_pair().penalty()) return;
-  const double alpha = step_coupling(h, theta);
-  if (model_.effective_mu() * std::abs(alpha) >= 1.0)
-    throw InvalidArgument("dt = " + format_value(h) + " is invalid: must be < " +
-                          format_value(resolving_step(h, theta)) +
-                          " s for the stiffness of this drive: " +
-                          step_too_long(theta, alpha));
+  iteration_.set(iteration, flank_coefficient(h, theta));
 }
 
 // v+ = free + W^-1 (B lambda + tangential W_T) with the active velocity
@@ -776,14 +726,13 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
   Impulses out;
   CoordinateVector base = free_;
   if (tangential != 0.0) {
-    const CoordinateVector shift = solver_.solve(CoordinateVector(model_.tangent_direction()));
-    base += tangential * shift;
+    base += tangential * iteration_.tangent_solve();
   }
   if (nc == 0) {
     out.velocity = base;
     return out;
   }
-  const Columns weighted = solver_.solve(B);
+  const Columns weighted = iteration_.solve(B);
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kRows, kRows> schur =
       B.transpose() * weighted;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> residual = r - B.transpose() * base;

@@ -3,7 +3,6 @@
 // cpp/src/model.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <string>
 #include <vector>
 
@@ -14,6 +13,7 @@
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
 #include "moreau_contacts.hpp"
+#include "moreau_iteration.hpp"
 #include "state_layout.hpp"
 
 namespace leadscrew::model::drive {
@@ -58,8 +58,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   void check_step(double h, double theta);
 
  private:
-  using Square =
-      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCoordinates, kMaxCoordinates>;
+  using Square = IterationMatrix::Square;
 
   // At most two stops of each kind (lower, upper).
   static constexpr int kMaxStops = 2;
@@ -92,6 +91,13 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // (rotor_damping: a DC motor's implicit back-EMF term h k_t |di_mean/domega+|.)
   void assemble(double h, double theta, Square& stiffness, Square& damping,
                 double rotor_damping = 0.0);
+  // A penalty flank's force at v+ in W: s = h theta (h S' + c) along
+  // grad e grad e^T (0: none).
+  double flank_coefficient(double h, double theta) const {
+    return model_.thread_pair().penalty() && flank_.active()
+               ? h * theta * (h * flank_.slope + flank_.damping)
+               : 0.0;
+  }
   double step_coupling(double h, double theta);
   std::string step_too_long(double theta, double alpha);
   double resolving_step(double h, double theta);
@@ -133,7 +139,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   int stop_channel_, motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
   BaseSlots base_;  // the housing's vibration (base_excitation.hpp)
   CoordinateVector q_, v_, free_;
-  Eigen::LLT<Square> solver_;
+  IterationMatrix iteration_;  // W, factorized while it holds (moreau_iteration.hpp)
   ContactForces last_;
   // The end stops of this step: a penalty stop engaged (its k, c in W), an
   // exact one active (a constraint row), its Newton target u'+ [m/s].

@@ -37,8 +37,11 @@ bool DriveMoreau::update_flank(double h, double theta, const CoordinateVector& v
     flank_.linearise(thread, flank_.e1k);
     return true;
   }
-  if (flank_.active()) {  // (the force at the step's end, not its linearisation's)
-    moreau_contacts::PenaltyFlank at_end = flank_;
+  // (The force at the step's end, not its linearisation's; the next
+  // linearisation where Newton takes the step's end itself.)
+  moreau_contacts::PenaltyFlank at_end = flank_;
+  const bool active = flank_.active();
+  if (active) {
     at_end.linearise(thread, end);
     if (at_end.side * (at_end.secant + at_end.damping * rate) < 0.0) {
       flank_.released = true;
@@ -54,7 +57,13 @@ bool DriveMoreau::update_flank(double h, double theta, const CoordinateVector& v
                           ? end
                           : 0.5 * (flank_.low + flank_.high);
   const moreau_contacts::PenaltyFlank before = flank_;
-  flank_.linearise(thread, next);
+  if (active && next == end) {  // (at_end's, as linearise(thread, next) gives it)
+    at_end.low = flank_.low;
+    at_end.high = flank_.high;
+    flank_ = at_end;
+  } else {
+    flank_.linearise(thread, next);
+  }
   return flank_.secant != before.secant || flank_.slope != before.slope ||
          flank_.damping != before.damping;
 }

@@ -27,3 +27,10 @@ def native_tests_build(tmp_path_factory):
 
     build = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR") or str(tmp_path_factory.mktemp("native"))
     return built(configured(NATIVE_TESTS, build))
+
+
+@pytest.fixture
+def watched(monkeypatch):
+    """Progress bars drawn as where someone watches (a terminal): pytest's
+    captured standard error is not one, where leadscrew draws none."""
+    monkeypatch.setattr("leadscrew._progress._watched", lambda: True)

@@ -435,3 +435,33 @@ def test_a_parameter_set_out_of_range_is_replaced_by_a_later_value(tmp_path):
     out = done.stdout + done.stderr
     assert "read -0.1" in out and "mu 0.1" in out and "refused" in out, out
     assert "friction.mu = -0.1 is invalid" in out, out
+
+
+def test_cli_export_fmu_into_a_directory_or_a_fmu_file_only(tmp_path, capsys, monkeypatch):
+    """-o DIR writes DIR/NAME.fmu; -o drive.txt is refused (an importer
+    would not take it for an FMU) and nothing is written."""
+    (tmp_path / "dir").mkdir()
+    assert cli.main(["export-fmu", "default", "-o", str(tmp_path / "dir")]) == 0
+    assert capsys.readouterr().out == f"wrote {tmp_path / 'dir' / 'default.fmu'}\n"
+    assert validate_fmu(str(tmp_path / "dir" / "default.fmu")) == []
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["export-fmu", "default"]) == 0
+    assert (tmp_path / "default.fmu").is_file()
+    assert cli.main(["export-fmu", "default", "-o", "drive.txt"]) == 2
+    err = capsys.readouterr().err
+    assert err == ("leadscrew: error: -o drive.txt: an FMU's file name ends in .fmu "
+                   "(e.g. drive.fmu), or give a directory\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["default.fmu", "dir"]
+    with pytest.raises(ValueError, match=r"path = .*drive\.zip' is invalid: .* ends in \.fmu"):
+        ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.zip")
+    with pytest.raises(ValueError, match="is a directory: give name"):
+        ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "dir")
+
+
+def test_cli_export_fmu_that_cannot_write_names_the_path_and_the_cause(tmp_path, capsys):
+    target = tmp_path / "missing" / "drive.fmu"
+    assert cli.main(["export-fmu", "default", "-o", str(target)]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith(f"leadscrew: error: WriteError: cannot write {target}: ")
+    assert "No such file or directory" in err
+    assert not (tmp_path / "missing").exists()

@@ -5,7 +5,7 @@ SI units throughout (m, kg, s, N, N*m, Pa, rad).
 
 from . import fmi, integrate, lcp, scene, scenes, studies, units
 from .errors import (JammingError, NoEquilibriumError, NutOffScrewError, SimulationError,
-                     StudyWarning)
+                     StudyWarning, WriteError)
 from .excitation import Constant, Excitation, Sine, Table
 from .models import FrictionBlock
 from .scene import Scene
@@ -84,6 +84,7 @@ __all__ = [
     "NutOffScrewError",
     "NoEquilibriumError",
     "StudyWarning",
+    "WriteError",
     "fmi",
     "integrate",
     "lcp",

@@ -1,4 +1,4 @@
-"""Command line interface: ``leadscrew run | check | study | demo``.
+"""Command line interface: ``leadscrew run | check | study | scene | export-fmu | list | demo``.
 
 ::
 
@@ -6,6 +6,10 @@
                   [--rtol R] [--atol A] [--dt DT] [--theta THETA] [--points N]
     leadscrew check [SCENE]
     leadscrew study NAME SCENE [-o DIR] [KEY=VALUE ...]
+    leadscrew scene resolve SCENE [-o FILE]
+    leadscrew scene copy NAME [PATH]
+    leadscrew export-fmu SCENE [-o FILE.fmu | DIR]
+    leadscrew list
     leadscrew demo [-o DIR]
     leadscrew --version
 
@@ -15,10 +19,12 @@ to stderr and exit with 2 for usage and validation errors (bad arguments, an
 invalid or unreadable scene file, an integrator that does not fit, an option
 the integrator would ignore: ``--dt``/``--theta`` without ``moreau``,
 ``--rtol``/``--atol`` with it) and 1 for failures while running (simulation
-errors, a study that raises or whose every case failed; some failed cases:
+errors, a file that cannot be written, a study that raises or whose every
+case failed; some failed cases:
 exit 0 with a warning on stderr); ``--debug`` shows the traceback instead.
 Arguments are checked before anything is simulated, and the output
-directory is created only once there is something to write.
+directory is created only once there is something to write; every file is
+written whole or not at all (:mod:`leadscrew.files`).
 """
 
 from __future__ import annotations
@@ -27,15 +33,17 @@ import argparse
 import math
 import os
 import sys
-from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple
 
 from . import _core
 from . import thread as _thread
 from .cli_output import (_check_output_dir, _output_dir, _output_file, _plot_energy,
-                         _plot_time_series, _require_parquet, _summary, _write_series)
+                         _plot_time_series, _require_parquet, _save_figure, _summary,
+                         _write_series)
 from .cli_parser import DEFAULT_POINTS, DEFAULT_T_END, UsageError, _load_scene, _parse
+from .cli_catalog import _list, _scene_copy
 from .cli_study import _study
+from .files import write_text
 # (Re-exported: the tests import them from here.)
 from .cli_output import _failures, _summary_text  # noqa: F401
 from .cli_parser import StudyFailed  # noqa: F401
@@ -331,7 +339,7 @@ def _run(args: argparse.Namespace) -> int:
     print(_summary(name, scene, result, args.t_end))
     series = _write_series(result, out, name, args.format)
     figure = _output_file(out, name, "png")
-    _plot_time_series(result, f"{name}: {scene!r}").savefig(figure, dpi=110)
+    _save_figure(_plot_time_series(result, f"{name}: {scene!r}"), figure)
     print(f"wrote {series}")
     print(f"wrote {figure}")
     return 0
@@ -341,6 +349,13 @@ def _scene_command(args: argparse.Namespace) -> int:
     """``leadscrew scene resolve SCENE [-o FILE]``: the scene's core spec
     (:meth:`leadscrew.Scene.to_core_toml`), the input of the C API, to FILE
     or standard output."""
+    if args.action == "copy":
+        if args.output is not None:
+            raise UsageError(f"scene copy takes PATH, not -o (leadscrew scene copy {args.scene} "
+                             f"{args.output})")
+        return _scene_copy(args)
+    if args.path is not None:
+        raise UsageError(f"scene resolve writes to -o FILE, not to PATH {args.path!r}")
     scene, _, source = _load_scene(args.scene)
     try:
         text = scene.to_core_toml()
@@ -349,23 +364,29 @@ def _scene_command(args: argparse.Namespace) -> int:
     if args.output in (None, "-"):
         sys.stdout.write(text)
     else:
-        Path(args.output).write_text(text, encoding="utf-8")
+        write_text(args.output, text)
         print(f"wrote {args.output}")
     return 0
 
 
 def _export_fmu(args: argparse.Namespace) -> int:
-    """``leadscrew export-fmu SCENE -o drive.fmu``: the scene as an FMI 2.0
-    co-simulation FMU (:func:`leadscrew.fmi.export_fmu`)."""
+    """``leadscrew export-fmu SCENE [-o FILE.fmu | DIR]``: the scene as an FMI
+    2.0 co-simulation FMU (:func:`leadscrew.fmi.export_fmu`), by default
+    ``./NAME.fmu``."""
     from . import fmi
 
     scene, name, source = _load_scene(args.scene)
-    output = args.output or f"{name}.fmu"
+    output = args.output or "."
     try:
-        fmi.export_fmu(scene, output, name=name)
+        fmi._fmu_path(output, name)
+    except ValueError:
+        raise UsageError(f"-o {output}: an FMU's file name ends in .fmu (e.g. "
+                         f"{os.path.splitext(output)[0]}.fmu), or give a directory") from None
+    try:
+        written = fmi.export_fmu(scene, output, name=name)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
-    print(f"wrote {output}")
+    print(f"wrote {written}")
     return 0
 
 
@@ -383,7 +404,7 @@ def _demo(args: argparse.Namespace) -> int:
     figures = ((name, _plot_time_series), (f"{name}_energy", _plot_energy))
     for filename, plot in figures:
         written.append(_output_file(out, filename, "png"))
-        plot(result, f"{name}: {scene!r}").savefig(written[-1], dpi=110)
+        _save_figure(plot(result, f"{name}: {scene!r}"), written[-1])
     for path in written:
         print(f"wrote {path}")
     return 0
@@ -391,14 +412,18 @@ def _demo(args: argparse.Namespace) -> int:
 
 #: Each command's function, by the name the parser gives it (``args.command``).
 _COMMANDS = {"run": _run, "check": _check, "study": _study, "scene": _scene_command,
-             "export-fmu": _export_fmu, "demo": _demo}
+             "export-fmu": _export_fmu, "demo": _demo, "list": _list}
 
 
 def _is_input_error(error: BaseException) -> bool:
     """Bad arguments or an invalid or unreadable scene (exit code 2)."""
     from .errors import SimulationError
 
-    return isinstance(error, (ValueError, OSError)) and not isinstance(error, SimulationError)
+    from .errors import WriteError
+
+    # (A file that could not be written is a failure while running: exit 1.)
+    return (isinstance(error, (ValueError, OSError))
+            and not isinstance(error, (SimulationError, WriteError)))
 
 
 def main(argv: Optional[List[str]] = None) -> int:

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any, Dict, Tuple
 
 from .cli_parser import StudyFailed, UsageError
+from .files import writing
 
 __all__: list = []  # the command line's internals: leadscrew.cli.main is the entry point
 
@@ -142,7 +143,8 @@ def _write_series(result, out: Path, name: str, fmt: str) -> Path:
         schema = pa.Schema.from_pandas(frame, preserve_index=False)
         schema = pa.schema([field.with_metadata({"unit": units[field.name]})
                             for field in schema], metadata=schema.metadata)
-        frame.to_parquet(path, index=False, schema=schema)
+        with writing(path) as temporary:
+            frame.to_parquet(temporary, index=False, schema=schema)
     else:
         _write_csv(frame, path, units)
     return path
@@ -160,11 +162,17 @@ def _write_csv(frame, path: Path, units: Dict[str, str], index: bool = False) ->
     if index:
         names.insert(0, "" if frame.index.name is None else str(frame.index.name))
         unit_row.insert(0, "")
-    with open(path, "w", encoding="utf-8", newline="") as stream:
+    with writing(path) as temporary, open(temporary, "w", encoding="utf-8", newline="") as stream:
         writer = csv.writer(stream, lineterminator="\n")
         writer.writerow(names)
         writer.writerow(unit_row)
         frame.to_csv(stream, index=index, header=False, lineterminator="\n")
+
+
+def _save_figure(figure, path: Path, dpi: int = 110) -> None:
+    """Write a figure to ``path`` whole or not at all."""
+    with writing(path) as temporary:
+        figure.savefig(temporary, dpi=dpi)
 
 
 def _require_parquet(fmt: str) -> None:

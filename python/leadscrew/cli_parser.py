@@ -167,19 +167,28 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("-o", "--output", default=".", help="output directory (default .)")
 
     scene = command("scene", help="scene tools: 'resolve' writes the core spec (every value "
-                    "SI and explicit) that the C API reads",
-                    epilog="example: leadscrew scene resolve default -o core.toml")
-    scene.add_argument("action", choices=("resolve",), metavar="resolve",
-                       help="write SCENE's core spec (Scene.to_core_toml)")
+                    "SI and explicit) that the C API reads and 'leadscrew run' takes; 'copy' "
+                    "copies a shipped scene (with its comments) to a file to edit",
+                    epilog="examples: leadscrew scene resolve default -o core.toml; "
+                    "leadscrew scene copy seat_adjuster my_seat.toml")
+    scene.add_argument("action", choices=("resolve", "copy"), metavar="{resolve,copy}",
+                       help="resolve: write SCENE's core spec (Scene.to_core_toml); copy: "
+                            "write the shipped scene SCENE to PATH")
     scene.add_argument("scene", metavar="SCENE")
+    scene.add_argument("path", metavar="PATH", nargs="?", default=None,
+                       help="copy: the file or directory to write (default ./SCENE.toml; "
+                            "never overwritten)")
     scene.add_argument("-o", "--output", default=None,
-                       help="the file to write (default: standard output)")
+                       help="resolve: the file to write (default: standard output)")
+
+    command("list", help="list the shipped scenes, the studies and the friction laws")
 
     export = command("export-fmu", help="write SCENE as an FMI 2.0 co-simulation FMU",
                      epilog="example: leadscrew export-fmu default -o drive.fmu")
     export.add_argument("scene", metavar="SCENE")
     export.add_argument("-o", "--output", default=None,
-                        help="the .fmu file to write (default: SCENE's name + .fmu)")
+                        help="the .fmu file to write, or a directory to write NAME.fmu "
+                             "into (default: ./NAME.fmu, NAME the scene's name)")
 
     demo = command("demo", help="simulate the default scene and write its figures")
     demo.add_argument("-o", "--output", default="leadscrew-demo",

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 import functools
 import inspect
 import math
@@ -13,6 +12,8 @@ from typing import Any, Callable, Dict, NamedTuple, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _core
+from ._hints import did_you_mean
+from ._progress import shown
 from .models import FrictionBlock
 from .scene import SCHEMA, Scene, _friction_law_entry, _friction_registry
 from .units import channel_unit
@@ -338,8 +339,7 @@ def _unknown_scene_option(name: str, value) -> ValueError:
         return ValueError(f"{name} = {_shown(value)} is invalid for a Scene: set the scene's "
                           f"friction.{name}{taken}")
     options = [option for option in _SIGNATURE if option not in ("model", "t_end")]
-    close = difflib.get_close_matches(name, options, n=1)
-    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    hint = did_you_mean(name, options)
     return ValueError(f"{name} = {_shown(value)} is invalid: simulate() has no option {name!r}"
                       f"{hint}; for a Scene it takes {', '.join(options)}")
 
@@ -353,8 +353,7 @@ def _unknown_block_option(name: str, value, friction: str, takes: Sequence[str])
     """The error of a keyword that is neither simulate()'s nor a parameter of
     the block's friction law (with a close match and both lists)."""
     options = [option for option in _SIGNATURE if option not in ("model", "t_end")]
-    close = difflib.get_close_matches(name, [*options, *takes], n=1)
-    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    hint = did_you_mean(name, [*options, *takes])
     return ValueError(f"{name} = {_shown(value)} is invalid: simulate() has no option {name!r} and "
                       f"the friction law {friction!r} no parameter {name!r}{hint}; simulate "
                       f"takes {', '.join(options)}, the law {', '.join(takes)}")
@@ -431,7 +430,7 @@ class _progress_bar:
 
     def __init__(self, show, t_end: float):
         self._bar = None
-        if _flag("progress", show):
+        if shown(show):
             from tqdm.auto import tqdm
 
             self._bar = tqdm(total=t_end, unit="s", desc="simulate", leave=False,

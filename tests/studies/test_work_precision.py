@@ -227,7 +227,7 @@ def test_failure_is_recorded_or_raised(closed_form):
         studies.work_precision(block(), T_END, configurations, on_failure="raise", repeats=1)
 
 
-def test_progress_lines(capsys, closed_form):
+def test_progress_lines(capsys, closed_form, watched):
     studies.work_precision(block(), T_END, [{"integrator": "event_driven", "rtol": 1e-6}],
                            reference=closed_form.position, repeats=1, progress=True)
     assert "[1/1] coulomb event_driven rtol=1e-06: error" in capsys.readouterr().err

@@ -60,6 +60,7 @@ from . import motor as _motor
 from . import preload as _preload
 from . import stickslip as _stickslip
 from . import work_precision as _work_precision_module
+from ..files import writing
 from ._sweep import SerialExecutor
 from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
 from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
@@ -133,7 +134,8 @@ def save_figure(name: str, frame, path, title: Optional[str] = None,
     plot(frame, ax=figure.subplots())
     if title:
         figure.suptitle(title, fontsize="medium")
-    figure.savefig(path, dpi=dpi)
+    with writing(path) as temporary:
+        figure.savefig(temporary, dpi=dpi)
     return pathlib.Path(path)
 
 

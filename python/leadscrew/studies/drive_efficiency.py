@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from .. import _core
+from .._progress import shown
 from ._batch import DriveBatch
 from ._common import (annotate, axes, as_scene, check_grid, check_positive, check_window,
                       frame_of, with_tolerances)
@@ -204,6 +205,7 @@ def efficiency_vs_mu(
             that is not the scene's law).
         TypeError: an unknown keyword in ``simulate_options``.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     mus = check_grid("mu", mu, allow_zero=True, unit="")
     forces = check_grid("loads", loads, unit="N")

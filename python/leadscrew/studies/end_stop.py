@@ -55,6 +55,7 @@ import pandas as pd
 from .. import _core
 from ..errors import NutOffScrewError, SimulationError
 from ..simulation import simulate
+from .._progress import shown
 from ._common import (annotate, as_scene, axes, check_count, check_positive, constant_value,
                       frame_of, gear_ratio)
 from ._sweep import _progress_bar
@@ -257,6 +258,7 @@ def end_stop_jam(
             runs (naming the argument), or the load does not rest clamped
             against a stop at ``t_drive``.
     """
+    progress = shown(progress)
     scene = as_scene(scene, gear=True)
     kind, forward = _drive(scene)
     _require_self_locking(scene)

@@ -41,6 +41,7 @@ import pandas as pd
 from ..errors import NoEquilibriumError, StudyWarning
 from ..scene import Scene
 from ..thread import is_self_locking
+from .._progress import shown
 from ._batch import check_simulate_options
 from ._common import (annotate, as_scene, axes, check_count, check_positive, numeric_or_nan,
                       raised_rows, with_tolerances)
@@ -327,6 +328,7 @@ def min_holding_preload(
             (a preload then drives it back instead of holding it).
         TypeError: an unknown keyword in ``simulate_options``.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     if not is_self_locking(scene.thread, scene["friction"]["mu"]):
         raise ValueError(f"friction.mu = {scene['friction']['mu']!r} is invalid for "

@@ -91,6 +91,7 @@ import pandas as pd
 from .. import _core
 from ..thread import lower_torque, raise_torque
 from ..errors import StudyWarning
+from .._progress import shown
 from ._common import (annotate, as_scene, axes, check_grid, check_positive, constant_value,
                       gear_ratio, numeric_or_nan, with_tolerances)
 from ._holding_runs import (_alternating_excitation, _constant_torque, _scene_sine,
@@ -367,6 +368,7 @@ def preload_tradeoff(
             drive torque, no static load and no ``load``) or arguments.
         TypeError: an unknown keyword in ``simulate_options``.
     """
+    progress = shown(progress)
     scene = as_scene(scene, gear=True)
     preloads = check_grid("preloads", preloads, allow_zero=True, unit="N")
     # The study drives the driven part itself: a DC motor is replaced by its

@@ -15,6 +15,7 @@ from typing import Any, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
+from .._progress import shown
 from ..simulation import simulate
 from ._common import annotate, axes, as_scene, check_count, check_positive, with_tolerances
 
@@ -171,7 +172,8 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
         executor: a :class:`concurrent.futures.Executor` to run the
             simulation on (e.g. a Dask client's, to run it on a cluster;
             default: the calling thread).
-        progress: accepted as by every study; one simulation shows no bar.
+        progress: True or False, checked as by every study; one simulation
+            shows no bar.
         **simulate_options: passed on to :func:`leadscrew.simulate`
             (``integrator``, ``t_eval`` instead of ``points``, ...;
             ``max_steps`` defaults to 1e6 per simulated second, at least
@@ -193,6 +195,7 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
         ValueError: invalid scene or arguments.
         SimulationError, JammingError: the simulation failed.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     t_end = check_positive("t_end", t_end, unit="s")
     if points is not None and "t_eval" in simulate_options:

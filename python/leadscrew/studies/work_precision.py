@@ -21,6 +21,7 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Union
 import numpy as np
 
 from .. import _core
+from .._progress import shown
 from ..errors import SimulationError
 from ..models import FrictionBlock
 from ..scene import Scene
@@ -376,7 +377,8 @@ def work_precision(
             times and the message in ``failure``, and the summary counts
             them (one :class:`~leadscrew.StudyWarning` names them);
             ``"raise"``: the error propagates.
-        progress: print one line per configuration to stderr.
+        progress: print one line per configuration to stderr (where it is a
+            terminal: :func:`leadscrew._progress.shown`).
         ax: a matplotlib Axes to draw the diagram on (see :func:`plot_work_precision`).
 
     Returns:
@@ -400,6 +402,7 @@ def work_precision(
             configuration (``configurations[i]: ...``).
         SimulationError: a run failed and ``on_failure="raise"``.
     """
+    progress = shown(progress)
     import pandas as pd
 
     if not isinstance(model, (_core.FrictionBlock, Scene)):

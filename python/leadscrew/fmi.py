@@ -3,8 +3,10 @@
 :func:`export_fmu` writes one file that Simulink, Dymola, OpenModelica,
 Adams, Simcenter Amesim or FMPy import: the scene's core spec
 (:meth:`leadscrew.Scene.to_core_toml`) in its ``resources/``, the package's
-generic binary (``binaries/linux64/``, SUNDIALS linked statically: it needs
-neither Python nor this package) and a ``modelDescription.xml`` written from
+generic binary (``binaries/linux64/``: SUNDIALS and the C++ runtime linked
+statically, glibc's functions taken at versions up to 2.28, so that it
+loads on any x86-64 Linux with glibc >= 2.28 (Debian 10, Ubuntu 20.04,
+RHEL 8) and needs neither Python nor this package) and a ``modelDescription.xml`` written from
 the core's table of the drive's variables (``_core.cosim_variables``):
 
 - inputs: the drive's, ``drive_torque`` [N.m] (a torque-controlled drive),
@@ -24,7 +26,10 @@ the core's table of the drive's variables (``_core.cosim_variables``):
   ``normal_force``, ``friction_force``, ``stick`` (Boolean),
   ``friction_loss``, with a DC motor ``motor_current`` [A], and where the
   torque is no input (a DC motor, a speed-controlled drive)
-  ``drive_torque`` [N.m], the torque the motor supplies;
+  ``drive_torque`` [N.m], the torque the motor supplies; then every channel
+  the scene's elements have (``stop_force`` [N] with end stops, a load
+  spring's force, a DC motor's energies, the train's stage losses), as
+  :func:`leadscrew.simulate`'s result names them;
 - parameters that may be set before the initialization ends: the friction
   law's (``mu``, ...), the masses and inertias, for a flexible concept the
   springs' stiffness overrides (0: from the geometry), and a DC motor's

@@ -37,9 +37,8 @@ from typing import Any, Dict, List, Optional, Tuple
 
 from . import _core
 from . import thread as _thread
-from .cli_output import (_check_output_dir, _output_dir, _output_file, _plot_energy,
-                         _plot_time_series, _require_parquet, _save_figure, _summary,
-                         _write_series)
+from .cli_output import (_check_output_dir, _output_dir, _output_file, _require_parquet,
+                         _save_figure, _summary, _title, _write_series)
 from .cli_parser import DEFAULT_POINTS, DEFAULT_T_END, UsageError, _load_scene, _parse
 from .cli_catalog import _list, _scene_copy
 from .cli_study import _study
@@ -339,7 +338,7 @@ def _run(args: argparse.Namespace) -> int:
     print(_summary(name, scene, result, args.t_end))
     series = _write_series(result, out, name, args.format)
     figure = _output_file(out, name, "png")
-    _save_figure(_plot_time_series(result, f"{name}: {scene!r}"), figure)
+    _save_figure(result.plot("time_series", _title(name, scene)), figure)
     print(f"wrote {series}")
     print(f"wrote {figure}")
     return 0
@@ -401,10 +400,9 @@ def _demo(args: argparse.Namespace) -> int:
     result = _simulate(scene)
     print(_summary(name, scene, result, DEFAULT_T_END))
     written = [_write_series(result, out, name, "csv")]
-    figures = ((name, _plot_time_series), (f"{name}_energy", _plot_energy))
-    for filename, plot in figures:
+    for filename, kind in ((name, "time_series"), (f"{name}_energy", "energy")):
         written.append(_output_file(out, filename, "png"))
-        _save_figure(plot(result, f"{name}: {scene!r}"), written[-1])
+        _save_figure(result.plot(kind, _title(name, scene)), written[-1])
     for path in written:
         print(f"wrote {path}")
     return 0

@@ -163,6 +163,25 @@ class Result:
         frame.attrs["units"] = self.units()
         return frame
 
+    def plot(self, kind: str = "time_series", title: Optional[str] = None):
+        """Draw the result (:func:`leadscrew.plotting.plot_result`).
+
+        Args:
+            kind: ``"time_series"`` (position, speed, forces, torque, a DC
+                motor's current over time) or ``"energy"`` (the energy
+                account and its residual).
+            title: the figure's title (default none).
+
+        Returns:
+            A :class:`matplotlib.figure.Figure` (``.savefig(path)`` writes it).
+
+        Raises:
+            ValueError: an unknown ``kind``, or a FrictionBlock's result.
+        """
+        from .plotting import plot_result
+
+        return plot_result(self, kind, title)
+
     def __repr__(self) -> str:
         return (f"<Result {self.friction}/{self.integrator}: {len(self.t)} points, "
                 f"{len(self.events)} events, {self.stats['wall_time'] * 1e6:.0f} us>")

@@ -317,7 +317,7 @@ def _simulate(scene, t_end: float = DEFAULT_T_END, points: int = DEFAULT_POINTS,
 
     from .simulation import simulate
 
-    t_eval = np.linspace(0.0, t_end, points) if points else None
+    t_eval = np.linspace(0.0, t_end, points) if points else "steps"
     options = {k: v for k, v in options.items() if v is not None}
     # A progress bar where someone watches (a terminal); Ctrl-C stops the
     # run either way.

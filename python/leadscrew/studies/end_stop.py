@@ -274,7 +274,7 @@ def end_stop_jam(
     running = scene.replace(initial={"rotor_speed": 0.0, "state": "relaxed"})
 
     pushing = simulate(_with_drive(running, kind, forward, None, t_drive, t_drive), t_drive,
-                       **options)
+                       t_eval="steps", **options)
     clamp = abs(float(pushing["stop_force"][-1]))
     if clamp == 0.0:
         raise ValueError(f"t_drive = {t_drive!r} is invalid for end_stop_jam: the load does "
@@ -314,7 +314,7 @@ def end_stop_jam(
         bar.update()
         try:
             result = simulate(_with_drive(running, kind, forward, -sign * x, t_drive, t_end),
-                              t_end, **options)
+                              t_end, t_eval="steps", **options)
         except SimulationError as error:
             # Only a load that left the stop runs the nut to the screw's end.
             free = error.time > t_drive and isinstance(error, NutOffScrewError)

@@ -204,8 +204,7 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
         points = DEFAULT_POINTS if points is None else check_count("points", points, 0)
         if points == 1:
             raise ValueError("points = 1 is invalid: must be 0 (every step and event) or >= 2")
-        if points:
-            simulate_options["t_eval"] = np.linspace(0.0, t_end, points)
+        simulate_options["t_eval"] = np.linspace(0.0, t_end, points) if points else "steps"
     simulate_options.setdefault("max_steps", min(math.ceil(STEPS_PER_SECOND * max(t_end, 1.0)),
                                                  2 ** 62))
     if executor is None:

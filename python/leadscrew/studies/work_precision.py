@@ -425,8 +425,7 @@ def work_precision(
         run_model, friction_arguments = _with_friction(model, friction, entry.get("k_v"))
         arguments = {key: value for key, value in entry.items() if key not in ("friction", "k_v")}
         arguments.update(friction_arguments)
-        if times is not None:
-            arguments["t_eval"] = times
+        arguments["t_eval"] = times if times is not None else "steps"
         row = {
             "label": _label(entry),
             "friction": friction,

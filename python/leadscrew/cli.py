@@ -112,7 +112,7 @@ _DERIVED_UNITS = {
     "screw_axial_rigidity": "N (E A)", "screw_torsional_rigidity": "N*m^2 (G I_p)",
     "nut_axial_stiffness": "N/m", "nut_torsional_stiffness": "N*m/rad",
     "screw_axial_stiffness": "N/m", "screw_torsional_stiffness": "N*m/rad",
-    "contact_stiffness": "N/m^e", "contact_damping": "N*s/m", "contact_penetration": "m",
+    "contact_stiffness": "N/m", "contact_damping": "N*s/m", "contact_penetration": "m",
 }
 
 
@@ -229,16 +229,24 @@ def _scene_report(name: str, scene) -> List[str]:
                  + (f" (jams from J = {jm['inertia2']:.6g} kg*m^2)" if math.isfinite(jm["inertia2"])
                     else " (mu' <= cot a: never)"))
     lines.append("derived:")
+    contact = (d.get("backlash") or {}).get("contact", "exact")
     for key, value in scene.derived().items():
+        if key.startswith("contact_") and contact == "exact":
+            continue  # a penalty flank's, which an exact contact has not
         note = (" (follows the nut position, eq. 4.24)" if value == 0.0
                 and key in ("screw_axial_stiffness", "screw_torsional_stiffness") else "")
-        lines.append(f"  {key} = {value:.6g} {_DERIVED_UNITS.get(key, '')}{note}")
+        unit = _DERIVED_UNITS.get(key, "")
+        if key == "contact_stiffness":  # F = k d^e: N/m^e for bistop, N/m for cubic
+            unit = f"N/m^{d['backlash']['exponent']:g}" if contact == "bistop" else "N/m"
+        lines.append(f"  {key} = {value:.6g} {unit}{note}")
     springs = scene.model().springs
     if springs:
         lines.append(f"springs of the {d['concept']} model (at the start):")
         for spring in springs:
-            lines.append(f"  {spring['name']}: stiffness {spring['stiffness']:.6g}, "
-                         f"damping {spring['damping']:.6g}")
+            torsion = "torsion" in spring["name"]
+            lines.append(f"  {spring['name']}: stiffness {spring['stiffness']:.6g} "
+                         f"{'N*m/rad' if torsion else 'N/m'}, damping {spring['damping']:.6g} "
+                         f"{'N*m*s/rad' if torsion else 'N*s/m'}")
     return lines
 
 

@@ -156,8 +156,12 @@ def _parser() -> argparse.ArgumentParser:
         "row's error column says why), 1 when every case failed or the study failed while "
         "running, 2 for usage errors (unknown or missing options, an invalid scene or "
         "option value).",
-        epilog="example: leadscrew study efficiency_vs_mu thesis_table_5_1 mu=0.1,0.2,0.3 "
-        "loads=10,50 progress=false -o out")
+        epilog="examples: leadscrew study efficiency_vs_mu thesis_table_5_1 mu=0.1,0.2,0.3 "
+        "loads=10,50 progress=false -o out; leadscrew study work_precision default t_end=0.5 "
+        "(error against run time of the scene's default set of configurations, "
+        "leadscrew.studies.default_configurations; or your own as a TOML list: "
+        "configurations='[{integrator = \"event_driven\", rtol = 1e-6}, {integrator = "
+        "\"moreau\", dt = 1e-4}]')")
     study.add_argument("name", metavar="NAME", help="the study (leadscrew.studies.STUDIES)")
     study.add_argument("scene", metavar="SCENE")
     study.add_argument("options", metavar="KEY=VALUE", nargs="*",

@@ -3,7 +3,7 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
-from . import fmi, integrate, lcp, plotting, scene, scenes, studies, units
+from . import core_spec, fmi, integrate, lcp, plotting, scene, scenes, studies, units
 from .errors import (JammingError, NoEquilibriumError, NutOffScrewError, SimulationError,
                      StudyWarning, WriteError)
 from .excitation import Constant, Excitation, Sine, Table
@@ -85,6 +85,7 @@ __all__ = [
     "NoEquilibriumError",
     "StudyWarning",
     "WriteError",
+    "core_spec",
     "fmi",
     "integrate",
     "lcp",

@@ -14,7 +14,8 @@
     leadscrew --version
 
 SCENE is a TOML scene file (see :meth:`leadscrew.Scene.from_toml`) or the name
-of a shipped scene (:func:`leadscrew.scenes.available`). Errors print one line
+of a shipped scene (:func:`leadscrew.scenes.available`); ``run`` also takes
+the core spec ``scene resolve`` writes (:mod:`leadscrew.core_spec`). Errors print one line
 to stderr and exit with 2 for usage and validation errors (bad arguments, an
 invalid or unreadable scene file, an integrator that does not fit, an option
 the integrator would ignore: ``--dt``/``--theta`` without ``moreau``,
@@ -33,6 +34,7 @@ import argparse
 import math
 import os
 import sys
+from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple
 
 from . import _core
@@ -42,6 +44,7 @@ from .cli_output import (_check_output_dir, _output_dir, _output_file, _require_
 from .cli_parser import DEFAULT_POINTS, DEFAULT_T_END, UsageError, _load_scene, _parse
 from .cli_catalog import _list, _scene_copy
 from .cli_study import _study
+from .core_spec import is_core_spec, simulate_core_spec
 from .files import write_text
 # (Re-exported: the tests import them from here.)
 from .cli_output import _failures, _summary_text  # noqa: F401
@@ -321,15 +324,43 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
 def _simulate(scene, t_end: float = DEFAULT_T_END, points: int = DEFAULT_POINTS, **options):
     """Simulate (the caller checked t_end and points); options with value None
     are left out."""
-    import numpy as np
-
     from .simulation import simulate
 
-    t_eval = np.linspace(0.0, t_end, points) if points else "steps"
     options = {k: v for k, v in options.items() if v is not None}
     # A progress bar where someone watches (a terminal); Ctrl-C stops the
     # run either way.
-    return simulate(scene, t_end, t_eval=t_eval, progress=sys.stderr.isatty(), **options)
+    return simulate(scene, t_end, t_eval=_t_eval(t_end, points), progress=sys.stderr.isatty(),
+                    **options)
+
+
+def _core_spec_text(args: argparse.Namespace) -> Optional[str]:
+    """SCENE's text where it is a core spec (``leadscrew scene resolve``'s
+    output), else None.
+
+    Raises:
+        UsageError: an option of the run given with a core spec, which
+            carries its run's options (its [options] table).
+    """
+    path = Path(args.scene)
+    if not path.is_file():
+        return None
+    text = path.read_text(encoding="utf-8", errors="replace")
+    if not is_core_spec(text):
+        return None
+    given = [f"--{k.replace('_', '-')}" for k in ("integrator", "rtol", "atol", "dt", "theta",
+                                                  "max_steps") if getattr(args, k) is not None]
+    if given:
+        raise UsageError(f"{', '.join(given)} with the core spec {args.scene} is invalid: a core "
+                         "spec carries its run's options (its [options] table: edit them there, "
+                         "or run the scene file)")
+    return text
+
+
+def _t_eval(t_end: float, points: int):
+    """The output times of ``--points`` (0: every step and event)."""
+    import numpy as np
+
+    return np.linspace(0.0, t_end, points) if points else "steps"
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -337,16 +368,24 @@ def _run(args: argparse.Namespace) -> int:
     _require_parquet(args.format)
     _check_sampling(args.t_end, args.points)
     _check_output_dir(args.output)
-    scene, name, _ = _load_scene(args.scene)
-    _check_integrator_options(scene, args)
-    result = _simulate(scene, args.t_end, args.points, integrator=args.integrator,
-                       rtol=args.rtol, atol=args.atol, dt=args.dt, theta=args.theta,
-                       max_steps=args.max_steps)
+    spec = _core_spec_text(args)
+    if spec is not None:  # what scene resolve writes: the run's options its own
+        name = Path(args.scene).stem
+        result = simulate_core_spec(spec, args.t_end, _t_eval(args.t_end, args.points),
+                                    progress=sys.stderr.isatty())
+        summary, title = _summary(name, "core spec", result, args.t_end), f"{name}: core spec"
+    else:
+        scene, name, _ = _load_scene(args.scene)
+        _check_integrator_options(scene, args)
+        result = _simulate(scene, args.t_end, args.points, integrator=args.integrator,
+                           rtol=args.rtol, atol=args.atol, dt=args.dt, theta=args.theta,
+                           max_steps=args.max_steps)
+        summary, title = _summary(name, repr(scene), result, args.t_end), _title(name, scene)
     out = _output_dir(args.output)
-    print(_summary(name, scene, result, args.t_end))
+    print(summary)
     series = _write_series(result, out, name, args.format)
     figure = _output_file(out, name, "png")
-    _save_figure(result.plot("time_series", _title(name, scene)), figure)
+    _save_figure(result.plot("time_series", title), figure)
     print(f"wrote {series}")
     print(f"wrote {figure}")
     return 0
@@ -406,7 +445,7 @@ def _demo(args: argparse.Namespace) -> int:
     print(f"leadscrew demo: the shipped scene {name!r} ({scenes.path(name)})")
     _check_scene(name)
     result = _simulate(scene)
-    print(_summary(name, scene, result, DEFAULT_T_END))
+    print(_summary(name, repr(scene), result, DEFAULT_T_END))
     written = [_write_series(result, out, name, "csv")]
     for filename, kind in ((name, "time_series"), (f"{name}_energy", "energy")):
         written.append(_output_file(out, filename, "png"))

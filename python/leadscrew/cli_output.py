@@ -70,9 +70,10 @@ def _output_file(out: Path, name: str, suffix: str) -> Path:
     return out / f"{name}.{suffix}"
 
 
-def _summary(name: str, scene, result, t_end: float) -> str:
+def _summary(name: str, what: str, result, t_end: float) -> str:
+    """The run's line: ``what`` ran (the Scene's repr, or "core spec")."""
     stats = result.stats
-    return (f"{name}: {scene!r}, t_end = {t_end:g} s, {result.friction}/{result.integrator}: "
+    return (f"{name}: {what}, t_end = {t_end:g} s, {result.friction}/{result.integrator}: "
             f"{len(result.events)} events, {stats['steps']} steps, "
             f"{stats['wall_time'] * 1e3:.3g} ms; u_load(t_end) = {result['u_load'][-1] * 1e3:.6g} mm")
 

@@ -122,7 +122,9 @@ def _parser() -> argparse.ArgumentParser:
         return p
 
     run = command("run", help="simulate a scene, write its time series and a figure")
-    run.add_argument("scene", metavar="SCENE")
+    run.add_argument("scene", metavar="SCENE",
+                     help="a scene file, a shipped scene's name, or a core spec that 'leadscrew "
+                          "scene resolve' wrote (it carries its run's options)")
     run.add_argument("-o", "--output", default=".", help="output directory (default .)")
     run.add_argument("--format", choices=("csv", "parquet"), default="csv",
                      help="time series format (parquet needs pyarrow)")

@@ -60,7 +60,7 @@ def public_names():
     return names
 
 
-def write_api_page(app):
+def write_api_page(app, config=None):
     """docs/api.rst: an autosummary of every public name, each its own page
     (generated/), written anew at each build so that it cannot drift."""
     import pathlib
@@ -88,5 +88,7 @@ def plain_text_docstring(app, what, name, obj, options, lines):
 
 
 def setup(app):
-    app.connect("builder-inited", write_api_page, priority=100)  # before autosummary
+    # At config-inited: before Sphinx lists the source files (a fresh clone
+    # has no api.rst yet) and autosummary writes the pages it lists.
+    app.connect("config-inited", write_api_page)
     app.connect("autodoc-process-docstring", plain_text_docstring)

@@ -99,3 +99,14 @@ def test_check_names_units_and_no_penalty_contact_for_an_exact_one(capsys):
     assert "  nut torsion: stiffness 543.487 N*m/rad, damping 0.0260645 N*m*s/rad" in out
     code, out, _ = run_main(capsys, "check", "position_holding")  # bistop, exponent 1.5
     assert "  contact_stiffness = 1e+09 N/m^1.5" in out
+
+
+def test_a_study_frame_plots_with_its_own_figure():
+    frame = ls.studies.efficiency_vs_mu(ls.scenes.load("default").replace(concept="rigid"),
+                                        mu=[0.1, 0.2], loads=[10.0], progress=False)
+    assert frame.attrs["study"] == "efficiency_vs_mu"
+    ax = ls.studies.plot(frame)
+    assert ax.get_ylabel() == "efficiency eta [1]"
+    assert ls.studies.STUDIES["efficiency_vs_mu"] is ls.studies.efficiency_vs_mu
+    with pytest.raises(ValueError, match=r"attrs\['study'\] = None"):
+        ls.studies.plot(pd.DataFrame({"a": [1]}))

@@ -106,3 +106,14 @@ def test_a_command_whose_write_fails_leaves_nothing_and_exits_1(tmp_path, argv, 
     done = _run_limited(tmp_path, "resource.RLIM_INFINITY", *argv)
     assert done.returncode == 0, done.stderr
     assert written in os.listdir(tmp_path / "out")
+
+
+def test_scene_resolve_that_cannot_write_names_the_path_and_the_cause(tmp_path, capsys):
+    from helpers.cli_runs import run_main
+
+    target = tmp_path / "missing" / "core.toml"
+    code, out, err = run_main(capsys, "scene", "resolve", "default", "-o", target)
+    assert code == 1 and out == ""
+    assert err.startswith(f"leadscrew: error: WriteError: cannot write {target}: ")
+    assert "No such file or directory" in err
+    assert not (tmp_path / "missing").exists()

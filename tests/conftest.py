@@ -27,3 +27,22 @@ def native_tests_build(tmp_path_factory):
 
     build = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR") or str(tmp_path_factory.mktemp("native"))
     return built(configured(NATIVE_TESTS, build))
+
+
+@pytest.fixture
+def watched(monkeypatch):
+    """Progress bars drawn as where someone watches (a terminal): pytest's
+    captured standard error is not one, where leadscrew draws none."""
+    monkeypatch.setattr("leadscrew._progress._watched", lambda: True)
+
+
+@pytest.fixture
+def every_step(monkeypatch):
+    """simulate's default output keeps every integrator step, as it did
+    before it sampled a long run's steps: for tests whose checks read the
+    run step by step (tests/helpers/result_invariants.py, the first
+    slipping step, the losses never falling between steps). A module uses it
+    with ``pytestmark = pytest.mark.usefixtures("every_step")``."""
+    import sys
+
+    monkeypatch.setattr("leadscrew.simulation.DEFAULT_ROWS", sys.maxsize)

@@ -3,6 +3,7 @@ and validated by FMPy."""
 
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -435,3 +436,80 @@ def test_a_parameter_set_out_of_range_is_replaced_by_a_later_value(tmp_path):
     out = done.stdout + done.stderr
     assert "read -0.1" in out and "mu 0.1" in out and "refused" in out, out
     assert "friction.mu = -0.1 is invalid" in out, out
+
+
+def test_cli_export_fmu_into_a_directory_or_a_fmu_file_only(tmp_path, capsys, monkeypatch):
+    """-o DIR writes DIR/NAME.fmu; -o drive.txt is refused (an importer
+    would not take it for an FMU) and nothing is written."""
+    (tmp_path / "dir").mkdir()
+    assert cli.main(["export-fmu", "default", "-o", str(tmp_path / "dir")]) == 0
+    assert capsys.readouterr().out == f"wrote {tmp_path / 'dir' / 'default.fmu'}\n"
+    assert validate_fmu(str(tmp_path / "dir" / "default.fmu")) == []
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["export-fmu", "default"]) == 0
+    assert (tmp_path / "default.fmu").is_file()
+    assert cli.main(["export-fmu", "default", "-o", "drive.txt"]) == 2
+    err = capsys.readouterr().err
+    assert err == ("leadscrew: error: -o drive.txt: an FMU's file name ends in .fmu "
+                   "(e.g. drive.fmu), or give a directory\n")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["default.fmu", "dir"]
+    with pytest.raises(ValueError, match=r"path = .*drive\.zip' is invalid: .* ends in \.fmu"):
+        ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "drive.zip")
+    with pytest.raises(ValueError, match="is a directory: give name"):
+        ls.fmi.export_fmu(ls.scenes.load("default"), tmp_path / "dir")
+
+
+def test_cli_export_fmu_that_cannot_write_names_the_path_and_the_cause(tmp_path, capsys):
+    target = tmp_path / "missing" / "drive.fmu"
+    assert cli.main(["export-fmu", "default", "-o", str(target)]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith(f"leadscrew: error: WriteError: cannot write {target}: ")
+    assert "No such file or directory" in err
+    assert not (tmp_path / "missing").exists()
+
+
+def _dynamic_symbol_versions(binary):
+    """The symbol versions a shared object needs of its importer's libraries
+    (objdump -T: GLIBC_2.17, GLIBCXX_3.4.29, GCC_3.0, ...)."""
+    done = subprocess.run(["objdump", "-T", str(binary)], capture_output=True, text=True,
+                          check=True, timeout=60)
+    return set(re.findall(r"\((G[A-Z]*_[0-9.]+)\)", done.stdout))
+
+
+@pytest.mark.skipif(shutil.which("objdump") is None, reason="needs objdump (binutils)")
+def test_the_fmu_binary_runs_on_glibc_2_28_without_a_cpp_runtime(tmp_path):
+    """The FMU's binary needs no glibc symbol version above 2.28 (Debian 10,
+    RHEL 8, Ubuntu 20.04 load it) and none of libstdc++ (linked in), as
+    objdump -T lists them; libgcc_s (GCC_ versions) and libm / libc stay."""
+    path = ls.fmi.export_fmu(ls.scenes.load("seat_adjuster"), tmp_path / "seat.fmu")
+    with zipfile.ZipFile(path) as fmu:
+        fmu.extract(f"binaries/linux64/{ls.fmi.MODEL_IDENTIFIER}.so", tmp_path)
+    binary = tmp_path / "binaries" / "linux64" / f"{ls.fmi.MODEL_IDENTIFIER}.so"
+    versions = _dynamic_symbol_versions(binary)
+    glibc = [tuple(int(n) for n in v.split("_")[1].split(".")) for v in versions
+             if v.startswith("GLIBC_")]
+    assert glibc and max(glibc) <= (2, 28), sorted(versions)
+    assert not [v for v in versions if v.startswith("GLIBCXX_") or v.startswith("CXXABI_")]
+    needed = subprocess.run(["objdump", "-p", str(binary)], capture_output=True, text=True,
+                            check=True, timeout=60).stdout
+    assert "libstdc++" not in needed
+
+
+def test_the_fmu_outputs_every_channel_of_the_scenes_elements(tmp_path):
+    """stop_force (the quantity the seat adjuster's studies are about), the
+    motor's and the stages' channels: an output each, as simulate has them."""
+    scene = ls.scenes.load("seat_adjuster_worm")
+    path = ls.fmi.export_fmu(scene, tmp_path / "seat.fmu")
+    assert validate_fmu(path) == []
+    outputs = {v.name for v in fmpy.read_model_description(path).modelVariables
+               if v.causality == "output"}
+    reference = ls.simulate(scene, 0.7, t_eval=np.linspace(0.0, 0.7, 701))
+    element_channels = {"stop_force", "motor_current", "motor_voltage", "copper_loss",
+                        "magnetic_energy", "motor_friction_loss", "gear_loss"}
+    assert element_channels - {"motor_voltage"} <= outputs  # (the voltage is the input)
+    assert element_channels <= set(reference.channels)
+    result = fmpy.simulate_fmu(path, stop_time=0.7, step_size=1e-3, output_interval=1e-3,
+                               output=["stop_force", "u_load"])
+    expected = np.interp(result["time"], reference.t, reference["stop_force"])
+    assert np.max(expected) > 100.0  # the seat runs into its rear stop
+    assert np.max(np.abs(result["stop_force"] - expected)) <= 1e-3 * np.max(expected)

@@ -34,6 +34,10 @@ from helpers.scene_fuzz import (ALLOWED, DEFAULT_SEED, FAILURES, OUTCOMES, cases
 from helpers.scenes import thesis_scene
 from leadscrew.simulation import unused_option
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 # A few hundred cases in well under two minutes on the 2-core machine
 # (measured: 300 cases in 14 s with two workers on a quiet machine, 45 s at a
 # load average of 4.5).

@@ -1,17 +1,30 @@
-"""The README's API tour runs as written."""
+"""The README's examples and the user guide's API tour run as written."""
 
 import pathlib
 import re
 
 README = pathlib.Path(__file__).resolve().parents[1] / "README.md"
+TOUR = README.parent / "docs" / "guide" / "tour.md"
+
+
+def _run_python_blocks(path, at_least):
+    blocks = re.findall(r"```python\n(.*?)```", path.read_text(), flags=re.S)
+    assert len(blocks) >= at_least
+    namespace = {}
+    for block in blocks:
+        exec(compile(block, str(path), "exec"), namespace)  # noqa: S102
 
 
 def test_readme_python_blocks_run():
-    blocks = re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
-    assert len(blocks) >= 3
-    namespace = {}
-    for block in blocks:
-        exec(compile(block, str(README), "exec"), namespace)  # noqa: S102
+    _run_python_blocks(README, 3)
+
+
+def test_the_guides_api_tour_runs():
+    _run_python_blocks(TOUR, 7)
+
+
+def test_readme_is_short():
+    assert len(README.read_text().splitlines()) <= 300
 
 
 def test_readme_commands_are_the_ci_commands():
@@ -22,7 +35,7 @@ def test_readme_commands_are_the_ci_commands():
 
 def test_every_name_the_readme_uses_is_reachable_from_import_leadscrew():
     """``ls.integrate.solve_ode``, ``ls.lcp.solve``, ``ls.scene.describe_schema``
-    ...: each dotted name the README writes after ``ls.`` resolves right after
+    ...: each dotted name the README and the API tour write after ``ls.`` resolves right after
     ``import leadscrew as ls`` (in a fresh interpreter: another test's import
     of a submodule would make it an attribute here)."""
     import json
@@ -31,7 +44,7 @@ def test_every_name_the_readme_uses_is_reachable_from_import_leadscrew():
 
     # "ls." not inside a word or a path (drive_models.md, drive_rigid.hpp).
     names = sorted(set(re.findall(r"(?<![\w./])ls\.([A-Za-z_]\w*(?:\.[A-Za-z_]\w*)*)",
-                                  README.read_text())))
+                                  README.read_text() + TOUR.read_text())))
     assert {"integrate.solve_ode", "lcp.solve", "scene.describe_schema", "Thread"} <= set(names)
     script = ("import functools, json, sys\nimport leadscrew as ls\n"
               "missing = []\n"

@@ -409,7 +409,7 @@ def test_minimal_file_fills_defaults(tmp_path):
     "text, message",
     [
         (GOOD.replace("pitch =", "pich ="),
-         "scene.toml: thread.pich is not a known key; thread takes pitch, "),
+         "scene.toml: thread.pich is not a known key (did you mean 'pitch'?); thread takes pitch, "),
         (GOOD + "\n[gearbox]\nratio = 3\n", "scene.toml: gearbox is not a known section"),
         (GOOD.replace('"1 mm"', '"3 N"'),
          'scene.toml: thread.pitch = "3 N" is invalid: "3 N" is not a length (m)'),

@@ -14,6 +14,10 @@ from helpers import end_stop_reference as reference
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 K = 1e7  # [N/m]
 SINE = {"type": "sine", "amplitude": 0.05, "omega": 20.0}  # [N m], [rad/s]
 BOUNCING = {"lower": -2e-4, "upper": 2e-4, "stiffness": 1e6, "damping": 500.0}

@@ -13,6 +13,10 @@ import leadscrew as ls
 from helpers import thread_reference as tr
 from helpers.scenes import thesis_scene
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 PITCH, DIAMETER = 1e-3, 20e-3  # the thesis's thread (Table 5.1)
 LOAD = 10.0  # N, against raising
 

@@ -15,6 +15,10 @@ from helpers import load_spring_reference as reference
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 K, P = 2e4, 30.0  # [N/m], [N]
 LEAD = 1e-3  # the thesis thread's [m]
 

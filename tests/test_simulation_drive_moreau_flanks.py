@@ -21,6 +21,10 @@ from helpers import train_reference as reference
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 CONTACTS = ["bistop", "cubic"]
 PLAY = 1e-4  # [m]
 

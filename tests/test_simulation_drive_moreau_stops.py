@@ -16,6 +16,10 @@ from helpers import end_stop_reference as reference
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 K = 1e7  # [N/m]
 
 

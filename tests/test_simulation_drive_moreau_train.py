@@ -21,6 +21,10 @@ from helpers import train_reference as reference
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 R, KT, L, U, F = 2.0, 0.05, 1e-3, 3.0, 10.0  # [Ohm], [N m/A], [H], [V], [N]
 DC_MOTOR = {"type": "dc", "voltage": U, "resistance": R, "inductance": L, "torque_constant": KT}
 RATIO = 4.0

@@ -18,6 +18,10 @@ from helpers import train_reference
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
 
+# Its checks read each run step by step: every step kept (simulate's default
+# samples a long run's steps).
+pytestmark = pytest.mark.usefixtures("every_step")
+
 R, KT, L, U = 2.0, 0.05, 1e-3, 3.0  # [Ohm], [N m/A], [H], [V]
 RATIO = 10.0
 # A self-locking worm: mu' = 0.1 / cos(20 deg) = 0.106 > tan(0.06).

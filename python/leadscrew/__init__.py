@@ -3,9 +3,9 @@
 SI units throughout (m, kg, s, N, N*m, Pa, rad).
 """
 
-from . import fmi, integrate, lcp, profiles, scene, scenes, studies, units
+from . import core_spec, fmi, integrate, lcp, plotting, profiles, scene, scenes, studies, units
 from .errors import (JammingError, NoEquilibriumError, NutOffScrewError, SimulationError,
-                     StudyWarning)
+                     StudyWarning, WriteError)
 from .excitation import Constant, Excitation, Sine, Table
 from .excitation_sampled import Measured, RandomVibration
 from .models import FrictionBlock
@@ -87,9 +87,12 @@ __all__ = [
     "NutOffScrewError",
     "NoEquilibriumError",
     "StudyWarning",
+    "WriteError",
+    "core_spec",
     "fmi",
     "integrate",
     "lcp",
+    "plotting",
     "profiles",
     "scene",
     "scenes",

@@ -1,4 +1,4 @@
-"""Command line interface: ``leadscrew run | check | study | demo``.
+"""Command line interface: ``leadscrew run | check | study | scene | export-fmu | list | demo``.
 
 ::
 
@@ -6,19 +6,26 @@
                   [--rtol R] [--atol A] [--dt DT] [--theta THETA] [--points N]
     leadscrew check [SCENE]
     leadscrew study NAME SCENE [-o DIR] [KEY=VALUE ...]
+    leadscrew scene resolve SCENE [-o FILE]
+    leadscrew scene copy NAME [PATH]
+    leadscrew export-fmu SCENE [-o FILE.fmu | DIR]
+    leadscrew list
     leadscrew demo [-o DIR]
     leadscrew --version
 
 SCENE is a TOML scene file (see :meth:`leadscrew.Scene.from_toml`) or the name
-of a shipped scene (:func:`leadscrew.scenes.available`). Errors print one line
+of a shipped scene (:func:`leadscrew.scenes.available`); ``run`` also takes
+the core spec ``scene resolve`` writes (:mod:`leadscrew.core_spec`). Errors print one line
 to stderr and exit with 2 for usage and validation errors (bad arguments, an
 invalid or unreadable scene file, an integrator that does not fit, an option
 the integrator would ignore: ``--dt``/``--theta`` without ``moreau``,
 ``--rtol``/``--atol`` with it) and 1 for failures while running (simulation
-errors, a study that raises or whose every case failed; some failed cases:
+errors, a file that cannot be written, a study that raises or whose every
+case failed; some failed cases:
 exit 0 with a warning on stderr); ``--debug`` shows the traceback instead.
 Arguments are checked before anything is simulated, and the output
-directory is created only once there is something to write.
+directory is created only once there is something to write; every file is
+written whole or not at all (:mod:`leadscrew.files`).
 """
 
 from __future__ import annotations
@@ -32,10 +39,13 @@ from typing import Any, Dict, List, Optional, Tuple
 
 from . import _core
 from . import thread as _thread
-from .cli_output import (_check_output_dir, _output_dir, _output_file, _plot_energy,
-                         _plot_time_series, _require_parquet, _summary, _write_series)
+from .cli_output import (_check_output_dir, _output_dir, _output_file, _require_parquet,
+                         _save_figure, _summary, _title, _write_series)
 from .cli_parser import DEFAULT_POINTS, DEFAULT_T_END, UsageError, _load_scene, _parse
+from .cli_catalog import _list, _scene_copy
 from .cli_study import _study
+from .core_spec import is_core_spec, simulate_core_spec
+from .files import write_text
 # (Re-exported: the tests import them from here.)
 from .cli_output import _failures, _summary_text  # noqa: F401
 from .cli_parser import StudyFailed  # noqa: F401
@@ -105,7 +115,7 @@ _DERIVED_UNITS = {
     "screw_axial_rigidity": "N (E A)", "screw_torsional_rigidity": "N*m^2 (G I_p)",
     "nut_axial_stiffness": "N/m", "nut_torsional_stiffness": "N*m/rad",
     "screw_axial_stiffness": "N/m", "screw_torsional_stiffness": "N*m/rad",
-    "contact_stiffness": "N/m^e", "contact_damping": "N*s/m", "contact_penetration": "m",
+    "contact_stiffness": "N/m", "contact_damping": "N*s/m", "contact_penetration": "m",
 }
 
 
@@ -222,16 +232,24 @@ def _scene_report(name: str, scene) -> List[str]:
                  + (f" (jams from J = {jm['inertia2']:.6g} kg*m^2)" if math.isfinite(jm["inertia2"])
                     else " (mu' <= cot a: never)"))
     lines.append("derived:")
+    contact = (d.get("backlash") or {}).get("contact", "exact")
     for key, value in scene.derived().items():
+        if key.startswith("contact_") and contact == "exact":
+            continue  # a penalty flank's, which an exact contact has not
         note = (" (follows the nut position, eq. 4.24)" if value == 0.0
                 and key in ("screw_axial_stiffness", "screw_torsional_stiffness") else "")
-        lines.append(f"  {key} = {value:.6g} {_DERIVED_UNITS.get(key, '')}{note}")
+        unit = _DERIVED_UNITS.get(key, "")
+        if key == "contact_stiffness":  # F = k d^e: N/m^e for bistop, N/m for cubic
+            unit = f"N/m^{d['backlash']['exponent']:g}" if contact == "bistop" else "N/m"
+        lines.append(f"  {key} = {value:.6g} {unit}{note}")
     springs = scene.model().springs
     if springs:
         lines.append(f"springs of the {d['concept']} model (at the start):")
         for spring in springs:
-            lines.append(f"  {spring['name']}: stiffness {spring['stiffness']:.6g}, "
-                         f"damping {spring['damping']:.6g}")
+            torsion = "torsion" in spring["name"]
+            lines.append(f"  {spring['name']}: stiffness {spring['stiffness']:.6g} "
+                         f"{'N*m/rad' if torsion else 'N/m'}, damping {spring['damping']:.6g} "
+                         f"{'N*m*s/rad' if torsion else 'N*s/m'}")
     return lines
 
 
@@ -306,15 +324,43 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
 def _simulate(scene, t_end: float = DEFAULT_T_END, points: int = DEFAULT_POINTS, **options):
     """Simulate (the caller checked t_end and points); options with value None
     are left out."""
-    import numpy as np
-
     from .simulation import simulate
 
-    t_eval = np.linspace(0.0, t_end, points) if points else None
     options = {k: v for k, v in options.items() if v is not None}
     # A progress bar where someone watches (a terminal); Ctrl-C stops the
     # run either way.
-    return simulate(scene, t_end, t_eval=t_eval, progress=sys.stderr.isatty(), **options)
+    return simulate(scene, t_end, t_eval=_t_eval(t_end, points), progress=sys.stderr.isatty(),
+                    **options)
+
+
+def _core_spec_text(args: argparse.Namespace) -> Optional[str]:
+    """SCENE's text where it is a core spec (``leadscrew scene resolve``'s
+    output), else None.
+
+    Raises:
+        UsageError: an option of the run given with a core spec, which
+            carries its run's options (its [options] table).
+    """
+    path = Path(args.scene)
+    if not path.is_file():
+        return None
+    text = path.read_text(encoding="utf-8", errors="replace")
+    if not is_core_spec(text):
+        return None
+    given = [f"--{k.replace('_', '-')}" for k in ("integrator", "rtol", "atol", "dt", "theta",
+                                                  "max_steps") if getattr(args, k) is not None]
+    if given:
+        raise UsageError(f"{', '.join(given)} with the core spec {args.scene} is invalid: a core "
+                         "spec carries its run's options (its [options] table: edit them there, "
+                         "or run the scene file)")
+    return text
+
+
+def _t_eval(t_end: float, points: int):
+    """The output times of ``--points`` (0: every step and event)."""
+    import numpy as np
+
+    return np.linspace(0.0, t_end, points) if points else "steps"
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -322,16 +368,24 @@ def _run(args: argparse.Namespace) -> int:
     _require_parquet(args.format)
     _check_sampling(args.t_end, args.points)
     _check_output_dir(args.output)
-    scene, name, _ = _load_scene(args.scene)
-    _check_integrator_options(scene, args)
-    result = _simulate(scene, args.t_end, args.points, integrator=args.integrator,
-                       rtol=args.rtol, atol=args.atol, dt=args.dt, theta=args.theta,
-                       max_steps=args.max_steps)
+    spec = _core_spec_text(args)
+    if spec is not None:  # what scene resolve writes: the run's options its own
+        name = Path(args.scene).stem
+        result = simulate_core_spec(spec, args.t_end, _t_eval(args.t_end, args.points),
+                                    progress=sys.stderr.isatty())
+        summary, title = _summary(name, "core spec", result, args.t_end), f"{name}: core spec"
+    else:
+        scene, name, _ = _load_scene(args.scene)
+        _check_integrator_options(scene, args)
+        result = _simulate(scene, args.t_end, args.points, integrator=args.integrator,
+                           rtol=args.rtol, atol=args.atol, dt=args.dt, theta=args.theta,
+                           max_steps=args.max_steps)
+        summary, title = _summary(name, repr(scene), result, args.t_end), _title(name, scene)
     out = _output_dir(args.output)
-    print(_summary(name, scene, result, args.t_end))
+    print(summary)
     series = _write_series(result, out, name, args.format)
     figure = _output_file(out, name, "png")
-    _plot_time_series(result, f"{name}: {scene!r}").savefig(figure, dpi=110)
+    _save_figure(result.plot("time_series", title), figure)
     print(f"wrote {series}")
     print(f"wrote {figure}")
     return 0
@@ -341,6 +395,13 @@ def _scene_command(args: argparse.Namespace) -> int:
     """``leadscrew scene resolve SCENE [-o FILE]``: the scene's core spec
     (:meth:`leadscrew.Scene.to_core_toml`), the input of the C API, to FILE
     or standard output."""
+    if args.action == "copy":
+        if args.output is not None:
+            raise UsageError(f"scene copy takes PATH, not -o (leadscrew scene copy {args.scene} "
+                             f"{args.output})")
+        return _scene_copy(args)
+    if args.path is not None:
+        raise UsageError(f"scene resolve writes to -o FILE, not to PATH {args.path!r}")
     scene, _, source = _load_scene(args.scene)
     try:
         text = scene.to_core_toml()
@@ -349,23 +410,29 @@ def _scene_command(args: argparse.Namespace) -> int:
     if args.output in (None, "-"):
         sys.stdout.write(text)
     else:
-        Path(args.output).write_text(text, encoding="utf-8")
+        write_text(args.output, text)
         print(f"wrote {args.output}")
     return 0
 
 
 def _export_fmu(args: argparse.Namespace) -> int:
-    """``leadscrew export-fmu SCENE -o drive.fmu``: the scene as an FMI 2.0
-    co-simulation FMU (:func:`leadscrew.fmi.export_fmu`)."""
+    """``leadscrew export-fmu SCENE [-o FILE.fmu | DIR]``: the scene as an FMI
+    2.0 co-simulation FMU (:func:`leadscrew.fmi.export_fmu`), by default
+    ``./NAME.fmu``."""
     from . import fmi
 
     scene, name, source = _load_scene(args.scene)
-    output = args.output or f"{name}.fmu"
+    output = args.output or "."
     try:
-        fmi.export_fmu(scene, output, name=name)
+        fmi._fmu_path(output, name)
+    except ValueError:
+        raise UsageError(f"-o {output}: an FMU's file name ends in .fmu (e.g. "
+                         f"{os.path.splitext(output)[0]}.fmu), or give a directory") from None
+    try:
+        written = fmi.export_fmu(scene, output, name=name)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
-    print(f"wrote {output}")
+    print(f"wrote {written}")
     return 0
 
 
@@ -378,12 +445,11 @@ def _demo(args: argparse.Namespace) -> int:
     print(f"leadscrew demo: the shipped scene {name!r} ({scenes.path(name)})")
     _check_scene(name)
     result = _simulate(scene)
-    print(_summary(name, scene, result, DEFAULT_T_END))
+    print(_summary(name, repr(scene), result, DEFAULT_T_END))
     written = [_write_series(result, out, name, "csv")]
-    figures = ((name, _plot_time_series), (f"{name}_energy", _plot_energy))
-    for filename, plot in figures:
+    for filename, kind in ((name, "time_series"), (f"{name}_energy", "energy")):
         written.append(_output_file(out, filename, "png"))
-        plot(result, f"{name}: {scene!r}").savefig(written[-1], dpi=110)
+        _save_figure(result.plot(kind, _title(name, scene)), written[-1])
     for path in written:
         print(f"wrote {path}")
     return 0
@@ -391,14 +457,18 @@ def _demo(args: argparse.Namespace) -> int:
 
 #: Each command's function, by the name the parser gives it (``args.command``).
 _COMMANDS = {"run": _run, "check": _check, "study": _study, "scene": _scene_command,
-             "export-fmu": _export_fmu, "demo": _demo}
+             "export-fmu": _export_fmu, "demo": _demo, "list": _list}
 
 
 def _is_input_error(error: BaseException) -> bool:
     """Bad arguments or an invalid or unreadable scene (exit code 2)."""
     from .errors import SimulationError
 
-    return isinstance(error, (ValueError, OSError)) and not isinstance(error, SimulationError)
+    from .errors import WriteError
+
+    # (A file that could not be written is a failure while running: exit 1.)
+    return (isinstance(error, (ValueError, OSError))
+            and not isinstance(error, (SimulationError, WriteError)))
 
 
 def main(argv: Optional[List[str]] = None) -> int:

@@ -1,6 +1,7 @@
 """What the commands write: figures, tables with units, summaries.
 
-The run's figures (``_plot_time_series``, ``_plot_energy``) and time series
+The run's figures' titles (``_title``; the figures are
+:meth:`leadscrew.Result.plot`'s) and time series
 (CSV with a row of units, or Parquet with each field's unit), the output
 directory (checked before anything runs, created only once there is something
 to write), and a study's output: the failed rows counted (``_failures``),
@@ -18,67 +19,19 @@ from pathlib import Path
 from typing import Any, Dict, Tuple
 
 from .cli_parser import StudyFailed, UsageError
+from .files import writing
 
 __all__: list = []  # the command line's internals: leadscrew.cli.main is the entry point
 
 
-def _plot_time_series(result, title: str):
-    """Load position, rotor speed, forces (with an end stop's), drive torque and
-    a DC motor's current over time (a Figure)."""
-    from matplotlib.figure import Figure
-
-    t = result.t
-    motor = "motor_current" in result  # a DC motor: its current in a panel of its own
-    figure = Figure(figsize=(8.0, 11.0 if motor else 9.0), layout="constrained")
-    axes = figure.subplots(5 if motor else 4, 1, sharex=True)
-    axes[0].plot(t, result["u_load"] * 1e3, color="C0")
-    if "stick" in result and len(t) > 1:
-        stick = result["stick"] > 0.5
-        axes[0].fill_between(t, 0, 1, where=stick, transform=axes[0].get_xaxis_transform(),
-                             color="0.85", step="mid", label="stick")
-        if stick.any():
-            axes[0].legend(loc="best")
-    axes[0].set_ylabel("load position u [mm]")
-    axes[1].plot(t, result["omega_drive"], color="C1")
-    axes[1].set_ylabel("rotor speed [rad/s]")
-    for name, label in (("axial_force", "axial load F"), ("normal_force", "flank normal N"),
-                        ("friction_force", "flank friction T"), ("stop_force", "end stop")):
-        if name in result:
-            axes[2].plot(t, result[name], label=label)
-    axes[2].set_ylabel("force [N]")
-    axes[2].legend(loc="best")
-    axes[3].plot(t, result["drive_torque"] * 1e3, color="C3")
-    axes[3].set_ylabel("drive torque [N*mm]")
-    if motor:
-        axes[4].plot(t, result["motor_current"], color="C4")
-        axes[4].set_ylabel("motor current [A]")
-    axes[-1].set_xlabel("time t [s]")
-    for ax in axes:
-        ax.grid(True, alpha=0.3)
-    figure.suptitle(title, fontsize="medium")
-    return figure
-
-
-def _plot_energy(result, title: str):
-    """The energy account: work in, losses, stored energy, residual (a Figure)."""
-    from matplotlib.figure import Figure
-
-    t = result.t
-    figure = Figure(figsize=(8.0, 6.0), layout="constrained")
-    top, bottom = figure.subplots(2, 1, sharex=True)
-    for name in ("work_drive", "work_axial", "friction_loss", "damping_loss", "contact_loss",
-                 "impact_loss", "kinetic", "elastic"):
-        if name in result and (result[name] != 0).any():
-            top.plot(t, result[name], label=name)
-    top.set_ylabel("energy [J]")
-    top.legend(loc="best")
-    bottom.plot(t, result["energy_residual"], color="k")
-    bottom.set_ylabel("energy residual [J]")
-    bottom.set_xlabel("time t [s]")
-    for ax in (top, bottom):
-        ax.grid(True, alpha=0.3)
-    figure.suptitle(title, fontsize="medium")
-    return figure
+def _title(name: str, scene) -> str:
+    """A figure's title: the scene's name and what runs (not the Scene's
+    repr): ``default: rigid concept, screw driven, coulomb friction, mu = 0.3``."""
+    data = scene.to_dict()
+    backlash = data.get("backlash")
+    play = f", {backlash['axial'] * 1e3:g} mm play ({backlash['contact']})" if backlash else ""
+    return (f"{name}: {data['concept']} concept, {data['drive']} driven, "
+            f"{data['friction']['law']} friction, mu = {data['friction']['mu']:g}{play}")
 
 
 def _check_output_dir(path: str) -> None:
@@ -117,9 +70,10 @@ def _output_file(out: Path, name: str, suffix: str) -> Path:
     return out / f"{name}.{suffix}"
 
 
-def _summary(name: str, scene, result, t_end: float) -> str:
+def _summary(name: str, what: str, result, t_end: float) -> str:
+    """The run's line: ``what`` ran (the Scene's repr, or "core spec")."""
     stats = result.stats
-    return (f"{name}: {scene!r}, t_end = {t_end:g} s, {result.friction}/{result.integrator}: "
+    return (f"{name}: {what}, t_end = {t_end:g} s, {result.friction}/{result.integrator}: "
             f"{len(result.events)} events, {stats['steps']} steps, "
             f"{stats['wall_time'] * 1e3:.3g} ms; u_load(t_end) = {result['u_load'][-1] * 1e3:.6g} mm")
 
@@ -142,7 +96,8 @@ def _write_series(result, out: Path, name: str, fmt: str) -> Path:
         schema = pa.Schema.from_pandas(frame, preserve_index=False)
         schema = pa.schema([field.with_metadata({"unit": units[field.name]})
                             for field in schema], metadata=schema.metadata)
-        frame.to_parquet(path, index=False, schema=schema)
+        with writing(path) as temporary:
+            frame.to_parquet(temporary, index=False, schema=schema)
     else:
         _write_csv(frame, path, units)
     return path
@@ -160,11 +115,17 @@ def _write_csv(frame, path: Path, units: Dict[str, str], index: bool = False) ->
     if index:
         names.insert(0, "" if frame.index.name is None else str(frame.index.name))
         unit_row.insert(0, "")
-    with open(path, "w", encoding="utf-8", newline="") as stream:
+    with writing(path) as temporary, open(temporary, "w", encoding="utf-8", newline="") as stream:
         writer = csv.writer(stream, lineterminator="\n")
         writer.writerow(names)
         writer.writerow(unit_row)
         frame.to_csv(stream, index=index, header=False, lineterminator="\n")
+
+
+def _save_figure(figure, path: Path, dpi: int = 110) -> None:
+    """Write a figure to ``path`` whole or not at all."""
+    with writing(path) as temporary:
+        figure.savefig(temporary, dpi=dpi)
 
 
 def _require_parquet(fmt: str) -> None:

@@ -121,7 +121,9 @@ def _parser() -> argparse.ArgumentParser:
         return p
 
     run = command("run", help="simulate a scene, write its time series and a figure")
-    run.add_argument("scene", metavar="SCENE")
+    run.add_argument("scene", metavar="SCENE",
+                     help="a scene file, a shipped scene's name, or a core spec that 'leadscrew "
+                          "scene resolve' wrote (it carries its run's options)")
     run.add_argument("-o", "--output", default=".", help="output directory (default .)")
     run.add_argument("--format", choices=("csv", "parquet"), default="csv",
                      help="time series format (parquet needs pyarrow)")
@@ -155,8 +157,12 @@ def _parser() -> argparse.ArgumentParser:
         "row's error column says why), 1 when every case failed or the study failed while "
         "running, 2 for usage errors (unknown or missing options, an invalid scene or "
         "option value).",
-        epilog="example: leadscrew study efficiency_vs_mu thesis_table_5_1 mu=0.1,0.2,0.3 "
-        "loads=10,50 progress=false -o out")
+        epilog="examples: leadscrew study efficiency_vs_mu thesis_table_5_1 mu=0.1,0.2,0.3 "
+        "loads=10,50 progress=false -o out; leadscrew study work_precision default t_end=0.5 "
+        "(error against run time of the scene's default set of configurations, "
+        "leadscrew.studies.default_configurations; or your own as a TOML list: "
+        "configurations='[{integrator = \"event_driven\", rtol = 1e-6}, {integrator = "
+        "\"moreau\", dt = 1e-4}]')")
     study.add_argument("name", metavar="NAME", help="the study (leadscrew.studies.STUDIES)")
     study.add_argument("scene", metavar="SCENE")
     study.add_argument("options", metavar="KEY=VALUE", nargs="*",
@@ -166,19 +172,28 @@ def _parser() -> argparse.ArgumentParser:
     study.add_argument("-o", "--output", default=".", help="output directory (default .)")
 
     scene = command("scene", help="scene tools: 'resolve' writes the core spec (every value "
-                    "SI and explicit) that the C API reads",
-                    epilog="example: leadscrew scene resolve default -o core.toml")
-    scene.add_argument("action", choices=("resolve",), metavar="resolve",
-                       help="write SCENE's core spec (Scene.to_core_toml)")
+                    "SI and explicit) that the C API reads and 'leadscrew run' takes; 'copy' "
+                    "copies a shipped scene (with its comments) to a file to edit",
+                    epilog="examples: leadscrew scene resolve default -o core.toml; "
+                    "leadscrew scene copy seat_adjuster my_seat.toml")
+    scene.add_argument("action", choices=("resolve", "copy"), metavar="{resolve,copy}",
+                       help="resolve: write SCENE's core spec (Scene.to_core_toml); copy: "
+                            "write the shipped scene SCENE to PATH")
     scene.add_argument("scene", metavar="SCENE")
+    scene.add_argument("path", metavar="PATH", nargs="?", default=None,
+                       help="copy: the file or directory to write (default ./SCENE.toml; "
+                            "never overwritten)")
     scene.add_argument("-o", "--output", default=None,
-                       help="the file to write (default: standard output)")
+                       help="resolve: the file to write (default: standard output)")
+
+    command("list", help="list the shipped scenes, the studies and the friction laws")
 
     export = command("export-fmu", help="write SCENE as an FMI 2.0 co-simulation FMU",
                      epilog="example: leadscrew export-fmu default -o drive.fmu")
     export.add_argument("scene", metavar="SCENE")
     export.add_argument("-o", "--output", default=None,
-                        help="the .fmu file to write (default: SCENE's name + .fmu)")
+                        help="the .fmu file to write, or a directory to write NAME.fmu "
+                             "into (default: ./NAME.fmu, NAME the scene's name)")
 
     demo = command("demo", help="simulate the default scene and write its figures")
     demo.add_argument("-o", "--output", default="leadscrew-demo",

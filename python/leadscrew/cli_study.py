@@ -24,6 +24,8 @@ from .cli_output import (_check_output_dir, _failures, _output_dir, _output_file
                          _summary_text, _summary_unit, _write_csv)
 from .cli_parser import StudyFailed, UsageError, _load_scene
 from .errors import StudyWarning
+from ._hints import did_you_mean
+from .files import write_text
 
 __all__: list = []  # the command line's internals: leadscrew.cli.main is the entry point
 
@@ -130,7 +132,9 @@ def _check_study_options(name: str, function, options: Dict[str, Any]) -> None:
                                                             if _from_text(p))
     for key in options:
         if key not in accepted:
-            raise UsageError(f"study {name!r} has no option {key!r}; it takes {takes}")
+            raise UsageError(f"study {name!r} has no option {key!r}"
+                             f"{did_you_mean(key, [k for k in accepted if _from_text(accepted[k])])}"
+                             f"; it takes {takes}")
         if not _from_text(accepted[key]):
             raise UsageError(f"study option {key} = {options[key]!r} is invalid: {key} takes a "
                              "Python object, which the command line cannot give (leave it out "
@@ -151,7 +155,8 @@ def _study(args: argparse.Namespace) -> int:
     if not hasattr(registry, "keys"):
         raise StudyFailed("leadscrew.studies has no STUDIES registry")
     if args.name not in registry:
-        raise UsageError(f"study {args.name!r} is unknown; the studies are "
+        raise UsageError(f"study {args.name!r} is unknown{did_you_mean(args.name, registry)}; "
+                         f"the studies are "
                          f"{', '.join(sorted(registry))}")
     function = registry[args.name]
     options = _study_options(args.options)
@@ -188,9 +193,8 @@ def _study(args: argparse.Namespace) -> int:
         for key, value in summary.items():
             print(f"  {key}: {_summary_text(value, _summary_unit(str(key), frame))}")
         written.append(_output_file(out, stem, "summary.json"))
-        with open(written[-1], "w", encoding="utf-8") as stream:
-            json.dump(_summary_json(summary, frame), stream, indent=2, allow_nan=False)
-            stream.write("\n")
+        write_text(written[-1], json.dumps(_summary_json(summary, frame), indent=2,
+                                           allow_nan=False) + "\n")
     # The study's figure (leadscrew.studies.PLOTS) beside its CSV, if it has one.
     save_figure = getattr(studies, "save_figure", None)
     figure = save_figure and save_figure(args.name, frame, _output_file(out, stem, "png"),

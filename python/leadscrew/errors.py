@@ -1,9 +1,11 @@
 """Exceptions raised by leadscrew."""
 
+import os
+
 from ._core import JammingError, NoEquilibriumError, NutOffScrewError, SimulationError
 
 __all__ = ["SimulationError", "JammingError", "NutOffScrewError", "NoEquilibriumError",
-           "StudyWarning"]
+           "StudyWarning", "WriteError"]
 
 SimulationError.__doc__ = """A solver failed during a simulation.
 
@@ -32,3 +34,22 @@ class StudyWarning(RuntimeWarning):
     """A study returned a result that needs a reader's attention: cases that
     failed (their rows carry the message and decide nothing), or a verdict
     that rests on an assumption its evaluations contradict."""
+
+
+class WriteError(OSError):
+    """A file could not be written (no space left on device, a file size
+    limit, a directory that is not writable, ...). Nothing is left at the
+    path: leadscrew writes each file whole or not at all
+    (:mod:`leadscrew.files`); a file already there is unchanged.
+
+    Attributes:
+        filename: the path that was to be written.
+        strerror: the cause, as the operating system gave it.
+    """
+
+    def __init__(self, path, cause: BaseException):
+        strerror = getattr(cause, "strerror", None) or str(cause)
+        super().__init__(getattr(cause, "errno", None), strerror, os.fspath(path))
+
+    def __str__(self) -> str:
+        return f"cannot write {self.filename}: {self.strerror}"

@@ -3,8 +3,10 @@
 :func:`export_fmu` writes one file that Simulink, Dymola, OpenModelica,
 Adams, Simcenter Amesim or FMPy import: the scene's core spec
 (:meth:`leadscrew.Scene.to_core_toml`) in its ``resources/``, the package's
-generic binary (``binaries/linux64/``, SUNDIALS linked statically: it needs
-neither Python nor this package) and a ``modelDescription.xml`` written from
+generic binary (``binaries/linux64/``: SUNDIALS and the C++ runtime linked
+statically, glibc's functions taken at versions up to 2.28, so that it
+loads on any x86-64 Linux with glibc >= 2.28 (Debian 10, Ubuntu 20.04,
+RHEL 8) and needs neither Python nor this package) and a ``modelDescription.xml`` written from
 the core's table of the drive's variables (``_core.cosim_variables``):
 
 - inputs: the drive's, ``drive_torque`` [N.m] (a torque-controlled drive),
@@ -24,7 +26,10 @@ the core's table of the drive's variables (``_core.cosim_variables``):
   ``normal_force``, ``friction_force``, ``stick`` (Boolean),
   ``friction_loss``, with a DC motor ``motor_current`` [A], and where the
   torque is no input (a DC motor, a speed-controlled drive)
-  ``drive_torque`` [N.m], the torque the motor supplies;
+  ``drive_torque`` [N.m], the torque the motor supplies; then every channel
+  the scene's elements have (``stop_force`` [N] with end stops, a load
+  spring's force, a DC motor's energies, the train's stage losses), as
+  :func:`leadscrew.simulate`'s result names them;
 - parameters that may be set before the initialization ends: the friction
   law's (``mu``, ...), the masses and inertias, for a flexible concept the
   springs' stiffness overrides (0: from the geometry), and a DC motor's
@@ -46,6 +51,7 @@ from typing import Dict, List, Optional
 from xml.sax.saxutils import quoteattr
 
 from . import _core
+from .files import writing
 
 __all__ = ["export_fmu", "MODEL_IDENTIFIER"]
 
@@ -170,14 +176,36 @@ def _positive_time(name: str, value) -> float:
     return seconds
 
 
+def _fmu_path(path: "str | os.PathLike[str]", name: Optional[str]) -> str:
+    """The file an FMU is written to: ``path``, or ``path/NAME.fmu`` where
+    ``path`` is a directory (or ends with a separator).
+
+    Raises:
+        ValueError: a file that does not end in ``.fmu`` (importers pick an
+            FMU by its suffix), or a directory without ``name``.
+    """
+    path = os.fspath(path)
+    if os.path.isdir(path) or path.endswith(("/", os.sep)):
+        if not name:
+            raise ValueError(f"path = {path!r} is a directory: give name, the model's name "
+                             "(the FMU is written to DIRECTORY/NAME.fmu), or a .fmu file")
+        return os.path.join(path, f"{name}.fmu")
+    if not path.endswith(".fmu"):
+        raise ValueError(f"path = {path!r} is invalid: an FMU's file name ends in .fmu "
+                         f"(e.g. {os.path.splitext(path)[0]}.fmu), or give a directory")
+    return path
+
+
 def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None,
                stop_time: float = 1.0, step: float = 1e-3, **options) -> str:
     """Write the scene as an FMI 2.0 co-simulation FMU.
 
     Args:
         scene: a :class:`leadscrew.Scene`.
-        path: the ``.fmu`` file to write.
-        name: the model's name (default: the file's stem).
+        path: the ``.fmu`` file to write, or a directory (the FMU is then
+            ``path/NAME.fmu``).
+        name: the model's name (default: the file's stem; required with a
+            directory).
         stop_time: the default experiment's stop time [s].
         step: the default experiment's communication step [s].
         **options: the run's options as :meth:`leadscrew.Scene.to_core_toml`
@@ -187,12 +215,15 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
         The path written.
 
     Raises:
-        ValueError: a Python callable load (no FMU can carry it), a derived value out
+        ValueError: a file name that does not end in ``.fmu``, a directory
+            without ``name``, a Python callable load (no FMU can carry it), a derived value out
             of range, an unknown option, an option
             the FMU's stepper refuses (``integrator="moreau"``, an
             integrator that does not fit the friction law), or a stop time
             or step that is not a finite number > 0 (step <= stop time).
         FileNotFoundError: the package was installed without the FMU binary.
+        leadscrew.WriteError: ``path`` cannot be written (nothing is left
+            there: the FMU is written whole or not at all).
     """
     from .scene import Scene
 
@@ -216,12 +247,13 @@ def export_fmu(scene, path: "str | os.PathLike[str]", name: Optional[str] = None
     parameters, run_options = _core.read_core_spec(spec)
     _core.DriveStepper(_core.DriveModel(parameters), **run_options)
     variables = _core.cosim_variables(scene.model().parameters)
-    path = os.fspath(path)
+    path = _fmu_path(path, name)
     name = name or os.path.splitext(os.path.basename(path))[0]
     guid = "{" + str(uuid.uuid5(uuid.NAMESPACE_URL, "leadscrew:" + name + spec)) + "}"
     xml = _model_description(variables, name, guid, stop_time, step)
     binary = _binary()
-    with zipfile.ZipFile(path, "w", compression=zipfile.ZIP_DEFLATED) as fmu:
+    with writing(path) as temporary, \
+            zipfile.ZipFile(temporary, "w", compression=zipfile.ZIP_DEFLATED) as fmu:
         fmu.writestr("modelDescription.xml", xml)
         fmu.write(binary, f"binaries/linux64/{MODEL_IDENTIFIER}.so")
         fmu.writestr("resources/core.toml", spec)

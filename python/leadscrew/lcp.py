@@ -335,8 +335,9 @@ def friction_state(z, w, mu, normal_force):
         normal_force: (n,) lambda_N [N], >= 0.
 
     Returns:
-        (friction_force, tangential_acceleration): lambda_T = mu lambda_N - x1
-        [N] and g_T'' = g_T''+ - g_T''- [m/s^2], arrays of size n.
+        A :class:`ContactState` of arrays of size n: ``friction_force``,
+        lambda_T = mu lambda_N - x1 [N], and ``tangential_acceleration``,
+        g_T'' = g_T''+ - g_T''- [m/s^2].
 
     Raises:
         ValueError: inconsistent sizes, non-finite or negative entries.

@@ -49,6 +49,7 @@ import os
 from typing import Any, Dict, Optional
 
 from . import _core
+from .files import write_text
 from .scene_checks import _check_consistency, _check_section_names, _validate_entry
 from .scene_derived import _derived, _model, _thread
 # (Re-exported: the tests and the package's modules import them from here.)
@@ -178,11 +179,12 @@ class Scene:
         Raises:
             ValueError: a load is a Python callable or a bare C++ excitation,
                 which a scene file cannot hold (the message names the key).
+            leadscrew.WriteError: ``path`` cannot be written (nothing is left
+                there).
         """
         text = _to_toml_text(self._data)
         if path is not None:
-            with open(path, "w", encoding="utf-8", newline="\n") as stream:
-                stream.write(text)
+            write_text(path, text)
         return text
 
     def to_core_toml(self, path: "Optional[str | os.PathLike[str]]" = None,
@@ -211,6 +213,8 @@ class Scene:
             ValueError: a load is a Python callable (no file can carry it),
                 a derived value is out of range (as :meth:`model`), or an
                 unknown option (naming it).
+            leadscrew.WriteError: ``path`` cannot be written (nothing is left
+                there).
         """
         from .simulation import _run_options
 
@@ -222,8 +226,7 @@ class Scene:
                                  f"the options {', '.join(known)}")
         text = _core.write_core_spec(self.model().parameters, **_run_options(**options))
         if path is not None:
-            with open(path, "w", encoding="utf-8", newline="\n") as stream:
-                stream.write(text)
+            write_text(path, text)
         return text
 
     def __getitem__(self, key: str):

@@ -15,6 +15,7 @@ import numbers
 from typing import Any, Dict, Optional
 
 from . import _core
+from ._hints import did_you_mean
 from .scene_loads import _DEFAULT_ROTOR_SPEED, _check_load, _check_rotor_speed
 from .scene_schema import (OPTIONAL, SCHEMA, _OPTIONAL_SECTIONS, _REQUIRED_SECTIONS,
                            _UNIT_DEPENDS_ON, Field, _check_friction, _Converted,
@@ -86,8 +87,8 @@ def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]
         _fail(path, given, "a table (dict) of fields")
     for key in given:
         if key not in schema:
-            raise ValueError(f"{path}.{key} is not a known key; {path} takes "
-                             f"{', '.join(schema)}")
+            raise ValueError(f"{path}.{key} is not a known key{did_you_mean(key, schema)}; "
+                             f"{path} takes {', '.join(schema)}")
     out = {}
     # A field whose unit depends on others is checked after them.
     for key in sorted(schema, key=lambda k: (path, k) in _UNIT_DEPENDS_ON):
@@ -116,8 +117,8 @@ def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]
 def _check_section_names(d: Dict[str, Any]) -> None:
     for key in d:
         if key not in SCHEMA:
-            raise ValueError(f"{key} is not a known section; a scene has "
-                             f"{', '.join(SCHEMA)}")
+            raise ValueError(f"{key} is not a known section{did_you_mean(key, SCHEMA)}; "
+                             f"a scene has {', '.join(SCHEMA)}")
 
 
 def _validate_entry(key: str, given: Dict[str, Any], data: Dict[str, Any]) -> None:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 import functools
 import inspect
 import math
@@ -13,6 +12,8 @@ from typing import Any, Callable, Dict, NamedTuple, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _core
+from ._hints import did_you_mean
+from ._progress import shown
 from .models import FrictionBlock
 from .scene import SCHEMA, Scene, _friction_law_entry, _friction_registry
 from .units import channel_unit
@@ -32,7 +33,9 @@ class Result:
 
     Attributes:
         t: output times [s] (at an event the time appears twice: the values
-            just before and just after it, unless ``t_eval`` was given).
+            just before and just after it, unless ``t_eval`` gave the times;
+            by default a long run's steps are sampled: ``simulate``'s
+            ``t_eval``).
         events: list of :class:`Event`.
         stats: dict with ``steps``, ``rhs_evaluations``, ``events``,
             ``lcp_solves``, ``restarts``, ``nonlinear_iterations`` and
@@ -52,13 +55,14 @@ class Result:
     """
 
     __slots__ = ("_core", "_t", "_channels", "_data", "_events", "_stats", "_names", "_rows",
-                 "_checks")
+                 "_checks", "_sampled")
 
     def __init__(self, core_result):
         self._core = core_result
         self._t = self._channels = self._data = self._events = self._stats = self._names = None
         self._checks = None
         self._rows = {}  # channels converted one by one (before the whole matrix)
+        self._sampled = False  # the steps sampled down (simulate's default output)
 
     def __reduce__(self):
         state = (self.t, self.channels, self._matrix(), self.events, self.stats,
@@ -161,6 +165,25 @@ class Result:
         frame.insert(0, "t", self.t)
         frame.attrs["units"] = self.units()
         return frame
+
+    def plot(self, kind: str = "time_series", title: Optional[str] = None):
+        """Draw the result (:func:`leadscrew.plotting.plot_result`).
+
+        Args:
+            kind: ``"time_series"`` (position, speed, forces, torque, a DC
+                motor's current over time) or ``"energy"`` (the energy
+                account and its residual).
+            title: the figure's title (default none).
+
+        Returns:
+            A :class:`matplotlib.figure.Figure` (``.savefig(path)`` writes it).
+
+        Raises:
+            ValueError: an unknown ``kind``, or a FrictionBlock's result.
+        """
+        from .plotting import plot_result
+
+        return plot_result(self, kind, title)
 
     def __repr__(self) -> str:
         return (f"<Result {self.friction}/{self.integrator}: {len(self.t)} points, "
@@ -338,8 +361,7 @@ def _unknown_scene_option(name: str, value) -> ValueError:
         return ValueError(f"{name} = {_shown(value)} is invalid for a Scene: set the scene's "
                           f"friction.{name}{taken}")
     options = [option for option in _SIGNATURE if option not in ("model", "t_end")]
-    close = difflib.get_close_matches(name, options, n=1)
-    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    hint = did_you_mean(name, options)
     return ValueError(f"{name} = {_shown(value)} is invalid: simulate() has no option {name!r}"
                       f"{hint}; for a Scene it takes {', '.join(options)}")
 
@@ -353,8 +375,7 @@ def _unknown_block_option(name: str, value, friction: str, takes: Sequence[str])
     """The error of a keyword that is neither simulate()'s nor a parameter of
     the block's friction law (with a close match and both lists)."""
     options = [option for option in _SIGNATURE if option not in ("model", "t_end")]
-    close = difflib.get_close_matches(name, [*options, *takes], n=1)
-    hint = f" (did you mean {close[0]!r}?)" if close else ""
+    hint = did_you_mean(name, [*options, *takes])
     return ValueError(f"{name} = {_shown(value)} is invalid: simulate() has no option {name!r} and "
                       f"the friction law {friction!r} no parameter {name!r}{hint}; simulate "
                       f"takes {', '.join(options)}, the law {', '.join(takes)}")
@@ -404,23 +425,55 @@ def _whole(name: str, value, limit: int = 2 ** 63 - 1) -> int:
     return int(value)
 
 
+#: The rows a run keeps by default (``t_eval`` None), besides its events'
+#: rows and its two ends: a long run's integrator steps are sampled down to
+#: about this many (a 2 s seat adjuster's run takes 116,242 steps).
+DEFAULT_ROWS = 2000
+
+
+def _sampled(result: Result) -> Result:
+    """``result`` with at most about :data:`DEFAULT_ROWS` of its integrator
+    steps: the first step at or after each of that many evenly spaced
+    times, every row at an event (before and after it) and the first and
+    last rows. The rows kept are the integrator's own (nothing
+    interpolated); a result with fewer rows is returned as it is."""
+    t = result.t
+    if len(t) <= DEFAULT_ROWS:
+        return result
+    keep = np.zeros(len(t), dtype=bool)
+    grid = np.linspace(t[0], t[-1], DEFAULT_ROWS)
+    keep[np.minimum(np.searchsorted(t, grid, side="left"), len(t) - 1)] = True
+    keep[[0, -1]] = True
+    events = np.array([event.time for event in result.events], dtype=float)
+    if events.size:
+        keep[np.minimum(np.searchsorted(t, events, side="left"), len(t) - 1)] = True
+        keep[np.maximum(np.searchsorted(t, events, side="right") - 1, 0)] = True
+    rows = np.flatnonzero(keep)
+    sampled = _restore_result(t[rows], result.channels, result._matrix()[:, rows], result.events,
+                              result.stats, result.integrator, result.friction, result.checks)
+    sampled._sampled = True
+    return sampled
+
+
 def _t_eval_list(t_eval) -> list:
-    """``t_eval`` as a list of floats ([] for None: every step and event).
+    """``t_eval`` as a list of floats ([] for None and ``"steps"``: every
+    step and event; simulate samples None's afterwards).
 
     Raises:
         ValueError: ``t_eval`` is no sequence of numbers, or holds no time
             (an empty list would silently give the default output).
     """
-    if t_eval is None:
+    if t_eval is None or (isinstance(t_eval, str) and t_eval == "steps"):
         return []
     try:
         times = np.asarray(t_eval, dtype=float).ravel().tolist()
     except (TypeError, ValueError, OverflowError):
         raise ValueError(f"t_eval = {t_eval!r} is invalid: must be a sequence of times [s] in "
-                         "[0, t_end] (None: every step and event)") from None
+                         "[0, t_end], or \"steps\" (every step and event), or None (the steps "
+                         "sampled)") from None
     if not times:
         raise ValueError(f"t_eval = {t_eval!r} is invalid: t_eval must hold at least one time "
-                         "in [0, t_end] (None: every step and event)")
+                         "in [0, t_end] ('steps': every step and event)")
     return times
 
 
@@ -431,7 +484,7 @@ class _progress_bar:
 
     def __init__(self, show, t_end: float):
         self._bar = None
-        if _flag("progress", show):
+        if shown(show):
             from tqdm.auto import tqdm
 
             self._bar = tqdm(total=t_end, unit="s", desc="simulate", leave=False,
@@ -612,8 +665,11 @@ def simulate(
             (docs/physics/result_checks.md, "Options refused before a run").
         dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,
             1e-4 for a Scene; refused with the other integrators).
-        t_eval: output times [s], at least one, in [0, t_end]; default
-            (None): every step and event.
+        t_eval: output times [s], at least one, in [0, t_end]; ``"steps"``:
+            every integrator step and event; default (None): the
+            integrator's steps sampled down to about :data:`DEFAULT_ROWS`
+            (2,000) evenly spaced in time, with every event's rows and the
+            last time (a run with fewer steps keeps them all).
         k_v: for a FrictionBlock: regularization gain k_V of the arctan laws
             [s/m or s^2/m] (default 100). A Scene carries its own
             (``friction.k_v``): k_v may only repeat it.
@@ -710,7 +766,8 @@ def simulate(
             law["k_v"] = 100.0  # the block's default gain (the thesis's Table 3.1 range)
         arguments.update(block=model, friction=friction, law=law,
                          check=check if check is True else _flag("check", check))
-        return _run_core(_core.simulate_block, _block_call, arguments, progress)
+        result = _run_core(_core.simulate_block, _block_call, arguments, progress)
+        return _sampled(result) if t_eval is None else result
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
         for name, value in law_parameters.items():
@@ -724,7 +781,8 @@ def simulate(
                        functools.partial(_core.drive_integrators, drive.parameters),
                        dict(given, bounce_threshold=bounce_threshold), model)
         arguments["drive"] = drive
-        return _run_core(_core.simulate_drive, _drive_call, arguments, progress)
+        result = _run_core(_core.simulate_drive, _drive_call, arguments, progress)
+        return _sampled(result) if t_eval is None else result
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
 

@@ -204,6 +204,10 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     Returns:
         ``{invariant: entry}`` for every invariant that applies.
     """
+    # Its invariants hold step by step: a run's default output samples a
+    # long run's steps, which would check fewer of them.
+    assert not getattr(result, "_sampled", False), \
+        "check_result needs every step: simulate(..., t_eval='steps')"
     report: Dict[str, dict] = {}
     t_end = float(options["t_end"])
     t = np.asarray(result.t, dtype=float)

@@ -777,7 +777,9 @@ def run_case(case: dict) -> dict:
     out = {"outcome": None, "message": "", "invariants": []}
     try:
         scene = ls.Scene.from_dict(scene_dict)
-        result = ls.simulate(scene, **options)
+        # Every step (unless the case gives its times): the invariants are
+        # checked step by step.
+        result = ls.simulate(scene, **{"t_eval": "steps", **options})
     except ls.SimulationError as error:
         jam = isinstance(error, ls.JammingError)
         bad_time = _error_time(error, options.get("t_end"))

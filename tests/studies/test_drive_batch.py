@@ -549,7 +549,7 @@ def test_default_efficiency_sweep_runs_on_the_cores_threads(monkeypatch):
                                   failing[1].drop(columns="wall_time"), check_exact=True)
 
 
-def test_default_efficiency_sweep_with_a_progress_bar(monkeypatch, capsys):
+def test_default_efficiency_sweep_with_a_progress_bar(monkeypatch, capsys, watched):
     """With progress the sweep goes to the core in consecutive ranges (here
     forced small), the bar moving after each: the same frame."""
     from leadscrew.studies import _sweep

@@ -255,7 +255,7 @@ def test_run_batches_without_a_bar_is_one_call():
     assert run_batches(lambda cases: 1 / 0, 0, workers=2, progress=False) == []
 
 
-def test_run_batches_with_a_bar_sizes_ranges_by_the_measured_rate(monkeypatch, capsys):
+def test_run_batches_with_a_bar_sizes_ranges_by_the_measured_rate(monkeypatch, capsys, watched):
     """One case per worker first, then ranges of about PROGRESS_SECONDS at the
     rate measured so far (never fewer than the workers), covering every case."""
     def cases_of_a_millisecond(cases):
@@ -270,7 +270,7 @@ def test_run_batches_with_a_bar_sizes_ranges_by_the_measured_rate(monkeypatch, c
     assert "ranges" in capsys.readouterr().err
 
 
-def test_run_batches_keeps_going_after_a_failed_call(monkeypatch):
+def test_run_batches_keeps_going_after_a_failed_call(monkeypatch, watched):
     def fail_on_the_second(cases):
         if cases.start == 3:
             raise RuntimeError("lost range")

@@ -204,8 +204,12 @@ def test_scene_configurations():
     assert list(frame["friction"]) == ["coulomb", "coulomb", "arctan_velocity"]
     assert frame["error_max"][1] < frame["error_max"][0] < 1e-6
     assert frame["error_max"][2] > frame["error_max"][0]
-    with pytest.raises(ValueError, match="configurations"):
-        studies.work_precision(scene, 0.3)
+    # Without configurations a Scene takes its own default set (its law on
+    # its first integrators: test_a_scenes_default_configurations_run_...).
+    assert {c["friction"] for c in studies.default_configurations(scene)} == \
+        {scene["friction"]["law"]}
+    with pytest.raises(ValueError, match="has no default configurations"):
+        studies.default_configurations("a scene")
 
 
 def test_failure_is_recorded_or_raised(closed_form):
@@ -227,7 +231,7 @@ def test_failure_is_recorded_or_raised(closed_form):
         studies.work_precision(block(), T_END, configurations, on_failure="raise", repeats=1)
 
 
-def test_progress_lines(capsys, closed_form):
+def test_progress_lines(capsys, closed_form, watched):
     studies.work_precision(block(), T_END, [{"integrator": "event_driven", "rtol": 1e-6}],
                            reference=closed_form.position, repeats=1, progress=True)
     assert "[1/1] coulomb event_driven rtol=1e-06: error" in capsys.readouterr().err
@@ -356,3 +360,27 @@ def test_the_frame_has_the_unit_of_every_column():
     exact = studies.work_precision(block(), 0.1, [{"rtol": 1e-6}], repeats=1,
                                    quantity="v")
     assert exact.attrs["units"]["k_v"] == "" and exact.attrs["units"]["error_max"] == "m/s"
+
+
+def test_a_scenes_default_configurations_run_from_the_command_line(tmp_path, capsys):
+    """A Scene has a default set too (its law on its first integrators), so
+    that the command line needs t_end alone; --help says how."""
+    import pandas as pd
+
+    from helpers.cli_runs import run_main
+
+    scene = ls.scenes.load("default")
+    configurations = studies.default_configurations(scene)
+    assert configurations[:3] == [{"friction": "coulomb", "integrator": "event_driven",
+                                   "rtol": rtol} for rtol in (1e-4, 1e-6, 1e-8)]
+    assert {c["integrator"] for c in configurations} == {"event_driven", "moreau"}
+    code, out, err = run_main(capsys, "study", "work_precision", "default", "t_end=0.1",
+                              "repeats=1", "-o", tmp_path)
+    assert code == 0, err
+    frame = pd.read_csv(tmp_path / "work_precision_default.csv", skiprows=[1])
+    assert len(frame) == len(configurations) and frame["failure"].isna().all()
+    event_driven = frame[frame["integrator"] == "event_driven"]["error_max"].to_numpy()
+    moreau = frame[frame["integrator"] == "moreau"]["error_max"].to_numpy()
+    assert event_driven[-1] < event_driven[0] and moreau[-1] < moreau[0]  # tighter: closer
+    code, out, _ = run_main(capsys, "study", "--help")
+    assert "leadscrew study work_precision default t_end=0.5" in " ".join(out.split())

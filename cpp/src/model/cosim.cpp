@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "drive/declaration.hpp"
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/friction/law.hpp"
 
@@ -100,6 +101,25 @@ std::string fmi_unit(const std::string& unit) {
   return out;
 }
 
+// Every channel the drive's elements declare (drive/declaration.hpp: an end
+// stop's stop_force, a load spring's force, a DC motor's voltage and
+// energies, the stages' losses, ...), as outputs after the fixed ones,
+// in the registry's order; a name already listed is not repeated.
+void add_element_outputs(const DriveParameters& p, std::vector<CosimVariable>& out) {
+  const DriveModel model(p);
+  const bool bristle = model.law().resolution() == friction::Resolution::bristle;
+  unsigned reference = kOutputs + static_cast<unsigned>(std::size(kOutputList)) + 2;
+  for (const drive::Declaration& declaration : drive::declare_elements(model, bristle))
+    for (const drive::ChannelSpec& c : declaration.channels) {
+      const auto listed = [&](const CosimVariable& v) { return v.name == c.name; };
+      if (std::any_of(out.begin(), out.end(), listed)) continue;
+      if (reference >= kLawParameters)
+        throw InvalidArgument("the drive declares more channels than an FMU's outputs hold");
+      out.push_back({c.name, reference++, CosimVariable::Kind::output, false, fmi_unit(c.unit),
+                     0.0, std::string("the channel ") + c.name + " of the drive's elements"});
+    }
+}
+
 }  // namespace
 
 std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
@@ -128,6 +148,7 @@ std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
   if (p.dc_motor || p.speed_controlled)
     out.push_back({kTorqueOutput.name, reference + 1, Kind::output, false, kTorqueOutput.unit, 0.0,
                    kTorqueOutput.description});
+  add_element_outputs(p, out);
   const friction::LawType& type = friction::law_type(p.friction);
   const friction::LawValues law = law_values(p);
   for (std::size_t i = 0; i < law.size(); ++i)

@@ -44,7 +44,8 @@ take SI numbers or, as a scene's fields, strings with units (``"20 N"``,
 another dimension raises ``ValueError`` naming the argument.
 
 Each study has a ``plot_...`` function drawing its figure from the frame it
-returned (``leadscrew study`` writes it as a PNG beside the CSV).
+returned (``leadscrew study`` writes it as a PNG beside the CSV);
+:func:`plot` draws any study's frame with its own.
 """
 
 import functools
@@ -60,6 +61,7 @@ from . import motor as _motor
 from . import preload as _preload
 from . import stickslip as _stickslip
 from . import work_precision as _work_precision_module
+from ..files import writing
 from ._sweep import SerialExecutor
 from .concepts import CONCEPTS, compare_concepts, plot_compare_concepts
 from .creep import creep_map, creep_vs_backlash, creep_vs_frequency, plot_creep, plot_creep_map
@@ -133,11 +135,24 @@ def save_figure(name: str, frame, path, title: Optional[str] = None,
     plot(frame, ax=figure.subplots())
     if title:
         figure.suptitle(title, fontsize="medium")
-    figure.savefig(path, dpi=dpi)
+    with writing(path) as temporary:
+        figure.savefig(temporary, dpi=dpi)
     return pathlib.Path(path)
 
 
-STUDIES = {
+def _tagged(name: str, function):
+    """``function`` whose frame says which study made it (``attrs["study"]``,
+    which :func:`plot` reads)."""
+    @functools.wraps(function)
+    def study(*args, **kwargs):
+        frame = function(*args, **kwargs)
+        frame.attrs["study"] = name
+        return frame
+
+    return study
+
+
+STUDIES = {name: _tagged(name, function) for name, function in {
     "work_precision": work_precision,
     "stick_slip": stick_slip,
     "compare_concepts": compare_concepts,
@@ -150,12 +165,40 @@ STUDIES = {
     "motor_characteristics": motor_characteristics,
     "preload_tradeoff": preload_tradeoff,
     "end_stop_jam": end_stop_jam,
-}
+}.items()}
+# The studies under their names are the tagged ones: a frame of any of them
+# plots with plot(frame).
+globals().update(STUDIES)
+
+
+def plot(frame, ax=None):
+    """Draw a study's frame: the figure of the study that returned it
+    (:data:`PLOTS`), e.g. ``ls.studies.plot(ls.studies.efficiency_vs_mu(scene,
+    mu, loads))``.
+
+    Args:
+        frame: a DataFrame a study of :data:`STUDIES` returned (its
+            ``attrs["study"]`` names the study).
+        ax: a matplotlib Axes (default: a new figure's).
+
+    Returns:
+        The Axes drawn on.
+
+    Raises:
+        ValueError: a frame no study returned, or of a study without a figure.
+    """
+    name = getattr(frame, "attrs", {}).get("study")
+    if name not in PLOTS:
+        raise ValueError(f"frame is invalid: it is none of a study's frames with a figure "
+                         f"(attrs['study'] = {name!r}; the studies are {', '.join(PLOTS)})")
+    return PLOTS[name](frame, ax=ax)
+
 
 __all__ = [
     "STUDIES",
     "PLOTS",
     "save_figure",
+    "plot",
     "SerialExecutor",
     *_work_precision_module.__all__,
     *_stickslip.__all__,

@@ -19,6 +19,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 
 from .. import _core
+from .._hints import did_you_mean
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
 from ..simulation import (ADAPTIVE_OPTIONS, MOREAU_OPTIONS, _OPTION_DEFAULTS,
@@ -50,8 +51,10 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
     # Python around a fast sweep).
     unknown = [name for name in options if name not in _OPTION_DEFAULTS]
     if unknown:
-        raise TypeError(f"got an unexpected keyword argument {unknown[0]!r} (the options are "
-                        f"those of leadscrew.simulate, but t_eval)")
+        valid = [name for name in _OPTION_DEFAULTS if name != "t_eval"]
+        raise TypeError(f"got an unexpected keyword argument {unknown[0]!r}"
+                        f"{did_you_mean(unknown[0], valid)} (the options are those of "
+                        f"leadscrew.simulate, but t_eval)")
     a = dict(_OPTION_DEFAULTS, **options)
     _check_scene_friction(scene, a["friction"], a["k_v"])
     arguments = _drive_arguments(

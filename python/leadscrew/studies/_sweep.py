@@ -50,6 +50,7 @@ import time
 from dataclasses import dataclass
 from typing import Any, Callable, List, Optional, Sequence
 
+from .._progress import shown
 from ._common import check_count
 
 __all__ = ["Outcome", "ChunkOutcome", "SerialExecutor", "run_cases", "run_chunks",
@@ -258,8 +259,9 @@ class _NoProgressBar:
 
 
 def _progress_bar(count: int, description: Optional[str], progress: bool):
-    """A tqdm bar over ``count`` cases, or a stand-in when ``progress`` is off."""
-    if not progress:
+    """A tqdm bar over ``count`` cases, or a stand-in when ``progress`` is off
+    or nobody watches (:func:`leadscrew._progress.shown`)."""
+    if not shown(progress):
         return _NoProgressBar()
     from tqdm.auto import tqdm
 
@@ -412,6 +414,7 @@ def run_batches(
         ValueError: ``workers`` is not an integer >= 1.
     """
     workers = check_count("workers", workers, 1)
+    progress = shown(progress)
     if count <= 0:
         return []
     outcomes: List[ChunkOutcome] = []

@@ -17,6 +17,7 @@ import pandas as pd
 
 from ..scene import SCHEMA
 from ..simulation import simulate
+from .._progress import shown
 from ._common import (annotate, axes, as_scene, check_count, check_positive, numeric_or_nan,
                       with_tolerances)
 from ._batch import check_simulate_options
@@ -83,6 +84,7 @@ def compare_concepts(
             only some refuse fails their rows).
         TypeError: an unknown keyword in ``simulate_options``.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     concepts = list(concepts)
     if not concepts:

@@ -17,6 +17,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
+from .._progress import shown
 from ._common import annotate, as_scene, axes, check_grid, numeric_or_nan, with_tolerances
 from ._batch import check_simulate_options
 from ._sweep import run_cases
@@ -135,6 +136,7 @@ def creep_vs_frequency(scene: Any, frequencies: Sequence[float],
                        executor=None, progress: bool = True,
                        **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
+    progress = shown(progress)
     backlash = _scene_backlash(scene)
     pairs = [(float(f), backlash) for f in check_grid("frequencies", frequencies, unit="Hz")]
     # The frequencies are the sweep's: only the amplitude may come from the scene.
@@ -158,6 +160,7 @@ def creep_vs_backlash(scene: Any, backlash: Sequence[float], frequency: Optional
                       executor=None, progress: bool = True,
                       **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
+    progress = shown(progress)
     amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)
     pairs = [(frequency, float(c)) for c in check_grid("backlash", backlash, unit="m")]
     return _sweep(scene, pairs, amplitude, excitation_from, cycles, settle_cycles,
@@ -181,6 +184,7 @@ def creep_map(scene: Any, frequencies: Sequence[float], backlash: Sequence[float
               atol: Optional[float] = None, executor=None, progress: bool = True,
               **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene)
+    progress = shown(progress)
     frequencies = check_grid("frequencies", frequencies, unit="Hz")
     clearances = check_grid("backlash", backlash, unit="m")
     pairs = [(float(f), float(c)) for f in frequencies for c in clearances]

@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from .. import _core
+from .._progress import shown
 from ._batch import DriveBatch
 from ._common import (annotate, axes, as_scene, check_grid, check_positive, check_window,
                       frame_of, with_tolerances)
@@ -204,6 +205,7 @@ def efficiency_vs_mu(
             that is not the scene's law).
         TypeError: an unknown keyword in ``simulate_options``.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     mus = check_grid("mu", mu, allow_zero=True, unit="")
     forces = check_grid("loads", loads, unit="N")
@@ -271,6 +273,9 @@ def efficiency_vs_mu(
                     **summary)
 
 
+_MARKERS = ("o", "s", "^", "D", "v", "P")
+
+
 def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):
     """Draw the simulated efficiency against mu, one line per load, with the
     closed form (Fig. 5.6).
@@ -283,8 +288,13 @@ def plot_efficiency_vs_mu(frame: pd.DataFrame, ax: Optional[Any] = None):
         The Axes.
     """
     ax = axes(ax)
-    for index, (load, group) in enumerate(frame.groupby("load", sort=True)):
-        ax.plot(group["mu"], group["efficiency"], "o", color=f"C{index}",
+    groups = list(frame.groupby("load", sort=True))
+    for index, (load, group) in enumerate(groups):
+        # Loads whose points coincide (the efficiency hardly depends on the
+        # load) stay visible: each its own hollow marker, the first largest.
+        ax.plot(group["mu"], group["efficiency"], linestyle="none",
+                marker=_MARKERS[index % len(_MARKERS)], fillstyle="none",
+                markersize=5.0 + 3.0 * (len(groups) - 1 - index), color=f"C{index}",
                 label=f"simulated, load {load:g} N")
     if "efficiency_without_preload" in frame:
         # A preloaded nut: its closed form per load, the plain thread's dashed

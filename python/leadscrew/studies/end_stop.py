@@ -60,6 +60,7 @@ from .. import _core
 from ..errors import NutOffScrewError, SimulationError
 from ..simulation import simulate
 from . import _end_stop_runs as runs_module
+from .._progress import shown
 from ._common import (annotate, as_scene, axes, check_count, check_positive, constant_value,
                       frame_of, gear_ratio, with_tolerances)
 from ._sweep import _progress_bar
@@ -401,6 +402,7 @@ def end_stop_jam(
             argument), or the load does not rest clamped against a stop at
             ``t_drive`` (or, without one, within 64 s).
     """
+    progress = shown(progress)
     scene = as_scene(scene, gear=True)
     kind, forward = _drive(scene)
     _require_self_locking(scene)

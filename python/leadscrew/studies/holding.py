@@ -41,6 +41,7 @@ import pandas as pd
 from ..errors import NoEquilibriumError, StudyWarning
 from ..scene import Scene
 from ..thread import is_self_locking
+from .._progress import shown
 from ._batch import check_simulate_options
 from ._common import (annotate, as_scene, axes, check_count, check_positive, numeric_or_nan,
                       raised_rows, with_tolerances)
@@ -327,6 +328,7 @@ def min_holding_preload(
             (a preload then drives it back instead of holding it).
         TypeError: an unknown keyword in ``simulate_options``.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     if not is_self_locking(scene.thread, scene["friction"]["mu"]):
         raise ValueError(f"friction.mu = {scene['friction']['mu']!r} is invalid for "
@@ -503,7 +505,7 @@ def min_holding_preload(
 
 
 def plot_min_holding_preload(frame: pd.DataFrame, ax: Optional[Any] = None):
-    """Draw |creep per cycle| [m] over the evaluated preloads [N], holding
+    """Draw |creep per cycle| [um] over the evaluated preloads [N], holding
     preloads filled, with the bracket shaded.
 
     Args:
@@ -517,16 +519,17 @@ def plot_min_holding_preload(frame: pd.DataFrame, ax: Optional[Any] = None):
     ok = frame[frame["error"].isna()]  # the rows that decided (holds True or False)
     verdicts = ok["holds"].astype(bool).to_numpy()
     holds, fails = ok[verdicts], ok[~verdicts]
-    floor = 1e-15  # zero creep on a log axis
-    ax.semilogy(holds["preload"], np.maximum(np.abs(holds["creep_per_cycle"]), floor), "o",
+    floor = 1e-9  # [um]: zero creep on a log axis
+    # In um, as every other study's creep (the frame keeps metres).
+    ax.semilogy(holds["preload"], np.maximum(np.abs(holds["creep_per_cycle"]) * 1e6, floor), "o",
                 color="C2", label="holds")
-    ax.semilogy(fails["preload"], np.maximum(np.abs(fails["creep_per_cycle"]), floor), "x",
+    ax.semilogy(fails["preload"], np.maximum(np.abs(fails["creep_per_cycle"]) * 1e6, floor), "x",
                 color="C3", label="separates or creeps")
     summary = frame.attrs.get("summary", {})
     if summary.get("found"):
         ax.axvspan(summary["bracket_low"], summary["bracket_high"], color="0.85", zorder=0,
                    label="bracket")
     ax.set_xlabel("static preload [N]")
-    ax.set_ylabel("|creep per cycle| [m]")
+    ax.set_ylabel("|creep per cycle| [um]")
     ax.legend(loc="best")
     return ax

@@ -52,6 +52,7 @@ import numpy as np
 import pandas as pd
 
 from .. import _core
+from .._progress import shown
 from ._batch import DriveBatch
 from ._common import (annotate, as_scene, axes, check_grid, check_positive, check_window,
                       constant_value, frame_of, gear_ratio, with_tolerances)
@@ -339,6 +340,7 @@ def motor_characteristics(
         ValueError: no DC motor or a voltage that is not constant, invalid
             loads, t_end or window (naming the argument).
     """
+    progress = shown(progress)
     scene = as_scene(scene, gear=True)
     if scene["nut"]["preload"] > 0.0:
         raise ValueError(f"nut.preload = {scene['nut']['preload']!r} is invalid for "

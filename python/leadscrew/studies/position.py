@@ -14,6 +14,7 @@ from typing import Any, Optional
 
 import pandas as pd
 
+from .._progress import shown
 from ..thread import is_self_locking
 from ._batch import check_simulate_options
 from ._common import annotate, as_scene, axes, check_finite, with_tolerances
@@ -70,7 +71,8 @@ def position_holding(
             runs go, at once (default: the calling thread, one after the
             other: each takes milliseconds; a Dask client's executor runs
             them on the cluster).
-        progress: accepted as by every study; two runs show no bar.
+        progress: True or False, checked as by every study; two runs show no
+            bar.
         **simulate_options: passed on to :func:`leadscrew.simulate`.
 
     Returns:
@@ -95,6 +97,7 @@ def position_holding(
         TypeError: an unknown keyword in ``simulate_options``.
         SimulationError, JammingError: a simulation failed.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     torque = _constant_torque(scene)
     amplitude, frequency, excitation_from = _alternating_excitation(scene, amplitude, frequency)

@@ -91,6 +91,7 @@ import pandas as pd
 from .. import _core
 from ..thread import lower_torque, raise_torque
 from ..errors import StudyWarning
+from .._progress import shown
 from ._common import (annotate, as_scene, axes, check_grid, check_positive, constant_value,
                       gear_ratio, numeric_or_nan, with_tolerances)
 from ._holding_runs import (_alternating_excitation, _constant_torque, _scene_sine,
@@ -367,6 +368,7 @@ def preload_tradeoff(
             drive torque, no static load and no ``load``) or arguments.
         TypeError: an unknown keyword in ``simulate_options``.
     """
+    progress = shown(progress)
     scene = as_scene(scene, gear=True)
     preloads = check_grid("preloads", preloads, allow_zero=True, unit="N")
     # The study drives the driven part itself: a DC motor is replaced by its
@@ -479,14 +481,16 @@ CREEP_RESOLUTION = 1e-6
 
 def plot_preload_tradeoff(frame: pd.DataFrame, ax: Optional[Any] = None):
     """Draw the trade-off: efficiency (simulated, closed form) against the
-    preload, and on a second axis the creep per cycle under the vibration.
+    preload, on a second axis the creep per cycle under the vibration, on a
+    third the axial stiffness.
 
     Args:
         frame: the DataFrame :func:`preload_tradeoff` returned.
         ax: a matplotlib Axes (default: a new figure's).
 
     Returns:
-        The Axes (of the efficiency; the creep's is its twin).
+        The Axes (of the efficiency; the creep's and the stiffness's are its
+        twins).
     """
     ax = axes(ax)
     ax.plot(frame["preload"], frame["efficiency"], "o", color="C0", label="efficiency, simulated")
@@ -506,6 +510,14 @@ def plot_preload_tradeoff(frame: pd.DataFrame, ax: Optional[Any] = None):
     creep_ax.set_ylabel("|creep| per cycle [um]")
     if not np.any(resolved):
         creep_ax.set_ylim(0.0, 1.0)
-    lines = ax.get_lines() + creep_ax.get_lines()
+    # The third result, on an axis of its own beside the creep's: infinite
+    # where the nut holds the reversed load without moving (not drawn).
+    stiffness_ax = ax.twinx()
+    stiffness_ax.spines["right"].set_position(("axes", 1.14))
+    stiffness = frame["axial_stiffness"].to_numpy(dtype=float)
+    stiffness_ax.plot(frame["preload"], np.where(np.isfinite(stiffness), stiffness, np.nan) * 1e-6,
+                      "^:", color="C2", label="axial stiffness (inf: not drawn)")
+    stiffness_ax.set_ylabel("axial stiffness [N/um]")
+    lines = ax.get_lines() + creep_ax.get_lines() + stiffness_ax.get_lines()
     ax.legend(lines, [line.get_label() for line in lines], loc="upper right")
     return ax

@@ -14,6 +14,7 @@ from typing import Any, List, Optional, Sequence, Tuple
 import numpy as np
 import pandas as pd
 
+from .._progress import shown
 from ..simulation import simulate
 from ._common import annotate, axes, as_scene, check_count, check_positive, with_tolerances
 
@@ -164,7 +165,8 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
         executor: a :class:`concurrent.futures.Executor` to run the
             simulation on (e.g. a Dask client's, to run it on a cluster;
             default: the calling thread).
-        progress: accepted as by every study; one simulation shows no bar.
+        progress: True or False, checked as by every study; one simulation
+            shows no bar.
         **simulate_options: passed on to :func:`leadscrew.simulate`
             (``integrator``, ``t_eval`` instead of ``points``, ...;
             ``max_steps`` defaults to simulate's, 1e6 per simulated
@@ -186,6 +188,7 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
         ValueError: invalid scene or arguments.
         SimulationError, JammingError: the simulation failed.
     """
+    progress = shown(progress)
     scene = as_scene(scene)
     t_end = check_positive("t_end", t_end, unit="s")
     if points is not None and "t_eval" in simulate_options:
@@ -194,8 +197,7 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
         points = DEFAULT_POINTS if points is None else check_count("points", points, 0)
         if points == 1:
             raise ValueError("points = 1 is invalid: must be 0 (every step and event) or >= 2")
-        if points:
-            simulate_options["t_eval"] = np.linspace(0.0, t_end, points)
+        simulate_options["t_eval"] = np.linspace(0.0, t_end, points) if points else "steps"
     if executor is None:
         result = simulate(scene, t_end, **with_tolerances(simulate_options, rtol, atol))
     else:  # result() raises the simulation's own exception

@@ -21,6 +21,7 @@ from typing import Callable, Dict, Iterable, List, Optional, Sequence, Union
 import numpy as np
 
 from .. import _core
+from .._progress import shown
 from ..errors import SimulationError
 from ..models import FrictionBlock
 from ..scene import Scene
@@ -74,19 +75,27 @@ def default_configurations(model) -> List[Dict[str, object]]:
     * ``arctan_acceleration`` (eq. 3.15) with k_V in (1, 10, 100) and
       ``cvode_bdf`` at the same three rtol.
 
+    For a :class:`~leadscrew.Scene`, its own friction law (a regularized
+    law's gain stays the scene's: it depends on the drive) on each of the
+    first three integrators that fit it (its default first): an
+    error-controlled one at rtol 1e-4, 1e-6 and 1e-8, ``moreau`` at
+    dt = 1e-4, 5e-5 and 2.5e-5 s.
+
     Args:
-        model: a FrictionBlock.
+        model: a FrictionBlock or a Scene.
 
     Returns:
         A list of configuration dicts (keys from :data:`CONFIGURATION_KEYS`).
 
     Raises:
-        ValueError: the model is not a FrictionBlock (a Scene's friction gains
-            and speeds depend on the drive: pass ``configurations`` explicitly).
+        ValueError: the model is neither (naming it), or a Scene whose model
+            cannot be built.
     """
+    if isinstance(model, Scene):
+        return _scene_configurations(model)
     if not isinstance(model, _core.FrictionBlock):
         raise ValueError(f"model = {model!r} has no default configurations: they exist for a "
-                         "FrictionBlock; pass configurations=[{...}, ...] for other models")
+                         "FrictionBlock and a Scene")
     configurations: List[Dict[str, object]] = []
     for rtol in (1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
         configurations.append({"friction": "coulomb", "integrator": "event_driven",
@@ -104,6 +113,20 @@ def default_configurations(model) -> List[Dict[str, object]]:
         for rtol in tolerances:
             configurations.append({"friction": "arctan_acceleration", "integrator": "cvode_bdf",
                                    "k_v": k_v, "rtol": rtol})
+    return configurations
+
+
+def _scene_configurations(scene) -> List[Dict[str, object]]:
+    """:func:`default_configurations` of a Scene."""
+    law = scene["friction"]["law"]
+    configurations: List[Dict[str, object]] = []
+    for integrator in list(_core.drive_integrators(scene.model().parameters))[:3]:
+        if integrator == "moreau":
+            configurations += [{"friction": law, "integrator": "moreau", "dt": 1e-4 / 2.0**k}
+                               for k in range(3)]
+        else:
+            configurations += [{"friction": law, "integrator": integrator, "rtol": rtol}
+                               for rtol in (1e-4, 1e-6, 1e-8)]
     return configurations
 
 
@@ -353,7 +376,7 @@ def work_precision(
             (keys in :data:`CONFIGURATION_KEYS`: ``friction``, ``integrator``,
             ``rtol``, ``atol``, ``dt``, ``theta``, ``k_v``, ...). A missing
             ``atol`` is ``ATOL_PER_RTOL * rtol``. Default:
-            :func:`default_configurations` (FrictionBlock only).
+            :func:`default_configurations` (a FrictionBlock's or a Scene's).
         reference: what the errors are measured against:
             ``None`` (default): exact Coulomb friction, event-driven at rtol
             1e-13 (:func:`exact_reference`; for the thesis block it matches
@@ -376,7 +399,8 @@ def work_precision(
             times and the message in ``failure``, and the summary counts
             them (one :class:`~leadscrew.StudyWarning` names them);
             ``"raise"``: the error propagates.
-        progress: print one line per configuration to stderr.
+        progress: print one line per configuration to stderr (where it is a
+            terminal: :func:`leadscrew._progress.shown`).
         ax: a matplotlib Axes to draw the diagram on (see :func:`plot_work_precision`).
 
     Returns:
@@ -400,6 +424,7 @@ def work_precision(
             configuration (``configurations[i]: ...``).
         SimulationError: a run failed and ``on_failure="raise"``.
     """
+    progress = shown(progress)
     import pandas as pd
 
     if not isinstance(model, (_core.FrictionBlock, Scene)):
@@ -422,8 +447,7 @@ def work_precision(
         run_model, friction_arguments = _with_friction(model, friction, entry.get("k_v"))
         arguments = {key: value for key, value in entry.items() if key not in ("friction", "k_v")}
         arguments.update(friction_arguments)
-        if times is not None:
-            arguments["t_eval"] = times
+        arguments["t_eval"] = times if times is not None else "steps"
         row = {
             "label": _label(entry),
             "friction": friction,

@@ -25,7 +25,9 @@ struct CosimVariable {
 
 // The drive's variables: inputs drive_torque (a torque-controlled drive) and
 // axial_force; outputs u_load, v_load, phi_drive, omega_drive,
-// normal_force, friction_force, stick (boolean), friction_loss; parameters
+// normal_force, friction_force, stick (boolean), friction_loss, a DC
+// motor's current and the torque where it is no input, then every channel
+// the drive's elements declare (stop_force, ...); parameters
 // the friction law's (mu, k_v, mu_static, ...), the masses and inertias and,
 // for a flexible concept, the springs' stiffness overrides (0: from the
 // geometry) and a penalty flank's contact stiffness.

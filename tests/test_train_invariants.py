@@ -15,6 +15,9 @@ from helpers.fake_result import FakeResult
 from helpers.result_invariants import check_result, failed
 from helpers.scenes import thesis_scene
 
+# (the checker reads every step: simulate's sampled default is refused)
+pytestmark = pytest.mark.usefixtures("every_step")
+
 R, KT, KE, L, U, LIMIT = 2.0, 0.05, 0.04, 1e-3, 3.0, 1.0  # Ohm, N m/A, V s/rad, H, V, A
 
 

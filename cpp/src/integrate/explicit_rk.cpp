@@ -469,7 +469,7 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       probe_step_ = false;
     }
     ++stats_.steps;
-    if (!fixed && stiffness_.due() &&
+    if (!fixed && options_.stop_when_stiff && stiffness_.due() &&
         stiffness_.stiff_after(tableau_, stats_.steps, n_, k_, f_end_))
       stop_if_stiff(h, t_new, t_out);
     if (!fixed) {

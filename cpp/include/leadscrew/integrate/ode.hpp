@@ -62,6 +62,12 @@ struct IntegratorOptions {
   // 0: its default, 3). Set by a model whose right-hand side is strongly
   // nonlinear on its fast scales (the drive with eq. 3.15's law).
   int max_nonlinear_iterations = 0;
+  // The explicit engines' stiffness stop (RK_STIFF: a step held by stability
+  // that would not reach t_out within max_steps). Off where t_out is only a
+  // bound and a root ends the integration (the regularized law's approach to
+  // its fold, hybrid_jamming.cpp: its end in the time s is a sentinel, 1e12
+  // times the run's rest, which no step size reaches within any budget).
+  bool stop_when_stiff = true;
 };
 
 struct IntegratorStats {

@@ -87,6 +87,7 @@ void DriveHybrid::approach_fold(double t, const double* y) {
   options.rtol = integrator_options_.rtol;
   options.atol = integrator_options_.atol;
   options.max_steps = integrator_options_.max_steps;
+  options.stop_when_stiff = false;  // (s_end below is a bound, not an end)
   std::unique_ptr<integrate::Integrator> integrator =
       integrate::make_integrator("rk_verner6", options);
   Eigen::VectorXd z(size() + 1);

@@ -16,7 +16,11 @@ def _watched() -> bool:
     stream = sys.stderr
     if stream is not None and hasattr(stream, "isatty") and stream.isatty():
         return True
-    return "ipykernel" in sys.modules
+    # A kernel's shell, not the module: ipykernel imported by another
+    # library (a notebook runner in the same process) watches nothing.
+    ipython = sys.modules.get("IPython")
+    shell = ipython.get_ipython() if ipython is not None else None
+    return getattr(shell, "kernel", None) is not None
 
 
 def shown(progress) -> bool:

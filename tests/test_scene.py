@@ -19,6 +19,17 @@ def test_round_trip_and_defaults():
     assert d["overrides"]["damping_ratio"] == 0.05
 
 
+def test_the_constructor_validates_as_from_dict_does():
+    """Scene(d) is Scene.from_dict(d): it once stored d unchecked, and a
+    scene without its drive section failed later with a KeyError."""
+    d = thesis_scene()
+    assert ls.Scene(d).to_dict() == ls.Scene.from_dict(d).to_dict()
+    with pytest.raises(ValueError, match="thread is missing"):
+        ls.Scene({"concept": "rigid"})
+    with pytest.raises(ValueError, match="bogus"):
+        ls.Scene({**d, "bogus": 1})
+
+
 def test_backlash_section_fills_defaults():
     scene = ls.Scene.from_dict(thesis_scene(backlash={"axial": 0.2e-3}))
     b = scene["backlash"]

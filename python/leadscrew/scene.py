@@ -76,19 +76,50 @@ def _copy_tree(value: Any) -> Any:
     return value
 
 
+def _validated(d: Any) -> Dict[str, Any]:
+    """A scene dict checked against :data:`SCHEMA`, its defaults filled
+    (:meth:`Scene.from_dict`)."""
+    if not isinstance(d, dict):
+        _fail("scene", d, "a dict of sections")
+    _check_section_names(d)
+    data: Dict[str, Any] = {}
+    for key in SCHEMA:
+        _validate_entry(key, d, data)
+    _check_consistency(data)
+    return data
+
+
 class Scene:
     """A validated lead-screw drive description (immutable).
 
-    Build it with :meth:`from_dict`; read it back with :meth:`to_dict` or
-    item access (``scene["thread"]["pitch"]``).
+    Build it with ``Scene(d)`` or :meth:`from_dict` (the same: both
+    validate ``d``); read it back with :meth:`to_dict` or item access
+    (``scene["thread"]["pitch"]``).
     """
 
     def __init__(self, data: Dict[str, Any]):
+        """Validate a scene dict and fill its defaults (:meth:`from_dict`).
+
+        Raises:
+            ValueError: as :meth:`from_dict`.
+        """
+        # (Scene(d) once stored d unvalidated, and failed later with a
+        # KeyError on a section it left out.)
+        self._set(_validated(data))
+
+    def _set(self, data: Dict[str, Any]) -> None:
         self._data = data
         # The core's model, built on the first model() call: a scene is
         # immutable and so is its model, and building it (the derivation,
         # the checks) was a third of a rigid drive's 60 us simulate call.
         self._model = None
+
+    @classmethod
+    def _from_validated(cls, data: Dict[str, Any]) -> "Scene":
+        """A scene of data that is already validated (no second check)."""
+        scene = cls.__new__(cls)
+        scene._set(data)
+        return scene
 
     def __getstate__(self) -> Dict[str, Any]:
         # (Pickled without the core's model, which does not pickle: a scene
@@ -96,7 +127,7 @@ class Scene:
         return {"_data": self._data}
 
     def __setstate__(self, state: Dict[str, Any]) -> None:
-        self.__init__(state["_data"])
+        self._set(state["_data"])
 
     @classmethod
     def from_dict(cls, d: Dict[str, Any]) -> "Scene":
@@ -114,14 +145,7 @@ class Scene:
                 value out of range; the message names the key path, the value
                 and what is allowed.
         """
-        if not isinstance(d, dict):
-            _fail("scene", d, "a dict of sections")
-        _check_section_names(d)
-        data: Dict[str, Any] = {}
-        for key in SCHEMA:
-            _validate_entry(key, d, data)
-        _check_consistency(data)
-        return cls(data)
+        return cls._from_validated(_validated(d))
 
     def to_dict(self) -> Dict[str, Any]:
         """The complete scene as a nested dict (a deep copy)."""
@@ -265,7 +289,7 @@ class Scene:
             elif key in merged:
                 data[key] = merged[key]
         _check_consistency(data)
-        return Scene(data)
+        return Scene._from_validated(data)
 
     def derived(self) -> Dict[str, Any]:
         """Derived parameters with every override applied.

@@ -27,9 +27,11 @@ model::DriveSimulationOptions drive_options(double t_end, const std::string& int
                                             double atol, double dt, double theta,
                                             std::vector<double> t_eval, long max_steps,
                                             long max_events, double max_step, double first_step,
-                                            double bounce_threshold, int max_order, bool check) {
+                                            double bounce_threshold, int max_order, bool check,
+                                            bool dt_given = true) {
   model::DriveSimulationOptions options;
   options.check = check;
+  options.dt_given = dt_given;
   options.integrator = integrator;
   options.smooth_integrator = smooth_integrator;
   options.integrator_options =
@@ -53,18 +55,18 @@ void def_drive_call(py::module_& m, const char* name, Body body, const char* doc
              const std::string& smooth_integrator, double rtol, double atol, double dt,
              double theta, std::vector<double> t_eval, long max_steps, long max_events,
              double max_step, double first_step, double bounce_threshold, int max_order,
-             bool check, py::object progress) {
+             bool check, bool dt_given, py::object progress) {
         return body(drive,
                     drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt, theta,
                                   std::move(t_eval), max_steps, max_events, max_step,
-                                  first_step, bounce_threshold, max_order, check),
+                                  first_step, bounce_threshold, max_order, check, dt_given),
                     std::move(progress));
       },
       py::arg("drive"), py::arg("t_end"), py::arg("integrator"), py::arg("smooth_integrator"),
       py::arg("rtol"), py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
       py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"), py::arg("first_step"),
       py::arg("bounce_threshold"), py::arg("max_order"), py::arg("check") = true,
-      py::arg("progress") = py::none(), doc);
+      py::arg("dt_given") = true, py::arg("progress") = py::none(), doc);
 }
 
 // The derivation from geometry and the rules of the scene's inputs
@@ -694,19 +696,19 @@ void bind_drive(py::module_& m) {
                        double rtol, double atol, double dt, double theta,
                        std::vector<double> t_eval, long max_steps, long max_events,
                        double max_step, double first_step, double bounce_threshold,
-                       int max_order, bool check) {
+                       int max_order, bool check, bool dt_given) {
              return model::DriveBatch(
                  std::move(base), parameters, std::move(channels),
                  drive_options(t_end, integrator, smooth_integrator, rtol, atol, dt, theta,
                                std::move(t_eval), max_steps, max_events, max_step,
-                               first_step, bounce_threshold, max_order, check));
+                               first_step, bounce_threshold, max_order, check, dt_given));
            }),
            py::arg("base"), py::arg("parameters"), py::arg("channels"), py::arg("t_end"),
            py::arg("integrator"), py::arg("smooth_integrator"), py::arg("rtol"),
            py::arg("atol"), py::arg("dt"), py::arg("theta"), py::arg("t_eval"),
            py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
            py::arg("first_step"), py::arg("bounce_threshold"), py::arg("max_order"),
-           py::arg("check") = true,
+           py::arg("check") = true, py::arg("dt_given") = true,
            "base: DriveParameters; parameters: the fields each case sets (numeric "
            "DriveParameters attributes; drive_torque, drive_speed, axial_force as "
            "constants); channels: the result channels to sample at t_eval; the rest as "

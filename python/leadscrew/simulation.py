@@ -593,6 +593,9 @@ def _drive_arguments(t_end, integrator, smooth_integrator, rtol, atol, dt, theta
     arguments["bounce_threshold"] = (1e-6 if bounce_threshold is None
                                      else _real("bounce_threshold", bounce_threshold))
     arguments["check"] = _flag("check", check)
+    # (dt left out: the core shortens its default where a drive's stiffness
+    # needs a shorter Moreau-Jean step, instead of refusing it)
+    arguments["dt_given"] = dt is not None
     return arguments
 
 
@@ -664,7 +667,10 @@ def simulate(
             whose slip velocity spans 1/20 of its stick band 1 / k_v
             (docs/physics/result_checks.md, "Options refused before a run").
         dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,
-            1e-4 for a Scene; refused with the other integrators).
+            1e-4 for a Scene, there shortened to half the longest step that
+            resolves the drive's stiffness where 1e-4 does not; a dt you
+            give is used as it is, or refused; refused with the other
+            integrators).
         t_eval: output times [s], at least one, in [0, t_end]; ``"steps"``:
             every integrator step and event; default (None): the
             integrator's steps sampled down to about :data:`DEFAULT_ROWS`
@@ -800,7 +806,7 @@ _BLOCK_CALL = ("block", "t_end", "friction", "integrator", "law", "rtol", "atol"
                "check", "progress")
 _DRIVE_CALL = ("drive", "t_end", "integrator", "smooth_integrator", "rtol", "atol", "dt", "theta",
                "t_eval", "max_steps", "max_events", "max_step", "first_step", "bounce_threshold",
-               "max_order", "check", "progress")
+               "max_order", "check", "dt_given", "progress")
 _block_call = operator.itemgetter(*_BLOCK_CALL)
 _drive_call = operator.itemgetter(*_DRIVE_CALL)
 

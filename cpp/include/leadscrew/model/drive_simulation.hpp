@@ -21,6 +21,10 @@ struct DriveSimulationOptions {
   std::string smooth_integrator;
   integrate::IntegratorOptions integrator_options;
   double dt = 1e-4;    // moreau
+  // false: dt is simulate's default, not the user's: Moreau-Jean shortens it
+  // where the drive's stiffness needs a shorter step (DriveMoreau::
+  // default_step), instead of refusing a step nobody chose.
+  bool dt_given = true;
   double theta = 0.5;  // moreau
   long max_events = 100000;
   // An impact slower than this (normal velocity, m/s) is plastic: the flank

@@ -56,6 +56,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // Refuses a step whose flank problem is Painleve-like at the start (see
   // step_too_long); initialize() first.
   void check_step(double h, double theta);
+  // The default step h where it resolves the drive's stiffness (check_step
+  // passes), else half the longest step that does; initialize() first.
+  double default_step(double h, double theta);
 
  private:
   using Square = IterationMatrix::Square;

@@ -70,4 +70,10 @@ void DriveMoreau::check_step(double h, double theta) {
                           step_too_long(theta, alpha));
 }
 
+double DriveMoreau::default_step(double h, double theta) {
+  if (dynamics_.painleve_possible() || model_.thread_pair().penalty()) return h;
+  if (model_.effective_mu() * std::abs(step_coupling(h, theta)) < 1.0) return h;
+  return 0.5 * resolving_step(h, theta);
+}
+
 }  // namespace leadscrew::model::drive

@@ -242,6 +242,11 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     if (!again) break;
   }
   v_ = impulses.velocity;
+  // A speed-controlled rotor ends the step at its prescribed speed exactly,
+  // as the state carries it (StateLayout::expand): the solve's value, its
+  // round-off apart, turned a rotor held at 0 by 1e-20 rad and booked
+  // 1e-19 J of work of either sign.
+  if (p_.speed_controlled) v_[model_.rotor()] = rotor_target;
   if (model_.thread_pair().exact_play() && !contact)
     impulses.normal = 0.0, impulses.friction = 0.0;
   if (penalty) {

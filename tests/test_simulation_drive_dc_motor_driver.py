@@ -32,6 +32,7 @@ def spun(inductance=0.0, rotor_speed=200.0, voltage=1.0):
 def assert_motor_checks_pass(result):
     for name in ("driver_voltage", "motor_torque"):
         assert result.checks[name]["applies"] and result.checks[name]["passed"], name
+    assert result.checks["armature"]["passed"]  # (applies without inductance)
 
 
 @pytest.mark.parametrize("options", SCHEMES)
@@ -277,3 +278,4 @@ def test_the_step_that_releases_the_limit_reports_its_own_armature():
         np.testing.assert_allclose(np.diff(result[name]), h * rate[1:], rtol=1e-9, atol=0,
                                    err_msg=name)
     assert_motor_checks_pass(result)
+    assert result.checks["armature"]["applies"]  # (the run checks the relation itself)

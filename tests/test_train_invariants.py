@@ -102,6 +102,22 @@ def test_the_motors_energies_follow_their_rates(motor_run):
         assert "motor_energy" in _violated(motor_run, magnetic_energy=magnetic)
 
 
+def test_moreaus_rows_report_their_steps_armature():
+    """Moreau-Jean without inductance: each row is its step's armature, the
+    driver's voltage and quasi-static current at omega_theta (dc_motor.md,
+    "Moreau-Jean"). A run whose free rows took the current at the row's own
+    speed instead (as its rows once did: with a held step's voltage at the
+    release no relation held) mixes two readings; the checker takes one."""
+    run = _run(motor_scene(inductance=0.0, current_limit=LIMIT), t_end=0.3,
+               integrator="moreau", dt=1e-4)
+    result = run[0]
+    voltage, omega = np.array(result["motor_voltage"]), np.array(result["omega_drive"])
+    free = np.abs(voltage) >= U * (1 - 1e-12)
+    assert free.any() and not free.all()
+    current = np.where(free, (voltage - KE * omega) / R, result["motor_current"])
+    assert "armature" in _violated(run, motor_current=current, drive_torque=KT * current)
+
+
 @pytest.mark.parametrize("concept", ["rigid", "flexible_nut", "flexible"])
 @pytest.mark.parametrize("drive", ["screw", "nut"])
 def test_the_kinetic_energy_is_the_bodies(concept, drive):

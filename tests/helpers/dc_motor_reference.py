@@ -17,6 +17,9 @@ independent of the leadscrew package. SI units.
   free current (U - k_e omega) / R where it lies within i_max; beyond, the
   driver's voltage that holds the limit, R (+-i_max) + k_e omega, clipped to
   [-|U|, |U|], and the current (U_d - k_e omega) / R that voltage gives.
+  On Moreau-Jean a row reports its step's armature (docs/physics/dc_motor.md,
+  "Moreau-Jean"): the back-EMF at the step's speed omega_theta = (1 - theta)
+  omega_k + theta omega_k+1, held over the step (``step_speed``).
 """
 
 from __future__ import annotations
@@ -27,7 +30,7 @@ import numpy as np
 
 from .rigid_drive_reference import RigidDrive
 
-__all__ = ["rigid_drive", "steady_torque", "steady_state", "stalled_current",
+__all__ = ["rigid_drive", "steady_torque", "steady_state", "stalled_current", "step_speed",
            "limited_driver"]
 
 
@@ -92,3 +95,13 @@ def limited_driver(voltage, omega, resistance: float, back_emf_constant: float,
     hold = np.clip(resistance * side * current_limit + emf, -np.abs(voltage), np.abs(voltage))
     driver = np.where(np.abs(free) <= current_limit, voltage, hold)
     return driver, (driver - emf) / resistance
+
+
+def step_speed(omega, moreau: bool, theta: float = 0.5) -> np.ndarray:
+    """The rotor speed each row's armature takes: the row's own (the
+    event-driven scheme), or Moreau-Jean's omega_theta of the step that ends
+    at the row (row 0, before any step: its own)."""
+    omega = np.asarray(omega, dtype=float)
+    if not moreau:
+        return omega
+    return np.concatenate([omega[:1], (1 - theta) * omega[:-1] + theta * omega[1:]])

@@ -28,8 +28,10 @@ the physics pages, not from ``Result.checks`` nor from the core:
   hold it (issue 31, reproduction 2).
 - ``armature``: L di/dt = U_d - R i - k_e omega with k_e the scene's
   back_emf_constant (default k_t). L = 0: pointwise, to 1e-9 of the terms
-  (Moreau-Jean: with omega at the row or at its step's theta point, the
-  quasi-static current the step takes).
+  (Moreau-Jean: with omega_theta = (1 - theta) omega_k + theta omega_k+1,
+  each row its step's driver voltage and quasi-static current, dc_motor.md
+  "Moreau-Jean": the limit x = h R / L -> infinity of the step; row 0 at
+  its own speed).
   L > 0, event-driven and ODE integrators: between two output points L
   (i_1 - i_0) is k_e times the rotor's turn (phi_drive, a state: exact)
   less the integral of g = U_d - R i, which lies
@@ -377,10 +379,9 @@ def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol) -> Dict[str, dic
 
     emf = voltage - resistance * current - k_e * omega  # L di/dt
     if inductance == 0.0:
-        if moreau:  # the quasi-static current at the theta point's speed, or the end's
+        if moreau:  # the step's quasi-static current, at its theta point's speed
             w_theta = np.concatenate([omega[:1], (1 - theta) * omega[:-1] + theta * omega[1:]])
-            theta_emf = voltage - resistance * current - k_e * w_theta
-            emf = np.where(np.abs(theta_emf) < np.abs(emf), theta_emf, emf)
+            emf = voltage - resistance * current - k_e * w_theta
         terms = np.abs(voltage) + resistance * np.abs(current) + k_e * np.abs(omega)
         report["armature"] = _worst(
             "armature", t, np.abs(emf), ROUND_OFF_REL * terms + 1e-300,

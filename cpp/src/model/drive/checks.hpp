@@ -19,8 +19,9 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
                         double step_friction_excess = 0.0);
 
 // A DC motor's checks, appended to result.checks (motor_checks.cpp): its
-// driver's voltage within the supply |U(t)| (driver_voltage) and
-// drive_torque = k_t motor_current (motor_torque).
+// driver's voltage within the supply |U(t)| (driver_voltage),
+// drive_torque = k_t motor_current (motor_torque) and, without inductance,
+// motor_voltage = R motor_current + k_e omega (armature).
 void check_dc_motor_result(const DriveModel& model, const DriveSimulationOptions& options,
                            bool time_stepping, integrate::SimulationResult& result);
 

@@ -35,9 +35,11 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
 void DriveMoreau::initialize(double t, const double* y) {
   layout_.expand(t, y, q_, v_);
   dynamics_.set_state(t, q_, v_);
-  if (const elements::DcMotor* dc = model_.dc_motor())
+  if (const elements::DcMotor* dc = model_.dc_motor()) {
     last_voltage_ =
         dc->terminal_voltage(t, dynamics_.motor_current(), v_[dc->rotor], {});
+    last_step_current_ = dynamics_.motor_current();  // (row 0's: the initial state's)
+  }
   kinetic0_ = dynamics_.kinetic_energy();
   elastic0_ = dynamics_.elastic_energy() + dynamics_.contact_energy();
 }
@@ -253,6 +255,11 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     if (!again) break;
   }
   v_ = impulses.velocity;
+  // A speed-controlled rotor ends the step at its prescribed speed exactly,
+  // as the state carries it (StateLayout::expand): the solve's value, its
+  // round-off apart, turned a rotor held at 0 by 1e-20 rad and booked
+  // 1e-19 J of work of either sign.
+  if (p_.speed_controlled) v_[model_.rotor()] = rotor_target;
   if (model_.thread_pair().exact_play() && !contact)
     impulses.normal = 0.0, impulses.friction = 0.0;
   if (penalty) {
@@ -648,19 +655,27 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (motor_friction_state_ >= 0) state.values[motor_friction_channel_] = y[motor_friction_state_];
   if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
   base_.write(dynamics_, y, state);
+  double applied = dynamics_.applied_torque();
   if (const elements::DcMotor* dc = model_.dc_motor()) {  // its channels (hybrid_motor.cpp)
     double* values = state.values.data() + dc_channel_;
-    values[0] = dynamics_.motor_current();
+    // The current of the last step's armature, with its driver voltage: L > 0
+    // its end i+ (the state), L = 0 its quasi-static current at omega_theta
+    // (the limit x -> infinity), not the one at the row's speed: a step that
+    // held the limit and ended where the free current is below it reported
+    // the hold's voltage with a free current, no armature relation
+    // (docs/physics/dc_motor.md, "Moreau-Jean").
+    values[0] = dc->has_state() ? dynamics_.motor_current() : last_step_current_;
     values[1] = last_voltage_;  // over the last step
     values[2] = y[copper_state_];
     values[3] = dc->has_state() ? dc->magnetic_energy(values[0]) : 0.0;
+    applied = model_.motor().applied_torque(t) + dc->torque(values[0]);
   }
   // drive_torque, the rotor's: a torque-driven rotor's prescribed torque
-  // and a DC motor's k_t i at the row's state, as the event-driven scheme
+  // and a DC motor's k_t i of the row's current, as the event-driven scheme
   // reports them (issue 31: the step's impulse over h is not the motor's
   // torque; the step's work stays its impulse's, booked in step()).
   ContactForces forces = last_;
-  if (!p_.speed_controlled) forces.motor_torque = model_.gear().rotor_torque(dynamics_.applied_torque());
+  if (!p_.speed_controlled) forces.motor_torque = model_.gear().rotor_torque(applied);
   write_drive_channels(layout_, state, forces, energy, 0.0, kinetic0_, elastic0_, out);
 }
 

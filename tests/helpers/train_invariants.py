@@ -148,6 +148,13 @@ def _worst(name: str, t: np.ndarray, excess: np.ndarray, bound: np.ndarray,
     return _entry(margin[i] <= 0, excess[i], bound[i], t[min(i, len(t) - 1)], describe(i))
 
 
+def _angle_round_off(phi: np.ndarray) -> float:
+    """The round-off of a difference of two rotor angles [rad]: an angle
+    started at -1e15 rad (a hostile initial.rotor_angle) keeps its turns
+    only to 4 ulp of its size."""
+    return 4 * np.finfo(float).eps * float(np.max(np.abs(phi)))
+
+
 def _theta_times(t: np.ndarray, theta: float) -> np.ndarray:
     """Moreau-Jean's row k + 1 is the step from t_k: the times its step
     takes the loads at, t_k + theta h (row 0: t_0)."""
@@ -195,19 +202,27 @@ def check_train(result: Any, scene: dict, options: dict, ch: Dict[str, np.ndarra
     t = np.asarray(result.t, dtype=float)
     moreau = result.integrator == "moreau"
     theta = float(options.get("theta", 0.5) or 0.5) if moreau else None
-    interpolated = moreau and options.get("t_eval") is not None
+    requested = options.get("t_eval")
+    requested = requested is not None and not isinstance(requested, str)
+    interpolated = moreau and requested
     report: Dict[str, dict] = {}
     if interpolated:  # rows between Moreau-Jean's steps: no step relation holds there
         return report
+    # Rows at requested times (event-driven and ODE): the state's dense
+    # output, without the events between them (a current limit engaging, a
+    # voltage table's step), so the increments between rows have no bound
+    # from their end values; the pointwise relations still hold, the
+    # friction law to the interpolation's error.
+    sampled = requested
     load_times = _theta_times(t, theta) if moreau else t
     report["kinetic_energy"] = _kinetic(t, scene, ch)
     motor = scene.get("motor")
     if motor is not None and motor.get("type") == "dc":
-        report.update(_motor(t, load_times, motor, ch, moreau, theta, rtol, atol))
-    else:
+        report.update(_motor(t, load_times, motor, ch, moreau, theta, rtol, atol, sampled))
+    elif not sampled:
         report.update(_torque(t, load_times, scene, ch, moreau, theta, rtol, atol))
     if scene["friction"]["law"] == "lugre" and "bristle_deflection" in ch:
-        report.update(_lugre(t, scene, ch, rtol, atol))
+        report.update(_lugre(t, scene, ch, rtol if sampled else 0.0, rtol, atol))
     stops = scene.get("end_stops")
     if stops is not None and "stop_force" in ch:
         report.update(_stops(t, stops, ch, moreau, options, atol))
@@ -245,7 +260,7 @@ def _kinetic(t, scene, ch) -> dict:
                             f"{expected[i]:.6g} J at t = {t[i]:.6g} s")
 
 
-def _lugre(t, scene, ch, rtol, atol) -> Dict[str, dict]:
+def _lugre(t, scene, ch, interpolation, rtol, atol) -> Dict[str, dict]:
     """LuGre's bristles within their bound, and its law at every output
     point (module docstring)."""
     from helpers.result_invariants import stribeck_curve
@@ -277,8 +292,9 @@ def _lugre(t, scene, ch, rtol, atol) -> Dict[str, dict]:
     # (the friction's own scale, or its cone's, mu_max' |N|: a run whose
     # friction stays at round-off of its normal force, 1e-64 N against 4e-25
     # N at the first step of a flank, has no sign of its own to compare)
-    scale = ROUND_OFF_REL * max(float(np.max(np.abs(force))), float(np.max(np.abs(expected))),
-                                largest * float(np.max(loaded)), 1e-300)
+    scale = (max(ROUND_OFF_REL, QUADRATURE_FACTOR * interpolation)
+             * max(float(np.max(np.abs(force))), float(np.max(np.abs(expected))),
+                   largest * float(np.max(loaded)), 1e-300))
     report["friction_law"] = _worst(
         "friction_law", t, error, np.full(len(t), scale),
         lambda i: f"friction {force[i]:.6g} N where LuGre's law gives -|N|' (sigma0 z + sigma1 "
@@ -321,7 +337,8 @@ def _torque(t, load_times, scene, ch, moreau, theta, rtol, atol) -> Dict[str, di
         # speed may ring between output points; the angle is a state). A
         # varying torque, or a speed drive's reaction torque, is not resolved
         # by the output points: no check.
-        misfit, bound = _increments(t, work, 0.0 * power, None, tol_state,
+        misfit, bound = _increments(t, work, 0.0 * power, None,
+                                    tol_state + abs(given[0]) * _angle_round_off(ch["phi_drive"]),
                                     known=given[0] * np.diff(ch["phi_drive"]))
     else:
         return report
@@ -333,7 +350,7 @@ def _torque(t, load_times, scene, ch, moreau, theta, rtol, atol) -> Dict[str, di
     return report
 
 
-def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol) -> Dict[str, dict]:
+def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol, sampled) -> Dict[str, dict]:
     """The DC motor's invariants (module docstring)."""
     report = {}
     k_t = float(motor["torque_constant"])
@@ -388,7 +405,7 @@ def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol) -> Dict[str, dic
             lambda i: f"U_d - R i - k_e omega = {emf[i]:.4g} V (inductance 0: must be 0; U_d "
                       f"{voltage[i]:.6g} V, i {current[i]:.6g} A, omega {omega[i]:.6g} rad/s, "
                       f"k_e {k_e:.4g}) at t = {t[i]:.6g} s")
-    else:
+    elif not sampled:
         flux = inductance * current
         moreau_rate = None
         if moreau:
@@ -400,13 +417,16 @@ def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol) -> Dict[str, dic
         # its angle is a state.
         misfit, bound = _increments(t, flux, voltage - resistance * current, moreau_rate,
                                     QUADRATURE_FACTOR * (rtol * np.abs(flux[1:])
-                                                         + inductance * atol),
+                                                         + inductance * atol)
+                                    + k_e * _angle_round_off(ch["phi_drive"]),
                                     known=-k_e * np.diff(ch["phi_drive"]))
         report["armature"] = _worst(
             "armature", t[1:], misfit, bound,
             lambda i: f"L di = {flux[i + 1] - flux[i]:.6g} V s from t = {t[i]:.6g} s to "
                       f"{t[i + 1]:.6g} s where U_d - R i - k_e omega (k_e {k_e:.4g}) integrates "
                       f"to it within {bound[i]:.3g} V s (misfit {misfit[i]:.3g} V s)")
+    if sampled:
+        return report
     report["motor_energy"] = _motor_energy(t, ch, k_t, k_e, resistance, inductance, moreau,
                                            theta, rtol, atol)
     return report

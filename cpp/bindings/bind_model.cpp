@@ -66,6 +66,8 @@ void bind_model(py::module_& m) {
                              [](const integrate::SimulationResult& r) {
                                return py::array_t<double>(r.time.size(), r.time.data());
                              })
+      .def_property_readonly("point_count", &integrate::SimulationResult::point_count,
+                             "The rows (time points), without converting them.")
       .def_property_readonly("channel_names",
                              [](const integrate::SimulationResult& r) { return r.channel_names; })
       .def_property_readonly("channels", &channel_matrix)

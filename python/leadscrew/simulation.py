@@ -437,9 +437,12 @@ def _sampled(result: Result) -> Result:
     times, every row at an event (before and after it) and the first and
     last rows. The rows kept are the integrator's own (nothing
     interpolated); a result with fewer rows is returned as it is."""
-    t = result.t
-    if len(t) <= DEFAULT_ROWS:
+    # (the row count read without converting the times: the block's and
+    # the rigid drive's short runs are returned as they are, at no cost)
+    count = result._core.point_count if result._core is not None else len(result.t)
+    if count <= DEFAULT_ROWS:
         return result
+    t = result.t
     keep = np.zeros(len(t), dtype=bool)
     grid = np.linspace(t[0], t[-1], DEFAULT_ROWS)
     keep[np.minimum(np.searchsorted(t, grid, side="left"), len(t) - 1)] = True
@@ -544,9 +547,11 @@ def default_max_steps(t_end) -> int:
     shipped position_holding scene, 0.64 million steps per second, at 1.56 s
     of 2). Beyond the core's integer it stays there; a t_end the core refuses
     gets the floor."""
-    if not (math.isfinite(t_end) and t_end > 1.0):
+    steps = STEPS_PER_SECOND * t_end
+    # (one chained comparison: NaN, inf and runs up to 1 s take the floor)
+    if not STEPS_PER_SECOND < steps < math.inf:
         return STEPS_PER_SECOND
-    return min(math.ceil(STEPS_PER_SECOND * t_end), 2 ** 62)
+    return min(math.ceil(steps), 2 ** 62)
 
 
 def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, theta, t_eval,
@@ -567,8 +572,8 @@ def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, thet
             "dt": default_dt if dt is None else _real("dt", dt),
             "theta": DEFAULT_THETA if theta is None else _real("theta", theta),
             "t_eval": t_eval,
-            "max_steps": (default_max_steps(t_end) if max_steps is None
-                          else _whole("max_steps", max_steps)),
+            "max_steps": ((STEPS_PER_SECOND if t_end <= 1.0 else default_max_steps(t_end))
+                          if max_steps is None else _whole("max_steps", max_steps)),
             "max_events": _whole("max_events", max_events),
             "max_step": 0.0 if max_step is None else _real("max_step", max_step),
             "first_step": 0.0 if first_step is None else _real("first_step", first_step),
@@ -773,7 +778,9 @@ def simulate(
         arguments.update(block=model, friction=friction, law=law,
                          check=check if check is True else _flag("check", check))
         result = _run_core(_core.simulate_block, _block_call, arguments, progress)
-        return _sampled(result) if t_eval is None else result
+        # (the row count read inline: a short run costs one attribute read)
+        return (_sampled(result) if t_eval is None and result._core.point_count > DEFAULT_ROWS
+                else result)
     if isinstance(model, Scene):
         _check_scene_friction(model, friction, k_v)
         for name, value in law_parameters.items():
@@ -788,7 +795,8 @@ def simulate(
                        dict(given, bounce_threshold=bounce_threshold), model)
         arguments["drive"] = drive
         result = _run_core(_core.simulate_drive, _drive_call, arguments, progress)
-        return _sampled(result) if t_eval is None else result
+        return (_sampled(result) if t_eval is None and result._core.point_count > DEFAULT_ROWS
+                else result)
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
 
 

@@ -147,6 +147,11 @@ class SimulationResult:
     def channels(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
     @property
+    def point_count(self) -> int:
+        """
+        The rows (time points), without converting them.
+        """
+    @property
     def checks(self) -> dict:
         ...
     @property

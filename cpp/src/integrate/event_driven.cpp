@@ -37,6 +37,10 @@ class EventDrivenRun::Guard final : public OdeSystem {
   void rhs(double t, const double* y, double* ydot) override { system_.rhs(t, y, ydot); }
   int root_count() const override { return system_.root_count(); }
   int quadrature_count() const override { return system_.quadrature_count(); }
+  bool has_projection() const override { return system_.has_projection(); }
+  void project(double t, const double* y, double* correction) override {
+    system_.project(t, y, correction);
+  }
   void roots(double t, const double* y, double* g) override {
     system_.roots(t, y, g);
     // Far below any physical value, far above underflow: CVODE interpolates

@@ -267,6 +267,18 @@ int CallbackBridge::rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_dat
   }
 }
 
+int CallbackBridge::project(sunrealtype t, N_Vector y, N_Vector correction, sunrealtype,
+                            N_Vector, void* user_data) {
+  auto* self = static_cast<CallbackBridge*>(user_data);
+  try {
+    self->system->project(t, N_VGetArrayPointer(y), N_VGetArrayPointer(correction));
+    return all_finite(N_VGetArrayPointer(correction), self->size) ? 0 : -1;
+  } catch (...) {
+    self->pending_ = std::current_exception();
+    return -1;  // unrecoverable: the solver returns, the exception is rethrown
+  }
+}
+
 int CallbackBridge::roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
   auto* self = static_cast<CallbackBridge*>(user_data);
   try {

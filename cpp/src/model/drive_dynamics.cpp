@@ -554,6 +554,39 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
   if (solve_constrained(inverse_mass_, zero, B, C, r, change, lambda)) v += change;
 }
 
+bool DriveDynamics::project_held(const HeldContact& held, CoordinateVector& q,
+                                 CoordinateVector& v) const {
+  const elements::Motor& motor = model_.motor();
+  const elements::ThreadPair& thread = model_.thread_pair();
+  const int n = model_.coordinate_count();
+  const int nc = (held.normal ? 1 : 0) + (held.stick ? 1 : 0) + motor.constraint_count();
+  ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
+  SmallVector on_q = SmallVector::Zero(nc);  // the rows' change of q; of v: -C v
+  int row = 0;
+  if (held.normal) {
+    C.row(row) = thread.play_gradient().transpose();
+    on_q[row++] = held.play - thread.play(q);
+  }
+  if (held.stick) {
+    C.row(row) = model_.tangent_direction().transpose();
+    on_q[row++] = held.slip_position - model_.tangent_direction().dot(q);
+  }
+  if (motor.speed_controlled) C(row++, motor.rotor) = 1.0;  // kept: its change 0
+  // Both are M-orthogonal projections: x + M^-1 C^T lambda with C (x + dx)
+  // on target.
+  const ColumnMatrix B = C.transpose();
+  const CoordinateVector zero = CoordinateVector::Zero(n);
+  CoordinateVector dq, dv;
+  SmallVector lambda;
+  if (!solve_constrained(inverse_mass_, zero, B, C, on_q, dq, lambda)) return false;
+  SmallVector on_v = -(C * v);
+  if (motor.speed_controlled) on_v[nc - 1] = 0.0;
+  if (!solve_constrained(inverse_mass_, zero, B, C, on_v, dv, lambda)) return false;
+  q += dq;
+  v += dv;
+  return true;
+}
+
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
                            Impulses& impulses, lcp::Workspace& workspace,
                            const lcp::Options& options) {

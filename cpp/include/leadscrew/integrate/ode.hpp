@@ -40,6 +40,15 @@ class OdeSystem {
   // of the Newton matrix [[I - g A, 0], [-g B, I]]; the error test still
   // covers them. 0 <= quadrature_count() < size().
   virtual int quadrature_count() const { return 0; }
+  // Invariants the right-hand side keeps only through its derivative (a
+  // constraint held on the acceleration level): an implicit method's Newton
+  // iteration, stopped at its tolerance, lets them drift step by step, and
+  // nothing pulls them back. A system that has such invariants projects each
+  // accepted step onto them (CVODE's BDF: CVodeSetProjFn): `correction`
+  // receives the change of y that puts y back (zeros: none). Must not
+  // allocate.
+  virtual bool has_projection() const { return false; }
+  virtual void project(double /*t*/, const double* /*y*/, double* /*correction*/) {}
   // The stage loop of an explicit Runge-Kutta method of `stage_count` stages
   // with this system's rhs inlined (rk_kernels::stage_kernel_for<Own, N>
   // for a final class Own of size N), or null: the integrator's own loop,

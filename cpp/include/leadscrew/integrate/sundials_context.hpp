@@ -136,6 +136,10 @@ class CallbackBridge {
 
   static int rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user_data);
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data);
+  // CVODE's projection (CVProjFn): OdeSystem::project (the error estimate is
+  // not projected: CvodeIntegrator::create_solver).
+  static int project(sunrealtype t, N_Vector y, N_Vector correction, sunrealtype tolerance,
+                     N_Vector error, void* user_data);
   static void error_handler(int error_code, const char* module, const char* function,
                             char* message, void* user_data);
 

@@ -166,6 +166,23 @@ class DriveDynamics {
   // zero while keeping the other active velocity constraints.
   void project_zero_slip(const ModeSpec& spec, CoordinateVector& v);
 
+  // The constraints a mode holds on the acceleration level (the thread's
+  // normal constraint: without play, or a closed flank; a stick's tangential
+  // one), on the position and velocity level: the thread's play at `play`,
+  // the slip position W_T . q at `slip_position` (where the stick began),
+  // zero normal and slip velocity, a speed-controlled rotor kept.
+  struct HeldContact {
+    bool normal = false;
+    double play = 0.0;           // e on the normal constraint [m]
+    bool stick = false;
+    double slip_position = 0.0;  // W_T . q [m]
+  };
+  // The least change of q and of v (each in the kinetic metric) that puts
+  // them onto the held constraints (docs/physics/drive_models.md, "Held
+  // constraints between events"). Returns false where the rows are dependent
+  // (nothing changed).
+  bool project_held(const HeldContact& held, CoordinateVector& q, CoordinateVector& v) const;
+
   // Velocity jump of an impact on a flank (sign sigma) with restitution:
   // Newton's law on the normal velocity, the rotor held if speed-controlled,
   // stick or slip of the impulses decided by the flank LCP. `sticks` is the

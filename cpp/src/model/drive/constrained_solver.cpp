@@ -3,6 +3,7 @@
 // constrained solve (DriveHybrid::solve_current), LuGre's bristle states and
 // their stored energy (their declaration, lugre_bristles_kind), the
 // elements' with events rates and output values (driver_element.hpp).
+#include <algorithm>
 #include <cmath>
 
 #include "base_excitation.hpp"
@@ -125,6 +126,52 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
 
 double DriveHybrid::ConstrainedSolver::slip_resolution() const {
   return h_.model_.tangent_direction().cwiseAbs().sum() * h_.integrator_options_.atol;
+}
+
+// A stuck contact's state onto its held constraints (DriveHybrid::project):
+// held on the acceleration level alone, they drift with the integrator's
+// Newton error (a stuck seat adjuster's closed flank: 4.3e-6 m beyond its
+// flank after 2 s at rtol 1e-8, the load creeping into its stop). The
+// change is the least one in the kinetic metric, of the size of that
+// error, and its energy with it: the constraint forces' work on the drift,
+// which the account never booked, is taken back with it. Only in stick:
+// in a slip or a free flight the projection's corrections, which enter
+// CVODE's history as part of its steps' and bend its dense output within a
+// step, failed runs that passed before (a speed-controlled motor's impacts
+// at rtol 1e-11 past a million steps against 531k; a preloaded nut's
+// lift-off at the smallest step size); a slip's drift ends at its next
+// event.
+bool DriveHybrid::ConstrainedSolver::project(double t, const double* y, double* correction) {
+  const StateLayout& layout = h_.layout_;
+  std::fill(correction, correction + layout.size(), 0.0);
+  const DriveDynamics::HeldContact held = h_.held_contact();
+  if (!held.stick) return false;
+  CoordinateVector q, v;
+  layout.expand(t, y, q, v);
+  // Left alone: a drive at rest (every speed within atol; corrections of
+  // round-off moved one at rest in its equilibrium by 2.6e-12 rad, which
+  // stays exactly still without them, and its drift is bounded by atol per
+  // second), and a violation within kHeldResolution of the error weights
+  // rtol |y_i| + atol (round-off is no drift). Held back to the full
+  // weights, the violation ramped into the history and the projected steps
+  // failed their error test down to the smallest step; at 1e-2 of them
+  // (then in every mode) a correction's bump in the dense output put a stuck
+  // clamp's friction 2e-7 N outside its cone.
+  const double rtol = h_.integrator_options_.rtol, atol = h_.integrator_options_.atol;
+  if (!(v.cwiseAbs().maxCoeff() > atol)) return false;
+  CoordinateVector dq = q, dv = v;
+  if (!h_.dynamics_.project_held(held, dq, dv)) return false;
+  bool beyond = false;
+  for (int i = 0; i < q.size(); ++i) {
+    const double q_weight = rtol * std::abs(q[i]) + atol, v_weight = rtol * std::abs(v[i]) + atol;
+    beyond = beyond || std::abs(dq[i] - q[i]) > kHeldResolution * q_weight ||
+             std::abs(dv[i] - v[i]) > kHeldResolution * v_weight;
+  }
+  if (!beyond) return false;
+  dq -= q;
+  dv -= v;
+  layout.compress(dq, dv, correction);
+  return true;
 }
 
 // By the constrained solve with a unit drive torque (on the rotor: n on its

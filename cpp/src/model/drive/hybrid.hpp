@@ -62,6 +62,10 @@ constexpr double kFlankTolerance = 1e-3;
 // denominator falls below this fraction of G_NN (DriveHybrid::approach_fold).
 constexpr double kFoldWatch = 0.1;
 
+// A held constraint's violation is projected away (ConstrainedSolver::
+// project) beyond this fraction of the integrator's error weights.
+constexpr double kHeldResolution = 1e-3;
+
 class DriveHybrid final : public integrate::HybridSystem {
  public:
   // `law`: the friction law that runs (the model's, or its regularization
@@ -94,6 +98,11 @@ class DriveHybrid final : public integrate::HybridSystem {
   void roots(double t, const double* y, double* g) override;
   void root_directions(int* directions) const override;
   void select_initial_mode(double t, double* y) override;
+  // The mode's constraints on the position and velocity level (OdeSystem::
+  // project): the general solver's drives, whose closed flank and stick are
+  // rows of the acceleration solve over coordinates of y.
+  bool has_projection() const override;
+  void project(double t, const double* y, double* correction) override;
   std::string handle_event(double t, double* y, const std::vector<int>& root_info) override;
 
   // hybrid_resume.cpp: a run advanced in pieces (model/drive_stepper.hpp).
@@ -137,6 +146,9 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   // hybrid_events.cpp
   void start_mode(double t, const double* y);
+  // The constraints a stuck contact holds (project): the stick's at its slip
+  // position, with the thread's normal one on its flank's play.
+  DriveDynamics::HeldContact held_contact() const;
   std::string change_mode(double t, double* y, const std::vector<int>& root_info);
 
   // hybrid_load_roots.cpp
@@ -249,6 +261,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   double slip_offset_ = 0.0;
   bool slip_noise_event_ = false;  // an event of g0 kept the same slip mode (start_mode)
   bool stick_from_zero_ = false;  // a stick mode whose cone margin has not left zero
+  double stick_position_ = 0.0;   // W_T . q where the stick mode began [m] (held_contact)
   int load_root_ = -1;     // the root function replaced by a load-driven crossing (-1: none)
   double load_root_time_ = std::numeric_limits<double>::infinity();  // its time
   bool load_root_horizon_ = false;  // load_root_time_ is the scan's horizon, no crossing

@@ -245,6 +245,10 @@ void DriveHybrid::start_mode(double t, const double* y) {
   }
   slip_noise_event_ = false;
   stick_from_zero_ = false;
+  if (mode_.friction == FrictionMode::stick) {
+    solver_->expand(t, y);
+    stick_position_ = model_.tangent_direction().dot(q_);  // held from here (held_contact)
+  }
   if (mode_.friction == FrictionMode::stick && train_) {
     solver_->expand(t, y);
     const ThreadForces s = solver_->forces(t, y);
@@ -257,6 +261,34 @@ void DriveHybrid::start_mode(double t, const double* y) {
   // pulling on its flank (half B's force changes with the mode): it lifts
   // off here.
   if (closing_nut() && half_a_bearing(solve_current().normal_force) < 0.0) half_a_lifts_off(t);
+}
+
+// A stick's slip position (the stick's start's, start_mode) and a closed
+// flank's play held on the position and velocity level, besides their rows
+// of the acceleration solve (project: in stick only). The thread without
+// play holds e = 0 through the layout's eliminated coordinate: its row keeps
+// that coordinate out of the stick's correction.
+DriveDynamics::HeldContact DriveHybrid::held_contact() const {
+  DriveDynamics::HeldContact held;
+  held.stick = mode_.friction == FrictionMode::stick && !slip_prescribed_now();
+  if (!held.stick) return held;
+  held.slip_position = stick_position_;
+  if (mode_.contact == ThreadContact::closed) {
+    held.normal = true;
+    held.play = -0.5 * mode_.flank * p_.clearance;  // the lower flank (+1) at e = -c/2
+  } else if (mode_.contact == ThreadContact::bilateral) {
+    held.normal = true;
+    held.play = model_.thread_pair().play(CoordinateVector::Zero(model_.coordinate_count()));
+  }
+  return held;
+}
+
+bool DriveHybrid::has_projection() const {
+  return dynamic_cast<const ConstrainedSolver*>(solver_.get()) != nullptr;
+}
+
+void DriveHybrid::project(double t, const double* y, double* correction) {
+  solver_->project(t, y, correction);
 }
 
 // handle_event without the planning of the next mode's load-driven roots.

@@ -65,6 +65,12 @@ class DriveHybrid::ModeSolver {
   // force, with the normal-force sign sigma where it matters (the
   // load-driven roots, hybrid_load_roots.cpp).
   virtual RigidModeCoefficients coefficients(int sigma) = 0;
+  // DriveHybrid::project: y's change onto the mode's held constraints (false:
+  // y carries none, the rigid drive's one degree of freedom).
+  virtual bool project(double t, const double* y, double* correction) {
+    (void)t, (void)y, (void)correction;
+    return false;
+  }
 
  protected:
   DriveHybrid& h_;
@@ -80,6 +86,7 @@ class DriveHybrid::ConstrainedSolver final : public DriveHybrid::ModeSolver {
   ChannelState output(double t, const double* y, ContactForces& forces) override;
   double slip_resolution() const override;
   RigidModeCoefficients coefficients(int sigma) override;
+  bool project(double t, const double* y, double* correction) override;
 
  private:
   // LuGre's bristles (lugre_bristles_kind): the deflection's index in y

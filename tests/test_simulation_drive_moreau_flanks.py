@@ -29,11 +29,12 @@ CONTACTS = ["bistop", "cubic"]
 PLAY = 1e-4  # [m]
 
 
-def assert_checked(result, scene, dt, t_end):
+def assert_checked(result, scene, dt, t_end, **options):
     """The run's own checks and the independent invariants pass; the losses
-    never fall."""
+    never fall. ``options``: the run's others (theta, t_eval), which the
+    invariants read."""
     assert [k for k, c in result.checks.items() if c["applies"] and not c["passed"]] == []
-    options = {"integrator": "moreau", "dt": dt, "t_end": t_end}
+    options = {**options, "integrator": "moreau", "dt": dt, "t_end": t_end}
     assert failed(check_result(result, ls.Scene.from_dict(scene).to_dict(), options)) == []
     for name in ("friction_loss", "damping_loss", "contact_loss", "gear_loss",
                  "motor_friction_loss"):
@@ -365,7 +366,7 @@ def test_a_flank_entered_at_a_long_step_carries_its_friction():
     for step in (dt, dt / 10):
         result = ls.simulate(scene, t_end, dt=step, **options)
         assert result.checks["friction_law"]["applies"] and result.checks["friction_law"]["passed"]
-        assert_checked(result, ENTERING_FLANK, step, t_end)
+        assert_checked(result, ENTERING_FLANK, step, t_end, theta=options["theta"])
         assert assert_flank_carries_its_friction(result, mu, mu_static) > 0
         runs.append(result)
     coarse, fine = (r["u_load"][-1] for r in runs)

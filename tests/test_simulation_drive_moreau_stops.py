@@ -23,11 +23,12 @@ pytestmark = pytest.mark.usefixtures("every_step")
 K = 1e7  # [N/m]
 
 
-def assert_checked(result, scene, dt, t_end):
+def assert_checked(result, scene, dt, t_end, **options):
     """The run's own checks and the independent invariants pass; the losses
-    never fall."""
+    never fall. ``options``: the run's others (theta, t_eval), which the
+    invariants read."""
     assert [k for k, c in result.checks.items() if c["applies"] and not c["passed"]] == []
-    options = {"integrator": "moreau", "dt": dt, "t_end": t_end}
+    options = {**options, "integrator": "moreau", "dt": dt, "t_end": t_end}
     assert failed(check_result(result, ls.Scene.from_dict(scene).to_dict(), options)) == []
     for name in ("damping_loss", "friction_loss", "contact_loss"):
         assert np.all(np.diff(result[name]) >= 0.0), name
@@ -135,7 +136,7 @@ def test_penalty_stops_bounce_and_converge_to_the_event_driven_run_at_first_orde
     errors = []
     for dt in (4e-5, 2e-5, 1e-5):
         result = ls.simulate(s, t_end, integrator="moreau", dt=dt, t_eval=t_eval)
-        assert_checked(result, scene, dt, t_end)
+        assert_checked(result, scene, dt, t_end, t_eval=list(t_eval))
         errors.append(np.max(np.abs(result["u_load"] - exact["u_load"])))
     orders = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
     assert np.all((orders > 0.9) & (orders < 1.2)), (errors, orders)

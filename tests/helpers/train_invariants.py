@@ -40,7 +40,8 @@ the physics pages, not from ``Result.checks`` nor from the core:
   sums; the output points include every event, where g may jump); allowed:
   twice that, with the largest |Delta g| of the interval and its two
   neighbours (a rate that turns inside an interval), plus
-  the integrator's local error, K (rtol |L i| + L atol) with the energy
+  the integrator's local errors, K (rtol |L i| + L atol) and those of the
+  angle, K k_e (rtol |Delta phi| + atol), with the energy
   check's K = 1000. Moreau-Jean: its exact armature step
   (dc_motor.md, "Moreau-Jean"), L (i+ - i) = h (U_d - R i_mean - k_e
   omega_theta) with omega_theta = (1 - theta) omega + theta omega+ held over
@@ -418,6 +419,10 @@ def _motor(t, load_times, motor, ch, moreau, theta, rtol, atol, sampled) -> Dict
         misfit, bound = _increments(t, flux, voltage - resistance * current, moreau_rate,
                                     QUADRATURE_FACTOR * (rtol * np.abs(flux[1:])
                                                          + inductance * atol)
+                                    # (the angle is a state too: its own local
+                                    # errors over the interval, times K)
+                                    + k_e * QUADRATURE_FACTOR
+                                    * (rtol * np.abs(np.diff(ch["phi_drive"])) + atol)
                                     + k_e * _angle_round_off(ch["phi_drive"]),
                                     known=-k_e * np.diff(ch["phi_drive"]))
         report["armature"] = _worst(

@@ -617,7 +617,7 @@ def _run_options(integrator=None, smooth_integrator=None, rtol=None, atol=None,
     arguments = _drive_arguments(1.0, integrator, smooth_integrator, rtol, atol, None, None,
                                  [], max_steps, max_events, max_step, first_step,
                                  bounce_threshold, max_order)
-    for unused in ("t_end", "dt", "theta", "t_eval", "check"):
+    for unused in ("t_end", "dt", "dt_given", "theta", "t_eval", "check"):
         del arguments[unused]
     return arguments
 

@@ -11,6 +11,9 @@ import leadscrew as ls
 from helpers import dc_motor_reference as reference
 from test_simulation_drive_dc_motor import F, R, KT, motor_scene, rigid_reference
 
+# (each step's armature is read: every step kept, not simulate's sampled default)
+pytestmark = pytest.mark.usefixtures("every_step")
+
 # Reproduction 2: the rotor spun to 200 rad/s (back-EMF k_e w = 10 V) against a
 # 1 V driver limited to 2 A. Holding -2 A would take U_d = R (-2 A) + 10 V = 8 V,
 # eight times the supply; the driver gives its utmost, +1 V, and the current is

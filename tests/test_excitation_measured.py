@@ -91,7 +91,7 @@ def test_csv_round_trip_with_its_unit(tmp_path):
 
 
 def test_parquet_round_trip_with_its_unit(tmp_path):
-    pa = pytest.importorskip("pyarrow")
+    import pyarrow as pa  # (the test extra's: never skipped)
     import pyarrow.parquet as pq
 
     t = np.arange(0.0, 0.2, 1e-3)

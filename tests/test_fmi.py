@@ -476,7 +476,6 @@ def _dynamic_symbol_versions(binary):
     return set(re.findall(r"\((G[A-Z]*_[0-9.]+)\)", done.stdout))
 
 
-@pytest.mark.skipif(shutil.which("objdump") is None, reason="needs objdump (binutils)")
 def test_the_fmu_binary_runs_on_glibc_2_28_without_a_cpp_runtime(tmp_path):
     """The FMU's binary needs no glibc symbol version above 2.28 (Debian 10,
     RHEL 8, Ubuntu 20.04 load it) and none of libstdc++ (linked in), as

@@ -7,6 +7,7 @@ Build it (warnings as errors, as tests/test_docs.py does):
 import leadscrew
 
 project = "leadscrew"
+copyright = "the leadscrew developers"
 author = "the leadscrew developers"
 release = version = leadscrew.__version__
 

@@ -418,6 +418,34 @@ def test_run_output_path_that_is_a_file(tmp_path, capsys):
                           "is not a directory")
 
 
+def test_run_output_named_like_a_file_is_refused(tmp_path, capsys):
+    """(A new user's review: -o out.csv made a directory named out.csv.)"""
+    code, out, err = run_main(capsys, "run", "default", "-o", tmp_path / "out.csv",
+                              "--t-end", "0.01")
+    assert code == 2 and out == ""
+    assert_one_line_error(err, "-o takes the output directory, not a file's name")
+    assert not (tmp_path / "out.csv").exists()
+
+
+def test_an_output_directory_that_is_not_writable_is_a_write_failure(tmp_path, capsys,
+                                                                     monkeypatch):
+    """(A new user's review: it exited 2, the usage code, and said 'cannot
+    create' of a directory that exists.) Exit 1, the path and the cause,
+    nothing written. os.access stands in for a read-only directory: the
+    suite runs as root, whom chmod does not stop."""
+    import os
+
+    target = tmp_path / "locked"
+    target.mkdir()
+    real = os.access
+    monkeypatch.setattr(os, "access", lambda path, mode: False if os.fspath(path) == os.fspath(
+        target) else real(path, mode))
+    code, out, err = run_main(capsys, "run", "default", "-o", target, "--t-end", "0.01")
+    assert code == 1 and out == ""
+    assert_one_line_error(err, "WriteError", str(target), "not writable")
+    assert list(target.iterdir()) == []
+
+
 # --- demo and the entry points ----------------------------------------------------
 
 

@@ -5,7 +5,7 @@ import leadscrew.scenes as shipped
 from helpers.cli_runs import assert_one_line_error, run_main
 
 
-def test_list_names_every_scene_study_and_friction_law_with_what_it_is(capsys):
+def test_list_names_every_scene_study_friction_law_and_profile_with_what_it_is(capsys):
     code, out, err = run_main(capsys, "list")
     assert code == 0 and err == ""
     sections, heading = {}, None
@@ -15,7 +15,11 @@ def test_list_names_every_scene_study_and_friction_law_with_what_it_is(capsys):
         else:
             heading = line.split()[0]
             sections[heading] = {}
-    assert list(sections) == ["scenes", "studies", "friction"]
+    assert list(sections) == ["scenes", "studies", "friction", "vibration"]
+    assert list(sections["vibration"]) == ls.profiles.names()
+    for name, line in sections["vibration"].items():
+        assert ls.profiles.info(name).source in line
+        assert ("not verified" in line) == (not ls.profiles.info(name).verified)
     assert list(sections["scenes"]) == shipped.available()
     assert list(sections["studies"]) == sorted(ls.studies.STUDIES)
     assert list(sections["friction"]) == [law["name"] for law in ls.friction_laws()]

@@ -42,6 +42,6 @@ def shown(progress) -> bool:
     if isinstance(progress, np.ndarray) and progress.shape == ():
         progress = progress[()]
     if not isinstance(progress, (bool, np.bool_)):
-        raise ValueError(f"progress = {progress!r} is invalid: must be True or False"
+        raise ValueError(f"progress = {progress!r} is invalid: must be True or False "
                          "(a bar where standard error is a terminal)")
     return bool(progress) and _watched()

@@ -44,7 +44,7 @@ def _scene_summary(name: str) -> str:
 
 def _catalog() -> List[str]:
     """The lines ``leadscrew list`` prints."""
-    from . import scenes, studies
+    from . import profiles, scenes, studies
     from .scene_schema import friction_laws
 
     lines = ["scenes (leadscrew run NAME; leadscrew scene copy NAME to edit one):"]
@@ -54,12 +54,17 @@ def _catalog() -> List[str]:
               for name, function in sorted(studies.STUDIES.items())]
     lines += ["friction laws (a scene's friction.law):"]
     lines += [f"  {law['name']:30s} {_first_sentence(law['doc'])}" for law in friction_laws()]
+    lines += ["vibration profiles (ls.profiles.load(NAME); a load {type = \"random\", "
+              "profile = NAME}):"]
+    lines += [f"  {name:30s} {profiles.info(name).source}"
+              + ("" if profiles.info(name).verified else " (table not verified against it)")
+              for name in profiles.names()]
     return lines
 
 
 def _list(args: argparse.Namespace) -> int:
-    """``leadscrew list``: the shipped scenes, the studies and the friction
-    laws, one line each with what it is."""
+    """``leadscrew list``: the shipped scenes, the studies, the friction
+    laws and the vibration profiles, one line each with what it is."""
     print("\n".join(_catalog()))
     return 0
 

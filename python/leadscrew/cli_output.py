@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any, Dict, Tuple
 
 from .cli_parser import StudyFailed, UsageError
+from .errors import WriteError
 from .files import writing
 
 __all__: list = []  # the command line's internals: leadscrew.cli.main is the entry point
@@ -34,6 +35,11 @@ def _title(name: str, scene) -> str:
             f"{data['friction']['law']} friction, mu = {data['friction']['mu']:g}{play}")
 
 
+# The suffixes of the files the commands write: an -o that ends in one is a
+# file's name given where the output directory is meant.
+_FILE_SUFFIXES = (".csv", ".parquet", ".png", ".json", ".toml", ".fmu", ".pdf", ".svg")
+
+
 def _check_output_dir(path: str) -> None:
     """Refuse an output directory that cannot be created, without creating it.
 
@@ -41,8 +47,10 @@ def _check_output_dir(path: str) -> None:
     once there is something to write, so that a failed command leaves nothing.
 
     Raises:
-        UsageError: ``path`` or its first existing ancestor is not a writable
-            directory.
+        UsageError: ``path`` or its first existing ancestor is no directory
+            (a file given where a directory is meant, or a file's name).
+        leadscrew.WriteError: that directory is not writable (exit 1, as
+            any other write that fails; nothing is written).
     """
     out = Path(path)
     # The first existing ancestor (bounded by the path's depth).
@@ -50,9 +58,14 @@ def _check_output_dir(path: str) -> None:
     if existing is None or not existing.is_dir():
         raise UsageError(f"-o {path}: cannot create the output directory "
                          f"({existing} is not a directory)")
+    if out.suffix.lower() in _FILE_SUFFIXES:
+        # (-o names a directory: drive.csv/ would hold drive.csv/drive.csv)
+        raise UsageError(f"-o {path}: -o takes the output directory, not a file's name "
+                         f"(its files are named after the scene: give e.g. -o {out.parent / out.stem})")
     if not os.access(existing, os.W_OK | os.X_OK):
-        raise UsageError(f"-o {path}: cannot create the output directory "
-                         f"({existing} is not writable)")
+        raise WriteError(existing, PermissionError(
+            "the directory is not writable" if existing == out else
+            f"the directory to create {out} in is not writable"))
 
 
 def _output_dir(path: str) -> Path:
@@ -60,7 +73,7 @@ def _output_dir(path: str) -> Path:
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as error:
-        raise UsageError(f"-o {path}: cannot create the output directory ({error.strerror})") from None
+        raise WriteError(out, error) from None
     return out
 
 

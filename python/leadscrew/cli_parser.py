@@ -186,7 +186,7 @@ def _parser() -> argparse.ArgumentParser:
     scene.add_argument("-o", "--output", default=None,
                        help="resolve: the file to write (default: standard output)")
 
-    command("list", help="list the shipped scenes, the studies and the friction laws")
+    command("list", help="list the shipped scenes, the studies, the friction laws and the vibration profiles")
 
     export = command("export-fmu", help="write SCENE as an FMI 2.0 co-simulation FMU",
                      epilog="example: leadscrew export-fmu default -o drive.fmu")

@@ -63,3 +63,13 @@ def test_scene_copy_refuses_what_it_cannot_do_well(tmp_path, capsys, monkeypatch
     code, _, err = run_main(capsys, "scene", "resolve", "default", "core.toml")
     assert code == 2
     assert_one_line_error(err, "scene resolve writes to -o FILE")
+
+
+def test_a_misspelled_shipped_scene_gets_the_nearest_name(tmp_path, capsys, monkeypatch):
+    """(A new user's review: studies and keys suggested, scene names did not.)"""
+    monkeypatch.chdir(tmp_path)
+    for argv in (("run", "seat_adjustr", "--t-end", "0.01"), ("scene", "copy", "seat_adjustr")):
+        code, out, err = run_main(capsys, *argv)
+        assert code == 2 and out == ""
+        assert_one_line_error(err, "not a shipped scene (did you mean 'seat_adjuster'?)")
+    assert list(tmp_path.iterdir()) == []

@@ -9,6 +9,7 @@ import re
 from pathlib import Path
 from typing import List
 
+from ._hints import did_you_mean
 from .cli_parser import UsageError
 from .files import write_text
 
@@ -82,7 +83,9 @@ def _copy_scene(name: str, target: "str | None") -> Path:
 
     stem = name[:-5] if name.endswith(".toml") else name
     if stem not in scenes.available():
-        raise UsageError(f"scene copy {name}: not a shipped scene ({', '.join(scenes.available())})")
+        raise UsageError(f"scene copy {name}: not a shipped scene"
+                         f"{did_you_mean(name, scenes.available())} "
+                         f"({', '.join(scenes.available())})")
     path = Path(target) if target else Path(f"{stem}.toml")
     if path.is_dir():
         path = path / f"{stem}.toml"

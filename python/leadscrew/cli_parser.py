@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any, List, Tuple
 
 from . import __version__
+from ._hints import did_you_mean
 
 __all__ = ["UsageError", "StudyFailed"]
 
@@ -69,8 +70,8 @@ def _load_scene(arg: str) -> Tuple[Any, str, str]:
         scene, name, source = Scene.from_toml(path), path.stem, os.fspath(path)
     else:
         if not is_shipped:
-            raise UsageError(f"scene {arg!r}: no such file, and not a shipped scene "
-                             f"({', '.join(shipped)})")
+            raise UsageError(f"scene {arg!r}: no such file, and not a shipped scene"
+                             f"{did_you_mean(stem, shipped)} ({', '.join(shipped)})")
         scene, name, source = scenes.load(stem), stem, stem
     # Scene validation covers each value; the derived ones (masses,
     # stiffnesses) and the thread are checked when the model is assembled.

@@ -5,10 +5,11 @@ matrix and the static equilibrium use) and its damping power agree, by
 central differences. The elements are internals of the core: not reachable
 from Python."""
 
-import re
 import subprocess
 
 import pytest
+
+from helpers.native_program import assert_program_passes, pass_count
 
 
 @pytest.fixture(scope="module")
@@ -24,12 +25,8 @@ def elements_report(native_tests_build):
     "damping power",
 ])
 def test_force_elements_are_consistent(elements_report, label):
-    line = re.search(rf"^PASS {re.escape(label)} \((\d+)\)$", elements_report.stdout,
-                     re.MULTILINE)
-    assert line, elements_report.stdout + elements_report.stderr
-    assert int(line.group(1)) == 200
+    assert pass_count(elements_report, label) == 200
 
 
 def test_elements_program_passes(elements_report):
-    assert elements_report.returncode == 0, elements_report.stdout + elements_report.stderr
-    assert elements_report.stdout.strip().endswith("OK")
+    assert_program_passes(elements_report)

@@ -4,10 +4,11 @@ while it holds, refactorized where an entry changed, and the penalty flank's
 rank-one term solved by Sherman-Morrison to round-off. The class is internal
 to the core: not reachable from Python."""
 
-import re
 import subprocess
 
 import pytest
+
+from helpers.native_program import assert_program_passes, pass_count
 
 
 @pytest.fixture(scope="module")
@@ -23,12 +24,8 @@ def iteration_report(native_tests_build):
     "W0 changed by an ulp: factorized again",
 ])
 def test_iteration_matrix(iteration_report, label):
-    line = re.search(rf"^PASS {re.escape(label)} \((\d+)\)$", iteration_report.stdout,
-                     re.MULTILINE)
-    assert line, iteration_report.stdout + iteration_report.stderr
-    assert int(line.group(1)) == 500
+    assert pass_count(iteration_report, label) == 500
 
 
 def test_iteration_program_passes(iteration_report):
-    assert iteration_report.returncode == 0, iteration_report.stdout + iteration_report.stderr
-    assert iteration_report.stdout.strip().endswith("OK")
+    assert_program_passes(iteration_report)

@@ -76,3 +76,19 @@ def worst_ulp_error(points, exact, bound_ulps, digits):
             worst = max(worst, error)
             assert error <= bound_ulps, (x.hex(), error)
     return worst
+
+
+def pass_count(report, label):
+    """The count of the native program's line `PASS <label> (<count>)` in
+    the completed process `report`; fails the calling test if it is missing."""
+    import re
+
+    line = re.search(rf"^PASS {re.escape(label)} \((\d+)\)$", report.stdout, re.MULTILINE)
+    assert line, report.stdout + report.stderr
+    return int(line.group(1))
+
+
+def assert_program_passes(report):
+    """The native program exited 0 and ended its report with OK."""
+    assert report.returncode == 0, report.stdout + report.stderr
+    assert report.stdout.strip().endswith("OK")

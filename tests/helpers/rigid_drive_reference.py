@@ -164,6 +164,19 @@ class RigidDrive:
     hand: str = "right"
     drive: str = "screw"
 
+    @classmethod
+    def from_scene(cls, scene) -> "RigidDrive":
+        """The rigid drive of a leadscrew.Scene: its thread, friction, rotor
+        and load, and the screw's and nut's masses and inertias it derives."""
+        d, derived = scene.to_dict(), scene.derived()
+        thread = d["thread"]
+        return cls(lead=thread["pitch"] * thread["starts"],
+                   mean_radius=thread["mean_diameter"] / 2, mu=d["friction"]["mu"],
+                   rotor_inertia=d["rotor"]["inertia"], screw_inertia=derived["screw_inertia"],
+                   screw_mass=derived["screw_mass"], nut_inertia=derived["nut_inertia"],
+                   nut_mass=derived["nut_mass"], load_mass=d["load"]["mass"],
+                   flank_angle=thread["flank_angle"], hand=thread["hand"], drive=d["drive"])
+
     def __post_init__(self):
         pos = lambda v: v > 0  # noqa: E731
         nonneg = lambda v: v >= 0  # noqa: E731

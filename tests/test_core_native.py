@@ -2,23 +2,17 @@
 the helper-thread pool under the batches' workers, from tests/cpp/test_parallel.cpp:
 what threads do cannot be observed from Python."""
 
-import re
 import subprocess
 
 import pytest
+
+from helpers.native_program import pass_count as passed
 
 
 @pytest.fixture(scope="module")
 def parallel_report(native_tests_build):
     return subprocess.run([str(native_tests_build / "test_parallel")], capture_output=True,
                           text=True, timeout=120)
-
-
-def passed(report, label):
-    """The count of the line `PASS <label> (<count>)`; fails if it is missing."""
-    line = re.search(rf"^PASS {re.escape(label)} \((-?\d+)\)$", report.stdout, re.MULTILINE)
-    assert line, report.stdout + report.stderr
-    return int(line.group(1))
 
 
 def test_parallel_program_passes(parallel_report):

@@ -81,9 +81,7 @@ def worst_ulp_error(points, exact, bound_ulps, digits):
 def pass_count(report, label):
     """The count of the native program's line `PASS <label> (<count>)` in
     the completed process `report`; fails the calling test if it is missing."""
-    import re
-
-    line = re.search(rf"^PASS {re.escape(label)} \((\d+)\)$", report.stdout, re.MULTILINE)
+    line = re.search(rf"^PASS {re.escape(label)} \((-?\d+)\)$", report.stdout, re.MULTILINE)
     assert line, report.stdout + report.stderr
     return int(line.group(1))
 

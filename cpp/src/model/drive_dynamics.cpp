@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -100,6 +101,9 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
   q_ = CoordinateVector::Zero(n);
   v_ = CoordinateVector::Zero(n);
   forces_ = CoordinateVector::Zero(n);
+  element_forces_ = CoordinateVector::Zero(n);
+  element_slots_.assign(model.elements().elements.size(), ElementSlot{});
+  element_modes_.assign(model.elements().elements.size(), ElementMode{});
   inverse_mass_ = model.mass().cwiseInverse();
   // Effective Delassus terms of the flank, with the speed-controlled rotor held.
   const Eigen::VectorXd& normal = model.normal_direction();
@@ -133,6 +137,17 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
   }
 }
 
+void DriveDynamics::set_element_slots(const std::vector<std::pair<int, int>>& slots) {
+  int offset = 0;
+  for (std::size_t k = 0; k < element_slots_.size() && k < slots.size(); ++k) {
+    const int count = slots[k].first >= 0 ? slots[k].second : 0;
+    if (offset + count > kMaxElementStates)
+      throw std::logic_error("the drive's elements declare more than kMaxElementStates states");
+    element_slots_[k] = {slots[k].first, count, offset};
+    offset += count;
+  }
+}
+
 void DriveDynamics::set_state(double t, const CoordinateVector& q, const CoordinateVector& v) {
   const elements::ThreadPair& thread = model_.thread_pair();
   const elements::Motor& motor = model_.motor();
@@ -155,10 +170,20 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
     element.add_forces(q, v, a, thread.nut_position_gradient(), forces_, elastic_, damping_power_);
   });
   applied_torque_ = motor.applied_torque(t);
-  if (const elements::DcMotor* dc = model_.dc_motor()) {
-    if (!dc->has_state()) motor_current_ = dc->quasi_static_current(t, v[dc->rotor]);
-    applied_torque_ += dc->torque(motor_current_);
+  // The model's elements' forces at their states (model/element.hpp); a
+  // motor's on the rotor is the drive's torque.
+  element_drive_torque_ = 0.0;
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    element_forces_.setZero();
+    elements[k]->add_forces(element_state(k), element_modes_[k], element_forces_.data());
+    if (elements[k]->drives_rotor()) {
+      element_drive_torque_ += element_forces_[motor.rotor];
+      element_forces_[motor.rotor] = 0.0;
+    }
+    forces_ += element_forces_;
   }
+  if (!elements.empty()) applied_torque_ += element_drive_torque_;
   axial_force_ = model_.axial_load().force_at(t);
   forces_[motor.rotor] += applied_torque_;
   forces_[model_.axial_load().coordinate] += axial_force_;

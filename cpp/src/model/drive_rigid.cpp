@@ -19,7 +19,7 @@ namespace leadscrew::model {
 bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dynamics) {
   // (A base excitation's force is on every body, not a drive torque and an
   // axial force: the general constrained solve takes it.)
-  return !model.dc_motor() && !model.train_friction() && !model.base() &&
+  return model.elements().elements.empty() && !model.train_friction() && !model.base() &&
          applies_to_thread(model, dynamics);
 }
 

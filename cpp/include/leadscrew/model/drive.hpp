@@ -195,10 +195,6 @@ class DriveModel {
   const elements::DriveElements& elements() const noexcept { return e_; }
   const elements::ThreadPair& thread_pair() const noexcept { return *e_.thread; }
   const elements::Motor& motor() const noexcept { return e_.motor; }
-  // The DC motor on the rotor (nullptr: the motor is torque- or speed-controlled).
-  const elements::DcMotor* dc_motor() const noexcept {
-    return e_.dc_motor ? &*e_.dc_motor : nullptr;
-  }
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
   // The housing's vibration (nullptr: none; elements/base_excitation.hpp).
   const elements::BaseExcitation* base() const noexcept { return e_.base ? &*e_.base : nullptr; }

@@ -12,6 +12,10 @@
 // 3 x 3 gives lambda: no allocation, exact up to round-off.
 #pragma once
 
+#include <array>
+#include <utility>
+#include <vector>
+
 #include <Eigen/Core>
 #include <Eigen/LU>
 
@@ -19,6 +23,7 @@
 #include "leadscrew/lcp/lcp.hpp"
 #include "leadscrew/lcp/workspace.hpp"
 #include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/element.hpp"
 
 namespace leadscrew::model {
 
@@ -140,13 +145,27 @@ class DriveDynamics {
            bristle_ * bristle_;
   }
 
-  // A DC motor's armature current (model.dc_motor()): with inductance its
-  // state, set before set_state (kept through set_state calls without one:
-  // the current is continuous across impacts); without, set_state takes the
-  // quasi-static current at the rotor's speed. Its torque k_t i is part of
-  // applied_torque().
-  void set_motor_current(double current) noexcept { motor_current_ = current; }
-  double motor_current() const noexcept { return motor_current_; }
+  // The model's elements (model/element.hpp, DriveElements::elements):
+  // their states' slots in the run's y (each element's first state and
+  // their count, {-1, 0}: none; set once per run by the driver), their states from y, set
+  // before set_state (kept through set_state calls without it: a current
+  // is continuous across impacts), their modes in the run, and each one's
+  // state as it sees it at the state last set. Their forces are part of
+  // forces(); a motor's torque on the rotor (Element::drives_rotor) part of
+  // applied_torque() too.
+  void set_element_slots(const std::vector<std::pair<int, int>>& slots);
+  void set_element_states(const double* y) noexcept {
+    for (std::size_t k = 0; k < element_slots_.size(); ++k)
+      for (int i = 0; i < element_slots_[k].count; ++i)
+        element_states_[element_slots_[k].offset + i] = y[element_slots_[k].first + i];
+  }
+  ElementMode& element_mode(std::size_t k) noexcept { return element_modes_[k]; }
+  const ElementMode& element_mode(std::size_t k) const noexcept { return element_modes_[k]; }
+  ElementState element_state(std::size_t k) const noexcept {
+    return {t_, q_.data(), v_.data(), element_states_.data() + element_slots_[k].offset};
+  }
+  // The elements' torque on the rotor that drives it (a DC motor's k_t i).
+  double element_drive_torque() const noexcept { return element_drive_torque_; }
 
   const DriveModel& model() const noexcept { return model_; }
 
@@ -271,7 +290,15 @@ class DriveDynamics {
   const friction::Law* law_;
   bool plain_coulomb_;
   double bristle_ = 0.0;
-  double motor_current_ = 0.0;
+  // The model's elements' data: their states (a copy of y's), slots, modes.
+  struct ElementSlot {
+    int first = 0, count = 0, offset = 0;  // in y; how many; in element_states_
+  };
+  std::array<double, kMaxElementStates> element_states_{};
+  std::vector<ElementSlot> element_slots_;
+  std::vector<ElementMode> element_modes_;
+  CoordinateVector element_forces_;
+  double element_drive_torque_ = 0.0;
   double t_ = 0.0;
   CoordinateVector q_, v_, forces_, inverse_mass_;
   double play_ = 0.0, play_rate_ = 0.0, slip_ = 0.0, slip_noise_ = 0.0;

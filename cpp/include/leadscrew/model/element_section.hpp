@@ -142,6 +142,10 @@ class Section {
 
 // The registry, in its order (section_registry.cpp).
 const std::vector<SectionType>& element_section_types();
+// Adds a section to the registry at run time, after the registry's own (a
+// program's element outside the core: tests/cpp/core/test_brake.cpp), once
+// per name; before the first model with it is built, from one thread.
+void register_element_section(SectionType type);
 // The section named `name` (InvalidArgument naming the registered ones).
 const SectionType& element_section_type(const std::string& name);
 

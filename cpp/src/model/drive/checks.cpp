@@ -91,7 +91,10 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
   spec.length_scale = p.screw_length;
   check_result(spec, result);
-  check_dc_motor_result(model, options, time_stepping, result);
+  // The elements' own checks (model/element.hpp: a DC motor's driver and
+  // armature).
+  for (const std::shared_ptr<const Element>& element : model.elements().elements)
+    element->check_result(options, time_stepping, result);
   if (result.checks.front().passed)  // (finite: else the others are not compared)
     result.checks.push_back(exact_stop_check(model, options, time_stepping, result));
   if (!options.check) return;

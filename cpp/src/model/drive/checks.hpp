@@ -18,13 +18,6 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
                         integrate::SimulationResult& result, double step_play_rate = 0.0,
                         double step_friction_excess = 0.0);
 
-// A DC motor's checks, appended to result.checks (motor_checks.cpp): its
-// driver's voltage within the supply |U(t)| (driver_voltage),
-// drive_torque = k_t motor_current (motor_torque) and, without inductance,
-// motor_voltage = R motor_current + k_e omega (armature).
-void check_dc_motor_result(const DriveModel& model, const DriveSimulationOptions& options,
-                           bool time_stepping, integrate::SimulationResult& result);
-
 // The check exact_stops: the load's position against the exact end stops'
 // faces (exact_stop_check.cpp; applies only where the model has them).
 integrate::InvariantCheck exact_stop_check(const DriveModel& model,

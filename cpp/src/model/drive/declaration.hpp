@@ -67,6 +67,9 @@ struct Declaration {
   // Moreau-Jean has none): the penalty end stops' force. Empty: none.
   std::function<void(const CoordinateVector& q, const CoordinateVector& v, double* values)>
       add_from_coordinates;
+  // The model's element it declares (model/element.hpp): its index in
+  // DriveElements::elements (-1: a kind the drivers handle themselves).
+  int element = -1;
   // Filled by StateLayout: its first state's index in y, its first
   // channel's index in ChannelState::values.
   int first_state = -1, first_channel = -1;
@@ -92,5 +95,10 @@ const std::vector<const ElementKind*>& element_kinds();
 
 // A model's non-empty declarations, in the registry's order (kind set).
 std::vector<Declaration> declare_elements(const DriveModel& model, bool bristle);
+
+// An element kind's declare for a model's element (model/element.hpp) of
+// that name: its own declaration (Element::declare), `element` set; none
+// where the model has no such element.
+void declare_model_element(const DriveModel& model, const char* name, Declaration& declaration);
 
 }  // namespace leadscrew::model::drive

@@ -116,6 +116,8 @@ class DriveHybrid::Element {
   // expand).
   const DriveModel& model() const { return h_.model_; }
   const DriveDynamics& dynamics() const { return h_.dynamics_; }
+  // The mode of the model's element k (model/element.hpp), the run's.
+  ElementMode& dynamics_mode(std::size_t k) const { return h_.dynamics_.element_mode(k); }
   const StateLayout& layout() const { return h_.layout_; }
   // The thread's mode (contact, stick or slip, the slip's sign).
   const Mode& mode() const { return h_.mode_; }
@@ -140,5 +142,17 @@ class DriveHybrid::Element {
 using ElementFactory = std::unique_ptr<DriveHybrid::Element> (*)(DriveHybrid& hybrid,
                                                                  const DriveModel& model);
 const std::vector<ElementFactory>& element_factories();
+
+// The event-driven driver's element for the model's element (model/element.hpp)
+// named `name` (nullptr: the model has none; model_element.cpp): its
+// roots, events, rates and output through the element interface, its
+// state and mode the dynamics' (DriveDynamics::element_state, element_mode).
+std::unique_ptr<DriveHybrid::Element> make_model_element(DriveHybrid& hybrid,
+                                                         const DriveModel& model,
+                                                         const char* name);
+// The same for the model's element `index` (DriveElements::elements).
+std::unique_ptr<DriveHybrid::Element> make_model_element(DriveHybrid& hybrid,
+                                                         const DriveModel& model,
+                                                         std::size_t index);
 
 }  // namespace leadscrew::model::drive

@@ -5,17 +5,20 @@
 //   D(name)  declares (const ElementKind& name_kind(), in its own file)
 //   E(name)  declares and has events in the event-driven driver (also
 //            make_name_element, declared here, in the same file)
+//   M(name)  an element of the model behind the element interface
+//            (model/element.hpp): its file declares name_kind() and builds
+//            it; the drivers take it through the interface alone
 // The elements' sections (element_section.hpp) add their kinds after these,
 // from their own registry (section_registry.cpp): an element with a section
 // of its own needs no line here.
 #include "driver_element.hpp"
 
-#define LEADSCREW_DRIVE_ELEMENTS(D, E) \
-  D(lugre_bristles)                    \
-  E(dc_motor)                          \
-  E(end_stops)                         \
-  E(preloaded_nut)                     \
-  D(train_friction)                    \
+#define LEADSCREW_DRIVE_ELEMENTS(D, E, M) \
+  D(lugre_bristles)                       \
+  M(dc_motor)                             \
+  E(end_stops)                            \
+  E(preloaded_nut)                        \
+  D(train_friction)                       \
   D(base_excitation)
 
 namespace leadscrew::model::drive {
@@ -24,20 +27,24 @@ namespace leadscrew::model::drive {
 #define LEADSCREW_DECLARE_EVENTS(name) \
   LEADSCREW_DECLARE_KIND(name)         \
   std::unique_ptr<DriveHybrid::Element> make_##name##_element(DriveHybrid&, const DriveModel&);
-LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_DECLARE_KIND, LEADSCREW_DECLARE_EVENTS)
+LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_DECLARE_KIND, LEADSCREW_DECLARE_EVENTS, LEADSCREW_DECLARE_KIND)
 #undef LEADSCREW_DECLARE_EVENTS
 #undef LEADSCREW_DECLARE_KIND
 
 const std::vector<const ElementKind*>& element_kinds() {
 #define LEADSCREW_KIND(name) &name##_kind(),
-  static const std::vector<const ElementKind*> kinds = [] {
-    std::vector<const ElementKind*> out = {LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_KIND, LEADSCREW_KIND)};
-    // Then the elements' sections' kinds (element_section.hpp), in their
-    // registry's order: no events (no factory).
-    for (const SectionType& type : element_section_types())
-      if (type.kind != nullptr) out.push_back(&type.kind());
-    return out;
-  }();
+  static std::vector<const ElementKind*> kinds;
+  static std::size_t sections = 0;
+  // Then the elements' sections' kinds (element_section.hpp), in their
+  // registry's order, sections registered at run time included (rebuilt
+  // where one was added since).
+  const std::vector<SectionType>& types = element_section_types();
+  if (kinds.empty() || sections != types.size()) {
+    kinds = {LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_KIND, LEADSCREW_KIND, LEADSCREW_KIND)};
+    for (const SectionType& type : types)
+      if (type.kind != nullptr) kinds.push_back(&type.kind());
+    sections = types.size();
+  }
 #undef LEADSCREW_KIND
   return kinds;
 }
@@ -45,11 +52,24 @@ const std::vector<const ElementKind*>& element_kinds() {
 const std::vector<ElementFactory>& element_factories() {
 #define LEADSCREW_NO_EVENTS(name) nullptr,
 #define LEADSCREW_EVENTS(name) &make_##name##_element,
+#define LEADSCREW_MODEL(name) \
+  [](DriveHybrid& hybrid, const DriveModel& model) { return make_model_element(hybrid, model, #name); },
   static const std::vector<ElementFactory> factories = {
-      LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_NO_EVENTS, LEADSCREW_EVENTS)};
+      LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_NO_EVENTS, LEADSCREW_EVENTS, LEADSCREW_MODEL)};
+#undef LEADSCREW_MODEL
 #undef LEADSCREW_EVENTS
 #undef LEADSCREW_NO_EVENTS
   return factories;
+}
+
+void declare_model_element(const DriveModel& model, const char* name, Declaration& declaration) {
+  const std::vector<std::shared_ptr<const Element>>& elements = model.elements().elements;
+  for (std::size_t k = 0; k < elements.size(); ++k)
+    if (std::string(elements[k]->name()) == name) {
+      elements[k]->declare(declaration);
+      declaration.element = static_cast<int>(k);
+      return;
+    }
 }
 
 std::vector<Declaration> declare_elements(const DriveModel& model, bool bristle) {

@@ -124,7 +124,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // side, root and output row starts here: inline).
   void set(double t, const double* y) {
     layout_.expand(t, y, q_, v_);
-    if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
+    dynamics_.set_element_states(y);
     dynamics_.set_state(t, q_, v_);
     if (bristle_state_ >= 0) dynamics_.set_bristle(y[bristle_state_] * bristle_range_);
   }
@@ -244,7 +244,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // state is z / bristle_range_ (friction::Law::bristle_range): a
   // deflection of nanometres, carried in metres, had its error controlled
   // by atol alone and left its invariant bound (issue 31, reproduction 3).
-  int current_state_, bristle_state_;
+  int bristle_state_;
   double bristle_range_;
   double bounce_threshold_;
   bool backlash_;

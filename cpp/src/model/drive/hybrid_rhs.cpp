@@ -16,7 +16,6 @@ DriveHybrid::DriveHybrid(const DriveModel& model, const friction::Law& law,
       p_(model.parameters()),
       dynamics_(model, &law),
       layout_(model, law.resolution() == friction::Resolution::bristle),
-      current_state_(layout_.find_state("motor_current")),
       bristle_state_(layout_.find_state("bristle_share")),
       bristle_range_(law.bristle_range()),
       bounce_threshold_(bounce_threshold),
@@ -28,6 +27,7 @@ DriveHybrid::DriveHybrid(const DriveModel& model, const friction::Law& law,
   v_.setZero(n);
   names_ = drive_channel_names(layout_);
   saved_state_.resize(static_cast<std::size_t>(layout_.size()));
+  dynamics_.set_element_slots(layout_.element_slots());
   make_elements();
   solver_ = make_mode_solver(*this);
 }
@@ -41,6 +41,11 @@ void DriveHybrid::make_elements() {
   const std::vector<ElementFactory>& factories = element_factories();
   for (std::size_t kind = 0; kind < factories.size(); ++kind)
     if (factories[kind]) add_element(factories[kind](*this, model_), static_cast<int>(kind));
+  // The sections' elements behind the element interface (their kinds follow
+  // the registry's: element_kinds()).
+  for (const Declaration& d : layout_.declarations())
+    if (d.kind >= static_cast<int>(factories.size()) && d.element >= 0)
+      add_element(make_model_element(*this, model_, static_cast<std::size_t>(d.element)), d.kind);
 }
 
 void DriveHybrid::add_element(std::unique_ptr<Element> element, int kind) {

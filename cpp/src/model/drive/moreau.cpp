@@ -17,9 +17,7 @@ namespace leadscrew::model::drive {
 
 DriveMoreau::DriveMoreau(const DriveModel& model)
     : model_(model), p_(model.parameters()), dynamics_(model), layout_(model, false),
-      names_(drive_channel_names(layout_)), current_state_(layout_.find_state("motor_current")),
-      copper_state_(layout_.find_state("copper_loss")),
-      dc_channel_(layout_.find_channel("motor_current")),
+      names_(drive_channel_names(layout_)), element_slots_(layout_.element_slots()),
       stop_channel_(layout_.find_channel("stop_force")),
       motor_friction_state_(layout_.find_state("motor_friction_loss")),
       gear_state_(layout_.find_state("gear_loss")),
@@ -29,23 +27,30 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
   const int n = model.coordinate_count();
   q_.setZero(n);
   v_.setZero(n);
+  dynamics_.set_element_slots(element_slots_);
+  element_channels_.assign(element_slots_.size(), -1);
+  for (const Declaration& d : layout_.declarations())
+    if (d.element >= 0) element_channels_[static_cast<std::size_t>(d.element)] = d.first_channel;
+  modes_at_start_.assign(element_slots_.size(), ElementMode{});
+  step_modes_ = modes_at_start_;
   iteration_.directions(model.play_gradient(), model.tangent_direction());
 }
 
 void DriveMoreau::initialize(double t, const double* y) {
   layout_.expand(t, y, q_, v_);
+  dynamics_.set_element_states(y);
   dynamics_.set_state(t, q_, v_);
-  if (const elements::DcMotor* dc = model_.dc_motor()) {
-    last_voltage_ =
-        dc->terminal_voltage(t, dynamics_.motor_current(), v_[dc->rotor], {});
-    last_step_current_ = dynamics_.motor_current();  // (row 0's: the initial state's)
-  }
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
+  for (std::size_t k = 0; k < elements.size(); ++k)
+    elements[k]->step_start(dynamics_.element_state(k), dynamics_.element_mode(k));
   kinetic0_ = dynamics_.kinetic_energy();
   elastic0_ = dynamics_.elastic_energy() + dynamics_.contact_energy();
 }
 
 void DriveMoreau::step(double t, double h, double theta, const double* y, double* y_next) {
   const double excess = friction_excess_, play_rate = play_rate_;
+  for (std::size_t k = 0; k < modes_at_start_.size(); ++k)
+    modes_at_start_[k] = dynamics_.element_mode(k);
   if (!take_step(t, h, theta, y, y_next, p_.restitution)) return;
   // A step that closes a flank with Newton's restitution e > 0: with
   // Coulomb friction it can create energy (Kane and Levinson's paradox, as
@@ -76,50 +81,68 @@ void DriveMoreau::step(double t, double h, double theta, const double* y, double
   retake(low);
 }
 
-// One step at restitution e; true where it closes a flank with e > 0. A DC
-// motor's current over the step is integrated exactly for the step's
-// driver voltage and back-EMF (elements::DcMotor::armature_step); where it
-// would pass the driver's limit the step is taken again with the current
-// held there, and where holding it needs more than the driver's supply
-// |U| (a back-EMF beyond it) once more with the driver saturated at
-// -side |U|: the current then passes the limit (docs/physics/dc_motor.md).
+// One step at restitution e; true where it closes a flank with e > 0. It
+// is taken first in its elements' first modes (Element::step_first), then
+// again while an element's step left its mode's domain (Element::step_mode:
+// a DC motor's current beyond its driver's limit, held there, then beyond
+// its supply, saturated; docs/physics/dc_motor.md), at most kMaxStepRetakes
+// times. The modes it ends in are the run's.
 bool DriveMoreau::take_step(double t, double h, double theta, const double* y, double* y_next,
                             double restitution) {
   const double excess = friction_excess_, play_rate = play_rate_;
-  const elements::DcMotor* dc = model_.dc_motor();
-  const double u = dc != nullptr ? dc->voltage(t + theta * h) : 0.0;
-  const bool restituting = take_step_held(t, h, theta, y, y_next, restitution, 0, u);
-  if (dc == nullptr || !dc->limited() || !(std::abs(last_step_current_) > dc->current_limit))
-    return restituting;
-  const int side = last_step_current_ > 0.0 ? 1 : -1;
-  auto retake = [&](int held, double voltage) {
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
+  for (std::size_t k = 0; k < elements.size(); ++k)
+    step_modes_[k] = elements[k]->step_first(modes_at_start_[k]);
+  bool restituting = take_step_held(t, h, theta, y, y_next, restitution);
+  for (int retake = 0; retake < kMaxStepRetakes && !elements.empty(); ++retake) {
+    layout_.expand(t, y, q_, v_);
+    const CoordinateVector q0 = q_, v0 = v_;
+    bool again = false;
+    for (std::size_t k = 0; k < elements.size(); ++k) {
+      ElementMode next;
+      if (elements[k]->step_mode(element_step(k, t, h, theta, y, q0, v0), step_modes_[k], next)) {
+        step_modes_[k] = next;
+        again = true;
+      }
+    }
+    if (!again) break;
     friction_excess_ = excess;  // (the step is taken again)
     play_rate_ = play_rate;
-    return take_step_held(t, h, theta, y, y_next, restitution, held, voltage);
-  };
-  const bool holding = retake(side, u);
-  if (side * last_voltage_ >= -std::abs(u)) return holding;
-  return retake(0, -side * std::abs(u));
+    restituting = take_step_held(t, h, theta, y, y_next, restitution);
+  }
+  for (std::size_t k = 0; k < elements.size(); ++k) dynamics_.element_mode(k) = step_modes_[k];
+  return restituting;
+}
+
+ElementStep DriveMoreau::element_step(std::size_t k, double t, double h, double theta,
+                                      const double* y, const CoordinateVector& q0,
+                                      const CoordinateVector& v0) const {
+  const int first = element_slots_[k].first;
+  return {{t + theta * h, q0.data(), v0.data(), first >= 0 ? y + first : y}, h, theta};
 }
 
 bool DriveMoreau::take_step_held(double t, double h, double theta, const double* y,
-                                 double* y_next, double restitution, int held,
-                                 double driver_voltage) {
+                                 double* y_next, double restitution) {
   layout_.expand(t, y, q_, v_);
   const CoordinateVector q0 = q_, v0 = v_;
   bool restituting = false;
-  const elements::DcMotor* dc = model_.dc_motor();
-  if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
+  dynamics_.set_element_states(y);
   dynamics_.set_state(t + theta * h, q_, v_);
   const double play0 = dynamics_.play();
   const double play_rate0 = dynamics_.play_rate();
-  // A DC motor's mean current over the step, i_mean = mean + mean_slope
-  // omega+: its torque's impulse h k_t i_mean in place of the start's k_t i,
-  // its slope an implicit damping of the rotor.
-  elements::DcMotor::ArmatureStep current;
-  if (dc != nullptr)
-    current = dc->armature_step(driver_voltage, h, theta, dynamics_.motor_current(),
-                                v0[dc->rotor], held);
+  // The elements' impulses over the step (a DC motor's mean current's
+  // torque in place of the start's, its slope an implicit damping of the
+  // rotor), and the rotor's share of them (the train's balance below).
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
+  element_constant_.setZero(model_.coordinate_count());
+  element_slope_.setZero(model_.coordinate_count());
+  double rotor_impulse = 0.0;
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const ElementStep step = element_step(k, t, h, theta, y, q0, v0);
+    elements[k]->step_impulse(step, step_modes_[k], element_constant_.data(),
+                              element_slope_.data());
+    rotor_impulse += elements[k]->step_rotor_impulse(step, step_modes_[k]);
+  }
 
   // Which thread contact is active in this step.
   int sigma_fixed = 0;  // 0: bilateral (sign free); +-1: a flank
@@ -182,9 +205,8 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   if (train != nullptr) {
     balance.inertia = train->rotor_inertia;
     balance.w0 = v0[model_.rotor()];
-    balance.h0 = h * model_.motor().applied_torque(t + theta * h) +
-                 (dc != nullptr ? h * dc->torque(current.mean) : 0.0);
-    balance.h1 = dc != nullptr ? h * dc->torque(current.mean_slope) : 0.0;
+    balance.h0 = h * model_.motor().applied_torque(t + theta * h) + rotor_impulse;
+    balance.h1 = element_slope_[model_.rotor()];
     balance.friction = h * train->motor_friction_bound();
   }
 
@@ -206,13 +228,10 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     // Iteration matrix and free velocity.
     if (pass == 0 || !std::equal(engaged_, engaged_ + kMaxStops, assembled)) {
       std::copy(engaged_, engaged_ + kMaxStops, assembled);
-      assemble(h, theta, stiffness, damping,
-               dc != nullptr ? -h * dc->torque(current.mean_slope) : 0.0);
+      assemble(h, theta, stiffness, damping, true);
       rhs_base = model_.mass().cwiseProduct(v0) + h * dynamics_.forces() -
                  theta * (1.0 - theta) * h * h * (stiffness * v0) + theta * h * (damping * v0);
-      if (dc != nullptr)
-        rhs_base[dc->rotor] +=
-            h * (dc->torque(current.mean) - dc->torque(dynamics_.motor_current()));
+      if (!elements.empty()) rhs_base += element_constant_;
       // A penalty stop's force over the step: 0 where not engaged, else the
       // linear Kelvin-Voigt force k (d0+ + theta dd) + c d'_theta (its
       // increments through W), measured from the face or, engaging within
@@ -286,21 +305,12 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
                                            : model_.motor().applied_torque(t + theta * h) *
                                                  (q_[model_.rotor()] - q0[model_.rotor()]);
   energy[kWorkDrive] += motor;
-  if (dc != nullptr) {
-    // The armature over the step (exact for its driver voltage and
-    // back-EMF): its mean current, its end, the driver's voltage over it,
-    // the electrical work and the copper loss, which with the magnetic
-    // energy's change close the circuit's account: h U_d i_mean = copper +
-    // d(L i^2 / 2) + h k_e omega_theta i_mean.
-    const double omega_next = v_[dc->rotor], omega_theta = v_theta[dc->rotor];
-    const double i_mean = current.mean_current(omega_next);
-    last_voltage_ = dc->step_voltage(current, omega_theta, omega_next);
-    energy[kWorkDrive] += h * (last_voltage_ * i_mean +
-                               (dc->torque_constant - dc->back_emf_constant) * i_mean *
-                                   omega_theta);
-    y_next[copper_state_] = y[copper_state_] + dc->step_copper_loss(current, h, omega_next);
-    if (dc->has_state()) y_next[current_state_] = current.end_current(omega_next);
-    last_step_current_ = dc->step_current(current, omega_next);
+  // The elements' states at the step's end and their work and losses (a
+  // DC motor's armature over the step).
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const int first = element_slots_[k].first;
+    elements[k]->step_end(element_step(k, t, h, theta, y, q0, v0), v_.data(), step_modes_[k],
+                          first >= 0 ? y_next + first : y_next, energy);
   }
   energy[kWorkAxial] +=
       p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
@@ -613,17 +623,18 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
 DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const double* y,
                                                       const double* y_next) {
   double largest = 0.0;
-  const elements::DcMotor* dc = model_.dc_motor();
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
   auto account = [&](double time, const double* state) {
     layout_.expand(time, state, q_, v_);
-    if (current_state_ >= 0) dynamics_.set_motor_current(state[current_state_]);
+    dynamics_.set_element_states(state);
     dynamics_.set_state(time, q_, v_);
     const double* energy = state + layout_.energy_offset();
     double stored =
         dynamics_.kinetic_energy() + dynamics_.elastic_energy() + dynamics_.contact_energy();
-    if (dc != nullptr)  // the magnetic energy, and the copper loss among the losses
-      stored += dc->magnetic_energy(dc->has_state() ? dynamics_.motor_current() : 0.0) +
-                state[copper_state_];
+    // (an element's stored energy, and its losses among the losses: a DC
+    // motor's magnetic energy and copper loss)
+    for (std::size_t k = 0; k < elements.size(); ++k)
+      stored += elements[k]->energy_terms(dynamics_.element_state(k));
     for (const int k : {motor_friction_state_, gear_state_})
       if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
     if (base_.state >= 0) stored -= state[base_.state];  // (the base's work, with the work)
@@ -642,7 +653,7 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
 
 void DriveMoreau::channels(double t, const double* y, double* out) {
   layout_.expand(t, y, q_, v_);
-  if (current_state_ >= 0) dynamics_.set_motor_current(y[current_state_]);
+  dynamics_.set_element_states(y);
   dynamics_.set_state(t, q_, v_);
   const double* energy = y + layout_.energy_offset();
   // The Moreau-Jean scheme's numerical dissipation (and impacts) closes the
@@ -656,19 +667,19 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
   base_.write(dynamics_, y, state);
   double applied = dynamics_.applied_torque();
-  if (const elements::DcMotor* dc = model_.dc_motor()) {  // its channels (hybrid_motor.cpp)
-    double* values = state.values.data() + dc_channel_;
-    // The current of the last step's armature, with its driver voltage: L > 0
-    // its end i+ (the state), L = 0 its quasi-static current at omega_theta
-    // (the limit x -> infinity), not the one at the row's speed: a step that
-    // held the limit and ended where the free current is below it reported
-    // the hold's voltage with a free current, no armature relation
-    // (docs/physics/dc_motor.md, "Moreau-Jean").
-    values[0] = dc->has_state() ? dynamics_.motor_current() : last_step_current_;
-    values[1] = last_voltage_;  // over the last step
-    values[2] = y[copper_state_];
-    values[3] = dc->has_state() ? dc->magnetic_energy(values[0]) : 0.0;
-    applied = model_.motor().applied_torque(t) + dc->torque(values[0]);
+  // The elements' channels, of the last step (a DC motor's armature), and
+  // their torque on the rotor (Element::step_output, step_drive_torque).
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
+  if (!elements.empty()) {
+    double element_torque = 0.0;
+    for (std::size_t k = 0; k < elements.size(); ++k) {
+      const ElementState s = dynamics_.element_state(k);
+      const ElementMode& mode = dynamics_.element_mode(k);
+      if (element_channels_[k] >= 0)
+        elements[k]->step_output(s, mode, state.values.data() + element_channels_[k]);
+      element_torque += elements[k]->step_drive_torque(s, mode);
+    }
+    applied = model_.motor().applied_torque(t) + element_torque;
   }
   // drive_torque, the rotor's: a torque-driven rotor's prescribed torque
   // and a DC motor's k_t i of the row's current, as the event-driven scheme
@@ -683,7 +694,7 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
 // q_ (iteration_: factorized where it changed), and its stiffness and
 // damping matrices.
 void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& damping,
-                           double rotor_damping) {
+                           bool elements) {
   const int n = model_.coordinate_count();
   stiffness = Square::Zero(n, n);
   damping = Square::Zero(n, n);
@@ -701,7 +712,7 @@ void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& da
     }
   Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
   iteration.diagonal() += model_.mass();
-  iteration(model_.rotor(), model_.rotor()) += rotor_damping;
+  if (elements && !model_.elements().elements.empty()) iteration.diagonal() -= element_slope_;
   iteration_.set(iteration, flank_coefficient(h, theta));
 }
 

@@ -84,16 +84,23 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     double created = 0.0, round_off = 0.0;
   };
 
+  // One step at restitution e, taken again in the modes its elements ask
+  // for (model/element.hpp, Element::step_mode); true where it closes a
+  // flank with e > 0.
   bool take_step(double t, double h, double theta, const double* y, double* y_next,
                  double restitution);
-  // take_step with a DC motor's current held at its limit (its side; 0:
-  // free with the driver's voltage over the step).
+  // take_step in the elements' modes of step_modes_.
   bool take_step_held(double t, double h, double theta, const double* y, double* y_next,
-                      double restitution, int held, double driver_voltage);
+                      double restitution);
+  // The step of the model's element k from y at t (model/element.hpp).
+  ElementStep element_step(std::size_t k, double t, double h, double theta, const double* y,
+                           const CoordinateVector& q0, const CoordinateVector& v0) const;
   StepAccount energy_created(double t, double h, const double* y, const double* y_next);
-  // (rotor_damping: a DC motor's implicit back-EMF term h k_t |di_mean/domega+|.)
+  // (`elements`: the elements' impulses' slopes of the step, element_slope_,
+  // join W's diagonal: a DC motor's implicit back-EMF term h k_t
+  // |di_mean/domega+|; the step check's W has the drive's own terms alone.)
   void assemble(double h, double theta, Square& stiffness, Square& damping,
-                double rotor_damping = 0.0);
+                bool elements = false);
   // A penalty flank's force at v+ in W: s = h theta (h S' + c) along
   // grad e grad e^T (0: none).
   double flank_coefficient(double h, double theta) const {
@@ -136,9 +143,10 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   StateLayout layout_;
   std::vector<std::string> names_;
   // Slots of the elements' states and channels (declaration.hpp; -1: none):
-  // a DC motor's current and copper loss in y and its first channel, the
-  // stops' force, the train's loss integrals and their channels.
-  int current_state_, copper_state_, dc_channel_;
+  // the model's elements' (model/element.hpp: first state and count, first
+  // channel), the stops' force, the train's loss integrals and their channels.
+  std::vector<std::pair<int, int>> element_slots_;
+  std::vector<int> element_channels_;
   int stop_channel_, motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
   BaseSlots base_;  // the housing's vibration (base_excitation.hpp)
   CoordinateVector q_, v_, free_;
@@ -156,9 +164,11 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // A penalty flank's force over this step (bistop, cubic).
   moreau_contacts::PenaltyFlank flank_;
   moreau_contacts::RotorRow rotor_;
-  double last_voltage_ = 0.0;     // a DC motor's driver voltage over the last step [V]
-  // The current the last step's limit is judged on (DcMotor::step_current) [A].
-  double last_step_current_ = 0.0;
+  // The model's elements' modes at the step's start and in the step being
+  // taken; their impulses over it beyond their start's force, constant +
+  // slope . v+ (Element::step_impulse).
+  std::vector<ElementMode> modes_at_start_, step_modes_;
+  CoordinateVector element_constant_, element_slope_;
   double kinetic0_ = 0.0, elastic0_ = 0.0;
   double play_rate_ = 0.0, friction_excess_ = 0.0;
   long lcp_solves_ = 0;

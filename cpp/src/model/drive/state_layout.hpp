@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "declaration.hpp"
@@ -53,6 +54,17 @@ class StateLayout {
 
   // The model's declarations (declaration.hpp), slots allocated.
   const std::vector<Declaration>& declarations() const { return declarations_; }
+  // The slots of the model's elements' states (model/element.hpp), per
+  // element: its first state in y and their count ({-1, 0}: none), for
+  // DriveDynamics::set_element_slots.
+  std::vector<std::pair<int, int>> element_slots() const {
+    std::vector<std::pair<int, int>> slots(model_.elements().elements.size(), {-1, 0});
+    for (const Declaration& d : declarations_)
+      if (d.element >= 0)
+        slots[static_cast<std::size_t>(d.element)] = {d.first_state,
+                                                      static_cast<int>(d.states.size())};
+    return slots;
+  }
   // The declaration of registered kind `kind` (nullptr: the model has none).
   const Declaration* declaration(int kind) const {
     for (const Declaration& d : declarations_)

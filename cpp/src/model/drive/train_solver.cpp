@@ -88,12 +88,12 @@ DriveHybrid::TrainSolver::TrainSolver(DriveHybrid& hybrid)
   stick_.friction_force = {c.friction_force.per_torque / n, c.friction_force.per_force};
 }
 
-// The motor's torque on phi at the state set: n T(t), or a DC motor's n k_t i.
+// The motor's torque on phi at the state set: n T(t), or a DC motor's n k_t i
+// (the elements' that drive the rotor, model/element.hpp).
 double DriveHybrid::TrainSolver::coordinate_torque() const {
   const double t = h_.dynamics_.time();
   double torque = h_.model_.gear().driven_torque(h_.p_.drive_torque(t));
-  if (const elements::DcMotor* dc = h_.model_.dc_motor())
-    torque += dc->torque(h_.dynamics_.motor_current());
+  if (!h_.model_.elements().elements.empty()) torque += h_.dynamics_.element_drive_torque();
   return torque;
 }
 

@@ -519,7 +519,10 @@ DriveElements build_drive_elements(DriveParameters& p) {
     m.torque_constant = gear.driven_torque(m.torque_constant);
     m.back_emf_constant = gear.driven_torque(m.back_emf_constant);
     e.motor.torque = Excitation();
-    e.dc_motor = m;
+    e.elements.push_back(dc_motor_element(m, p.motor_torque_constant,
+                                          p.motor_back_emf_constant < 0.0
+                                              ? p.motor_torque_constant
+                                              : p.motor_back_emf_constant));
   }
   e.load = AxialLoad{load, p.axial_force};
   build_base_excitation(p, e);

@@ -2,6 +2,9 @@
 // declared by `SectionType name_section()` in its element's file
 // (element_section.hpp; cpp/src/model/elements/name.cpp). The order is the
 // scene schema's and the core spec's.
+#include <string>
+#include <utility>
+
 #include "leadscrew/model/element_section.hpp"
 
 #define LEADSCREW_ELEMENT_SECTIONS(X) \
@@ -14,12 +17,21 @@ namespace leadscrew::model {
 LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_DECLARE_SECTION)
 #undef LEADSCREW_DECLARE_SECTION
 
-const std::vector<SectionType>& element_section_types() {
+namespace {
+std::vector<SectionType>& registered_sections() {
 #define LEADSCREW_LIST_SECTION(name) name##_section(),
-  static const std::vector<SectionType> types = {
-      LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_LIST_SECTION)};
+  static std::vector<SectionType> types = {LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_LIST_SECTION)};
 #undef LEADSCREW_LIST_SECTION
   return types;
+}
+}  // namespace
+
+const std::vector<SectionType>& element_section_types() { return registered_sections(); }
+
+void register_element_section(SectionType type) {
+  for (const SectionType& known : registered_sections())
+    if (std::string(known.name) == type.name) return;  // (registered once)
+  registered_sections().push_back(std::move(type));
 }
 
 }  // namespace leadscrew::model

@@ -34,8 +34,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "leadscrew/excitation/excitation.hpp"
+
+namespace leadscrew::model {
+class Element;
+}
 
 namespace leadscrew::model::elements {
 
@@ -187,5 +192,12 @@ struct DcMotor {
     return has_state() ? s.end_current(omega_next) : s.mean_current(omega_next);
   }
 };
+
+// The motor as an element of the drive (model/element.hpp; its file
+// cpp/src/model/elements/dc_motor.cpp): `rotor_torque_constant` and
+// `rotor_back_emf_constant` are the motor's own, at its shaft (dc's are its
+// coordinate's, behind a gear), for its result checks.
+std::shared_ptr<const Element> dc_motor_element(const DcMotor& dc, double rotor_torque_constant,
+                                                double rotor_back_emf_constant);
 
 }  // namespace leadscrew::model::elements

@@ -7,6 +7,7 @@
 //   thread_pair.hpp    ThreadPair: the flank constraint or contact and its friction law
 //   motor.hpp          Motor: torque-controlled force or speed-controlled constraint
 //   dc_motor.hpp       DcMotor: armature current (a state), voltage driver, current limit
+//                      (an Element: cpp/src/model/elements/dc_motor.cpp)
 //   axial_load.hpp     AxialLoad: the axial force on the load
 //   gear.hpp           Gear: a stage between the rotor and the driven part (the
 //                      Motor's; the rotor reflected onto its coordinate)
@@ -31,6 +32,7 @@
 #include <tuple>
 #include <vector>
 
+#include "leadscrew/model/element.hpp"
 #include "leadscrew/model/elements/axial_load.hpp"
 #include "leadscrew/model/elements/base_excitation.hpp"
 #include "leadscrew/model/elements/dc_motor.hpp"
@@ -99,12 +101,14 @@ struct DriveElements {
   ForceElements forces;  // springs, dampers, supports
   std::optional<ThreadPair> thread;
   Motor motor;
-  std::optional<DcMotor> dc_motor;  // on the rotor, its torque k_t i (Motor applies 0)
   AxialLoad load;
   std::optional<BaseExcitation> base;  // the housing's vibration (absent: at rest)
   std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (any concept)
   // The motor's friction and a lossy or worm stage (rigid drive without play).
   std::optional<TrainFriction> train_friction;
+  // The elements with states, events or a Moreau-Jean part of their own
+  // (model/element.hpp: a DC motor, ...), in the registry's order.
+  std::vector<std::shared_ptr<const Element>> elements;
   std::vector<ExactEndStop> exact_stops;  // end_stops.contact = "exact" (not force elements)
   // The coordinates that turn with the rotor and those that translate with
   // the load in a rigid-body motion of the drive (consistent_velocity).

@@ -340,3 +340,74 @@ def test_lugre_bristles_stay_in_their_invariant_set_at_the_default_tolerances(sc
     assert np.max(friction_share) <= 1.0 + BRISTLE_RESOLUTION
     assert result.checks["bristle_bound"]["passed"]
     assert result.checks["bristle_friction"]["passed"]
+
+
+# Issue 31, the main fuzz's cases 5638 and 7512 (generator seed 20261217):
+# LuGre on a thread with exact play, the flank opening under a prescribed
+# drive speed (5638 at the table's knot, where the speed's derivative jumps).
+PULLED_FLANK_SCENES = {
+    5638: ({"concept": "flexible_nut",
+            "thread": {"pitch": 0.011426097566024434, "mean_diameter": 0.027194902330287277,
+                       "flank_angle": 0.5061454830783556},
+            "friction": {"law": "lugre", "mu": 1e-06, "mu_static": 1.2698232969551945e-06,
+                         "stribeck_velocity": 0.0001652709421186968,
+                         "viscous": 0.06066124919802409, "sigma0": 233227.42286557864,
+                         "sigma1": 2.600979419648069},
+            "backlash": {"axial": 1.1726317504131392e-05, "contact": "exact", "restitution": 0.5},
+            "screw": {"radius": 0.009316370338254977, "length": 0.824280710249462,
+                      "youngs_modulus": 31278183137.105465},
+            "nut": {"outer_radius": 0.023619949021619763, "length": 0.008288688511360939,
+                    "youngs_modulus": 6125071433.190354, "position": 0.19559538135836868},
+            "rotor": {"inertia": 0.00022862155768889914}, "load": {"mass": 0.001282794063342145},
+            "loads": {"drive_speed": {
+                "type": "table", "times": [0.0, 0.03373513573285391, 0.08706426939480862],
+                "values": [-1.1551520523622552, -1.1551520523622552, 1.1551520523622552]}},
+            "initial": {"play_position": 5.863158752065696e-06}},
+           {"t_end": 0.11938415742692789, "max_events": 2000, "max_steps": 100000,
+            "integrator": "event_driven", "atol": 1.0156340089856015e-08}),
+    7512: ({"concept": "flexible_nut", "drive": "nut",
+            "thread": {"pitch": 0.0007256647165899697, "mean_diameter": 0.023734381650077373},
+            "friction": {"law": "lugre", "mu": 0.7971375412594125,
+                         "mu_static": 0.8003750352519879, "sigma0": 6545835.838015443,
+                         "sigma1": 0.6335287324466979},
+            "backlash": {"axial": 0.0005123789358681691, "contact": "exact",
+                         "restitution": 0.18354799340354233},
+            "screw": {"radius": 0.010241354107390629, "length": 0.17894541961506794,
+                      "youngs_modulus": 11366199694.019596},
+            "nut": {"outer_radius": 0.025551795022119315, "length": 0.007734852596163878,
+                    "youngs_modulus": 32975075032.564735, "position": 0.10501873873300858},
+            "rotor": {"inertia": 2.8472907332291337e-07}, "load": {"mass": 0.04159387100403406},
+            "overrides": {"damping_ratio": 0.0788584452228381},
+            "loads": {"drive_speed": {
+                "type": "table", "times": [0.0, 0.005125262215145498, 0.009327647882794235],
+                "values": [-6.514983675681383, -6.514983675681383, 6.514983675681383]}},
+            "initial": {"play_position": 0.00025618946793408453},
+            "gear": {"ratio": -0.8454574531602589}},
+           {"t_end": 0.0111666982626248, "max_events": 2000, "max_steps": 100000,
+            "integrator": "event_driven"}),
+}
+
+
+@pytest.mark.parametrize("case", sorted(PULLED_FLANK_SCENES))
+def test_lugre_follows_its_law_on_a_closed_flank_that_pulls(case):
+    """The row recorded as a closed flank opens holds its normal force of
+    the pulling sign. The flank's solve took the friction on its own side,
+    -kappa flank N, which there turned LuGre's bristle force against the
+    bristles' deflection instead of -|N|' (sigma0 z + sigma1 z') - c v
+    (5638: 0.000961296 N against 0.000961298 N, the bristle term's sign
+    flipped; 7512: -4.3e-58 N against +4.3e-58 N). Every row, that one
+    included, follows the law (the independent checker)."""
+    from helpers.result_invariants import check_result, failed
+
+    scene_dict, options = PULLED_FLANK_SCENES[case]
+    scene = ls.Scene.from_dict(scene_dict)
+    result = ls.simulate(scene, **{"t_eval": "steps", **options})
+    normal = np.asarray(result["normal_force"])
+    # The run has the row this is about: a flank's last row (its time
+    # repeated by the event's) with a normal force, none after the event.
+    t = np.asarray(result.t)
+    opening = (t[:-1] == t[1:]) & (normal[:-1] != 0.0) & (normal[1:] == 0.0)
+    assert np.any(opening)
+    report = check_result(result, scene.to_dict(), options)
+    assert report["friction_law"]["ok"], report["friction_law"]["detail"]
+    assert failed(report) == []

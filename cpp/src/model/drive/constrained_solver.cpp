@@ -105,7 +105,8 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   h_.set(t, y);
   if (h_.model_.thread_pair().exact_play() && h_.mode_.contact == ThreadContact::open)
     h_.check_flight(t);
-  const ModeSolution s = h_.solve_current();
+  // A closed flank that pulls (the row at its opening): the law's branch.
+  const ModeSolution s = h_.on_the_law(h_.solve_current());
   forces.normal = s.normal_force;
   forces.friction = s.friction_force;
   forces.motor_torque = h_.model_.gear().rotor_torque(s.motor_torque);

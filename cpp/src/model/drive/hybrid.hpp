@@ -181,6 +181,8 @@ class DriveHybrid final : public integrate::HybridSystem {
                                            mode_.contact == ThreadContact::closed);
   }
   ModeSolution solve_current();
+  // solve_current's solution as an output row reports it (hybrid_modes.cpp).
+  ModeSolution on_the_law(const ModeSolution& own);
   void open_if_pulling();
   void decide_friction(double t, double* y, bool at_zero_slip, int hint);
   void start_normal_side();

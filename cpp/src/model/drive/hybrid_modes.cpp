@@ -78,6 +78,37 @@ ModeSolution DriveHybrid::solve_current() {
   return s;
 }
 
+// A closed flank's solve takes its friction on the flank's own side,
+// -kappa flank N: the law's -kappa |N| while the flank pushes (flank N >=
+// 0). Where it pulls, the mode is ending, and -kappa flank N turns the
+// friction the wrong way (LuGre's bristle force against the bristles'
+// deflection, Coulomb's slip friction along the slip). The rhs keeps that
+// branch past the opening root: it is the mode's smooth continuation, which
+// CVODE's steps over the root and its interpolation back to it need (with
+// the |N| branch in the rhs too, its kink inside such steps, a stuck seat
+// adjuster's play drifted 1.5e-10 m against its 1e-10 m and a DC motor's
+// flexible drive closed its energy account to twice its 1e-7). A row is
+// no trial state: at the flank's opening (its root, or a table's knot that
+// jumps the normal force to the pulling sign at once; issue 31's fuzz
+// cases 5638 and 7512) it reports the law, the other side's branch
+// -kappa (-flank) N = -kappa |N|, solved whole (accelerations, motor
+// torque) as the thread without play takes the consistent sign. Both
+// branches agree at N = 0. Where that branch does not pull (a Painleve
+// fold: no branch consistent) the flank's own is kept; the flank opens.
+ModeSolution DriveHybrid::on_the_law(const ModeSolution& own) {
+  const bool kinetic = mode_.friction == FrictionMode::slip ||
+                       mode_.friction == FrictionMode::regularized_velocity ||
+                       mode_.friction == FrictionMode::regularized_acceleration ||
+                       mode_.friction == FrictionMode::bristle;
+  if (mode_.contact != ThreadContact::closed || !kinetic || !own.regular ||
+      !(mode_.flank * own.loaded_normal() < 0.0))
+    return own;
+  ModeSpec other = spec(1);
+  other.sigma = -mode_.flank;
+  const ModeSolution pulled = dynamics_.solve(other);
+  return pulled.regular && mode_.flank * pulled.loaded_normal() <= 0.0 ? pulled : own;
+}
+
 // A flank closed by an impact (or a grazing touch) whose normal force would
 // pull opens at once: the contact is unilateral, as a closed flank opens
 // where its normal force falls through zero (the root g[1] cannot see a

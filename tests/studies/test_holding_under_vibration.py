@@ -62,6 +62,18 @@ def test_constant_base_acceleration_creeps_as_the_equivalent_force_on_the_reduce
     assert frame.attrs["series"]["target_psd"] is None  # not a random load
 
 
+def test_a_measured_record_is_the_same_in_every_seed():
+    """A record has no seed: every seed runs it alike (only a scatter would
+    differ), and it has no target PSD."""
+    t = np.linspace(0.0, 0.05, 501)
+    record = ls.Measured(t, 300.0 * np.sin(2 * np.pi * 60.0 * t), unit="m/s^2")
+    frame = study(rigid(mu=0.0), record, seeds=[0, 1])
+    first, second = frame.drop(columns=["seed", "wall_time"]).to_dict("records")
+    assert first == second and first["creep"] != 0.0  # frictionless: it moves
+    assert frame.attrs["summary"]["random"] is False
+    assert frame.attrs["series"]["target_psd"] is None
+
+
 def test_exact_coulomb_holds_a_self_locking_thread_and_the_arctan_law_creeps_as_one_over_k_v():
     """Under a constant base acceleration (the equivalent static axial force
     -m a) exact Coulomb friction holds the self-locking thread exactly; the

@@ -183,6 +183,8 @@ def test_a_seed_that_raises_is_a_row_counted_and_warned(monkeypatch):
     ({"points": 3}, ["points = 3", ">= 11"]),
     ({"where": "loads.base_accel"}, ["where = 'loads.base_accel'",
                                      "did you mean 'loads.base_acceleration'"]),
+    ({"where": ["loads.axial_force"]}, ["where = ['loads.axial_force']", "must be one of"]),
+    ({"scatter": {1: ("uniform", 0.1, 0.2)}}, ["scatter key 1 is invalid", "'friction.mu'"]),
     ({"scatter": {"friction.muu": ("uniform", 0.1, 0.2)}},
      ["scatter key 'friction.muu'", "did you mean 'friction.mu'"]),
     ({"scatter": {"friction.mu": ("beta", 0.1, 0.2)}}, ["scatter['friction.mu'][0] = 'beta'",
@@ -216,6 +218,15 @@ def test_the_scenes_own_excitation_is_the_default_with_its_seed_replaced():
     assert frame.attrs["summary"]["excitation_from"] == "scene"
     pd.testing.assert_frame_equal(frame.drop(columns="wall_time"),
                                   given.drop(columns="wall_time"), check_exact=True)
+
+
+def test_an_excitation_with_units_is_the_one_in_si():
+    with_units = {"type": "random", "frequencies": ["20 Hz", "0.2 kHz"],
+                  "psd": ["2 (m/s^2)^2/Hz", "2 (m/s^2)^2/Hz"]}
+    frame, si = study(rigid(), with_units), study(rigid(), BAND)
+    assert frame.attrs["summary"]["excitation"] == "random, 2 breakpoints 20-200 Hz"
+    pd.testing.assert_frame_equal(frame.drop(columns="wall_time"), si.drop(columns="wall_time"),
+                                  check_exact=True)
 
 
 def test_profile_name_warns_and_its_figure_draws_the_target():

@@ -32,7 +32,7 @@ from ._common import gear_ratio, in_unit
 
 __all__ = ["WHERE_UNITS", "SCATTER_KEYS", "check_where", "excitation_template", "realised",
            "check_scatter", "draw_scatter", "varied_scene", "vibration_run", "thread_travel",
-           "target_psd", "is_random"]
+           "target_psd", "is_random", "describe"]
 
 #: The loads the excitation may enter, with their units.
 WHERE_UNITS = {"loads.base_acceleration": "m/s^2",
@@ -55,13 +55,13 @@ def check_where(where: Any) -> str:
     Raises:
         ValueError: naming ``where``, its value and the loads it may name.
     """
-    if where not in WHERE_UNITS:
+    if not isinstance(where, str) or where not in WHERE_UNITS:
         raise ValueError(f"where = {where!r} is invalid: must be one of "
                          f"{', '.join(map(repr, WHERE_UNITS))}{did_you_mean(where, WHERE_UNITS)}")
     return where
 
 
-def excitation_template(scene: Scene, excitation: Any, where: str) -> Tuple[Any, str, str]:
+def excitation_template(scene: Scene, excitation: Any, where: str) -> Tuple[Any, str]:
     """The excitation of every seed before its seed and duration are set.
 
     Args:
@@ -72,9 +72,9 @@ def excitation_template(scene: Scene, excitation: Any, where: str) -> Tuple[Any,
         where: the load it enters (:func:`check_where`).
 
     Returns:
-        ``(template, description, excitation_from)``: the load (a profile's
-        name as a ``{"type": "random", "profile": ...}`` dict), a one-line
-        description for the summary, and ``"arguments"`` or ``"scene"``.
+        ``(template, excitation_from)``: the load (a profile's name as a
+        ``{"type": "random", "profile": ...}`` dict) and ``"arguments"`` or
+        ``"scene"``.
 
     Raises:
         ValueError: no excitation given and none in the scene at ``where``.
@@ -90,24 +90,21 @@ def excitation_template(scene: Scene, excitation: Any, where: str) -> Tuple[Any,
         template, origin = excitation, "arguments"
     if isinstance(template, str) and template in profiles.names():
         template = {"type": "random", "profile": template}
-    return template, _describe(template), origin
+    return template, origin
 
 
-def _describe(template: Any) -> str:
-    if isinstance(template, dict):
-        kind = template.get("type")
-        if kind == "random" and "profile" in template:
-            return f"profile {template['profile']}"
-        if kind == "random":
-            return (f"random, {len(template.get('frequencies', []))} breakpoints "
-                    f"{min(template['frequencies'], default=0):g}-"
-                    f"{max(template['frequencies'], default=0):g} Hz")
-        return str(kind)
-    if isinstance(template, RandomVibration):
-        return (f"random, {len(template.frequencies)} breakpoints "
-                f"{template.frequencies[0]:g}-{template.frequencies[-1]:g} Hz")
-    return type(template).__name__ if not isinstance(template, (str, numbers.Real)) \
-        else repr(template)
+def describe(template: Any, validated: Any) -> str:
+    """A one-line description of the excitation: a profile's name, a random
+    load's band (from ``validated``, the scene's SI form of it), or the
+    load's type."""
+    if isinstance(template, dict) and "profile" in template:
+        return f"profile {template['profile']}"
+    if isinstance(validated, dict):
+        if validated.get("type") == "random":
+            band = validated["frequencies"]
+            return f"random, {len(band)} breakpoints {band[0]:g}-{band[-1]:g} Hz"
+        return str(validated.get("type"))
+    return repr(validated) if isinstance(validated, numbers.Real) else type(validated).__name__
 
 
 def realised(template: Any, seed: int, duration: float) -> Any:
@@ -167,14 +164,12 @@ def check_scatter(scatter: Any) -> Dict[str, Tuple[str, float, float]]:
     if not isinstance(scatter, dict):
         raise ValueError(f"scatter = {scatter!r} is invalid: must be a dict {{key: (kind, a, "
                          f"b)}} with keys in {', '.join(SCATTER_KEYS)}")
-    out = {}
-    for key in sorted(scatter):
-        if key not in SCATTER_KEYS:
+    for key in scatter:
+        if not isinstance(key, str) or key not in SCATTER_KEYS:
             raise ValueError(f"scatter key {key!r} is invalid: must be one of "
                              f"{', '.join(map(repr, SCATTER_KEYS))}"
                              f"{did_you_mean(key, SCATTER_KEYS)}")
-        out[key] = _distribution(key, scatter[key])
-    return out
+    return {key: _distribution(key, scatter[key]) for key in sorted(scatter)}
 
 
 def draw_scatter(scatter: Dict[str, Tuple[str, float, float]], seed: int) -> Dict[str, float]:

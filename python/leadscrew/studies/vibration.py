@@ -31,8 +31,8 @@ from ._common import annotate, as_scene, axes, check_count, check_positive, nume
     with_tolerances
 from ._sweep import run_cases
 from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_scatter, check_where,
-                              draw_scatter, excitation_template, is_random, target_psd,
-                              varied_scene, vibration_run)
+                              describe, draw_scatter, excitation_template, is_random,
+                              target_psd, varied_scene, vibration_run)
 
 __all__ = ["holding_under_vibration", "plot_holding_under_vibration", "SCATTER_KEYS"]
 
@@ -150,7 +150,7 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
     allowed_creep = check_positive("allowed_creep", allowed_creep, unit="m")
     seeds = _check_seeds(seeds)
     scatter = check_scatter(scatter)
-    template, description, excitation_from = excitation_template(scene, excitation, where)
+    template, excitation_from = excitation_template(scene, excitation, where)
     draws = [draw_scatter(scatter, seed) for seed in seeds]
     # The first seed's scene checks the excitation, the scatter's keys and the
     # options once, before the cases run (naming the field).
@@ -174,7 +174,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
     return annotate(frame, units, study="holding_under_vibration",
                     summary_units=dict(_SUMMARY_UNITS), seeds=len(seeds), duration=duration,
                     settle_time=settle_time, allowed_creep=allowed_creep, **summary,
-                    excitation=description, excitation_from=excitation_from, where=where,
+                    excitation=describe(template, first["loads"][where.split(".", 1)[1]]),
+                    excitation_from=excitation_from, where=where,
                     random=is_random(template), scatter=spread,
                     friction_law=first["friction"]["law"])
 

@@ -9,6 +9,7 @@ numpy's statistics over the rows; the verdict flips at the allowed creep."""
 import math
 import warnings
 
+import distributed
 import matplotlib
 
 matplotlib.use("Agg")
@@ -245,7 +246,6 @@ def test_profile_name_warns_and_its_figure_draws_the_target():
 
 
 def test_dask_executor_gives_the_thread_pools_frame():
-    distributed = pytest.importorskip("distributed")
     threaded = study(rigid(backlash={"axial": 1e-4}), seeds=3)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

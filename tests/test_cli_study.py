@@ -307,6 +307,9 @@ TINY_STUDIES = {
     "preload_tradeoff": ({"loads": {"drive_torque": 2e-2, "axial_force": -10.0},
                           "nut": {"preload_stiffness": 1e6}},
                          ["preloads=0,20", "amplitude=30", "frequency=20", *_HOLDING_RUNS]),
+    "holding_under_vibration": ({"loads": {"drive_torque": 0.0, "axial_force": -10.0}}, [
+        'excitation={type="random", frequencies=[20.0, 200.0], psd=[2.0, 2.0]}',
+        "duration=0.05", "seeds=2", "points=11"]),
     "end_stop_jam": ({"loads": {"drive_torque": 0.5, "axial_force": 0.0},
                       "end_stops": {"lower": -2e-4, "stiffness": 1e8, "damping": 1e4}},
                      ["t_drive=0.3", "t_reverse=0.05", "runs=6"]),

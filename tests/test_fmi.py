@@ -65,6 +65,25 @@ def constant_inputs(scene):
     return scene.replace(loads=loads)
 
 
+#: Below this a channel is at rest to the integrators' round-off (simulate's
+#: default atol is 1e-10): seat_adjuster_vibration's rotor, which the
+#: self-locking thread holds under the vibration, turns at about 1e-11 rad/s
+#: in simulate and in the FMU, two different round-offs (its shorted motor's
+#: torque is 7e-14 N*m).
+AT_REST = 1e-9
+
+
+def assert_channel_agrees(channel, got, expected):
+    """The FMU's channel within 1e-4 of simulate's largest value; a channel
+    at rest in simulate (below AT_REST) must be at rest in the FMU too."""
+    got, expected = np.asarray(got), np.asarray(expected)
+    scale = np.max(np.abs(expected))
+    if scale < AT_REST:
+        assert np.max(np.abs(got)) < AT_REST, channel
+        return
+    assert np.max(np.abs(got - expected)) <= 1e-4 * scale, channel
+
+
 # (seat_adjuster_worm_flexible runs on Moreau-Jean alone, which an FMU's
 # stepper does not take: test_a_scene_only_moreau_jean_runs_is_not_exported.)
 MOREAU_ONLY = ["seat_adjuster_worm_flexible"]
@@ -112,12 +131,10 @@ def test_every_shipped_scene_exports_and_runs_as_simulate(name, tmp_path):
     reference = ls.simulate(scene, t_end, t_eval=times)
     for channel in ("u_load", "v_load", "omega_drive", "normal_force", "friction_force",
                     "friction_loss"):
-        expected = np.asarray(reference[channel])
-        scale = max(np.max(np.abs(expected)), 1e-12)
         # The FMU's steps end at the communication points, simulate's run
         # interpolates there: measured at most 1.7e-5 of the channel's scale
         # (position_holding's friction force: arctan law, penalty flanks).
-        assert np.max(np.abs(result[channel] - expected)) <= 1e-4 * scale, channel
+        assert_channel_agrees(channel, result[channel], reference[channel])
     assert np.array_equal(result["stick"].astype(float), np.asarray(reference["stick"]))
 
 
@@ -234,16 +251,14 @@ def test_unset_inputs_follow_the_scenes_loads(name, tmp_path):
                                output=["u_load", "omega_drive", "drive_torque"])
     reference = ls.simulate(scene, t_end, t_eval=result["time"])
     for channel in ("u_load", "omega_drive"):
-        expected = np.asarray(reference[channel])
-        scale = max(np.max(np.abs(expected)), 1e-12)
-        assert np.max(np.abs(result[channel] - expected)) <= 1e-4 * scale, channel
+        assert_channel_agrees(channel, result[channel], reference[channel])
     torque = np.asarray(reference["drive_torque"])
     if "motor" not in scene and "drive_speed" not in scene["loads"]:
         # a torque-controlled scene: its input reads the load
         assert np.allclose(result["drive_torque"], torque, rtol=0,
                            atol=1e-12 * np.max(np.abs(torque)))
     else:  # an output (a DC motor's k_t i): the FMU's steps against simulate's interpolation
-        assert np.max(np.abs(result["drive_torque"] - torque)) <= 1e-4 * np.max(np.abs(torque))
+        assert_channel_agrees("drive_torque", result["drive_torque"], torque)
 
 
 def test_mu_static_that_follows_mu_reads_as_it_runs(tmp_path):

@@ -476,8 +476,8 @@ def test_a_directory_is_called_a_directory(tmp_path):
 
 def test_shipped_scenes_are_listed_and_found():
     assert shipped.available() == ["default", "position_holding", "seat_adjuster",
-                                   "seat_adjuster_worm", "seat_adjuster_worm_flexible",
-                                   "thesis_table_5_1"]
+                                   "seat_adjuster_vibration", "seat_adjuster_worm",
+                                   "seat_adjuster_worm_flexible", "thesis_table_5_1"]
     for name in shipped.available():
         path = shipped.path(name)
         assert path.is_file() and path.suffix == ".toml"
@@ -487,8 +487,8 @@ def test_shipped_scenes_are_listed_and_found():
 
 
 @pytest.mark.parametrize("name", ["default", "position_holding", "seat_adjuster",
-                                  "seat_adjuster_worm", "seat_adjuster_worm_flexible",
-                                  "thesis_table_5_1"])
+                                  "seat_adjuster_vibration", "seat_adjuster_worm",
+                                  "seat_adjuster_worm_flexible", "thesis_table_5_1"])
 def test_shipped_scenes_round_trip(tmp_path, name):
     scene = shipped.load(name)
     path = tmp_path / f"{name}.toml"
@@ -540,3 +540,25 @@ def test_shipped_scenes_simulate(name, t_end):
         assert np.ptp(result["u_load"]) > 0.05e-3
     else:
         assert any("slip" in e.kind for e in result.events)
+
+
+def test_seat_adjuster_vibration_is_the_parked_seat_under_the_body_profile():
+    """The shipped seat under ISO 16750-3 Test IV (unverified: it warns):
+    seat_adjuster's drive, motor at 0 V, the profile as the base
+    acceleration; exact Coulomb holds the self-locking thread (the rotor
+    does not turn) while the seat rings on the spindle and the nut."""
+    with pytest.warns(ls.profiles.ProfileWarning):
+        scene = shipped.load("seat_adjuster_vibration")
+    d, seat = scene.to_dict(), shipped.load("seat_adjuster").to_dict()
+    base = d["loads"]["base_acceleration"]
+    profile = ls.profiles.info("iso16750_3_test_iv")
+    assert (base["frequencies"], base["psd"]) == (list(profile.frequencies), list(profile.psd))
+    assert (base["seed"], base["duration"]) == (1, 5.0)
+    assert d["motor"]["voltage"] == 0.0 and d["friction"] == seat["friction"]
+    assert d["loads"]["axial_force"] == seat["loads"]["axial_force"] == 80.0
+    rest = {k: v for k, v in d.items() if k not in ("loads", "motor")}
+    assert rest == {k: seat[k] for k in rest}
+    result = ls.simulate(scene, 0.2)
+    assert np.abs(result["phi_drive"]).max() < 1e-9  # rad: held (round-off)
+    assert np.ptp(result["u_load"]) > 0.5e-3  # the seat rings on its compliance
+    assert np.abs(result["base_work"]).max() > 1e3 * np.abs(result["energy_residual"]).max()

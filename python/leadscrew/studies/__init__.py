@@ -21,7 +21,9 @@ loads by its definition (a speed-controlled motor raising each of its
 ``preload_tradeoff`` raises the scene's static load and vibrates it with the
 scene's sine (30 N and 20 Hz without one) for each preload; ``end_stop_jam``
 runs the scene's constant drive torque or DC motor into its end stop and
-reverses it. Where a study may take its excitation from either,
+reverses it; ``holding_under_vibration`` takes the scene's load at its
+``where`` (default ``loads.base_acceleration``) unless ``excitation=``
+gives one, realised once per seed if it is random. Where a study may take its excitation from either,
 ``attrs["summary"]["excitation_from"]`` says where it came from:
 ``"arguments"``, ``"scene"`` or ``"defaults"``.
 
@@ -60,6 +62,7 @@ from . import holding as _holding
 from . import motor as _motor
 from . import preload as _preload
 from . import stickslip as _stickslip
+from . import vibration as _vibration
 from . import work_precision as _work_precision_module
 from ..files import writing
 from ._sweep import SerialExecutor
@@ -80,6 +83,7 @@ from .holding import (
     static_holding_band,
 )
 from .stickslip import plot_stick_slip, stick_slip, stick_slip_phases
+from .vibration import SCATTER_KEYS, holding_under_vibration, plot_holding_under_vibration
 from .work_precision import (
     ATOL_PER_RTOL,
     COLUMNS,
@@ -106,6 +110,7 @@ PLOTS = {
     "motor_characteristics": plot_motor_characteristics,
     "preload_tradeoff": plot_preload_tradeoff,
     "end_stop_jam": plot_end_stop_jam,
+    "holding_under_vibration": plot_holding_under_vibration,
 }
 
 
@@ -165,6 +170,7 @@ STUDIES = {name: _tagged(name, function) for name, function in {
     "motor_characteristics": motor_characteristics,
     "preload_tradeoff": preload_tradeoff,
     "end_stop_jam": end_stop_jam,
+    "holding_under_vibration": holding_under_vibration,
 }.items()}
 # The studies under their names are the tagged ones: a frame of any of them
 # plots with plot(frame).
@@ -209,4 +215,5 @@ __all__ = [
     *_motor.__all__,
     *_preload.__all__,
     *_end_stop.__all__,
+    *_vibration.__all__,
 ]

@@ -1,0 +1,276 @@
+"""holding_under_vibration (issue 34, item 4): creep per seed under a
+vibration, against closed forms and limits: a constant base acceleration on
+the frictionless drive is the equivalent axial force's uniformly accelerated
+travel; exact Coulomb friction holds a self-locking thread without any
+creep, a regularized law creeps at a rate proportional to 1 / k_v (its
+artefact); the scatter's draws are numpy's of the seed; the summary is
+numpy's statistics over the rows; the verdict flips at the allowed creep."""
+
+import math
+import warnings
+
+import distributed
+import matplotlib
+
+matplotlib.use("Agg")
+
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+import pytest  # noqa: E402
+
+import leadscrew as ls  # noqa: E402
+from helpers.cli_runs import run_main, scene_file  # noqa: E402
+from helpers.scenes import thesis_scene  # noqa: E402
+from leadscrew.studies import holding_under_vibration  # noqa: E402
+from leadscrew.studies import vibration as vibration_module  # noqa: E402
+
+# A narrow band keeps the runs short (the realisation's samples and the steps).
+BAND = {"type": "random", "frequencies": [20.0, 200.0], "psd": [2.0, 2.0]}
+
+
+def rigid(mu=0.3, law="coulomb", **changes):
+    """The Table 5.1 drive, rigid, no drive torque, no axial force."""
+    friction = {"law": law, "mu": mu, **({"k_v": changes.pop("k_v")} if "k_v" in changes else {})}
+    return ls.Scene.from_dict(thesis_scene(friction=friction, loads={
+        "drive_torque": 0.0, "axial_force": 0.0}, **changes))
+
+
+def study(scene, excitation=BAND, **options):
+    options = {"duration": 0.05, "seeds": 2, "points": 51, "progress": False, **options}
+    return holding_under_vibration(scene, excitation, **options)
+
+
+@pytest.mark.parametrize("drive", ["screw", "nut"])
+def test_constant_base_acceleration_creeps_as_the_equivalent_force_on_the_reduced_mass(drive):
+    a, duration = 3.0, 0.05
+    scene = rigid(mu=0.0, drive=drive)
+    frame = study(scene, a, duration=duration, seeds=1, settle_time=0.01, rtol=1e-10,
+                  atol=1e-14)
+    derived = scene.derived()
+    m = 1.0 + (derived["nut_mass"] if drive == "screw" else derived["screw_mass"])
+    inertia = 1e-5 + (derived["screw_inertia"] if drive == "screw" else derived["nut_inertia"])
+    p = 1e-3 / (2 * math.pi)
+    c = -0.5 * m * a / (m + inertia / p ** 2)  # creep = c t^2
+    row = frame.iloc[0]
+    assert row["creep"] == pytest.approx(c * duration ** 2, rel=1e-8)
+    assert row["displacement"] == pytest.approx(c * duration ** 2, rel=1e-8)  # no play
+    t = np.linspace(0.0, duration, 51)
+    judged = t[t >= 0.01]
+    # the least-squares slope of c t^2 over evenly spaced times: c (t_first + t_last)
+    assert row["creep_rate"] == pytest.approx(c * (judged[0] + judged[-1]), rel=1e-8)
+    assert row["input_rms"] == pytest.approx(a, rel=1e-15)
+    assert frame.attrs["summary"]["excitation_from"] == "arguments"
+    assert frame.attrs["series"]["target_psd"] is None  # not a random load
+
+
+def test_a_measured_record_is_the_same_in_every_seed():
+    """A record has no seed: every seed runs it alike (only a scatter would
+    differ), and it has no target PSD."""
+    t = np.linspace(0.0, 0.05, 501)
+    record = ls.Measured(t, 300.0 * np.sin(2 * np.pi * 60.0 * t), unit="m/s^2")
+    frame = study(rigid(mu=0.0), record, seeds=[0, 1])
+    first, second = frame.drop(columns=["seed", "wall_time"]).to_dict("records")
+    assert first == second and first["creep"] != 0.0  # frictionless: it moves
+    assert frame.attrs["summary"]["random"] is False
+    assert frame.attrs["series"]["target_psd"] is None
+
+
+def test_exact_coulomb_holds_a_self_locking_thread_and_the_arctan_law_creeps_as_one_over_k_v():
+    """Under a constant base acceleration (the equivalent static axial force
+    -m a) exact Coulomb friction holds the self-locking thread exactly; the
+    arctan law slips at the speed where its friction balances the force,
+    v = tan(...) / k_v: ten times k_v, a tenth of the rate."""
+    a = 200.0  # m/s^2: -m a = -205 N on the load
+    exact = study(rigid(), a, duration=0.2, seeds=1)
+    assert exact["creep"].abs().max() == 0.0 and exact.attrs["summary"]["verdict"] == "holds"
+    rates = [study(rigid(law="arctan_velocity", k_v=k_v), a, duration=0.2, seeds=1,
+                   settle_time=0.1, rtol=1e-10)["creep_rate"].iloc[0]
+             for k_v in (1e3, 1e4)]
+    assert rates[0] != 0.0 and np.sign(rates[0]) == np.sign(rates[1]) == -np.sign(a)
+    assert rates[0] / rates[1] == pytest.approx(10.0, rel=1e-3)
+
+
+def test_random_vibration_of_a_self_locking_thread_with_play_does_not_creep():
+    """Exact Coulomb, exact play: the load flies across the play and rings,
+    but the thread does not turn (creep 0 to round-off), while the load's
+    displacement spans the play."""
+    scene = rigid(backlash={"axial": 1e-4})
+    frame = study(scene, {**BAND, "psd": [200.0, 200.0]}, duration=0.1)
+    assert frame["error"].isna().all()
+    assert frame["creep"].abs().max() < 1e-15 and frame["creep_rate"].abs().max() < 1e-13
+    assert (frame["max_displacement"] > 0.4e-4).all()  # across the play
+    assert frame["holds"].tolist() == [True, True]
+    assert frame["input_rms"].tolist()[0] != frame["input_rms"].tolist()[1]  # two realisations
+    assert frame["input_rms"].to_numpy() == pytest.approx(math.sqrt(200.0 * 180.0), rel=0.05)
+
+
+@pytest.fixture(scope="module")
+def arctan_frame():
+    """An arctan drive creeping under a static axial force and a random
+    vibration, mu scattered: three seeds that creep differently."""
+    scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
+    return study(scene, {**BAND, "psd": [50.0, 50.0]}, duration=0.1, seeds=[3, 7, 11],
+                 scatter={"friction.mu": ("uniform", 0.25, 0.35)}, rtol=1e-8)
+
+
+def test_summary_is_numpys_statistics_over_the_rows(arctan_frame):
+    summary, creep = arctan_frame.attrs["summary"], arctan_frame["creep"].to_numpy()
+    assert len(set(creep)) == 3
+    assert summary["creep_mean"] == np.mean(creep)
+    assert summary["creep_std"] == np.std(creep, ddof=1)
+    assert summary["creep_worst"] == creep[np.argmax(np.abs(creep))]
+    rate = arctan_frame["creep_rate"].to_numpy()
+    assert summary["creep_rate_mean"] == np.mean(rate)
+    assert summary["creep_rate_std"] == np.std(rate, ddof=1)
+    assert summary["creep_rate_worst"] == rate[np.argmax(np.abs(rate))]
+    assert summary["max_displacement_worst"] == arctan_frame["max_displacement"].max()
+    assert summary["seeds"] == 3 and summary["raised"] == 0
+    assert arctan_frame.attrs["units"]["creep_rate"] == "m/s"
+    assert arctan_frame.attrs["units"]["input_rms"] == "m/s^2"
+
+
+def test_scatter_draws_are_the_seeds_reproducibly(arctan_frame):
+    mu = arctan_frame["friction.mu"].tolist()
+    assert mu == [np.random.default_rng(seed).uniform(0.25, 0.35) for seed in (3, 7, 11)]
+    assert len(set(mu)) == 3
+    again = vibration_module.draw_scatter(
+        vibration_module.check_scatter({"nut.preload": ("normal", "5 N", "20 N"),
+                                        "friction.mu": ("uniform", 0.25, 0.35)}), 7)
+    assert again["friction.mu"] == mu[1]  # sorted keys: friction.mu drawn first
+    draws = [vibration_module.draw_scatter({"nut.preload": ("normal", 5.0, 20.0)}, seed)
+             for seed in range(200)]
+    values = [d["nut.preload"] for d in draws]
+    assert min(values) >= 0.0 and len(set(values)) == 200  # truncated at 0
+
+
+def test_verdict_flips_at_the_allowed_creep(arctan_frame):
+    worst = abs(arctan_frame.attrs["summary"]["creep_worst"])
+    scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
+    options = dict(duration=0.1, seeds=[3, 7, 11], rtol=1e-8,
+                   scatter={"friction.mu": ("uniform", 0.25, 0.35)})
+    above = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep=worst * 1.001, **options)
+    below = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep=worst * 0.999, **options)
+    assert above.attrs["summary"]["verdict"] == "holds" and above["holds"].all()
+    assert below.attrs["summary"]["verdict"] == "creeps"
+    assert below["holds"].tolist() == [abs(c) <= worst * 0.999 for c in below["creep"]]
+
+
+def test_a_seed_that_raises_is_a_row_counted_and_warned(monkeypatch):
+    run = vibration_module.vibration_run
+
+    def failing(scene, *args, **kwargs):
+        if scene["loads"]["base_acceleration"]["seed"] == 1:
+            raise ls.SimulationError("seed 1 failed on purpose")
+        return run(scene, *args, **kwargs)
+
+    monkeypatch.setattr(vibration_module, "vibration_run", failing)
+    with pytest.warns(ls.StudyWarning, match="1 of 3 rows raised"):
+        frame = study(rigid(), seeds=3)
+    assert frame["error"].tolist()[1].startswith("SimulationError: seed 1 failed")
+    assert frame["holds"].tolist() == [True, None, True] and np.isnan(frame["creep"][1])
+    summary = frame.attrs["summary"]
+    assert summary["raised"] == 1 and summary["verdict"] == "holds"
+    assert summary["creep_mean"] == np.mean(frame["creep"].to_numpy()[[0, 2]])
+
+
+@pytest.mark.parametrize("options, fragments", [
+    ({"seeds": 0}, ["seeds = 0", ">= 1"]),
+    ({"seeds": [1, 1]}, ["seeds = [1, 1]", "distinct integers in [0, 2^53]"]),
+    ({"seeds": [-2]}, ["seeds = [-2]", "[0, 2^53]"]),
+    ({"duration": -1.0}, ["duration = -1.0", "> 0"]),
+    ({"allowed_creep": 0.0}, ["allowed_creep = 0.0", "> 0"]),
+    ({"allowed_creep": "1 s"}, ["allowed_creep", "1 s"]),
+    ({"settle_time": 0.05}, ["settle_time = 0.05", "[0, 0.048]"]),
+    ({"points": 3}, ["points = 3", ">= 11"]),
+    ({"where": "loads.base_accel"}, ["where = 'loads.base_accel'",
+                                     "did you mean 'loads.base_acceleration'"]),
+    ({"where": ["loads.axial_force"]}, ["where = ['loads.axial_force']", "must be one of"]),
+    ({"scatter": {1: ("uniform", 0.1, 0.2)}}, ["scatter key 1 is invalid", "'friction.mu'"]),
+    ({"scatter": {"friction.muu": ("uniform", 0.1, 0.2)}},
+     ["scatter key 'friction.muu'", "did you mean 'friction.mu'"]),
+    ({"scatter": {"friction.mu": ("beta", 0.1, 0.2)}}, ["scatter['friction.mu'][0] = 'beta'",
+                                                        "'uniform' or 'normal'"]),
+    ({"scatter": {"friction.mu": ("uniform", 0.2, 0.1)}},
+     ["scatter['friction.mu'] = ('uniform', 0.2, 0.1)", "0 <= low < high"]),
+    ({"scatter": {"friction.mu": ("normal", 0.1, 0.0)}}, ["std > 0"]),
+    ({"scatter": {"backlash.axial": ("uniform", 0.0, 1e-4)}},
+     ["scatter key 'backlash.axial'", "no backlash section"]),
+    ({"excitation": "20 N"}, ["loads.base_acceleration", "20 N"]),
+    ({"excitation": None}, ["excitation = None", "no loads.base_acceleration"]),
+])
+def test_bad_arguments_raise_naming_the_argument_value_and_range(options, fragments):
+    options = {"excitation": BAND, **options}
+    with pytest.raises(ValueError) as error:
+        study(rigid(), **options)
+    for fragment in fragments:
+        assert fragment in str(error.value), (fragment, str(error.value))
+
+
+def test_a_speed_controlled_drive_is_refused():
+    scene = rigid().replace(loads={"drive_torque": None, "drive_speed": 0.0})
+    with pytest.raises(ValueError, match="loads.drive_speed is invalid"):
+        study(scene)
+
+
+def test_the_scenes_own_excitation_is_the_default_with_its_seed_replaced():
+    scene = rigid().replace(loads={"base_acceleration": {**BAND, "seed": 42}})
+    frame = study(scene, None, seeds=[42, 5])
+    given = study(scene, BAND, seeds=[42, 5])
+    assert frame.attrs["summary"]["excitation_from"] == "scene"
+    pd.testing.assert_frame_equal(frame.drop(columns="wall_time"),
+                                  given.drop(columns="wall_time"), check_exact=True)
+
+
+def test_an_excitation_with_units_is_the_one_in_si():
+    with_units = {"type": "random", "frequencies": ["20 Hz", "0.2 kHz"],
+                  "psd": ["2 (m/s^2)^2/Hz", "2 (m/s^2)^2/Hz"]}
+    frame, si = study(rigid(), with_units), study(rigid(), BAND)
+    assert frame.attrs["summary"]["excitation"] == "random, 2 breakpoints 20-200 Hz"
+    pd.testing.assert_frame_equal(frame.drop(columns="wall_time"), si.drop(columns="wall_time"),
+                                  check_exact=True)
+
+
+def test_profile_name_warns_and_its_figure_draws_the_target():
+    with pytest.warns(ls.profiles.ProfileWarning):
+        frame = study(rigid(), "iso16750_3_test_iv", duration=0.02, seeds=1)
+        profile = ls.profiles.load("iso16750_3_test_iv")
+    series = frame.attrs["series"]
+    assert frame.attrs["summary"]["excitation"] == "profile iso16750_3_test_iv"
+    target = dict(zip(series["target_f"], series["target_psd"]))
+    f55 = min(target, key=lambda f: abs(f - 55.0))
+    assert target[f55] == pytest.approx(profile.psd_at(f55), rel=1e-12)
+    left, right = ls.studies.plot(frame)
+    assert left.get_ylabel() == "creep [um]" and right.get_xscale() == "log"
+    assert len(left.lines) == 1 + 2  # one seed, the allowed band
+    assert "(m/s^2)^2/Hz" in right.get_ylabel()
+
+
+def test_dask_executor_gives_the_thread_pools_frame():
+    threaded = study(rigid(backlash={"axial": 1e-4}), seeds=3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        with distributed.Client(processes=False, n_workers=1, threads_per_worker=2,
+                                dashboard_address=":0") as client:
+            on_dask = study(rigid(backlash={"axial": 1e-4}), seeds=3,
+                            executor=client.get_executor())
+    pd.testing.assert_frame_equal(threaded.drop(columns="wall_time"),
+                                  on_dask.drop(columns="wall_time"), check_exact=True)
+    assert on_dask.attrs["series"] == threaded.attrs["series"]
+
+
+def test_command_line_runs_it_with_seeds_and_scatter(tmp_path, capsys):
+    path = scene_file(tmp_path, loads={"drive_torque": 0.0, "axial_force": 0.0})
+    code, out, err = run_main(
+        capsys, "study", "holding_under_vibration", path,
+        'excitation={type="random", frequencies=[20.0, 200.0], psd=[2.0, 2.0]}',
+        "duration=0.05", "seeds=4,9", "points=51",
+        'scatter={"friction.mu"=["uniform", 0.25, 0.35]}', "progress=false",
+        "-o", tmp_path / "out")
+    assert code == 0 and err == "", err
+    written = pd.read_csv(tmp_path / "out" / "holding_under_vibration_scene.csv", skiprows=[1])
+    expected = study(rigid(), seeds=[4, 9], scatter={"friction.mu": ("uniform", 0.25, 0.35)})
+    assert written["seed"].tolist() == [4, 9]
+    np.testing.assert_allclose(written["friction.mu"], expected["friction.mu"], rtol=1e-15)
+    np.testing.assert_allclose(written["input_rms"], expected["input_rms"], rtol=1e-15)
+    assert "  verdict: holds" in out.splitlines()
+    assert (tmp_path / "out" / "holding_under_vibration_scene.png").is_file()

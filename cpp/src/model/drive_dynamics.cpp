@@ -148,6 +148,21 @@ void DriveDynamics::set_element_slots(const std::vector<std::pair<int, int>>& sl
   }
 }
 
+void DriveDynamics::add_element_forces(int rotor) {
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
+  element_forces_.setZero();
+  CoordinateVector own(element_forces_.size());
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    own.setZero();
+    elements[k]->add_forces(element_state(k), element_modes_[k], own.data());
+    if (elements[k]->drives_rotor()) {
+      element_drive_torque_ += own[rotor];
+      own[rotor] = 0.0;
+    }
+    element_forces_ += own;
+  }
+}
+
 void DriveDynamics::set_state(double t, const CoordinateVector& q, const CoordinateVector& v) {
   const elements::ThreadPair& thread = model_.thread_pair();
   const elements::Motor& motor = model_.motor();
@@ -170,27 +185,19 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
     element.add_forces(q, v, a, thread.nut_position_gradient(), forces_, elastic_, damping_power_);
   });
   applied_torque_ = motor.applied_torque(t);
-  // The model's elements' forces at their states (model/element.hpp); a
-  // motor's on the rotor is the drive's torque.
-  element_drive_torque_ = 0.0;
+  // The model's elements' forces at their states (model/element.hpp): a
+  // motor's on the rotor is the drive's torque; the others' (a base
+  // excitation's -a m_u - alpha J_phi) join after the loads.
   const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
-  for (std::size_t k = 0; k < elements.size(); ++k) {
-    element_forces_.setZero();
-    elements[k]->add_forces(element_state(k), element_modes_[k], element_forces_.data());
-    if (elements[k]->drives_rotor()) {
-      element_drive_torque_ += element_forces_[motor.rotor];
-      element_forces_[motor.rotor] = 0.0;
-    }
-    forces_ += element_forces_;
+  element_drive_torque_ = 0.0;
+  if (!elements.empty()) {
+    add_element_forces(motor.rotor);
+    applied_torque_ += element_drive_torque_;
   }
-  if (!elements.empty()) applied_torque_ += element_drive_torque_;
   axial_force_ = model_.axial_load().force_at(t);
   forces_[motor.rotor] += applied_torque_;
   forces_[model_.axial_load().coordinate] += axial_force_;
-  if (const elements::BaseExcitation* base = model_.base()) {
-    base->add_forces(t, forces_, base_force_, base_torque_);
-    base_power_ = base->power(t, v);
-  }
+  if (!elements.empty()) forces_ += element_forces_;
   // A prescribed speed's derivative is taken when a mode is solved (solve):
   // Moreau-Jean sets states but never needs it, and takes a step of the
   // speed as an impulse, where a differentiating scheme cannot follow one.

@@ -17,9 +17,10 @@ namespace leadscrew::model {
 // function of time (not a DC motor's k_t i: its current is a state, and its
 // drive runs the general path, whose roots see the state), exact Coulomb.
 bool RigidDriveModes::applies(const DriveModel& model, const DriveDynamics& dynamics) {
-  // (A base excitation's force is on every body, not a drive torque and an
-  // axial force: the general constrained solve takes it.)
-  return model.elements().elements.empty() && !model.train_friction() && !model.base() &&
+  // (An element's force, a DC motor's or a base excitation's, is not a
+  // drive torque of time and an axial force: the general constrained solve
+  // takes it.)
+  return model.elements().elements.empty() && !model.train_friction() &&
          applies_to_thread(model, dynamics);
 }
 

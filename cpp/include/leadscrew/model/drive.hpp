@@ -196,8 +196,6 @@ class DriveModel {
   const elements::ThreadPair& thread_pair() const noexcept { return *e_.thread; }
   const elements::Motor& motor() const noexcept { return e_.motor; }
   const elements::AxialLoad& axial_load() const noexcept { return e_.load; }
-  // The housing's vibration (nullptr: none; elements/base_excitation.hpp).
-  const elements::BaseExcitation* base() const noexcept { return e_.base ? &*e_.base : nullptr; }
   // The gear stage between the rotor and the rotor's coordinate (ratio 1: none).
   const elements::Gear& gear() const noexcept { return e_.motor.gear; }
   // The train's friction stages besides the thread (nullptr: none): the

@@ -240,12 +240,6 @@ class DriveDynamics {
   // Spring, damper and load forces at the state last set (no thread forces).
   const CoordinateVector& forces() const noexcept { return forces_; }
   double axial_force() const noexcept { return axial_force_; }
-  // The housing's vibration at the state last set (elements/base_excitation.hpp):
-  // its inertial force on the translating bodies -a m, its torque on the
-  // rotating ones -alpha J, and its power (0 without one).
-  double base_force() const noexcept { return base_force_; }
-  double base_torque() const noexcept { return base_torque_; }
-  double base_power() const noexcept { return base_power_; }
   double kinetic_energy() const;
   double friction_factor(const ModeSpec& spec, double slip_acceleration) const;
 
@@ -285,6 +279,9 @@ class DriveDynamics {
 
  private:
   ModeSolution solve_acceleration_law(const ModeSpec& spec);
+  // The elements' forces at the state set: element_forces_ (their sum but
+  // a motor's on the rotor) and element_drive_torque_.
+  void add_element_forces(int rotor);
 
   const DriveModel& model_;
   const friction::Law* law_;
@@ -307,7 +304,6 @@ class DriveDynamics {
   double preload_spring_ = 0.0;            // a lift-off nut's spring force S
   double damping_power_ = 0.0;
   double applied_torque_ = 0.0, axial_force_ = 0.0, rotor_acceleration_ = 0.0;
-  double base_force_ = 0.0, base_torque_ = 0.0, base_power_ = 0.0;
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;
   bool painleve_possible_ = false;
   bool slip_prescribed_ = false;

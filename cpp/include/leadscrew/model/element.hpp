@@ -159,12 +159,13 @@ class Element {
     (void)step, (void)mode;
     return 0.0;
   }
-  // At the step's end velocities v_next: its states' new values (own_next,
+  // At the step's end positions q_next and velocities v_next: its states'
+  // new values (own_next,
   // from step.start.own), its terms of the account's integrals (energy,
   // added to) and what its output row reports (mode.last).
-  virtual void step_end(const ElementStep& step, const double* v_next, ElementMode& mode,
+  virtual void step_end(const ElementStep& step, const double* q_next, const double* v_next, ElementMode& mode,
                         double* own_next, double* energy) const {
-    (void)step, (void)v_next, (void)mode, (void)own_next, (void)energy;
+    (void)step, (void)q_next, (void)v_next, (void)mode, (void)own_next, (void)energy;
   }
   // After step_end in mode `taken`: true where the step left that mode's
   // domain (a current beyond its limit); `retake` is then the mode to take

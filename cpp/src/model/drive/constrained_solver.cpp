@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "base_excitation.hpp"
 #include "driver_element.hpp"
 #include "mode_solver.hpp"
 
@@ -38,8 +37,7 @@ const ElementKind& lugre_bristles_kind() {
 DriveHybrid::ConstrainedSolver::ConstrainedSolver(DriveHybrid& hybrid)
     : ModeSolver(hybrid),
       bristle_state_(hybrid.layout_.find_state("bristle_share")),
-      bristle_channel_(hybrid.layout_.find_channel("bristle_deflection")),
-      base_(hybrid.layout_) {}
+      bristle_channel_(hybrid.layout_.find_channel("bristle_deflection")) {}
 
 double DriveHybrid::ConstrainedSolver::slip_velocity(const double* y) const {
   (void)y;
@@ -96,7 +94,6 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
                              dynamics.play_rate();
   energy[kDampingLoss] = dynamics.damping_power();
   energy[kContactLoss] = dynamics.contact_loss_power();
-  if (base_.state >= 0) ydot[base_.state] = dynamics.base_power();
   for (const std::unique_ptr<Element>& element : h_.elements_) element->rates(t, y, ydot, energy);
 }
 
@@ -119,7 +116,6 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   // Stick holds the slip velocity at zero; the state carries the integrator's
   // error in this linear invariant (CVODE's Newton tolerance, ~1e-15 m/s).
   if (forces.stick) state.slip_velocity = 0.0;
-  base_.write(h_.dynamics_, y, state);
   for (const std::unique_ptr<Element>& element : h_.elements_)
     element->output(t, y, forces, state);
   return state;

@@ -19,7 +19,7 @@
   E(end_stops)                            \
   E(preloaded_nut)                        \
   D(train_friction)                       \
-  D(base_excitation)
+  M(base_excitation)
 
 namespace leadscrew::model::drive {
 

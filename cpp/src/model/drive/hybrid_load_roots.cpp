@@ -18,12 +18,11 @@ namespace leadscrew::model::drive {
 // friction factor +-mu' is constant).
 bool DriveHybrid::load_driven() const {
   // (An element whose forces depend on its own state, a DC motor's torque
-  // k_t i: its roots are the state's.)
+  // k_t i: its roots are the state's; a base excitation's force is not a
+  // drive torque or an axial force: the sampled margins decide.)
   // (The train's friction stages: the motor's friction is a constant term,
   // and the stage's sign a state's; their roots are sampled.)
-  // (A base excitation's force is not a drive torque or an axial force: the
-  // sampled margins decide.)
-  return train_ == nullptr && model_.base() == nullptr && model_.elements().forces.empty() &&
+  return train_ == nullptr && model_.elements().forces.empty() &&
          !model_.motor().speed_controlled &&
          std::all_of(elements_.begin(), elements_.end(),
                      [](const std::unique_ptr<Element>& element) {

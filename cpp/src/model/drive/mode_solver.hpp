@@ -25,7 +25,6 @@
 
 #include <memory>
 
-#include "base_excitation.hpp"
 #include "channels.hpp"
 #include "hybrid.hpp"
 
@@ -92,7 +91,6 @@ class DriveHybrid::ConstrainedSolver final : public DriveHybrid::ModeSolver {
   // LuGre's bristles (lugre_bristles_kind): the deflection's index in y
   // (its stored energy's follows; -1: none) and its channel's.
   int bristle_state_, bristle_channel_;
-  BaseSlots base_;  // the housing's vibration (base_excitation.hpp)
 };
 
 // What the rigid drive without play's solvers share: one degree of freedom,

@@ -22,8 +22,7 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
       motor_friction_state_(layout_.find_state("motor_friction_loss")),
       gear_state_(layout_.find_state("gear_loss")),
       motor_friction_channel_(layout_.find_channel("motor_friction_loss")),
-      gear_channel_(layout_.find_channel("gear_loss")),
-      base_(layout_) {
+      gear_channel_(layout_.find_channel("gear_loss")) {
   const int n = model.coordinate_count();
   q_.setZero(n);
   v_.setZero(n);
@@ -309,16 +308,12 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
   // DC motor's armature over the step).
   for (std::size_t k = 0; k < elements.size(); ++k) {
     const int first = element_slots_[k].first;
-    elements[k]->step_end(element_step(k, t, h, theta, y, q0, v0), v_.data(), step_modes_[k],
+    elements[k]->step_end(element_step(k, t, h, theta, y, q0, v0), q_.data(), v_.data(),
+                          step_modes_[k],
                           first >= 0 ? y_next + first : y_next, energy);
   }
   energy[kWorkAxial] +=
       p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
-  // The housing's vibration: its force at t + theta h (the step's) over the
-  // step's displacement.
-  if (base_.state >= 0)
-    y_next[base_.state] =
-        y[base_.state] + model_.base()->power(t + theta * h, CoordinateVector(q_ - q0));
   const double slip = model_.tangent_direction().dot(v_);
   // A sticking step (the LCP's stick basis) ends at zero slip exactly; its
   // computed slip is the round-off of terms of h f / m (1e-17 m/s against
@@ -637,7 +632,6 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
       stored += elements[k]->energy_terms(dynamics_.element_state(k));
     for (const int k : {motor_friction_state_, gear_state_})
       if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
-    if (base_.state >= 0) stored -= state[base_.state];  // (the base's work, with the work)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -665,7 +659,6 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (stop_channel_ >= 0) state.values[stop_channel_] = last_stop_force_;
   if (motor_friction_state_ >= 0) state.values[motor_friction_channel_] = y[motor_friction_state_];
   if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
-  base_.write(dynamics_, y, state);
   double applied = dynamics_.applied_torque();
   // The elements' channels, of the last step (a DC motor's armature), and
   // their torque on the rotor (Element::step_output, step_drive_torque).

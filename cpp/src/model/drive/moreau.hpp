@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "base_excitation.hpp"
 #include "channels.hpp"
 #include "leadscrew/integrate/moreau.hpp"
 #include "leadscrew/lcp/workspace.hpp"
@@ -148,7 +147,6 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   std::vector<std::pair<int, int>> element_slots_;
   std::vector<int> element_channels_;
   int stop_channel_, motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
-  BaseSlots base_;  // the housing's vibration (base_excitation.hpp)
   CoordinateVector q_, v_, free_;
   IterationMatrix iteration_;  // W, factorized while it holds (moreau_iteration.hpp)
   ContactForces last_;

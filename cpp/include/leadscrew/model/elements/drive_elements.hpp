@@ -102,7 +102,6 @@ struct DriveElements {
   std::optional<ThreadPair> thread;
   Motor motor;
   AxialLoad load;
-  std::optional<BaseExcitation> base;  // the housing's vibration (absent: at rest)
   std::optional<PreloadedNut> preloaded_nut;  // on the thread without play (any concept)
   // The motor's friction and a lossy or worm stage (rigid drive without play).
   std::optional<TrainFriction> train_friction;
@@ -126,7 +125,7 @@ struct DriveElements {
 DriveElements build_drive_elements(DriveParameters& p);
 
 // The housing's vibration of p (loads.base_acceleration,
-// loads.base_angular_acceleration) into e.base, its weights from e's bodies
+// loads.base_angular_acceleration) into e.elements, its weights from e's bodies
 // (none where both are a constant 0). Refuses the angular one behind a gear
 // stage (the rotor's axis relative to the screw's is not modelled).
 void build_base_excitation(const DriveParameters& p, DriveElements& e);

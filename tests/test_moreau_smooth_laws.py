@@ -1,8 +1,8 @@
 """Moreau-Jean with the smooth thread laws and the train's friction stages
 with every law and a speed-controlled rotor (issue 32, item 3;
 docs/physics/drive_models.md, "Moreau-Jean with the smooth laws";
-docs/physics/gear.md, "A prescribed rotor speed"): arctan_velocity and
-LuGre converge at first order in dt to the cvode_bdf solution; the implicit
+docs/physics/gear.md, "The smooth thread laws and a prescribed rotor
+speed"): arctan_velocity and LuGre converge at first order in dt to the cvode_bdf solution; the implicit
 friction runs a stiff k_v at a long step and tends to exact Coulomb as
 k_v grows; a lossy stage behind a prescribed rotor speed takes the closed
 form's motor torque, T_screw / (n eta) driving and T_screw eta_b / n

@@ -362,8 +362,8 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     // (A flow within its round-off, a stage that transmits nothing, books
     // no loss of the other sign.)
     if (const int k = gear_state_; k >= 0) y_next[k] = y[k] + std::max(0.0, stage * w1);
-    friction_excess_ +=
-        std::max(0.0, (1.0 - theta) * impulses.train * (w1 - v0[model_.rotor()]));
+    const double excess = (1.0 - theta) * impulses.train * (w1 - v0[model_.rotor()]);
+    friction_excess_ += p_.speed_controlled ? 0.0 : std::max(0.0, excess);  // (at w_theta: none)
   }
   last_stop_force_ = 0.0;
   for (std::size_t k = 0; k < exact.size(); ++k)
@@ -491,8 +491,8 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // a stuck step (gamma+ = 0) has no viscous impulse.
   const friction::Law& law = dynamics_.law();
   if (law.resolution() != friction::Resolution::set_valued)  // (no stick: a smooth law)
-    return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d, alpha,
-                               beta, contact);
+    return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,
+                               alpha, beta, contact);
   const double viscous_step = law.viscous() * h;
   const double viscous_scale = 1.0 / (1.0 + viscous_step * d);
   const double viscous_c = c;

@@ -1,7 +1,7 @@
 // DriveMoreau (moreau.hpp): the train's friction stages (the motor's
 // Coulomb friction, a lossy or worm stage: elements/train_friction.hpp)
 // with a speed-controlled rotor (loads.drive_speed; docs/physics/gear.md,
-// "A prescribed rotor speed").
+// "The smooth thread laws and a prescribed rotor speed").
 //
 // The rotor's speed is prescribed, so the drive's motion does not depend
 // on the frictions ahead of the stage's output: the step is solved without

@@ -340,16 +340,18 @@ def test_the_stepper_carries_the_stops_across_its_pieces(stops):
 
 def test_the_integrators_listed_with_end_stops_are_the_ones_that_run():
     # One list, the true one (issue 17 item 16): a review found "moreau" listed, then refused.
-    # Moreau-Jean runs end stops with the set-valued laws (moreau.hpp).
+    # Moreau-Jean runs end stops with every law but eq. (3.15) (moreau.hpp;
+    # the smooth ones implicit: moreau_smooth_friction.cpp).
     for friction, expected in [({"law": "coulomb", "mu": 0.3}, ["event_driven", "moreau"]),
-                               ({"law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}, None)]:
+                               ({"law": "arctan_velocity", "mu": 0.3, "k_v": 1e3}, True),
+                               ({"law": "arctan_acceleration", "mu": 0.3, "k_v": 1e3}, None)]:
         scene = ls.Scene.from_dict(thesis_scene(concept="rigid", friction=friction,
                                                 end_stops={"lower": -0.01, "stiffness": 1e7}))
         listed = ls._core.drive_integrators(scene.model().parameters)
-        if expected is not None:
+        if isinstance(expected, list):
             assert listed == expected
         else:
-            assert "moreau" not in listed  # (a smooth law)
+            assert ("moreau" in listed) == (expected is True)
         for integrator in listed:
             options = ({} if integrator == "event_driven" else {"dt": 1e-5}
                        if integrator == "moreau" else {"rtol": 1e-6, "atol": 1e-9})

@@ -257,7 +257,8 @@ def test_what_still_cannot_run_is_refused_naming_the_integrator_that_runs_it():
         ls.simulate(scene, 0.01, integrator="cvode_bdf")
     assert str(info.value).startswith(
         'integrator = "cvode_bdf" is invalid with gear.type = "worm": the train\'s friction '
-        'stages run with exact Coulomb friction on Moreau-Jean (integrator = "moreau")')
+        'stages run on Moreau-Jean (integrator = "moreau", every thread law but '
+        'arctan_acceleration)')
     # (Only Moreau-Jean runs this scene: no other integrator is offered.)
     assert str(info.value).endswith('; this scene runs on Moreau-Jean only (here concept = '
                                     '"flexible")')

@@ -231,7 +231,11 @@ def test_lowering_through_a_stage_that_back_drives(gear):
 
 
 REFUSED = [
-    (dict(friction={"law": "arctan_velocity", "mu": 0.3}), LOSSY, "friction.law"),
+    # (Every thread law but eq. (3.15) runs with the stages on Moreau-Jean:
+    # tests/test_moreau_smooth_laws.py.)
+    (dict(friction={"law": "arctan_acceleration", "mu": 0.3}), LOSSY,
+     'friction.law = "arctan_acceleration": the train\'s stages run on Moreau-Jean, whose '
+     "velocity-level step has no slip acceleration"),
     (dict(nut={"preload": 20.0}), LOSSY, "nut.preload"),
     # (Penalty end stops run with the stages now; exact ones are refused on
     # the rigid concept: tests/test_simulation_drive_train_stops.py.)
@@ -288,16 +292,21 @@ def test_motor_friction_elsewhere_is_refused_naming_the_key():
     speed["loads"].pop("drive_torque")
     parameters = ls.Scene.from_dict(speed).model().parameters
     parameters.motor_friction_torque = 1e-3
-    with pytest.raises(ValueError, match=r"motor\.friction_torque = 0\.001 N m is invalid.*"
-                                         "loads.drive_speed prescribes the speed"):
-        _core.DriveModel(parameters)
+    # (A prescribed rotor speed runs the stages on Moreau-Jean alone:
+    # tests/test_moreau_smooth_laws.py.)
+    assert _core.drive_integrators(parameters) == ["moreau"]
+    with pytest.raises(ValueError, match=r"here loads\.drive_speed \(a prescribed rotor speed\); "
+                                         r"use integrator = \"moreau\""):
+        ls.simulate(ls.Scene.from_dict({**speed, "motor": {"friction_torque": 1e-3}}), 0.01,
+                    integrator="event_driven")
 
 
 def test_other_integrators_are_refused():
     # (Moreau-Jean runs the stages: tests/test_simulation_drive_moreau_train.py.)
     with pytest.raises(ValueError, match=r"integrator = \"dopri5\" is invalid with "
                                          r"gear\.type = \"lossy\": the train's friction stages "
-                                         r"run with exact Coulomb friction on Moreau-Jean"):
+                                         r"run on Moreau-Jean \(integrator = \"moreau\", every thread law "
+                                         r"but arctan_acceleration\)"):
         ls.simulate(ls.Scene.from_dict(thesis_scene(gear=LOSSY)), 0.01, integrator="dopri5")
 
 

@@ -660,12 +660,15 @@ def simulate(
             penalty flanks, ``backlash.contact`` ``"bistop"`` or
             ``"cubic"``); for the regularized laws an ODE integrator:
             ``"cvode_bdf"`` (default), ``"cvode_adams"``, ``"dopri5"``, ...
-            (a Scene with exact backlash and a regularized law: ``"event_driven"``).
+            (a Scene with exact backlash and a regularized law: ``"event_driven"``),
+            and ``"moreau"`` for ``"arctan_velocity"`` and ``"lugre"`` (their
+            friction implicit in the step; not ``"arctan_acceleration"``).
             Where only ``"moreau"`` fits a Scene, it is the default: the
             train's friction stages (``motor.friction_torque``, ``gear.type``
             ``"lossy"`` or ``"worm"``) anywhere but on the rigid concept
-            without play with plain Coulomb friction (no ``mu_static``):
-            on the flexible concepts and with exact or penalty play.
+            without play with plain Coulomb friction (no ``mu_static``) and a
+            torque or DC motor: on the flexible concepts, with exact or
+            penalty play, another thread law or ``loads.drive_speed``.
         rtol, atol: integration tolerances of the ODE and event-driven
             integrators (default 1e-8 and 1e-10; refused with ``"moreau"``).
             A Scene whose law runs velocity-regularized refuses an atol

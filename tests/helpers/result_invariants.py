@@ -401,7 +401,8 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
                         + sum(np.abs(ch[name]) for name in losses)))
     if moreau:
         bound = (MOREAU_CREATION_REL * flow
-                 + min(_moreau_friction_excess(result, options, ch), MOREAU_BOOKING_REL * flow)
+                 + min(_moreau_friction_excess(result, options, ch, _speed_controlled(scene)),
+                       MOREAU_BOOKING_REL * flow)
                  + round_off)
         i = int(np.argmin(residual))
         report["energy_balance"] = _entry(
@@ -451,7 +452,13 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
     return report
 
 
-def _moreau_friction_excess(result: Any, options: dict, ch: Dict[str, np.ndarray]) -> float:
+def _speed_controlled(scene: dict) -> bool:
+    """The rotor's speed is prescribed (``loads.drive_speed``)."""
+    return scene.get("loads", {}).get("drive_speed") is not None
+
+
+def _moreau_friction_excess(result: Any, options: dict, ch: Dict[str, np.ndarray],
+                            speed_controlled: bool = False) -> float:
     """What Moreau-Jean's friction booking may create (docs/physics/
     result_checks.md): the sum over the slipping steps of max(0, -(1 - theta)
     P_T (gamma_1 - gamma_0)), P_T = h friction_force, first order in dt, and
@@ -477,9 +484,11 @@ def _moreau_friction_excess(result: Any, options: dict, ch: Dict[str, np.ndarray
     # w0) / w+ is the same in omega_drive. A step that ends stuck books
     # nothing, and its Q (which the simulator's bound takes) is no channel:
     # where the rotor stops within a step, the simulator's own bound stands
-    # in, as with t_eval.
+    # in, as with t_eval. A speed-controlled rotor's stages book at w_theta,
+    # where the motor's impulse works (docs/physics/gear.md, "The smooth
+    # thread laws and a prescribed rotor speed"): no excess.
     train = [ch[name] for name in ("motor_friction_loss", "gear_loss") if name in ch]
-    if train:
+    if train and not speed_controlled:
         booked = np.diff(sum(train))
         omega = ch["omega_drive"]
         end = omega[1:]

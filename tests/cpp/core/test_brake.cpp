@@ -98,8 +98,9 @@ class RotorBrake final : public lm::Element {
     constant[rotor_] += step.h * c * step.theta * step.start.v[rotor_];
     slope[rotor_] -= step.h * c * step.theta;
   }
-  void step_end(const lm::ElementStep& step, const double* v_next, lm::ElementMode& mode,
+  void step_end(const lm::ElementStep& step, const double* q_next, const double* v_next, lm::ElementMode& mode,
                 double* own_next, double* energy) const override {
+    (void)q_next;
     (void)energy;
     const double w =
         (1.0 - step.theta) * step.start.v[rotor_] + step.theta * v_next[rotor_];

@@ -7,6 +7,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/ode.hpp"
 #include "leadscrew/model/elements/drive_elements.hpp"
 #include "leadscrew/model/simulation_checks.hpp"
@@ -19,19 +20,29 @@ namespace {
 // exact flanks, or penalty flanks or no play (the same list); a preloaded nut
 // runs on the event-driven scheme only. End stops run on every scheme the thread
 // pair admits (Moreau-Jean: moreau.hpp).
-const std::vector<std::string>& integrators_for(const std::string& friction, bool exact_play,
+const std::vector<std::string>& integrators_for(const std::string& friction,
+                                                friction::Resolution resolution, bool exact_play,
                                                 bool preloaded) {
   // From the law's type (friction/law.hpp): a set-valued law runs in the
   // event-driven scheme, in Moreau-Jean's time stepping (without play, on
   // exact flanks and on penalty flanks: moreau.hpp), and where it has a
   // regularization in the ODE methods; a smooth law in the ODE methods and
-  // the event-driven scheme. Exact play needs the event-driven scheme's
-  // flank events with every law but for Moreau-Jean's.
+  // the event-driven scheme, and a velocity law and LuGre's bristles on
+  // Moreau-Jean too, their friction implicit in the step
+  // (moreau_smooth_friction.cpp); eq. (3.15) not there (its friction
+  // follows the slip acceleration, which a velocity-level step has not:
+  // check_simulation_options says so). Exact play needs the event-driven
+  // scheme's flank events or Moreau-Jean's.
   static const std::vector<std::string> event_driven_only = {"event_driven"};
   static const std::vector<std::string> with_moreau = {"event_driven", "moreau"};
   static const std::vector<std::string> smooth = [] {
     std::vector<std::string> names = integrate::integrator_names();
     names.push_back("event_driven");
+    return names;
+  }();
+  static const std::vector<std::string> smooth_with_moreau = [] {
+    std::vector<std::string> names = smooth;
+    names.push_back("moreau");
     return names;
   }();
   static const std::vector<std::string> set_valued_all = [] {
@@ -46,8 +57,9 @@ const std::vector<std::string>& integrators_for(const std::string& friction, boo
     if (type.ode) return set_valued_all;
     return with_moreau;
   }
-  if (exact_play) return event_driven_only;
-  return smooth;
+  const bool moreau = resolution != friction::Resolution::acceleration;
+  if (exact_play) return moreau ? with_moreau : event_driven_only;
+  return moreau ? smooth_with_moreau : smooth;
 }
 
 }  // namespace
@@ -71,7 +83,9 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   if (p.nut_preload == 0.0 &&
       (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
     return drive::model_integrators(DriveModel(p));
-  return integrators_for(p.friction, p.backlash == BacklashContact::exact, p.nut_preload > 0.0);
+  // (The law's type, from its defaults: every law's parameters have one.)
+  return integrators_for(p.friction, friction::make_law(p.friction, {})->resolution(),
+                         p.backlash == BacklashContact::exact, p.nut_preload > 0.0);
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
@@ -79,7 +93,8 @@ const std::vector<std::string>& drive::model_integrators(const DriveModel& model
   const DriveParameters& p = model.parameters();
   if (model.train_friction() && !model.preloaded_nut())
     return train_integrators(model.train_friction()->event_driven_obstacle);
-  return integrators_for(p.friction, thread.exact_play(), model.preloaded_nut() != nullptr);
+  return integrators_for(p.friction, model.law().resolution(), thread.exact_play(),
+                         model.preloaded_nut() != nullptr);
 }
 
 namespace {
@@ -129,17 +144,27 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
         "integrator = \"" + integrator + "\" is invalid with " + what +
         (integrator == "event_driven"
              ? ": the event-driven scheme runs the train's friction stages on the rigid concept "
-               "without play with plain Coulomb friction on the thread only (every contact "
+               "without play with plain Coulomb friction on the thread and a torque or DC "
+               "motor only (every contact "
                "slipping with one speed), here " + train->event_driven_obstacle +
                    "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
-             : ": the train's friction stages run with exact Coulomb friction on Moreau-Jean "
-               "(integrator = \"moreau\")" +
+             : ": the train's friction stages run on Moreau-Jean (integrator = \"moreau\", "
+               "every thread law but arctan_acceleration)" +
                    (train->event_driven_obstacle.empty()
                         ? std::string(" and, on the rigid concept without play, the "
                                       "event-driven scheme (integrator = \"event_driven\")")
                         : "; this scene runs on Moreau-Jean only (here " +
                               train->event_driven_obstacle + ")")));
   }
+  if (integrator == "moreau" &&
+      model.law().resolution() == friction::Resolution::acceleration)
+    throw InvalidArgument(
+        "integrator = \"moreau\" is invalid with friction.law = \"" + p.friction +
+        "\": eq. (3.15) takes the friction from the slip acceleration, which Moreau-Jean's "
+        "velocity-level step does not have (its velocities jump at the flanks' impacts and its "
+        "acceleration is a difference quotient of the step, so the friction would follow dt); "
+        "use friction.law = \"arctan_velocity\" or \"lugre\" on Moreau-Jean, or this law on "
+        "the event-driven scheme or an ODE method");
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,
                    (p.backlash != BacklashContact::none

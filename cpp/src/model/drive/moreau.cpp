@@ -16,7 +16,8 @@
 namespace leadscrew::model::drive {
 
 DriveMoreau::DriveMoreau(const DriveModel& model)
-    : model_(model), p_(model.parameters()), dynamics_(model), layout_(model, false),
+    : model_(model), p_(model.parameters()), dynamics_(model),
+      layout_(model, model.law().resolution() == friction::Resolution::bristle),
       names_(drive_channel_names(layout_)), element_slots_(layout_.element_slots()),
       stop_channel_(layout_.find_channel("stop_force")),
       motor_friction_state_(layout_.find_state("motor_friction_loss")),
@@ -33,6 +34,9 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
   modes_at_start_.assign(element_slots_.size(), ElementMode{});
   step_modes_ = modes_at_start_;
   iteration_.directions(model.play_gradient(), model.tangent_direction());
+  bristle_state_ = layout_.find_state("bristle_share");
+  bristle_channel_ = layout_.find_channel("bristle_deflection");
+  bristle_range_ = model.law().bristle_range();
 }
 
 void DriveMoreau::initialize(double t, const double* y) {
@@ -50,6 +54,7 @@ void DriveMoreau::step(double t, double h, double theta, const double* y, double
   const double excess = friction_excess_, play_rate = play_rate_;
   for (std::size_t k = 0; k < modes_at_start_.size(); ++k)
     modes_at_start_[k] = dynamics_.element_mode(k);
+  if (bristle_state_ >= 0) bristle_z0_ = y[bristle_state_] * bristle_range_;
   if (!take_step(t, h, theta, y, y_next, p_.restitution)) return;
   // A step that closes a flank with Newton's restitution e > 0: with
   // Coulomb friction it can create energy (Kane and Levinson's paradox, as
@@ -325,6 +330,7 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     const double slip0 = model_.tangent_direction().dot(v0);
     friction_excess_ += std::max(0.0, -(1.0 - theta) * impulses.friction * (slip - slip0));
   }
+  if (bristle_state_ >= 0) book_bristles(h, y, y_next, slip, contact ? impulses.normal : 0.0);
   play_rate_ = std::max({play_rate_, std::abs(play_rate0),
                          std::abs(model_.play_gradient().dot(v_))});
   double damping_power = 0.0;
@@ -353,15 +359,16 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     // booking's difference from the scheme's work -Q w_theta,
     // (1 - theta) Q (w+ - w0), joins the friction term the checks allow
     // (ResultCheckSpec::step_friction_excess).
-    const double w1 = v_[model_.rotor()];
+    // (A speed-controlled rotor: at w_theta, where the motor's impulse works.)
+    const double w1 = p_.speed_controlled ? v_theta[model_.rotor()] : v_[model_.rotor()];
     const double friction = rotor_mode.slip != 0 ? rotor_mode.slip * balance.friction : 0.0;
     const double stage = rotor_mode.slip != 0 ? impulses.train - friction : 0.0;
     if (const int k = motor_friction_state_; k >= 0) y_next[k] = y[k] + friction * w1;
     // (A flow within its round-off, a stage that transmits nothing, books
     // no loss of the other sign.)
     if (const int k = gear_state_; k >= 0) y_next[k] = y[k] + std::max(0.0, stage * w1);
-    friction_excess_ +=
-        std::max(0.0, (1.0 - theta) * impulses.train * (w1 - v0[model_.rotor()]));
+    const double excess = (1.0 - theta) * impulses.train * (w1 - v0[model_.rotor()]);
+    friction_excess_ += p_.speed_controlled ? 0.0 : std::max(0.0, excess);  // (at w_theta: none)
   }
   last_stop_force_ = 0.0;
   for (std::size_t k = 0; k < exact.size(); ++k)
@@ -388,6 +395,9 @@ DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
                                                const moreau_contacts::RotorBalance& balance,
                                                bool contact_at_start, bool& contact, bool& stick,
                                                moreau_contacts::RotorMode& mode) {
+  if (p_.speed_controlled)  // (the motion is prescribed: the frictions follow it)
+    return solve_speed_train(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
+                             contact_at_start, contact, stick, mode);
   const elements::TrainFriction& train = *model_.train_friction();
   const int r = model_.rotor();
   std::string failure;
@@ -485,6 +495,9 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
   // a stuck step (gamma+ = 0) has no viscous impulse.
   const friction::Law& law = dynamics_.law();
+  if (law.resolution() != friction::Resolution::set_valued)  // (no stick: a smooth law)
+    return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,
+                               alpha, beta, contact);
   const double viscous_step = law.viscous() * h;
   const double viscous_scale = 1.0 / (1.0 + viscous_step * d);
   const double viscous_c = c;
@@ -632,6 +645,7 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
       stored += elements[k]->energy_terms(dynamics_.element_state(k));
     for (const int k : {motor_friction_state_, gear_state_})
       if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
+    if (bristle_state_ >= 0) stored += state[bristle_state_ + 1];  // (LuGre's bristles)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -659,6 +673,10 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (stop_channel_ >= 0) state.values[stop_channel_] = last_stop_force_;
   if (motor_friction_state_ >= 0) state.values[motor_friction_channel_] = y[motor_friction_state_];
   if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
+  if (bristle_state_ >= 0) {  // LuGre's deflection and the energy its bristles store
+    state.values[bristle_channel_] = y[bristle_state_] * bristle_range_;
+    state.elastic += y[bristle_state_ + 1];
+  }
   double applied = dynamics_.applied_torque();
   // The elements' channels, of the last step (a DC motor's armature), and
   // their torque on the rotor (Element::step_output, step_drive_torque).

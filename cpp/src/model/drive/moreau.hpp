@@ -118,6 +118,28 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
                         double normal_target, double rotor_target, int sigma_fixed,
                         bool& contact, bool& stick);
+  // A smooth law's step (moreau_smooth_friction.cpp): the friction impulse
+  // P_T = -kappa(gamma+) |P_N| - h viscous gamma+ solved implicitly at the
+  // step's end slip gamma+ = c + d P_T, P_N = beta + alpha P_T; contact
+  // false where the flank's normal impulse pulls.
+  Impulses solve_smooth_thread(double t, double h, double theta, const CoordinateVector& v0,
+                               double normal_target, double rotor_target, int sigma_fixed,
+                               double c, double d, double alpha, double beta, bool& contact);
+  // The law's coefficient over the step at the end slip (flank factor
+  // applied): a velocity law's kappa(gamma+), LuGre's sigma0 z+ + sigma1 z'
+  // with z+ its implicit Euler step from the step's start.
+  double smooth_coefficient(double slip, double h) const;
+  // LuGre's bristles over the step: z+ (implicit Euler) and the energy
+  // they store, taken from the friction loss (moreau_smooth_friction.cpp).
+  void book_bristles(double h, const double* y, double* y_next, double slip,
+                     double normal_impulse);
+  // A speed-controlled rotor with the train's friction: the step without
+  // the rotor's friction row, then the motor's friction and the stage's
+  // loss from the impulse the stage passes on (moreau_speed_train.cpp).
+  Impulses solve_speed_train(double t, double h, double theta, const CoordinateVector& v0,
+                             double normal_target, double rotor_target, int sigma_fixed,
+                             bool contact_at_start, bool& contact, bool& stick,
+                             moreau_contacts::RotorMode& mode);
   // The step's impulses with the rotor's friction contact (the thread's
   // LCP for each mode of the rotor's contact until one is consistent).
   Impulses solve_train(double t, double h, double theta, const CoordinateVector& v0,
@@ -147,6 +169,11 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   std::vector<std::pair<int, int>> element_slots_;
   std::vector<int> element_channels_;
   int stop_channel_, motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
+  // LuGre's bristles (-1: another law): z / bristle_range in y, then the
+  // energy they store; the deflection's channel.
+  int bristle_state_ = -1, bristle_channel_ = -1;
+  double bristle_range_ = 0.0;
+  double bristle_z0_ = 0.0;  // z at the step's start [m] (step())
   CoordinateVector q_, v_, free_;
   IterationMatrix iteration_;  // W, factorized while it holds (moreau_iteration.hpp)
   ContactForces last_;

@@ -6,6 +6,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/model/drive_geometry.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/elements/drive_elements.hpp"
@@ -121,21 +122,17 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   const std::string what = stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
                                  : "motor.friction_torque = " +
                                        format_value(p.motor_friction_torque) + " N m";
-  // What nothing runs. (The rigid concept without play and plain Coulomb
-  // friction on the thread runs on both schemes; play, the flexible
-  // concepts and a static coefficient on the thread on Moreau-Jean only:
-  // train_event_driven_obstacle, check_simulation_options.)
-  const std::string needs = " is invalid: needs a torque (loads.drive_torque) or a DC motor "
-                            "and exact Coulomb friction on the thread (the event-driven scheme "
-                            "on the rigid concept without play, Moreau-Jean on every concept "
-                            "and play)";
-  if (p.speed_controlled)
-    throw InvalidArgument(what + needs + "; loads.drive_speed prescribes the speed (a motor's "
-                          "friction is absorbed by it)");
-  // (Penalty flanks, bistop and cubic, run on Moreau-Jean: a play, the
-  // event-driven scheme's obstacle.)
-  if (e.thread->law().resolution() != friction::Resolution::set_valued)
-    throw InvalidArgument(what + needs + "; friction.law = \"" + p.friction + "\"");
+  // What nothing runs. (The rigid concept without play, plain Coulomb
+  // friction on the thread and a torque or DC motor run on both schemes;
+  // the rest on Moreau-Jean only, every thread law but eq. (3.15), a
+  // prescribed rotor speed too: train_event_driven_obstacle,
+  // check_simulation_options; docs/physics/gear.md.)
+  if (e.thread->law().resolution() == friction::Resolution::acceleration)
+    throw InvalidArgument(
+        what + " is invalid with friction.law = \"" + p.friction +
+        "\": the train's stages run on Moreau-Jean, whose velocity-level step has no slip "
+        "acceleration for eq. (3.15)'s friction (it would follow dt); use friction.law = "
+        "\"arctan_velocity\", \"lugre\", \"stribeck\" or \"coulomb\"");
   const double alpha = p.thread.lead_angle();
   if (!(std::cos(alpha) - e.thread->effective_mu() * std::sin(alpha) > 0.0))
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
@@ -146,7 +143,9 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   // and Moreau-Jean's); exact ones where the load is a body of its own
   // (elements/end_stops.cpp), on Moreau-Jean.
   if (p.initial_state == InitialState::equilibrium)
-    throw InvalidArgument(what + needs + "; initial.state = \"equilibrium\" (use \"relaxed\")");
+    throw InvalidArgument(what + " is invalid with initial.state = \"equilibrium\": the "
+                          "initial equilibrium is not solved with the train's friction stages "
+                          "(use \"relaxed\")");
   f.event_driven_obstacle = train_event_driven_obstacle(p, e.thread->law());
   e.train_friction = f;
 }
@@ -545,6 +544,7 @@ DriveElements build_drive_elements(DriveParameters& p) {
 // whose contacts all slip with one speed, with plain Coulomb friction on
 // the thread.
 std::string train_event_driven_obstacle(const DriveParameters& p, const friction::Law& law) {
+  if (p.speed_controlled) return "loads.drive_speed (a prescribed rotor speed)";
   if (p.concept != Concept::rigid) return "concept = \"" + concept_name(p.concept) + "\"";
   if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
     return "backlash.axial = " + format_value(p.clearance) + " (play)";

@@ -1,0 +1,154 @@
+// DriveMoreau (moreau.hpp): the smooth thread laws on Moreau-Jean, the
+// velocity laws (arctan_velocity) and LuGre's bristles
+// (docs/physics/drive_models.md, "Moreau-Jean with the smooth laws").
+//
+// The friction impulse of the step is the law's at the step's end slip,
+// implicit (backward Euler in the friction):
+//   P_T = -kappa(gamma+) |P_N| - h viscous gamma+,
+//   gamma+ = c + d P_T,  P_N = beta + alpha P_T,
+// c, d, alpha, beta the step's linear response (DriveMoreau::solve_thread).
+// Implicit, so that a stiff law (k_V of 1e4 s/m and more: a slope
+// mu' k_V |N| far beyond what an explicit step resolves) needs no short
+// step: the law's slope is resolved inside the step, as the viscous term's
+// and the springs' are through the iteration matrix. For LuGre the
+// bristles take their implicit Euler step with the slip,
+//   z+ = (z0 + h gamma+) / (1 + h sigma0 |gamma+| / mu(|gamma+|)),
+// which stays in |z| <= max(mu, mu_static) / sigma0 from any start inside,
+// and kappa = sigma0 z+ + sigma1 (z+ - z0) / h is the law's own
+// coefficient at (gamma+, z+) (its z' the step's), so every row of a run
+// satisfies the law's relation.
+//
+// The scalar equation F(P) = P + kappa(c + d P) |beta + alpha P|
+// + h viscous (c + d P) = 0 rises with P wherever kappa rises with the slip
+// (d >= 0) and kappa_max |alpha| < 1 (the step's coupling, which
+// check_step and solve_thread hold below 1 outside the Painleve regime):
+// exactly one root, bracketed from P = 0 outward and found by the
+// Illinois variant of regula falsi to round-off.
+#include <cmath>
+#include <limits>
+
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+#include "leadscrew/friction/law.hpp"
+#include "moreau.hpp"
+
+namespace leadscrew::model::drive {
+
+namespace {
+
+// LuGre's bristle deflection after an implicit Euler step of h at slip g.
+double bristle_step(const friction::Law& law, double z0, double g, double h) {
+  const double speed = std::abs(g);
+  return (z0 + h * g) / (1.0 + h * law.bristle_stiffness() * speed / law.slip_mu(speed));
+}
+
+// The root of f between low and high (f(low) < 0 < f(high)): the Illinois
+// variant of regula falsi, to the interval's round-off.
+template <class F>
+double bracketed_root(const F& f, double low, double f_low, double high, double f_high) {
+  int side = 0;
+  for (int iteration = 0; iteration < 400; ++iteration) {
+    double x = (low * f_high - high * f_low) / (f_high - f_low);
+    if (!(x > low && x < high)) x = 0.5 * (low + high);
+    const double fx = f(x);
+    if (fx == 0.0) return x;
+    if (fx < 0.0) {
+      low = x, f_low = fx;
+      if (side == -1) f_high *= 0.5;
+      side = -1;
+    } else {
+      high = x, f_high = fx;
+      if (side == 1) f_low *= 0.5;
+      side = 1;
+    }
+    if (high - low <= 4.0 * std::numeric_limits<double>::epsilon() *
+                          std::max(std::abs(low), std::abs(high)))
+      break;
+  }
+  return std::abs(f_low) < std::abs(f_high) ? low : high;
+}
+
+}  // namespace
+
+double DriveMoreau::smooth_coefficient(double slip, double h) const {
+  const friction::Law& law = model_.law();
+  const double factor = model_.flank_factor();
+  if (law.resolution() == friction::Resolution::bristle)
+    return law.bristle_coefficient(slip, bristle_step(law, bristle_z0_, slip, h)) * factor;
+  return law.velocity_coefficient(slip) * factor;
+}
+
+DriveMoreau::Impulses DriveMoreau::solve_smooth_thread(double t, double h, double theta,
+                                                       const CoordinateVector& v0,
+                                                       double normal_target, double rotor_target,
+                                                       int sigma_fixed, double c, double d,
+                                                       double alpha, double beta,
+                                                       bool& contact) {
+  const friction::Law& law = model_.law();
+  const bool row = !model_.thread_pair().penalty();
+  if (model_.effective_max_mu() * std::abs(alpha) >= 1.0 && !dynamics_.painleve_possible())
+    throw SimulationError(t,
+                          "dt = " + format_value(h) + " s is too long for the stiffness of "
+                          "this drive here: " + step_too_long(theta, alpha),
+                          "use dt < " + format_value(resolving_step(h, theta)) +
+                              " s");
+  const double viscous_step = law.viscous() * h;
+  // The normal impulse's size: a flank (sigma_fixed != 0) carries only a
+  // push, the bilateral thread (no play) either sign.
+  auto normal_size = [&](double p) {
+    const double n = beta + alpha * p;
+    return sigma_fixed != 0 ? std::max(sigma_fixed * n, 0.0) : std::abs(n);
+  };
+  auto f = [&](double p) {
+    const double slip = c + d * p;
+    return p + smooth_coefficient(slip, h) * normal_size(p) + viscous_step * slip;
+  };
+  // The bracket, from P = 0 outward (F rises with slope >= 1 - kappa_max
+  // |alpha| > 0: a few doublings of F(0)'s size).
+  const double f0 = f(0.0);
+  double low = 0.0, high = 0.0, f_low = f0, f_high = f0;
+  double step = std::max(std::abs(f0), std::numeric_limits<double>::min());
+  for (int k = 0; k < 2100 && !(f_low < 0.0 && f_high > 0.0) && f0 != 0.0; ++k, step *= 2.0) {
+    const double x = f0 > 0.0 ? -step : step;
+    const double fx = f(x);
+    if (!std::isfinite(fx)) break;
+    (f0 > 0.0 ? low : high) = x;
+    (f0 > 0.0 ? f_low : f_high) = fx;
+  }
+  double friction = 0.0;
+  if (f0 != 0.0) {
+    if (!(f_low < 0.0 && f_high > 0.0))
+      throw JammingError(t, "no friction impulse of the Moreau-Jean step satisfies friction.law = "
+                            "\"" + p_.friction + "\" at the step's end slip (dt = " +
+                                format_value(h) + " s); " + dynamics_.jamming_report(),
+                         "shorten dt, or reduce the friction");
+    friction = bracketed_root(f, low, f_low, high, f_high);
+  }
+  // A flank whose normal impulse would pull separates (no friction).
+  if (sigma_fixed != 0 && !(sigma_fixed * (beta + alpha * friction) > 0.0)) {
+    contact = false;
+    return Impulses{};
+  }
+  Impulses impulses = solve(row, normal_target, rotor_target, friction);
+  if (!row) impulses.normal = flank_impulse(h, theta, v0, impulses.velocity);
+  impulses.friction = friction;
+  return impulses;
+}
+
+void DriveMoreau::book_bristles(double h, const double* y, double* y_next, double slip,
+                                double normal_impulse) {
+  const friction::Law& law = model_.law();
+  const double z1 = bristle_step(law, bristle_z0_, slip, h);
+  y_next[bristle_state_] = z1 / bristle_range_;
+  // The energy the bristles store over the step, |N| sigma0 (z+^2 - z0^2)
+  // / 2 at the step's normal force |P_N| / h (the event-driven scheme's
+  // integral of |N| sigma0 z z'); the friction's work beyond it is lost:
+  // implicit Euler loses |N| sigma0 (z+ - z0)^2 / 2 >= 0 more than the
+  // law's flow, the scheme's dissipation in the bristles.
+  const double stored = std::abs(normal_impulse) / h * model_.flank_factor() *
+                        0.5 * law.bristle_stiffness() * (z1 * z1 - bristle_z0_ * bristle_z0_);
+  y_next[bristle_state_ + 1] = y[bristle_state_ + 1] + stored;
+  y_next[layout_.energy_offset() + kFrictionLoss] -= stored;
+}
+
+}  // namespace leadscrew::model::drive

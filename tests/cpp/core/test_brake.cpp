@@ -98,8 +98,8 @@ class RotorBrake final : public lm::Element {
     constant[rotor_] += step.h * c * step.theta * step.start.v[rotor_];
     slope[rotor_] -= step.h * c * step.theta;
   }
-  void step_end(const lm::ElementStep& step, const double* q_next, const double* v_next, lm::ElementMode& mode,
-                double* own_next, double* energy) const override {
+  void step_end(const lm::ElementStep& step, const double* q_next, const double* v_next,
+                lm::ElementMode& mode, double* own_next, double* energy) const override {
     (void)q_next;
     (void)energy;
     const double w =
@@ -184,7 +184,8 @@ lm::DriveParameters brake_drive(double fade_temperature) {
   lm::ElementSection brake;
   brake.present = true;
   brake.numbers = {{"damping", kDamping}, {"heat_capacity", kCapacity}};
-  if (std::isfinite(fade_temperature)) brake.numbers.push_back({"fade_temperature", fade_temperature});
+  if (std::isfinite(fade_temperature))
+    brake.numbers.push_back({"fade_temperature", fade_temperature});
   p.sections["rotor_brake"] = brake;
   return p;
 }

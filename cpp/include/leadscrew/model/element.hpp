@@ -163,8 +163,8 @@ class Element {
   // new values (own_next,
   // from step.start.own), its terms of the account's integrals (energy,
   // added to) and what its output row reports (mode.last).
-  virtual void step_end(const ElementStep& step, const double* q_next, const double* v_next, ElementMode& mode,
-                        double* own_next, double* energy) const {
+  virtual void step_end(const ElementStep& step, const double* q_next, const double* v_next,
+                        ElementMode& mode, double* own_next, double* energy) const {
     (void)step, (void)q_next, (void)v_next, (void)mode, (void)own_next, (void)energy;
   }
   // After step_end in mode `taken`: true where the step left that mode's

@@ -12,9 +12,8 @@
 // element's in one block (first_root), in the list's order. Each kind is a
 // class derived from DriveHybrid::Element in a file of its own, with its
 // declaration (declaration.hpp: its states in y, its channels):
-//   hybrid_motor.cpp      a DC motor: its current's and copper loss's rates,
-//                         the electrical work, its channels, the current
-//                         limit's root and hold
+//   model_element.cpp     a model's element behind model/element.hpp (the
+//                         DC motor, the base excitation), through one adapter
 //   hybrid_end_stops.cpp  the end stops, penalty and exact: their roots,
 //                         impacts, closed contacts and force
 //   hybrid_preloaded_nut.cpp  a lift-off preloaded nut's channels

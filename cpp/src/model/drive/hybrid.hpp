@@ -20,8 +20,8 @@
 //   driver_element.hpp     DriveHybrid::Element: an element with events of
 //                          its own (roots, events, start, rates, output),
 //                          one file each:
-//   hybrid_motor.cpp       a DC motor's current: its rates, channels, the
-//                          current limit's root and hold
+//   model_element.cpp      a model's element behind model/element.hpp (the
+//                          DC motor, the base excitation): one adapter
 //   hybrid_end_stops.cpp   the end stops, penalty and exact: their roots,
 //                          impacts, closed contacts and force
 //   hybrid_preloaded_nut.cpp  a lift-off preloaded nut's channels; the guard of

@@ -184,8 +184,8 @@ class DcMotorElement final : public Element {
   // work and the copper loss, which with the magnetic energy's change close
   // the circuit's account: h U_d i_mean = copper + d(L i^2 / 2) + h k_e
   // omega_theta i_mean.
-  void step_end(const ElementStep& step, const double* q_next, const double* v_next, ElementMode& mode,
-                double* own_next, double* energy) const override {
+  void step_end(const ElementStep& step, const double* q_next, const double* v_next,
+                ElementMode& mode, double* own_next, double* energy) const override {
     (void)q_next;
     const DcMotor::ArmatureStep a = armature(step, mode);
     const double omega_next = v_next[dc_.rotor];

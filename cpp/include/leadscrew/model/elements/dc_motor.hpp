@@ -17,7 +17,7 @@
 //             i = (U_d - k_e omega) / R at L = 0. It releases the hold where
 //             U(t) no longer drives |i| up, a saturation where |i| is back
 //             at i_max. (L > 0: events start and end the modes, Limiter,
-//             drive/hybrid_motor.cpp.)
+//             elements/dc_motor.cpp.)
 // L = 0:      the quasi-static limit, exact: i = (U_d - k_e omega) / R with
 //             U_d as above (no state).
 // Energy:     electrical work in  int U_d i dt, copper loss int R i^2 dt,

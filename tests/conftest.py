@@ -31,15 +31,16 @@ def native_tests_build(tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def core_tests_build(tmp_path_factory):
-    """The built CMake project tests/cpp/core (native tests that run whole
-    drives through the core's static library: an element defined outside
-    the core), in a temporary directory or in $LEADSCREW_NATIVE_BUILD_DIR/core,
-    reused across sessions."""
-    from helpers.cmake_project import built, configured
+    """The configured CMake project tests/cpp/core (native tests that link
+    the whole core: the integrators' checks, an element defined outside the
+    core), in a temporary directory or in $LEADSCREW_NATIVE_BUILD_DIR/core,
+    reused across sessions; each test builds its own targets in it
+    (helpers.cmake_project.built), so the core compiles once."""
+    from helpers.cmake_project import configured
 
     shared = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR")
     build = pathlib.Path(shared) / "core" if shared else tmp_path_factory.mktemp("core")
-    return built(configured(NATIVE_TESTS / "core", build))
+    return configured(NATIVE_TESTS / "core", build)
 
 
 @pytest.fixture

@@ -11,11 +11,13 @@ import subprocess
 
 import pytest
 
+from helpers.cmake_project import built
 from helpers.native_program import assert_program_passes, pass_count
 
 
 @pytest.fixture(scope="module")
 def brake_report(core_tests_build):
+    built(core_tests_build, "test_brake")
     return subprocess.run([str(core_tests_build / "test_brake")], capture_output=True, text=True,
                           timeout=300)
 

@@ -5,34 +5,30 @@ interposes malloc & co. for the whole process, SUNDIALS included); and a
 model's own Runge-Kutta stage loop against the engine's, bit for bit
 (benchmarks/integrate/rk_kernel_check.cpp).
 
-Builds the CMake project benchmarks/integrate (targets integrate_alloc_check
-and rk_kernel_check) once per session into a temporary directory, or into
-$LEADSCREW_NATIVE_BUILD_DIR/integrate, reused across sessions."""
+Builds the targets integrate_alloc_check and rk_kernel_check of
+benchmarks/integrate in the native core tests' build (tests/cpp/core, which
+adds benchmarks/integrate: the fixture core_tests_build of conftest.py), so
+the core compiles once for these and the element tests."""
 
-import os
-import pathlib
 import re
 import subprocess
 
 import pytest
 
 import leadscrew.integrate as li
-from helpers.cmake_project import built, configured
-
-SOURCE = pathlib.Path(__file__).resolve().parent.parent / "benchmarks" / "integrate"
+from helpers.cmake_project import built
 
 
 @pytest.fixture(scope="session")
-def native_build(tmp_path_factory):
-    """The configured build directory of benchmarks/integrate."""
-    shared = os.environ.get("LEADSCREW_NATIVE_BUILD_DIR")
-    return configured(SOURCE, pathlib.Path(shared) / "integrate" if shared
-                      else tmp_path_factory.mktemp("integrate"))
+def native_build(core_tests_build):
+    """The configured build directory of the native core tests."""
+    return core_tests_build
 
 
 def build_and_run(build, target):
     built(build, target)
-    return subprocess.run([str(build / target)], capture_output=True, text=True, timeout=120)
+    return subprocess.run([str(build / "integrate" / target)], capture_output=True, text=True,
+                          timeout=120)
 
 
 @pytest.fixture(scope="session")

@@ -277,6 +277,20 @@ def test_run_a_scene_file_with_options(tmp_path, capsys):
     assert (out_dir / "scene.png").is_file()
 
 
+def test_run_dt_without_an_integrator_runs_moreau(tmp_path, capsys):
+    """--dt names its scheme: the default scene (event-driven by default)
+    runs on Moreau-Jean with it, as leadscrew.simulate does."""
+    path = scene_file(tmp_path)
+    code, out, err = run_main(capsys, "run", path, "-o", tmp_path, "--t-end", "0.2",
+                              "--points", "11", "--dt", "1e-4")
+    assert code == 0, err
+    assert "coulomb/moreau" in out
+    frame = read_series(tmp_path / "scene.csv")
+    scene, t_eval = ls.Scene.from_toml(path), np.linspace(0, 0.2, 11)
+    expected = ls.simulate(scene, 0.2, integrator="moreau", dt=1e-4, t_eval=t_eval)
+    np.testing.assert_allclose(frame["u_load"], expected["u_load"], rtol=1e-15, atol=0)
+
+
 @pytest.mark.parametrize(
     "argv, fragments",
     [
@@ -366,9 +380,11 @@ def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
 @pytest.mark.parametrize(
     "argv, fragments",
     [
-        (["default", "--dt", "1e-4"],
-         ["--dt 0.0001 is invalid with the scene's default integrator event_driven", "moreau"]),
-        (["default", "--theta", "0.5"], ["--theta 0.5 is invalid", "moreau only"]),
+        (["position_holding", "--theta", "0.5"], ["--theta 0.5 is invalid", "moreau only"]),
+        # (no integrator takes both: refused with the default's reason)
+        (["default", "--dt", "1e-3", "--rtol", "1e-6"],
+         ["--dt 0.001 is invalid with the scene's default integrator event_driven",
+          "moreau only"]),
         (["default", "--integrator", "event_driven", "--dt", "1e-3"],
          ["--dt 0.001 is invalid with --integrator event_driven"]),
         (["position_holding", "--dt", "1e-3"], ["--dt 0.001", "default integrator cvode_bdf"]),

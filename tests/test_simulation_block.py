@@ -264,8 +264,11 @@ def test_a_mistyped_option_is_refused_naming_it_and_both_lists():
 
 
 @pytest.mark.parametrize("options, message", [
-    ({"dt": 1e-3}, r"^dt = 0.001 is invalid with integrator 'event_driven' \(the default "
-                   r"here\): dt is taken by moreau only"),
+    ({"friction": "arctan_velocity", "dt": 1e-3},
+     r"^dt = 0.001 is invalid with integrator 'cvode_bdf' \(the default here\): dt is taken by "
+     r"moreau only"),
+    ({"integrator": "event_driven", "dt": 1e-3},
+     r"^dt = 0.001 is invalid with integrator 'event_driven': dt is taken by moreau only"),
     ({"friction": "arctan_velocity", "theta": 0.5},
      r"^theta = 0.5 is invalid with integrator 'cvode_bdf' \(the default here\)"),
     ({"integrator": "moreau", "rtol": 1e-6}, r"^rtol = 1e-06 is invalid with integrator "
@@ -280,6 +283,15 @@ def test_options_the_integrator_would_ignore_are_refused(options, message):
     left_out = {key: (None if key not in ("friction", "integrator") else value)
                 for key, value in options.items()}
     ls.simulate(block(6.0), 1.0, t_eval=[1.0], **left_out)
+
+
+def test_dt_left_to_the_default_integrator_runs_moreau_jean():
+    """Coulomb's block runs event-driven by default; dt (Moreau-Jean's step)
+    given without an integrator runs Moreau-Jean with it."""
+    result = ls.simulate(block(6.0), 2.0, dt=1e-3, t_eval=[1.0, 2.0])
+    assert result.integrator == "moreau"
+    explicit = ls.simulate(block(6.0), 2.0, integrator="moreau", dt=1e-3, t_eval=[1.0, 2.0])
+    np.testing.assert_array_equal(result["v"], explicit["v"])
 
 
 def test_simulate_passes_the_core_its_arguments_in_the_bindings_order():

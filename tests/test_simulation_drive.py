@@ -639,10 +639,14 @@ BISTOP = {"axial": 1e-4, "contact": "bistop"}
 # (scene changes, options, message): the options the integrator that runs (or
 # the scene) would ignore.
 IGNORED_OPTIONS = [
-    ({}, {"dt": 1e-3}, r"^dt = 0.001 is invalid with integrator 'event_driven' \(the default "
-                       r"here\): dt is taken by moreau only"),
-    ({}, {"theta": 0.5}, r"^theta = 0.5 is invalid with integrator 'event_driven' \(the "
-                         r"default here\): theta is taken by moreau only"),
+    # (left to the default, dt runs Moreau-Jean where it fits: not here)
+    (dict(friction={"law": "arctan_velocity", "mu": 0.3}), {"dt": 1e-3},
+     r"^dt = 0.001 is invalid with integrator 'cvode_bdf' \(the default here\): dt is taken "
+     r"by moreau only"),
+    # (Moreau-Jean takes dt, but not bounce_threshold: no integrator takes both)
+    (dict(backlash=EXACT), {"dt": 1e-3, "bounce_threshold": 1e-5},
+     r"^dt = 0.001 is invalid with integrator 'event_driven' \(the default here\): dt is "
+     r"taken by moreau only"),
     ({}, {"integrator": "event_driven", "dt": 1e-3},
      r"^dt = 0.001 is invalid with integrator 'event_driven': dt is taken by moreau only"),
     (dict(friction={"law": "arctan_velocity", "mu": 0.3}), {"integrator": "cvode_bdf",
@@ -678,6 +682,44 @@ def test_options_the_run_would_ignore_are_refused(changes, options, message):
         ls.simulate(scene, 0.01, **options)
     with pytest.raises(ValueError, match=message):
         check_simulate_options(scene, options, 0.01)
+
+
+@pytest.mark.parametrize("options", [{"dt": 2e-4}, {"theta": 1.0}, {"dt": 2e-4, "theta": 1.0}])
+def test_an_option_left_to_the_default_integrator_names_its_scheme(options):
+    """dt and theta are Moreau-Jean's: given without an integrator on a scene
+    whose default is event-driven, the run is Moreau-Jean's with them (the
+    same numbers as integrator = "moreau"), and Result.integrator says so;
+    a sweep's check and its cases' arguments take the same rule."""
+    from leadscrew.studies._batch import _core_arguments, check_simulate_options
+
+    scene = ls.Scene.from_dict(thesis_scene())
+    times = np.linspace(0.0, 0.01, 11)
+    result = ls.simulate(scene, 0.01, t_eval=times, **options)
+    assert result.integrator == "moreau"
+    explicit = ls.simulate(scene, 0.01, integrator="moreau", t_eval=times, **options)
+    np.testing.assert_array_equal(result["u_load"], explicit["u_load"])
+    if "theta" in options:  # theta reached the scheme: the default 0.5 gives other numbers
+        half = ls.simulate(scene, 0.01, integrator="moreau", dt=options.get("dt"), t_eval=times)
+        assert np.max(np.abs(result["u_load"] - half["u_load"])) > 0.0
+    check_simulate_options(scene, options, 0.01)
+    assert _core_arguments(scene, 0.01, times, options)["integrator"] == "moreau"
+    # Left out, the default runs.
+    assert ls.simulate(scene, 0.01, t_eval=times).integrator == "event_driven"
+
+
+def test_an_option_no_fitting_integrator_takes_is_still_refused():
+    """rtol on a scene that runs on Moreau-Jean alone, and an option the
+    integrator given would ignore, are refused as before."""
+    moreau_only = ls.scenes.load("seat_adjuster_worm_flexible")
+    with pytest.raises(ValueError, match=r"^rtol = 1e-06 is invalid with integrator 'moreau' "
+                                         r"\(the default here\)"):
+        ls.simulate(moreau_only, 0.01, rtol=1e-6)
+    scene = ls.Scene.from_dict(thesis_scene())
+    with pytest.raises(ValueError, match=r"^dt = 0.0002 is invalid with integrator "
+                                         r"'event_driven': dt is taken by moreau only"):
+        ls.simulate(scene, 0.01, integrator="event_driven", dt=2e-4)
+    with pytest.raises(ValueError, match=r"^rtol = 1e-06 is invalid with integrator 'moreau': "):
+        ls.simulate(scene, 0.01, integrator="moreau", rtol=1e-6)
 
 
 def test_options_left_out_or_used_are_not_refused():

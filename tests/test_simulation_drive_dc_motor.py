@@ -303,11 +303,6 @@ def test_motor_is_exclusive_with_the_drive_loads(load):
         ls.Scene.from_dict(motor_scene()).replace(loads={load: 1.0})
 
 
-def test_equilibrium_start_is_refused():
-    with pytest.raises(ValueError, match=r"initial\.state = 'equilibrium' is invalid with motor"):
-        ls.Scene.from_dict({**motor_scene(), "initial": {"state": "equilibrium"}})
-
-
 @pytest.mark.parametrize("inductance", [L, 0.0])
 @pytest.mark.parametrize("limit", [None, 1.0])
 def test_moreau_jean_reaches_the_steady_state_within_the_limit(inductance, limit):

@@ -298,21 +298,26 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
     """Refuse options the integrator that runs would ignore.
 
     ``--dt`` and ``--theta`` are parameters of the fixed-step ``moreau``
-    scheme only; ``--rtol`` and ``--atol`` of the others only.
+    scheme only; ``--rtol`` and ``--atol`` of the others only. Without
+    ``--integrator`` an option names its scheme, as in leadscrew.simulate:
+    ``--dt`` runs ``moreau`` where it fits the scene,
+    ``--rtol`` on a scene whose default is ``moreau`` the first adaptive
+    integrator that fits (``integrator_taking``); refused only where none
+    that fits takes it.
 
     Raises:
         UsageError: naming the option, its value and the integrator.
     """
     from . import _core
-    from .simulation import unused_option
+    from .simulation import integrator_taking, unused_option
 
     allowed = list(_core.drive_integrators(scene.model().parameters))
+    given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
     if args.integrator is not None:
         integrator, which = args.integrator, f"--integrator {args.integrator}"
     else:  # the scene's default: the first of the integrators that fit it
-        integrator = allowed[0]
+        integrator = integrator_taking(allowed, given, scene)
         which = f"the scene's default integrator {integrator}"
-    given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
     # The rules of leadscrew.simulate, in the command line's spelling.
     unused = unused_option(integrator, given, scene, spell=lambda name: f"--{name}",
                            moreau_only=allowed == ["moreau"])

@@ -211,8 +211,9 @@ def _check_gear(gear: Dict[str, Any]) -> None:
 
 def _check_motor(data: Dict[str, Any]) -> None:
     """The motor section's rules across sections. A DC motor (type 'dc'):
-    its required fields, exclusive with the drive loads, no equilibrium
-    start. Without a type: the friction_torque of a rotor driven by
+    its required fields, exclusive with the drive loads (an equilibrium
+    start holds the drive with its steady current at rest: the core's).
+    Without a type: the friction_torque of a rotor driven by
     loads.drive_torque (issue 33), none of a DC motor's fields.
 
     Raises:
@@ -239,10 +240,6 @@ def _check_motor(data: Dict[str, Any]) -> None:
         if key in loads:
             raise ValueError(f"loads.{key} = {loads[key]!r} is invalid with motor.type = "
                              f"{motor['type']!r}: give either motor or loads.{key}, not both")
-    if data["initial"]["state"] == "equilibrium":
-        raise ValueError("initial.state = 'equilibrium' is invalid with motor.type = "
-                         f"{motor['type']!r}: the run starts with the current at 0 (use "
-                         "'relaxed')")
 
 
 def _check_element_sections(data: Dict[str, Any]) -> None:

@@ -319,13 +319,31 @@ def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene]
     return None
 
 
-def _refuse_unused(integrator: str, integrators: Callable[[], Sequence[str]],
-                   given: Dict[str, Any], scene: Optional[Scene] = None) -> None:
-    """Raise if the run (``integrator`` "": the default, the first of
-    ``integrators()``, those that fit the model: called only if an option is
-    given) would ignore an option given (:func:`unused_option`); an
-    integrator not among them is left to the core, which lists those that
-    fit.
+def integrator_taking(allowed: Sequence[str], given: Dict[str, Any],
+                      scene: Optional[Scene] = None) -> str:
+    """The integrator a run left to its default takes: the default (the
+    first of ``allowed``, those that fit the model) unless it would ignore an
+    option given (:func:`unused_option`) that another of them takes (``dt``,
+    ``theta``: Moreau-Jean's; ``rtol``, ``atol``, ... on a Moreau-Jean
+    default: the first adaptive one), so that an option names its scheme;
+    the default where none of them uses every option given (it refuses one).
+    Shared by :func:`simulate`, the study batches and the command line.
+    """
+    for candidate in allowed:
+        if unused_option(candidate, given, scene,
+                         moreau_only=list(allowed) == ["moreau"]) is None:
+            return candidate
+    return allowed[0]
+
+
+def _choose_integrator(integrator: str, integrators: Callable[[], Sequence[str]],
+                       given: Dict[str, Any], scene: Optional[Scene] = None) -> str:
+    """The integrator that runs: ``integrator`` where given, else
+    (``integrator`` "": the default) :func:`integrator_taking` among
+    ``integrators()``, those that fit the model (called only if an option is
+    given: without one it returns ""). Raises if it would ignore an option
+    given (:func:`unused_option`); an integrator not among them is left to
+    the core, which lists those that fit.
 
     Raises:
         ValueError: naming the option, its value, the integrator and which
@@ -335,17 +353,18 @@ def _refuse_unused(integrator: str, integrators: Callable[[], Sequence[str]],
         if value is not None:
             break
     else:  # nothing given (the common case: no lookup)
-        return
+        return integrator
     allowed = integrators()
-    runs = integrator or allowed[0]
+    runs = integrator or integrator_taking(allowed, given, scene)
     if runs not in allowed:
-        return
+        return integrator
     unused = unused_option(runs, given, scene, moreau_only=list(allowed) == ["moreau"])
     if unused is not None:
         name, of_scene, why = unused
         which = ("for this Scene" if of_scene else f"with integrator {runs!r}"
                  + ("" if integrator else " (the default here)"))
         raise ValueError(f"{name} = {_shown(given[name])} is invalid {which}: {why}")
+    return runs
 
 
 def _unknown_scene_option(name: str, value) -> ValueError:
@@ -670,11 +689,14 @@ def simulate(
             torque or DC motor: on the flexible concepts, with exact or
             penalty play, another thread law or ``loads.drive_speed``.
         rtol, atol: integration tolerances of the ODE and event-driven
-            integrators (default 1e-8 and 1e-10; refused with ``"moreau"``).
+            integrators (default 1e-8 and 1e-10; refused with ``"moreau"``;
+            given without ``integrator`` where the default is ``"moreau"``,
+            the first adaptive integrator that fits runs).
             A Scene whose law runs velocity-regularized refuses an atol
             whose slip velocity spans 1/20 of its stick band 1 / k_v
             (docs/physics/result_checks.md, "Options refused before a run").
-        dt: fixed step [s] of ``"moreau"`` (default 1e-3 for a FrictionBlock,
+        dt: fixed step [s] of ``"moreau"`` (given without ``integrator``, it
+            runs ``"moreau"`` where that fits; default 1e-3 for a FrictionBlock,
             1e-4 for a Scene, there shortened to half the longest step that
             resolves the drive's stiffness where 1e-4 does not; a dt you
             give is used as it is, or refused; refused with the other
@@ -688,7 +710,8 @@ def simulate(
             [s/m or s^2/m] (default 100). A Scene carries its own
             (``friction.k_v``): k_v may only repeat it.
         theta: theta of the Moreau-Jean scheme, in [0, 1] (default 0.5;
-            refused with the other integrators).
+            given without ``integrator``, it runs ``"moreau"`` where that
+            fits; refused with the other integrators).
         max_steps: bound on integrator steps; for ``"moreau"`` on its fixed
             steps (t_end / dt), refused before the run starts if too small.
             Default (None): 1e6 per simulated second, at least 1e6
@@ -725,11 +748,17 @@ def simulate(
             them, with units and defaults). A Scene carries its own; for a
             Scene any other keyword is refused, naming the options it takes.
 
-    An option the integrator that runs would ignore (``dt`` and ``theta``
-    without ``"moreau"``; ``rtol``, ``atol``, ``max_order``, ``max_step``,
-    ``first_step`` with it; ``bounce_threshold`` without an exact backlash)
-    is refused, not ignored: only options given count (None, the default,
-    is never refused).
+    An option names its scheme where ``integrator`` is left out: ``dt`` or
+    ``theta`` (Moreau-Jean's) runs ``"moreau"`` where it fits the model,
+    ``rtol``, ``atol``, ``max_order``, ``max_step`` or ``first_step`` on a
+    Moreau-Jean default the first adaptive integrator that fits
+    (``Result.integrator`` names the one that
+    ran). An option the integrator that runs would ignore (no integrator
+    that fits takes it, or the ``integrator`` given does not: ``dt`` and
+    ``theta`` without ``"moreau"``; ``rtol``, ``atol``, ``max_order``,
+    ``max_step``, ``first_step`` with it; ``bounce_threshold`` without an
+    exact backlash) is refused, not ignored: only options given count
+    (None, the default, is never refused).
 
     Returns:
         A :class:`Result`.
@@ -760,7 +789,8 @@ def simulate(
         entry = _law(friction)
         if entry is not None:  # else the core names the laws
             integrators = functools.partial(_block_integrators, friction)
-            _refuse_unused(arguments["integrator"], integrators, given)
+            arguments["integrator"] = _choose_integrator(arguments["integrator"], integrators,
+                                                         given)
             if not arguments["integrator"]:  # None or "": the first of those that fit
                 arguments["integrator"] = integrators()[0]
         takes = _law_parameter_keys(friction) if entry is not None else ()
@@ -793,9 +823,9 @@ def simulate(
             t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
             max_events, max_step, first_step, bounce_threshold, max_order, check)
         drive = model.model()
-        _refuse_unused(arguments["integrator"],
-                       functools.partial(_core.drive_integrators, drive.parameters),
-                       dict(given, bounce_threshold=bounce_threshold), model)
+        arguments["integrator"] = _choose_integrator(
+            arguments["integrator"], functools.partial(_core.drive_integrators, drive.parameters),
+            dict(given, bounce_threshold=bounce_threshold), model)
         arguments["drive"] = drive
         result = _run_core(_core.simulate_drive, _drive_call, arguments, progress)
         return (_sampled(result) if t_eval is None and result._core.point_count > DEFAULT_ROWS

@@ -137,6 +137,14 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
   }
 }
 
+double DriveDynamics::element_energy_terms() const {
+  double sum = 0.0;
+  const std::vector<std::shared_ptr<const Element>>& elements = model_.elements().elements;
+  for (std::size_t k = 0; k < elements.size(); ++k)
+    sum += elements[k]->energy_terms(element_state(k));
+  return sum;
+}
+
 void DriveDynamics::set_element_slots(const std::vector<std::pair<int, int>>& slots) {
   int offset = 0;
   for (std::size_t k = 0; k < element_slots_.size() && k < slots.size(); ++k) {

@@ -7,6 +7,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "drive/run_setup.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
 
 namespace leadscrew::model {
@@ -33,8 +34,25 @@ Eigen::MatrixXd stiffness_matrix(const DriveModel& model, double a) {
 std::string loads_text(const DriveModel& model, const DriveDynamics& dynamics) {
   // (the torque on the rotor, before a gear stage)
   return "drive torque " + format_value(model.gear().rotor_torque(dynamics.applied_torque())) +
-         " N*m, axial force " +
+         " N*m" + (dynamics.element_drive_torque() != 0.0 ? " (the motor's k_t i at rest)" : "") +
+         ", axial force " +
          format_value(dynamics.axial_force()) + " N";
+}
+
+// The elements' states at rest in equilibrium (Element::initial_states: a
+// DC motor's steady current U(0) / R within its limit), set in `dynamics`:
+// their forces (the motor's torque k_t i on the rotor, a drive torque) join
+// the balance through DriveDynamics::forces, as the run's first right-hand
+// side takes them (its y made by the same call, drive::initial_vector).
+void set_element_states_at_rest(const DriveModel& model, DriveDynamics& dynamics) {
+  if (model.elements().elements.empty()) return;
+  const int n = model.coordinate_count();
+  const drive::StateLayout layout(model, false);
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(layout.size());
+  drive::initial_element_states(model, layout, rest.data(), rest.data(), true, y.data());
+  dynamics.set_element_slots(layout.element_slots());
+  dynamics.set_element_states(y.data());
 }
 
 }  // namespace
@@ -62,6 +80,7 @@ DriveStart initial_state(const DriveModel& model) {
 
   DriveDynamics dynamics(model);
   CoordinateVector q = CoordinateVector::Zero(n), v = CoordinateVector::Zero(n);
+  set_element_states_at_rest(model, dynamics);
   double normal_force = 0.0, friction_force = 0.0;
   // Where the nut rests: on the flank the normal force presses it against
   // (penetrated, for a penalty flank); in the middle of the play while the

@@ -23,7 +23,7 @@ from .._hints import did_you_mean
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
 from ..simulation import (ADAPTIVE_OPTIONS, MOREAU_OPTIONS, _OPTION_DEFAULTS,
-                          _check_scene_friction, _drive_arguments, _refuse_unused)
+                          _check_scene_friction, _drive_arguments, _choose_integrator)
 from ._common import check_count
 
 __all__ = ["DriveBatch", "check_simulate_options"]
@@ -64,8 +64,9 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
         a["check"])
     given = {name: options.get(name) for name in (*ADAPTIVE_OPTIONS, *MOREAU_OPTIONS,
                                                   "bounce_threshold")}
-    _refuse_unused(arguments["integrator"],
-                   lambda: _core.drive_integrators(scene.model().parameters), given, scene)
+    arguments["integrator"] = _choose_integrator(
+        arguments["integrator"], lambda: _core.drive_integrators(scene.model().parameters),
+        given, scene)
     return arguments
 
 

@@ -166,6 +166,11 @@ class DriveDynamics {
   }
   // The elements' torque on the rotor that drives it (a DC motor's k_t i).
   double element_drive_torque() const noexcept { return element_drive_torque_; }
+  // Their energy terms at the state last set (Element::energy_terms): at a
+  // run's start their stored energy (a DC motor's L i^2 / 2 of a current
+  // that starts in equilibrium), which the energy account's residual takes
+  // as its start (write_drive_channels' stored0).
+  double element_energy_terms() const;
 
   const DriveModel& model() const noexcept { return model_; }
 

@@ -14,7 +14,8 @@
 //
 // An element sees the drive at an ElementState: the time, the full
 // coordinates and velocities, its own states. It
-//   declares   its states in y, its result channels with their unit and
+//   declares   its states in y (and their values at the run's start,
+//              initial_states), its result channels with their unit and
 //              their role in the energy account (work, stored, loss), its
 //              terms of the result checks' bounds (drive/declaration.hpp);
 //   acts       by generalized forces on the coordinates (add_forces), a
@@ -91,6 +92,18 @@ class Element {
   virtual const char* name() const = 0;
   // Its states in y, channels and terms of the checks (drive/declaration.hpp).
   virtual void declare(drive::Declaration& declaration) const = 0;
+
+  // Its states at the run's start, written into `own` (its block of y,
+  // zeros before: a state it leaves alone starts at 0). `s`: the start's
+  // time, coordinates and velocities (s.own: zeros). at_equilibrium: the run
+  // starts at rest in static equilibrium (initial.state = "equilibrium"):
+  // its states are the steady ones at rest, which its forces then hold the
+  // drive with (the equilibrium's solve asks before it knows s.q: they may
+  // depend on s.t and s.v alone); else the relaxed start (a DC motor's
+  // driver switched on at t = 0: its current 0).
+  virtual void initial_states(const ElementState& s, bool at_equilibrium, double* own) const {
+    (void)s, (void)at_equilibrium, (void)own;
+  }
 
   // Adds its generalized forces at the state to `forces` (one per coordinate).
   virtual void add_forces(const ElementState& s, const ElementMode& mode, double* forces) const {

@@ -91,7 +91,7 @@ ChannelState channel_state(const DriveDynamics& dynamics) {
 
 void write_drive_channels(const StateLayout& layout, const ChannelState& state,
                           const ContactForces& forces, const double* energy, double impact_loss,
-                          double kinetic0, double elastic0, double* out) {
+                          double kinetic0, double stored0, double* out) {
   const DriveModel& model = layout.model();
   const DriveParameters& p = model.parameters();
   const CoordinateVector& q = state.q;
@@ -136,9 +136,11 @@ void write_drive_channels(const StateLayout& layout, const ChannelState& state,
   out[k++] = elastic;
   declared(2);
   // The residual: the work put in less the energy stored and lost, the
-  // elements' terms in their order (a stored energy of theirs starts at 0).
+  // elements' terms in their order (a stored energy of theirs counted from
+  // its value at t = 0, which stored0 holds: a DC motor's L i^2 / 2 of a
+  // current that starts in equilibrium).
   double work = energy[kWorkDrive] + energy[kWorkAxial];
-  double spent = kinetic - kinetic0 + elastic - elastic0 + energy[kFrictionLoss] +
+  double spent = kinetic - kinetic0 + elastic - stored0 + energy[kFrictionLoss] +
                  energy[kDampingLoss] + energy[kContactLoss] + impact_loss;
   for (const Declaration& d : layout.declarations())
     for (std::size_t c = 0; c < d.channels.size(); ++c) {

@@ -48,9 +48,11 @@ struct ChannelState {
 // From the state last set in dynamics.
 ChannelState channel_state(const DriveDynamics& dynamics);
 
-// Writes one output row.
+// Writes one output row. kinetic0, stored0: the kinetic and the other stored
+// energies at t = 0 (the elastic and contact energies and the elements'
+// energy terms, DriveDynamics::element_energy_terms), the energy residual's start.
 void write_drive_channels(const StateLayout& layout, const ChannelState& state,
                           const ContactForces& forces, const double* energy, double impact_loss,
-                          double kinetic0, double elastic0, double* out);
+                          double kinetic0, double stored0, double* out);
 
 }  // namespace leadscrew::model::drive

@@ -272,7 +272,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   Mode mode_;
   CoordinateVector q_, v_;
   std::vector<std::string> names_;
-  double kinetic0_ = 0.0, elastic0_ = 0.0, impact_loss_ = 0.0;
+  double kinetic0_ = 0.0, stored0_ = 0.0, impact_loss_ = 0.0;  // (write_drive_channels)
   long lcp_solves_ = 0;
   lcp::Workspace lcp_workspace_{2};
   lcp::Options lcp_options_{};

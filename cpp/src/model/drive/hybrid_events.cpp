@@ -127,7 +127,8 @@ void DriveHybrid::root_directions(int* directions) const {
 void DriveHybrid::select_initial_mode(double t, double* y) {
   set(t, y);
   kinetic0_ = dynamics_.kinetic_energy();
-  elastic0_ = dynamics_.elastic_energy() + dynamics_.contact_energy();
+  stored0_ = dynamics_.elastic_energy() + dynamics_.contact_energy() +
+            dynamics_.element_energy_terms();
   // The thread pair's kind of play: none (a constraint), exact flanks or
   // penalty flanks.
   const elements::ThreadPair& thread = model_.thread_pair();

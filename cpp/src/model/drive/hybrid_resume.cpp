@@ -28,7 +28,7 @@ void DriveHybrid::resume(const DriveHybrid& before, double t, double* y) {
   t_end_ = before.t_end_;
   select_initial_mode(t, y);
   kinetic0_ = before.kinetic0_;
-  elastic0_ = before.elastic0_;
+  stored0_ = before.stored0_;
   impact_loss_ = before.impact_loss_;
 }
 

@@ -64,7 +64,7 @@ void DriveHybrid::channels(double t, const double* y, double* out) {
   forces.stick = mode_.friction == FrictionMode::stick;
   const ChannelState state = solver_->output(t, y, forces);
   write_drive_channels(layout_, state, forces, y + layout_.energy_offset(), impact_loss_,
-                       kinetic0_, elastic0_, out);
+                       kinetic0_, stored0_, out);
 }
 
 std::vector<double> DriveHybrid::breakpoints() const {

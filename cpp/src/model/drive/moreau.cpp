@@ -47,7 +47,8 @@ void DriveMoreau::initialize(double t, const double* y) {
   for (std::size_t k = 0; k < elements.size(); ++k)
     elements[k]->step_start(dynamics_.element_state(k), dynamics_.element_mode(k));
   kinetic0_ = dynamics_.kinetic_energy();
-  elastic0_ = dynamics_.elastic_energy() + dynamics_.contact_energy();
+  stored0_ = dynamics_.elastic_energy() + dynamics_.contact_energy() +
+            dynamics_.element_energy_terms();
 }
 
 void DriveMoreau::step(double t, double h, double theta, const double* y, double* y_next) {
@@ -698,7 +699,7 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   // torque; the step's work stays its impulse's, booked in step()).
   ContactForces forces = last_;
   if (!p_.speed_controlled) forces.motor_torque = model_.gear().rotor_torque(applied);
-  write_drive_channels(layout_, state, forces, energy, 0.0, kinetic0_, elastic0_, out);
+  write_drive_channels(layout_, state, forces, energy, 0.0, kinetic0_, stored0_, out);
 }
 
 // The iteration matrix W = M + theta h C + theta^2 h^2 K at the positions

@@ -194,7 +194,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // slope . v+ (Element::step_impulse).
   std::vector<ElementMode> modes_at_start_, step_modes_;
   CoordinateVector element_constant_, element_slope_;
-  double kinetic0_ = 0.0, elastic0_ = 0.0;
+  double kinetic0_ = 0.0, stored0_ = 0.0;  // (write_drive_channels)
   double play_rate_ = 0.0, friction_excess_ = 0.0;
   long lcp_solves_ = 0;
   lcp::Workspace lcp_workspace_{2};

@@ -24,5 +24,11 @@ const friction::Law& running_law(const DriveModel& model, const std::string& int
 // equilibrium), the work and loss integrals zero.
 StateLayout state_layout(const DriveModel& model, const friction::Law& law);
 Eigen::VectorXd initial_vector(const DriveModel& model, const StateLayout& layout);
+// The model's elements' states at t = 0 (Element::initial_states) at the
+// start's coordinates q and velocities v, written into their blocks of y
+// (the layout's, zeros before). at_equilibrium: initial.state =
+// "equilibrium" (the equilibrium's solve takes their forces at them too).
+void initial_element_states(const DriveModel& model, const StateLayout& layout, const double* q,
+                            const double* v, bool at_equilibrium, double* y);
 
 }  // namespace leadscrew::model::drive

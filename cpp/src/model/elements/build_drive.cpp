@@ -494,9 +494,6 @@ DriveElements build_drive_elements(DriveParameters& p) {
       throw InvalidArgument("loads.drive_speed is invalid with motor.type = \"dc\": give "
                             "either the DC motor or loads.drive_speed (or loads.drive_torque), "
                             "not both");
-    if (p.initial_state == InitialState::equilibrium)
-      throw InvalidArgument("initial.state = \"equilibrium\" is invalid with motor.type = "
-                            "\"dc\": the run starts with the current at 0 (use \"relaxed\")");
     const Excitation::Definition torque = p.drive_torque.definition();
     if (!(torque.kind == "constant" && torque.parameters.at(0) == 0.0))
       throw InvalidArgument("loads.drive_torque = " + p.drive_torque.describe() +

@@ -68,6 +68,23 @@ class DcMotorElement final : public Element {
     return dc_.has_state() ? s.own[0] : dc_.quasi_static_current(s.t, s.v[dc_.rotor]);
   }
 
+  // In a static equilibrium the armature is steady at rest (omega = 0, no
+  // back-EMF): i = U(0) / R, the driver holding it at side i_max where that
+  // passes its limit (U(0) drives it further there; R i_max < |U(0)| lies
+  // within the supply). Exactly +-i_max, so that the limiter starts holding
+  // (start: at the limit, decided), not a round-off beyond it, saturated.
+  // Without inductance the current is quasi-static, no state: its torque at
+  // rest is the same. The relaxed start: the driver switched on at t = 0,
+  // the current at 0.
+  void initial_states(const ElementState& s, bool at_equilibrium, double* own) const override {
+    if (!at_equilibrium || !dc_.has_state()) return;
+    const double steady = (dc_.voltage(s.t) - dc_.back_emf_constant * s.v[dc_.rotor]) /
+                          dc_.resistance;
+    own[0] = dc_.limited() && std::abs(steady) > dc_.current_limit
+                 ? std::copysign(dc_.current_limit, steady)
+                 : steady;
+  }
+
   void add_forces(const ElementState& s, const ElementMode& mode, double* forces) const override {
     (void)mode;
     forces[dc_.rotor] += dc_.torque(current(s));

@@ -27,7 +27,9 @@
 //             the motor converts (k_t - k_e) i omega out of nothing; the
 //             drive's work books it (work_drive = int (U_d i + (k_t - k_e)
 //             i omega) dt), so that the account closes and says so.
-// The current starts at 0 (the driver switched on at t = 0). The motor's own
+// The current starts at 0 (the driver switched on at t = 0); in a static
+// equilibrium at its steady value at rest, U(0) / R within the limit
+// (dc_motor.cpp, initial_states). The motor's own
 // Coulomb friction (motor.friction_torque) is a friction stage of the train
 // (train_friction.hpp).
 #pragma once

@@ -78,3 +78,57 @@ def test_a_stiff_drive_on_rk_verner6_fails_fast_with_the_hint():
     assert error.value.time < 0.05
     r = ls.simulate(scene, 1.0, integrator="cvode_bdf", t_eval=np.linspace(0.0, 1.0, 3))
     assert r.t[-1] == 1.0 and r.stats["steps"] < 20_000
+
+
+EXPLICIT_ARKODE = ["dopri5", "verner6"]
+
+
+@pytest.mark.parametrize("method", EXPLICIT_ARKODE)
+def test_arkode_explicit_methods_stop_where_the_rest_cannot_fit_the_budget(method):
+    # ARKODE's explicit methods have no stiffness test of their own: their
+    # budget is watched over every 10,000 steps (sundials_integrator.cpp,
+    # check_budget). Over 10 s at the stability limit (~3e-6 s) the rest
+    # takes some 3e6 steps against the 1e6 of max_steps: three pieces in a
+    # row say so, and the run stops after 30,000 steps (t < 0.1 s), not
+    # after 1e6 (ARK_TOO_MUCH_WORK).
+    start = time.perf_counter()
+    with pytest.raises(ls.SimulationError) as error:
+        li.solve_ode(stiff, (0.0, 10.0), [0.0], method=method, t_eval=[10.0],
+                     max_steps=1_000_000)
+    assert time.perf_counter() - start < 20.0
+    message = str(error.value)
+    assert "ARK_STIFF" in message and "cvode_bdf" in message and "max_steps" in message
+    assert error.value.time < 0.2  # (30,000 steps of at most 4.1e-6 s: 0.12 s)
+    h = float(message.split("held its step at h = ")[1].split(" s")[0])
+    assert 1e-7 < h < 1e-5  # (held near the stability limit, some 3e-6 s)
+
+
+@pytest.mark.parametrize("method", EXPLICIT_ARKODE)
+def test_arkode_explicit_stiff_run_that_fits_its_budget_finishes(method):
+    # 0.1 s at the stability limit: some 3e4 steps, within the budget of
+    # 1e6: it goes on (and its pieces give the solution a single call gives:
+    # the smooth one, cos t + 1e-6 sin t after the layer).
+    sol = li.solve_ode(stiff, (0.0, 0.1), [1.0], method=method, t_eval=[0.1])
+    assert sol.stats["steps"] > 20_000
+    assert sol.y[0, -1] == pytest.approx(math.cos(0.1) + 1e-6 * math.sin(0.1), abs=1e-8)
+
+
+@pytest.mark.parametrize("method", EXPLICIT_ARKODE)
+def test_a_stiff_drive_on_arkode_fails_fast_with_the_hint(method):
+    # The stiff drive above (rk_verner6's) on ARKODE's explicit methods as
+    # the smooth integrator of the event-driven scheme with sampled output,
+    # 10 s with a budget of 2e6 steps (their steps near 1e-6 s need some 1e7):
+    # before the budget's watch, dopri5 ran 31 s to ARK_TOO_MUCH_WORK at
+    # t = 8.2 s of 10 with the default budget (1e6 per simulated second),
+    # which it still exceeds (1.2e7 projected). (verner6 fits that default
+    # budget, 9.9e6 steps: it goes on, in some 40 s, as a run that fits must.)
+    scene = ls.Scene.from_dict(thesis_scene(
+        concept="flexible_nut", friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4},
+        loads={"drive_torque": None, "drive_speed": 0.0, "axial_force": -10.0}))
+    start = time.perf_counter()
+    with pytest.raises(ls.SimulationError) as error:
+        ls.simulate(scene, 10.0, integrator=method, max_steps=2_000_000)
+    assert time.perf_counter() - start < 20.0
+    message = str(error.value)
+    assert "ARK_STIFF" in message and "cvode_bdf" in message
+    assert error.value.time < 0.1

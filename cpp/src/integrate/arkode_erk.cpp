@@ -82,7 +82,7 @@ int ArkodeErkIntegrator::order(Method method) {
 }
 
 ArkodeErkIntegrator::ArkodeErkIntegrator(Method method, const IntegratorOptions& options)
-    : SundialsIntegrator(method_name(method), options, false), method_(method) {
+    : SundialsIntegrator(method_name(method), options, false, true), method_(method) {
   check_options(method, options);
 }
 

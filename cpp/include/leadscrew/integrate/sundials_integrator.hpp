@@ -27,7 +27,10 @@ class SundialsIntegrator : public Integrator {
   void dense_output(double t, Eigen::Ref<Eigen::VectorXd> y) final;
 
  protected:
-  SundialsIntegrator(std::string name, const IntegratorOptions& options, bool implicit);
+  // `explicit_steps`: an explicit method (ERKStep), whose budget is watched
+  // (check_budget) where options.stop_when_stiff.
+  SundialsIntegrator(std::string name, const IntegratorOptions& options, bool implicit,
+                     bool explicit_steps = false);
 
   // Creates the solver memory for the state in y_ at t0 and applies the options.
   virtual void create_solver(double t0) = 0;
@@ -59,13 +62,24 @@ class SundialsIntegrator : public Integrator {
   // advance and advance_to_output: towards t_out, never past t_stop.
   AdvanceResult advance_until(double t_out, double t_stop, Eigen::Ref<Eigen::VectorXd> y,
                               bool one_step);
+  // One evolve towards t_out within what max_steps leaves (an explicit
+  // method's in pieces, stopped where the rest cannot fit the budget).
+  int evolve_within_budget(double t_out, double t_stop, bool one_step, double* t_reached);
+  // An explicit method's watch on its budget (ARK_STIFF where the rest to
+  // t_stop cannot fit it).
+  void check_budget(double t_stop, double t_now);
+  static constexpr long kBudgetPiece = 10000;
 
   const std::string name_;
   const bool implicit_;
+  const bool watch_budget_;
   bool initialized_ = false;
   double t_ = 0.0;
   std::vector<int> root_info_;
   IntegratorStats before_restart_;  // counters of the solver runs before the last restart
+  long budget_mark_steps_ = 0;  // check_budget's last piece: its end's steps and time
+  double budget_mark_time_ = 0.0;
+  int short_pieces_ = 0;
   long restarts_ = 0;
 };
 

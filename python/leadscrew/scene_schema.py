@@ -65,7 +65,7 @@ _FRICTION_COMMON = ("mu", "k_v")
 # |gear.ratio| (the core's, elements/gear.hpp).
 _GEAR_TYPES = ("ideal", "lossy", "worm")
 # What the train's friction stages (motor.friction_torque > 0, gear.type
-# 'lossy' or 'worm') need and which schemes run them (build_train_friction,
+# 'lossy' or 'worm') need and which schemes run them (check_train_friction,
 # train_event_driven_obstacle in elements/build_drive.cpp).
 _TRAIN_STAGE_RULE = (
     "a torque (loads.drive_torque) or a DC motor, a set-valued law on the thread "

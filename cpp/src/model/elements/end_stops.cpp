@@ -28,21 +28,21 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
                               " is invalid: must be absent with end_stops.contact = " +
                               m.text("exact") +
                               " (a rigid stop; its impacts take end_stops.restitution)");
-    // The load alone meets the stop: no constraint may tie it to other
-    // coordinates (a rigid translating part carries the thread: a rigid
-    // drive clamped against a rigid stop is statically indeterminate).
-    const bool screw_driven = p.drive == DrivenPart::screw;
-    const bool flexible = p.concept == Concept::flexible ||
-                          (p.concept == Concept::flexible_nut && screw_driven);
-    if (!flexible)
+    // A speed-controlled rotor with the load rigid in the thread (the
+    // rigid drive without play or with exact play, whose closed flank
+    // ties it): the speed and the stop would prescribe the one degree of
+    // freedom twice, an infinite impulse at the impact.
+    const bool rigid_in_thread =
+        p.concept == Concept::rigid &&
+        (p.backlash == BacklashContact::none || p.backlash == BacklashContact::exact);
+    if (p.speed_controlled && rigid_in_thread)
       throw InvalidArgument(
-          "end_stops.contact = " + m.text("exact") + " is invalid with concept = " +
-          m.text(concept_name(p.concept)) + " and drive = " + m.text(drive_name(p.drive)) +
-          ": the load moves with the " + (screw_driven ? "nut" : "screw") +
-          ", rigid and in the thread, and a rigid drive clamped against a rigid stop is "
-          "statically indeterminate (the thread's friction and the stop's force, one "
-          "equation); use end_stops.contact = " + m.text("penalty") +
-          ", or a concept where that part is flexible (the load on its spring)");
+          "end_stops.contact = " + m.text("exact") + " is invalid with loads.drive_speed on " +
+          "concept = " + m.text("rigid") +
+          ": the rotor's prescribed speed and the rigid stop would both fix the drive's one "
+          "degree of freedom (the load rigid in the thread), an infinite impulse at the impact; "
+          "use a drive torque or a DC motor, end_stops.contact = " + m.text("penalty") +
+          ", or a flexible concept");
   } else {
     if (s.number("restitution") != 0.0)
       throw InvalidArgument("end_stops.restitution = " + m.number(s.number("restitution")) +
@@ -115,9 +115,10 @@ SectionType end_stops_section() {
       choice("contact", {"penalty", "exact"},
              "the stops' contact: 'penalty', a one-sided spring-damper on the load against the "
              "ground, F = max(0, k d + c d') for a penetration d > 0, which pushes and never "
-             "pulls; 'exact', a rigid unilateral stop with Newton impacts (restitution), only "
-             "where the load hangs on a flexible translating part (concept 'flexible', or "
-             "'flexible_nut' with drive 'screw'; docs/physics/end_stops.md)")
+             "pulls; 'exact', a rigid unilateral stop with Newton impacts (restitution); where "
+             "the load is rigid in the thread (concept 'rigid', 'flexible_nut' with drive "
+             "'nut') the closed stop holds the drive and carries the loads, the thread's "
+             "friction what it cannot (docs/physics/end_stops.md)")
           .named("end_stops"),
       number("stiffness", "N/m",
              "the penalty stop's stiffness k (required with contact = 'penalty', absent with "

@@ -134,7 +134,7 @@ class EndStopsElement final : public DriveHybrid::Element {
         // falling through 0, could never fire again (the load passed the
         // stop after a decaying run of bounces: 0.215 mm through it).
         if (stop.gap(q()[load_]) < 0.0) {
-          q()[load_] = stop.position;
+          onto_face(stop);
           layout().compress(q(), v(), y);
         }
         continue;
@@ -218,6 +218,19 @@ class EndStopsElement final : public DriveHybrid::Element {
            model().normal_direction()[load_] != 0.0;
   }
   bool tied_impact(double t, double* y, const elements::ExactEndStop& stop);
+  CoordinateVector frictionless_response(const CoordinateVector& unit) const;
+  // The load onto the face (the root's round-off), the coordinates tied to
+  // it along (the thread's constraints kept: on the rigid drive the load's
+  // position follows the rotor's, which StateLayout keeps).
+  void onto_face(const elements::ExactEndStop& stop) {
+    if (tied()) {
+      CoordinateVector unit = CoordinateVector::Zero(model().coordinate_count());
+      unit[load_] = 1.0;
+      const CoordinateVector shift = frictionless_response(unit);
+      if (shift[load_] != 0.0) q() += ((stop.position - q()[load_]) / shift[load_]) * shift;
+    }
+    q()[load_] = stop.position;
+  }
   struct Phase {
     CoordinateVector dv;  // the velocities' change per unit impulse of the stop
     bool stuck = false;
@@ -232,6 +245,17 @@ class EndStopsElement final : public DriveHybrid::Element {
   std::vector<char> pushing_;  // per penalty stop: it pushes (its root's direction)
   std::vector<char> closed_;   // per exact stop: closed (the load held at its face)
 };
+
+// The velocities' response to the generalized impulse `unit` with the
+// mode's constraints and no friction (they keep the constraints).
+CoordinateVector EndStopsElement::frictionless_response(const CoordinateVector& unit) const {
+  ModeSpec base = spec(1);
+  base.held_load = -1;
+  base.friction = FrictionMode::none;
+  base.given_tangential = 0.0;
+  const CoordinateVector zero = CoordinateVector::Zero(unit.size());
+  return solve_with(base, unit).acceleration - solve_with(base, zero).acceleration;
+}
 
 // The velocities' response to a unit impulse of the stop in slip with the
 // slip's sign: the normal impulse's sign consistent with the friction it
@@ -319,6 +343,12 @@ bool EndStopsElement::tied_impact(double t, double* y, const elements::ExactEndS
   if (std::abs(target) <= bounce_threshold()) target = 0.0;
   const double noise = 64.0 * std::numeric_limits<double>::epsilon() *
                        tangent.cwiseProduct(vel).cwiseAbs().sum();
+  if (model().motor().speed_controlled && 2 >= n)
+    throw SimulationError(t, "the rotor's prescribed speed drives the load, rigid in the thread, "
+                             "into the exact " + stop.name + ": the speed and the rigid stop "
+                             "both fix the drive's one degree of freedom, an infinite impulse",
+                          "use a drive torque or a DC motor, end_stops.contact = \"penalty\" "
+                          "(its stiffness bounds the force), or a flexible concept");
   double vn = approach;
   // (the normal velocity's round-off: compression ends within it)
   const double resolution = 1024.0 * std::numeric_limits<double>::epsilon() * approach;
@@ -346,12 +376,7 @@ bool EndStopsElement::tied_impact(double t, double* y, const elements::ExactEndS
     // At rest at the face (the rebound below the bounce threshold, or
     // held): the load's round-off taken out along the frictionless
     // response, which keeps the constraints.
-    ModeSpec base = spec(1);
-    base.held_load = -1;
-    base.friction = FrictionMode::none;
-    base.given_tangential = 0.0;
-    const CoordinateVector dv0 =
-        solve_with(base, unit).acceleration - solve_with(base, zero).acceleration;
+    const CoordinateVector dv0 = frictionless_response(unit);
     if (dv0[load_] != 0.0) vel -= (vel[load_] / dv0[load_]) * dv0;
     vel[load_] = 0.0;
     // The held load fixes every velocity (the rigid drive): all at rest.
@@ -362,6 +387,7 @@ bool EndStopsElement::tied_impact(double t, double* y, const elements::ExactEndS
     throw SimulationError(t, "the end stop's impact through the frictional thread would create "
                              "energy (" + format_value(after - kinetic) + " J)");
   impact_loss() += kinetic - after;
+  onto_face(stop);
   layout().compress(q(), vel, y);
   set(t, y);
   vn = stop.side * v()[load_];

@@ -494,6 +494,13 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // nothing; where the stop's impulse pulls, stop_changes releases it and
   // the thread's LCP decides the step again without it.
   const Impulses unit = solve(row, normal_target, rotor_target, 1.0);
+  if (row && p_.speed_controlled && stops_fix_every_velocity() &&
+      2 >= model_.coordinate_count())
+    throw SimulationError(t, "the rotor's prescribed speed drives the load, rigid in the "
+                             "thread, into its exact end stop: the speed and the rigid stop "
+                             "both fix the drive's one degree of freedom, an infinite impulse",
+                          "use a drive torque or a DC motor, end_stops.contact = \"penalty\" "
+                          "(its stiffness bounds the force), or a flexible concept");
   if (row && stops_fix_every_velocity())
     return stop_holds(t, v0, without, unit, normal_target, rotor_target, stick);
   double c = model_.tangent_direction().dot(without.velocity);

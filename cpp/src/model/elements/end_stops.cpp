@@ -28,21 +28,23 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
                               " is invalid: must be absent with end_stops.contact = " +
                               m.text("exact") +
                               " (a rigid stop; its impacts take end_stops.restitution)");
-    // A speed-controlled rotor with the load rigid in the thread (the
-    // rigid drive without play or with exact play, whose closed flank
-    // ties it): the speed and the stop would prescribe the one degree of
-    // freedom twice, an infinite impulse at the impact.
-    const bool rigid_in_thread =
-        p.concept == Concept::rigid &&
-        (p.backlash == BacklashContact::none || p.backlash == BacklashContact::exact);
-    if (p.speed_controlled && rigid_in_thread)
+    // Exact play where the load rides on the part that carries the flank
+    // (the rigid drive, the nut-driven flexible nut): while the stop holds
+    // the load, a flank's impact would be a second impact at once on a
+    // tied body (the flank's and the stop's impulses through the thread's
+    // friction), which the flank's impact law does not take.
+    const bool load_on_flank =
+        p.concept == Concept::rigid ||
+        (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut);
+    if (load_on_flank && p.backlash == BacklashContact::exact)
       throw InvalidArgument(
-          "end_stops.contact = " + m.text("exact") + " is invalid with loads.drive_speed on " +
-          "concept = " + m.text("rigid") +
-          ": the rotor's prescribed speed and the rigid stop would both fix the drive's one "
-          "degree of freedom (the load rigid in the thread), an infinite impulse at the impact; "
-          "use a drive torque or a DC motor, end_stops.contact = " + m.text("penalty") +
-          ", or a flexible concept");
+          "end_stops.contact = " + m.text("exact") + " is invalid with backlash.contact = " +
+          m.text("exact") + " on concept = " + m.text(concept_name(p.concept)) +
+          " and drive = " + m.text(drive_name(p.drive)) +
+          ": the load rides on the part that carries the flank, and a flank's impact while "
+          "the stop holds it would be two impacts at once through the thread's friction; use "
+          "backlash.contact = " + m.text("bistop") + " or " + m.text("cubic") +
+          ", end_stops.contact = " + m.text("penalty") + ", or no play");
   } else {
     if (s.number("restitution") != 0.0)
       throw InvalidArgument("end_stops.restitution = " + m.number(s.number("restitution")) +

@@ -188,14 +188,12 @@ def test_the_core_checks_the_stops_too():
         parameters.end_stops = "rubber"
 
 
-def test_an_equilibrium_start_is_refused_and_moreau_jean_runs():
+def test_moreau_jean_runs_the_stops():
     # (Moreau-Jean takes end stops since issue 19's stages:
-    # tests/test_simulation_drive_moreau_stops.py.)
+    # tests/test_simulation_drive_moreau_stops.py; an equilibrium start with
+    # stops: tests/test_simulation_drive_rigid_exact_stops.py.)
     scene = ls.Scene.from_dict(thesis_scene(end_stops={"upper": 0.1, "stiffness": K}))
     assert "stop_force" in ls.simulate(scene, 0.01, integrator="moreau", dt=1e-4).channels
-    with pytest.raises(ValueError, match="initial.state = 'equilibrium' is invalid with end_stops"):
-        ls.Scene.from_dict(thesis_scene(end_stops={"upper": 0.1, "stiffness": K},
-                                        initial={"state": "equilibrium"}))
 
 
 def test_scene_round_trips_through_toml_and_the_core_spec(tmp_path):

@@ -342,3 +342,41 @@ def test_a_speed_controlled_rotor_driving_the_rigid_drive_into_the_stop_fails(in
                                                       abs=1.1e-5)
         else:
             assert np.all(ls.simulate(s, 0.05, **options)["stop_force"] == 0.0)
+
+
+# --- an equilibrium start -----------------------------------------------------
+
+
+@pytest.mark.parametrize("integrator", ["event_driven", "moreau"])
+@pytest.mark.parametrize("stops", [{"upper": 2e-4, "contact": "exact", "restitution": 0.3},
+                                   {"upper": 2e-4, "stiffness": 1e7, "damping": 1e3}])
+def test_an_equilibrium_start_places_the_stops_relative_to_it(stops, integrator):
+    # The flexible drive under -200 N starts in static equilibrium, its load
+    # at u0 != 0 (the springs' deflection): the stops' faces are relative
+    # to the load's start, u0 + upper; the start is the drive's equilibrium
+    # without stops (they exert nothing there). A torque ramp then drives
+    # the load into the upper stop, which it meets at u0 + upper.
+    torque = {"type": "table", "times": [0.0, 0.05, 0.1, 10.0],
+              "values": [0.0, 0.0, -1.5, -1.5]}
+    scene = thesis_scene(concept="flexible", loads={"drive_torque": torque,
+                                                    "axial_force": -200.0},
+                         initial={"state": "equilibrium"}, end_stops=stops)
+    options = {"integrator": "moreau", "dt": 1e-5} if integrator == "moreau" else {}
+    free = dict(scene)
+    free.pop("end_stops")
+    u0 = ls.simulate(ls.Scene.from_dict(free), 0.01, **options)["u_load"][0]
+    assert abs(u0) > 1e-5
+    result = ls.simulate(ls.Scene.from_dict(scene), 0.3, **options)
+    assert result["u_load"][0] == u0 and result["v_load"][0] == 0.0
+    face = u0 + 2e-4
+    touching = result["stop_force"] != 0.0
+    first = np.argmax(touching)
+    # (Moreau-Jean meets the face within a step's travel)
+    reach = 1e-9 + (np.max(np.abs(result["v_load"])) * 1e-5 if options else 0.0)
+    assert touching[first] and np.all(result["u_load"][:first] < face + reach)
+    assert result["u_load"][first] >= face - reach
+    if integrator == "event_driven":
+        meets = next(e.time for e in result.events if "upper end stop" in e.kind)
+        row = np.flatnonzero(result.t == meets)[0]
+        assert result["u_load"][row] == pytest.approx(face, abs=1e-12)
+    assert_invariants(result, scene, 0.3, **options)

@@ -9,11 +9,14 @@
 // face: a jump of c d') and falls through 0 where it releases (a kink), so
 // that the integrator stops at either.
 //
-// Exact stops (on a load that no constraint ties to other coordinates): one
-// root per stop, its gap while free (an impact where it falls to 0: Newton's
-// law u'+ = -e u'-, or the contact closes where the rebound is below the
-// bounce threshold and the forces press the load on), and while closed the
-// reaction that holds the load at the face (it opens where that falls to 0).
+// Exact stops: one root per stop, its gap while free (an impact where it
+// falls to 0: Newton's law u'+ = -e u'-, on a load that the thread ties to
+// other coordinates through the frictional thread, tied_impact; or the
+// contact closes where the rebound is below the bounce threshold and the
+// stop pushes), and while closed the reaction that holds the load at the
+// face (the held load a row of the mode's solve, ModeSpec::held_load; it
+// opens where that falls to 0). docs/physics/end_stops.md, "The rigid drive
+// at an exact stop".
 #include <cmath>
 #include <limits>
 #include <string>

@@ -60,15 +60,11 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
                             " N/m is invalid: must be > 0 with end_stops.contact = " +
                             m.text(contact));
   }
-  if (p.initial_state == InitialState::equilibrium)
-    throw InvalidArgument("initial.state = " + m.text("equilibrium") +
-                          " is invalid with end_stops: the stops are placed relative to the "
-                          "load's start, and the static equilibrium does not take them (use " +
-                          m.text("relaxed") + ")");
 }
 
 // The stops on the load, lower < 0 < upper relative to its start, which a
-// relaxed start puts at u_load = 0.
+// relaxed start puts at u_load = 0 (an equilibrium start moves them by its
+// u_load: DriveModel::place_stops_at_equilibrium).
 void build(const Section& s, const DriveParameters& p, elements::DriveElements& e) {
   (void)p;
   const int load = e.load.coordinate;

@@ -290,10 +290,11 @@ def test_exact_stop_closes_holds_the_load_and_opens_when_the_force_reverses():
 
 
 @pytest.mark.parametrize("changes, message", [
-    ({"backlash": {"axial": 1e-4, "contact": "exact"}},
-     "end_stops.contact = 'exact' is invalid with backlash.contact = 'exact' on concept = "
-     "'rigid'"),
-    ({"concept": "flexible_nut", "drive": "nut", "backlash": {"axial": 1e-4, "contact": "exact"}},
+    ({"backlash": {"axial": 1e-4, "contact": "exact"}, "friction": {"law": "lugre"}},
+     "end_stops.contact = 'exact' is invalid with backlash.contact = 'exact' and "
+     "friction.law = 'lugre' on concept = 'rigid'"),
+    ({"concept": "flexible_nut", "drive": "nut", "backlash": {"axial": 1e-4, "contact": "exact"},
+      "friction": {"law": "arctan_velocity"}},
      "the load rides on the part that carries the flank"),
     ({"concept": "flexible_nut", "end_stops": {"stiffness": K}},
      "end_stops.stiffness = 10000000.0 is invalid: must be absent with end_stops.contact = 'exact'"),
@@ -303,18 +304,19 @@ def test_exact_stop_closes_holds_the_load_and_opens_when_the_force_reverses():
 def test_exact_stops_are_refused_naming_the_keys(changes, message):
     # (Exact stops run on every concept, the rigid drive's in
     # test_simulation_drive_rigid_exact_stops.py; exact play is refused
-    # where the load rides on the flank's part.)
+    # with a smooth law where the load rides on the flank's part.)
     stops = {"lower": -1e-4, "contact": "exact", **changes.pop("end_stops", {})}
     with pytest.raises(ValueError) as raised:
         ls.Scene.from_dict(thesis_scene(end_stops=stops, **changes))
     assert message in str(raised.value)
 
 
-def test_the_core_refuses_exact_stops_with_exact_play_on_a_rigid_drive():
+def test_the_core_refuses_exact_stops_with_exact_play_and_a_smooth_law_on_a_rigid_drive():
     from leadscrew import _core
 
     parameters = ls.Scene.from_dict(
-        thesis_scene(backlash={"axial": 1e-4, "contact": "exact"})).model().parameters
+        thesis_scene(backlash={"axial": 1e-4, "contact": "exact"},
+                     friction={"law": "lugre"})).model().parameters
     parameters.end_stops = "exact"
     parameters.end_stop_lower = -1e-3
     with pytest.raises(ValueError, match="two impacts at once"):

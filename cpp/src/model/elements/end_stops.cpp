@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/element_section.hpp"
 
@@ -32,19 +33,23 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
     // (the rigid drive, the nut-driven flexible nut): while the stop holds
     // the load, a flank's impact would be a second impact at once on a
     // tied body (the flank's and the stop's impulses through the thread's
-    // friction), which the flank's impact law does not take.
+    // friction), which the event-driven flank impact does not take;
+    // Moreau-Jean solves both as rows of its step (drive/integrators.cpp:
+    // the scene's only integrator), which takes a set-valued law only.
     const bool load_on_flank =
         p.concept == Concept::rigid ||
         (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut);
-    if (load_on_flank && p.backlash == BacklashContact::exact)
+    if (load_on_flank && p.backlash == BacklashContact::exact &&
+        !friction::law_type(p.friction).time_stepping)
       throw InvalidArgument(
           "end_stops.contact = " + m.text("exact") + " is invalid with backlash.contact = " +
-          m.text("exact") + " on concept = " + m.text(concept_name(p.concept)) +
-          " and drive = " + m.text(drive_name(p.drive)) +
-          ": the load rides on the part that carries the flank, and a flank's impact while "
-          "the stop holds it would be two impacts at once through the thread's friction; use "
-          "backlash.contact = " + m.text("bistop") + " or " + m.text("cubic") +
-          ", end_stops.contact = " + m.text("penalty") + ", or no play");
+          m.text("exact") + " and friction.law = " + m.text(p.friction) + " on concept = " +
+          m.text(concept_name(p.concept)) + " and drive = " + m.text(drive_name(p.drive)) +
+          ": the load rides on the part that carries the flank, a flank's impact while the "
+          "stop holds it is two impacts at once, which Moreau-Jean's step takes with a "
+          "set-valued law only (friction.law = " + m.text("coulomb") + ", " +
+          m.text("stribeck") + "); or use backlash.contact = " + m.text("bistop") + " or " +
+          m.text("cubic") + ", end_stops.contact = " + m.text("penalty") + ", or no play");
   } else {
     if (s.number("restitution") != 0.0)
       throw InvalidArgument("end_stops.restitution = " + m.number(s.number("restitution")) +

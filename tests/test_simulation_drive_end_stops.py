@@ -293,8 +293,8 @@ def test_exact_stop_closes_holds_the_load_and_opens_when_the_force_reverses():
     ({"backlash": {"axial": 1e-4, "contact": "exact"}, "friction": {"law": "lugre"}},
      "end_stops.contact = 'exact' is invalid with backlash.contact = 'exact' and "
      "friction.law = 'lugre' on concept = 'rigid'"),
-    ({"concept": "flexible_nut", "drive": "nut", "backlash": {"axial": 1e-4, "contact": "exact"},
-      "friction": {"law": "arctan_velocity"}},
+    ({"concept": "flexible_nut", "drive": "nut",
+      "backlash": {"axial": 1e-4, "contact": "exact"}, "friction": {"law": "arctan_velocity"}},
      "the load rides on the part that carries the flank"),
     ({"concept": "flexible_nut", "end_stops": {"stiffness": K}},
      "end_stops.stiffness = 10000000.0 is invalid: must be absent with end_stops.contact = 'exact'"),

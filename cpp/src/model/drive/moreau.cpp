@@ -502,7 +502,7 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                           "use a drive torque or a DC motor, end_stops.contact = \"penalty\" "
                           "(its stiffness bounds the force), or a flexible concept");
   if (row && stops_fix_every_velocity())
-    return stop_holds(t, v0, without, unit, normal_target, rotor_target, stick);
+    return stop_holds(without, unit, normal_target, rotor_target, stick);
   double c = model_.tangent_direction().dot(without.velocity);
   double d = model_.tangent_direction().dot(unit.velocity) - c;
   double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);

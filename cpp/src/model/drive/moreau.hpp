@@ -113,9 +113,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   bool restitution_through_thread() const;
   void limit_stop_restitution(double t, double h, double theta, const double* y, double* y_next,
                               double excess, double play_rate);
-  Impulses stop_holds(double t, const CoordinateVector& v0, const Impulses& without,
-                      const Impulses& unit, double normal_target, double rotor_target,
-                      bool& stick);
+  Impulses stop_holds(const Impulses& without, const Impulses& unit, double normal_target,
+                      double rotor_target, bool& stick);
   Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
                         double normal_target, double rotor_target, int sigma_fixed,
                         bool& contact, bool& stick);

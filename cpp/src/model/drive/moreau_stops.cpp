@@ -23,11 +23,9 @@ namespace leadscrew::model::drive {
 // none is consistent (mu' |alpha| >= 1: the self-locking thread, which the
 // stop cannot back-drive) the stop's target is 0: no rebound, as the
 // event-driven impact's held stop.
-DriveMoreau::Impulses DriveMoreau::stop_holds(double t, const CoordinateVector& v0,
-                                              const Impulses& without, const Impulses& unit,
+DriveMoreau::Impulses DriveMoreau::stop_holds(const Impulses& without, const Impulses& unit,
                                               double normal_target, double rotor_target,
                                               bool& stick) {
-  (void)v0;
   const Eigen::VectorXd& tangent = model_.tangent_direction();
   const double c = tangent.dot(without.velocity);
   const double noise = 64.0 * std::numeric_limits<double>::epsilon() *
@@ -62,7 +60,6 @@ DriveMoreau::Impulses DriveMoreau::stop_holds(double t, const CoordinateVector& 
   if (normal_target == 0.0 && !p_.speed_controlled) held.velocity.setZero();
   held.friction = 0.0;
   stick = true;
-  (void)t;
   return held;
 }
 

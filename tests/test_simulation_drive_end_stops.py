@@ -157,7 +157,8 @@ def test_stops_out_of_reach_change_nothing_on_the_rigid_drive():
     ({"upper": 0.1}, "end_stops.stiffness is missing"),
     ({"stiffness": K}, "give end_stops.lower [m] (< 0), end_stops.upper [m] (> 0) or both"),
     ({"upper": 0.1, "stiffness": K, "restitution": 0.5}, "end_stops.restitution = 0.5 is invalid"),
-    ({"upper": 0.1, "contact": "exact"}, "end_stops.contact = 'exact' is invalid"),
+    ({"upper": 0.1, "contact": "exact", "stiffness": K}, "end_stops.stiffness = 10000000.0 is "
+                                                         "invalid: must be absent"),
     ({"upper": 0.1, "stiffness": K, "gap": 1.0}, "end_stops.gap is not a known key"),
 ])
 def test_invalid_end_stops_are_refused_naming_the_key(stops, message):
@@ -187,14 +188,12 @@ def test_the_core_checks_the_stops_too():
         parameters.end_stops = "rubber"
 
 
-def test_an_equilibrium_start_is_refused_and_moreau_jean_runs():
+def test_moreau_jean_runs_the_stops():
     # (Moreau-Jean takes end stops since issue 19's stages:
-    # tests/test_simulation_drive_moreau_stops.py.)
+    # tests/test_simulation_drive_moreau_stops.py; an equilibrium start with
+    # stops: tests/test_simulation_drive_rigid_exact_stops.py.)
     scene = ls.Scene.from_dict(thesis_scene(end_stops={"upper": 0.1, "stiffness": K}))
     assert "stop_force" in ls.simulate(scene, 0.01, integrator="moreau", dt=1e-4).channels
-    with pytest.raises(ValueError, match="initial.state = 'equilibrium' is invalid with end_stops"):
-        ls.Scene.from_dict(thesis_scene(end_stops={"upper": 0.1, "stiffness": K},
-                                        initial={"state": "equilibrium"}))
 
 
 def test_scene_round_trips_through_toml_and_the_core_spec(tmp_path):
@@ -291,27 +290,36 @@ def test_exact_stop_closes_holds_the_load_and_opens_when_the_force_reverses():
 
 
 @pytest.mark.parametrize("changes, message", [
-    ({"concept": "rigid"}, "end_stops.contact = 'exact' is invalid with concept = 'rigid'"),
-    ({"concept": "flexible_nut", "drive": "nut"}, "the load moves with the screw"),
+    ({"backlash": {"axial": 1e-4, "contact": "exact"}, "friction": {"law": "lugre"}},
+     "end_stops.contact = 'exact' is invalid with backlash.contact = 'exact' and "
+     "friction.law = 'lugre' on concept = 'rigid'"),
+    ({"concept": "flexible_nut", "drive": "nut",
+      "backlash": {"axial": 1e-4, "contact": "exact"}, "friction": {"law": "arctan_velocity"}},
+     "the load rides on the part that carries the flank"),
     ({"concept": "flexible_nut", "end_stops": {"stiffness": K}},
      "end_stops.stiffness = 10000000.0 is invalid: must be absent with end_stops.contact = 'exact'"),
     ({"concept": "flexible_nut", "end_stops": {"restitution": 1.5}},
      "end_stops.restitution = 1.5 is invalid"),
 ])
-def test_exact_stops_are_refused_where_the_load_is_rigid_in_the_thread(changes, message):
+def test_exact_stops_are_refused_naming_the_keys(changes, message):
+    # (Exact stops run on every concept, the rigid drive's in
+    # test_simulation_drive_rigid_exact_stops.py; exact play is refused
+    # with a smooth law where the load rides on the flank's part.)
     stops = {"lower": -1e-4, "contact": "exact", **changes.pop("end_stops", {})}
     with pytest.raises(ValueError) as raised:
         ls.Scene.from_dict(thesis_scene(end_stops=stops, **changes))
     assert message in str(raised.value)
 
 
-def test_the_core_refuses_exact_stops_on_a_rigid_drive():
+def test_the_core_refuses_exact_stops_with_exact_play_and_a_smooth_law_on_a_rigid_drive():
     from leadscrew import _core
 
-    parameters = ls.Scene.from_dict(thesis_scene()).model().parameters
+    parameters = ls.Scene.from_dict(
+        thesis_scene(backlash={"axial": 1e-4, "contact": "exact"},
+                     friction={"law": "lugre"})).model().parameters
     parameters.end_stops = "exact"
     parameters.end_stop_lower = -1e-3
-    with pytest.raises(ValueError, match="statically indeterminate"):
+    with pytest.raises(ValueError, match="two impacts at once"):
         _core.DriveModel(parameters)
 
 

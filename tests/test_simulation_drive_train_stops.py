@@ -130,12 +130,35 @@ def test_stops_out_of_reach_change_nothing_on_the_train():
     assert [e.kind for e in far.events] == [e.kind for e in plain.events]
 
 
-def test_exact_stops_stay_refused_with_a_stage():
+def test_exact_stops_with_a_stage_run_on_moreau_jean_and_carry_the_drive():
+    # The event-driven TrainSolver does not take the closed exact stop: the
+    # default integrator is Moreau-Jean, the event-driven scheme is refused
+    # naming the stops. At the closed stop the stop carries what the drive
+    # presses with and every friction contact nothing (end_stops.md, "The
+    # rigid drive at a closed stop"): the stop force is the ideal train's,
+    # n T / p with T the motor's torque on the rotor (the stalled motor's
+    # k_t U / R).
     scene = stop_scene()
-    scene["end_stops"] = {"lower": -0.01, "contact": "exact"}
-    with pytest.raises(ValueError, match="end_stops.contact = 'exact' is invalid with concept "
-                                         "= 'rigid'"):
-        ls.Scene.from_dict(scene).model()
+    scene["end_stops"] = {"lower": -2e-4, "contact": "exact"}
+    s = ls.Scene.from_dict(scene)
+    with pytest.raises(ValueError, match="end_stops.contact = .exact."):
+        ls.simulate(s, 0.05, integrator="event_driven")
+    options = {"t_eval": list(np.linspace(0.0, 0.3, 301)), "dt": 1e-5}
+    result = ls.simulate(s, 0.3, **options)
+    assert result.integrator == "moreau"
+    # (reached at 0.22 s; after the closing and the stalled current's rise,
+    # 10 ms: Moreau-Jean's step takes the mean current over the step, its
+    # row the step's end's)
+    reached = np.flatnonzero(result["u_load"] <= -2e-4 + 1e-7)
+    held = reached[10:]
+    assert len(held) > 50 and np.all(np.diff(reached) == 1)
+    p = scene["thread"]["pitch"] / (2 * np.pi)
+    np.testing.assert_allclose(result["stop_force"][held],
+                               RATIO * result["drive_torque"][held] / p, rtol=1e-6)
+    assert result["drive_torque"][-1] == pytest.approx(KT * U / R, rel=1e-6)
+    assert np.all(result["friction_force"][held] == 0.0)
+    assert failed(check_result(result, s.to_dict(), {**options, "t_end": 0.3,
+                                                      "integrator": "moreau"})) == []
 
 
 def test_the_train_and_stop_channels_have_their_units():

@@ -257,6 +257,10 @@ def _check_element_sections(data: Dict[str, Any]) -> None:
     context = _core.DriveParameters()
     context.concept, context.drive = data["concept"], data["drive"]
     context.initial_state = data["initial"]["state"]
+    context.friction = data["friction"]["law"]
+    if data.get("backlash"):
+        context.backlash = data["backlash"]["contact"]
+        context.clearance = data["backlash"]["axial"]
     if "gear" in data:
         context.gear = data["gear"]["type"]
     if "motor" in data:

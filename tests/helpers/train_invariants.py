@@ -225,8 +225,12 @@ def check_train(result: Any, scene: dict, options: dict, ch: Dict[str, np.ndarra
     if scene["friction"]["law"] == "lugre" and "bristle_deflection" in ch:
         report.update(_lugre(t, scene, ch, rtol if sampled else 0.0, rtol, atol))
     stops = scene.get("end_stops")
-    if stops is not None and "stop_force" in ch:
-        report.update(_stops(t, stops, ch, moreau, options, atol))
+    # (the faces relative to the load's start: an equilibrium start moves
+    # them by its u_load, docs/physics/end_stops.md, "The scene")
+    equilibrium = scene.get("initial", {}).get("state") == "equilibrium"
+    if stops is not None and "stop_force" in ch and (not equilibrium or t[0] == 0.0):
+        start = float(ch["u_load"][0]) if equilibrium else 0.0
+        report.update(_stops(t, stops, ch, moreau, options, atol, start))
     return report
 
 
@@ -496,11 +500,12 @@ def _motor_energy(t, ch, k_t, k_e, resistance, inductance, moreau, theta, rtol,
     return failing[0] if failing else max(entries, key=lambda e: e["value"] - e["bound"])
 
 
-def _stops(t, stops, ch, moreau, options, atol) -> Dict[str, dict]:
-    """The load between its exact stops; a stop's force at its face only."""
+def _stops(t, stops, ch, moreau, options, atol, start=0.0) -> Dict[str, dict]:
+    """The load between its exact stops; a stop's force at its face only.
+    ``start``: the load's start, which the faces are relative to."""
     report = {}
     u, force = ch["u_load"], ch["stop_force"]
-    faces = {side: float(stops[side]) for side in ("lower", "upper")
+    faces = {side: start + float(stops[side]) for side in ("lower", "upper")
              if stops.get(side) is not None}
     exact = stops.get("contact", "penalty") == "exact"
     if moreau:

@@ -6,6 +6,7 @@
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
+#include "leadscrew/model/drive_equilibrium.hpp"
 #include "leadscrew/model/drive_geometry.hpp"
 #include "leadscrew/model/drive_rigid.hpp"
 
@@ -145,6 +146,25 @@ DriveModel::DriveModel(DriveParameters parameters)
   if (e_.train_friction && e_.train_friction->event_driven_obstacle.empty())
     e_.train_friction->event_driven_obstacle =
         RigidDriveModes::train_obstacle(*this, DriveDynamics(*this));
+  place_stops_at_equilibrium();
+}
+
+// initial.state = equilibrium with end stops: the stops' faces are relative
+// to the load's start, the equilibrium's u_load (docs/physics/end_stops.md,
+// "The scene"). The load starts strictly between them (lower < 0 < upper),
+// where they exert no force: the equilibrium is the drive's without them,
+// solved once here (the model of the same parameters without the section)
+// and the faces moved by its u_load.
+void DriveModel::place_stops_at_equilibrium() {
+  if (p_.initial_state != InitialState::equilibrium ||
+      (e_.exact_stops.empty() && e_.end_stops().empty()))
+    return;
+  DriveParameters without = p_;
+  without.sections.erase("end_stops");
+  const DriveModel free(without);
+  const double start = initial_state(free).q[free.load()];
+  for (elements::ExactEndStop& stop : e_.exact_stops) stop.position += start;
+  for (elements::EndStop& stop : e_.forces.of<elements::EndStop>()) stop.position += start;
 }
 
 Eigen::VectorXd DriveModel::consistent_velocity(double rotor_speed) const {

@@ -296,7 +296,8 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       f += normal_force * normal;
       if (!stick) f -= kappa * std::abs(normal_force) * tangent;
     }
-    const int nc = (normal_multiplier ? 1 : 0) + (stick ? 1 : 0) + motor.constraint_count();
+    const int nc = (normal_multiplier ? 1 : 0) + (stick ? 1 : 0) + motor.constraint_count() +
+                   (spec.held_load >= 0 ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
     ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
     SmallVector r = SmallVector::Zero(nc);
@@ -317,6 +318,12 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       C(rotor_row, motor.rotor) = 1.0;
       if (std::isnan(rotor_acceleration_)) rotor_acceleration_ = motor.prescribed_acceleration(t_);
       r[rotor_row] = rotor_acceleration_;
+    }
+    int stop_row = -1;
+    if (spec.held_load >= 0) {
+      stop_row = row++;
+      B(spec.held_load, stop_row) = 1.0;
+      C(stop_row, spec.held_load) = 1.0;
     }
     SmallVector lambda;
     out.regular = solve_constrained(inverse_mass_, f, B, C, r, out.acceleration, lambda);
@@ -343,10 +350,24 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       out.friction_force += lift_off_friction;
     }
     out.motor_torque = motor.speed_controlled ? lambda[rotor_row] : applied_torque_;
+    out.stop_force = stop_row >= 0 ? lambda[stop_row] : 0.0;
     out.slip_acceleration = tangent.dot(out.acceleration);
   };
 
   ModeSolution solution;
+  // A closed exact stop whose row and the thread's fix every velocity (the
+  // rigid drive without play, or with its flank closed): the thread's
+  // friction and the stop's force are one unknown too many. The rule
+  // (docs/physics/end_stops.md, "The rigid drive at a closed stop"): the
+  // stop carries what it can, the friction nothing while it holds; the
+  // stop opens where its force would pull, and the thread decides then.
+  if (spec.held_load >= 0 && normal_multiplier && spec.friction != FrictionMode::none &&
+      2 + motor.constraint_count() >= n) {
+    ModeSpec base = spec;
+    base.friction = FrictionMode::none;
+    base.given_tangential = 0.0;
+    return solve(base);
+  }
   if (stick && slip_prescribed_ && normal_multiplier) {
     // The stick row would repeat the others (every velocity is fixed): the
     // friction force is statically indeterminate, chosen as

@@ -259,6 +259,8 @@ class DriveModel {
   double nut_position(const double* q) const { return thread_pair().nut_position(q); }
 
  private:
+  void place_stops_at_equilibrium();
+
   DriveParameters p_;
   elements::DriveElements e_;
   Eigen::VectorXd mass_;

@@ -28,7 +28,7 @@
 namespace leadscrew::model {
 
 constexpr int kMaxCoordinates = 6;
-constexpr int kMaxConstraints = 3;
+constexpr int kMaxConstraints = 4;  // normal, stick, a speed-controlled rotor, a held load
 using CoordinateVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxCoordinates, 1>;
 
 enum class ThreadContact { bilateral, open, closed, penalty };
@@ -50,6 +50,10 @@ struct ModeSpec {
   FrictionMode friction = FrictionMode::none;
   int slip_sign = 0;              // FrictionMode::slip: sign of the slip velocity
   double given_tangential = 0.0;  // an extra tangential force (builds the friction LCP)
+  // A closed exact end stop holds this coordinate (the load's) at rest: a
+  // row of its own, its multiplier the stop's force (ModeSolution::
+  // stop_force); -1: none (docs/physics/end_stops.md, "The rigid drive").
+  int held_load = -1;
 };
 
 struct ModeSolution {
@@ -65,6 +69,8 @@ struct ModeSolution {
   // A preloaded nut (elements/preloaded_nut.hpp): its preload half's normal
   // force in the mode (part of normal_force, the net), 0 without one.
   double preload_normal = 0.0;
+  // A closed exact stop's force on the load along +u (ModeSpec::held_load).
+  double stop_force = 0.0;
   // The normal force of the half that carries the load (normal_force
   // without one): its sign is the bilateral thread's flank side.
   double loaded_normal() const noexcept { return normal_force - preload_normal; }

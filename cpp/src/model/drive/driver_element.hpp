@@ -129,6 +129,19 @@ class DriveHybrid::Element {
   double bounce_threshold() const { return h_.bounce_threshold_; }
   // The impacts' loss booked so far [J] (an element's impact adds to it).
   double& impact_loss() { return h_.impact_loss_; }
+  // A closed exact stop's held coordinate in every mode's solve (-1: none;
+  // ModeSpec::held_load), and the current mode solved at the state set.
+  void hold_load(int coordinate) { h_.held_load_ = coordinate; }
+  ModeSolution solve_current() const { return h_.solve_current(); }
+  // The mode's solve as its spec with the loads replaced (a unit impulse's
+  // response: DriveDynamics::solve_with_forces).
+  ModeSolution solve_with(const ModeSpec& spec, const CoordinateVector& forces) const {
+    return h_.dynamics_.solve_with_forces(spec, forces);
+  }
+  ModeSpec spec(int sigma) const { return h_.spec(sigma); }
+  double stick_mu() const { return h_.stick_mu(); }
+  // Dynamic jamming (the Painleve regime) at the state set: JammingError.
+  [[noreturn]] void jam(const std::string& what) const { h_.jam(what); }
 
  private:
   DriveHybrid& h_;

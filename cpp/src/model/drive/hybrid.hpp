@@ -166,6 +166,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     s.sigma = mode_.contact == ThreadContact::closed ? mode_.flank : sigma;
     s.friction = mode_.contact == ThreadContact::open ? FrictionMode::none : mode_.friction;
     s.slip_sign = mode_.slip_sign;
+    s.held_load = held_load_;
     return s;
   }
 
@@ -251,6 +252,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   double bounce_threshold_;
   bool backlash_;
   bool touching_ = false;  // a penalty flank is penetrated
+  int held_load_ = -1;     // a closed exact end stop's coordinate (ModeSpec::held_load)
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   std::vector<double> saved_state_;  // y before a touch below resolution (handle_event)

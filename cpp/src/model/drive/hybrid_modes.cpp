@@ -162,6 +162,17 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   }
   ModeSpec base = spec(1);
   base.friction = FrictionMode::none;
+  if (held_load_ >= 0 && (mode_.contact == ThreadContact::bilateral ||
+                          mode_.contact == ThreadContact::closed) &&
+      2 + model_.motor().constraint_count() >= model_.coordinate_count()) {
+    // A closed exact stop holds the rigid drive (its row and the thread's
+    // fix every velocity): stuck, the stop carrying the loads and the
+    // friction nothing (DriveDynamics::solve; end_stops.md, "The rigid
+    // drive at a closed stop"). Its opening decides the thread anew.
+    mode_.friction = FrictionMode::stick;
+    mode_.slip_sign = 0;
+    return;
+  }
   if (slip_prescribed_now()) {
     // The motor prescribes every velocity: its slip acceleration decides
     // (no projection: the velocities are the motor's).

@@ -9,6 +9,7 @@
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/ode.hpp"
+#include "leadscrew/model/element_section.hpp"
 #include "leadscrew/model/elements/drive_elements.hpp"
 #include "leadscrew/model/simulation_checks.hpp"
 
@@ -69,6 +70,29 @@ namespace {
 // The train's friction stages (train_friction.hpp): both schemes on the
 // rigid drive without play with plain Coulomb friction, Moreau-Jean alone
 // elsewhere (its obstacle).
+// Exact end stops with exact play where the load rides on the part that
+// carries the flank (the rigid concept, the nut-driven flexible nut): a
+// flank's impact while the stop holds the load is two impacts at once on a
+// tied body, which Moreau-Jean's step solves as its rows and the
+// event-driven flank impact does not take (docs/physics/end_stops.md, "The
+// rigid drive at an exact stop"). elements/end_stops.cpp refuses the
+// smooth laws there.
+bool stops_need_moreau(const DriveParameters& p) {
+  const bool load_on_flank =
+      p.concept == Concept::rigid ||
+      (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut);
+  if (!load_on_flank || p.backlash != BacklashContact::exact) return false;
+  if (const ElementSection* stops = find_section(p, "end_stops"))
+    for (const auto& [key, value] : stops->choices)
+      if (key == "contact" && value == "exact") return true;
+  return false;
+}
+
+const std::vector<std::string>& moreau_only() {
+  static const std::vector<std::string> names = {"moreau"};
+  return names;
+}
+
 const std::vector<std::string>& train_integrators(const std::string& obstacle) {
   static const std::vector<std::string> both = {"event_driven", "moreau"};
   static const std::vector<std::string> moreau_only = {"moreau"};
@@ -83,6 +107,7 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   if (p.nut_preload == 0.0 &&
       (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
     return drive::model_integrators(DriveModel(p));
+  if (stops_need_moreau(p)) return moreau_only();
   // (The law's type, from its defaults: every law's parameters have one.)
   return integrators_for(p.friction, friction::make_law(p.friction, {})->resolution(),
                          p.backlash == BacklashContact::exact, p.nut_preload > 0.0);
@@ -91,6 +116,7 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
+  if (stops_need_moreau(p)) return moreau_only();
   if (model.train_friction() && !model.preloaded_nut())
     return train_integrators(model.train_friction()->event_driven_obstacle);
   return integrators_for(p.friction, model.law().resolution(), thread.exact_play(),
@@ -165,6 +191,14 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
         "acceleration is a difference quotient of the step, so the friction would follow dt); "
         "use friction.law = \"arctan_velocity\" or \"lugre\" on Moreau-Jean, or this law on "
         "the event-driven scheme or an ODE method");
+  if (stops_need_moreau(p) && integrator != "moreau")
+    throw InvalidArgument(
+        "integrator = \"" + integrator + "\" is invalid with end_stops.contact = \"exact\" and "
+        "backlash.contact = \"exact\" on concept = \"" + concept_name(p.concept) +
+        "\" and drive = \"" + drive_name(p.drive) + "\": the load rides on the part that "
+        "carries the flank, and a flank's impact while the stop holds it is two impacts at "
+        "once, which Moreau-Jean's step solves and the event-driven scheme does not; use "
+        "integrator = \"moreau\"");
   if (std::find(allowed.begin(), allowed.end(), integrator) == allowed.end())
     require_choice("integrator", integrator, allowed,
                    (p.backlash != BacklashContact::none

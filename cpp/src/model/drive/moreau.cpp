@@ -56,7 +56,11 @@ void DriveMoreau::step(double t, double h, double theta, const double* y, double
   for (std::size_t k = 0; k < modes_at_start_.size(); ++k)
     modes_at_start_[k] = dynamics_.element_mode(k);
   if (bristle_state_ >= 0) bristle_z0_ = y[bristle_state_] * bristle_range_;
-  if (!take_step(t, h, theta, y, y_next, p_.restitution)) return;
+  stop_share_ = 1.0;
+  if (!take_step(t, h, theta, y, y_next, p_.restitution)) {
+    if (stop_restituting_) limit_stop_restitution(t, h, theta, y, y_next, excess, play_rate);
+    return;
+  }
   // A step that closes a flank with Newton's restitution e > 0: with
   // Coulomb friction it can create energy (Kane and Levinson's paradox, as
   // at the event-driven scheme's impacts: a rigid nut's closing step at
@@ -199,8 +203,11 @@ bool DriveMoreau::take_step_held(double t, double h, double theta, const double*
     engaged_[k] = stops[k].penetration(u0) > 0.0 || stops[k].penetration(u0 + h * du0) > 0.0;
   for (std::size_t k = 0; k < exact.size(); ++k) {
     stop_active_[k] = exact[k].gap(u0 + h * du0) <= 0.0;
-    stop_target_[k] = exact[k].gap(u0) > 0.0 ? exact[k].side * exact[k].restitution * du0 : 0.0;
+    stop_target_[k] = exact[k].gap(u0) > 0.0
+                          ? stop_share_ * exact[k].side * exact[k].restitution * du0
+                          : 0.0;
   }
+  stop_restituting_ = restitution_through_thread();
   bool released[kMaxStops] = {false, false};
   // The rotor's friction contact (the motor's friction, a lossy or worm
   // stage: train_friction.hpp), a second friction contact of the step.
@@ -402,6 +409,17 @@ DriveMoreau::Impulses DriveMoreau::solve_train(double t, double h, double theta,
   const elements::TrainFriction& train = *model_.train_friction();
   const int r = model_.rotor();
   std::string failure;
+  if (contact_at_start && stops_fix_every_velocity()) {
+    // The stop holds the rigid drive: the rotor's contact, as the thread's,
+    // carries nothing (the rule, stop_holds); its stick mode.
+    rotor_row_ = false;
+    contact = true;
+    Impulses impulses =
+        solve_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, contact, stick);
+    impulses.train = 0.0;
+    mode = moreau_contacts::kRotorModes[0];
+    return impulses;
+  }
   for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
     if (!train.stage && candidate.flow < 0) continue;  // (one slip per sign without a stage)
     rotor_row_ = true;
@@ -485,7 +503,22 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // (A penalty flank: no constraint row, its normal impulse the force's.)
   const bool row = !model_.thread_pair().penalty();
   const Impulses without = solve(row, normal_target, rotor_target, 0.0);
+  // An exact stop's row and the thread's fix every velocity (the rigid
+  // drive at its stop): the stop's impulse and the thread's friction
+  // impulse are one unknown too many. The rule (end_stops.md, "The rigid
+  // drive at a closed stop"): the stop carries what it can, the friction
+  // nothing; where the stop's impulse pulls, stop_changes releases it and
+  // the thread's LCP decides the step again without it.
   const Impulses unit = solve(row, normal_target, rotor_target, 1.0);
+  if (row && p_.speed_controlled && stops_fix_every_velocity() &&
+      2 >= model_.coordinate_count())
+    throw SimulationError(t, "the rotor's prescribed speed drives the load, rigid in the "
+                             "thread, into its exact end stop: the speed and the rigid stop "
+                             "both fix the drive's one degree of freedom, an infinite impulse",
+                          "use a drive torque or a DC motor, end_stops.contact = \"penalty\" "
+                          "(its stiffness bounds the force), or a flexible concept");
+  if (row && stops_fix_every_velocity())
+    return stop_holds(without, unit, normal_target, rotor_target, stick);
   double c = model_.tangent_direction().dot(without.velocity);
   double d = model_.tangent_direction().dot(unit.velocity) - c;
   double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);

@@ -115,6 +115,12 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // flank LCP); contact false where no flank is active or it separates (a
   // penalty flank: where its force pulls; one that pushes carries its
   // friction, or SimulationError).
+  bool stops_fix_every_velocity() const;
+  bool restitution_through_thread() const;
+  void limit_stop_restitution(double t, double h, double theta, const double* y, double* y_next,
+                              double excess, double play_rate);
+  Impulses stop_holds(const Impulses& without, const Impulses& unit, double normal_target,
+                      double rotor_target, bool& stick);
   Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
                         double normal_target, double rotor_target, int sigma_fixed,
                         bool& contact, bool& stick);
@@ -182,6 +188,11 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   bool engaged_[kMaxStops] = {false, false};
   bool stop_active_[kMaxStops] = {false, false};
   double stop_target_[kMaxStops] = {0.0, 0.0};
+  // The share of the exact stops' restitution the step takes (1; less
+  // where a rebound through the frictional thread would create energy:
+  // limit_stop_restitution), and whether the step is such a rebound.
+  double stop_share_ = 1.0;
+  bool stop_restituting_ = false;
   double last_stop_force_ = 0.0;  // the exact stops' impulse / h on the load along +u [N]
   // The rotor's friction row of the step's constraint solve (active: the
   // model has train friction and a mode is being tried).

@@ -14,6 +14,7 @@
 #include "leadscrew/friction/law.hpp"
 #include "leadscrew/model/drive_geometry.hpp"
 #include "leadscrew/model/drive.hpp"
+#include "leadscrew/model/element_section.hpp"
 #include "leadscrew/model/elements/drive_elements.hpp"
 
 namespace leadscrew::model::elements {
@@ -729,6 +730,11 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
     return p.friction == "coulomb" ? "friction.mu_static = " + format_value(law.mu_static()) +
                                          " above friction.mu = " + format_value(law.mu())
                                    : "friction.law = \"" + p.friction + "\"";
+  // (The closed exact stop holds the drive through the thread's row,
+  // DriveDynamics::solve; TrainSolver's closed forms do not take it.)
+  if (const ElementSection* stops = find_section(p, "end_stops"))
+    for (const auto& [key, value] : stops->choices)
+      if (key == "contact" && value == "exact") return "end_stops.contact = \"exact\"";
   return given_base_excitation(p);
 }
 

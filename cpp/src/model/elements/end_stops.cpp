@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "leadscrew/core/errors.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/element_section.hpp"
 
@@ -28,21 +29,27 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
                               " is invalid: must be absent with end_stops.contact = " +
                               m.text("exact") +
                               " (a rigid stop; its impacts take end_stops.restitution)");
-    // The load alone meets the stop: no constraint may tie it to other
-    // coordinates (a rigid translating part carries the thread: a rigid
-    // drive clamped against a rigid stop is statically indeterminate).
-    const bool screw_driven = p.drive == DrivenPart::screw;
-    const bool flexible = p.concept == Concept::flexible ||
-                          (p.concept == Concept::flexible_nut && screw_driven);
-    if (!flexible)
+    // Exact play where the load rides on the part that carries the flank
+    // (the rigid drive, the nut-driven flexible nut): while the stop holds
+    // the load, a flank's impact would be a second impact at once on a
+    // tied body (the flank's and the stop's impulses through the thread's
+    // friction), which the event-driven flank impact does not take;
+    // Moreau-Jean solves both as rows of its step (drive/integrators.cpp:
+    // the scene's only integrator), which takes a set-valued law only.
+    const bool load_on_flank =
+        p.concept == Concept::rigid ||
+        (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut);
+    if (load_on_flank && p.backlash == BacklashContact::exact &&
+        !friction::law_type(p.friction).time_stepping)
       throw InvalidArgument(
-          "end_stops.contact = " + m.text("exact") + " is invalid with concept = " +
+          "end_stops.contact = " + m.text("exact") + " is invalid with backlash.contact = " +
+          m.text("exact") + " and friction.law = " + m.text(p.friction) + " on concept = " +
           m.text(concept_name(p.concept)) + " and drive = " + m.text(drive_name(p.drive)) +
-          ": the load moves with the " + (screw_driven ? "nut" : "screw") +
-          ", rigid and in the thread, and a rigid drive clamped against a rigid stop is "
-          "statically indeterminate (the thread's friction and the stop's force, one "
-          "equation); use end_stops.contact = " + m.text("penalty") +
-          ", or a concept where that part is flexible (the load on its spring)");
+          ": the load rides on the part that carries the flank, a flank's impact while the "
+          "stop holds it is two impacts at once, which Moreau-Jean's step takes with a "
+          "set-valued law only (friction.law = " + m.text("coulomb") + ", " +
+          m.text("stribeck") + "); or use backlash.contact = " + m.text("bistop") + " or " +
+          m.text("cubic") + ", end_stops.contact = " + m.text("penalty") + ", or no play");
   } else {
     if (s.number("restitution") != 0.0)
       throw InvalidArgument("end_stops.restitution = " + m.number(s.number("restitution")) +
@@ -58,15 +65,11 @@ void check(const Section& s, const DriveParameters& p, const MessageStyle& m) {
                             " N/m is invalid: must be > 0 with end_stops.contact = " +
                             m.text(contact));
   }
-  if (p.initial_state == InitialState::equilibrium)
-    throw InvalidArgument("initial.state = " + m.text("equilibrium") +
-                          " is invalid with end_stops: the stops are placed relative to the "
-                          "load's start, and the static equilibrium does not take them (use " +
-                          m.text("relaxed") + ")");
 }
 
 // The stops on the load, lower < 0 < upper relative to its start, which a
-// relaxed start puts at u_load = 0.
+// relaxed start puts at u_load = 0 (an equilibrium start moves them by its
+// u_load: DriveModel::place_stops_at_equilibrium).
 void build(const Section& s, const DriveParameters& p, elements::DriveElements& e) {
   (void)p;
   const int load = e.load.coordinate;
@@ -115,9 +118,10 @@ SectionType end_stops_section() {
       choice("contact", {"penalty", "exact"},
              "the stops' contact: 'penalty', a one-sided spring-damper on the load against the "
              "ground, F = max(0, k d + c d') for a penetration d > 0, which pushes and never "
-             "pulls; 'exact', a rigid unilateral stop with Newton impacts (restitution), only "
-             "where the load hangs on a flexible translating part (concept 'flexible', or "
-             "'flexible_nut' with drive 'screw'; docs/physics/end_stops.md)")
+             "pulls; 'exact', a rigid unilateral stop with Newton impacts (restitution); where "
+             "the load is rigid in the thread (concept 'rigid', 'flexible_nut' with drive "
+             "'nut') the closed stop holds the drive and carries the loads, the thread's "
+             "friction what it cannot (docs/physics/end_stops.md)")
           .named("end_stops"),
       number("stiffness", "N/m",
              "the penalty stop's stiffness k (required with contact = 'penalty', absent with "

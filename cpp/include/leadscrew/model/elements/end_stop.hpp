@@ -23,7 +23,9 @@
 // add_stiffness(K, a) / add_damping(C) / damping_power(v) do not see:
 // they add nothing. Moreau-Jean decides the contact per step and adds k and
 // c itself (drive/moreau.cpp, DriveMoreau::assemble); the static
-// equilibrium's Newton refuses end stops (build_drive_elements).
+// equilibrium is the drive's without its stops (the load starts strictly
+// between them), which DriveModel::place_stops_at_equilibrium places
+// relative to it.
 #pragma once
 
 #include <algorithm>
@@ -96,10 +98,10 @@ struct EndStop {
 // unilateral contact on the load coordinate u, gap g = side (position - u)
 // >= 0, with Newton's impact law u'+ = -e u'- (restitution e), and a closed
 // contact (u held at the face) while the forces on the load press it
-// there. Only on a load that no constraint ties to other coordinates (the
-// translating part flexible: the load hangs on its spring), where the
-// impact and the closed contact concern the load alone; DriveHybrid holds
-// its contact state (hybrid_end_stops.cpp). Not a force element.
+// there (on the rigid drive the stop carries the loads, the thread's
+// friction what it cannot: docs/physics/end_stops.md, "The rigid drive at
+// an exact stop"); DriveHybrid holds its contact state
+// (hybrid_end_stops.cpp). Not a force element.
 struct ExactEndStop {
   std::string name;
   int coordinate = -1;

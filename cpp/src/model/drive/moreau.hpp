@@ -92,6 +92,40 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   bool take_step_held(double t, double h, double theta, const double* y, double* y_next,
                       double restitution);
   // The step of the model's element k from y at t (model/element.hpp).
+  // One step's state between its parts (take_step_held): its start, the
+  // contacts it plans, its impulses.
+  struct StepState {
+    double t = 0.0, h = 0.0, theta = 0.0;
+    const double* y = nullptr;
+    CoordinateVector q0, v0;
+    double play0 = 0.0, play_rate0 = 0.0;
+    double rotor_impulse = 0.0;  // the elements' impulse on the rotor (the train's balance)
+    int sigma_fixed = 0;         // 0: bilateral (sign free); +-1: a flank
+    bool contact_at_start = true;
+    double normal_target = 0.0, rotor_target = 0.0;
+    bool restituting = false;
+    double u0 = 0.0, du0 = 0.0;  // the load at the start
+    bool released[kMaxStops] = {false, false};
+    moreau_contacts::RotorBalance balance;
+    moreau_contacts::RotorMode rotor_mode;
+    Impulses impulses;
+    bool stick = false, contact = false;
+  };
+  // take_step_held's parts, in order: the start and the elements'
+  // impulses; the thread's contact, the stops' active sets and the rotor's
+  // balance; the passes of the step's solve (its matrix and right-hand
+  // side: assemble_step); the end velocities; the end state and the
+  // account (book_step, book_losses); what the row reports.
+  void begin_step(StepState& s);
+  void plan_contacts(StepState& s, double restitution);
+  void plan_stops(StepState& s);
+  void solve_step(StepState& s);
+  void assemble_step(const StepState& s, Square& stiffness, Square& damping,
+                     CoordinateVector& rhs_base);
+  void finish_velocities(StepState& s);
+  void book_step(StepState& s, double* y_next);
+  void book_losses(StepState& s, const CoordinateVector& v_theta, double* y_next);
+  void report_step(const StepState& s);
   ElementStep element_step(std::size_t k, double t, double h, double theta, const double* y,
                            const CoordinateVector& q0, const CoordinateVector& v0) const;
   StepAccount energy_created(double t, double h, const double* y, const double* y_next);

@@ -107,9 +107,8 @@ std::string fmi_unit(const std::string& unit) {
 // in the registry's order; a name already listed is not repeated.
 void add_element_outputs(const DriveParameters& p, std::vector<CosimVariable>& out) {
   const DriveModel model(p);
-  const bool bristle = model.law().resolution() == friction::Resolution::bristle;
   unsigned reference = kOutputs + static_cast<unsigned>(std::size(kOutputList)) + 2;
-  for (const drive::Declaration& declaration : drive::declare_elements(model, bristle))
+  for (const drive::Declaration& declaration : drive::declare_elements(model, model.law()))
     for (const drive::ChannelSpec& c : declaration.channels) {
       const auto listed = [&](const CosimVariable& v) { return v.name == c.name; };
       if (std::any_of(out.begin(), out.end(), listed)) continue;

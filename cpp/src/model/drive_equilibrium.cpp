@@ -47,7 +47,7 @@ std::string loads_text(const DriveModel& model, const DriveDynamics& dynamics) {
 void set_element_states_at_rest(const DriveModel& model, DriveDynamics& dynamics) {
   if (model.elements().elements.empty()) return;
   const int n = model.coordinate_count();
-  const drive::StateLayout layout(model, false);
+  const drive::StateLayout layout(model, dynamics.law());
   const Eigen::VectorXd rest = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd y = Eigen::VectorXd::Zero(layout.size());
   drive::initial_element_states(model, layout, rest.data(), rest.data(), true, y.data());

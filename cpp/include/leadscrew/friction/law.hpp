@@ -113,6 +113,11 @@ class Law {
   // loss (sigma0 z z' [m/s]); 0 for a law without such a state.
   virtual double stored_energy(double /*z*/) const { return 0.0; }
   virtual double storing_power(double /*slip*/, double /*z*/) const { return 0.0; }
+  // The law's own internal states, by name, in the order a run carries them
+  // (the thread pair that runs it declares them into the run's state vector;
+  // LuGre's: its deflection as a share of bristle_range(), and the energy
+  // its bristles store); none for a law without (drive/declaration.hpp).
+  virtual std::vector<const char*> state_names() const { return {}; }
   // A set-valued law run by an ODE integrator: its velocity law (nullptr:
   // none, the law needs the event-driven scheme or Moreau-Jean).
   virtual std::unique_ptr<Law> regularized() const { return nullptr; }

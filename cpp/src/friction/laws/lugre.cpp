@@ -7,6 +7,7 @@
 // / sigma0 and T is Stribeck's; for small displacements the bristles are a
 // spring of stiffness sigma0 |N| (presliding). The bristle energy
 // |N| sigma0 z^2 / 2 is elastic energy in the account.
+#include <vector>
 #include "leadscrew/friction/stribeck.hpp"
 
 namespace leadscrew::friction {
@@ -29,6 +30,11 @@ class LuGre final : public Law {
     return sigma0_ * z + sigma1_ * bristle_rate(slip, z);
   }
   double bristle_stiffness() const override { return sigma0_; }
+  // z / bristle_range (in [-1, 1]: its error controlled at its own scale),
+  // and the bristles' stored energy per unit normal force integrated.
+  std::vector<const char*> state_names() const override {
+    return {"bristle_share", "bristle_energy"};
+  }
   double bristle_range() const override {
     return std::max(curve_.mu, curve_.mu_static) / sigma0_;
   }

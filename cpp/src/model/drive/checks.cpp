@@ -21,7 +21,7 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
   const DriveParameters& p = model.parameters();
   // The elements' declarations (declaration.hpp), as the run's layout has them.
   const std::vector<Declaration> declarations =
-      declare_elements(model, law.resolution() == friction::Resolution::bristle);
+      declare_elements(model, law);
   ResultCheckSpec spec;
   // The energy account's channels, the base's then the elements' (each loss
   // an integral in y: one quadrature each), by their roles.

@@ -18,11 +18,10 @@ namespace {
 // LuGre's bristles (the friction law's, friction/laws/lugre.cpp): the
 // deflection z and its stored energy, states of their own; the deflection a
 // channel (their energy is the elastic channel's).
-void declare_bristles(const DriveModel& model, bool bristle, Declaration& d) {
+void declare_bristles(const DriveModel& model, const friction::Law& law, Declaration& d) {
   (void)model;
-  if (!bristle) return;
-  // z / bristle_range (in [-1, 1]: its error controlled at its own scale)
-  d.states = {"bristle_share", "bristle_energy"};
+  d.states = law.state_names();  // (the law's own: LuGre's bristles)
+  if (d.states.empty()) return;
   d.channels = lugre_bristles_kind().catalog;
 }
 

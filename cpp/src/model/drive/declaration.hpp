@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "leadscrew/friction/law.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
 
@@ -82,11 +83,12 @@ struct Declaration {
 
 // A registered kind of element (element_registry.cpp): its name, every
 // channel it may declare (the units' table) and its declaration for a
-// model. `bristle`: the friction law that runs has LuGre's bristles.
+// model; `law`: the friction law that runs on the thread (its own states,
+// Law::state_names, are declared through it).
 struct ElementKind {
   const char* name;
   std::vector<ChannelSpec> catalog;
-  void (*declare)(const DriveModel& model, bool bristle, Declaration& declaration);
+  void (*declare)(const DriveModel& model, const friction::Law& law, Declaration& declaration);
 };
 
 // The registered kinds, in the registry's order (the order of their states
@@ -94,7 +96,7 @@ struct ElementKind {
 const std::vector<const ElementKind*>& element_kinds();
 
 // A model's non-empty declarations, in the registry's order (kind set).
-std::vector<Declaration> declare_elements(const DriveModel& model, bool bristle);
+std::vector<Declaration> declare_elements(const DriveModel& model, const friction::Law& law);
 
 // An element kind's declare for a model's element (model/element.hpp) of
 // that name: its own declaration (Element::declare), `element` set; none

@@ -72,12 +72,12 @@ void declare_model_element(const DriveModel& model, const char* name, Declaratio
     }
 }
 
-std::vector<Declaration> declare_elements(const DriveModel& model, bool bristle) {
+std::vector<Declaration> declare_elements(const DriveModel& model, const friction::Law& law) {
   std::vector<Declaration> declarations;
   const std::vector<const ElementKind*>& kinds = element_kinds();
   for (std::size_t k = 0; k < kinds.size(); ++k) {
     Declaration d;
-    kinds[k]->declare(model, bristle, d);
+    kinds[k]->declare(model, law, d);
     if (d.empty()) continue;
     d.kind = static_cast<int>(k);
     declarations.push_back(std::move(d));

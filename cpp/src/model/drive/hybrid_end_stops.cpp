@@ -32,8 +32,8 @@ const ElementKind& end_stops_kind();
 
 namespace {
 
-void declare(const DriveModel& model, bool bristle, Declaration& d) {
-  (void)bristle;
+void declare(const DriveModel& model, const friction::Law& law, Declaration& d) {
+  (void)law;
   // The stops' force on the load along +u (its energy is the force
   // elements' elastic energy and damping loss, an exact stop's impacts').
   if (model.elements().end_stops().empty() && model.elements().exact_stops.empty()) return;

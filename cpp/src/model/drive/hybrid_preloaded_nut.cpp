@@ -23,8 +23,8 @@ namespace {
 // Its channels (the declaration's, in this order).
 enum Channel { kPreloadForce, kNormalForceA, kFlankNormal };
 
-void declare(const DriveModel& model, bool bristle, Declaration& d) {
-  (void)bristle;
+void declare(const DriveModel& model, const friction::Law& law, Declaration& d) {
+  (void)law;
   const elements::PreloadedNut* nut = model.preloaded_nut();
   if (!nut) return;
   if (nut->lift_off) {

@@ -17,7 +17,7 @@ namespace leadscrew::model::drive {
 
 DriveMoreau::DriveMoreau(const DriveModel& model)
     : model_(model), p_(model.parameters()), dynamics_(model),
-      layout_(model, model.law().resolution() == friction::Resolution::bristle),
+      layout_(model, model.law()),
       names_(drive_channel_names(layout_)), element_slots_(layout_.element_slots()),
       stop_channel_(layout_.find_channel("stop_force")),
       motor_friction_state_(layout_.find_state("motor_friction_loss")),

@@ -25,7 +25,7 @@ const friction::Law& running_law(const DriveModel& model, const std::string& int
 }
 
 StateLayout state_layout(const DriveModel& model, const friction::Law& law) {
-  return StateLayout(model, law.resolution() == friction::Resolution::bristle);
+  return StateLayout(model, law);
 }
 
 Eigen::VectorXd initial_vector(const DriveModel& model, const StateLayout& layout) {

@@ -23,14 +23,14 @@ enum Energy { kWorkDrive = 0, kWorkAxial, kFrictionLoss, kDampingLoss, kContactL
 // integrals] and full coordinates.
 class StateLayout {
  public:
-  // `bristle`: the friction law that runs has LuGre's bristle deflection
-  // (a declaration of its own, constrained_solver.cpp). The elements'
-  // states follow the velocities, in the order of their declarations
+  // `law`: the friction law that runs on the thread, whose own states
+  // (Law::state_names: LuGre's bristles) it declares (constrained_solver.cpp's
+  // lugre_bristles kind). The elements' states follow the velocities, in the order of their declarations
   // (declaration.hpp: the registry's, element_registry.cpp), each
   // element's in the order it declared them; their channels are numbered
   // the same way (ChannelState::values).
-  StateLayout(const DriveModel& model, bool bristle)
-      : model_(model), declarations_(declare_elements(model, bristle)) {
+  StateLayout(const DriveModel& model, const friction::Law& law)
+      : model_(model), declarations_(declare_elements(model, law)) {
     const bool speed = model.parameters().speed_controlled;
     positions_ = model.independent();
     for (int i : positions_)

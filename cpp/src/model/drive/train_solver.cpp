@@ -35,8 +35,8 @@ enum Channel { kMotorFrictionLoss, kGearLoss };
 
 // The train's friction stages (elements/train_friction.hpp): each stage's
 // loss an integral in y and a channel of its own, among the account's losses.
-void declare_train_friction(const DriveModel& model, bool bristle, Declaration& d) {
-  (void)bristle;
+void declare_train_friction(const DriveModel& model, const friction::Law& law, Declaration& d) {
+  (void)law;
   const elements::TrainFriction* train = model.train_friction();
   if (!train) return;
   const std::vector<ChannelSpec>& catalog = train_friction_kind().catalog;

@@ -85,8 +85,8 @@ bool at_rest(const Excitation& load) {
   return d.kind == "constant" && d.parameters.at(0) == 0.0;
 }
 
-void declare(const DriveModel& model, bool bristle, drive::Declaration& d) {
-  (void)bristle;
+void declare(const DriveModel& model, const friction::Law& law, drive::Declaration& d) {
+  (void)law;
   drive::declare_model_element(model, "base_excitation", d);
 }
 

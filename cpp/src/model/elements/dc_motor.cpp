@@ -427,8 +427,8 @@ void DcMotorElement::check_result(const DriveSimulationOptions& options, bool ti
       armature_check(dc_, rotor_back_emf_constant_, options.theta, time_stepping, volts, result));
 }
 
-void declare(const DriveModel& model, bool bristle, drive::Declaration& d) {
-  (void)bristle;
+void declare(const DriveModel& model, const friction::Law& law, drive::Declaration& d) {
+  (void)law;
   drive::declare_model_element(model, "dc_motor", d);
 }
 

@@ -73,8 +73,8 @@ void build(const Section& s, const DriveParameters& p, elements::DriveElements& 
 
 const drive::ElementKind& load_spring_kind();
 
-void declare(const DriveModel& model, bool bristle, drive::Declaration& d) {
-  (void)bristle;
+void declare(const DriveModel& model, const friction::Law& law, drive::Declaration& d) {
+  (void)law;
   for (const elements::SectionForce& force : model.elements().forces.of<elements::SectionForce>())
     if (const auto* spring = dynamic_cast<const LoadSpring*>(force.law.get())) {
       d.channels = load_spring_kind().catalog;

@@ -380,14 +380,12 @@ def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
 @pytest.mark.parametrize(
     "argv, fragments",
     [
-        (["position_holding", "--theta", "0.5"], ["--theta 0.5 is invalid", "moreau only"]),
         # (no integrator takes both: refused with the default's reason)
         (["default", "--dt", "1e-3", "--rtol", "1e-6"],
          ["--dt 0.001 is invalid with the scene's default integrator event_driven",
           "moreau only"]),
         (["default", "--integrator", "event_driven", "--dt", "1e-3"],
          ["--dt 0.001 is invalid with --integrator event_driven"]),
-        (["position_holding", "--dt", "1e-3"], ["--dt 0.001", "default integrator cvode_bdf"]),
         (["default", "--integrator", "moreau", "--rtol", "1e-6"],
          ["--rtol 1e-06 is invalid with --integrator moreau", "--dt"]),
         (["default", "--integrator", "moreau", "--atol", "1e-9"], ["--atol 1e-09 is invalid"]),
@@ -405,6 +403,25 @@ def test_run_refuses_before_creating_the_output_directory(tmp_path, capsys, argv
     assert code == 2 and out == ""
     assert_one_line_error(err, *fragments)
     assert not (tmp_path / "nd").exists()
+
+
+@pytest.mark.parametrize("option", [["--theta", "0.5"], ["--dt", "1e-3"]])
+def test_run_refuses_a_moreau_option_no_fitting_integrator_takes(tmp_path, capsys, option):
+    """dt and theta left to the default name Moreau-Jean where it fits; a
+    law Moreau-Jean does not take (eq. 3.15's, arctan_acceleration: its
+    friction follows the slip acceleration) keeps its refusal, before the
+    output directory is made."""
+    scene = ls.scenes.load("position_holding").replace(
+        concept="rigid", backlash=None,
+        friction={"law": "arctan_acceleration", "mu": 0.3})
+    path = tmp_path / "acceleration_law.toml"
+    scene.to_toml(path)
+    out_dir = tmp_path / "nd"
+    code, out, err = run_main(capsys, "run", str(path), *option, "-o", out_dir)
+    assert code == 2 and out == ""
+    assert_one_line_error(err, f"{option[0]} {float(option[1]):g} is invalid",
+                          "default integrator", "moreau only")
+    assert not out_dir.exists()
 
 
 @pytest.mark.parametrize("argv, fragments", [

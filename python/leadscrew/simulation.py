@@ -341,7 +341,8 @@ def _choose_integrator(integrator: str, integrators: Callable[[], Sequence[str]]
     """The integrator that runs: ``integrator`` where given, else
     (``integrator`` "": the default) :func:`integrator_taking` among
     ``integrators()``, those that fit the model (called only if an option is
-    given: without one it returns ""). Raises if it would ignore an option
+    given: without one it returns ""); "" where that is the model's default
+    (the core resolves it, for each case of a batch its own). Raises if it would ignore an option
     given (:func:`unused_option`); an integrator not among them is left to
     the core, which lists those that fit.
 
@@ -364,7 +365,9 @@ def _choose_integrator(integrator: str, integrators: Callable[[], Sequence[str]]
         which = ("for this Scene" if of_scene else f"with integrator {runs!r}"
                  + ("" if integrator else " (the default here)"))
         raise ValueError(f"{name} = {_shown(given[name])} is invalid {which}: {why}")
-    return runs
+    # (The default itself stays "": the core resolves it for each model, so
+    # a batch's cases each take their own, as without options.)
+    return integrator or ("" if runs == allowed[0] else runs)
 
 
 def _unknown_scene_option(name: str, value) -> ValueError:

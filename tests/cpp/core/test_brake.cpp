@@ -120,8 +120,8 @@ void RotorBrake::declare(lm::drive::Declaration& d) const {
   d.channels = rotor_brake_kind().catalog;
 }
 
-void declare_brake(const lm::DriveModel& model, bool bristle, lm::drive::Declaration& d) {
-  (void)bristle;
+void declare_brake(const lm::DriveModel& model, const friction::Law& law, lm::drive::Declaration& d) {
+  (void)law;
   lm::drive::declare_model_element(model, "rotor_brake", d);
 }
 

@@ -371,7 +371,7 @@ def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
         (["default", "--theta", "0.5"], ["--theta 0.5 is invalid", "moreau only"]),
         (["default", "--integrator", "event_driven", "--dt", "1e-3"],
          ["--dt 0.001 is invalid with --integrator event_driven"]),
-        (["position_holding", "--dt", "1e-3"], ["--dt 0.001", "default integrator cvode_bdf"]),
+        (["position_holding", "--dt", "1e-3"], ["--dt 0.001", "default integrator event_driven"]),
         (["default", "--integrator", "moreau", "--rtol", "1e-6"],
          ["--rtol 1e-06 is invalid with --integrator moreau", "--dt"]),
         (["default", "--integrator", "moreau", "--atol", "1e-9"], ["--atol 1e-09 is invalid"]),

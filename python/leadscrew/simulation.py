@@ -546,8 +546,8 @@ STEPS_PER_SECOND = 1_000_000
 def default_max_steps(t_end) -> int:
     """simulate's default ``max_steps`` for a run to ``t_end`` [s]: 1e6 steps
     per simulated second, at least 1e6 (a budget fixed at 1e6 ended the
-    shipped position_holding scene, 0.64 million steps per second, at 1.56 s
-    of 2). Beyond the core's integer it stays there; a t_end the core refuses
+    shipped position_holding scene with its former arctan law, 0.64 million
+    steps per second, at 1.56 s of 2). Beyond the core's integer it stays there; a t_end the core refuses
     gets the floor."""
     steps = STEPS_PER_SECOND * t_end
     # (one chained comparison: NaN, inf and runs up to 1 s take the floor)

@@ -120,7 +120,10 @@ def test_moreau_named_for_a_scene_other_schemes_run_is_refused_naming_them(tmp_p
 @pytest.mark.parametrize("name", [n for n in ls.scenes.available() if n not in MOREAU_ONLY])
 def test_every_shipped_scene_exports_and_runs_as_simulate(name, tmp_path):
     scene = constant_inputs(ls.scenes.load(name))
-    path = ls.fmi.export_fmu(scene, tmp_path / f"{name}.fmu")
+    # Both at simulate's default tolerances, at which the bound below was
+    # measured (position_holding stores rtol 1e-6, atol 1e-8, which the FMU
+    # takes as simulate does: test_an_fmu_takes_the_scenes_stored_options).
+    path = ls.fmi.export_fmu(scene, tmp_path / f"{name}.fmu", rtol=1e-8, atol=1e-10)
     assert validate_fmu(path) == []
     t_end = 0.05
     result = fmpy.simulate_fmu(path, stop_time=t_end, step_size=H, output_interval=H,
@@ -128,14 +131,29 @@ def test_every_shipped_scene_exports_and_runs_as_simulate(name, tmp_path):
                                        "friction_force", "stick", "friction_loss"])
     times = result["time"]
     assert len(times) == round(t_end / H) + 1 and times[-1] == pytest.approx(t_end)
-    reference = ls.simulate(scene, t_end, t_eval=times)
+    reference = ls.simulate(scene, t_end, t_eval=times, rtol=1e-8, atol=1e-10)
     for channel in ("u_load", "v_load", "omega_drive", "normal_force", "friction_force",
                     "friction_loss"):
         # The FMU's steps end at the communication points, simulate's run
         # interpolates there: measured at most 1.7e-5 of the channel's scale
-        # (position_holding's friction force: arctan law, penalty flanks).
+        # (position_holding's friction force with the arctan law, penalty
+        # flanks, before the scene took exact Coulomb).
         assert_channel_agrees(channel, result[channel], reference[channel])
     assert np.array_equal(result["stick"].astype(float), np.asarray(reference["stick"]))
+
+
+def test_an_fmu_takes_the_scenes_stored_options(tmp_path):
+    """A scene's [simulation] options go into its core spec, as simulate
+    takes them (position_holding: rtol 1e-6, atol 1e-8); an option given
+    overrides."""
+    scene = ls.scenes.load("position_holding")
+    spec = scene.to_core_toml().splitlines()
+    assert "rtol = 1e-06" in spec and "atol = 1e-08" in spec
+    assert "rtol = 1e-08" in scene.to_core_toml(rtol=1e-8).splitlines()
+    spec = ls.fmi.export_fmu(scene, tmp_path / "holding.fmu")
+    with zipfile.ZipFile(spec) as fmu:
+        text = next(fmu.read(n).decode() for n in fmu.namelist() if n.endswith(".toml"))
+    assert "rtol = 1e-06" in text.splitlines()
 
 
 def test_a_sine_torque_through_the_fmu_lags_by_half_a_step(tmp_path):

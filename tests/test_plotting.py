@@ -35,7 +35,7 @@ def test_result_plot_refuses_what_it_cannot_draw():
 def test_figure_titles_say_what_runs_not_the_scenes_repr(tmp_path, capsys, monkeypatch):
     scene = ls.scenes.load("position_holding")
     assert _title("position_holding", scene) == (
-        "position_holding: flexible concept, screw driven, arctan_velocity friction, "
+        "position_holding: flexible concept, screw driven, coulomb friction, "
         f"mu = {scene['friction']['mu']:g}, 0.2 mm play (bistop)")
     titles = []
     monkeypatch.setattr(ls.Result, "plot", lambda self, kind="time_series", title=None:

@@ -519,9 +519,34 @@ def test_position_holding_scene_is_section_5_2():
     assert force["offset"] == 0.0 and force["amplitude"] == 50.0  # no static preload
     assert force["omega"] == pytest.approx(2 * math.pi * 20, rel=1e-15)
     assert d["initial"]["play_position"] == 0.0  # nut in the middle of the play
-    rest = {k: v for k, v in d.items() if k not in ("backlash", "loads", "friction", "initial")}
+    # Exact Coulomb (the thesis's Adams model regularized it; issue 34, item 5)
+    # and its run's tolerance stored with it.
+    assert d["friction"] == {"law": "coulomb", "mu": 0.3, "k_v": 1e4}
+    assert d["simulation"] == {"rtol": 1e-6, "atol": 1e-8}
+    rest = {k: v for k, v in d.items()
+            if k not in ("backlash", "loads", "friction", "initial", "simulation")}
     table = shipped.load("thesis_table_5_1").to_dict()
     assert rest == {k: table[k] for k in rest}  # otherwise the Table 5.1 drive
+
+
+def test_position_holding_runs_with_its_stored_options_and_its_creep_is_converged():
+    """Issue 34, item 5: simulate(scene, 0.5) with every default on the
+    flexible_nut concept runs the scene's exact Coulomb event-driven at its
+    stored rtol 1e-6, atol 1e-8, and the creep after 10 cycles (-p
+    phi_drive, the measure of studies.position_holding) is within 1 % of
+    the converged value (rtol 1e-11; the benchmark measured 4e-6
+    relative)."""
+    scene = shipped.load("position_holding").replace(concept="flexible_nut")
+    p = scene.thread.lead / (2.0 * math.pi)
+    result = ls.simulate(scene, 0.5)
+    assert (result.friction, result.integrator) == ("coulomb", "event_driven")
+    tighter = ls.simulate(scene, 0.5, rtol=1e-8, atol=1e-10)
+    assert result.stats["steps"] < 0.8 * tighter.stats["steps"]  # the stored tolerances ran
+    converged = -p * ls.simulate(scene, 0.5, rtol=1e-11, atol=1e-14,
+                                 t_eval=[0.0, 0.5])["phi_drive"][-1]
+    assert converged == pytest.approx(-3.5553e-6, rel=1e-4)  # about 0.36 um per cycle
+    creep = -p * result["phi_drive"][-1]
+    assert abs(creep / converged - 1.0) < 0.01
 
 
 @pytest.mark.parametrize("name, t_end", [("default", 0.3), ("thesis_table_5_1", 0.1),

@@ -15,9 +15,14 @@ T_END = 0.5
 
 def holding_drive(**friction):
     """The shipped position_holding scene on the rigid concept: a static
-    torque that only the self-locking thread holds, a 50 N sine shaking it
-    (arctan_velocity, k_v = 1e6 s/m, unless `friction` says otherwise)."""
-    scene = scenes.load("position_holding").replace(concept="rigid")
+    torque that only the self-locking thread holds, a 50 N sine shaking it,
+    with the thesis's arctan law (arctan_velocity, k_v = 1e6 s/m, unless
+    `friction` says otherwise: the scene ships exact Coulomb since issue 34,
+    item 5, and its comments say how to set this law) and simulate's own
+    tolerances (the scene's stored rtol 1e-6 dropped)."""
+    scene = scenes.load("position_holding").replace(
+        concept="rigid", simulation=None,
+        friction={"law": "arctan_velocity", "mu": 0.3, "k_v": 1e6})
     return scene.replace(friction={**scene["friction"], **friction}) if friction else scene
 
 

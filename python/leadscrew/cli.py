@@ -209,6 +209,9 @@ def _scene_report(name: str, scene) -> List[str]:
     """What ``check SCENE`` prints, computed whole before anything is printed."""
     d = scene.to_dict()
     lines = [f"scene {name}: valid, {scene!r}"]
+    if d.get("simulation"):  # the run's options stored with the scene
+        lines.append("run options ([simulation], simulate's defaults for this scene): "
+                     + ", ".join(f"{key} = {value!r}" for key, value in d["simulation"].items()))
     lines += _thread_verdicts(scene.thread, d["friction"]["mu"], d["thread"]["flank_angle"],
                               d["thread"]["hand"])
     lines += _drive_train_report(scene, d)
@@ -313,8 +316,11 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
 
     allowed = list(_core.drive_integrators(scene.model().parameters))
     given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
+    stored = scene["simulation"].get("integrator") if "simulation" in scene else None
     if args.integrator is not None:
         integrator, which = args.integrator, f"--integrator {args.integrator}"
+    elif stored is not None:  # the scene's own (its [simulation] section)
+        integrator, which = stored, f"the scene's integrator {stored} (simulation.integrator)"
     else:  # the scene's default: the first of the integrators that fit it
         integrator = integrator_taking(allowed, given, scene)
         which = f"the scene's default integrator {integrator}"

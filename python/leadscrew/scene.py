@@ -228,7 +228,8 @@ class Scene:
                 them (``integrator``, ``smooth_integrator``, ``rtol``,
                 ``atol``, ``max_steps``, ``max_events``, ``max_step``,
                 ``first_step``, ``bounce_threshold``, ``max_order``), with its
-                defaults.
+                defaults; each left out takes the scene's own where its
+                ``[simulation]`` section stores one.
 
         Returns:
             The TOML text.
@@ -240,7 +241,7 @@ class Scene:
             leadscrew.WriteError: ``path`` cannot be written (nothing is left
                 there).
         """
-        from .simulation import _run_options
+        from .simulation import _run_options, _stored_option_errors, scene_options
 
         known = ("integrator", "smooth_integrator", "rtol", "atol", "max_steps", "max_events",
                  "max_step", "first_step", "bounce_threshold", "max_order")
@@ -248,7 +249,13 @@ class Scene:
             if name not in known:
                 raise ValueError(f"{name} = {options[name]!r} is invalid: to_core_toml takes "
                                  f"the options {', '.join(known)}")
-        text = _core.write_core_spec(self.model().parameters, **_run_options(**options))
+        # The scene's [simulation] options where these leave one out (a core
+        # spec has no Moreau-Jean step: the scene's dt and theta stay out).
+        options, stored = scene_options(self, options)
+        options = {name: value for name, value in options.items()
+                   if name in known and value is not None}
+        with _stored_option_errors(stored):
+            text = _core.write_core_spec(self.model().parameters, **_run_options(**options))
         if path is not None:
             write_text(path, text)
         return text

@@ -150,6 +150,8 @@ def _check_consistency(data: Dict[str, Any]) -> None:
     if "gear" in data:
         _check_gear(data["gear"])
     _check_element_sections(data)
+    if "simulation" in data:
+        _check_simulation(data)
     if data["nut"]["outer_radius"] <= data["screw"]["radius"]:
         _fail("nut.outer_radius", data["nut"]["outer_radius"],
               f"> screw.radius = {data['screw']['radius']:g}")
@@ -179,6 +181,38 @@ def _check_consistency(data: Dict[str, Any]) -> None:
             raise ValueError(f"initial.play_position = {play!r}{equilibrium}must be 0 (the "
                              "equilibrium puts the nut on the flank the loads press it "
                              "against)")
+
+
+def _check_simulation(data: Dict[str, Any]) -> None:
+    """The ``[simulation]`` section's options together, by simulate's rules
+    (:func:`leadscrew.simulation.unused_option`): with an ``integrator``
+    stored, no option that integrator would ignore (``rtol`` with
+    ``'moreau'``, ``dt`` with another, ``smooth_integrator`` but with
+    ``'event_driven'``), and ``bounce_threshold`` only with an exact
+    backlash. Whether the integrator fits the scene's law and play is
+    checked where it runs (:func:`leadscrew.simulate` lists those that do).
+
+    Raises:
+        ValueError: naming ``simulation.<key>``, its value and which
+            integrator or scene takes it.
+    """
+    from .simulation import _shown, unused_option  # (it imports the scene)
+
+    options = data["simulation"]
+    integrator = options.get("integrator")
+    if "smooth_integrator" in options and integrator not in (None, "event_driven"):
+        _fail("simulation.smooth_integrator", options["smooth_integrator"],
+              f"absent with simulation.integrator = {integrator!r}: only 'event_driven' takes "
+              "one (the method between its events)")
+    given = {name: options.get(name) for name in ("rtol", "atol", "dt", "theta", "max_order",
+                                                  "max_step", "first_step", "bounce_threshold")}
+    if integrator is None:  # (the scene's default integrator is known when it runs)
+        given = {"bounce_threshold": given["bounce_threshold"]}
+    unused = unused_option(integrator or "", given, data)
+    if unused is not None:
+        name, of_scene, why = unused
+        where = "for this scene" if of_scene else f"with simulation.integrator = {integrator!r}"
+        raise ValueError(f"simulation.{name} = {_shown(given[name])} is invalid {where}: {why}")
 
 
 def _check_gear(gear: Dict[str, Any]) -> None:

@@ -22,7 +22,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 from . import _core
 
-__all__ = ["Field", "OPTIONAL", "SCHEMA", "describe_schema", "friction_laws"]
+__all__ = ["Field", "OPTIONAL", "SCHEMA", "INTEGRATORS", "describe_schema", "friction_laws"]
 
 
 @dataclass(frozen=True)
@@ -483,10 +483,71 @@ SCHEMA: Dict[str, Any] = {
     },
 }
 
+# The core's ranges of the run's options (simulation_checks.hpp: the loosest
+# rtol and atol, the tightest atol; integrate::validate_options: the others'),
+# which the scene's [simulation] section and simulate's keywords share.
+LOOSEST_RTOL, LOOSEST_ATOL, TIGHTEST_ATOL = 1e-3, 1e-3, 1e-100
+#: The integrators a run takes by name (``simulate``'s ``integrator``): the
+#: ODE integrators of the core, the event-driven scheme and Moreau-Jean.
+ODE_INTEGRATORS = tuple(_core.integrate.integrator_names())
+INTEGRATORS = ODE_INTEGRATORS + ("event_driven", "moreau")
+
+
+def _simulation_section() -> Dict[str, Field]:
+    """The scene's ``[simulation]`` section: the run's options stored with
+    the scene, which :func:`leadscrew.simulate` takes as its defaults for
+    the scene (a keyword given overrides one). Every field is optional;
+    absent, simulate's own default holds."""
+    default = "simulate's default"
+    return {
+        "integrator": Field("the integrator that runs the scene (simulate's integrator): an ODE "
+                            "integrator, 'event_driven' or 'moreau'; which fit the scene depends "
+                            "on its friction law and play (leadscrew.simulate's docs), checked "
+                            "when it runs", "", OPTIONAL, kind="choice", choices=INTEGRATORS,
+                            default_doc=f"{default}, the first that fits the scene"),
+        "smooth_integrator": Field("the ODE integrator inside 'event_driven'", "", OPTIONAL,
+                                   kind="choice", choices=ODE_INTEGRATORS,
+                                   default_doc=f"{default}: 'rk_verner6' on the rigid concept, "
+                                               "'cvode_bdf' on the flexible ones"),
+        "rtol": Field("relative tolerance of the ODE and event-driven integrators (not with "
+                      "'moreau')", "", OPTIONAL, default_doc=f"{default} 1e-8", low=0.0,
+                      high=LOOSEST_RTOL, low_open=True),
+        "atol": Field("absolute tolerance of the ODE and event-driven integrators, on positions "
+                      "in m and rad (not with 'moreau')", "", OPTIONAL,
+                      default_doc=f"{default} 1e-10", low=TIGHTEST_ATOL, high=LOOSEST_ATOL),
+        "dt": Field("fixed step of 'moreau' (only with it)", "s", OPTIONAL,
+                    default_doc=f"{default}: 1e-4, shortened where the drive's stiffness needs "
+                                "it", **POSITIVE),
+        "theta": Field("theta of 'moreau' (only with it)", "", OPTIONAL,
+                       default_doc=f"{default} 0.5", low=0.0, high=1.0),
+        "max_steps": Field("bound on the integrator's steps", "", OPTIONAL, kind="int",
+                           default_doc=f"{default}: 1e6 per simulated second, at least 1e6",
+                           low=1),
+        "max_events": Field("bound on the events (Zeno or chattering raise instead of "
+                            "hanging)", "", OPTIONAL, kind="int",
+                            default_doc=f"{default} 100000", low=0),
+        "max_step": Field("largest step of the ODE integrators (0: unbounded; not with "
+                          "'moreau')", "s", OPTIONAL, default_doc=f"{default} 0",
+                          **NONNEGATIVE),
+        "first_step": Field("first step of the ODE integrators (0: their choice; not with "
+                            "'moreau')", "s", OPTIONAL, default_doc=f"{default} 0",
+                            **NONNEGATIVE),
+        "bounce_threshold": Field("a flank impact slower than this is plastic (an exact "
+                                  "backlash, backlash.contact = 'exact', under 'event_driven' "
+                                  "only)", "m/s", OPTIONAL, default_doc=f"{default} 1e-6",
+                                  **NONNEGATIVE),
+        "max_order": Field("highest order of the CVODE methods (0: the method's default; not "
+                           "with 'moreau')", "", OPTIONAL, kind="int",
+                           default_doc=f"{default} 0", low=0),
+    }
+
+
+SCHEMA["simulation"] = _simulation_section()
+
 # Sections that may be absent: then they take their defaults, except backlash
 # (absent: a thread without play) and overrides.
 _REQUIRED_SECTIONS = ("thread", "friction")
-_OPTIONAL_SECTIONS = ("backlash", "motor", "gear",
+_OPTIONAL_SECTIONS = ("backlash", "motor", "gear", "simulation",
                       *(section["name"] for section in _element_sections()))
 
 

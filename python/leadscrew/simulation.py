@@ -557,6 +557,8 @@ def _name(name: str, value, what: str = "an integrator") -> str:
 #: simulate's defaults of the options it takes as None when left out (so that
 #: it can tell an option given from one left out: :func:`_unused_option`).
 DEFAULT_RTOL, DEFAULT_ATOL, DEFAULT_THETA = 1e-8, 1e-10, 0.5
+#: simulate's default bound on a run's events.
+DEFAULT_MAX_EVENTS = 100_000
 
 #: The default step budget: this many integrator steps per simulated second,
 #: at least this many in all (max_steps None: :func:`default_max_steps`).
@@ -566,8 +568,8 @@ STEPS_PER_SECOND = 1_000_000
 def default_max_steps(t_end) -> int:
     """simulate's default ``max_steps`` for a run to ``t_end`` [s]: 1e6 steps
     per simulated second, at least 1e6 (a budget fixed at 1e6 ended the
-    shipped position_holding scene, 0.64 million steps per second, at 1.56 s
-    of 2). Beyond the core's integer it stays there; a t_end the core refuses
+    shipped position_holding scene with its former arctan law, 0.64 million
+    steps per second, at 1.56 s of 2). Beyond the core's integer it stays there; a t_end the core refuses
     gets the floor."""
     steps = STEPS_PER_SECOND * t_end
     # (one chained comparison: NaN, inf and runs up to 1 s take the floor)
@@ -596,7 +598,8 @@ def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, thet
             "t_eval": t_eval,
             "max_steps": ((STEPS_PER_SECOND if t_end <= 1.0 else default_max_steps(t_end))
                           if max_steps is None else _whole("max_steps", max_steps)),
-            "max_events": _whole("max_events", max_events),
+            "max_events": (DEFAULT_MAX_EVENTS if max_events is None
+                           else _whole("max_events", max_events)),
             "max_step": 0.0 if max_step is None else _real("max_step", max_step),
             "first_step": 0.0 if first_step is None else _real("first_step", first_step),
             "max_order": 0 if max_order is None else _whole("max_order", max_order, 2 ** 31 - 1)}
@@ -656,7 +659,7 @@ def simulate(
     k_v: Optional[float] = None,
     theta: Optional[float] = None,
     max_steps: Optional[int] = None,
-    max_events: int = 100_000,
+    max_events: Optional[int] = None,
     max_step: Optional[float] = None,
     first_step: Optional[float] = None,
     smooth_integrator: Optional[str] = None,
@@ -692,9 +695,9 @@ def simulate(
             torque or DC motor: on the flexible concepts, with exact or
             penalty play, another thread law or ``loads.drive_speed``.
         rtol, atol: integration tolerances of the ODE and event-driven
-            integrators (default 1e-8 and 1e-10; refused with ``"moreau"``;
-            given without ``integrator`` where the default is ``"moreau"``,
-            the first adaptive integrator that fits runs).
+            integrators (default 1e-8 and 1e-10, or the Scene's own; refused
+            with ``"moreau"``; given without ``integrator`` where the default
+            is ``"moreau"``, the first adaptive integrator that fits runs).
             A Scene whose law runs velocity-regularized refuses an atol
             whose slip velocity spans 1/20 of its stick band 1 / k_v
             (docs/physics/result_checks.md, "Options refused before a run").
@@ -720,7 +723,8 @@ def simulate(
             Default (None): 1e6 per simulated second, at least 1e6
             (:func:`default_max_steps`), so that a run's budget grows with
             its length.
-        max_events: bound on events (Zeno or chattering raise instead of hanging).
+        max_events: bound on events (Zeno or chattering raise instead of
+            hanging; default None: 100,000).
         max_step, first_step: optional step-size controls [s] (not with
             ``"moreau"``).
         smooth_integrator: for a Scene only: the ODE integrator inside
@@ -751,17 +755,25 @@ def simulate(
             them, with units and defaults). A Scene carries its own; for a
             Scene any other keyword is refused, naming the options it takes.
 
+    A Scene may store its run's options (its ``[simulation]`` section:
+    ``integrator``, ``smooth_integrator``, ``rtol``, ``atol``, ``dt``,
+    ``theta``, ``max_steps``, ``max_events``, ``max_step``, ``first_step``,
+    ``bounce_threshold``, ``max_order``): each one left out here (None)
+    takes the scene's, each one given overrides it; where ``integrator`` is
+    given, the scene's options that integrator does not take are left out
+    (the scene's ``rtol`` under ``integrator="moreau"``). An error about a
+    stored option names its key path (``simulation.rtol``).
+
     An option names its scheme where ``integrator`` is left out: ``dt`` or
     ``theta`` (Moreau-Jean's) runs ``"moreau"`` where it fits the model,
     ``rtol``, ``atol``, ``max_order``, ``max_step`` or ``first_step`` on a
     Moreau-Jean default the first adaptive integrator that fits
-    (``Result.integrator`` names the one that
-    ran). An option the integrator that runs would ignore (no integrator
-    that fits takes it, or the ``integrator`` given does not: ``dt`` and
-    ``theta`` without ``"moreau"``; ``rtol``, ``atol``, ``max_order``,
-    ``max_step``, ``first_step`` with it; ``bounce_threshold`` without an
-    exact backlash) is refused, not ignored: only options given count
-    (None, the default, is never refused).
+    (``Result.integrator`` names the one that ran). An option the integrator
+    that runs would ignore (no integrator that fits takes it, or the
+    ``integrator`` given does not: ``dt`` and ``theta`` without ``"moreau"``; ``rtol``, ``atol``, ``max_order``, ``max_step``,
+    ``first_step`` with it; ``bounce_threshold`` without an exact backlash)
+    is refused, not ignored: only options given count (None, the default,
+    is never refused).
 
     Returns:
         A :class:`Result`.
@@ -821,19 +833,108 @@ def simulate(
         _check_scene_friction(model, friction, k_v)
         for name, value in law_parameters.items():
             raise _unknown_scene_option(name, value)
-        # integrator None: the core takes the model's default
-        arguments = _drive_arguments(
-            t_end, integrator, smooth_integrator, rtol, atol, dt, theta, t_eval_list, max_steps,
-            max_events, max_step, first_step, bounce_threshold, max_order, check)
-        drive = model.model()
-        arguments["integrator"] = _choose_integrator(
-            arguments["integrator"], functools.partial(_core.drive_integrators, drive.parameters),
-            dict(given, bounce_threshold=bounce_threshold), model)
-        arguments["drive"] = drive
-        result = _run_core(_core.simulate_drive, _drive_call, arguments, progress)
-        return (_sampled(result) if t_eval is None and result._core.point_count > DEFAULT_ROWS
-                else result)
+        options = dict(given, integrator=integrator, smooth_integrator=smooth_integrator,
+                       max_steps=max_steps, max_events=max_events,
+                       bounce_threshold=bounce_threshold)
+        if not model._data.get("simulation"):  # (the common case: nothing stored)
+            return _simulate_scene(model, t_end, t_eval, t_eval_list, options, check, progress)
+        options, stored = scene_options(model, options)
+        with _stored_option_errors(stored):
+            return _simulate_scene(model, t_end, t_eval, t_eval_list, options, check, progress)
     raise ValueError(f"model = {model!r} is invalid: must be a FrictionBlock or a Scene")
+
+
+def _simulate_scene(scene: Scene, t_end, t_eval, t_eval_list: list, options: Dict[str, Any],
+                    check, progress) -> Result:
+    """:func:`simulate` of a Scene with its options (name -> value, None:
+    simulate's default; the scene's stored ones merged in already)."""
+    o = options
+    # integrator None: the core takes the model's default
+    arguments = _drive_arguments(
+        t_end, o["integrator"], o["smooth_integrator"], o["rtol"], o["atol"], o["dt"],
+        o["theta"], t_eval_list, o["max_steps"], o["max_events"], o["max_step"],
+        o["first_step"], o["bounce_threshold"], o["max_order"], check)
+    drive = scene.model()
+    arguments["integrator"] = _choose_integrator(
+        arguments["integrator"], functools.partial(_core.drive_integrators, drive.parameters),
+        {name: o[name] for name in (*ADAPTIVE_OPTIONS, *MOREAU_OPTIONS, "bounce_threshold")},
+        scene)
+    arguments["drive"] = drive
+    result = _run_core(_core.simulate_drive, _drive_call, arguments, progress)
+    return (_sampled(result) if t_eval is None and result._core.point_count > DEFAULT_ROWS
+            else result)
+
+
+#: The run's options a scene may store in its ``[simulation]`` section
+#: (simulate's keywords of the same names).
+SCENE_OPTIONS = tuple(SCHEMA["simulation"])
+
+
+def takes_option(integrator: str, name: str) -> bool:
+    """Whether a run on ``integrator`` takes the option ``name`` at all
+    (``dt``, ``theta``: Moreau-Jean alone; :data:`ADAPTIVE_OPTIONS` and
+    ``bounce_threshold``: the others; ``smooth_integrator``: "event_driven"
+    alone)."""
+    if name == "smooth_integrator":
+        return integrator == "event_driven"
+    if integrator == "moreau":
+        return name not in ADAPTIVE_OPTIONS and name != "bounce_threshold"
+    return name not in MOREAU_OPTIONS
+
+
+def scene_options(scene: Scene, given: Dict[str, Any]) -> Tuple[Dict[str, Any], Tuple[str, ...]]:
+    """The options a run of ``scene`` takes: those given, and for each left
+    out (None) the scene's own (its ``[simulation]`` section), so that an
+    option given overrides the scene's. Where ``integrator`` is given, the
+    scene's options that integrator does not take (:func:`takes_option`:
+    the scene's ``rtol`` under ``integrator="moreau"``, its ``dt`` under
+    another) are left out: they were the scene's settings of another
+    scheme. Shared by :func:`simulate`, the study batches and the command
+    line, so that one rule holds.
+
+    Args:
+        scene: the Scene that runs.
+        given: option name -> value as the caller passed it (None: left
+            out); any of :data:`SCENE_OPTIONS` (others are passed through).
+
+    Returns:
+        ``(options, stored)``: the options with the scene's filled in, and
+        the names of those taken from the scene (their errors name
+        ``simulation.<name>``: :func:`_stored_option_errors`).
+    """
+    stored = scene._data.get("simulation")
+    if not stored:
+        return dict(given), ()
+    options, taken = dict(given), []
+    chosen = given.get("integrator")
+    for name, value in stored.items():
+        if options.get(name) is not None or (chosen and not takes_option(chosen, name)):
+            continue
+        options[name] = value
+        taken.append(name)
+    return options, tuple(taken)
+
+
+class _stored_option_errors:
+    """Rewrites a ValueError about an option taken from the scene's
+    ``[simulation]`` section (its message starts ``"<name> = "``) to name
+    its key path, ``simulation.<name>``, and how to override it."""
+
+    def __init__(self, stored: Sequence[str]):
+        self._stored = stored
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, error, traceback):
+        if kind is None or not issubclass(kind, ValueError) or type(error) is not ValueError:
+            return False
+        text = str(error)
+        for name in self._stored:
+            if text.startswith(f"{name} = "):
+                raise ValueError(f"simulation.{text} (the scene's [simulation] section; "
+                                 f"simulate's {name}=... overrides it)") from None
+        return False
 
 
 # The friction coefficients a FrictionBlock carries itself (not keywords of

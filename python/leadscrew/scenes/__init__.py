@@ -7,9 +7,11 @@
 - ``position_holding``: the thesis's section 5.2 case: the same drive with
   0.2 mm axial play (a BISTOP penalty contact), no axial preload, a static
   5 N*mm drive torque that only the thread holds, and a 50 N, 20 Hz
-  alternating axial force; flexible screw and nut with the arctan friction
-  law, like the thesis's Adams model. In flight across the play the torque
-  turns the screw and the load creeps.
+  alternating axial force; flexible screw and nut with exact Coulomb friction
+  (the thesis's Adams model regularized it: the file says how to get its
+  arctan law) and its run's tolerance stored with it (``[simulation] rtol =
+  1e-6``). In flight across the play the torque turns the screw and the load
+  creeps.
 - ``seat_adjuster``: a power-seat longitudinal adjuster: a 12 V DC motor
   turning, through a 5:1 stage, the POM nut of a Tr 8x1.5 steel spindle with
   0.1 mm play; a 90 kg seat between penalty end stops 240 mm apart, 10 mm from

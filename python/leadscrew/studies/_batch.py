@@ -23,7 +23,8 @@ from .._hints import did_you_mean
 from ..errors import JammingError, SimulationError
 from ..scene import Scene
 from ..simulation import (ADAPTIVE_OPTIONS, MOREAU_OPTIONS, _OPTION_DEFAULTS,
-                          _check_scene_friction, _drive_arguments, _choose_integrator)
+                          _check_scene_friction, _drive_arguments, _choose_integrator,
+                          _stored_option_errors, scene_options)
 from ._common import check_count
 
 __all__ = ["DriveBatch", "check_simulate_options"]
@@ -55,18 +56,21 @@ def _core_arguments(scene: Scene, t_end: float, t_eval: Sequence[float],
         raise TypeError(f"got an unexpected keyword argument {unknown[0]!r}"
                         f"{did_you_mean(unknown[0], valid)} (the options are those of "
                         f"leadscrew.simulate, but t_eval)")
+    # (the scene's [simulation] options where these leave one out, as simulate)
+    options, stored = scene_options(scene, options)
     a = dict(_OPTION_DEFAULTS, **options)
     _check_scene_friction(scene, a["friction"], a["k_v"])
-    arguments = _drive_arguments(
-        t_end, a["integrator"], a["smooth_integrator"], a["rtol"], a["atol"], a["dt"],
-        a["theta"], np.asarray(t_eval, dtype=float).ravel().tolist(), a["max_steps"],
-        a["max_events"], a["max_step"], a["first_step"], a["bounce_threshold"], a["max_order"],
-        a["check"])
-    given = {name: options.get(name) for name in (*ADAPTIVE_OPTIONS, *MOREAU_OPTIONS,
-                                                  "bounce_threshold")}
-    arguments["integrator"] = _choose_integrator(
-        arguments["integrator"], lambda: _core.drive_integrators(scene.model().parameters),
-        given, scene)
+    with _stored_option_errors(stored):
+        arguments = _drive_arguments(
+            t_end, a["integrator"], a["smooth_integrator"], a["rtol"], a["atol"], a["dt"],
+            a["theta"], np.asarray(t_eval, dtype=float).ravel().tolist(), a["max_steps"],
+            a["max_events"], a["max_step"], a["first_step"], a["bounce_threshold"],
+            a["max_order"], a["check"])
+        given = {name: options.get(name) for name in (*ADAPTIVE_OPTIONS, *MOREAU_OPTIONS,
+                                                      "bounce_threshold")}
+        arguments["integrator"] = _choose_integrator(
+            arguments["integrator"], lambda: _core.drive_integrators(scene.model().parameters),
+            given, scene)
     return arguments
 
 
@@ -91,7 +95,8 @@ def check_simulate_options(scene: Scene, options: Dict[str, Any], t_end: float) 
             value and what is valid).
     """
     arguments = _core_arguments(scene, t_end, [], options)
-    _core.check_drive_options(scene.model(), **arguments)
+    with _stored_option_errors(scene_options(scene, options)[1]):
+        _core.check_drive_options(scene.model(), **arguments)
 
 
 class DriveBatch:
@@ -139,8 +144,9 @@ class DriveBatch:
         self._channels = [str(name) for name in channels]
         self._options = dict(simulate_options)
         self._arguments = _core_arguments(scene, t_end, t_eval, self._options)
-        self._core = _core.DriveBatch(scene.model().parameters, self._parameters,
-                                      self._channels, **self._arguments)
+        with _stored_option_errors(scene_options(scene, self._options)[1]):
+            self._core = _core.DriveBatch(scene.model().parameters, self._parameters,
+                                          self._channels, **self._arguments)
 
     def __reduce__(self):
         return (_restore_batch, (self._scene, self._parameters, self._channels,

@@ -208,8 +208,8 @@ def check_window(window: Any, t_end: float, start_fraction: float) -> Tuple[floa
 def with_tolerances(options: Dict[str, Any], rtol: Any = None, atol: Any = None
                     ) -> Dict[str, Any]:
     """:func:`leadscrew.simulate`'s keywords ``options`` with the study's
-    ``rtol`` and ``atol`` where given (None: simulate's default, 1e-8 and
-    1e-10), so that simulate refuses them only where the user gave them
+    ``rtol`` and ``atol`` where given (None: the scene's [simulation] ones, else
+    simulate's default, 1e-8 and 1e-10), so that simulate refuses them only where the user gave them
     (``integrator="moreau"`` takes neither)."""
     options = dict(options)
     for name, value in (("rtol", rtol), ("atol", atol)):

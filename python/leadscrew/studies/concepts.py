@@ -60,7 +60,8 @@ def compare_concepts(
         t_end: simulated time [s], > 0.
         points: number of common output times in [0, t_end], >= 2.
         rtol, atol: integration tolerances (relative [1], absolute [SI];
-            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
+            default the scene's [simulation] ones, else simulate's, 1e-8 and
+            1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores).
         progress: show a progress bar.

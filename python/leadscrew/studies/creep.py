@@ -102,7 +102,8 @@ _COMMON_ARGS = """
         settle_cycles: cycles before the creep fit, >= 0.
         points_per_cycle: output points per cycle, >= 4.
         rtol, atol: integration tolerances (relative [1], absolute [SI];
-            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
+            default the scene's [simulation] ones, else simulate's, 1e-8 and
+            1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores). Scene and cases pickle, so process pools and
             ``dask.distributed.Client(...).get_executor()`` work too.

@@ -172,7 +172,8 @@ def efficiency_vs_mu(
         window: (start, end) [s] of the measurement, 0 <= start < end <= t_end
             (default: the second half of the run).
         rtol, atol: integration tolerances (relative [1], absolute [SI];
-            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
+            default the scene's [simulation] ones, else simulate's, 1e-8 and
+            1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (a thread or process
             pool, a Dask client's executor), each task one chunk of cases;
             :class:`~leadscrew.studies._sweep.SerialExecutor`: the calling

@@ -295,7 +295,8 @@ def min_holding_preload(
             drive in equilibrium under them); a ramp must be long against the
             drive's slowest mode on a closed flank.
         rtol, atol: integration tolerances (relative [1], absolute [SI];
-            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
+            default the scene's [simulation] ones, else simulate's, 1e-8 and
+            1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores).
         progress: show a progress bar per round.

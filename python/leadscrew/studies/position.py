@@ -66,7 +66,8 @@ def position_holding(
         settle_cycles: cycles before the creep fit.
         points_per_cycle: output points per cycle.
         rtol, atol: integration tolerances (relative [1], absolute [SI];
-            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
+            default the scene's [simulation] ones, else simulate's, 1e-8 and
+            1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` on which the two
             runs go, at once (default: the calling thread, one after the
             other: each takes milliseconds; a Dask client's executor runs

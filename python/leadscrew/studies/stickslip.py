@@ -161,7 +161,8 @@ def stick_slip(scene: Any, t_end: float = 2.0, points: Optional[int] = None,
             flexible thesis drive: 45,623 rows for 1 s). The phases start and
             end at the events either way (:func:`stick_slip_phases`).
         rtol, atol: integration tolerances (relative [1], absolute [SI];
-            default simulate's, 1e-8 and 1e-10; not with integrator "moreau").
+            default the scene's [simulation] ones, else simulate's, 1e-8 and
+            1e-10; not with integrator "moreau").
         executor: a :class:`concurrent.futures.Executor` to run the
             simulation on (e.g. a Dask client's, to run it on a cluster;
             default: the calling thread).

@@ -120,7 +120,8 @@ void RotorBrake::declare(lm::drive::Declaration& d) const {
   d.channels = rotor_brake_kind().catalog;
 }
 
-void declare_brake(const lm::DriveModel& model, const friction::Law& law, lm::drive::Declaration& d) {
+void declare_brake(const lm::DriveModel& model, const leadscrew::friction::Law& law,
+                   lm::drive::Declaration& d) {
   (void)law;
   lm::drive::declare_model_element(model, "rotor_brake", d);
 }

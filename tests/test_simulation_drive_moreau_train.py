@@ -290,21 +290,33 @@ def test_the_flexible_seat_adjusters_refusals_offer_moreau_jean_alone():
 
 
 @pytest.mark.parametrize("stage", ["worm", "friction_torque"])
-def test_a_preloaded_nut_with_a_train_stage_is_refused_for_the_stage_first(stage):
+def test_a_preloaded_nut_with_a_train_stage_runs_on_moreau_and_lift_off_is_refused(stage):
     # (A new user's review: a worm and a preloaded nut were refused in two
-    # rounds, first for friction.mu_static, then for the worm.)
+    # rounds, first for friction.mu_static, then for the worm. The stages
+    # now take a preloaded nut without lift-off on Moreau-Jean, the default:
+    # the seat's exact play closed by 500 N of preload, which holds its
+    # motor start's swing; docs/physics/preloaded_nut.md, "Moreau-Jean".)
     scene = ls.scenes.load("seat_adjuster_worm_flexible").to_dict()
-    scene["nut"]["preload"] = 50.0
+    scene["nut"]["preload"] = 500.0
     if stage == "friction_torque":  # the motor's friction alone
         scene["gear"] = {"type": "ideal", "ratio": 10.0}
         scene["motor"]["friction_torque"] = 2e-3
     what = 'gear.type = "worm"' if stage == "worm" else "motor.friction_torque = 0.002 N m"
+    dt = 1e-4
+    result = ls.simulate(ls.Scene.from_dict(scene), 0.05, dt=dt)
+    assert result.t[-1] == 0.05
+    assert result["friction_loss"][-1] > 0.0
+    assert_checked(result, scene, dt, 0.05)
+    # A nut that lifts off (penalty play) runs on the event-driven scheme
+    # only, which takes no stage: refused naming both.
+    scene["backlash"] = {"axial": 1e-4, "contact": "bistop", "stiffness": 1e8, "exponent": 1.0}
+    scene["nut"]["preload_stiffness"] = 1e6
     with pytest.raises(ValueError) as info:
         ls.Scene.from_dict(scene).model()
-    assert str(info.value) == (
-        f"nut.preload = 50 N is invalid with {what}: a preloaded nut takes none of the train's "
-        "friction stages (a lossy or worm stage, the motor's friction torque); use "
-        'nut.preload = 0, or gear.type = "ideal" and motor.friction_torque = 0')
+    assert str(info.value).startswith(
+        f'nut.preload = 500 N is invalid with {what} and backlash.contact = "bistop" on '
+        'concept = "flexible": the train\'s friction stages run on Moreau-Jean, whose step '
+        "takes a preloaded nut without lift-off only")
 
 
 # Issue 31, reproduction 4: a rigid drive without play whose thread is in the

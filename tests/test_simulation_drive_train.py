@@ -236,7 +236,12 @@ REFUSED = [
     (dict(friction={"law": "arctan_acceleration", "mu": 0.3}), LOSSY,
      'friction.law = "arctan_acceleration": the train\'s stages run on Moreau-Jean, whose '
      "velocity-level step has no slip acceleration"),
-    (dict(nut={"preload": 20.0}), LOSSY, "nut.preload"),
+    # (A preloaded nut without lift-off runs with the stages on Moreau-Jean:
+    # below and tests/test_moreau_preloaded_nut.py; one that lifts off is
+    # the event-driven scheme's alone, which takes no stage.)
+    (dict(concept="flexible_nut", nut={"preload": 20.0, "preload_stiffness": 1e6},
+          backlash={"axial": 1e-4, "contact": "bistop", "stiffness": 1e9, "exponent": 1.0}),
+     LOSSY, "nut.preload"),
     # (Penalty end stops run with the stages now; exact ones are refused on
     # the rigid concept: tests/test_simulation_drive_train_stops.py.)
     (dict(initial={"state": "equilibrium"}), LOSSY, "initial.state"),
@@ -263,6 +268,9 @@ MOREAU_ONLY = [
     # (a new user's review: the message named the valid law, not mu_static)
     (dict(friction={"law": "coulomb", "mu": 0.12, "mu_static": 0.15}), WORM,
      "here friction.mu_static = 0.15 above friction.mu = 0.12"),
+    # (the train solver's closed forms are the plain thread's)
+    (dict(friction={"law": "coulomb", "mu": 0.3}, nut={"preload": 20.0}), LOSSY,
+     "here nut.preload = 20 N"),
 ]
 
 

@@ -358,7 +358,10 @@ void fill_slip_band(CheckContext& x, double* band) {
     }
     const double rate = std::max(std::max(0.0, rate_before), rate_after);
     rate_before = rate_after;
-    band[i] = at_event_root(x, i)
+    // (Moreau-Jean's first row precedes its first step: it reports no
+    // step's forces, zero, which a preloaded nut's halves, bearing at every
+    // instant, never have.)
+    band[i] = at_event_root(x, i) || (x.spec.time_stepping && i == 0)
                   ? -1.0
                   : x.slip_band + (x.spec.time_stepping ? 0.0 : rate * x.time_resolution);
   }

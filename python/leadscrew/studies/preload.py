@@ -59,8 +59,10 @@ preloaded_nut.md, "The study on a drive train"):
   ``train_efficiency`` is the simulated whole train's (every loss of the
   run: the thread's, and a lossy or worm stage's and a motor's own friction
   where the core runs them; the ideal stage's equals ``efficiency``). A
-  lossy or worm stage with a preload is refused by the core, which says
-  what to do (``gear.type = "ideal"`` or ``nut.preload = 0``).
+  lossy or worm stage with a preload is refused by the study (its closed
+  forms are the thread's behind an ideal stage; the core runs the scene on
+  Moreau-Jean), which says what to do (``gear.type = "ideal"`` or
+  ``nut.preload = 0``).
 - **exact play on a flexible concept** (``backlash.contact = "exact"``):
   half A lifting off into the exact play is not modelled, so at P > 0 the
   study runs the thread without play, the preload closing it as on the
@@ -381,6 +383,16 @@ def preload_tradeoff(
     # What a preloaded nut refuses (a lossy or worm stage, the law, the
     # start, ...), said once, up front, rather than in every row but P = 0's.
     if preloads.max() > 0.0:
+        # The core runs a lossy or worm stage with a preload (on Moreau-Jean),
+        # but this study's closed forms (the efficiency, the holding band)
+        # are the thread's behind an ideal stage.
+        gear = scene.to_dict().get("gear") or {}
+        if gear.get("type", "ideal") != "ideal":
+            raise ValueError(
+                f"nut.preload = {float(preloads.max()):g} N is invalid with gear.type = "
+                f"\"{gear['type']}\": preload_tradeoff's closed forms (the efficiency, the "
+                "holding band) are the thread's behind an ideal stage; use nut.preload = 0, or "
+                "gear.type = \"ideal\" (simulate runs the scene itself on Moreau-Jean)")
         largest = scene.replace(nut={"preload": float(preloads.max())})
         if _closes_the_play(scene, float(preloads.max())):
             largest = largest.replace(backlash=None)

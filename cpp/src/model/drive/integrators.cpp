@@ -19,11 +19,13 @@ namespace {
 
 // The integrators that fit the friction law `friction` on a thread pair with
 // exact flanks, or penalty flanks or no play (the same list); a preloaded nut
-// runs on the event-driven scheme only. End stops run on every scheme the thread
-// pair admits (Moreau-Jean: moreau.hpp).
+// (exact Coulomb) runs on the event-driven scheme and, without lift-off, on
+// Moreau-Jean (moreau_preload.cpp; its lift-off, half B's own flank beside
+// the penalty flank, has no velocity-level step yet). End stops run on every
+// scheme the thread pair admits (Moreau-Jean: moreau.hpp).
 const std::vector<std::string>& integrators_for(const std::string& friction,
                                                 friction::Resolution resolution, bool exact_play,
-                                                bool preloaded) {
+                                                bool preloaded, bool lift_off) {
   // From the law's type (friction/law.hpp): a set-valued law runs in the
   // event-driven scheme, in Moreau-Jean's time stepping (without play, on
   // exact flanks and on penalty flanks: moreau.hpp), and where it has a
@@ -52,7 +54,7 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
     return names;
   }();
   const friction::LawType& type = friction::law_type(friction);
-  if (preloaded) return event_driven_only;
+  if (preloaded) return lift_off ? event_driven_only : with_moreau;
   if (type.time_stepping) {  // set-valued
     if (exact_play) return with_moreau;
     if (type.ode) return set_valued_all;
@@ -77,6 +79,13 @@ namespace {
 // event-driven flank impact does not take (docs/physics/end_stops.md, "The
 // rigid drive at an exact stop"). elements/end_stops.cpp refuses the
 // smooth laws there.
+// Whether a preloaded nut of p lifts off (its halves can move apart: the
+// flexible concepts with penalty play; elements/build_drive.cpp).
+bool preload_lifts_off(const DriveParameters& p) {
+  return p.nut_preload > 0.0 && p.concept != Concept::rigid &&
+         (p.backlash == BacklashContact::bistop || p.backlash == BacklashContact::cubic);
+}
+
 bool stops_need_moreau(const DriveParameters& p) {
   const bool load_on_flank =
       p.concept == Concept::rigid ||
@@ -104,23 +113,24 @@ const std::vector<std::string>& train_integrators(const std::string& obstacle) {
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   // The train's stages: whether the event-driven scheme runs them needs the
   // built model (the thread's Painleve regime, from the masses).
-  if (p.nut_preload == 0.0 &&
-      (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm))
+  if (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm)
     return drive::model_integrators(DriveModel(p));
   if (stops_need_moreau(p)) return moreau_only();
   // (The law's type, from its defaults: every law's parameters have one.)
   return integrators_for(p.friction, friction::make_law(p.friction, {})->resolution(),
-                         p.backlash == BacklashContact::exact, p.nut_preload > 0.0);
+                         p.backlash == BacklashContact::exact, p.nut_preload > 0.0,
+                         preload_lifts_off(p));
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
   if (stops_need_moreau(p)) return moreau_only();
-  if (model.train_friction() && !model.preloaded_nut())
+  if (model.train_friction())
     return train_integrators(model.train_friction()->event_driven_obstacle);
+  const elements::PreloadedNut* nut = model.preloaded_nut();
   return integrators_for(p.friction, model.law().resolution(), thread.exact_play(),
-                         model.preloaded_nut() != nullptr);
+                         nut != nullptr, nut != nullptr && nut->lift_off);
 }
 
 namespace {
@@ -148,6 +158,26 @@ void check_theta_stable_with_springs(const DriveModel& model,
       "(below 0.5 their modes grow from step to step)");
 }
 
+// A preloaded nut runs on the event-driven scheme and, without lift-off, on
+// Moreau-Jean (moreau_preload.cpp): the element's own reason first (the
+// list of integrators leaves it out).
+void check_preload_integrator(const DriveModel& model, const std::string& integrator) {
+  const DriveParameters& p = model.parameters();
+  if (const elements::PreloadedNut* nut = model.preloaded_nut();
+      nut && integrator != "event_driven" && (integrator != "moreau" || nut->lift_off))
+    throw InvalidArgument(
+        "integrator = \"" + integrator + "\" is invalid with nut.preload = " +
+        format_value(p.nut_preload) + " N" +
+        (nut->lift_off
+             ? " and backlash.contact = \"" + backlash_contact_name(p.backlash) +
+                   "\": a preloaded nut that lifts off (penalty play on a flexible concept) "
+                   "runs on the event-driven scheme only (integrator = \"event_driven\"); "
+                   "Moreau-Jean's step has no velocity-level model of half B on its own "
+                   "flank beside the penalty flank"
+             : ": a preloaded nut runs with exact Coulomb friction on the event-driven "
+               "scheme or Moreau-Jean (integrator = \"event_driven\" or \"moreau\")"));
+}
+
 }  // namespace
 
 void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
@@ -155,11 +185,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   const std::vector<std::string>& allowed = drive::model_integrators(model);
   const std::string& integrator = drive::chosen_integrator(model, options);
   // The elements' own reasons first (the list below leaves them out).
-  if (model.preloaded_nut() && integrator != "event_driven")
-    throw InvalidArgument("integrator = \"" + integrator + "\" is invalid with nut.preload = " +
-                          format_value(p.nut_preload) +
-                          " N: a preloaded nut runs with exact Coulomb friction on the "
-                          "event-driven scheme only (integrator = \"event_driven\")");
+  check_preload_integrator(model, integrator);
   if (const elements::TrainFriction* train = model.train_friction();
       train && integrator != "moreau" &&
       (integrator != "event_driven" || !train->event_driven_obstacle.empty())) {

@@ -342,6 +342,12 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                          : 0.0));
   const double motor0 = rotor_prescribes ? without.train : without.rotor;
   const double motor1 = rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
+  // A preloaded nut (without lift-off: the thread's row): its halves' cone
+  // (moreau_preload.cpp).
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut(); nut && row)
+    return solve_preloaded_thread(*nut, t, h, c, d, alpha, beta, prescribed,
+                                  std::abs(c) <= slip_noise, motor0, motor1, normal_target,
+                                  rotor_target, stick);
   double lcp_mu = model_.effective_mu();
   const friction::FlankLcpResult stick_step =
       prescribed

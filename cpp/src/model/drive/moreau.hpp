@@ -162,6 +162,15 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // P_T = -kappa(gamma+) |P_N| - h viscous gamma+ solved implicitly at the
   // step's end slip gamma+ = c + d P_T, P_N = beta + alpha P_T; contact
   // false where the flank's normal impulse pulls.
+  // The preloaded nut's friction impulse of the step (moreau_preload.cpp):
+  // the element's cone at the step's impulses decides stick and slip.
+  Impulses solve_preloaded_thread(const elements::PreloadedNut& nut, double t, double h,
+                                  double c, double d, double alpha, double beta, bool prescribed,
+                                  bool slip_zero, double motor0, double motor1,
+                                  double normal_target, double rotor_target, bool& stick);
+  // Exact play closed by the preload: SimulationError where half A's normal
+  // force on its flank is negative at the step's end.
+  void check_half_a_bearing(const StepState& s) const;
   Impulses solve_smooth_thread(double t, double h, double theta, const CoordinateVector& v0,
                                double normal_target, double rotor_target, int sigma_fixed,
                                double c, double d, double alpha, double beta, bool& contact);

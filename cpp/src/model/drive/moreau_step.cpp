@@ -191,7 +191,7 @@ void DriveMoreau::finish_velocities(StepState& s) {
   if (model_.thread_pair().penalty()) {
     s.impulses.normal = flank_impulse(s.h, s.theta, s.v0, v_);
     if (!s.contact) s.impulses.friction = 0.0;
-  }
+  }  check_half_a_bearing(s);  // (exact play closed by a preloaded nut)
 }
 
 // The state at the step's end: the positions of the independent

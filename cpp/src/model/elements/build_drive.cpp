@@ -477,7 +477,8 @@ void check_train_friction(const DriveParameters& p, const DriveElements& e) {
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
                           ": a torque cannot drive the thread (mu' >= cot(lead angle)), so its "
                           "holding torques at rest form no interval");
-  // (A preloaded nut: check_preloaded_nut refuses the stages first.)
+  // (A preloaded nut that lifts off: check_preloaded_nut refuses the stages
+  // first; without lift-off the stages take it on Moreau-Jean.)
   // Penalty end stops are one more axial force on the train (TrainSolver,
   // and Moreau-Jean's); exact ones where the load is a body of its own
   // (elements/end_stops.cpp), on Moreau-Jean.
@@ -562,6 +563,12 @@ double preload_mu_static(const DriveElements& e) {
   return e.thread->law().mu_static() * e.thread->flank_factor();
 }
 
+// Whether the halves can move apart: lift-off (preloaded_nut.hpp), half A,
+// the nut body, on its penalty flank.
+bool preload_lifts_off(const DriveParameters& p) {
+  return p.concept != Concept::rigid && p.backlash != BacklashContact::none;
+}
+
 // The preload's parameters and what it runs with (needs the built thread);
 // the lift-off spring: check_preload_spring. Returns whether p has a
 // preloaded nut.
@@ -569,17 +576,21 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
   if (p.nut_preload == 0.0) return false;
-  // The train's friction stages take no preloaded nut (checked first: no
-  // other rule of the nut's is worth meeting before this one).
+  // The train's friction stages run on Moreau-Jean, which takes the
+  // preloaded nut without lift-off (moreau_preload.cpp); a nut that lifts
+  // off runs on the event-driven scheme only, which takes no stage with it
+  // (checked first: no other rule of the nut's is worth meeting before this one).
   const bool stage = has_friction_stage(p);
-  if (stage || p.motor_friction_torque > 0.0)
+  if ((stage || p.motor_friction_torque > 0.0) && preload_lifts_off(p))
     throw InvalidArgument(
         "nut.preload = " + format_value(p.nut_preload) + " N is invalid with " +
         (stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
                : "motor.friction_torque = " + format_value(p.motor_friction_torque) + " N m") +
-        ": a preloaded nut takes none of the train's friction stages (a lossy or worm stage, "
-        "the motor's friction torque); use nut.preload = 0, or gear.type = \"ideal\" and "
-        "motor.friction_torque = 0");
+        " and backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" on concept = \"" +
+        concept_name(p.concept) + "\": the train's friction stages run on Moreau-Jean, whose "
+        "step takes a preloaded nut without lift-off only (no play, exact play closed by the "
+        "preload, or the rigid concept); use backlash.contact = \"exact\" or \"none\", "
+        "nut.preload = 0, or gear.type = \"ideal\" and motor.friction_torque = 0");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
@@ -617,12 +628,6 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
                           " >= 1, the preload half would lock against its own spring at rest "
                           "(must be < 1: lower friction.mu_static or the lead)");
   return true;
-}
-
-// Whether the halves can move apart: lift-off (preloaded_nut.hpp), half A,
-// the nut body, on its penalty flank.
-bool preload_lifts_off(const DriveParameters& p) {
-  return p.concept != Concept::rigid && p.backlash != BacklashContact::none;
 }
 
 // Where the halves can move apart, the spring carries the load beyond what
@@ -726,6 +731,8 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   if (p.concept != Concept::rigid) return "concept = \"" + concept_name(p.concept) + "\"";
   if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
     return "backlash.axial = " + format_value(p.clearance) + " (play)";
+  // (TrainSolver's closed forms are the plain thread's: no preload's hooks.)
+  if (p.nut_preload > 0.0) return "nut.preload = " + format_value(p.nut_preload) + " N";
   if (!law.plain_coulomb())
     return p.friction == "coulomb" ? "friction.mu_static = " + format_value(law.mu_static()) +
                                          " above friction.mu = " + format_value(law.mu())

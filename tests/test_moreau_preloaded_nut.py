@@ -1,0 +1,247 @@
+"""The preloaded split nut on Moreau-Jean's time stepping (issue 32, "fill
+the matrix"; docs/physics/preloaded_nut.md, "Moreau-Jean";
+cpp/src/model/drive/moreau_preload.cpp): the step's friction impulse in the
+halves' cone at the step's impulses (half B's impulse h N_B^s). Against the
+event-driven scheme on the rigid concept (convergence at the theta-method's
+order), the closed forms of tests/helpers/preloaded_nut_reference.py (the
+breakaway torque with one coefficient and with mu_static, on both schemes;
+a lossy stage's motor torque and the train's efficiency in steady slip),
+the energy account through stick and slip with a stage, the guard of exact
+play closed by the preload, and the refusals. Every Moreau-Jean result
+through the independent checker."""
+
+import math
+
+import numpy as np
+import pytest
+
+import leadscrew as ls
+from helpers import preloaded_nut_reference as reference
+from helpers.result_invariants import check_result, failed
+from helpers.scenes import thesis_scene
+
+pytestmark = pytest.mark.usefixtures("every_step")
+
+LOAD, PRELOAD = 100.0, 50.0  # [N] on half A's flank, [N]
+LOSSY = {"type": "lossy", "ratio": 4.0, "efficiency": 0.7, "efficiency_backdrive": 0.4}
+
+
+def preload_scene(mu=0.3, preload=PRELOAD, mu_static=None, **changes):
+    """The thesis drive (rigid, screw-driven) with a preloaded nut."""
+    friction = {"law": "coulomb", "mu": mu}
+    if mu_static is not None:
+        friction["mu_static"] = mu_static
+    nut = {"preload": preload, **changes.pop("nut", {})}
+    return thesis_scene(friction=friction, nut=nut, **changes)
+
+
+def thread_values(scene, mu):
+    t = ls.Scene.from_dict(scene).thread
+    return t.lead_angle, reference.effective_mu(mu, t.flank_angle), t.mean_radius
+
+
+def moreau(scene, t_end, dt, **options):
+    """A Moreau-Jean run, its own checks and the independent ones passed."""
+    result = ls.simulate(ls.Scene.from_dict(scene), t_end, integrator="moreau", dt=dt, **options)
+    assert [k for k, c in result.checks.items() if c["applies"] and not c["passed"]] == []
+    # (Rows at requested times interpolate between steps: the checker's
+    # pointwise force checks skip them. Without t_eval every step is a row:
+    # the every_step fixture.)
+    options = {"integrator": "moreau", "dt": dt, "t_end": t_end, **options}
+    if "t_eval" in options:
+        options["t_eval"] = [float(x) for x in options["t_eval"]]
+    assert failed(check_result(result, ls.Scene.from_dict(scene).to_dict(), options)) == []
+    return result
+
+
+def ramp_scene(values, times, **changes):
+    """A torque table on the rotor, the load on half A's flank (-x)."""
+    return preload_scene(loads={"drive_torque": {"type": "table", "times": times,
+                                                 "values": values},
+                                "axial_force": -LOAD}, **changes)
+
+
+@pytest.mark.parametrize("theta, order, finest", [(1.0, 1.0, 1e-3), (0.5, 2.0, 1e-6)])
+def test_moreau_converges_to_the_event_driven_run(theta, order, finest):
+    # A torque ramped past the preloaded breakaway torque (0.62 N m) and
+    # back: stick, breakaway, slip, stick again. The largest error of the
+    # load's position on 33 rows against the event-driven run falls with
+    # dt at the theta-method's order (measured: slopes 0.9997 and 2.01; the
+    # dt's are off the breakaway's time), to 4.7e-4 and 1.9e-7 of the
+    # largest position at the finest dt.
+    scene = ramp_scene([0.0, -0.9, 0.0], [0.0, 0.08, 0.16])
+    t_end = 0.16
+    grid = np.linspace(0.0, t_end, 33)
+    exact = ls.simulate(ls.Scene.from_dict(scene), t_end, rtol=1e-12, t_eval=grid)
+    assert np.any(exact["stick"] == 1.0) and np.any(exact["stick"] == 0.0)
+    dts = 1e-3 / 1.37 / 2.0 ** np.arange(1, 6)
+    errors = []
+    for dt in dts:
+        result = moreau(scene, t_end, dt, theta=theta, t_eval=grid)
+        errors.append(np.max(np.abs(result["u_load"] - exact["u_load"])))
+    slope = np.polyfit(np.log(dts), np.log(errors), 1)[0]
+    assert slope == pytest.approx(order, abs=0.1)
+    assert errors[-1] < finest * np.max(np.abs(exact["u_load"]))
+
+
+def breakaway_torque(scene, direction, mu_static_or_mu):
+    """The closed form: the raise (direction -1 on the rotor) or lower
+    torque at mu_static' (docs/physics/preloaded_nut.md, "Two coefficients")."""
+    alpha, mu_eff, r_m = thread_values(scene, mu_static_or_mu)
+    torque = reference.raise_torque if direction < 0 else reference.lower_torque
+    return torque(LOAD, PRELOAD, alpha, mu_eff, r_m)
+
+
+@pytest.mark.parametrize("mu, mu_static", [(0.3, None), (0.2, 0.3)])
+@pytest.mark.parametrize("direction", [1, -1])
+def test_the_breakaway_torque_at_rest_is_the_closed_form_on_both_schemes(mu, mu_static,
+                                                                        direction):
+    # A torque ramp of 10 N m/s from rest: stuck until the preloaded nut's
+    # raise or lower torque at mu_static', then slipping.
+    rate = 10.0
+    scene = ramp_scene([0.0, direction * rate], [0.0, 1.0], mu=mu, mu_static=mu_static)
+    expected = breakaway_torque(scene, direction, mu_static or mu)
+    # (Beyond the plain nut's: the preload widens the band.)
+    alpha, mu_eff, r_m = thread_values(scene, mu_static or mu)
+    plain = (reference.raise_torque if direction < 0 else reference.lower_torque)(
+        LOAD, 0.0, alpha, mu_eff, r_m)
+    assert expected > plain
+    t_end = 1.2 * expected / rate
+    # Event-driven: the slip starts at the event row where |torque| is it.
+    event = ls.simulate(ls.Scene.from_dict(scene), t_end)
+    stuck = event["stick"] == 1.0
+    first = np.argmax(~stuck)
+    assert stuck[0] and first > 0
+    assert abs(event["drive_torque"][first]) == pytest.approx(expected, rel=1e-9)
+    # Moreau-Jean (theta = 1/2): a step from rest sticks exactly where its
+    # torque impulse, the torque at the step's middle, lies in the halves'
+    # cone at the step's impulses: the last stuck step's middle torque is at
+    # most the closed form, the first slipping step's beyond it.
+    dt = 1e-4
+    result = moreau(scene, t_end, dt, theta=0.5)
+    stuck = result["stick"][1:] == 1.0  # (row 0 precedes the first step)
+    assert stuck[0] and not stuck[-1]
+    first = 1 + np.argmax(~stuck)
+    assert np.all(stuck[:first - 1])
+    middle = rate * (result.t[first - 1:first + 1] - 0.5 * dt)  # [last stuck, first slip]
+    assert middle[0] <= expected * (1 + 1e-9) and middle[1] >= expected * (1 - 1e-9)
+    # (Stuck steps end at zero slip to round-off: 4e-23 m in 584 steps.)
+    assert np.max(np.abs(result["u_load"][:first])) <= 1e-18
+    assert direction * result["omega_drive"][-1] > 0.0
+
+
+def dc_lossy_scene(concept, preload, load=10.0):
+    """A 3 V DC motor through the lossy 4:1 stage raising `load` (on +x)."""
+    scene = preload_scene(0.3, preload, concept=concept, loads={"axial_force": load},
+                          gear=dict(LOSSY),
+                          motor={"type": "dc", "voltage": 3.0, "resistance": 2.0,
+                                 "inductance": 1e-3, "torque_constant": 0.05})
+    scene["loads"].pop("drive_torque", None)
+    return scene
+
+
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut"])
+def test_a_lossy_stage_and_the_preload_multiply_their_efficiencies(concept):
+    # Steady raising: F v / (T omega_rotor) = eta_stage times the preloaded
+    # thread's F tan a / [(F + P) tan(a + rho') + P tan(rho' - a)]
+    # (measured: 1e-12 and below on both concepts).
+    load, dt, t_end = 10.0, 1e-4, 2.0
+    scene = dc_lossy_scene(concept, 20.0, load)
+    assert ls._core.drive_integrators(ls.Scene.from_dict(scene).model().parameters) == ["moreau"]
+    result = moreau(scene, t_end, dt)
+    efficiency = -load * result["v_load"][-1] / (result["drive_torque"][-1] *
+                                                 result["omega_drive"][-1])
+    alpha, mu_eff, _ = thread_values(scene, 0.3)
+    expected = LOSSY["efficiency"] * reference.efficiency(load, 20.0, alpha, mu_eff)
+    assert expected < LOSSY["efficiency"] * reference.efficiency(load, 0.0, alpha, mu_eff)
+    assert efficiency == pytest.approx(expected, rel=1e-9)
+    assert result["gear_loss"][-1] > 0.0 and np.all(result["stick"][-100:] == 0.0)
+
+
+def test_a_prescribed_speed_through_a_lossy_stage_takes_the_closed_form_torque():
+    # The rotor at 4 x 20 rad/s raising 200 N on half A's flank: the motor's
+    # torque is the preloaded nut's raise torque over n eta
+    # (measured: 1e-15 relative).
+    speed, load, preload = 20.0, 200.0, 500.0
+    ratio, eta = LOSSY["ratio"], LOSSY["efficiency"]
+    scene = preload_scene(0.3, preload, gear=dict(LOSSY),
+                          loads={"drive_torque": None, "drive_speed": -ratio * speed,
+                                 "axial_force": -load},
+                          initial={"rotor_speed": -ratio * speed})
+    result = moreau(scene, 0.05, 1e-4)
+    alpha, mu_eff, r_m = thread_values(scene, 0.3)
+    torque = reference.raise_torque(load, preload, alpha, mu_eff, r_m) / (ratio * eta)
+    assert result["drive_torque"][-1] == pytest.approx(-torque, rel=1e-9)
+    # The stage's loss: (1 - eta) of what the motor puts in, per unit time.
+    i = len(result.t) // 2
+    work = result["work_drive"][-1] - result["work_drive"][i]
+    gear = result["gear_loss"][-1] - result["gear_loss"][i]
+    assert gear == pytest.approx((1.0 - eta) * work, rel=1e-9)
+
+
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut", "flexible"])
+def test_the_energy_account_closes_through_stick_and_slip_with_a_stage(concept):
+    # A sine torque through the lossy stage on a loaded preloaded nut:
+    # stick, slip both ways; the account (work = stored + losses + the
+    # scheme's residual) closes and the preload's friction is lost beyond
+    # the plain nut's.
+    loads = {"drive_torque": {"type": "sine", "amplitude": -15e-3, "omega": 4 * math.pi},
+             "axial_force": -10.0}
+    dt, t_end = 1e-4, 1.0
+    scene = preload_scene(0.1, 5.0, concept=concept, gear=dict(LOSSY), loads=loads)
+    result = moreau(scene, t_end, dt)
+    stick = result["stick"][1:]
+    assert np.any(stick == 1.0) and np.any(stick == 0.0)
+    slip = result["slip_velocity"]
+    assert np.any(slip > 0.0) and np.any(slip < 0.0)
+    assert np.all(result["friction_force"] * slip <= 0.0)
+    plain = moreau(preload_scene(0.1, 0.0, concept=concept, gear=dict(LOSSY), loads=loads),
+                   t_end, dt)
+    assert result["friction_loss"][-1] > plain["friction_loss"][-1]
+
+
+def test_the_exact_play_closed_by_the_preload_raises_where_half_a_lifts_off():
+    # The rotor held, an axial load ramped from -1 N (half A's flank) to
+    # 199 N over 1 s: quasi-statically stuck, half A's normal force is zero
+    # at F = P / cos^2 a (docs/physics/preloaded_nut.md, "Exact play closed by
+    # the preload"); Moreau-Jean raises at the end of the step it crosses.
+    # Before it the run is the no-play scene's bit for bit.
+    scene = preload_scene(0.3, PRELOAD, concept="flexible_nut",
+                          backlash={"axial": 1e-4, "contact": "exact", "restitution": 0.0},
+                          loads={"drive_torque": None, "drive_speed": 0.0,
+                                 "axial_force": {"type": "table", "times": [0.0, 1.0],
+                                                 "values": [-1.0, 199.0]}},
+                          overrides={"damping_ratio": 0.5})
+    alpha = ls.Scene.from_dict(scene).thread.lead_angle
+    expected = (PRELOAD / math.cos(alpha) ** 2 + 1.0) / 200.0
+    dt = 1e-4
+    with pytest.raises(ls.SimulationError, match=r"half A of the preloaded nut lifts off its "
+                                                 r"flank into the exact play within the "
+                                                 r"Moreau-Jean step") as error:
+        ls.simulate(ls.Scene.from_dict(scene), 1.0, integrator="moreau", dt=dt)
+    assert error.value.time == pytest.approx(expected, abs=1e-3)
+    plain = dict(scene)
+    plain.pop("backlash")
+    before = 0.9 * error.value.time
+    a = moreau(scene, before, dt)
+    b = moreau(plain, before, dt)
+    for channel in b.channels:
+        np.testing.assert_array_equal(a[channel], b[channel], err_msg=channel)
+
+
+def test_the_event_driven_train_and_smooth_laws_are_refused_with_the_reason():
+    # The event-driven train solver has no preloaded nut's hooks: the stage
+    # with a preload runs on Moreau-Jean (the default), event_driven refused
+    # naming the preload.
+    scene = ls.Scene.from_dict(dc_lossy_scene("rigid", 20.0))
+    with pytest.raises(ValueError, match=r"integrator = \"event_driven\" is invalid with "
+                                         r"gear\.type = \"lossy\".*here nut\.preload = 20 N; "
+                                         r"use integrator = \"moreau\""):
+        ls.simulate(scene, 0.01, integrator="event_driven")
+    # The smooth laws keep their refusal (Moreau-Jean's smooth-law step has
+    # no halves' cone).
+    smooth = dc_lossy_scene("rigid", 20.0)
+    smooth["friction"] = {"law": "arctan_velocity", "mu": 0.3}
+    with pytest.raises(ValueError, match=r"nut\.preload = 20 is invalid with friction\.law = "
+                                         r"\"arctan_velocity\""):
+        ls.Scene.from_dict(smooth).model()

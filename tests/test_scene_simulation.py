@@ -164,9 +164,12 @@ def test_an_error_about_a_stored_option_names_its_key_path():
         'simulation.integrator = "dopri5" is invalid for backlash.contact = "bistop" with '
         'friction.law = "coulomb": must be one of "event_driven", "moreau"')
     assert "simulate's integrator=... overrides it" in str(error.value)
+    # (a stored dt names Moreau-Jean, as a dt given does; with a stored
+    # rtol no integrator takes both: refused with the default's reason)
     with pytest.raises(ValueError, match=r"^simulation\.dt = 0\.0001 is invalid with integrator "
                                          r"'event_driven' \(the default here\)"):
-        ls.simulate(holding(dt=1e-4), 0.01)
+        ls.simulate(holding(dt=1e-4, rtol=1e-6), 0.01)
+    assert ls.simulate(holding(dt=1e-4), 0.01).integrator == "moreau"
     with pytest.raises(ValueError, match=r"^simulation\.max_step = 1e-09 is invalid: reaching "
                                          r"t_end = 0\.01 s takes more steps"):
         ls.simulate(holding(max_step=1e-9), 0.01)
@@ -187,7 +190,8 @@ def test_the_study_batches_take_the_stored_options():
     assert errors[0] is None
     assert samples[0, 0, 0] == pytest.approx(single["phi_drive"][-1], rel=1e-12)
     with pytest.raises(ValueError, match=r"^simulation\.dt = 0\.0001 is invalid"):
-        check_simulate_options(holding(dt=1e-4), {}, 0.05)
+        check_simulate_options(holding(dt=1e-4, rtol=1e-6), {}, 0.05)
+    check_simulate_options(holding(dt=1e-4), {}, 0.05)  # (dt names Moreau-Jean)
     check_simulate_options(holding(dt=1e-4), {"integrator": "moreau"}, 0.05)
 
 

@@ -176,12 +176,11 @@ def test_a_prescribed_speed_with_the_motors_friction_and_a_worm_on_the_flexible_
         assert np.all(np.diff(result[name]) >= 0.0) and result[name][-1] > 0.0, name
 
 
-@pytest.mark.parametrize("law", [ARCTAN, LUGRE])
-def test_a_worm_with_a_smooth_law_on_the_flexible_concept_closes_its_account(law):
+def test_a_worm_with_a_smooth_law_on_the_flexible_concept_closes_its_account():
     # The default integrator is Moreau-Jean (the event-driven scheme runs
     # the stages with exact Coulomb on the rigid drive alone) at its
     # default dt; the losses never fall, the account closes.
-    scene = thesis_scene(concept="flexible", gear=WORM, friction=law,
+    scene = thesis_scene(concept="flexible", gear=WORM, friction=ARCTAN,
                          motor={"friction_torque": 1e-3},
                          loads={"drive_torque": 0.03, "axial_force": -20.0})
     assert ls._core.drive_integrators(ls.Scene.from_dict(scene).model().parameters) == ["moreau"]
@@ -190,6 +189,26 @@ def test_a_worm_with_a_smooth_law_on_the_flexible_concept_closes_its_account(law
     assert result["gear_loss"][-1] > 0.0 and result["friction_loss"][-1] > 0.0
     for name in ("gear_loss", "motor_friction_loss"):
         assert np.all(np.diff(result[name]) >= 0.0), name
+
+
+# Six of 10,000 random drive trains (tests/fuzz_scenes.py --generator train,
+# at dd97af1) returned LuGre on Moreau-Jean with a friction off its law on
+# rows where a row of the step's solve held the slip: the train's rotor
+# contact (57 N the law gives, 0 reported) or an exact stop holding a load
+# rigid in the thread. Refused until those rows take the bristles' force.
+@pytest.mark.parametrize("changes, named", [
+    (dict(gear=WORM, motor={"friction_torque": 1e-3}), 'gear.type = "worm"'),
+    (dict(concept="rigid", motor={"friction_torque": 1e-3}), "motor.friction_torque = 0.001"),
+    (dict(concept="rigid", end_stops={"upper": 1e-3, "contact": "exact"}),
+     'end_stops.contact = "exact" on concept = "rigid"'),
+])
+def test_lugre_where_a_row_holds_the_slip_is_refused_on_moreau_jean(changes, named):
+    scene = ls.Scene.from_dict(thesis_scene(
+        **dict(dict(concept="flexible", friction=LUGRE,
+                    loads={"drive_torque": 0.03, "axial_force": -20.0}), **changes)))
+    with pytest.raises(ValueError) as info:
+        ls.simulate(scene, 0.01, integrator="moreau")
+    assert str(info.value).startswith(f'friction.law = "lugre" is invalid with {named}')
 
 
 def test_a_smooth_law_on_the_rigid_stage_refuses_an_explicit_event_driven_run():

@@ -219,3 +219,16 @@ def test_describe_schema_documents_the_section():
     assert any(line.startswith("simulation.dt [s] (") for line in lines)
     assert any(line.startswith("simulation.integrator (default simulate's default, the first "
                                "that fits the scene; one of 'cvode_bdf'") for line in lines)
+
+
+def test_a_dt_given_overrides_the_scenes_stored_adaptive_options():
+    """(A new user's review: `leadscrew run position_holding --dt 1e-5` was
+    refused, the scene's stored rtol and atol kept beside the dt given.) A
+    dt given names Moreau-Jean; the scene's options of the other scheme give
+    way, as they do under integrator="moreau"."""
+    scene = ls.scenes.load("position_holding")
+    assert scene["simulation"]["rtol"] == 1e-6
+    result = ls.simulate(scene, 0.01, dt=1e-5)
+    assert result.integrator == "moreau"
+    explicit = ls.simulate(scene, 0.01, integrator="moreau", dt=1e-5)
+    np.testing.assert_array_equal(result["u_load"], explicit["u_load"])

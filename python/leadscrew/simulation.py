@@ -889,7 +889,9 @@ def scene_options(scene: Scene, given: Dict[str, Any]) -> Tuple[Dict[str, Any], 
     scene's options that integrator does not take (:func:`takes_option`:
     the scene's ``rtol`` under ``integrator="moreau"``, its ``dt`` under
     another) are left out: they were the scene's settings of another
-    scheme. Shared by :func:`simulate`, the study batches and the command
+    scheme. So are they where an option given names the other scheme
+    without an integrator (``dt`` given: the scene's ``rtol`` and ``atol``
+    give way, as ``dt`` names Moreau-Jean). Shared by :func:`simulate`, the study batches and the command
     line, so that one rule holds.
 
     Args:
@@ -907,6 +909,11 @@ def scene_options(scene: Scene, given: Dict[str, Any]) -> Tuple[Dict[str, Any], 
         return dict(given), ()
     options, taken = dict(given), []
     chosen = given.get("integrator")
+    if not chosen:  # (an option given names its scheme: the other's stored give way)
+        if any(given.get(name) is not None for name in MOREAU_OPTIONS):
+            chosen = "moreau"
+        elif any(given.get(name) is not None for name in ADAPTIVE_OPTIONS):
+            chosen = "event_driven"
     for name, value in stored.items():
         if options.get(name) is not None or (chosen and not takes_option(chosen, name)):
             continue

@@ -15,7 +15,7 @@ import os
 from pathlib import Path
 from typing import Any, List, Tuple
 
-from . import __version__
+from . import __version__, scenes
 from ._hints import did_you_mean
 
 __all__ = ["UsageError", "StudyFailed"]
@@ -106,10 +106,11 @@ def _add_simulation_options(parser: argparse.ArgumentParser) -> None:
 
 
 def _parser() -> argparse.ArgumentParser:
+    # (the shipped scenes listed from the package: a list written here fell
+    # behind the scenes shipped)
     parser = _Parser(prog="leadscrew", description="Lead-screw drive simulator. SCENE is a TOML "
-                     "scene file or the name of a shipped scene (default, thesis_table_5_1, "
-                     "position_holding, seat_adjuster, seat_adjuster_worm, "
-                     "seat_adjuster_worm_flexible).")
+                     "scene file or the name of a shipped scene ("
+                     + ", ".join(scenes.available()) + ").")
     parser.add_argument("--debug", action="store_true", help="show tracebacks")
     parser.add_argument("--version", action="version", version=f"leadscrew {__version__}",
                         help="print the version and exit")

@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 
+#include "../check_rows.hpp"
 #include "../drive/declaration.hpp"
 #include "../drive/state_layout.hpp"
 #include "leadscrew/integrate/simulation_result.hpp"
@@ -313,22 +314,11 @@ double value(const integrate::SimulationResult& result, int channel, std::size_t
   return result.values[row * result.channel_count() + static_cast<std::size_t>(channel)];
 }
 
+// A check's record (check_rows.hpp), its value -inf until a row is offered.
 integrate::InvariantCheck motor_check(const char* name, const char* what, const char* unit) {
-  integrate::InvariantCheck c;
-  c.name = name;
-  c.what = what;
-  c.unit = unit;
+  integrate::InvariantCheck c = check_rows::make_check(name, what, unit);
   c.value = -std::numeric_limits<double>::infinity();
   return c;
-}
-
-// Keeps the worst of value <= bound (the excess value - bound).
-void offer(integrate::InvariantCheck& c, double& worst, double value, double bound, double t) {
-  if (!(value - bound <= worst)) {
-    worst = value - bound;
-    c.value = value, c.bound = bound, c.time = t;
-  }
-  if (!(value <= bound)) c.passed = false;
 }
 
 // The rows' channels the checks read.
@@ -358,15 +348,15 @@ integrate::InvariantCheck armature_check(const DcMotor& dc, double back_emf_cons
                   "motor_voltage = R motor_current + k_e omega (docs/physics/dc_motor.md)", "V");
   c.applies = !dc.has_state() && !(time_stepping && result.interpolated);
   const MotorRows rows(result);
-  double worst = -std::numeric_limits<double>::infinity();
+  check_rows::Worst worst{c};
   for (std::size_t i = 0; i < result.point_count() && c.applies; ++i) {
     double speed = value(result, rows.omega, i);
     if (time_stepping && i > 0)
       speed = (1.0 - theta) * value(result, rows.omega, i - 1) + theta * speed;
-    offer(c, worst,
-          std::abs(value(result, rows.voltage, i) - dc.resistance * value(result, rows.current, i) -
-                   back_emf_constant * speed),
-          1e-12 * volts, result.time[i]);
+    const double voltage = value(result, rows.voltage, i);
+    const double current = value(result, rows.current, i);
+    worst.offer(std::abs(voltage - dc.resistance * current - back_emf_constant * speed),
+                1e-12 * volts, result.time[i]);
   }
   return c;
 }
@@ -386,14 +376,14 @@ integrate::InvariantCheck supply_check(const DcMotor& dc, double theta, bool tim
                         "|motor_voltage| <= |U(t)| (docs/physics/dc_motor.md)", "V");
   supply.applies = !(time_stepping && result.interpolated);
   const int voltage = result.channel_index("motor_voltage");
-  double worst = -std::numeric_limits<double>::infinity();
+  check_rows::Worst worst{supply};
   const std::size_t n = result.point_count();
   for (std::size_t i = 0; i < n && supply.applies; ++i) {
     double t = result.time[i];
     if (!time_stepping && i + 1 < n && result.time[i + 1] == t) continue;  // (at an event's root)
     if (time_stepping && i > 0) t = result.time[i - 1] + theta * (t - result.time[i - 1]);
-    offer(supply, worst, std::abs(value(result, voltage, i)),
-          std::abs(dc.voltage(t)) + 1e-12 * volts, result.time[i]);
+    worst.offer(std::abs(value(result, voltage, i)), std::abs(dc.voltage(t)) + 1e-12 * volts,
+                result.time[i]);
   }
   return supply;
 }
@@ -416,12 +406,11 @@ void DcMotorElement::check_result(const DriveSimulationOptions& options, bool ti
   integrate::InvariantCheck channel = motor_check(
       "motor_torque", "drive_torque is the DC motor's torque k_t motor_current at every row",
       "N*m");
-  double worst = -std::numeric_limits<double>::infinity();
+  check_rows::Worst worst{channel};
   for (std::size_t i = 0; i < result.point_count(); ++i)
-    offer(channel, worst,
-          std::abs(value(result, rows.torque, i) -
-                   rotor_torque_constant_ * value(result, rows.current, i)),
-          1e-12 * newton_metres, result.time[i]);
+    worst.offer(std::abs(value(result, rows.torque, i) -
+                         rotor_torque_constant_ * value(result, rows.current, i)),
+                1e-12 * newton_metres, result.time[i]);
   result.checks.push_back(channel);
   result.checks.push_back(
       armature_check(dc_, rotor_back_emf_constant_, options.theta, time_stepping, volts, result));

@@ -1,0 +1,122 @@
+"""Options a drive's run would ignore are refused, and an option left to
+the default integrator names its scheme (leadscrew.simulate, and the check a
+sweep makes before its cases alike). Split from test_simulation_drive.py."""
+
+import numpy as np
+import pytest
+
+import leadscrew as ls
+from helpers.scenes import thesis_scene
+
+EXACT = {"axial": 1e-4, "contact": "exact"}
+BISTOP = {"axial": 1e-4, "contact": "bistop"}
+
+# (scene changes, options, message): the options the integrator that runs (or
+# the scene) would ignore.
+IGNORED_OPTIONS = [
+    # (left to the default, dt runs Moreau-Jean where it fits: not for eq.
+    # 3.15's law, whose friction follows the slip acceleration)
+    (dict(friction={"law": "arctan_acceleration", "mu": 0.3}), {"dt": 1e-3},
+     r"^dt = 0.001 is invalid with integrator 'cvode_bdf' \(the default here\): dt is taken "
+     r"by moreau only"),
+    # (Moreau-Jean takes dt, but not bounce_threshold: no integrator takes both)
+    (dict(backlash=EXACT), {"dt": 1e-3, "bounce_threshold": 1e-5},
+     r"^dt = 0.001 is invalid with integrator 'event_driven' \(the default here\): dt is "
+     r"taken by moreau only"),
+    ({}, {"integrator": "event_driven", "dt": 1e-3},
+     r"^dt = 0.001 is invalid with integrator 'event_driven': dt is taken by moreau only"),
+    (dict(friction={"law": "arctan_velocity", "mu": 0.3}), {"integrator": "cvode_bdf",
+                                                            "theta": 1.0},
+     r"^theta = 1 is invalid with integrator 'cvode_bdf'"),
+    *[({}, {"integrator": "moreau", name: value},
+       rf"^{name} = {value!r} is invalid with integrator 'moreau': moreau is a fixed-step "
+       rf"scheme without error or step-size control \(its step is dt\); {name} is taken by the "
+       r"other integrators")
+      for name, value in (("rtol", 1e-6), ("atol", 1e-9), ("max_order", 3), ("max_step", 1e-3),
+                          ("first_step", 1e-6))],
+    ({}, {"bounce_threshold": 1e-5}, r"^bounce_threshold = 1e-05 is invalid for this Scene: "
+                                     r"it has no backlash, and bounce_threshold is taken by a "
+                                     r"Scene with an exact backlash"),
+    (dict(backlash=BISTOP), {"bounce_threshold": 1e-5},
+     r"^bounce_threshold = 1e-05 is invalid for this Scene: it has backlash.contact = "
+     r"'bistop', "),
+    (dict(backlash=EXACT), {"integrator": "moreau", "bounce_threshold": 1e-5},
+     r"^bounce_threshold = 1e-05 is invalid with integrator 'moreau': bounce_threshold is "
+     r"taken by integrator 'event_driven' only"),
+]
+
+
+@pytest.mark.parametrize("changes, options, message", IGNORED_OPTIONS)
+def test_options_the_run_would_ignore_are_refused(changes, options, message):
+    """As the command line: an option the integrator that runs (or the
+    scene) would ignore is refused, by simulate and by the check a sweep
+    makes before its cases (DriveBatch's keywords) alike."""
+    from leadscrew.studies._batch import check_simulate_options
+
+    scene = ls.Scene.from_dict(thesis_scene(**changes))
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(scene, 0.01, **options)
+    with pytest.raises(ValueError, match=message):
+        check_simulate_options(scene, options, 0.01)
+
+
+@pytest.mark.parametrize("options", [{"dt": 2e-4}, {"theta": 1.0}, {"dt": 2e-4, "theta": 1.0}])
+def test_an_option_left_to_the_default_integrator_names_its_scheme(options):
+    """dt and theta are Moreau-Jean's: given without an integrator on a scene
+    whose default is event-driven, the run is Moreau-Jean's with them (the
+    same numbers as integrator = "moreau"), and Result.integrator says so;
+    a sweep's check and its cases' arguments take the same rule."""
+    from leadscrew.studies._batch import _core_arguments, check_simulate_options
+
+    scene = ls.Scene.from_dict(thesis_scene())
+    times = np.linspace(0.0, 0.01, 11)
+    result = ls.simulate(scene, 0.01, t_eval=times, **options)
+    assert result.integrator == "moreau"
+    explicit = ls.simulate(scene, 0.01, integrator="moreau", t_eval=times, **options)
+    np.testing.assert_array_equal(result["u_load"], explicit["u_load"])
+    if "theta" in options:  # theta reached the scheme: the default 0.5 gives other numbers
+        half = ls.simulate(scene, 0.01, integrator="moreau", dt=options.get("dt"), t_eval=times)
+        assert np.max(np.abs(result["u_load"] - half["u_load"])) > 0.0
+    check_simulate_options(scene, options, 0.01)
+    assert _core_arguments(scene, 0.01, times, options)["integrator"] == "moreau"
+    # Left out, the default runs.
+    assert ls.simulate(scene, 0.01, t_eval=times).integrator == "event_driven"
+
+
+def test_an_option_no_fitting_integrator_takes_is_still_refused():
+    """rtol on a scene that runs on Moreau-Jean alone, and an option the
+    integrator given would ignore, are refused as before."""
+    moreau_only = ls.scenes.load("seat_adjuster_worm_flexible")
+    with pytest.raises(ValueError, match=r"^rtol = 1e-06 is invalid with integrator 'moreau' "
+                                         r"\(the default here\)"):
+        ls.simulate(moreau_only, 0.01, rtol=1e-6)
+    scene = ls.Scene.from_dict(thesis_scene())
+    with pytest.raises(ValueError, match=r"^dt = 0.0002 is invalid with integrator "
+                                         r"'event_driven': dt is taken by moreau only"):
+        ls.simulate(scene, 0.01, integrator="event_driven", dt=2e-4)
+    with pytest.raises(ValueError, match=r"^rtol = 1e-06 is invalid with integrator 'moreau': "):
+        ls.simulate(scene, 0.01, integrator="moreau", rtol=1e-6)
+
+
+def test_options_left_out_or_used_are_not_refused():
+    """The defaults never trip the refusal (only options given count), nor
+    do options the run uses."""
+    scene = ls.Scene.from_dict(thesis_scene())
+    times = [0.01]
+    default = ls.simulate(scene, 0.01, t_eval=times)
+    moreau = ls.simulate(scene, 0.01, integrator="moreau", t_eval=times)
+    assert default.integrator == "event_driven" and moreau.integrator == "moreau"
+    # None is "left out", whatever the integrator
+    ls.simulate(scene, 0.01, integrator="moreau", rtol=None, atol=None, max_order=None,
+                t_eval=times)
+    ls.simulate(scene, 0.01, dt=None, theta=None, bounce_threshold=None, t_eval=times)
+    # the defaults given explicitly give the same run
+    explicit = ls.simulate(scene, 0.01, rtol=1e-8, atol=1e-10, t_eval=times)
+    np.testing.assert_array_equal(explicit["u_load"], default["u_load"])
+    same = ls.simulate(scene, 0.01, integrator="moreau", dt=1e-4, theta=0.5, t_eval=times)
+    np.testing.assert_array_equal(same["u_load"], moreau["u_load"])
+    # an exact backlash run event-driven takes bounce_threshold, and checks its range
+    exact = ls.Scene.from_dict(thesis_scene(backlash=EXACT))
+    ls.simulate(exact, 0.01, bounce_threshold=1e-5, t_eval=times)
+    with pytest.raises(ValueError, match=r"bounce_threshold = -1 is invalid: must be"):
+        ls.simulate(exact, 0.01, bounce_threshold=-1.0)

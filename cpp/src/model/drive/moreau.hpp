@@ -24,7 +24,8 @@ namespace leadscrew::model::drive {
 //   q+   = q + h ((1 - theta) v + theta v+).
 // Impulses: the thread's normal impulse (a multiplier: bilateral without play,
 // or on a flank the predicted position closes, with Newton's law
-// W_N v+ = -e W_N v), the friction impulse from the flank LCP on the velocity
+// W_N v+ = -e W_N v, or that the step without it passes, W_N v+ = 0:
+// exact_flank_closes), the friction impulse from the flank LCP on the velocity
 // level (maximal dissipation), and the speed-controlled rotor's.
 // Penalty flanks (docs/physics/drive_models.md, "Moreau-Jean on penalty
 // flanks"): a force along the play, the discrete gradient of the flanks'
@@ -202,6 +203,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // The penalty flank's linearisation from the step's result: true where it
   // changed (released, or the step's end moved: solved again).
   bool update_flank(double h, double theta, const CoordinateVector& v0, const Impulses& impulses);
+  // Exact play: a step planned with the flank open whose result ends beyond
+  // it takes the flank's contact (moreau_flanks.cpp); true where it did.
+  bool exact_flank_closes(StepState& s) const;
   // The end stops' active sets of the step from its result: true where
   // they changed (the step is solved again).
   bool update_stops(double h, double theta, const CoordinateVector& v0, const Impulses& impulses,

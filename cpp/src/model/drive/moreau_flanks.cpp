@@ -1,14 +1,52 @@
-// DriveMoreau (moreau.hpp): a penalty flank's part of the Moreau-Jean step
-// (bistop, cubic; docs/physics/drive_models.md, "Moreau-Jean on penalty
-// flanks"): its normal impulse over the step and its Newton update (the
-// discrete gradient linearised at the step's end, released where it would
-// pull). Its force's linearisation and loss are moreau_contacts::PenaltyFlank,
-// its friction the thread's flank LCP (DriveMoreau::solve_thread, moreau.cpp).
+// DriveMoreau (moreau.hpp): the flanks' parts of the Moreau-Jean step. A
+// penalty flank's (bistop, cubic; docs/physics/drive_models.md, "Moreau-Jean
+// on penalty flanks"): its normal impulse over the step and its Newton
+// update (the discrete gradient linearised at the step's end, released where
+// it would pull). Its force's linearisation and loss are
+// moreau_contacts::PenaltyFlank, its friction the thread's flank LCP
+// (DriveMoreau::solve_thread, moreau.cpp). An exact flank's: the contact of
+// a step that ends beyond it (exact_flank_closes).
 #include "moreau.hpp"
 
 #include <cmath>
 
 namespace leadscrew::model::drive {
+
+// Exact play: plan_contacts activates a flank where the play and its rate
+// at the step's start predict it closes, e0 + h e'0 beyond the half
+// clearance; that prediction leaves out the step's forces. A flank that
+// carries the springs' load at rest (a holding drive: e0 at the flank, e'0
+// zero) is predicted open wherever round-off leaves e0 a few 1e-21 m inside
+// the clearance; the step without the contact then released the loaded
+// springs (the shipped seat_adjuster held by its thread at theta = 1/2: 10
+// rad/s on the screw in one step, the flank 5e-6 m deep, the drive turning
+// 0.13 rad over 0.2 s where it holds). So a step planned open whose result
+// ends beyond a flank, |e0 + h grad e . v_theta| > c / 2, is a step that
+// closes it: taken again with its contact (the LCP's normal impulse pushes
+// or the flank separates, as on a step the prediction closes). Its target is
+// W_N v+ = 0, without Newton's restitution: the step's forces, not the
+// start's velocity, close the flank (the approach at the start is below the
+// clearance left over h), and so the step ends at most h (1 - theta) e'0
+// short of the flank and holds there while loaded; a restitution there
+// would be taken at every step of the hold (each is "closing"), at three
+// solves a step (Newton's target, the plastic one, the account's) for a
+// rebound of that small approach. Before, such a step ran into the flank
+// unopposed, and the next one met it passed (target 0 too) and kept the
+// penetration. It is decided once: a flank activated here stays active for
+// the step's passes.
+bool DriveMoreau::exact_flank_closes(StepState& s) const {
+  const elements::ThreadPair& thread = model_.thread_pair();
+  if (!thread.exact_play() || s.contact_at_start) return false;
+  const double half = 0.5 * p_.clearance;
+  const double end = s.play0 + s.h * thread.play_gradient().dot((1.0 - s.theta) * s.v0 +
+                                                                s.theta * s.impulses.velocity);
+  if (!(std::abs(end) > half)) return false;
+  s.contact_at_start = true;
+  s.sigma_fixed = end > 0.0 ? -1 : 1;
+  s.normal_target = 0.0;
+  s.restituting = false;
+  return true;
+}
 
 double DriveMoreau::flank_impulse(double h, double theta, const CoordinateVector& v0,
                                   const CoordinateVector& v1) const {

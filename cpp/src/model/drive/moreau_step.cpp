@@ -146,7 +146,10 @@ void DriveMoreau::solve_step(StepState& s) {
                                   s.sigma_fixed, s.contact, s.stick);
       if (!s.contact) s.impulses = solve(false, 0.0, s.rotor_target, 0.0);
     }
-    bool again = stop_passes < 8 && update_stops(h, theta, v0, s.impulses, s.released);
+    // (An exact flank the pass ends beyond takes its contact first: the
+    // stops' sets are decided on a pass with the thread's contact.)
+    bool again = exact_flank_closes(s) ||
+                 (stop_passes < 8 && update_stops(h, theta, v0, s.impulses, s.released));
     ++stop_passes;
     // (Newton on the flank's force: quadratic, a few passes; capped.)
     if (penalty && pass < 100 && update_flank(h, theta, v0, s.impulses)) again = true;

@@ -380,10 +380,9 @@ def test_run_moreau_takes_dt_and_theta(tmp_path, capsys):
 @pytest.mark.parametrize(
     "argv, fragments",
     [
-        # (no integrator takes both: refused with the default's reason)
+        # (no integrator takes both: refused naming both)
         (["default", "--dt", "1e-3", "--rtol", "1e-6"],
-         ["--dt 0.001 is invalid with the scene's default integrator event_driven",
-          "moreau only"]),
+         ["--dt 0.001 and --rtol 1e-06 conflict", "moreau only"]),
         (["default", "--integrator", "event_driven", "--dt", "1e-3"],
          ["--dt 0.001 is invalid with --integrator event_driven"]),
         (["default", "--integrator", "moreau", "--rtol", "1e-6"],

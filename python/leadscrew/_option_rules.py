@@ -15,7 +15,7 @@ import numpy as np
 from .scene import SCHEMA, Scene
 
 __all__ = ["ADAPTIVE_OPTIONS", "MOREAU_OPTIONS", "SCENE_OPTIONS", "unused_option",
-           "integrator_taking", "takes_option", "scene_options"]
+           "option_conflict", "integrator_taking", "takes_option", "scene_options"]
 
 
 def _scalar(value):
@@ -111,6 +111,38 @@ def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene]
     return None
 
 
+def option_conflict(given: Dict[str, Any], spell=str, equals: str = " = ") -> Optional[str]:
+    """Why options given together conflict, whatever integrator runs: one of
+    Moreau-Jean's (:data:`MOREAU_OPTIONS`) beside one of the adaptive
+    integrators' (:data:`ADAPTIVE_OPTIONS`), which no integrator takes both
+    of. The one rule for options left to the default integrator, shared by
+    :func:`simulate` (through :func:`_choose_integrator`), the study
+    batches, the command line and the Scene's ``[simulation]`` section.
+
+    Args:
+        given: option name -> value (None: left out).
+        spell: how the caller spells an option (``--dt``, ``simulation.dt``).
+        equals: what stands between a name and its value (the command
+            line's ``" "``).
+
+    Returns:
+        The message naming both options with their values and the scheme
+        each belongs to; None where they do not conflict.
+    """
+    moreau = next((name for name in MOREAU_OPTIONS if given.get(name) is not None), None)
+    adaptive = next((name for name in ADAPTIVE_OPTIONS if given.get(name) is not None), None)
+    if moreau is None or adaptive is None:
+        return None
+    shown = [f"{spell(name)}{equals}{_shown(given[name])}" for name in (moreau, adaptive)]
+    return (f"{shown[0]} and {shown[1]} conflict: {spell(moreau)} is taken by moreau only "
+            f"(the fixed-step Moreau-Jean scheme), {spell(adaptive)} by the adaptive "
+            "integrators only (event_driven, cvode_bdf, ...: error and step-size control), "
+            f"and none takes both; give one of them, or the integrator "
+            f"({spell('integrator')}{equals}{'moreau' if equals == ' ' else _shown('moreau')} "
+            f"takes {spell(moreau)}, "
+            f"another {spell(adaptive)})")
+
+
 def integrator_taking(allowed: Sequence[str], given: Dict[str, Any],
                       scene: Optional[Scene] = None) -> str:
     """The integrator a run left to its default takes: the default (the
@@ -140,13 +172,17 @@ def _choose_integrator(integrator: str, integrators: Callable[[], Sequence[str]]
 
     Raises:
         ValueError: naming the option, its value, the integrator and which
-            integrator or scene takes the option.
+            integrator or scene takes the option; left to the default, two
+            options no integrator takes together (:func:`option_conflict`).
     """
     for value in given.values():
         if value is not None:
             break
     else:  # nothing given (the common case: no lookup)
         return integrator
+    conflict = None if integrator else option_conflict(given)
+    if conflict is not None:
+        raise ValueError(conflict)
     allowed = integrators()
     runs = integrator or integrator_taking(allowed, given, scene)
     if runs not in allowed:

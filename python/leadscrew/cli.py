@@ -312,7 +312,7 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
         UsageError: naming the option, its value and the integrator.
     """
     from . import _core
-    from .simulation import integrator_taking, unused_option
+    from .simulation import integrator_taking, option_conflict, unused_option
 
     allowed = list(_core.drive_integrators(scene.model().parameters))
     given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
@@ -322,6 +322,9 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
     elif stored is not None:  # the scene's own (its [simulation] section)
         integrator, which = stored, f"the scene's integrator {stored} (simulation.integrator)"
     else:  # the scene's default: the first of the integrators that fit it
+        conflict = option_conflict(given, spell=lambda name: f"--{name}", equals=" ")
+        if conflict is not None:
+            raise UsageError(conflict)
         integrator = integrator_taking(allowed, given, scene)
         which = f"the scene's default integrator {integrator}"
     # The rules of leadscrew.simulate, in the command line's spelling.

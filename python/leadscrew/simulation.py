@@ -21,8 +21,8 @@ from .units import channel_unit
 # Scene import them from here)
 from ._option_rules import (ADAPTIVE_OPTIONS, MOREAU_OPTIONS, SCENE_OPTIONS,  # noqa: F401
                             _choose_integrator, _play_of, _scalar, _shown,
-                            _stored_option_errors, integrator_taking, scene_options,
-                            takes_option, unused_option)
+                            _stored_option_errors, integrator_taking, option_conflict,
+                            scene_options, takes_option, unused_option)
 
 __all__ = ["simulate", "Result", "Event"]
 

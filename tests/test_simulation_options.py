@@ -161,3 +161,36 @@ def test_the_command_line_names_both_conflicting_options(tmp_path, capsys):
                                "only", "--rtol by the adaptive integrators only",
                           "(--integrator moreau takes --dt, another --rtol)")
     assert not list(tmp_path.iterdir())  # refused before anything ran
+
+
+_INTEGRATORS = ("cvode_bdf, cvode_adams, dopri5, verner6, rk_dopri5, rk_verner6, event_driven, "
+                "moreau")
+
+
+def test_a_name_no_integrator_has_is_refused_as_such():
+    """(A new user's review: integrator = "foo" was refused as if it were an
+    integrator that does not fit the law, and on a drive train without a
+    list.) The message names the key and the value, the closest name, and
+    lists the integrators (simulate on a Scene and a FrictionBlock, a sweep's
+    check alike)."""
+    from leadscrew.studies._batch import check_simulate_options
+
+    message = (r"^integrator = \"moreu\" is invalid: no integrator has that name \(did you mean "
+               rf"'moreau'\?\); the integrators are {_INTEGRATORS}")
+    scene = ls.scenes.load("seat_adjuster_worm_flexible")
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(scene, 0.01, integrator="moreu")
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(ls.FrictionBlock(1.0, 0.3), 0.01, integrator="moreu")
+    with pytest.raises(ValueError, match=message):
+        check_simulate_options(scene, {"integrator": "moreu"}, 0.01)
+
+
+def test_the_command_line_lists_the_integrators_and_those_the_scene_takes(tmp_path, capsys):
+    from helpers.cli_runs import assert_one_line_error, run_main
+
+    code, _, err = run_main(capsys, "run", "seat_adjuster_worm_flexible", "--integrator", "foo",
+                            "-o", tmp_path)
+    assert code == 2
+    assert_one_line_error(err, f"--integrator foo is invalid: no integrator has that name; the "
+                               f"integrators are {_INTEGRATORS}; this scene takes moreau")

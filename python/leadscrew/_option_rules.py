@@ -15,7 +15,8 @@ import numpy as np
 from .scene import SCHEMA, Scene
 
 __all__ = ["ADAPTIVE_OPTIONS", "MOREAU_OPTIONS", "SCENE_OPTIONS", "unused_option",
-           "option_conflict", "integrator_taking", "takes_option", "scene_options"]
+           "option_conflict", "integrator_taking", "takes_option", "scene_options",
+           "check_integrator_name"]
 
 
 def _scalar(value):
@@ -141,6 +142,39 @@ def option_conflict(given: Dict[str, Any], spell=str, equals: str = " = ") -> Op
             f"({spell('integrator')}{equals}{'moreau' if equals == ' ' else _shown('moreau')} "
             f"takes {spell(moreau)}, "
             f"another {spell(adaptive)})")
+
+
+def check_integrator_name(name: str, key: str = "integrator", shown: Optional[str] = None,
+                          fitting: Sequence[str] = ()) -> str:
+    """``name`` where it names one of the integrators (:data:`INTEGRATORS
+    <leadscrew.scene_schema.INTEGRATORS>`; "" the default), so that a name
+    no integrator has is refused as such, listing them all (the core lists
+    those that fit a model, as if the name were one that does not).
+
+    Args:
+        name: the integrator's name as given.
+        key: the option's name in the message.
+        shown: the option and its value as the caller writes them (the
+            command line's ``--integrator foo``; default ``key = "name"``, as
+            the core writes it).
+        fitting: the integrators that fit the model, where known (listed).
+
+    Raises:
+        ValueError: naming ``key``, the value, the closest name and the
+            integrators.
+    """
+    from ._hints import did_you_mean
+    from .scene_schema import INTEGRATORS
+
+    if name and name not in INTEGRATORS:
+        which = (f"; this scene takes {', '.join(fitting)}" if fitting else
+                 " (which fit a model depends on its friction law, play and drive train: an "
+                 "integrator that does not fit is refused naming those that do)")
+        shown = shown or f'{key} = "{name}"'
+        raise ValueError(f"{shown} is invalid: no integrator has that "
+                         f"name{did_you_mean(name, INTEGRATORS)}; the integrators are "
+                         f"{', '.join(INTEGRATORS)}{which}")
+    return name
 
 
 def integrator_taking(allowed: Sequence[str], given: Dict[str, Any],

@@ -312,9 +312,13 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
         UsageError: naming the option, its value and the integrator.
     """
     from . import _core
-    from .simulation import integrator_taking, option_conflict, unused_option
+    from .simulation import (check_integrator_name, integrator_taking, option_conflict,
+                             unused_option)
 
     allowed = list(_core.drive_integrators(scene.model().parameters))
+    if args.integrator is not None:
+        check_integrator_name(args.integrator, shown=f"--integrator {args.integrator}",
+                              fitting=allowed)
     given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
     stored = scene["simulation"].get("integrator") if "simulation" in scene else None
     if args.integrator is not None:

@@ -269,7 +269,8 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
     Returns:
         dict: ``creep`` [m] (the thread's travel at the end,
         :func:`thread_travel`), ``creep_rate`` [m/s] (its least-squares
-        slope over t >= settle_time), ``displacement`` [m] (u_load(end) -
+        slope over t >= settle_time), ``max_creep`` [m] (max |creep| over
+        the run), ``displacement`` [m] (u_load(end) -
         u_load(0)), ``max_displacement`` [m] (max |u_load - u_load(0)|),
         ``input_rms`` (the realised input's RMS on the output times, in its
         unit), ``wall_time`` [s], ``steps``, ``events``, and the series
@@ -284,6 +285,7 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
     values = np.asarray(load(t_eval), dtype=float) if callable(load) else np.full(points, load)
     f, p = input_psd(load, duration, _band_top(load, points, duration))
     return {"creep": float(creep[-1]), "creep_rate": slope(t_eval[judged], creep[judged]),
+            "max_creep": float(np.max(np.abs(creep))),
             "displacement": float(u[-1]), "max_displacement": float(np.max(np.abs(u))),
             "input_rms": float(np.sqrt(np.mean(values ** 2))),
             "wall_time": float(result.stats["wall_time"]), "steps": int(result.stats["steps"]),

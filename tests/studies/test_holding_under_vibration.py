@@ -308,3 +308,22 @@ def test_command_line_runs_it_with_seeds_and_scatter(tmp_path, capsys):
     np.testing.assert_allclose(written["input_rms"], expected["input_rms"], rtol=1e-15)
     assert "  verdict: holds" in out.splitlines()
     assert (tmp_path / "out" / "holding_under_vibration_scene.png").is_file()
+
+
+def test_an_unknown_profile_name_is_named_as_such(tmp_path, capsys):
+    """(A new user's review: a misspelt profile's name was refused as a
+    number without a unit.) The name is said to be no profile's, with the
+    closest name and the profiles; a number with a unit stays a constant
+    load (its unit checked as before)."""
+    message = ("excitation = 'iso16750_3_test_4' is invalid: no vibration profile has that "
+               "name (did you mean 'iso16750_3_test_iv'?); the profiles are "
+               "'iso16750_3_test_iv' (leadscrew.profiles.names(), leadscrew list)")
+    with pytest.raises(ValueError) as error:
+        study(rigid(), "iso16750_3_test_4")
+    assert str(error.value).startswith(message)
+    code, _, err = run_main(capsys, "study", "holding_under_vibration", "seat_adjuster_vibration",
+                            "excitation=iso16750_3_test_4", "-o", tmp_path)
+    assert code == 2 and message in err
+    with pytest.raises(ValueError, match=r'"3 m" is not an acceleration'):
+        study(rigid(), "3 m")
+    assert study(rigid(mu=0.0), "3 m/s^2", seeds=1)["creep"].iloc[0] != 0.0

@@ -23,6 +23,8 @@ the integrator would ignore: ``--dt``/``--theta`` without ``moreau``,
 errors, a file that cannot be written, a study that raises or whose every
 case failed; some failed cases:
 exit 0 with a warning on stderr); ``--debug`` shows the traceback instead.
+A Python warning (a profile not verified against its source) is a one-line
+note on stderr, ``leadscrew: note: ...``.
 Arguments are checked before anything is simulated, and the output
 directory is created only once there is something to write; every file is
 written whole or not at all (:mod:`leadscrew.files`).
@@ -34,6 +36,7 @@ import argparse
 import math
 import os
 import sys
+import warnings
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple
 
@@ -489,6 +492,20 @@ def _is_input_error(error: BaseException) -> bool:
             and not isinstance(error, (SimulationError, WriteError)))
 
 
+def _note(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as the command line's one-line note on stderr (the
+    warnings module's own shows the file, the line and the source line that
+    warned, which say nothing to someone running a command): a
+    ProfileWarning as ``leadscrew: note: profile ... is not verified ...``,
+    any other with its category's name."""
+    from .profiles import ProfileWarning
+
+    text = " ".join(str(message).split())
+    if not issubclass(category, ProfileWarning):
+        text = f"{category.__name__}: {text}"
+    print(f"leadscrew: note: {text}", file=sys.stderr if file is None else file)
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     """Run the command line.
 
@@ -503,7 +520,12 @@ def main(argv: Optional[List[str]] = None) -> int:
     debug = "--debug" in argv
     try:
         args = _parse(argv)
-        return _COMMANDS[args.command](args)
+        if debug:
+            return _COMMANDS[args.command](args)
+        with warnings.catch_warnings():  # (each warning once, as a note)
+            warnings.simplefilter("default")
+            warnings.showwarning = _note
+            return _COMMANDS[args.command](args)
     except SystemExit as stop:  # --help
         return stop.code if isinstance(stop.code, int) else 0
     except KeyboardInterrupt:

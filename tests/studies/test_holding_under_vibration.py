@@ -205,6 +205,15 @@ def test_a_seed_that_raises_is_a_row_counted_and_warned(monkeypatch):
     summary = frame.attrs["summary"]
     assert summary["raised"] == 1 and summary["verdict"] == "holds"
     assert summary["creep_mean"] == np.mean(frame["creep"].to_numpy()[[0, 2]])
+    # (a new user's review: the counts were floats, 2043.0 steps) integers,
+    # the row that raised without a value
+    for name in ("steps", "events"):
+        assert str(frame[name].dtype) == "Int64"
+        assert frame[name].isna().tolist() == [False, True, False]
+        assert isinstance(frame[name][0], np.integer) and frame["steps"][0] > 0
+    counts = [f"{frame['steps'][i]},{frame['events'][i]}" for i in (0, 2)]
+    assert frame[["steps", "events"]].to_csv(index=False).splitlines()[1:] == [
+        counts[0], ",", counts[1]]
 
 
 @pytest.mark.parametrize("options, fragments", [

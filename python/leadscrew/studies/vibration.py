@@ -27,7 +27,7 @@ import pandas as pd
 
 from .._progress import shown
 from ._batch import check_simulate_options
-from ._common import annotate, as_scene, axes, check_count, check_positive, numeric_or_nan, \
+from ._common import annotate, as_counts, as_scene, axes, check_count, check_positive, numeric_or_nan, \
     with_tolerances
 from ._sweep import run_cases
 from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_scatter, check_where,
@@ -142,7 +142,7 @@ def _frame(seeds, draws, outcomes, scatter_keys, allowed_creep, duration, unit):
             series[name].append(value.get(f"{name}_series" if name == "creep" else name))
     columns = ["seed", *scatter_keys, *_MEASURES[:_BEFORE_HOLDS], "holds",
                *_MEASURES[_BEFORE_HOLDS:], "error"]
-    frame = pd.DataFrame(rows, columns=columns)
+    frame = as_counts(pd.DataFrame(rows, columns=columns))
     frame["holds"] = frame["holds"].astype(object)
     units = dict(_UNITS, input_rms=unit, **{k: SCATTER_KEYS[k] for k in scatter_keys})
     return frame, series, units

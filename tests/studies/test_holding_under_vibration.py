@@ -86,8 +86,9 @@ def test_a_drive_that_creeps_out_and_back_is_judged_by_its_worst_creep():
     assert abs(row["creep_rate"]) * duration < 1e-6 * furthest
     assert row["holds"] is False
     assert summary["verdict"] == "creeps" and summary["max_creep_worst"] == row["max_creep"]
-    assert summary["judged_by"].startswith("max |creep(t)| over the run (max_creep) and the "
-                                           "fitted rate's travel over the run")
+    assert summary["judged_by"].startswith("max |creep(t)| over the run (max_creep) <= "
+                                           "allowed_creep and the fitted rate |creep_rate| <= "
+                                           "allowed_creep_rate")
     assert out_and_back.attrs["units"]["max_creep"] == "m"
     wider = study(scene, cosine, allowed_creep=1.001 * furthest, **options)
     assert wider.attrs["summary"]["verdict"] == "holds"
@@ -174,7 +175,8 @@ def test_scatter_draws_are_the_seeds_reproducibly(arctan_frame):
 
 
 def test_verdict_flips_at_the_allowed_creep(arctan_frame):
-    # (what a seed's verdict judges: its worst creep and its trend over the run)
+    # (what a seed's verdict judges: its worst creep and its fitted rate,
+    # by default against allowed_creep / duration)
     worst = max(arctan_frame["max_creep"].max(),
                 (arctan_frame["creep_rate"].abs() * 0.1).max())
     scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
@@ -185,8 +187,31 @@ def test_verdict_flips_at_the_allowed_creep(arctan_frame):
     assert above.attrs["summary"]["verdict"] == "holds" and above["holds"].all()
     assert below.attrs["summary"]["verdict"] == "creeps"
     assert below["holds"].tolist() == [
-        c <= worst * 0.999 and abs(r) * 0.1 <= worst * 0.999
+        c <= worst * 0.999 and abs(r) <= worst * 0.999 / 0.1
         for c, r in zip(below["max_creep"], below["creep_rate"])]
+    assert below.attrs["summary"]["allowed_creep_rate"] == worst * 0.999 / 0.1
+
+
+def test_an_allowed_creep_rate_judges_a_steady_slide_within_a_short_run(arctan_frame):
+    """(A new user's review: a drive sliding at 88 um/s held over 0.3 s.)
+    Within the allowed creep over the run, a seed whose fitted rate exceeds
+    allowed_creep_rate creeps; the summary gives the rate it was judged by."""
+    rates = arctan_frame["creep_rate"].abs()
+    scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
+    options = dict(duration=0.1, seeds=[3, 7, 11], rtol=1e-8, allowed_creep=1.0,
+                   scatter={"friction.mu": ("uniform", 0.25, 0.35)})
+    far = study(scene, {**BAND, "psd": [50.0, 50.0]}, **options)
+    assert far.attrs["summary"]["verdict"] == "holds"
+    assert far.attrs["summary"]["allowed_creep_rate"] == 1.0 / 0.1
+    limit = float(rates.median())
+    strict = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep_rate=limit, **options)
+    assert strict["holds"].tolist() == [r <= limit for r in rates]
+    assert not strict["holds"].all()
+    assert strict.attrs["summary"]["verdict"] == "creeps"
+    assert strict.attrs["summary"]["allowed_creep_rate"] == limit
+    assert strict.attrs["units"]["creep_rate"] == "m/s"
+    with pytest.raises(ValueError, match=r"allowed_creep_rate = -1\.0 is invalid"):
+        study(scene, allowed_creep_rate=-1.0)
 
 
 def test_a_seed_that_raises_is_a_row_counted_and_warned(monkeypatch):

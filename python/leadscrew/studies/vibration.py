@@ -44,14 +44,15 @@ _BEFORE_HOLDS = 6
 #: What a seed's verdict judges (the summary's ``judged_by``): the worst
 #: creep over the run, not the creep at the end, which a drive that creeps
 #: out and back (or oscillates) would pass.
-JUDGED_BY = ("max |creep(t)| over the run (max_creep) and the fitted rate's travel over the "
-             "run (|creep_rate| * duration), each <= allowed_creep")
+JUDGED_BY = ("max |creep(t)| over the run (max_creep) <= allowed_creep and the fitted rate "
+             "|creep_rate| <= allowed_creep_rate (default allowed_creep / duration)")
 
 _UNITS = {"seed": "1", "creep": "m", "creep_rate": "m/s", "max_creep": "m", "displacement": "m",
           "max_displacement": "m", "holds": "", "wall_time": "s", "steps": "1",
           "events": "1", "error": ""}
 
 _SUMMARY_UNITS = {"seeds": "1", "duration": "s", "settle_time": "s", "allowed_creep": "m",
+                  "allowed_creep_rate": "m/s",
                   "creep_mean": "m", "creep_std": "m", "creep_worst": "m",
                   "creep_rate_mean": "m/s", "creep_rate_std": "m/s", "creep_rate_worst": "m/s",
                   "max_creep_worst": "m", "max_displacement_worst": "m"}
@@ -120,14 +121,13 @@ def _summary(frame: pd.DataFrame, allowed_creep: float) -> Dict[str, Any]:
     return out
 
 
-def _holds(row: Dict[str, Any], allowed_creep: float, duration: float) -> bool:
+def _holds(row: Dict[str, Any], allowed_creep: float, allowed_rate: float) -> bool:
     """A seed's verdict (:data:`JUDGED_BY`): its worst creep over the run
-    and its fitted trend over the run within the allowed creep."""
-    return bool(row["max_creep"] <= allowed_creep
-                and abs(row["creep_rate"]) * duration <= allowed_creep)
+    within the allowed creep, its fitted rate within the allowed rate."""
+    return bool(row["max_creep"] <= allowed_creep and abs(row["creep_rate"]) <= allowed_rate)
 
 
-def _frame(seeds, draws, outcomes, scatter_keys, allowed_creep, duration, unit):
+def _frame(seeds, draws, outcomes, scatter_keys, allowed, unit):
     rows, series = [], {"creep": [], "psd_f": [], "psd": []}
     for seed, drawn, outcome in zip(seeds, draws, outcomes):
         value = outcome.value or {}
@@ -135,7 +135,7 @@ def _frame(seeds, draws, outcomes, scatter_keys, allowed_creep, duration, unit):
                                                 for key in scatter_keys}}
         for name in _MEASURES:
             row[name] = numeric_or_nan(value.get(name))
-        row["holds"] = None if outcome.error else _holds(row, allowed_creep, duration)
+        row["holds"] = None if outcome.error else _holds(row, *allowed)
         row["error"] = outcome.error
         rows.append(row)
         for name in series:
@@ -154,7 +154,7 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                             scatter: Optional[Dict[str, Sequence]] = None,
                             settle_time: Optional[float] = None, points: int = 1001,
                             rtol: Optional[float] = None, atol: Optional[float] = None,
-                            executor=None, progress: bool = True,
+                            allowed_creep_rate: Optional[float] = None, executor=None, progress: bool = True,
                             **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene, gear=True)
     progress = shown(progress)
@@ -164,6 +164,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                          "speed-controlled rotor cannot creep; give loads.drive_torque or a motor")
     duration, settle_time, points = _check_times(duration, settle_time, points)
     allowed_creep = check_positive("allowed_creep", allowed_creep, unit="m")
+    allowed_creep_rate = (allowed_creep / duration if allowed_creep_rate is None else
+                          check_positive("allowed_creep_rate", allowed_creep_rate, unit="m/s"))
     seeds = _check_seeds(seeds)
     scatter = check_scatter(scatter)
     template, excitation_from = excitation_template(scene, excitation, where)
@@ -178,8 +180,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                                  options=options)
     outcomes = run_cases(function, list(zip(seeds, draws)), executor=executor,
                          progress=progress, description="holding_under_vibration")
-    frame, series, units = _frame(seeds, draws, outcomes, list(scatter), allowed_creep,
-                                  duration, WHERE_UNITS[where])
+    frame, series, units = _frame(seeds, draws, outcomes, list(scatter),
+                                  (allowed_creep, allowed_creep_rate), WHERE_UNITS[where])
     frequencies = next((f for f in series["psd_f"] if f), None)
     frame.attrs["series"] = {"t": np.linspace(0.0, duration, points).tolist(), **series,
                              "target_f": frequencies,
@@ -189,7 +191,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                        for key, (kind, a, b) in scatter.items()) or "none"
     return annotate(frame, units, study="holding_under_vibration",
                     summary_units=dict(_SUMMARY_UNITS), seeds=len(seeds), duration=duration,
-                    settle_time=settle_time, allowed_creep=allowed_creep, **summary,
+                    settle_time=settle_time, allowed_creep=allowed_creep,
+                    allowed_creep_rate=allowed_creep_rate, **summary,
                     judged_by=JUDGED_BY,
                     excitation=describe(template, first["loads"][where.split(".", 1)[1]]),
                     excitation_from=excitation_from, where=where,
@@ -216,13 +219,15 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
     hand, n the gear ratio), not the load's displacement u_load, which adds
     its place in the play and the elastic deflections that ring under
     vibration and come back. A seed **holds** iff its worst creep over the
-    run and its trend stay within the allowed creep: ``max_creep`` (max
+    run and its trend stay within what is allowed: ``max_creep`` (max
     |creep(t)| over the output times) ``<= allowed_creep`` and
-    ``|creep_rate| * duration <= allowed_creep`` (the summary's
-    ``judged_by`` says so), not its creep at the end, which a drive that
-    creeps out and comes back, or oscillates, would pass; the study's
-    verdict is ``"holds"`` iff every seed that ran holds, ``"creeps"``
-    otherwise (``"undecided"`` if none ran).
+    ``|creep_rate| <= allowed_creep_rate`` (by default ``allowed_creep /
+    duration``: the trend's travel over the run; give a rate to judge a
+    drive that slides steadily but not far within a short run; the
+    summary's ``judged_by`` says so), not its creep at the end, which a
+    drive that creeps out and comes back, or oscillates, would pass; the
+    study's verdict is ``"holds"`` iff every seed that ran holds,
+    ``"creeps"`` otherwise (``"undecided"`` if none ran).
 
     With exact Coulomb friction (``friction.law = "coulomb"``) a
     self-locking thread does not creep under axial vibration alone: every
@@ -262,6 +267,8 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         points: output times, evenly spaced over the run, >= 11.
         rtol, atol: integration tolerances (default simulate's: 1e-8 and
             1e-10; not with integrator ``"moreau"``).
+        allowed_creep_rate: the largest |creep_rate| a seed that holds may
+            have [m/s], > 0 (default ``allowed_creep / duration``).
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores); scene and cases pickle, so process pools
             and ``dask.distributed.Client(...).get_executor()`` work too.
@@ -279,6 +286,7 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         [1] and ``error`` (None, or the message of a case that raised: its
         numbers are NaN). ``attrs["units"]``; ``attrs["summary"]``:
         ``seeds``, ``duration``, ``settle_time``, ``allowed_creep``,
+        ``allowed_creep_rate``,
         ``creep_mean``, ``creep_std`` (sample, ddof 1; NaN for one seed),
         ``creep_worst`` (largest magnitude, signed), the same of
         ``creep_rate``, ``max_creep_worst``, ``max_displacement_worst``,

@@ -18,7 +18,8 @@ import numpy as np
 import pandas as pd
 
 from .._progress import shown
-from ._common import annotate, as_counts, as_scene, axes, check_grid, numeric_or_nan, with_tolerances
+from ._common import (annotate, as_counts, as_scene, axes, check_grid, numeric_or_nan,
+                      with_tolerances)
 from ._batch import check_simulate_options
 from ._sweep import run_cases
 from ._holding_runs import (_alternating_excitation, _constant_torque, alternating_scene,

@@ -27,8 +27,8 @@ import pandas as pd
 
 from .._progress import shown
 from ._batch import check_simulate_options
-from ._common import annotate, as_counts, as_scene, axes, check_count, check_positive, numeric_or_nan, \
-    with_tolerances
+from ._common import (annotate, as_counts, as_scene, axes, check_count, check_positive,
+                      numeric_or_nan, with_tolerances)
 from ._sweep import run_cases
 from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_scatter, check_where,
                               describe, draw_scatter, excitation_template, is_random,
@@ -154,7 +154,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                             scatter: Optional[Dict[str, Sequence]] = None,
                             settle_time: Optional[float] = None, points: int = 1001,
                             rtol: Optional[float] = None, atol: Optional[float] = None,
-                            allowed_creep_rate: Optional[float] = None, executor=None, progress: bool = True,
+                            allowed_creep_rate: Optional[float] = None, executor=None,
+                            progress: bool = True,
                             **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene, gear=True)
     progress = shown(progress)
@@ -279,12 +280,14 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         DataFrame with one row per seed: ``seed``, one column per scattered
         key (its draw), ``creep`` [m] (at the end), ``creep_rate`` [m/s]
         (least-squares slope of the creep over t >= settle_time),
-        ``max_creep`` [m] (max |creep(t)| over the run), ``displacement`` [m] (u_load(end) - u_load(0)), ``max_displacement``
-        [m] (max |u_load - u_load(0)|), ``input_rms`` (the realised input's
+        ``max_creep`` [m] (max |creep(t)| over the run), ``displacement``
+        [m] (u_load(end) - u_load(0)), ``max_displacement`` [m] (max
+        |u_load - u_load(0)|), ``input_rms`` (the realised input's
         RMS on the output times, in ``where``'s unit), ``holds`` (bool; None
         where the case raised), ``wall_time`` [s, C++], ``steps``, ``events``
-        [1] and ``error`` (None, or the message of a case that raised: its
-        numbers are NaN). ``attrs["units"]``; ``attrs["summary"]``:
+        [1] (integers, pandas' Int64) and ``error`` (None, or the message of
+        a case that raised: its numbers are NaN, its counts <NA>).
+        ``attrs["units"]``; ``attrs["summary"]``:
         ``seeds``, ``duration``, ``settle_time``, ``allowed_creep``,
         ``allowed_creep_rate``,
         ``creep_mean``, ``creep_std`` (sample, ddof 1; NaN for one seed),

@@ -258,3 +258,22 @@ def test_a_stored_dt_with_a_stored_rtol_is_refused_where_the_scene_is_read(tmp_p
     with pytest.raises(ValueError, match=r"^simulation\.rtol = 1e-06 is invalid with "
                                          r"simulation\.integrator = 'moreau'"):
         holding(integrator="moreau", dt=1e-4, rtol=1e-6)
+
+
+@pytest.mark.parametrize("section", [{"integrator": "dopri5"}, {"max_step": 1e-9}])
+def test_check_refuses_the_stored_options_run_refuses(tmp_path, capsys, section):
+    """`leadscrew check` applies the run's rules to the stored options (as
+    `leadscrew run SCENE` at its default t_end, through the studies' own
+    check of simulate's options): a stored integrator that does not fit the
+    scene, a max_step too short for the run, refused by both with the same
+    message (check's names the file)."""
+    path = tmp_path / "stored.toml"
+    holding(**section).to_toml(path)
+    code, out, check_err = run_main(capsys, "check", path)
+    assert code == 2 and out == ""
+    code, out, run_err = run_main(capsys, "run", path, "-o", tmp_path / "out")
+    assert code == 2 and out == ""
+    assert_one_line_error(run_err, f"simulation.{next(iter(section))} = ")
+    assert check_err == run_err.replace("leadscrew: error: ", f"leadscrew: error: {path}: ")
+    code, out, _ = run_main(capsys, "check", "position_holding")
+    assert code == 0 and "valid" in out

@@ -213,6 +213,11 @@ def _scene_report(name: str, scene) -> List[str]:
     d = scene.to_dict()
     lines = [f"scene {name}: valid, {scene!r}"]
     if d.get("simulation"):  # the run's options stored with the scene
+        # (refused here as `leadscrew run` at its default t_end refuses them:
+        # the same rules, in the same place)
+        from .studies._batch import check_simulate_options
+
+        check_simulate_options(scene, {}, DEFAULT_T_END)
         lines.append("run options ([simulation], simulate's defaults for this scene): "
                      + ", ".join(f"{key} = {value!r}" for key, value in d["simulation"].items()))
     lines += _thread_verdicts(scene.thread, d["friction"]["mu"], d["thread"]["flank_angle"],

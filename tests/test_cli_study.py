@@ -488,3 +488,36 @@ def test_study_options_take_strings_with_units(tmp_path, capsys):
 )
 def test_study_option_values(text, value):
     assert cli._option_value(text) == value
+
+
+@pytest.mark.parametrize("text, value", [
+    ('{"friction.mu"=["uniform",0.08,0.12]}', {"friction.mu": ["uniform", 0.08, 0.12]}),
+    ('{"nut.preload"=["normal","100 N","10 N"]}', {"nut.preload": ["normal", "100 N", "10 N"]}),
+    ("1 mm,[2, 3]", ["1 mm", [2, 3]]),
+    ('5 Hz,"a,b"', ["5 Hz", "a,b"]),
+])
+def test_study_option_values_split_only_at_top_level_commas(text, value):
+    """(A new user's review: a scatter given without spaces was split at the
+    commas inside its list.) Unspaced TOML stays one value; a list's items
+    are split at the commas outside brackets and quotes."""
+    assert cli._option_value(text) == value
+
+
+def test_a_value_that_opens_a_table_but_is_no_toml_is_refused(tmp_path, capsys):
+    """What the shell leaves of an unquoted scatter: its quotes taken
+    (not TOML: refused naming the option and how to quote it, not split at
+    its commas), or its braces expanded at the commas (the option three
+    times: refused as given twice)."""
+    with pytest.raises(cli.UsageError, match=r"^study option scatter=\{friction\.mu=\[uniform,"
+                                             r"0\.08,0\.12\]\} is invalid: not a TOML inline "
+                                             r"table \(.*\); quote strings inside it and the "
+                                             r"whole option for the shell, e\.g\. 'scatter="):
+        cli._option_value("{friction.mu=[uniform,0.08,0.12]}", "scatter")
+    for argv in (["scatter={friction.mu=[uniform,0.08,0.12]}"],
+                 ["scatter=friction.mu=[uniform", "scatter=0.08", "scatter=0.12]"]):
+        code, _, err = run_main(capsys, "study", "holding_under_vibration",
+                                "seat_adjuster_vibration", *argv, "-o", tmp_path)
+        assert code == 2
+        assert_one_line_error(err, "study option scatter")
+        assert not list(tmp_path.iterdir())
+    assert "is given twice (scatter='friction.mu=[uniform' and 'scatter=0.08')" in err

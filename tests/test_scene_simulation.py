@@ -164,11 +164,9 @@ def test_an_error_about_a_stored_option_names_its_key_path():
         'simulation.integrator = "dopri5" is invalid for backlash.contact = "bistop" with '
         'friction.law = "coulomb": must be one of "event_driven", "moreau"')
     assert "simulate's integrator=... overrides it" in str(error.value)
-    # (a stored dt names Moreau-Jean, as a dt given does; with a stored
-    # rtol no integrator takes both: refused with the default's reason)
-    with pytest.raises(ValueError, match=r"^simulation\.dt = 0\.0001 is invalid with integrator "
-                                         r"'event_driven' \(the default here\)"):
-        ls.simulate(holding(dt=1e-4, rtol=1e-6), 0.01)
+    # (a stored dt names Moreau-Jean, as a dt given does; a stored rtol
+    # beside it no integrator takes: the section is refused,
+    # test_a_stored_dt_with_a_stored_rtol_is_refused_where_the_scene_is_read)
     assert ls.simulate(holding(dt=1e-4), 0.01).integrator == "moreau"
     with pytest.raises(ValueError, match=r"^simulation\.max_step = 1e-09 is invalid: reaching "
                                          r"t_end = 0\.01 s takes more steps"):
@@ -189,8 +187,6 @@ def test_the_study_batches_take_the_stored_options():
     single = ls.simulate(holding(rtol=1e-6), 0.05, t_eval=[0.05])
     assert errors[0] is None
     assert samples[0, 0, 0] == pytest.approx(single["phi_drive"][-1], rel=1e-12)
-    with pytest.raises(ValueError, match=r"^simulation\.dt = 0\.0001 is invalid"):
-        check_simulate_options(holding(dt=1e-4, rtol=1e-6), {}, 0.05)
     check_simulate_options(holding(dt=1e-4), {}, 0.05)  # (dt names Moreau-Jean)
     check_simulate_options(holding(dt=1e-4), {"integrator": "moreau"}, 0.05)
 
@@ -232,3 +228,52 @@ def test_a_dt_given_overrides_the_scenes_stored_adaptive_options():
     assert result.integrator == "moreau"
     explicit = ls.simulate(scene, 0.01, integrator="moreau", dt=1e-5)
     np.testing.assert_array_equal(result["u_load"], explicit["u_load"])
+
+
+STORED_CONFLICT = (r"simulation\.dt = 0\.0001 and simulation\.rtol = 1e-06 conflict: "
+                   r"simulation\.dt is taken by moreau only \(the fixed-step Moreau-Jean "
+                   r"scheme\), simulation\.rtol by the adaptive integrators only")
+
+
+def test_a_stored_dt_with_a_stored_rtol_is_refused_where_the_scene_is_read(tmp_path, capsys):
+    """(A new user's review: `leadscrew check` passed a scene whose
+    [simulation] section stores dt and rtol, which every `leadscrew run`
+    refused.) The section's rule is simulate's (option_conflict), applied
+    where the scene is read: check and run refuse the file with one
+    message, naming both keys; with an integrator stored the rule is the
+    integrator's."""
+    with pytest.raises(ValueError, match="^" + STORED_CONFLICT):
+        holding(dt=1e-4, rtol=1e-6)
+    path = tmp_path / "both.toml"
+    text = ls.scenes.load("position_holding").to_toml()
+    path.write_text(text.replace("[simulation]", "[simulation]\ndt = 1e-4"))
+    errors = []
+    for command in (["check", path], ["run", path, "--t-end", "0.01", "-o", tmp_path / "out"]):
+        code, out, err = run_main(capsys, *command)
+        assert code == 2 and out == ""
+        assert_one_line_error(err, "both.toml: simulation.dt = 0.0001 and simulation.rtol = "
+                                   "1e-06 conflict")
+        errors.append(err)
+    assert errors[0] == errors[1]
+    with pytest.raises(ValueError, match=r"^simulation\.rtol = 1e-06 is invalid with "
+                                         r"simulation\.integrator = 'moreau'"):
+        holding(integrator="moreau", dt=1e-4, rtol=1e-6)
+
+
+@pytest.mark.parametrize("section", [{"integrator": "dopri5"}, {"max_step": 1e-9}])
+def test_check_refuses_the_stored_options_run_refuses(tmp_path, capsys, section):
+    """`leadscrew check` applies the run's rules to the stored options (as
+    `leadscrew run SCENE` at its default t_end, through the studies' own
+    check of simulate's options): a stored integrator that does not fit the
+    scene, a max_step too short for the run, refused by both with the same
+    message (check's names the file)."""
+    path = tmp_path / "stored.toml"
+    holding(**section).to_toml(path)
+    code, out, check_err = run_main(capsys, "check", path)
+    assert code == 2 and out == ""
+    code, out, run_err = run_main(capsys, "run", path, "-o", tmp_path / "out")
+    assert code == 2 and out == ""
+    assert_one_line_error(run_err, f"simulation.{next(iter(section))} = ")
+    assert check_err == run_err.replace("leadscrew: error: ", f"leadscrew: error: {path}: ")
+    code, out, _ = run_main(capsys, "check", "position_holding")
+    assert code == 0 and "valid" in out

@@ -120,3 +120,77 @@ def test_options_left_out_or_used_are_not_refused():
     ls.simulate(exact, 0.01, bounce_threshold=1e-5, t_eval=times)
     with pytest.raises(ValueError, match=r"bounce_threshold = -1 is invalid: must be"):
         ls.simulate(exact, 0.01, bounce_threshold=-1.0)
+
+
+# (A new user's review: dt with rtol was refused naming dt alone, as if
+# event_driven ignored it, while moreau would ignore the rtol as well.)
+@pytest.mark.parametrize("options, first, second", [
+    ({"dt": 1e-4, "rtol": 1e-6}, "dt = 0.0001", "rtol = 1e-06"),
+    ({"dt": 1e-4, "max_step": 1e-3}, "dt = 0.0001", "max_step = 0.001"),
+    ({"dt": 1e-4, "first_step": 1e-6}, "dt = 0.0001", "first_step = 1e-06"),
+    ({"theta": 1.0, "atol": 1e-9}, "theta = 1", "atol = 1e-09"),
+])
+def test_options_no_integrator_takes_together_name_both(options, first, second):
+    """Moreau-Jean's option beside an adaptive one, the integrator left to
+    the default: the refusal names both with their values and which scheme
+    takes which (simulate, a sweep's check, the command line alike)."""
+    from leadscrew.studies._batch import check_simulate_options
+
+    scene = ls.Scene.from_dict(thesis_scene())
+    moreau, adaptive = (name.split(" = ")[0] for name in (first, second))
+    message = (rf"^{first} and {second} conflict: {moreau} is taken by moreau only \(the "
+               rf"fixed-step Moreau-Jean scheme\), {adaptive} by the adaptive integrators only "
+               r"\(event_driven, cvode_bdf, \.\.\.: error and step-size control\), and none "
+               r"takes both; give one of them")
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(scene, 0.01, **options)
+    with pytest.raises(ValueError, match=message):
+        check_simulate_options(scene, options, 0.01)
+    block = ls.FrictionBlock(1.0, 0.3)
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(block, 0.01, **options)
+
+
+def test_the_command_line_names_both_conflicting_options(tmp_path, capsys):
+    from helpers.cli_runs import assert_one_line_error, run_main
+
+    code, _, err = run_main(capsys, "run", "default", "--dt", "1e-4", "--rtol", "1e-6",
+                            "--t-end", "0.01", "-o", tmp_path)
+    assert code == 2
+    assert_one_line_error(err, "--dt 0.0001 and --rtol 1e-06 conflict: --dt is taken by moreau "
+                               "only", "--rtol by the adaptive integrators only",
+                          "(--integrator moreau takes --dt, another --rtol)")
+    assert not list(tmp_path.iterdir())  # refused before anything ran
+
+
+_INTEGRATORS = ("cvode_bdf, cvode_adams, dopri5, verner6, rk_dopri5, rk_verner6, event_driven, "
+                "moreau")
+
+
+def test_a_name_no_integrator_has_is_refused_as_such():
+    """(A new user's review: integrator = "foo" was refused as if it were an
+    integrator that does not fit the law, and on a drive train without a
+    list.) The message names the key and the value, the closest name, and
+    lists the integrators (simulate on a Scene and a FrictionBlock, a sweep's
+    check alike)."""
+    from leadscrew.studies._batch import check_simulate_options
+
+    message = (r"^integrator = \"moreu\" is invalid: no integrator has that name \(did you mean "
+               rf"'moreau'\?\); the integrators are {_INTEGRATORS}")
+    scene = ls.scenes.load("seat_adjuster_worm_flexible")
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(scene, 0.01, integrator="moreu")
+    with pytest.raises(ValueError, match=message):
+        ls.simulate(ls.FrictionBlock(1.0, 0.3), 0.01, integrator="moreu")
+    with pytest.raises(ValueError, match=message):
+        check_simulate_options(scene, {"integrator": "moreu"}, 0.01)
+
+
+def test_the_command_line_lists_the_integrators_and_those_the_scene_takes(tmp_path, capsys):
+    from helpers.cli_runs import assert_one_line_error, run_main
+
+    code, _, err = run_main(capsys, "run", "seat_adjuster_worm_flexible", "--integrator", "foo",
+                            "-o", tmp_path)
+    assert code == 2
+    assert_one_line_error(err, f"--integrator foo is invalid: no integrator has that name; the "
+                               f"integrators are {_INTEGRATORS}; this scene takes moreau")

@@ -15,7 +15,8 @@ import numpy as np
 from .scene import SCHEMA, Scene
 
 __all__ = ["ADAPTIVE_OPTIONS", "MOREAU_OPTIONS", "SCENE_OPTIONS", "unused_option",
-           "integrator_taking", "takes_option", "scene_options"]
+           "option_conflict", "integrator_taking", "takes_option", "scene_options",
+           "check_integrator_name"]
 
 
 def _scalar(value):
@@ -111,6 +112,71 @@ def unused_option(integrator: str, given: Dict[str, Any], scene: Optional[Scene]
     return None
 
 
+def option_conflict(given: Dict[str, Any], spell=str, equals: str = " = ") -> Optional[str]:
+    """Why options given together conflict, whatever integrator runs: one of
+    Moreau-Jean's (:data:`MOREAU_OPTIONS`) beside one of the adaptive
+    integrators' (:data:`ADAPTIVE_OPTIONS`), which no integrator takes both
+    of. The one rule for options left to the default integrator, shared by
+    :func:`simulate` (through :func:`_choose_integrator`), the study
+    batches, the command line and the Scene's ``[simulation]`` section.
+
+    Args:
+        given: option name -> value (None: left out).
+        spell: how the caller spells an option (``--dt``, ``simulation.dt``).
+        equals: what stands between a name and its value (the command
+            line's ``" "``).
+
+    Returns:
+        The message naming both options with their values and the scheme
+        each belongs to; None where they do not conflict.
+    """
+    moreau = next((name for name in MOREAU_OPTIONS if given.get(name) is not None), None)
+    adaptive = next((name for name in ADAPTIVE_OPTIONS if given.get(name) is not None), None)
+    if moreau is None or adaptive is None:
+        return None
+    shown = [f"{spell(name)}{equals}{_shown(given[name])}" for name in (moreau, adaptive)]
+    return (f"{shown[0]} and {shown[1]} conflict: {spell(moreau)} is taken by moreau only "
+            f"(the fixed-step Moreau-Jean scheme), {spell(adaptive)} by the adaptive "
+            "integrators only (event_driven, cvode_bdf, ...: error and step-size control), "
+            f"and none takes both; give one of them, or the integrator "
+            f"({spell('integrator')}{equals}{'moreau' if equals == ' ' else _shown('moreau')} "
+            f"takes {spell(moreau)}, "
+            f"another {spell(adaptive)})")
+
+
+def check_integrator_name(name: str, key: str = "integrator", shown: Optional[str] = None,
+                          fitting: Sequence[str] = ()) -> str:
+    """``name`` where it names one of the integrators (:data:`INTEGRATORS
+    <leadscrew.scene_schema.INTEGRATORS>`; "" the default), so that a name
+    no integrator has is refused as such, listing them all (the core lists
+    those that fit a model, as if the name were one that does not).
+
+    Args:
+        name: the integrator's name as given.
+        key: the option's name in the message.
+        shown: the option and its value as the caller writes them (the
+            command line's ``--integrator foo``; default ``key = "name"``, as
+            the core writes it).
+        fitting: the integrators that fit the model, where known (listed).
+
+    Raises:
+        ValueError: naming ``key``, the value, the closest name and the
+            integrators.
+    """
+    from ._hints import did_you_mean
+    from .scene_schema import INTEGRATORS
+
+    if name and name not in INTEGRATORS:
+        which = (f"; this scene takes {', '.join(fitting)}" if fitting else
+                 " (which fit a model depends on its friction law, play and drive train: an "
+                 "integrator that does not fit is refused naming those that do)")
+        shown = shown or f'{key} = "{name}"'
+        raise ValueError(f"{shown} is invalid: no integrator has that "
+                         f"name{did_you_mean(name, INTEGRATORS)}; the integrators are "
+                         f"{', '.join(INTEGRATORS)}{which}")
+    return name
+
+
 def integrator_taking(allowed: Sequence[str], given: Dict[str, Any],
                       scene: Optional[Scene] = None) -> str:
     """The integrator a run left to its default takes: the default (the
@@ -140,13 +206,17 @@ def _choose_integrator(integrator: str, integrators: Callable[[], Sequence[str]]
 
     Raises:
         ValueError: naming the option, its value, the integrator and which
-            integrator or scene takes the option.
+            integrator or scene takes the option; left to the default, two
+            options no integrator takes together (:func:`option_conflict`).
     """
     for value in given.values():
         if value is not None:
             break
     else:  # nothing given (the common case: no lookup)
         return integrator
+    conflict = None if integrator else option_conflict(given)
+    if conflict is not None:
+        raise ValueError(conflict)
     allowed = integrators()
     runs = integrator or integrator_taking(allowed, given, scene)
     if runs not in allowed:

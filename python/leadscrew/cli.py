@@ -23,6 +23,8 @@ the integrator would ignore: ``--dt``/``--theta`` without ``moreau``,
 errors, a file that cannot be written, a study that raises or whose every
 case failed; some failed cases:
 exit 0 with a warning on stderr); ``--debug`` shows the traceback instead.
+A Python warning (a profile not verified against its source) is a one-line
+note on stderr, ``leadscrew: note: ...``.
 Arguments are checked before anything is simulated, and the output
 directory is created only once there is something to write; every file is
 written whole or not at all (:mod:`leadscrew.files`).
@@ -34,6 +36,7 @@ import argparse
 import math
 import os
 import sys
+import warnings
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple
 
@@ -210,6 +213,11 @@ def _scene_report(name: str, scene) -> List[str]:
     d = scene.to_dict()
     lines = [f"scene {name}: valid, {scene!r}"]
     if d.get("simulation"):  # the run's options stored with the scene
+        # (refused here as `leadscrew run` at its default t_end refuses them:
+        # the same rules, in the same place)
+        from .studies._batch import check_simulate_options
+
+        check_simulate_options(scene, {}, DEFAULT_T_END)
         lines.append("run options ([simulation], simulate's defaults for this scene): "
                      + ", ".join(f"{key} = {value!r}" for key, value in d["simulation"].items()))
     lines += _thread_verdicts(scene.thread, d["friction"]["mu"], d["thread"]["flank_angle"],
@@ -312,9 +320,13 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
         UsageError: naming the option, its value and the integrator.
     """
     from . import _core
-    from .simulation import integrator_taking, unused_option
+    from .simulation import (check_integrator_name, integrator_taking, option_conflict,
+                             unused_option)
 
     allowed = list(_core.drive_integrators(scene.model().parameters))
+    if args.integrator is not None:
+        check_integrator_name(args.integrator, shown=f"--integrator {args.integrator}",
+                              fitting=allowed)
     given = {"rtol": args.rtol, "atol": args.atol, "dt": args.dt, "theta": args.theta}
     stored = scene["simulation"].get("integrator") if "simulation" in scene else None
     if args.integrator is not None:
@@ -322,6 +334,9 @@ def _check_integrator_options(scene, args: argparse.Namespace) -> None:
     elif stored is not None:  # the scene's own (its [simulation] section)
         integrator, which = stored, f"the scene's integrator {stored} (simulation.integrator)"
     else:  # the scene's default: the first of the integrators that fit it
+        conflict = option_conflict(given, spell=lambda name: f"--{name}", equals=" ")
+        if conflict is not None:
+            raise UsageError(conflict)
         integrator = integrator_taking(allowed, given, scene)
         which = f"the scene's default integrator {integrator}"
     # The rules of leadscrew.simulate, in the command line's spelling.
@@ -482,6 +497,20 @@ def _is_input_error(error: BaseException) -> bool:
             and not isinstance(error, (SimulationError, WriteError)))
 
 
+def _note(message, category, filename, lineno, file=None, line=None) -> None:
+    """A warning as the command line's one-line note on stderr (the
+    warnings module's own shows the file, the line and the source line that
+    warned, which say nothing to someone running a command): a
+    ProfileWarning as ``leadscrew: note: profile ... is not verified ...``,
+    any other with its category's name."""
+    from .profiles import ProfileWarning
+
+    text = " ".join(str(message).split())
+    if not issubclass(category, ProfileWarning):
+        text = f"{category.__name__}: {text}"
+    print(f"leadscrew: note: {text}", file=sys.stderr if file is None else file)
+
+
 def main(argv: Optional[List[str]] = None) -> int:
     """Run the command line.
 
@@ -496,7 +525,12 @@ def main(argv: Optional[List[str]] = None) -> int:
     debug = "--debug" in argv
     try:
         args = _parse(argv)
-        return _COMMANDS[args.command](args)
+        if debug:
+            return _COMMANDS[args.command](args)
+        with warnings.catch_warnings():  # (each warning once, as a note)
+            warnings.simplefilter("default")
+            warnings.showwarning = _note
+            return _COMMANDS[args.command](args)
     except SystemExit as stop:  # --help
         return stop.code if isinstance(stop.code, int) else 0
     except KeyboardInterrupt:

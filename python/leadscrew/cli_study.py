@@ -30,9 +30,39 @@ from .files import write_text
 __all__: list = []  # the command line's internals: leadscrew.cli.main is the entry point
 
 
-def _option_value(text: str) -> Any:
+_OPENING, _CLOSING = "[{(", "]})"
+
+
+def _top_level_items(text: str) -> list:
+    """``text`` split at the commas outside brackets, braces, parentheses
+    and quotes (``1 mm,[2, 3]`` is two items)."""
+    items, depth, quote, start = [], 0, "", 0
+    for index, char in enumerate(text):
+        if quote:
+            quote = "" if char == quote else quote
+        elif char in "\"'":
+            quote = char
+        elif char in _OPENING:
+            depth += 1
+        elif char in _CLOSING:
+            depth -= 1
+        elif char == "," and depth == 0:
+            items.append(text[start:index])
+            start = index + 1
+    return items + [text[start:]]
+
+
+def _option_value(text: str, key: str = "") -> Any:
     """A study option's value: TOML syntax (numbers, true/false, lists, quoted
-    strings); otherwise a comma-separated list of such values, or a bare string."""
+    strings, inline tables); otherwise a comma-separated list of such values
+    (split at the commas outside brackets and quotes), or a bare string.
+
+    Raises:
+        UsageError: a value that opens a TOML array or inline table (``[``,
+            ``{``) but is not valid TOML (a shell that ate its quotes:
+            ``{friction.mu=[uniform,0.08,0.12]}``), naming the option, the
+            parser's reason and how to quote it.
+    """
     from .scene_files import _toml_parser
 
     tomllib = _toml_parser()
@@ -44,8 +74,18 @@ def _option_value(text: str) -> Any:
             return item.strip()
 
     value = parse(text)
+    if isinstance(value, str) and value == text.strip() and value[:1] in "[{" and value:
+        try:
+            tomllib.loads(f"v = {text}")
+        except tomllib.TOMLDecodeError as error:
+            raise UsageError(
+                f"study option {key or 'value'}={text} is invalid: not a TOML "
+                f"{'inline table' if value[0] == '{' else 'array'} ({error}); quote strings "
+                f"inside it and the whole option for the shell, e.g. " + (
+                    "'scatter={\"friction.mu\"=[\"uniform\", 0.08, 0.12]}'"
+                    if key == "scatter" else "'frequencies=[\"5 Hz\", \"10 Hz\"]'")) from None
     if isinstance(value, str) and value == text.strip() and "," in text:
-        return [parse(item) for item in text.split(",")]
+        return [parse(item) for item in _top_level_items(text)]
     return value
 
 
@@ -57,7 +97,11 @@ def _study_options(items: Sequence[str]) -> Dict[str, Any]:
         if not sep or not key.isidentifier():
             raise UsageError(f"study option {item!r} is invalid: write KEY=VALUE, e.g. "
                              "frequencies=5,10,20 or progress=false")
-        options[key] = _option_value(value)
+        if key in options:  # (a shell's brace expansion repeats it: scatter={a,b})
+            raise UsageError(f"study option {key} is given twice ({key}={options[key]!r} and "
+                             f"{item!r}); give it once (quote a value with commas and braces "
+                             "for the shell: 'KEY={...}')")
+        options[key] = _option_value(value, key)
     return options
 
 

@@ -189,14 +189,16 @@ def _check_simulation(data: Dict[str, Any]) -> None:
     stored, no option that integrator would ignore (``rtol`` with
     ``'moreau'``, ``dt`` with another, ``smooth_integrator`` but with
     ``'event_driven'``), and ``bounce_threshold`` only with an exact
-    backlash. Whether the integrator fits the scene's law and play is
+    backlash; without an ``integrator``, no two options that no integrator
+    takes together (``dt`` with ``rtol``: :func:`option_conflict`), which
+    every run would refuse. Whether the integrator fits the scene's law and play is
     checked where it runs (:func:`leadscrew.simulate` lists those that do).
 
     Raises:
         ValueError: naming ``simulation.<key>``, its value and which
             integrator or scene takes it.
     """
-    from .simulation import _shown, unused_option  # (it imports the scene)
+    from .simulation import _shown, option_conflict, unused_option  # (it imports the scene)
 
     options = data["simulation"]
     integrator = options.get("integrator")
@@ -207,6 +209,9 @@ def _check_simulation(data: Dict[str, Any]) -> None:
     given = {name: options.get(name) for name in ("rtol", "atol", "dt", "theta", "max_order",
                                                   "max_step", "first_step", "bounce_threshold")}
     if integrator is None:  # (the scene's default integrator is known when it runs)
+        conflict = option_conflict(given, spell=lambda name: f"simulation.{name}")
+        if conflict is not None:  # (no integrator takes both: a run would refuse it)
+            raise ValueError(conflict)
         given = {"bounce_threshold": given["bounce_threshold"]}
     unused = unused_option(integrator or "", given, data)
     if unused is not None:

@@ -21,8 +21,9 @@ from .units import channel_unit
 # Scene import them from here)
 from ._option_rules import (ADAPTIVE_OPTIONS, MOREAU_OPTIONS, SCENE_OPTIONS,  # noqa: F401
                             _choose_integrator, _play_of, _scalar, _shown,
-                            _stored_option_errors, integrator_taking, scene_options,
-                            takes_option, unused_option)
+                            _stored_option_errors, check_integrator_name,
+                            integrator_taking, option_conflict,
+                            scene_options, takes_option, unused_option)
 
 __all__ = ["simulate", "Result", "Event"]
 
@@ -452,7 +453,8 @@ def _shared_arguments(default_dt: float, t_end, integrator, rtol, atol, dt, thet
             steps), naming the option; the core checks the ranges.
     """
     t_end = _real("t_end", t_end)
-    return {"t_end": t_end, "integrator": _name("integrator", integrator),
+    return {"t_end": t_end,
+            "integrator": check_integrator_name(_name("integrator", integrator)),
             "rtol": DEFAULT_RTOL if rtol is None else _real("rtol", rtol),
             "atol": DEFAULT_ATOL if atol is None else _real("atol", atol),
             "dt": default_dt if dt is None else _real("dt", dt),

@@ -294,3 +294,17 @@ def test_studies_take_strings_with_units_as_the_si_numbers():
                  "window": (0.05, 0.1)})
     _same_study(lambda **a: studies.stick_slip(plain, **a), {"t_end": "50 ms"},
                 {"t_end": 0.05})
+
+
+def test_count_columns_are_integers_with_a_missing_value_for_a_raised_row():
+    """A study's step and event counts are integers (pandas' nullable Int64),
+    a raised row's <NA>; other columns stay as they are."""
+    import pandas as pd
+
+    from leadscrew.studies._common import as_counts
+
+    frame = as_counts(pd.DataFrame({"steps": [12.0, float("nan")], "events": [3, 4],
+                                    "wall_time": [0.5, float("nan")]}))
+    assert str(frame["steps"].dtype) == str(frame["events"].dtype) == "Int64"
+    assert frame["steps"].tolist()[0] == 12 and frame["steps"].isna().tolist() == [False, True]
+    assert frame["wall_time"].dtype == float

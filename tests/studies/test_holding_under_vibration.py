@@ -63,6 +63,37 @@ def test_constant_base_acceleration_creeps_as_the_equivalent_force_on_the_reduce
     assert frame.attrs["series"]["target_psd"] is None  # not a random load
 
 
+def test_a_drive_that_creeps_out_and_back_is_judged_by_its_worst_creep():
+    """(A new user's review: the verdict took the creep at the end, so a
+    drive that creeps out and comes back passed.) The frictionless drive
+    under a base acceleration A cos(w t) over one period travels
+    creep(t) = -k A (1 - cos w t) / w^2 (k = m / (m + J / p^2), the closed
+    form of the constant acceleration's test): out to 2 k A / w^2 at half
+    the period and back to 0 at its end, with a fitted rate of 0 over the
+    whole run. Allowed half the way out, it creeps; allowed more, it holds."""
+    a, duration = 3.0, 0.05
+    omega = 2 * math.pi / duration
+    cosine = {"type": "sine", "amplitude": a, "omega": omega, "phase": math.pi / 2}
+    scene = rigid(mu=0.0)
+    derived = scene.derived()
+    m, inertia, p = 1.0 + derived["nut_mass"], 1e-5 + derived["screw_inertia"], 1e-3 / (2 * math.pi)
+    furthest = 2 * m / (m + inertia / p ** 2) * a / omega ** 2
+    options = dict(duration=duration, seeds=1, settle_time=0.0, rtol=1e-10, atol=1e-14)
+    out_and_back = study(scene, cosine, allowed_creep=0.5 * furthest, **options)
+    row, summary = out_and_back.iloc[0], out_and_back.attrs["summary"]
+    assert row["max_creep"] == pytest.approx(furthest, rel=1e-7)
+    assert abs(row["creep"]) < 1e-6 * furthest  # back at the start: the old verdict held
+    assert abs(row["creep_rate"]) * duration < 1e-6 * furthest
+    assert row["holds"] is False
+    assert summary["verdict"] == "creeps" and summary["max_creep_worst"] == row["max_creep"]
+    assert summary["judged_by"].startswith("max |creep(t)| over the run (max_creep) <= "
+                                           "allowed_creep and the fitted rate |creep_rate| <= "
+                                           "allowed_creep_rate")
+    assert out_and_back.attrs["units"]["max_creep"] == "m"
+    wider = study(scene, cosine, allowed_creep=1.001 * furthest, **options)
+    assert wider.attrs["summary"]["verdict"] == "holds"
+
+
 def test_a_measured_record_is_the_same_in_every_seed():
     """A record has no seed: every seed runs it alike (only a scatter would
     differ), and it has no target PSD."""
@@ -144,7 +175,10 @@ def test_scatter_draws_are_the_seeds_reproducibly(arctan_frame):
 
 
 def test_verdict_flips_at_the_allowed_creep(arctan_frame):
-    worst = abs(arctan_frame.attrs["summary"]["creep_worst"])
+    # (what a seed's verdict judges: its worst creep and its fitted rate,
+    # by default against allowed_creep / duration)
+    worst = max(arctan_frame["max_creep"].max(),
+                (arctan_frame["creep_rate"].abs() * 0.1).max())
     scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
     options = dict(duration=0.1, seeds=[3, 7, 11], rtol=1e-8,
                    scatter={"friction.mu": ("uniform", 0.25, 0.35)})
@@ -152,7 +186,32 @@ def test_verdict_flips_at_the_allowed_creep(arctan_frame):
     below = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep=worst * 0.999, **options)
     assert above.attrs["summary"]["verdict"] == "holds" and above["holds"].all()
     assert below.attrs["summary"]["verdict"] == "creeps"
-    assert below["holds"].tolist() == [abs(c) <= worst * 0.999 for c in below["creep"]]
+    assert below["holds"].tolist() == [
+        c <= worst * 0.999 and abs(r) <= worst * 0.999 / 0.1
+        for c, r in zip(below["max_creep"], below["creep_rate"])]
+    assert below.attrs["summary"]["allowed_creep_rate"] == worst * 0.999 / 0.1
+
+
+def test_an_allowed_creep_rate_judges_a_steady_slide_within_a_short_run(arctan_frame):
+    """(A new user's review: a drive sliding at 88 um/s held over 0.3 s.)
+    Within the allowed creep over the run, a seed whose fitted rate exceeds
+    allowed_creep_rate creeps; the summary gives the rate it was judged by."""
+    rates = arctan_frame["creep_rate"].abs()
+    scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
+    options = dict(duration=0.1, seeds=[3, 7, 11], rtol=1e-8, allowed_creep=1.0,
+                   scatter={"friction.mu": ("uniform", 0.25, 0.35)})
+    far = study(scene, {**BAND, "psd": [50.0, 50.0]}, **options)
+    assert far.attrs["summary"]["verdict"] == "holds"
+    assert far.attrs["summary"]["allowed_creep_rate"] == 1.0 / 0.1
+    limit = float(rates.median())
+    strict = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep_rate=limit, **options)
+    assert strict["holds"].tolist() == [r <= limit for r in rates]
+    assert not strict["holds"].all()
+    assert strict.attrs["summary"]["verdict"] == "creeps"
+    assert strict.attrs["summary"]["allowed_creep_rate"] == limit
+    assert strict.attrs["units"]["creep_rate"] == "m/s"
+    with pytest.raises(ValueError, match=r"allowed_creep_rate = -1\.0 is invalid"):
+        study(scene, allowed_creep_rate=-1.0)
 
 
 def test_a_seed_that_raises_is_a_row_counted_and_warned(monkeypatch):
@@ -171,6 +230,15 @@ def test_a_seed_that_raises_is_a_row_counted_and_warned(monkeypatch):
     summary = frame.attrs["summary"]
     assert summary["raised"] == 1 and summary["verdict"] == "holds"
     assert summary["creep_mean"] == np.mean(frame["creep"].to_numpy()[[0, 2]])
+    # (a new user's review: the counts were floats, 2043.0 steps) integers,
+    # the row that raised without a value
+    for name in ("steps", "events"):
+        assert str(frame[name].dtype) == "Int64"
+        assert frame[name].isna().tolist() == [False, True, False]
+        assert isinstance(frame[name][0], np.integer) and frame["steps"][0] > 0
+    counts = [f"{frame['steps'][i]},{frame['events'][i]}" for i in (0, 2)]
+    assert frame[["steps", "events"]].to_csv(index=False).splitlines()[1:] == [
+        counts[0], ",", counts[1]]
 
 
 @pytest.mark.parametrize("options, fragments", [
@@ -274,3 +342,22 @@ def test_command_line_runs_it_with_seeds_and_scatter(tmp_path, capsys):
     np.testing.assert_allclose(written["input_rms"], expected["input_rms"], rtol=1e-15)
     assert "  verdict: holds" in out.splitlines()
     assert (tmp_path / "out" / "holding_under_vibration_scene.png").is_file()
+
+
+def test_an_unknown_profile_name_is_named_as_such(tmp_path, capsys):
+    """(A new user's review: a misspelt profile's name was refused as a
+    number without a unit.) The name is said to be no profile's, with the
+    closest name and the profiles; a number with a unit stays a constant
+    load (its unit checked as before)."""
+    message = ("excitation = 'iso16750_3_test_4' is invalid: no vibration profile has that "
+               "name (did you mean 'iso16750_3_test_iv'?); the profiles are "
+               "'iso16750_3_test_iv' (leadscrew.profiles.names(), leadscrew list)")
+    with pytest.raises(ValueError) as error:
+        study(rigid(), "iso16750_3_test_4")
+    assert str(error.value).startswith(message)
+    code, _, err = run_main(capsys, "study", "holding_under_vibration", "seat_adjuster_vibration",
+                            "excitation=iso16750_3_test_4", "-o", tmp_path)
+    assert code == 2 and message in err
+    with pytest.raises(ValueError, match=r'"3 m" is not an acceleration'):
+        study(rigid(), "3 m")
+    assert study(rigid(mu=0.0), "3 m/s^2", seeds=1)["creep"].iloc[0] != 0.0

@@ -117,6 +117,45 @@ def test_static_band_closed_form():
         static_holding_band(holding_scene(), math.inf)
 
 
+@pytest.mark.parametrize("ratio", [5.0, -5.0, 0.5])
+def test_static_band_behind_an_ideal_gear_stage(ratio):
+    """(A new user's review: the band refused every geared scene.) Behind
+    an ideal stage the rotor's torque T puts n T on the driven part (no
+    loss), so the band is the driven part's divided by n, its ends swapped
+    for a reversing stage; the static equilibrium exists just inside it and
+    not just outside it (the rigid and the flexible drive), and the rigid
+    drive run from rest stays put just inside it and moves just outside."""
+    plain = static_holding_band(holding_scene(), -10.0)
+    geared = static_holding_band(holding_scene(gear={"type": "ideal", "ratio": ratio}), -10.0)
+    expected = sorted((plain[0] / ratio, plain[1] / ratio))
+    assert geared == pytest.approx(expected, rel=1e-15)
+    assert (geared[0] < 0.0 < geared[1]) and geared != pytest.approx(plain)
+    for concept in ("rigid", "flexible_nut"):
+        for edge in geared:
+            for factor, holds in ((0.98, True), (1.02, False)):
+                scene = ls.Scene.from_dict(thesis_scene(
+                    concept=concept, gear={"type": "ideal", "ratio": ratio},
+                    loads={"drive_torque": factor * edge, "axial_force": -10.0},
+                    initial={"state": "equilibrium"}))
+                if concept == "rigid":  # (and the drive run from rest)
+                    u = ls.simulate(scene.replace(initial={"state": "relaxed"}), 0.02)["u_load"]
+                    assert (np.max(np.abs(u)) == 0.0) == holds, (edge, factor)
+                if holds:
+                    scene.initial_state()
+                else:
+                    with pytest.raises(ls.NoEquilibriumError, match="friction cone"):
+                        scene.initial_state()
+
+
+def test_static_band_refuses_a_lossy_or_worm_stage():
+    for stage in ({"type": "lossy", "ratio": 5.0, "efficiency": 0.9},
+                  {"type": "worm", "ratio": 10.0, "lead_angle": 0.1, "mu": 0.1}):
+        with pytest.raises(ValueError, match=rf"^gear.type = '{stage['type']}' is invalid for "
+                                             r"static_holding_band: the band is derived for an "
+                                             r"ideal stage only"):
+            static_holding_band(holding_scene(gear=stage), -10.0)
+
+
 @pytest.mark.parametrize("contact", ["bistop", "cubic"])
 def test_a_penalty_contact_counts_its_flights(contact):
     """A penalty contact has no flank states (no events to 'open'): its

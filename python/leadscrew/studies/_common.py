@@ -29,6 +29,7 @@ __all__ = [
     "raised_rows",
     "frame_of",
     "numeric_or_nan",
+    "as_counts",
     "axes",
 ]
 
@@ -384,6 +385,22 @@ def numeric_or_nan(value: Optional[float]) -> float:
     """A float for a frame cell of a failed case (NaN marks "no value"; the
     row's ``error`` column says why)."""
     return float("nan") if value is None else float(value)
+
+
+#: The columns of a study's frame that count (steps, events, ...): integers.
+COUNT_COLUMNS = ("steps", "events", "separations", "rhs_evaluations", "lcp_solves",
+                 "nonlinear_iterations")
+
+
+def as_counts(frame: pd.DataFrame) -> pd.DataFrame:
+    """``frame`` with its count columns (:data:`COUNT_COLUMNS`, those it
+    has) as integers: pandas' nullable ``Int64``, whose missing value
+    (``<NA>``) marks a case that raised, as NaN does in a float column (a
+    float column of step counts reads 1234.0)."""
+    for name in COUNT_COLUMNS:
+        if name in frame.columns:
+            frame[name] = frame[name].astype("Int64")
+    return frame
 
 
 def axes(ax: Optional[Any] = None):

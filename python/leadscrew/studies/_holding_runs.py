@@ -145,18 +145,35 @@ def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
     least -L holds it back). The drive holds iff the torque lies strictly
     inside the band.
 
+    Behind an ideal gear stage (``gear.type = "ideal"``, ratio n: the rotor
+    turns n times per turn of the driven part, n < 0 reversing) the rotor's
+    torque T puts n T on the driven part (the stage loses no power:
+    T phi_rotor' = (n T) phi_driven', docs/physics/gear.md), so the rotor's
+    band is the driven part's divided by n, its ends swapped for n < 0. A
+    lossy or worm stage is refused: its own friction holds torque (a worm
+    may lock by itself), which the thread's band does not give.
+
     Args:
-        scene: a :class:`~leadscrew.Scene` (or scene dict): thread and mu.
+        scene: a :class:`~leadscrew.Scene` (or scene dict): thread, mu and
+            an ideal gear stage if it has one.
         axial_force: static axial force on the load along +x [N].
 
     Returns:
-        (low, high) [N*m] in the sign convention of ``loads.drive_torque``;
-        (0, 0) for a zero force.
+        (low, high) [N*m] in the sign convention of ``loads.drive_torque``
+        (the rotor's torque); (0, 0) for a zero force.
 
     Raises:
-        ValueError: invalid scene or a force that is not finite.
+        ValueError: invalid scene, a lossy or worm gear stage, or a force
+            that is not finite.
     """
-    scene = as_scene(scene)
+    scene = as_scene(scene, gear=True)
+    if "gear" in scene and scene["gear"]["type"] != "ideal":
+        kind = scene["gear"]["type"]
+        raise ValueError(f"gear.type = {kind!r} is invalid for static_holding_band: the band "
+                         "is derived for an ideal stage only (the driven part's band divided "
+                         f"by the ratio); a {kind} stage's own friction holds torque (its "
+                         "efficiency forward and back differ, a worm may lock by itself), "
+                         "which the thread's band does not give")
     axial_force = check_finite("axial_force", axial_force, unit="N")
     thread, mu = scene.thread, scene["friction"]["mu"]
     if axial_force == 0.0:
@@ -164,9 +181,10 @@ def static_holding_band(scene: Any, axial_force: float) -> Tuple[float, float]:
     raising = raise_torque(thread, mu, abs(axial_force))
     lowering = lower_torque(thread, mu, abs(axial_force))
     # Positive torque raises the load iff -h points against the force.
-    if thread.hand_sign * axial_force > 0:
-        return -lowering, raising
-    return -raising, lowering
+    low, high = (-lowering, raising) if thread.hand_sign * axial_force > 0 else (-raising,
+                                                                                 lowering)
+    n = gear_ratio(scene)  # (1 without a stage: the band as it is)
+    return (low / n, high / n) if n > 0 else (high / n, low / n)
 
 
 def _holds(band: Tuple[float, float], torque: float, axial_force: float) -> bool:

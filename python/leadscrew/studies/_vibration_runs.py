@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import re
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
@@ -44,6 +45,10 @@ WHERE_UNITS = {"loads.base_acceleration": "m/s^2",
 SCATTER_KEYS = {"friction.mu": "1", "backlash.axial": "m", "nut.preload": "N"}
 
 _DISTRIBUTIONS = ("uniform", "normal")
+
+# What a constant load written as a string starts with (a number: "30 m/s^2",
+# "-1e3 N", ".5 g"); any other string names a profile.
+_NUMBER_FIRST = re.compile(r"\s*[-+]?(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 # Draws of a truncated normal before giving up (a mean many deviations below 0).
 _MAX_REDRAWS = 1000
@@ -90,6 +95,14 @@ def excitation_template(scene: Scene, excitation: Any, where: str) -> Tuple[Any,
         template, origin = excitation, "arguments"
     if isinstance(template, str) and template in profiles.names():
         template = {"type": "random", "profile": template}
+    elif isinstance(template, str) and not _NUMBER_FIRST.match(template):
+        # (a name, not a number with a unit: the unit parser's message would
+        # not say that it was taken for a profile's name)
+        raise ValueError(f"excitation = {template!r} is invalid: no vibration profile has that "
+                         f"name{did_you_mean(template, profiles.names())}; the profiles are "
+                         f"{', '.join(map(repr, profiles.names()))} (leadscrew.profiles.names(), "
+                         f"leadscrew list); a constant load is a number with a unit "
+                         f"({WHERE_UNITS[where]})")
     return template, origin
 
 
@@ -269,7 +282,8 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
     Returns:
         dict: ``creep`` [m] (the thread's travel at the end,
         :func:`thread_travel`), ``creep_rate`` [m/s] (its least-squares
-        slope over t >= settle_time), ``displacement`` [m] (u_load(end) -
+        slope over t >= settle_time), ``max_creep`` [m] (max |creep| over
+        the run), ``displacement`` [m] (u_load(end) -
         u_load(0)), ``max_displacement`` [m] (max |u_load - u_load(0)|),
         ``input_rms`` (the realised input's RMS on the output times, in its
         unit), ``wall_time`` [s], ``steps``, ``events``, and the series
@@ -284,6 +298,7 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
     values = np.asarray(load(t_eval), dtype=float) if callable(load) else np.full(points, load)
     f, p = input_psd(load, duration, _band_top(load, points, duration))
     return {"creep": float(creep[-1]), "creep_rate": slope(t_eval[judged], creep[judged]),
+            "max_creep": float(np.max(np.abs(creep))),
             "displacement": float(u[-1]), "max_displacement": float(np.max(np.abs(u))),
             "input_rms": float(np.sqrt(np.mean(values ** 2))),
             "wall_time": float(result.stats["wall_time"]), "steps": int(result.stats["steps"]),

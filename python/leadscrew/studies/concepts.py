@@ -18,8 +18,8 @@ import pandas as pd
 from ..scene import SCHEMA
 from ..simulation import simulate
 from .._progress import shown
-from ._common import (annotate, axes, as_scene, check_count, check_positive, numeric_or_nan,
-                      with_tolerances)
+from ._common import (annotate, as_counts, axes, as_scene, check_count, check_positive,
+                      numeric_or_nan, with_tolerances)
 from ._batch import check_simulate_options
 from ._sweep import run_cases
 
@@ -145,7 +145,7 @@ def compare_concepts(
             "t": None if u is None else t_eval,
             "u_load": u,
         })
-    return annotate(pd.DataFrame(rows), UNITS, study="compare_concepts")
+    return annotate(as_counts(pd.DataFrame(rows)), UNITS, study="compare_concepts")
 
 
 def plot_compare_concepts(frame: pd.DataFrame, ax: Optional[Any] = None):

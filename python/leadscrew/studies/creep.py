@@ -18,7 +18,8 @@ import numpy as np
 import pandas as pd
 
 from .._progress import shown
-from ._common import annotate, as_scene, axes, check_grid, numeric_or_nan, with_tolerances
+from ._common import (annotate, as_counts, as_scene, axes, check_grid, numeric_or_nan,
+                      with_tolerances)
 from ._batch import check_simulate_options
 from ._sweep import run_cases
 from ._holding_runs import (_alternating_excitation, _constant_torque, alternating_scene,
@@ -71,7 +72,7 @@ def _sweep(scene: Any, pairs: List[Tuple[float, float]], amplitude: float,
         rows.append(row)
     columns = ["frequency", "backlash", "creep_per_cycle", "creep_rate", "max_displacement",
                "separations", "flight_fraction", "wall_time", "steps", "error"]
-    return annotate(pd.DataFrame(rows, columns=columns), UNITS, study=description,
+    return annotate(as_counts(pd.DataFrame(rows, columns=columns)), UNITS, study=description,
                     summary_units={"amplitude": "N", "cycles": "1", "settle_cycles": "1"},
                     amplitude=amplitude, cycles=cycles, settle_cycles=settle_cycles,
                     excitation_from=excitation_from)

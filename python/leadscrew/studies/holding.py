@@ -43,8 +43,8 @@ from ..scene import Scene
 from ..thread import is_self_locking
 from .._progress import shown
 from ._batch import check_simulate_options
-from ._common import (annotate, as_scene, axes, check_count, check_positive, numeric_or_nan,
-                      raised_rows, with_tolerances)
+from ._common import (annotate, as_counts, as_scene, axes, check_count, check_positive,
+                      numeric_or_nan, raised_rows, with_tolerances)
 # (_preload_case calls cycle_response through this module, where tests replace it.)
 from ._holding_runs import (FALLBACK_AMPLITUDE, FALLBACK_FREQUENCY,  # noqa: F401
                             FLIGHT_RESOLUTION, SUMMARY_UNITS, UNITS, _alternating,
@@ -472,7 +472,7 @@ def min_holding_preload(
                          f"{', '.join(f'{p:.6g}' for p in undecided)} N raised")
     else:
         decision = f"no preload up to {high:.6g} N held"
-    frame = pd.DataFrame(rows)
+    frame = as_counts(pd.DataFrame(rows))
     raised, _ = raised_rows(frame)
     if raised:
         decision += f"; {raised} of {len(rows)} evaluated preloads raised and decided nothing"

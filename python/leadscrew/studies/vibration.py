@@ -27,8 +27,8 @@ import pandas as pd
 
 from .._progress import shown
 from ._batch import check_simulate_options
-from ._common import annotate, as_scene, axes, check_count, check_positive, numeric_or_nan, \
-    with_tolerances
+from ._common import (annotate, as_counts, as_scene, axes, check_count, check_positive,
+                      numeric_or_nan, with_tolerances)
 from ._sweep import run_cases
 from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_scatter, check_where,
                               describe, draw_scatter, excitation_template, is_random,
@@ -36,17 +36,26 @@ from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_scatter, check_wh
 
 __all__ = ["holding_under_vibration", "plot_holding_under_vibration", "SCATTER_KEYS"]
 
-_MEASURES = ("creep", "creep_rate", "displacement", "max_displacement", "input_rms",
-             "wall_time", "steps", "events")
+_MEASURES = ("creep", "creep_rate", "max_creep", "displacement", "max_displacement",
+             "input_rms", "wall_time", "steps", "events")
+# (the measures before the verdict's column, and after it)
+_BEFORE_HOLDS = 6
 
-_UNITS = {"seed": "1", "creep": "m", "creep_rate": "m/s", "displacement": "m",
+#: What a seed's verdict judges (the summary's ``judged_by``): the worst
+#: creep over the run, not the creep at the end, which a drive that creeps
+#: out and back (or oscillates) would pass.
+JUDGED_BY = ("max |creep(t)| over the run (max_creep) <= allowed_creep and the fitted rate "
+             "|creep_rate| <= allowed_creep_rate (default allowed_creep / duration)")
+
+_UNITS = {"seed": "1", "creep": "m", "creep_rate": "m/s", "max_creep": "m", "displacement": "m",
           "max_displacement": "m", "holds": "", "wall_time": "s", "steps": "1",
           "events": "1", "error": ""}
 
 _SUMMARY_UNITS = {"seeds": "1", "duration": "s", "settle_time": "s", "allowed_creep": "m",
+                  "allowed_creep_rate": "m/s",
                   "creep_mean": "m", "creep_std": "m", "creep_worst": "m",
                   "creep_rate_mean": "m/s", "creep_rate_std": "m/s", "creep_rate_worst": "m/s",
-                  "max_displacement_worst": "m"}
+                  "max_creep_worst": "m", "max_displacement_worst": "m"}
 
 #: Seeds are integers in [0, 2^53], as a RandomVibration's.
 _MAX_SEED = 2 ** 53
@@ -105,14 +114,20 @@ def _summary(frame: pd.DataFrame, allowed_creep: float) -> Dict[str, Any]:
         out[f"{name}_std"] = float(np.std(values, ddof=1)) if len(values) > 1 else math.nan
         out[f"{name}_worst"] = (float(values[np.argmax(np.abs(values))]) if len(values)
                                 else math.nan)
-    out["max_displacement_worst"] = (float(ran["max_displacement"].max()) if len(ran)
-                                     else math.nan)
+    for name in ("max_creep", "max_displacement"):
+        out[f"{name}_worst"] = float(ran[name].max()) if len(ran) else math.nan
     out["verdict"] = ("undecided" if not len(ran) else
                       "holds" if bool(ran["holds"].all()) else "creeps")
     return out
 
 
-def _frame(seeds, draws, outcomes, scatter_keys, allowed_creep, unit):
+def _holds(row: Dict[str, Any], allowed_creep: float, allowed_rate: float) -> bool:
+    """A seed's verdict (:data:`JUDGED_BY`): its worst creep over the run
+    within the allowed creep, its fitted rate within the allowed rate."""
+    return bool(row["max_creep"] <= allowed_creep and abs(row["creep_rate"]) <= allowed_rate)
+
+
+def _frame(seeds, draws, outcomes, scatter_keys, allowed, unit):
     rows, series = [], {"creep": [], "psd_f": [], "psd": []}
     for seed, drawn, outcome in zip(seeds, draws, outcomes):
         value = outcome.value or {}
@@ -120,13 +135,14 @@ def _frame(seeds, draws, outcomes, scatter_keys, allowed_creep, unit):
                                                 for key in scatter_keys}}
         for name in _MEASURES:
             row[name] = numeric_or_nan(value.get(name))
-        row["holds"] = (None if outcome.error else abs(row["creep"]) <= allowed_creep)
+        row["holds"] = None if outcome.error else _holds(row, *allowed)
         row["error"] = outcome.error
         rows.append(row)
         for name in series:
             series[name].append(value.get(f"{name}_series" if name == "creep" else name))
-    columns = ["seed", *scatter_keys, *_MEASURES[:5], "holds", *_MEASURES[5:], "error"]
-    frame = pd.DataFrame(rows, columns=columns)
+    columns = ["seed", *scatter_keys, *_MEASURES[:_BEFORE_HOLDS], "holds",
+               *_MEASURES[_BEFORE_HOLDS:], "error"]
+    frame = as_counts(pd.DataFrame(rows, columns=columns))
     frame["holds"] = frame["holds"].astype(object)
     units = dict(_UNITS, input_rms=unit, **{k: SCATTER_KEYS[k] for k in scatter_keys})
     return frame, series, units
@@ -138,7 +154,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                             scatter: Optional[Dict[str, Sequence]] = None,
                             settle_time: Optional[float] = None, points: int = 1001,
                             rtol: Optional[float] = None, atol: Optional[float] = None,
-                            executor=None, progress: bool = True,
+                            allowed_creep_rate: Optional[float] = None, executor=None,
+                            progress: bool = True,
                             **simulate_options: Any) -> pd.DataFrame:
     scene = as_scene(scene, gear=True)
     progress = shown(progress)
@@ -148,6 +165,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                          "speed-controlled rotor cannot creep; give loads.drive_torque or a motor")
     duration, settle_time, points = _check_times(duration, settle_time, points)
     allowed_creep = check_positive("allowed_creep", allowed_creep, unit="m")
+    allowed_creep_rate = (allowed_creep / duration if allowed_creep_rate is None else
+                          check_positive("allowed_creep_rate", allowed_creep_rate, unit="m/s"))
     seeds = _check_seeds(seeds)
     scatter = check_scatter(scatter)
     template, excitation_from = excitation_template(scene, excitation, where)
@@ -162,8 +181,8 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                                  options=options)
     outcomes = run_cases(function, list(zip(seeds, draws)), executor=executor,
                          progress=progress, description="holding_under_vibration")
-    frame, series, units = _frame(seeds, draws, outcomes, list(scatter), allowed_creep,
-                                  WHERE_UNITS[where])
+    frame, series, units = _frame(seeds, draws, outcomes, list(scatter),
+                                  (allowed_creep, allowed_creep_rate), WHERE_UNITS[where])
     frequencies = next((f for f in series["psd_f"] if f), None)
     frame.attrs["series"] = {"t": np.linspace(0.0, duration, points).tolist(), **series,
                              "target_f": frequencies,
@@ -173,7 +192,9 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                        for key, (kind, a, b) in scatter.items()) or "none"
     return annotate(frame, units, study="holding_under_vibration",
                     summary_units=dict(_SUMMARY_UNITS), seeds=len(seeds), duration=duration,
-                    settle_time=settle_time, allowed_creep=allowed_creep, **summary,
+                    settle_time=settle_time, allowed_creep=allowed_creep,
+                    allowed_creep_rate=allowed_creep_rate, **summary,
+                    judged_by=JUDGED_BY,
                     excitation=describe(template, first["loads"][where.split(".", 1)[1]]),
                     excitation_from=excitation_from, where=where,
                     random=is_random(template), scatter=spread,
@@ -198,10 +219,16 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
     -h p (phi_drive(t) - phi_drive(0)) / n, p = lead / 2 pi, h = +1 right
     hand, n the gear ratio), not the load's displacement u_load, which adds
     its place in the play and the elastic deflections that ring under
-    vibration and come back. A seed **holds** iff its creep at the end,
-    ``|creep| <= allowed_creep``; the study's verdict is ``"holds"`` iff
-    every seed that ran holds, ``"creeps"`` otherwise (``"undecided"`` if
-    none ran).
+    vibration and come back. A seed **holds** iff its worst creep over the
+    run and its trend stay within what is allowed: ``max_creep`` (max
+    |creep(t)| over the output times) ``<= allowed_creep`` and
+    ``|creep_rate| <= allowed_creep_rate`` (by default ``allowed_creep /
+    duration``: the trend's travel over the run; give a rate to judge a
+    drive that slides steadily but not far within a short run; the
+    summary's ``judged_by`` says so), not its creep at the end, which a
+    drive that creeps out and comes back, or oscillates, would pass; the
+    study's verdict is ``"holds"`` iff every seed that ran holds,
+    ``"creeps"`` otherwise (``"undecided"`` if none ran).
 
     With exact Coulomb friction (``friction.law = "coulomb"``) a
     self-locking thread does not creep under axial vibration alone: every
@@ -241,6 +268,8 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         points: output times, evenly spaced over the run, >= 11.
         rtol, atol: integration tolerances (default simulate's: 1e-8 and
             1e-10; not with integrator ``"moreau"``).
+        allowed_creep_rate: the largest |creep_rate| a seed that holds may
+            have [m/s], > 0 (default ``allowed_creep / duration``).
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores); scene and cases pickle, so process pools
             and ``dask.distributed.Client(...).get_executor()`` work too.
@@ -251,16 +280,20 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         DataFrame with one row per seed: ``seed``, one column per scattered
         key (its draw), ``creep`` [m] (at the end), ``creep_rate`` [m/s]
         (least-squares slope of the creep over t >= settle_time),
-        ``displacement`` [m] (u_load(end) - u_load(0)), ``max_displacement``
-        [m] (max |u_load - u_load(0)|), ``input_rms`` (the realised input's
+        ``max_creep`` [m] (max |creep(t)| over the run), ``displacement``
+        [m] (u_load(end) - u_load(0)), ``max_displacement`` [m] (max
+        |u_load - u_load(0)|), ``input_rms`` (the realised input's
         RMS on the output times, in ``where``'s unit), ``holds`` (bool; None
         where the case raised), ``wall_time`` [s, C++], ``steps``, ``events``
-        [1] and ``error`` (None, or the message of a case that raised: its
-        numbers are NaN). ``attrs["units"]``; ``attrs["summary"]``:
+        [1] (integers, pandas' Int64) and ``error`` (None, or the message of
+        a case that raised: its numbers are NaN, its counts <NA>).
+        ``attrs["units"]``; ``attrs["summary"]``:
         ``seeds``, ``duration``, ``settle_time``, ``allowed_creep``,
+        ``allowed_creep_rate``,
         ``creep_mean``, ``creep_std`` (sample, ddof 1; NaN for one seed),
         ``creep_worst`` (largest magnitude, signed), the same of
-        ``creep_rate``, ``max_displacement_worst``, ``verdict``,
+        ``creep_rate``, ``max_creep_worst``, ``max_displacement_worst``,
+        ``verdict``, ``judged_by`` (what the verdict judges),
         ``excitation``, ``excitation_from``, ``where``, ``random``,
         ``scatter``, ``friction_law``, ``raised`` and ``raised_reasons`` (the
         seeds that raised, which decide nothing; a

@@ -27,7 +27,7 @@ from ..models import FrictionBlock
 from ..scene import Scene
 from ..simulation import Result, _real, _whole, simulate
 from ..units import channel_unit
-from ._common import annotate, check_count, in_unit, numeric_or_nan
+from ._common import annotate, as_counts, check_count, in_unit, numeric_or_nan
 
 __all__ = [
     "work_precision",
@@ -511,7 +511,7 @@ def work_precision(
             print(f"[{i + 1}/{len(entries)}] {row['label']}: error {row['error_max']:.2e}, "
                   f"{row['wall_time'] * 1e6:.0f} us", file=sys.stderr)
 
-    frame = pd.DataFrame(rows, columns=list(COLUMNS))
+    frame = as_counts(pd.DataFrame(rows, columns=list(COLUMNS)))
     frame.attrs.update(reference=description, quantity=quantity, t_end=t_end, repeats=repeats)
     # The units of every column; the configurations that raised: counted in
     # the summary, and a StudyWarning.

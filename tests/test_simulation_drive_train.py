@@ -300,13 +300,11 @@ def test_motor_friction_elsewhere_is_refused_naming_the_key():
     speed["loads"].pop("drive_torque")
     parameters = ls.Scene.from_dict(speed).model().parameters
     parameters.motor_friction_torque = 1e-3
-    # (A prescribed rotor speed runs the stages on Moreau-Jean alone:
-    # tests/test_moreau_smooth_laws.py.)
-    assert _core.drive_integrators(parameters) == ["moreau"]
-    with pytest.raises(ValueError, match=r"here loads\.drive_speed \(a prescribed rotor speed\); "
-                                         r"use integrator = \"moreau\""):
-        ls.simulate(ls.Scene.from_dict({**speed, "motor": {"friction_torque": 1e-3}}), 0.01,
-                    integrator="event_driven")
+    # (A prescribed rotor speed runs the stages on both schemes, Moreau-Jean
+    # the default: tests/test_event_driven_train_stages.py.)
+    assert _core.drive_integrators(parameters) == ["moreau", "event_driven"]
+    assert ls.simulate(ls.Scene.from_dict({**speed, "motor": {"friction_torque": 1e-3}}), 0.01,
+                       integrator="event_driven").integrator == "event_driven"
 
 
 def test_other_integrators_are_refused():

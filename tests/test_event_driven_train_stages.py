@@ -248,3 +248,71 @@ def test_the_stepper_takes_the_event_driven_scheme_where_moreau_jean_is_the_defa
     assert stepper.channel("gear_loss") == pytest.approx(whole["gear_loss"][-1], rel=1e-9)
     with pytest.raises(ValueError, match='integrator = "moreau" is invalid for FMU export'):
         ls._core.DriveStepper(s.model(), **_run_options(integrator="moreau"))
+
+
+# A static coefficient on the thread (issue 32, item 2 in part): TrainSolver
+# on the rigid drive without play takes friction.law = "coulomb" with
+# mu_static > mu, its slip at mu, its stick test at mu_static.
+STATIC_MU = {"law": "coulomb", "mu": 0.12, "mu_static": 0.18}
+
+
+def ramp_scene(gear, friction_torque, force=-20.0):
+    """The rigid drive at rest under ``force``, its rotor's torque ramped
+    from 0 by 0.1 N m/s, the motor's Coulomb friction T_c (a rotor heavy
+    enough behind a self-locking stage: its Painleve margin > 0)."""
+    return thesis_scene(rotor={"inertia": 1e-4}, gear=gear, friction=STATIC_MU,
+                        motor={"friction_torque": friction_torque},
+                        loads={"drive_torque": {"type": "table", "times": [0.0, 1.0],
+                                                "values": [0.0, 0.1]},
+                               "axial_force": force})
+
+
+@pytest.mark.parametrize("efficiency_backdrive", [0.4, -0.5])
+@pytest.mark.parametrize("force", [-20.0, 20.0])
+def test_the_train_breaks_away_at_the_static_coefficients_torque(efficiency_backdrive, force):
+    # The rotor's torque at the start is the raise (F = +20 N) or lower
+    # (F = -20 N, a thread that holds: alpha < rho'_s) torque of mu_static
+    # through the stage, lossy_rotor_torque's, plus T_c: the closed form of
+    # rigid_drive.md's thread torques (F r_m tan(alpha +- rho'_s)).
+    gear = dict(LOSSY, efficiency_backdrive=efficiency_backdrive)
+    scene = ramp_scene(gear, 1e-3, force)
+    s = ls.Scene.from_dict(scene)
+    assert ls._core.drive_integrators(s.model().parameters) == ["moreau", "event_driven"]
+    result = checked(scene, 0.9, integrator="event_driven", rtol=1e-10, atol=1e-13)
+    start = result.events[0]
+    assert start.kind == "stick->slip+"
+    alpha, r_m = s.thread.lead_angle, s.thread.mean_diameter / 2
+    rho_s = math.atan(STATIC_MU["mu_static"] / math.cos(s.thread.flank_angle / 2))
+    # (F > 0 opposes the rotor's positive turn: raising; F < 0 lowering)
+    screw_torque = abs(force) * r_m * math.tan(alpha + rho_s if force > 0.0 else rho_s - alpha)
+    expected = lossy_rotor_torque(screw_torque, gear["ratio"], gear["efficiency"],
+                                  efficiency_backdrive) + 1e-3
+    assert 0.1 * start.time == pytest.approx(expected, rel=1e-9)
+    # the slip at the kinetic coefficient: the rotor's torque then exceeds
+    # what the slip needs, and the drive accelerates at once
+    late = result.t > start.time + 0.05
+    assert np.all(result["omega_drive"][late] > 0.0)
+
+
+def test_moreau_jean_converges_to_the_event_driven_train_with_a_static_coefficient():
+    # The thesis's sine torque through a lossy stage with T_c against -10 N:
+    # sticks, breakaways at mu_static and slips at mu both ways; Moreau-Jean's
+    # gear_loss at 0.5 s approaches the event-driven one at first order
+    # (measured 0.97 to 1.0).
+    scene = thesis_scene(gear=LOSSY, friction=STATIC_MU, motor={"friction_torque": 2e-3},
+                         rotor={"inertia": 1e-6})
+    exact = checked(scene, 0.5, integrator="event_driven", rtol=1e-11, atol=1e-13)
+    assert any(e.kind.startswith("stick->") for e in exact.events)
+    dts = [4e-4, 2e-4, 1e-4, 5e-5]
+    errors = []
+    for dt in dts:
+        result = ls.simulate(ls.Scene.from_dict(scene), 0.5, integrator="moreau", dt=dt)
+        errors.append(abs(result["gear_loss"][-1] - exact["gear_loss"][-1]))
+    assert 0.8 < order(dts, errors) < 1.2, errors
+    assert errors[-1] < 1e-2 * exact["gear_loss"][-1]
+
+
+def test_a_static_coefficient_keeps_moreau_jean_the_default():
+    s = ls.Scene.from_dict(thesis_scene(gear=WORM, friction=STATIC_MU))
+    assert ls.simulate(s, 0.02).integrator == "moreau"
+    assert ls.simulate(s, 0.02, rtol=1e-8).integrator == "event_driven"

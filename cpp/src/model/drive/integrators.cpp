@@ -102,10 +102,12 @@ const std::vector<std::string>& moreau_only() {
   return names;
 }
 
-const std::vector<std::string>& train_integrators(const std::string& obstacle) {
+const std::vector<std::string>& train_integrators(const elements::TrainFriction& train) {
   static const std::vector<std::string> both = {"event_driven", "moreau"};
+  static const std::vector<std::string> moreau_first = {"moreau", "event_driven"};
   static const std::vector<std::string> moreau_only = {"moreau"};
-  return obstacle.empty() ? both : moreau_only;
+  if (!train.event_driven_obstacle.empty()) return moreau_only;
+  return train.moreau_default ? moreau_first : both;
 }
 
 // The stages behind a prescribed rotor speed: the event-driven scheme runs
@@ -156,7 +158,7 @@ const std::vector<std::string>& drive::model_integrators(const DriveModel& model
   if (model.train_friction())
     return p.speed_controlled
                ? speed_train_integrators(without, model.law().resolution())
-               : train_integrators(model.train_friction()->event_driven_obstacle);
+               : train_integrators(*model.train_friction());
   return without;
 }
 
@@ -254,8 +256,9 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
         "integrator = \"" + integrator + "\" is invalid with " + what +
         (integrator == "event_driven"
              ? ": the event-driven scheme runs the train's friction stages on the rigid concept "
-               "without play with plain Coulomb friction on the thread and a torque or DC "
-               "motor only (every contact slipping with one speed), and behind a prescribed "
+               "without play with Coulomb friction on the thread (friction.law = \"coulomb\", "
+               "mu_static too) and a torque or DC motor only (every contact slipping with one "
+               "speed), and behind a prescribed "
                "rotor speed (loads.drive_speed) on every concept and play with every law, "
                "here " + train->event_driven_obstacle +
                    "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"

@@ -514,6 +514,10 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
         TrainFriction::worm_efficiency_backdrive(p.gear_lead_angle, mu_static * factor);
   }
   f.event_driven_obstacle = train_event_driven_obstacle(p, e.thread->law());
+  // Where the event-driven scheme took the stages in issue 32 (a prescribed
+  // rotor speed, a static coefficient on the thread), Moreau-Jean stays the
+  // default: the results of before are unchanged.
+  f.moreau_default = p.speed_controlled || !e.thread->law().plain_coulomb();
   e.train_friction = f;
 }
 
@@ -742,10 +746,9 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
     return "backlash.axial = " + format_value(p.clearance) + " (play)";
   // (TrainSolver's closed forms are the plain thread's: no preload's hooks.)
   if (p.nut_preload > 0.0) return "nut.preload = " + format_value(p.nut_preload) + " N";
-  if (!law.plain_coulomb())
-    return p.friction == "coulomb" ? "friction.mu_static = " + format_value(law.mu_static()) +
-                                         " above friction.mu = " + format_value(law.mu())
-                                   : "friction.law = \"" + p.friction + "\"";
+  // (Coulomb with a static coefficient runs: TrainSolver's slip takes the
+  // one kinetic coefficient, its stick test mu_static.)
+  if (p.friction != "coulomb") return "friction.law = \"" + p.friction + "\"";
   // (The closed exact stop holds the drive through the thread's row,
   // DriveDynamics::solve; TrainSolver's closed forms do not take it.)
   if (const ElementSection* stops = find_section(p, "end_stops"))

@@ -53,6 +53,10 @@ struct TrainFriction {
   // Why the event-driven scheme cannot run it ("": it can; the concept,
   // play, the thread's law): elements::train_event_driven_obstacle.
   std::string event_driven_obstacle;
+  // Moreau-Jean the default where both schemes run it (those the
+  // event-driven scheme took in issue 32: a prescribed rotor speed, a static
+  // coefficient on the thread; their results of before unchanged).
+  bool moreau_default = false;
 
   bool motor_friction_present() const noexcept { return motor_friction > 0.0; }
   // The motor's friction bound on the coordinate, |n| T_c [N m].

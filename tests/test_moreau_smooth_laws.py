@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import leadscrew as ls
-from helpers.result_invariants import check_result, failed
+from helpers.result_invariants import checked_run as checked
 from helpers.scenes import thesis_scene
 
 # The invariants read each run step by step.
@@ -27,16 +27,6 @@ ARCTAN = {"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4}
 LUGRE = {"law": "lugre", "mu": 0.3, "sigma0": 1e3}
 LOSSY = {"type": "lossy", "ratio": 4.0, "efficiency": 0.7, "efficiency_backdrive": 0.4}
 WORM = {"type": "worm", "ratio": 4.0, "lead_angle": 0.3, "mu": 0.05}
-
-
-def checked(scene, t_end, **options):
-    """The run, its own checks and the independent invariants passed."""
-    s = ls.Scene.from_dict(scene)
-    result = ls.simulate(s, t_end, **options)
-    assert [k for k, c in result.checks.items() if c["applies"] and not c["passed"]] == []
-    run_options = {"t_end": t_end, "integrator": result.integrator, **options}
-    assert failed(check_result(result, s.to_dict(), run_options)) == []
-    return result
 
 
 def order(dts, errors):

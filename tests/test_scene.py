@@ -199,15 +199,16 @@ def test_schema_says_which_schemes_run_the_trains_friction_stages():
     lines = {line.split(" ", 1)[0]: line for line in ls.scene.describe_schema().splitlines()}
     for key in ("motor.friction_torque", "gear.type"):
         line = lines[key]
-        # (Penalty flanks run with the stages on Moreau-Jean now.)
-        assert ("a torque (loads.drive_torque) or a DC motor, a set-valued law on the thread "
-                "(friction.law = 'coulomb' or 'stribeck'), no nut.preload and initial.state = "
-                "'relaxed'; end stops and every play (backlash.contact 'exact', 'bistop' or "
-                "'cubic') are allowed. Moreau-Jean (integrator = 'moreau') runs them "
-                "on every concept and play, the event-driven scheme on the rigid concept without "
-                "play with friction.law = 'coulomb' without mu_static outside the thread's "
-                "Painleve regime and without a load spring; where only Moreau-Jean "
-                "fits, it is the default") in line, key
+        # (Penalty flanks run with the stages on Moreau-Jean now; issue 32:
+        # behind a prescribed rotor speed on the event-driven scheme too.)
+        assert ("With a torque (loads.drive_torque) or a DC motor Moreau-Jean (integrator = "
+                "'moreau') runs them on every concept and play with every thread law but "
+                "'arctan_acceleration' (a preloaded nut without lift-off), the event-driven "
+                "scheme on the rigid concept without play with friction.law = 'coulomb' "
+                "(mu_static too) outside the thread's Painleve regime and without a load spring; "
+                "where only Moreau-Jean fits, and with mu_static, it is the default. Behind a prescribed rotor speed "
+                "(loads.drive_speed) the event-driven scheme runs them on every concept and play "
+                "with every law, and Moreau-Jean, the default, where it runs the scene") in line, key
         assert "no end stops" not in line, key
 
 

@@ -259,15 +259,16 @@ def test_a_stage_elsewhere_is_refused_naming_the_key(changes, gear, message):
     assert "gear.type" in str(info.value)
 
 
-# Off the rigid drive without play, or with a static coefficient on the
+# Off the rigid drive without play, or with another law than Coulomb's on the
 # thread, the stages run on Moreau-Jean alone (its default there):
 # tests/test_simulation_drive_moreau_train.py.
 MOREAU_ONLY = [
     (dict(concept="flexible_nut"), LOSSY, 'here concept = "flexible_nut"'),
     (dict(backlash={"axial": 1e-5}), WORM, "here backlash.axial = 1e-05 (play)"),
-    # (a new user's review: the message named the valid law, not mu_static)
-    (dict(friction={"law": "coulomb", "mu": 0.12, "mu_static": 0.15}), WORM,
-     "here friction.mu_static = 0.15 above friction.mu = 0.12"),
+    # (issue 32: a static coefficient runs, tests/test_event_driven_train_stages.py;
+    # Stribeck's slip coefficient follows the slip speed)
+    (dict(friction={"law": "stribeck", "mu": 0.12, "mu_static": 0.15}), WORM,
+     'here friction.law = "stribeck"'),
     # (the train solver's closed forms are the plain thread's)
     (dict(friction={"law": "coulomb", "mu": 0.3}, nut={"preload": 20.0}), LOSSY,
      "here nut.preload = 20 N"),
@@ -300,13 +301,11 @@ def test_motor_friction_elsewhere_is_refused_naming_the_key():
     speed["loads"].pop("drive_torque")
     parameters = ls.Scene.from_dict(speed).model().parameters
     parameters.motor_friction_torque = 1e-3
-    # (A prescribed rotor speed runs the stages on Moreau-Jean alone:
-    # tests/test_moreau_smooth_laws.py.)
-    assert _core.drive_integrators(parameters) == ["moreau"]
-    with pytest.raises(ValueError, match=r"here loads\.drive_speed \(a prescribed rotor speed\); "
-                                         r"use integrator = \"moreau\""):
-        ls.simulate(ls.Scene.from_dict({**speed, "motor": {"friction_torque": 1e-3}}), 0.01,
-                    integrator="event_driven")
+    # (A prescribed rotor speed runs the stages on both schemes, Moreau-Jean
+    # the default: tests/test_event_driven_train_stages.py.)
+    assert _core.drive_integrators(parameters) == ["moreau", "event_driven"]
+    assert ls.simulate(ls.Scene.from_dict({**speed, "motor": {"friction_torque": 1e-3}}), 0.01,
+                       integrator="event_driven").integrator == "event_driven"
 
 
 def test_other_integrators_are_refused():

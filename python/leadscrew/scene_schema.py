@@ -68,13 +68,15 @@ _GEAR_TYPES = ("ideal", "lossy", "worm")
 # 'lossy' or 'worm') need and which schemes run them (check_train_friction,
 # train_event_driven_obstacle in elements/build_drive.cpp).
 _TRAIN_STAGE_RULE = (
-    "a torque (loads.drive_torque) or a DC motor, a set-valued law on the thread "
-    "(friction.law = 'coulomb' or 'stribeck'), no nut.preload and initial.state = "
-    "'relaxed'; end stops and every play (backlash.contact 'exact', 'bistop' or 'cubic') "
-    "are allowed. Moreau-Jean (integrator = 'moreau') runs them on every concept and play, the "
+    "initial.state = 'relaxed'; end stops, every play (backlash.contact 'exact', 'bistop' or "
+    "'cubic') and a preloaded nut are allowed. With a torque (loads.drive_torque) or a DC "
+    "motor Moreau-Jean (integrator = 'moreau') runs them on every concept and play with every "
+    "thread law but 'arctan_acceleration' (a preloaded nut without lift-off), the "
     "event-driven scheme on the rigid concept without play with friction.law = 'coulomb' "
-    "without mu_static outside the thread's Painleve regime and without a load spring; "
-    "where only Moreau-Jean fits, it is the default "
+    "(mu_static too) outside the thread's Painleve regime and without a load spring; "
+    "where only Moreau-Jean fits, and with mu_static, it is the default. Behind a prescribed rotor speed "
+    "(loads.drive_speed) the event-driven scheme runs them on every concept and play with "
+    "every law, and Moreau-Jean, the default, where it runs the scene "
     "(docs/physics/gear.md, 'Friction stages')")
 _SMALLEST_GEAR_RATIO = _core.smallest_gear_ratio
 # The DC motor's fields: required, or given only, with motor.type = 'dc'

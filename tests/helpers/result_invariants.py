@@ -137,7 +137,7 @@ import numpy as np
 
 from helpers.train_invariants import TRAIN_INVARIANTS, check_train
 
-__all__ = ["check_result", "failed", "INVARIANTS"]
+__all__ = ["check_result", "checked_run", "failed", "INVARIANTS"]
 
 INVARIANTS = ("finite", "time_axis", "event_times", "friction_power", "friction_loss",
               "other_losses", "friction_cone", "friction_law", "energy_balance",
@@ -191,6 +191,27 @@ def stribeck_curve(friction: dict, speed: np.ndarray) -> np.ndarray:
     velocity = float(friction.get("stribeck_velocity", 1e-3) or 1e-3)
     exponent = float(friction.get("stribeck_exponent", 2.0) or 2.0)
     return mu + (mu_static - mu) * np.exp(-(speed / velocity) ** exponent)
+
+
+def checked_run(scene: dict, t_end: float, **options):
+    """Runs ``leadscrew.simulate`` on the scene dict for ``t_end`` [s] with
+    ``options`` and asserts that every check of the run's own that applies
+    and every invariant here (:func:`check_result`) pass.
+
+    Returns:
+        the Result.
+
+    Raises:
+        AssertionError: naming the checks or invariants that failed.
+    """
+    import leadscrew as ls
+
+    s = ls.Scene.from_dict(scene)
+    result = ls.simulate(s, t_end, **options)
+    assert [k for k, c in result.checks.items() if c["applies"] and not c["passed"]] == []
+    run_options = {"t_end": t_end, "integrator": result.integrator, **options}
+    assert failed(check_result(result, s.to_dict(), run_options)) == []
+    return result
 
 
 def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:

@@ -39,10 +39,23 @@ bool no_force_elements_but_train_stops(const DriveModel& model) {
 }
 }  // namespace
 
+// Exact Coulomb with one kinetic coefficient and a static one above it
+// (friction.law = "coulomb" with mu_static): its slip modes' coefficients
+// are constant, and the train's stick test takes mu_static
+// (DriveHybrid::stick_mu). The train's friction stages take it
+// (docs/physics/gear.md, "A static coefficient on the thread").
+static bool constant_kinetic_coulomb(const friction::Law& law) {
+  return law.resolution() == friction::Resolution::set_valued && law.viscous() == 0.0 &&
+         law.slip_mu(0.0) == law.mu() && law.slip_mu(1.0) == law.mu() &&
+         law.slip_mu(1e3) == law.mu();
+}
+
 bool RigidDriveModes::applies_to_thread(const DriveModel& model, const DriveDynamics& dynamics) {
   return model.bilateral_thread() && !model.motor().speed_controlled &&
          !model.preloaded_nut() &&
-         dynamics.plain_coulomb() && no_force_elements_but_train_stops(model) &&
+         (dynamics.plain_coulomb() ||
+          (model.train_friction() && constant_kinetic_coulomb(dynamics.law()))) &&
+         no_force_elements_but_train_stops(model) &&
          model.coordinate_count() == 2 && model.independent().size() == 1 &&
          !dynamics.painleve_possible();
 }

@@ -61,11 +61,15 @@ DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions op
     // FMU export and the C API (this stepper's users) run the event-driven
     // scheme or an ODE method, not Moreau-Jean's time stepping.
     const std::vector<std::string>& allowed = drive::model_integrators(model);
+    std::vector<std::string> others;
+    for (const std::string& name : allowed)
+      if (name != "moreau") others.push_back(name);
+    // Moreau-Jean the default, another scheme beside (the train's stages
+    // behind a prescribed rotor speed): the stepper takes that one.
+    if (options_.integrator.empty() && integrator_ == "moreau" && !others.empty())
+      integrator_ = options_.integrator = others.front();
     if (integrator_ == "moreau" &&
         std::find(allowed.begin(), allowed.end(), integrator_) != allowed.end()) {
-      std::vector<std::string> others;
-      for (const std::string& name : allowed)
-        if (name != "moreau") others.push_back(name);
       if (others.empty()) {  // Moreau-Jean alone: the train's stages elsewhere
         const elements::TrainFriction* train = model.train_friction();
         throw InvalidArgument(

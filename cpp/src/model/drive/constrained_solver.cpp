@@ -36,7 +36,27 @@ const ElementKind& lugre_bristles_kind() {
 DriveHybrid::ConstrainedSolver::ConstrainedSolver(DriveHybrid& hybrid)
     : ModeSolver(hybrid),
       bristle_state_(hybrid.layout_.find_state("bristle_share")),
-      bristle_channel_(hybrid.layout_.find_channel("bristle_deflection")) {}
+      bristle_channel_(hybrid.layout_.find_channel("bristle_deflection")),
+      speed_train_(hybrid.model_.motor().speed_controlled ? hybrid.model_.train_friction()
+                                                          : nullptr),
+      motor_friction_state_(hybrid.layout_.find_state("motor_friction_loss")),
+      gear_state_(hybrid.layout_.find_state("gear_loss")),
+      motor_friction_channel_(hybrid.layout_.find_channel("motor_friction_loss")),
+      gear_channel_(hybrid.layout_.find_channel("gear_loss")) {}
+
+// The motor's torque on the rotor's coordinate in the solution s (at the
+// state set): the speed constraint's multiplier Lambda, and behind a
+// prescribed speed with the train's stages the frictions ahead of the
+// stage's output besides: the rotor's reflected inertia R takes R w' of
+// Lambda, the stage passes tau_b = Lambda - R w' on (docs/physics/gear.md,
+// "A prescribed rotor speed"; Moreau-Jean's step the same per impulse,
+// moreau_speed_train.cpp).
+double DriveHybrid::ConstrainedSolver::speed_train_torque(const ModeSolution& s) const {
+  if (!speed_train_) return s.motor_torque;
+  const int r = h_.model_.rotor();
+  const double transmitted = s.motor_torque - speed_train_->rotor_inertia * s.acceleration[r];
+  return s.motor_torque + speed_train_->friction_torque_at_speed(transmitted, h_.v_[r]);
+}
 
 double DriveHybrid::ConstrainedSolver::slip_velocity(const double* y) const {
   (void)y;
@@ -62,7 +82,7 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
   for (std::size_t k = 0; k < layout.velocities().size(); ++k)
     ydot[np + k] = s.acceleration[layout.velocities()[k]];
   double* energy = ydot + layout.energy_offset();
-  energy[kWorkDrive] = model.motor().power(s.motor_torque, v);
+  energy[kWorkDrive] = model.motor().power(speed_train_torque(s), v);
   energy[kWorkAxial] = model.axial_load().power(dynamics.axial_force(), v);
   energy[kFrictionLoss] =
       h_.mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics.slip_velocity();
@@ -93,6 +113,13 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
                              dynamics.play_rate();
   energy[kDampingLoss] = dynamics.damping_power();
   energy[kContactLoss] = dynamics.contact_loss_power();
+  if (speed_train_) {  // the stages' losses (each >= 0), the motor's work beside
+    const int r = model.rotor();
+    const double transmitted = s.motor_torque - speed_train_->rotor_inertia * s.acceleration[r];
+    if (motor_friction_state_ >= 0)
+      ydot[motor_friction_state_] = speed_train_->motor_friction_bound() * std::abs(v[r]);
+    if (gear_state_ >= 0) ydot[gear_state_] = speed_train_->stage_loss(transmitted * v[r]);
+  }
   for (const std::unique_ptr<Element>& element : h_.elements_) element->rates(t, y, ydot, energy);
 }
 
@@ -105,8 +132,11 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   const ModeSolution s = h_.on_the_law(h_.solve_current());
   forces.normal = s.normal_force;
   forces.friction = s.friction_force;
-  forces.motor_torque = h_.model_.gear().rotor_torque(s.motor_torque);
+  forces.motor_torque = h_.model_.gear().rotor_torque(speed_train_torque(s));
   ChannelState state = channel_state(h_.dynamics_);
+  if (motor_friction_state_ >= 0)
+    state.values[motor_friction_channel_] = y[motor_friction_state_];
+  if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
   const int bristle = bristle_state_;
   if (bristle >= 0) {
     state.values[bristle_channel_] = h_.dynamics_.bristle();  // z (set)

@@ -214,6 +214,10 @@ class DriveHybrid final : public integrate::HybridSystem {
   void move_play_to(double t, const PlayDirection& direction, double target);
   double stop_play(double t, const PlayDirection& direction);
   void put_back_inside(double t, double* y);
+  // Books a speed-controlled motor's impulsive work W (its impulse passed
+  // to the driven part at the held speed) in work_drive, and behind a
+  // friction stage the stage's loss (k - 1) W besides, in gear_loss.
+  void book_motor_impulse(double* y, double motor_work) const;
   void note_flight_start(double t, const double* y);
   void check_flight(double t) const;
   double free_flight_play_acceleration();

@@ -46,8 +46,21 @@ void DriveHybrid::put_back_inside(double t, double* y) {
   }
   impact_loss_ += kinetic_before + motor_work - dynamics_.kinetic_energy();
   layout_.compress(q_, v_, y);
-  y[layout_.energy_offset() + kWorkDrive] += motor_work;
+  book_motor_impulse(y, motor_work);
   set(t, y);
+}
+
+// The rotor's reflected inertia takes none of the impulse (its speed is
+// held): the stage passes the whole of it, at the held speed w the work
+// W = P_b w, and the motor puts k W in (docs/physics/gear.md, "A prescribed
+// rotor speed"; the motor's Coulomb friction, a finite torque, no impulse).
+void DriveHybrid::book_motor_impulse(double* y, double motor_work) const {
+  double stage_loss = 0.0;
+  if (const elements::TrainFriction* train = model_.train_friction(); train && motor_work != 0.0) {
+    stage_loss = train->stage_loss(motor_work);
+    if (const int gear = layout_.find_state("gear_loss"); gear >= 0) y[gear] += stage_loss;
+  }
+  y[layout_.energy_offset() + kWorkDrive] += motor_work + stage_loss;
 }
 
 DriveHybrid::PlayDirection DriveHybrid::play_direction() const {
@@ -133,7 +146,7 @@ bool DriveHybrid::flank_impact(double t, double* y, int flank) {
     // of a rattling nut with restitution 0.5).
     const double kinetic_open = dynamics_.kinetic_energy();
     const double closing_work = stop_play(t, direction);
-    y[layout_.energy_offset() + kWorkDrive] += closing_work;
+    book_motor_impulse(y, closing_work);
     impact_loss_ += kinetic_open + closing_work - dynamics_.kinetic_energy();
     mode_.contact = ThreadContact::closed;
     mode_.flank = flank;
@@ -177,7 +190,7 @@ bool DriveHybrid::flank_impact(double t, double* y, int flank) {
   }
   // The motor's work enters the drive's work as well as the impact's loss
   // (booked in the loss alone, 4 % of the work went missing from the account).
-  y[layout_.energy_offset() + kWorkDrive] += motor_work;
+  book_motor_impulse(y, motor_work);
   impact_loss_ += dissipated;
   const double normal_after = dynamics_.play_rate();
   // Height of the flight the bounce would start: v^2 / (2 |e''|) with the

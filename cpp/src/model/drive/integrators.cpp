@@ -102,35 +102,64 @@ const std::vector<std::string>& moreau_only() {
   return names;
 }
 
-const std::vector<std::string>& train_integrators(const std::string& obstacle) {
+const std::vector<std::string>& train_integrators(const elements::TrainFriction& train) {
   static const std::vector<std::string> both = {"event_driven", "moreau"};
+  static const std::vector<std::string> moreau_first = {"moreau", "event_driven"};
   static const std::vector<std::string> moreau_only = {"moreau"};
-  return obstacle.empty() ? both : moreau_only;
+  if (!train.event_driven_obstacle.empty()) return moreau_only;
+  return train.moreau_default ? moreau_first : both;
+}
+
+// The stages behind a prescribed rotor speed: the event-driven scheme runs
+// every drive it runs without them (`without`: the scene's list without
+// the stages; the stages change the motor's torque alone), Moreau-Jean
+// where it runs the drive and the stages (not LuGre's bristles beside the
+// rotor's contact: check_bristles_on_moreau), and stays the default there,
+// as before the event-driven scheme took them (issue 32: results unchanged;
+// rtol and atol choose the event-driven scheme, _option_rules.py).
+const std::vector<std::string>& speed_train_integrators(const std::vector<std::string>& without,
+                                                        friction::Resolution resolution) {
+  static const std::vector<std::string> moreau_first = {"moreau", "event_driven"};
+  static const std::vector<std::string> event_driven = {"event_driven"};
+  const bool moreau = std::find(without.begin(), without.end(), "moreau") != without.end() &&
+                      resolution != friction::Resolution::bristle;
+  return moreau ? moreau_first : event_driven;
 }
 
 }  // namespace
 
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
-  // The train's stages: whether the event-driven scheme runs them needs the
-  // built model (the thread's Painleve regime, from the masses).
-  if (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm)
-    return drive::model_integrators(DriveModel(p));
+  const bool stages =
+      p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm;
+  // The train's stages with a torque or DC motor: whether the event-driven
+  // scheme runs them needs the built model (the thread's Painleve regime,
+  // from the masses).
+  if (stages && !p.speed_controlled) return drive::model_integrators(DriveModel(p));
   if (stops_need_moreau(p)) return moreau_only();
   // (The law's type, from its defaults: every law's parameters have one.)
-  return integrators_for(p.friction, friction::make_law(p.friction, {})->resolution(),
-                         p.backlash == BacklashContact::exact, p.nut_preload > 0.0,
-                         preload_lifts_off(p));
+  const friction::Resolution resolution = friction::make_law(p.friction, {})->resolution();
+  const std::vector<std::string>& without =
+      integrators_for(p.friction, resolution, p.backlash == BacklashContact::exact,
+                      p.nut_preload > 0.0, preload_lifts_off(p));
+  // (Behind a prescribed rotor speed the parameters tell: a built model's
+  // parameters of a nut that lifts off carry its assembled play, beyond
+  // the play's half, which a model built from them again refuses.)
+  return stages ? speed_train_integrators(without, resolution) : without;
 }
 
 const std::vector<std::string>& drive::model_integrators(const DriveModel& model) {
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
   if (stops_need_moreau(p)) return moreau_only();
-  if (model.train_friction())
-    return train_integrators(model.train_friction()->event_driven_obstacle);
   const elements::PreloadedNut* nut = model.preloaded_nut();
-  return integrators_for(p.friction, model.law().resolution(), thread.exact_play(),
-                         nut != nullptr, nut != nullptr && nut->lift_off);
+  const std::vector<std::string>& without =
+      integrators_for(p.friction, model.law().resolution(), thread.exact_play(), nut != nullptr,
+                      nut != nullptr && nut->lift_off);
+  if (model.train_friction())
+    return p.speed_controlled
+               ? speed_train_integrators(without, model.law().resolution())
+               : train_integrators(*model.train_friction());
+  return without;
 }
 
 namespace {
@@ -227,10 +256,16 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
         "integrator = \"" + integrator + "\" is invalid with " + what +
         (integrator == "event_driven"
              ? ": the event-driven scheme runs the train's friction stages on the rigid concept "
-               "without play with plain Coulomb friction on the thread and a torque or DC "
-               "motor only (every contact "
-               "slipping with one speed), here " + train->event_driven_obstacle +
+               "without play with Coulomb friction on the thread (friction.law = \"coulomb\", "
+               "mu_static too) and a torque or DC motor only (every contact slipping with one "
+               "speed), and behind a prescribed "
+               "rotor speed (loads.drive_speed) on every concept and play with every law, "
+               "here " + train->event_driven_obstacle +
                    "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
+             : p.speed_controlled
+             ? ": behind a prescribed rotor speed the train's friction stages run on the "
+               "event-driven scheme (integrator = \"event_driven\") and, but with "
+               "arctan_acceleration or lugre, Moreau-Jean (integrator = \"moreau\")"
              : ": the train's friction stages run on Moreau-Jean (integrator = \"moreau\", "
                "every thread law but arctan_acceleration)" +
                    (train->event_driven_obstacle.empty()

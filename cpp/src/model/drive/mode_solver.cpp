@@ -14,7 +14,9 @@ namespace leadscrew::model::drive {
 // general one. The rigid solver has no states or rates but the rotor's: it
 // takes no element with events (DriveHybrid::Element; built before this).
 std::unique_ptr<DriveHybrid::ModeSolver> DriveHybrid::make_mode_solver(DriveHybrid& hybrid) {
-  if (hybrid.model_.train_friction()) {
+  // (Behind a prescribed rotor speed the stages change the motor's torque
+  // alone: the constrained solve, which books their losses.)
+  if (hybrid.model_.train_friction() && !hybrid.model_.motor().speed_controlled) {
     // The parameters' checks (build_drive_elements) admit the friction
     // stages where this holds but for the thread's Painleve regime.
     if (!RigidDriveModes::applies_to_thread(hybrid.model_, hybrid.dynamics_))

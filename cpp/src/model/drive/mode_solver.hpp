@@ -9,7 +9,9 @@
 // structure:
 //   constrained_solver.cpp  ConstrainedSolver: any model; y expanded by
 //                           StateLayout, the mode solved by DriveDynamics'
-//                           constrained solve (DriveHybrid::solve_current)
+//                           constrained solve (DriveHybrid::solve_current);
+//                           the train's friction stages behind a prescribed
+//                           rotor speed (the motor's torque and their losses)
 //   train_solver.cpp        TrainSolver: the rigid drive without play with
 //                           the train's friction stages (a DC motor too)
 //   rigid_solver.cpp        RigidSolver: the rigid drive without play, one
@@ -91,6 +93,14 @@ class DriveHybrid::ConstrainedSolver final : public DriveHybrid::ModeSolver {
   // LuGre's bristles (lugre_bristles_kind): the deflection's index in y
   // (its stored energy's follows; -1: none) and its channel's.
   int bristle_state_, bristle_channel_;
+  // The train's friction stages behind a prescribed rotor speed (nullptr:
+  // none, or a torque-driven rotor, which TrainSolver takes): the motor's
+  // torque on the rotor's coordinate in the solution s at the speed set
+  // (the constraint's multiplier and the frictions ahead of the stage's
+  // output), their loss integrals in y and channels (train_friction_kind).
+  const elements::TrainFriction* speed_train_;
+  double speed_train_torque(const ModeSolution& s) const;
+  int motor_friction_state_, gear_state_, motor_friction_channel_, gear_channel_;
 };
 
 // What the rigid drive without play's solvers share: one degree of freedom,

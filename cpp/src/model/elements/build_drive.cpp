@@ -463,15 +463,17 @@ void check_train_friction(const DriveParameters& p, const DriveElements& e) {
                                        format_value(p.motor_friction_torque) + " N m";
   // What nothing runs. (The rigid concept without play, plain Coulomb
   // friction on the thread and a torque or DC motor run on both schemes;
-  // the rest on Moreau-Jean only, every thread law but eq. (3.15), a
-  // prescribed rotor speed too: train_event_driven_obstacle,
-  // check_simulation_options; docs/physics/gear.md.)
-  if (e.thread->law().resolution() == friction::Resolution::acceleration)
+  // the rest on Moreau-Jean only, every thread law but eq. (3.15); a
+  // prescribed rotor speed on both, on the event-driven scheme with every
+  // law: train_event_driven_obstacle, check_simulation_options;
+  // docs/physics/gear.md.)
+  if (e.thread->law().resolution() == friction::Resolution::acceleration && !p.speed_controlled)
     throw InvalidArgument(
         what + " is invalid with friction.law = \"" + p.friction +
         "\": the train's stages run on Moreau-Jean, whose velocity-level step has no slip "
         "acceleration for eq. (3.15)'s friction (it would follow dt); use friction.law = "
-        "\"arctan_velocity\", \"lugre\", \"stribeck\" or \"coulomb\"");
+        "\"arctan_velocity\", \"lugre\", \"stribeck\" or \"coulomb\", or a prescribed rotor "
+        "speed (loads.drive_speed), which the event-driven scheme runs with every law");
   const double alpha = p.thread.lead_angle();
   if (!(std::cos(alpha) - e.thread->effective_mu() * std::sin(alpha) > 0.0))
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
@@ -512,6 +514,10 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
         TrainFriction::worm_efficiency_backdrive(p.gear_lead_angle, mu_static * factor);
   }
   f.event_driven_obstacle = train_event_driven_obstacle(p, e.thread->law());
+  // Where the event-driven scheme took the stages in issue 32 (a prescribed
+  // rotor speed, a static coefficient on the thread), Moreau-Jean stays the
+  // default: the results of before are unchanged.
+  f.moreau_default = p.speed_controlled || !e.thread->law().plain_coulomb();
   e.train_friction = f;
 }
 
@@ -580,8 +586,10 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
   // preloaded nut without lift-off (moreau_preload.cpp); a nut that lifts
   // off runs on the event-driven scheme only, which takes no stage with it
   // (checked first: no other rule of the nut's is worth meeting before this one).
+  // (Behind a prescribed rotor speed the event-driven scheme runs the stages
+  // with the lift-off too: they change the motor's torque alone.)
   const bool stage = has_friction_stage(p);
-  if ((stage || p.motor_friction_torque > 0.0) && preload_lifts_off(p))
+  if ((stage || p.motor_friction_torque > 0.0) && preload_lifts_off(p) && !p.speed_controlled)
     throw InvalidArgument(
         "nut.preload = " + format_value(p.nut_preload) + " N is invalid with " +
         (stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
@@ -589,8 +597,10 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
         " and backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" on concept = \"" +
         concept_name(p.concept) + "\": the train's friction stages run on Moreau-Jean, whose "
         "step takes a preloaded nut without lift-off only (no play, exact play closed by the "
-        "preload, or the rigid concept); use backlash.contact = \"exact\" or \"none\", "
-        "nut.preload = 0, or gear.type = \"ideal\" and motor.friction_torque = 0");
+        "preload, or the rigid concept), and the event-driven scheme runs them with a "
+        "torque or DC motor on the rigid concept without play only; use backlash.contact = "
+        "\"exact\" or \"none\", nut.preload = 0, gear.type = \"ideal\" and "
+        "motor.friction_torque = 0, or a prescribed rotor speed (loads.drive_speed)");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
@@ -727,16 +737,18 @@ DriveElements build_drive_elements(DriveParameters& p) {
 // whose contacts all slip with one speed, with plain Coulomb friction on
 // the thread.
 std::string train_event_driven_obstacle(const DriveParameters& p, const friction::Law& law) {
-  if (p.speed_controlled) return "loads.drive_speed (a prescribed rotor speed)";
+  // Behind a prescribed rotor speed the stages change the motor's torque
+  // alone, not the motion: the constrained solve runs every drive
+  // (ConstrainedSolver books their losses).
+  if (p.speed_controlled) return "";
   if (p.concept != Concept::rigid) return "concept = \"" + concept_name(p.concept) + "\"";
   if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
     return "backlash.axial = " + format_value(p.clearance) + " (play)";
   // (TrainSolver's closed forms are the plain thread's: no preload's hooks.)
   if (p.nut_preload > 0.0) return "nut.preload = " + format_value(p.nut_preload) + " N";
-  if (!law.plain_coulomb())
-    return p.friction == "coulomb" ? "friction.mu_static = " + format_value(law.mu_static()) +
-                                         " above friction.mu = " + format_value(law.mu())
-                                   : "friction.law = \"" + p.friction + "\"";
+  // (Coulomb with a static coefficient runs: TrainSolver's slip takes the
+  // one kinetic coefficient, its stick test mu_static.)
+  if (p.friction != "coulomb") return "friction.law = \"" + p.friction + "\"";
   // (The closed exact stop holds the drive through the thread's row,
   // DriveDynamics::solve; TrainSolver's closed forms do not take it.)
   if (const ElementSection* stops = find_section(p, "end_stops"))

@@ -6,7 +6,10 @@
 // The event-driven scheme runs it on the rigid drive without play: there
 // every contact slips with the one speed phi' (rotor, stage, thread), so
 // the train is one degree of freedom whose friction contacts stick and slip
-// together (DriveHybrid::TrainSolver, cpp/src/model/drive/train_solver.cpp).
+// together (DriveHybrid::TrainSolver, cpp/src/model/drive/train_solver.cpp);
+// and behind a prescribed rotor speed on every concept and play, where the
+// frictions change the motor's torque alone (friction_torque_at_speed,
+// DriveHybrid::ConstrainedSolver).
 // Moreau-Jean runs it on every concept, with exact play too: the rotor's
 // contact (the motor's friction and the stage, slipping with the rotor's
 // speed) is a second friction contact of its step beside the thread's
@@ -50,6 +53,10 @@ struct TrainFriction {
   // Why the event-driven scheme cannot run it ("": it can; the concept,
   // play, the thread's law): elements::train_event_driven_obstacle.
   std::string event_driven_obstacle;
+  // Moreau-Jean the default where both schemes run it (those the
+  // event-driven scheme took in issue 32: a prescribed rotor speed, a static
+  // coefficient on the thread; their results of before unchanged).
+  bool moreau_default = false;
 
   bool motor_friction_present() const noexcept { return motor_friction > 0.0; }
   // The motor's friction bound on the coordinate, |n| T_c [N m].
@@ -59,6 +66,25 @@ struct TrainFriction {
     if (!stage) return 1.0;
     if (stage_sign > 0) return 1.0 / (breakaway ? efficiency_static : efficiency);
     return breakaway ? efficiency_backdrive_static : efficiency_backdrive;
+  }
+  // The stage's loss where it passes the work (or power) W to the driven
+  // part: the rotor's side puts k W in (k by the power flow, W's sign:
+  // forward where W >= 0), so the stage loses (k - 1) W >= 0 (eta, eta_b <= 1).
+  double stage_loss(double transmitted_work) const noexcept {
+    return (torque_ratio(transmitted_work >= 0.0 ? 1 : -1, false) - 1.0) * transmitted_work;
+  }
+  // A prescribed rotor speed (loads.drive_speed): the drive's motion does
+  // not depend on the frictions ahead of the stage's output, only the
+  // motor's torque does. With tau_b the torque the stage passes to the
+  // driven part and w the coordinate's speed, the motor's torque on the
+  // coordinate exceeds tau_b + R w' by s |n| T_c + (k - 1) tau_b (s = sign w,
+  // k by the sign of tau_b w); at rest nothing slips and the static sets
+  // contain 0 (docs/physics/gear.md, "A prescribed rotor speed").
+  double friction_torque_at_speed(double transmitted, double speed) const noexcept {
+    if (speed == 0.0) return 0.0;
+    const int s = speed > 0.0 ? 1 : -1;
+    return s * motor_friction_bound() +
+           (torque_ratio(transmitted * speed >= 0.0 ? 1 : -1, false) - 1.0) * transmitted;
   }
   // The stage holds a back-driving load on its own (eta_b <= 0).
   bool self_locking() const noexcept { return stage && efficiency_backdrive_static <= 0.0; }

@@ -22,13 +22,29 @@ The first inertial correction, v1 = -m v0' / (d lambda_path / dv) =
 -m r |w| |w|' / (mu N (1 - r^2)^2), is a time derivative of w^2 and averages
 to zero over a period: the mean's error is second order in the inertia
 number m W omega / (mu N (1 - r^2)^(3/2)) (inertia_number).
+
+The thread (docs/physics/rigid_drive.md's model and conventions): the flank
+carries the normal force N~ and the helix-direction friction T~; quasi-static
+(phi'' = 0) they are the stick forces of section 6,
+
+    N~_st = -(F cos(alpha) + h (M / r) sin(alpha)),
+    T~_st = (M / r) cos(alpha) - h F sin(alpha),
+
+whatever the friction law, and on the flank's 2-D cone (mu' = mu / cos(beta/2)
+on the in-plane normal force) the helix slip gamma = rho phi' with transverse
+slip w balances T~_st = mu' |N~_st| gamma / |(gamma, w)|: the block's form
+with r -> q = |T~_st| / (mu' |N~_st|) (thread_flank_ratio). Free rotor
+(M = 0): q = tan(alpha) / mu', below 1 exactly where the thread is
+self-locking. The load then creeps along F at sin(alpha) |gamma|
+(u_load = -h p phi, p = rho sin(alpha)).
 """
 
 from __future__ import annotations
 
 import math
 
-__all__ = ["creep_speed", "mean_creep_speed_sine", "inertia_number"]
+__all__ = ["creep_speed", "mean_creep_speed_sine", "inertia_number", "thread_flank_ratio",
+           "thread_load_creep_speed"]
 
 
 def creep_speed(force: float, mu: float, normal_force: float, transverse: float) -> float:
@@ -65,3 +81,33 @@ def inertia_number(mass: float, force: float, mu: float, normal_force: float,
     r = abs(force) / (mu * normal_force)
     return mass * amplitude * omega / (mu * normal_force * (1.0 - r * r) ** 1.5)
 
+
+
+def thread_flank_ratio(torque: float, force: float, lead_angle: float, mean_radius: float,
+                       effective_mu: float, hand: int = 1) -> float:
+    """q = |T~_st| / (mu' |N~_st|): the share of the flank's cone the loads use
+    at rest (rigid_drive.md section 6), the thread's r.
+
+    Args:
+        torque: drive torque M on the rotor [N*m].
+        force: axial force F on the load [N].
+        lead_angle: alpha [rad].
+        mean_radius: r [m].
+        effective_mu: mu' = mu / cos(beta / 2).
+        hand: h = +1 (right) or -1 (left).
+    """
+    normal = -(force * math.cos(lead_angle) + hand * torque / mean_radius * math.sin(lead_angle))
+    tangential = torque / mean_radius * math.cos(lead_angle) - hand * force * math.sin(lead_angle)
+    return abs(tangential) / (effective_mu * abs(normal))
+
+
+def thread_load_creep_speed(force: float, lead_angle: float, effective_mu: float,
+                            transverse: float, hand: int = 1) -> float:
+    """Quasi-static creep of the load [m/s] of a thread held by friction alone
+    (free rotor, M = 0) at transverse flank slip w: along F at
+    sin(alpha) |w| q / sqrt(1 - q^2), q = tan(alpha) / mu' < 1."""
+    q = math.tan(lead_angle) / effective_mu
+    if not q < 1.0:
+        raise ValueError(f"q = {q} must be < 1: the thread is not self-locking")
+    helix = abs(transverse) * q / math.sqrt(1.0 - q * q)
+    return math.copysign(math.sin(lead_angle) * helix, force)

@@ -38,9 +38,10 @@ class FrictionBlock(_core.FrictionBlock):
             Friction is then an isotropic 2-D cone on the slip (u', w):
             ``mu N (u', w) / |(u', w)|`` in slip, stick only where both
             vanish (docs/physics/transverse_slip.md). Runs exact Coulomb
-            (``friction="coulomb"``, with ``mu_static``) on
-            ``integrator="event_driven"`` or ``"moreau"``; other laws and
-            integrators are refused (ValueError). The result gains the
+            (``friction="coulomb"``, with ``mu_static``) and Stribeck's
+            curve on the slip speed on ``integrator="event_driven"`` or
+            ``"moreau"``; other laws and integrators are refused
+            (ValueError). The result gains the
             channels ``transverse_velocity``, ``transverse_friction`` and
             ``work_transverse`` (the plane's excitation's work, in the
             energy account).

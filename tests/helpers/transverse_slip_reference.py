@@ -43,8 +43,10 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 __all__ = ["creep_speed", "mean_creep_speed_sine", "inertia_number", "thread_flank_ratio",
-           "thread_load_creep_speed"]
+           "thread_load_creep_speed", "stribeck_mean_creep_speed_sine"]
 
 
 def creep_speed(force: float, mu: float, normal_force: float, transverse: float) -> float:
@@ -111,3 +113,47 @@ def thread_load_creep_speed(force: float, lead_angle: float, effective_mu: float
         raise ValueError(f"q = {q} must be < 1: the thread is not self-locking")
     helix = abs(transverse) * q / math.sqrt(1.0 - q * q)
     return math.copysign(math.sin(lead_angle) * helix, force)
+
+
+def _stribeck_creep_speed(force, normal_force, curve, viscous, transverse):
+    """The quasi-static v >= 0 of (mu(s) N + c s) v / s = F, s = |(v, w)|,
+    by bisection; the balance must be increasing in v (checked on a grid:
+    a falling curve can make it fold, and then the creep is no function)."""
+    def path_force(v):
+        s = math.hypot(v, transverse)
+        return (curve(s) * normal_force + viscous * s) * v / s
+
+    hi = abs(transverse)
+    while path_force(hi) < force:
+        hi *= 2.0
+    grid = [path_force(hi * k / 400) for k in range(401)]
+    if any(b < a for a, b in zip(grid, grid[1:])):
+        raise ValueError("the quasi-static balance folds: no unique creep speed")
+    lo = 0.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if path_force(mid) < force:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
+
+
+def stribeck_mean_creep_speed_sine(force, normal_force, mu, mu_static, stribeck_velocity,
+                                   stribeck_exponent, viscous, amplitude):
+    """Mean quasi-static creep speed [m/s] under w = W sin(omega t) with
+    Stribeck's curve on the slip speed, mu(s) = mu + (mu_static - mu)
+    exp(-(s / v_s)^delta), and a viscous term c s along the slip: the
+    balance (mu(s) N + c s) v / s = F solved at each w (no closed form) and
+    averaged over a half period by 64-point Gauss-Legendre on each of its
+    halves (v(W sin theta) is smooth on (0, pi/2] and symmetric)."""
+    def curve(s):
+        return mu + (mu_static - mu) * math.exp(-((s / stribeck_velocity) ** stribeck_exponent))
+
+    nodes, weights = np.polynomial.legendre.leggauss(64)
+    total = 0.0
+    for x, weight in zip(nodes, weights):  # theta in (0, pi/2)
+        theta = 0.25 * math.pi * (x + 1.0)
+        total += weight * _stribeck_creep_speed(force, normal_force, curve, viscous,
+                                                amplitude * math.sin(theta))
+    return total * 0.25 * math.pi / (0.5 * math.pi)

@@ -58,16 +58,20 @@ std::unique_ptr<friction::Law> block_law(const FrictionBlock& block,
   return friction::make_law(options.friction, values, "");
 }
 
-// A transverse slip (issue 34) runs exact Coulomb's 2-D cone on its two
+// A transverse slip (issue 34) runs the set-valued laws' 2-D cone (exact
+// Coulomb, Stribeck's curve on the slip speed |(v, w)|) on their two
 // schemes; the other laws' cones are not implemented: refused, not run as
 // a 1-D law.
 void check_transverse_supported(const FrictionBlock& block, const BlockSimulationOptions& options) {
   if (!block.has_transverse()) return;
-  if (options.friction != "coulomb")
+  if (options.friction != "coulomb" && options.friction != "stribeck")
     throw InvalidArgument("friction = \"" + options.friction +
                           "\" is invalid with transverse_velocity: the 2-D friction cone is "
-                          "implemented for friction = \"coulomb\" (with mu_static) only");
-  // (Coulomb's integrators are the two schemes: integrators_for refuses others.)
+                          "implemented for friction = \"coulomb\" and \"stribeck\" only");
+  if (options.integrator != "event_driven" && options.integrator != "moreau")
+    throw InvalidArgument("integrator = \"" + options.integrator +
+                          "\" is invalid with transverse_velocity: must be \"event_driven\" "
+                          "or \"moreau\" (the cone's regularization is not implemented)");
 }
 
 }  // namespace

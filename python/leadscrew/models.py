@@ -40,8 +40,9 @@ class FrictionBlock(_core.FrictionBlock):
             vanish (docs/physics/transverse_slip.md). Runs exact Coulomb
             (``friction="coulomb"``, with ``mu_static``) and Stribeck's
             curve on the slip speed on ``integrator="event_driven"`` or
-            ``"moreau"``; other laws and integrators are refused
-            (ValueError). The result gains the
+            ``"moreau"``, LuGre's bristles as a 2-D vector on its ODE
+            integrators; the arctan laws and Stribeck's regularization are
+            refused (ValueError). The result gains the
             channels ``transverse_velocity``, ``transverse_friction`` and
             ``work_transverse`` (the plane's excitation's work, in the
             energy account).

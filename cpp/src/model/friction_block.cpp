@@ -58,20 +58,24 @@ std::unique_ptr<friction::Law> block_law(const FrictionBlock& block,
   return friction::make_law(options.friction, values, "");
 }
 
-// A transverse slip (issue 34) runs the set-valued laws' 2-D cone (exact
-// Coulomb, Stribeck's curve on the slip speed |(v, w)|) on their two
-// schemes; the other laws' cones are not implemented: refused, not run as
-// a 1-D law.
+// A transverse slip (issue 34) runs the 2-D cone of the set-valued laws
+// (exact Coulomb, Stribeck's curve on the slip speed |(v, w)|) on their two
+// schemes, and LuGre's 2-D bristles on its ODE integrators; the other laws'
+// cones (the arctan laws', Stribeck's regularization) are not implemented:
+// refused, not run as a 1-D law.
 void check_transverse_supported(const FrictionBlock& block, const BlockSimulationOptions& options) {
-  if (!block.has_transverse()) return;
+  if (!block.has_transverse() || options.friction == "lugre") return;
   if (options.friction != "coulomb" && options.friction != "stribeck")
     throw InvalidArgument("friction = \"" + options.friction +
                           "\" is invalid with transverse_velocity: the 2-D friction cone is "
-                          "implemented for friction = \"coulomb\" and \"stribeck\" only");
+                          "implemented for friction = \"coulomb\", \"stribeck\" and "
+                          "\"lugre\" only");
   if (options.integrator != "event_driven" && options.integrator != "moreau")
     throw InvalidArgument("integrator = \"" + options.integrator +
-                          "\" is invalid with transverse_velocity: must be \"event_driven\" "
-                          "or \"moreau\" (the cone's regularization is not implemented)");
+                          "\" is invalid with transverse_velocity and friction = \"" +
+                          options.friction +
+                          "\": must be \"event_driven\" or \"moreau\" (the cone's "
+                          "regularization is not implemented)");
 }
 
 }  // namespace
@@ -100,7 +104,7 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
     law = law->regularized();
   const bool bristle = law->resolution() == friction::Resolution::bristle;
 
-  const int state_size = block.has_transverse() ? block::kConeStateSize
+  const int state_size = block.has_transverse() ? block::kConeStateSize + (bristle ? 2 : 0)
                          : bristle              ? block::kStateSize + 1
                                                 : block::kStateSize;
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(state_size);
@@ -136,8 +140,9 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
       // regularization, LuGre): the general smooth block.
       const bool thesis_law =
           options.friction == "arctan_velocity" || options.friction == "arctan_acceleration";
-      auto system = thesis_law ? block::make_regularized_block(block, *law)
-                               : block::make_smooth_block(block, *law);
+      auto system = block.has_transverse() ? block::make_cone_bristle_block(block, *law)
+                    : thesis_law           ? block::make_regularized_block(block, *law)
+                                           : block::make_smooth_block(block, *law);
       result = integrate::simulate_event_driven(*system, 0.0, y0, options.output, driver);
     }
   }

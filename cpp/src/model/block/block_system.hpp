@@ -54,6 +54,10 @@ void write_cone_channels(const FrictionBlock& block, double kinetic0, double t, 
                          const Row& row, double transverse_velocity, double transverse_friction,
                          double* out);
 
+// The times at which a block with a transverse slip is not smooth: its
+// loads' breakpoints, merged.
+std::vector<double> cone_breakpoints(const FrictionBlock& block);
+
 // Kinetic and elastic energy at the start.
 double initial_kinetic(const FrictionBlock& block);
 
@@ -128,10 +132,14 @@ std::unique_ptr<integrate::HybridSystem> make_smooth_block(const FrictionBlock& 
                                                            const friction::Law& law);
 std::unique_ptr<integrate::TimeSteppingSystem> make_moreau_block(const FrictionBlock& block,
                                                                  const friction::Law& law);
-// With a transverse slip (block.has_transverse(); Coulomb's cone).
+// With a transverse slip (block.has_transverse()): a set-valued law's cone.
 std::unique_ptr<integrate::HybridSystem> make_cone_block(const FrictionBlock& block,
                                                          const friction::Law& law);
 std::unique_ptr<integrate::TimeSteppingSystem> make_moreau_cone_block(const FrictionBlock& block,
                                                                       const friction::Law& law);
+// LuGre's bristles as a 2-D vector (cone_bristle_block.cpp): state
+// kConeStateSize + 2, the bristles' channels after the cone's.
+std::unique_ptr<integrate::HybridSystem> make_cone_bristle_block(const FrictionBlock& block,
+                                                                 const friction::Law& law);
 
 }  // namespace leadscrew::model::block

@@ -32,6 +32,13 @@ void write_cone_channels(const FrictionBlock& block, double kinetic0, double t, 
   out[plain + 2] = y[kTransverseWork];
 }
 
+std::vector<double> cone_breakpoints(const FrictionBlock& block) {
+  std::vector<double> times = block.force.breakpoints();
+  for (double time : block.transverse_velocity->breakpoints()) times.push_back(time);
+  std::sort(times.begin(), times.end());
+  return times;
+}
+
 const std::vector<std::string>& cone_channel_names() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> result = channel_names(false);
@@ -142,12 +149,7 @@ class ConeBlock final : public integrate::HybridSystem {
     write_cone_channels(block_, kinetic0_, t, y, row, w, across, out);
   }
 
-  std::vector<double> breakpoints() const override {
-    std::vector<double> times = block_.force.breakpoints();
-    for (double time : transverse_.breakpoints()) times.push_back(time);
-    std::sort(times.begin(), times.end());
-    return times;
-  }
+  std::vector<double> breakpoints() const override { return cone_breakpoints(block_); }
   double max_step_hint() const override {
     return integrate::max_step_from_time_scales(
         {block_.force.time_scale(), transverse_.time_scale()});

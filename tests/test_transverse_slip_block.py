@@ -263,3 +263,27 @@ def test_lugre_lag_falls_with_the_bristle_stiffness():
         result, expected = run_lugre(0.3, sigma0, 0.0, periods=4)
         errors.append(abs(mean_speed(result) / expected - 1))
     assert errors[1] < 0.2 * errors[0]
+
+
+@pytest.mark.parametrize("scheme", SCHEMES)
+def test_sticks_where_the_plane_is_held_and_creeps_where_it_slips(scheme):
+    """w a table: held at zero, ramped to W, held, ramped back to zero and
+    held. The block sticks until w leaves zero (event-driven: the event
+    stick->slip where it does), creeps at |w| r / sqrt(1 - r^2) (its
+    displacement that of the quasi-static closed form over the profile, to
+    1e-3), and sticks again once w is held at zero (slip->stick)."""
+    ratio, amplitude = 0.5, 2e-3
+    profile = ls.Table([0.0, 0.2, 0.25, 0.45, 0.5, 1.0], [0.0, 0.0, amplitude, amplitude, 0.0, 0.0])
+    block = ls.FrictionBlock(MASS, MU, G, force=ratio * MU * NORMAL, transverse_velocity=profile)
+    result = ls.simulate(block, 1.0, integrator=scheme, **step_options(scheme))
+    t, u, stick = result["t"], result["u"], result["stick"]
+    slope = ratio / math.sqrt(1 - ratio**2)
+    # the area under |w|: two ramps of 0.05 s and a plateau of 0.2 s
+    expected = slope * amplitude * (0.05 / 2 + 0.2 + 0.05 / 2)
+    assert u[-1] == pytest.approx(expected, rel=1e-3)
+    assert np.all(u[t <= 0.2] == 0.0) and np.all(stick[t < 0.2] == 1.0)
+    assert np.all(stick[t > 0.51] == 1.0) and np.all(u[t > 0.51] == u[-1])
+    if scheme == "event_driven":
+        assert [e.kind for e in result.events] == ["stick->slip", "slip->stick"]
+        assert result.events[0].time == pytest.approx(0.2, abs=1e-12)
+        assert result.events[1].time == pytest.approx(0.5, abs=1e-6)

@@ -186,7 +186,14 @@ class ConeBlock final : public integrate::HybridSystem {
     }
     const double speed = std::hypot(v, w);
     const double magnitude = law_.slip_mu(speed) * normal_force_ + law_.viscous() * speed;
-    if (speed > 0.0) {
+    if (w == 0.0 && v != 0.0) {
+      // The plane at rest across: the 1-D slip, its friction against the
+      // mode's slip sign (exact_block.cpp's), not sign(v): a trial stage
+      // past v's zero continues the mode smoothly, and the root of v ends it
+      // (against sign(v), the integrator ground to a halt at v = 0 with w
+      // held at zero, its steps rejected across the jump).
+      path = path_sign_ * magnitude;
+    } else if (speed > 0.0) {
       path = magnitude * v / speed;
       across = magnitude * w / speed;
     } else {  // the cone's apex for an instant: the set-valued law's value at rest

@@ -101,6 +101,49 @@ integrate::SimulationResult run_cone_event_driven(integrate::HybridSystem& syste
   }
 }
 
+// What a block's result is checked against (model/result_checks.hpp).
+ResultCheckSpec block_check_spec(const FrictionBlock& block, const BlockSimulationOptions& options,
+                                 const friction::Law& law,
+                                 const integrate::SimulationResult& result) {
+  ResultCheckSpec spec;
+  spec.slip = "v";
+  spec.friction_sign = -1.0;  // lambda_T opposes the block: m u'' = F - lambda_T
+  spec.work = {"work_force"};
+  if (block.has_transverse()) {
+    spec.work.push_back("work_transverse");
+    spec.transverse_slip = "transverse_velocity";
+    spec.transverse_friction = "transverse_friction";
+  }
+  spec.stored = {"kinetic", "elastic"};
+  spec.losses = {"friction_loss"};
+  spec.t_end = options.output.t_end;
+  const friction::Resolution resolution = law.resolution();
+  spec.law = &law;
+  // LuGre's bristles store energy: with bristle damping (sigma1 > 0) the law
+  // is not passive in general (its friction loss may fall), and friction may
+  // push while the bristles relax: checked for its energy balance.
+  spec.friction_dissipates = resolution != friction::Resolution::acceleration &&
+                             resolution != friction::Resolution::bristle;
+  spec.slip_resolution = options.integrator_options.atol;  // the slip is the state's velocity
+  spec.time_stepping = options.integrator == "moreau";
+  spec.time_step = spec.time_stepping ? options.dt : 0.0;
+  spec.rtol = options.integrator_options.rtol;
+  spec.atol = options.integrator_options.atol;
+  spec.rows_are_steps = options.output.t_eval.empty();
+  spec.momentum_factor = std::sqrt(2.0 * block.mass);
+  spec.force_factor = std::sqrt(2.0 * block.stiffness);
+  spec.quadratures = (block.has_transverse() ? block::kConeStateSize : block::kStateSize) - 2;
+  spec.load_forces = {"force", "spring_force"};
+  // The block's length: how far it goes (at least the distance the largest
+  // force moves its mass in the run's time, F t^2 / m).
+  double travel = 0.0;
+  const int position = result.channel_index("u");
+  for (std::size_t i = 0; i < result.point_count(); ++i)
+    travel = std::max(travel, std::abs(result.values[i * result.channel_count() + position]));
+  spec.length_scale = std::max(travel, block.normal_force() * spec.t_end * spec.t_end / block.mass);
+  return spec;
+}
+
 }  // namespace
 
 integrate::SimulationResult simulate(const FrictionBlock& block,
@@ -176,42 +219,7 @@ integrate::SimulationResult simulate(const FrictionBlock& block,
   }
   result.friction = options.friction;
 
-  ResultCheckSpec spec;
-  spec.slip = "v";
-  spec.friction_sign = -1.0;  // lambda_T opposes the block: m u'' = F - lambda_T
-  spec.work = {"work_force"};
-  if (block.has_transverse()) {
-    spec.work.push_back("work_transverse");
-    spec.transverse_slip = "transverse_velocity";
-    spec.transverse_friction = "transverse_friction";
-  }
-  spec.stored = {"kinetic", "elastic"};
-  spec.losses = {"friction_loss"};
-  spec.t_end = options.output.t_end;
-  const friction::Resolution resolution = law->resolution();
-  spec.law = law.get();
-  // LuGre's bristles store energy: with bristle damping (sigma1 > 0) the law
-  // is not passive in general (its friction loss may fall), and friction may
-  // push while the bristles relax: checked for its energy balance.
-  spec.friction_dissipates = resolution != friction::Resolution::acceleration &&
-                             resolution != friction::Resolution::bristle;
-  spec.slip_resolution = options.integrator_options.atol;  // the slip is the state's velocity
-  spec.time_stepping = options.integrator == "moreau";
-  spec.time_step = spec.time_stepping ? options.dt : 0.0;
-  spec.rtol = options.integrator_options.rtol;
-  spec.atol = options.integrator_options.atol;
-  spec.rows_are_steps = options.output.t_eval.empty();
-  spec.momentum_factor = std::sqrt(2.0 * block.mass);
-  spec.force_factor = std::sqrt(2.0 * block.stiffness);
-  spec.quadratures = (block.has_transverse() ? block::kConeStateSize : block::kStateSize) - 2;
-  spec.load_forces = {"force", "spring_force"};
-  // The block's length: how far it goes (at least the distance the largest
-  // force moves its mass in the run's time, F t^2 / m).
-  double travel = 0.0;
-  const int position = result.channel_index("u");
-  for (std::size_t i = 0; i < result.point_count(); ++i)
-    travel = std::max(travel, std::abs(result.values[i * result.channel_count() + position]));
-  spec.length_scale = std::max(travel, block.normal_force() * spec.t_end * spec.t_end / block.mass);
+  const ResultCheckSpec spec = block_check_spec(block, options, *law, result);
   check_result(spec, result);
   if (options.check) integrate::enforce_checks(result);
   return result;

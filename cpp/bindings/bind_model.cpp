@@ -112,14 +112,19 @@ void bind_model(py::module_& m) {
 
   py::class_<model::FrictionBlock>(m, "FrictionBlock")
       .def(py::init([](double mass, double mu, double g, py::handle force, double u0, double v0,
-                       std::optional<double> mu_static, double stiffness, double pull_speed) {
+                       std::optional<double> mu_static, double stiffness, double pull_speed,
+                       py::handle transverse_velocity) {
+             std::optional<Excitation> transverse;
+             if (!transverse_velocity.is_none())
+               transverse = to_excitation(transverse_velocity, "transverse_velocity");
              return model::FrictionBlock(mass, mu, g, to_excitation(force, "force"), u0, v0,
-                                         mu_static ? *mu_static : -1.0, stiffness, pull_speed);
+                                         mu_static ? *mu_static : -1.0, stiffness, pull_speed,
+                                         std::move(transverse));
            }),
            py::arg("mass"), py::arg("mu"), py::arg("g") = 9.81, py::arg("force") = 0.0,
            py::arg("initial_position") = 0.0, py::arg("initial_velocity") = 0.0,
            py::arg("mu_static") = py::none(), py::arg("stiffness") = 0.0,
-           py::arg("pull_speed") = 0.0)
+           py::arg("pull_speed") = 0.0, py::arg("transverse_velocity") = py::none())
       .def_readonly("mass", &model::FrictionBlock::mass)
       .def_readonly("mu", &model::FrictionBlock::mu)
       .def_readonly("g", &model::FrictionBlock::g)
@@ -129,6 +134,7 @@ void bind_model(py::module_& m) {
       .def_readonly("mu_static", &model::FrictionBlock::mu_static)
       .def_readonly("stiffness", &model::FrictionBlock::stiffness)
       .def_readonly("pull_speed", &model::FrictionBlock::pull_speed)
+      .def_readonly("transverse_velocity", &model::FrictionBlock::transverse_velocity)
       .def_property_readonly("normal_force", &model::FrictionBlock::normal_force);
 
   m.def("block_integrators", [](const std::string& friction) {

@@ -82,10 +82,24 @@ def _refuse_none(path: str, f: Field) -> None:
     _fail(path, None, f"{allowed} (None removes only an optional field: {hint})")
 
 
+# Keys of planned physics not implemented yet: refused with what is
+# supported instead, not as unknown keys.
+_NOT_IMPLEMENTED = {
+    "loads.transverse_slip_velocity": (
+        "the thread's 2-D friction cone (the nut's transverse slip on the flank, issue 34) is "
+        "not implemented for any drive concept; the friction block has it "
+        "(FrictionBlock(..., transverse_velocity=...), exact Coulomb, event_driven and moreau; "
+        "docs/physics/transverse_slip.md)"),
+}
+
+
 def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]) -> Dict[str, Any]:
     if not isinstance(given, dict):
         _fail(path, given, "a table (dict) of fields")
     for key in given:
+        if f"{path}.{key}" in _NOT_IMPLEMENTED:
+            raise ValueError(f"{path}.{key} = {given[key]!r} is not supported: "
+                             f"{_NOT_IMPLEMENTED[f'{path}.{key}']}")
         if key not in schema:
             raise ValueError(f"{path}.{key} is not a known key{did_you_mean(key, schema)}; "
                              f"{path} takes {', '.join(schema)}")

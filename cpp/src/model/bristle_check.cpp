@@ -21,6 +21,39 @@ namespace {
 // 1e-10 ... 1e-3; result_checks.md, "bristle_bound").
 constexpr double kBristleResolution = 1e3;
 
+// The bristles as a 2-D vector (a transverse slip, the friction block's
+// cone_bristle_block.cpp): the same bounds on the magnitudes, |z| over both
+// components, |lambda| against N (sigma0 z_bound + sigma1 |z'|) + viscous
+// |gamma|, z' = gamma - sigma0 |gamma| z / mu(|gamma|) from the row.
+void check_planar_bristles(const ResultCheckSpec& spec, const integrate::SimulationResult& result,
+                           double z_bound, double force_resolution, check_rows::Worst& deflection,
+                           check_rows::Worst& force) {
+  const friction::Law& law = *spec.law;
+  const std::size_t n = result.point_count(), width = result.channel_count();
+  const int columns[] = {result.channel_index("bristle_deflection"),
+                         result.channel_index("bristle_deflection_transverse"),
+                         result.channel_index(spec.slip),
+                         result.channel_index(spec.transverse_slip),
+                         result.channel_index(spec.friction),
+                         result.channel_index(spec.transverse_friction),
+                         result.channel_index(spec.normal)};
+  double row[7];
+  const double sigma0 = law.bristle_stiffness(), sigma1 = law.bristle_damping();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 7; ++k)
+      row[k] = columns[k] < 0 ? 0.0 : result.values[i * width + static_cast<std::size_t>(columns[k])];
+    const double speed = std::hypot(row[2], row[3]);
+    const double relaxation = sigma0 * speed / law.slip_mu(speed);
+    const double rate = std::hypot(row[2] - relaxation * row[0], row[3] - relaxation * row[1]);
+    const double normal = std::abs(row[6]) * spec.coefficient_scale;
+    deflection.offer(std::hypot(row[0], row[1]), z_bound, result.time[i]);
+    force.offer(std::hypot(row[4], row[5]),
+                normal * (sigma0 * z_bound + sigma1 * rate) + law.viscous() * speed +
+                    force_resolution,
+                result.time[i]);
+  }
+}
+
 }  // namespace
 
 void check_bristle_bound(const ResultCheckSpec& spec, integrate::SimulationResult& result) {
@@ -60,6 +93,13 @@ void check_bristle_bound(const ResultCheckSpec& spec, integrate::SimulationResul
         kForceResolution *
         (largest_friction + law.max_mu() * spec.coefficient_scale * largest_normal);
     check_rows::Worst worst_deflection{deflection}, worst_force{force};
+    if (!spec.transverse_friction.empty()) {  // the 2-D bristles of a transverse slip
+      check_planar_bristles(spec, result, z_bound, force_resolution, worst_deflection,
+                            worst_force);
+      result.checks.push_back(deflection);
+      result.checks.push_back(force);
+      return;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       const double t = result.time[i], z = at(i, z_index), slip = at(i, slip_index);
       worst_deflection.offer(std::abs(z), z_bound, t);

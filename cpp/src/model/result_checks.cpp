@@ -108,6 +108,8 @@ struct CheckContext {
   const double *time = nullptr, *slip = nullptr, *stick = nullptr, *play = nullptr,
                *gap = nullptr, *friction_loss = nullptr, *residual = nullptr,
                *friction = nullptr, *normal = nullptr;
+  // A 2-D cone's transverse slip and friction (null: a 1-D contact).
+  const double *transverse_slip = nullptr, *transverse_friction = nullptr;
   int gap_index = -1;
   // The losses of the `losses` check (the friction loss has its own) and
   // the largest of each.
@@ -136,6 +138,19 @@ struct CheckContext {
 
   Eigen::Map<const Eigen::ArrayXd> array(const double* values) const {
     return Eigen::Map<const Eigen::ArrayXd>(values, rows);
+  }
+  // Row i's friction magnitude, its power on the slip and the slip speed:
+  // the 2-D vectors' where the contact has a transverse slip.
+  double friction_magnitude(std::size_t i) const {
+    return transverse_friction ? std::hypot(friction[i], transverse_friction[i])
+                               : std::abs(friction[i]);
+  }
+  double friction_power(std::size_t i) const {
+    return transverse_friction ? friction[i] * slip[i] + transverse_friction[i] * transverse_slip[i]
+                               : friction[i] * slip[i];
+  }
+  double slip_speed(std::size_t i) const {
+    return transverse_slip ? std::hypot(slip[i], transverse_slip[i]) : std::abs(slip[i]);
   }
   // The largest value of a column (>= 0; the finite check passed).
   template <class Values>
@@ -188,7 +203,8 @@ integrate::InvariantCheck check_event_times(const ResultCheckSpec& spec,
 
 // The columns the checks read, and the friction force on the slipping body
 // and the normal force mu' multiplies (a preloaded nut's halves:
-// flank_normal), into `forces` (2 n doubles).
+// flank_normal), into `forces` (2 n doubles; 3 n with a transverse slip:
+// the transverse friction last).
 void read_columns(CheckContext& x, ChannelColumns& columns, double* forces) {
   const ResultCheckSpec& spec = x.spec;
   x.slip = columns.column(spec.slip);
@@ -210,6 +226,12 @@ void read_columns(CheckContext& x, ChannelColumns& columns, double* forces) {
   }
   x.friction = friction_force.data();
   x.normal = normal_force.data();
+  if (!spec.transverse_friction.empty()) {
+    Eigen::Map<Eigen::ArrayXd> across(forces + 2 * x.n, x.rows);
+    across = spec.friction_sign * x.array(columns.column(spec.transverse_friction));
+    x.transverse_friction = across.data();
+    x.transverse_slip = columns.column(spec.transverse_slip);
+  }
 }
 
 // The law's character, and which of the force checks apply to it.
@@ -382,8 +404,8 @@ integrate::InvariantCheck check_friction_power(const CheckContext& x) {
   if (power.applies)
     for (std::size_t i = 0; i < x.n; ++i)
       if (x.band[i] >= 0.0) {
-        const double f = x.friction[i], v = x.slip[i];
-        worst.offer(f * v, std::abs(f) * x.band[i] + std::abs(v) * x.force_resolution,
+        worst.offer(x.friction_power(i),
+                    x.friction_magnitude(i) * x.band[i] + x.slip_speed(i) * x.force_resolution,
                     x.time[i]);
       }
   return power;
@@ -424,8 +446,8 @@ integrate::InvariantCheck check_friction_cone(const CheckContext& x) {
   if (cone.applies)
     for (std::size_t i = 0; i < x.n; ++i)
       if (x.band[i] >= 0.0)
-        worst.offer(std::abs(x.friction[i]) -
-                        (x.cone_mu * x.normal[i] + x.viscous * std::abs(x.slip[i])),
+        worst.offer(x.friction_magnitude(i) -
+                        (x.cone_mu * x.normal[i] + x.viscous * x.slip_speed(i)),
                     x.force_resolution, x.time[i]);
   return cone;
 }
@@ -467,12 +489,12 @@ void offer_set_valued_law(const CheckContext& x, Worst& worst) {
   const bool plain = x.one_slip_coefficient;
   const double plain_mu = law.mu();
   for (std::size_t i = 0; i < x.n; ++i) {
-    const double speed = std::abs(x.slip[i]);
+    const double speed = x.slip_speed(i);
     if (x.band[i] < 0.0 || x.stick[i] != 0.0 || !(speed > x.band[i])) continue;
     const double normal_force = x.normal[i];
     const double expected = (plain ? plain_mu : law.slip_mu(speed)) * scale * normal_force +
                             (normal_force > 0.0 ? x.viscous * speed : 0.0);
-    worst.offer(std::abs(expected - std::abs(x.friction[i])), x.force_resolution, x.time[i]);
+    worst.offer(std::abs(expected - x.friction_magnitude(i)), x.force_resolution, x.time[i]);
   }
 }
 
@@ -569,15 +591,18 @@ void check_result(const ResultCheckSpec& spec, integrate::SimulationResult& resu
   const std::size_t n = result.point_count();
   // The columns (ChannelColumns), the friction and normal forces, the
   // energy flow and the slip band in one buffer (ScratchBuffer).
-  ScratchBuffer scratch(n * (result.channel_count() + 1) + 4 * n);
+  ScratchBuffer scratch(n * (result.channel_count() + 1) +
+                        (spec.transverse_friction.empty() ? 4 : 5) * n);
   ChannelColumns columns(result, scratch.data());
   double* const extra = scratch.data() + n * (result.channel_count() + 1);
   CheckContext context(spec, result);
   read_columns(context, columns, extra);
   describe_law(context);
-  measure_scales(context, columns, extra + 2 * n);
+  // (a transverse slip's friction after the two forces)
+  double* const scales = extra + (spec.transverse_friction.empty() ? 2 : 3) * n;
+  measure_scales(context, columns, scales);
   resolve_round_off(context);
-  fill_slip_band(context, extra + 3 * n);
+  fill_slip_band(context, scales + n);
 
   checks.push_back(check_friction_power(context));
   checks.push_back(check_friction_loss(context));

@@ -170,7 +170,7 @@ class SimulationResult:
     def time(self) -> numpy.typing.NDArray[numpy.float64]:
         ...
 class FrictionBlock:
-    def __init__(self, mass: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex = 9.81, force: typing.Any = 0.0, initial_position: typing.SupportsFloat | typing.SupportsIndex = 0.0, initial_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.0, mu_static: typing.SupportsFloat | typing.SupportsIndex | None = None, stiffness: typing.SupportsFloat | typing.SupportsIndex = 0.0, pull_speed: typing.SupportsFloat | typing.SupportsIndex = 0.0) -> None:
+    def __init__(self, mass: typing.SupportsFloat | typing.SupportsIndex, mu: typing.SupportsFloat | typing.SupportsIndex, g: typing.SupportsFloat | typing.SupportsIndex = 9.81, force: typing.Any = 0.0, initial_position: typing.SupportsFloat | typing.SupportsIndex = 0.0, initial_velocity: typing.SupportsFloat | typing.SupportsIndex = 0.0, mu_static: typing.SupportsFloat | typing.SupportsIndex | None = None, stiffness: typing.SupportsFloat | typing.SupportsIndex = 0.0, pull_speed: typing.SupportsFloat | typing.SupportsIndex = 0.0, transverse_velocity: typing.Any = None) -> None:
         ...
     @property
     def force(self) -> Excitation:
@@ -201,6 +201,9 @@ class FrictionBlock:
         ...
     @property
     def stiffness(self) -> float:
+        ...
+    @property
+    def transverse_velocity(self) -> Excitation | None:
         ...
 class DriveParameters:
     """

@@ -100,6 +100,7 @@ class Law {
   virtual double bristle_rate(double /*slip*/, double /*z*/) const { return 0.0; }
   virtual double bristle_coefficient(double /*slip*/, double /*z*/) const { return 0.0; }
   virtual double bristle_stiffness() const { return 0.0; }  // sigma0 [1/m]
+  virtual double bristle_damping() const { return 0.0; }    // sigma1 [s/m]
   // The largest deflection the bristles reach from rest [m],
   // max(mu, mu_static) / sigma0 (0: no bristles): the set |z| <= it is
   // invariant under z' = gamma - sigma0 |gamma| z / mu(|gamma|), since on

@@ -13,8 +13,16 @@
 // work_force is the work of F_Exc and of the spring's moving end (F_spring V),
 // the spring's energy k (u_0 + V t - u)^2 / 2 is elastic; LuGre's bristle
 // deflection z is the last state.
+//
+// With a transverse slip w(t) (issue 34; docs/physics/transverse_slip.md)
+// the plane also moves across the block's path at the prescribed velocity
+// w: the slip is the vector (v, w) and friction an isotropic 2-D cone,
+// -mu N (v, w) / |(v, w)| in slip, |lambda| <= mu_static N where both
+// components vanish (cone_block.cpp, Moreau-Jean in moreau_block.cpp). The
+// state then carries the transverse excitation's work (kTransverseWork).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,7 +38,8 @@ struct FrictionBlock {
   // mu_static < 0: equal to mu.
   FrictionBlock(double mass, double mu, double g, Excitation force, double initial_position = 0.0,
                 double initial_velocity = 0.0, double mu_static = -1.0, double stiffness = 0.0,
-                double pull_speed = 0.0);
+                double pull_speed = 0.0,
+                std::optional<Excitation> transverse_velocity = std::nullopt);
   double mass;
   double mu;
   double g;
@@ -40,6 +49,10 @@ struct FrictionBlock {
   double mu_static;   // >= mu
   double stiffness;   // of the spring to the pulled point [N/m], >= 0
   double pull_speed;  // of the pulled point [m/s]
+  // The plane's slip across the block's path, w(t) [m/s]; none: the 1-D
+  // block (no transverse term at all, no cost).
+  std::optional<Excitation> transverse_velocity;
+  bool has_transverse() const { return transverse_velocity.has_value(); }
   double normal_force() const { return mass * g; }
   // The spring's force on the block at (t, u).
   double spring_force(double t, double u) const {

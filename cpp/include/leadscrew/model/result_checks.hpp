@@ -53,6 +53,12 @@ struct ResultCheckSpec {
   std::string normal = "normal_force";
   std::string friction_loss = "friction_loss";
   std::string residual = "energy_residual";
+  // A 2-D friction cone (a transverse slip, issue 34): the channels of the
+  // slip across the path and of the friction along it (same sign
+  // convention as `friction`); empty: a 1-D contact. With them the force
+  // checks take the 2-D vectors: the power lambda . gamma, the magnitude
+  // |lambda| against the cone, the slip speed |gamma|.
+  std::string transverse_slip, transverse_friction;
   // Channels of the energy account: work put in (either sign), energy
   // stored (kinetic, elastic) and losses (>= 0).
   std::vector<std::string> work, stored, losses;

@@ -30,6 +30,7 @@ class LuGre final : public Law {
     return sigma0_ * z + sigma1_ * bristle_rate(slip, z);
   }
   double bristle_stiffness() const override { return sigma0_; }
+  double bristle_damping() const override { return sigma1_; }
   // z / bristle_range (in [-1, 1]: its error controlled at its own scale),
   // and the bristles' stored energy per unit normal force integrated.
   std::vector<const char*> state_names() const override {

@@ -18,17 +18,8 @@ class MoreauBlock final : public integrate::TimeSteppingSystem {
   int size() const override { return kStateSize; }
 
   void step(double t, double h, double theta, const double* y, double* y_next) override {
-    const double force = block_.force(t + theta * h);
-    // The spring implicit with the theta method (as the drive's springs):
-    // W v+ = m v + h (F + F_spring(t + theta h, u)) - theta (1 - theta) h^2 k v
-    // - impulse, W = m + theta^2 h^2 k.
-    const double k = block_.stiffness;
-    const double spring_start = block_.spring_force(t + theta * h, y[kPosition]);
-    const double mass = block_.mass + theta * theta * h * h * k;  // W
-    const double free_velocity =
-        (block_.mass * y[kVelocity] + h * (force + spring_start) -
-         theta * (1.0 - theta) * h * h * k * y[kVelocity]) /
-        mass;
+    const MoreauFreeStep free = moreau_free_step(block_, t, h, theta, y);
+    const double mass = free.mass, free_velocity = free.free_velocity;
     double velocity = 0.0, impulse = 0.0;  // impulse opposing +u, as lambda_T in eq. 3.9
     if (plain_) {
       // Velocity level: new velocity = free velocity + impulse / m, the
@@ -53,13 +44,7 @@ class MoreauBlock final : public integrate::TimeSteppingSystem {
       velocity = (mass * free_velocity - s * coulomb) / (mass + law_.viscous() * h);
       impulse = mass * (free_velocity - velocity);
     }
-    y_next[kVelocity] = velocity;
-    const double v_theta = (1.0 - theta) * y[kVelocity] + theta * velocity;
-    y_next[kPosition] = y[kPosition] + h * v_theta;
-    // The spring's force at the step's theta point, and the pulled end's work.
-    const double spring = spring_start - k * theta * h * v_theta;
-    y_next[kWorkForce] = y[kWorkForce] + force * (y_next[kPosition] - y[kPosition]) +
-                         spring * block_.pull_speed * h;
+    moreau_advance(block_, free, h, theta, velocity, y, y_next);
     // The friction impulse acts at the new velocity (maximal dissipation):
     // its power is never negative.
     y_next[kFrictionLoss] = y[kFrictionLoss] + impulse * velocity;

@@ -1,0 +1,55 @@
+"""The thread under transverse flank slip (issue 34, item 3): the closed form's
+input, the flank's stick-force ratio q (tests/helpers/transverse_slip_reference.py),
+against the package's thread model; the drive's 2-D flank cone is not
+implemented, and loads.transverse_slip_velocity is refused by name."""
+
+import math
+
+import pytest
+
+import leadscrew as ls
+from helpers.transverse_slip_reference import (creep_speed, thread_flank_ratio,
+                                               thread_load_creep_speed)
+
+THREADS = [ls.Thread("4 mm", "16 mm"), ls.Thread("2 mm", "10 mm", flank_angle="30 deg"),
+           ls.Thread("12 mm", "12 mm", starts=2, hand="left")]
+
+
+@pytest.mark.parametrize("thread", THREADS, ids=["tr16x4", "m10x2", "steep_left"])
+@pytest.mark.parametrize("mu", [0.1, 0.3])
+def test_the_flank_ratio_is_one_at_the_threads_raise_and_lower_torques(thread, mu):
+    """q reaches the cone (1) exactly at the thread package's raise and lower
+    torques: the stick forces' ratio has the package's conventions."""
+    force = 250.0
+    args = (thread.lead_angle, thread.mean_radius, thread.effective_mu(mu), thread.hand_sign)
+    raising = ls.thread.raise_torque(thread, mu, force)
+    if math.isfinite(raising):
+        assert thread_flank_ratio(thread.hand_sign * raising, force, *args) == pytest.approx(
+            1.0, rel=1e-12)
+    lowering = ls.thread.lower_torque(thread, mu, force)
+    assert thread_flank_ratio(-thread.hand_sign * lowering, force, *args) == pytest.approx(
+        1.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("thread", THREADS, ids=["tr16x4", "m10x2", "steep_left"])
+@pytest.mark.parametrize("mu", [0.05, 0.1, 0.3])
+def test_free_rotor_ratio_is_tan_alpha_over_mu(thread, mu):
+    """Free rotor: q = tan(alpha)/mu', below 1 exactly where the package calls
+    the thread self-locking, and the load's creep is the block's along the
+    helix times sin(alpha)."""
+    mu_eff = thread.effective_mu(mu)
+    q = thread_flank_ratio(0.0, 100.0, thread.lead_angle, thread.mean_radius, mu_eff,
+                           thread.hand_sign)
+    assert q == pytest.approx(math.tan(thread.lead_angle) / mu_eff, rel=1e-12)
+    assert (q < 1.0) == ls.thread.is_self_locking(thread, mu)
+    if q < 1.0:
+        helix = creep_speed(q, 1.0, 1.0, 1e-3)
+        assert thread_load_creep_speed(-100.0, thread.lead_angle, mu_eff, 1e-3) == pytest.approx(
+            -math.sin(thread.lead_angle) * helix, rel=1e-12)
+
+
+def test_transverse_slip_on_a_drive_is_refused_by_name():
+    scene = ls.scenes.load("position_holding")
+    with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is not "
+                                         r"supported: the thread's 2-D friction cone"):
+        scene.replace(loads={"transverse_slip_velocity": ls.Sine(1e-3, 60.0)})

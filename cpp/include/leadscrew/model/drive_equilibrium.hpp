@@ -26,7 +26,9 @@
 // solved by Newton's method with the spring matrix at the current nut
 // position (the exact forces, those of DriveDynamics, in the residual), and
 // the result is checked: every generalized force balanced to 1e-9 of the
-// forces that meet there, else SimulationError.
+// forces that meet there (with what the springs pass on from their other
+// ends: a coordinate no load passes through, the rotor's coupling under a
+// zero torque, has only round-off of its own), else SimulationError.
 #pragma once
 
 #include <Eigen/Core>

@@ -39,8 +39,10 @@ class IterationMatrix {
     if (!factorized_ || base.rows() != base_.rows() || base != base_) {
       base_ = base;
       llt_.compute(base_);
-      z_ = llt_.solve(g_);
-      tangent_ = llt_.solve(t_);
+      z_ = g_;
+      solve_in_place(z_);
+      tangent_ = t_;
+      solve_in_place(tangent_);
       gz_ = g_.dot(z_);
       factorized_ = true;
       ++factorizations_;
@@ -56,7 +58,13 @@ class IterationMatrix {
   // W^-1 x for a vector or the columns of a matrix.
   template <class Matrix>
   Matrix solve(const Matrix& x) const {
-    Matrix y = llt_.solve(x);
+    Matrix y;
+    if constexpr (Matrix::ColsAtCompileTime == 1) {
+      y = x;
+      solve_in_place(y);
+    } else {
+      y = llt_.solve(x);
+    }
     if (s_ != 0.0) y.noalias() -= z_ * (scale_ * (g_.transpose() * y));
     return y;
   }
@@ -68,6 +76,49 @@ class IterationMatrix {
   long factorizations() const { return factorizations_; }
 
  private:
+  // W0^-1 x on its factors L L^T, in Eigen's own order of operations for a
+  // vector (LLT::solve: the forward solve by columns, the backward one by
+  // rows, each row's sum in SSE2's pairs of lanes), so bit for bit what
+  // llt_.solve(x) gave (tests/cpp/test_moreau_iteration.cpp), without its
+  // generic blocked kernels: a quarter of a 4-coordinate drive's step went
+  // to them (the position-holding benchmark, 3.4 solves a step).
+  void solve_in_place(CoordinateVector& x) const {
+    const Square& l = llt_.matrixLLT();
+    const int n = static_cast<int>(x.size());
+    for (int i = 0; i < n; ++i) {
+      if (x[i] == 0.0) continue;
+      x[i] /= l(i, i);
+      const double xi = x[i];
+      for (int j = i + 1; j < n; ++j) x[j] -= xi * l(j, i);
+    }
+    for (int i = n - 1; i >= 0; --i) {
+      const int k = n - 1 - i;
+      if (k > 0) x[i] -= row_sum(&l.coeffRef(i + 1, i), &x.coeffRef(i + 1), k);
+      if (x[i] != 0.0) x[i] /= l(i, i);
+    }
+  }
+  // sum_m a[m] b[m] (k >= 1) as Eigen's vectorized reduction adds it: two
+  // lanes (two pairs of them from four terms on), the lanes' sum, the odd
+  // term last.
+  static double row_sum(const double* a, const double* b, int k) {
+    const int paired = (k / 2) * 2;
+    if (paired == 0) return a[0] * b[0];
+    double lane0 = a[0] * b[0], lane1 = a[1] * b[1];
+    if (paired > 2) {
+      double next0 = a[2] * b[2], next1 = a[3] * b[3];
+      const int quads = (k / 4) * 4;
+      for (int m = 4; m < quads; m += 4) {
+        lane0 += a[m] * b[m], lane1 += a[m + 1] * b[m + 1];
+        next0 += a[m + 2] * b[m + 2], next1 += a[m + 3] * b[m + 3];
+      }
+      lane0 += next0, lane1 += next1;
+      if (paired > quads) lane0 += a[quads] * b[quads], lane1 += a[quads + 1] * b[quads + 1];
+    }
+    double sum = lane0 + lane1;
+    for (int m = paired; m < k; ++m) sum += a[m] * b[m];
+    return sum;
+  }
+
   Eigen::LLT<Square> llt_;
   Square base_;
   CoordinateVector g_, t_, z_, tangent_;

@@ -53,15 +53,33 @@ SimulationResult simulate_moreau(TimeSteppingSystem& system, double t0,
     ++next_eval;
   }
 
+  auto step_end = [&](long k) {
+    return (k + 1 == steps) ? output.t_end : t0 + (k + 1) * options.dt;
+  };
   double t = t0;
   for (long k = 0; k < steps; ++k) {
     poll_monitor(t);
-    const double t_next = (k + 1 == steps) ? output.t_end : t0 + (k + 1) * options.dt;
+    const double t_next = step_end(k);
     system.step(t, t_next - t, options.theta, y.data(), y_next.data());
     for (int i = 0; i < n; ++i)
       if (!std::isfinite(y_next[i]))
         throw SimulationError(t_next, "the Moreau-Jean step produced a non-finite state",
                               "reduce dt");
+    // The channels of a step's end only where a row reads them: every
+    // step's, or where the next output time lies within this step or the
+    // next (the interpolation's two ends). The system's channels are a
+    // function of the step's end and its last step alone, so a sampled run
+    // writes the same rows as before, without the channels of the steps
+    // between (the position-holding benchmark: 1.3k of 14k instructions a
+    // step).
+    const bool needed = every_step ||
+                        (next_eval < eval_count &&
+                         output.t_eval[next_eval] <= (k + 1 < steps ? step_end(k + 1) : t_next));
+    if (!needed) {
+      y.swap(y_next);
+      t = t_next;
+      continue;
+    }
     previous_values.swap(values);
     system.channels(t_next, y_next.data(), values.data());
     if (every_step) {

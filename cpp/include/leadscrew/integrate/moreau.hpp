@@ -20,7 +20,8 @@ class TimeSteppingSystem {
   // writes y_next. Must not allocate.
   virtual void step(double t, double h, double theta, const double* y, double* y_next) = 0;
   virtual const std::vector<std::string>& channel_names() const = 0;
-  // Channels of the last step ending at (t, y).
+  // Channels of the last step ending at (t, y): a function of them alone
+  // (simulate_moreau calls it only after the steps whose end a row reads).
   virtual void channels(double t, const double* y, double* out) = 0;
   virtual long lcp_solves() const { return 0; }
 };

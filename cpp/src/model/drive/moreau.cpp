@@ -531,6 +531,13 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
   const std::vector<elements::ExactEndStop>& exact = model_.elements().exact_stops;
   int nc = (thread ? 1 : 0) + (p_.speed_controlled ? 1 : 0) + (rotor_row_ ? 1 : 0);
   for (std::size_t k = 0; k < exact.size(); ++k) nc += stop_active_[k] ? 1 : 0;
+  Impulses out;
+  if (nc == 0) {  // (no constraint row: the free velocity and the friction impulse's part;
+                  // a penalty flank's step, three times a pass)
+    out.velocity = free_;
+    if (tangential != 0.0) out.velocity += tangential * iteration_.tangent_solve();
+    return out;
+  }
   Columns B = Columns::Zero(n, nc);
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kRows, 1> r(nc);
   int row = 0;
@@ -555,14 +562,9 @@ DriveMoreau::Impulses DriveMoreau::solve(bool thread, double normal_target, doub
     B(model_.rotor(), row) = -1.0;
     r[row++] = rotor_.r;
   }
-  Impulses out;
   CoordinateVector base = free_;
   if (tangential != 0.0) {
     base += tangential * iteration_.tangent_solve();
-  }
-  if (nc == 0) {
-    out.velocity = base;
-    return out;
   }
   const Columns weighted = iteration_.solve(B);
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kRows, kRows> schur =

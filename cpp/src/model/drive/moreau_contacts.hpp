@@ -130,6 +130,7 @@ inline double penalty_stop_loss(const elements::EndStop& stop, bool engaged, dou
 // alone, which always pushes).
 struct PenaltyFlank {
   double e0 = 0.0, e1k = 0.0;            // the play at the step's start, its end's estimate [m]
+  double potential0 = 0.0;               // U(e0) [J] (start: every linearisation needs it)
   double secant = 0.0, slope = 0.0;      // S_k [N] and S'_k [N/m] at e1k
   double damping = 0.0;                  // c [N s/m]
   int side = 0;                          // the flank: +1 upper (e > 0), -1 lower, 0 none
@@ -138,12 +139,18 @@ struct PenaltyFlank {
   double low = -std::numeric_limits<double>::infinity();
   double high = std::numeric_limits<double>::infinity();
 
+  // The step's start at the play `start`: no force yet (linearise).
+  void start(const elements::ThreadPair& thread, double start) noexcept {
+    *this = PenaltyFlank{};
+    e0 = start;
+    potential0 = thread.flank_potential(start);
+  }
   void linearise(const elements::ThreadPair& thread, double end) noexcept {
     e1k = end;
     const double delta = end - e0;
     const double scale = std::max({std::abs(e0), std::abs(end), 1e-300});
     if (std::abs(delta) > 1e-7 * scale) {
-      secant = (thread.flank_potential(end) - thread.flank_potential(e0)) / delta;
+      secant = (thread.flank_potential(end) - potential0) / delta;
       slope = std::max(0.0, (thread.flank_slope(end) - secant) / delta);
     } else {  // (the midpoint's slope: the secant's limit without its cancellation)
       secant = thread.flank_slope(0.5 * (e0 + end));
@@ -163,7 +170,7 @@ struct PenaltyFlank {
   double loss(const elements::ThreadPair& thread, double end, double rate, double h) const {
     if (active()) return h * damping * rate * rate;
     if (!released) return 0.0;
-    return std::max(0.0, thread.flank_potential(e0) - thread.flank_potential(end));
+    return std::max(0.0, potential0 - thread.flank_potential(end));
   }
 };
 

@@ -68,7 +68,7 @@ bool DriveMoreau::update_flank(double h, double theta, const CoordinateVector& v
   if (flank_.released) {
     // (Without a force the step runs into a flank, U(e1) > U(e0): its
     // spring alone, which pushes.)
-    if (flank_.undamped || !(thread.flank_potential(end) > thread.flank_potential(flank_.e0)))
+    if (flank_.undamped || !(thread.flank_potential(end) > flank_.potential0))
       return false;
     flank_.released = false;
     flank_.undamped = true;

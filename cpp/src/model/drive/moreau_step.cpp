@@ -61,8 +61,7 @@ void DriveMoreau::plan_contacts(StepState& s, double restitution) {
   }
   const elements::ThreadPair& thread = model_.thread_pair();
   if (thread.penalty()) {
-    flank_ = moreau_contacts::PenaltyFlank{};
-    flank_.e0 = s.play0;
+    flank_.start(thread, s.play0);
     flank_.linearise(thread, s.play0 + s.h * s.play_rate0);
   }
   s.rotor_target = p_.speed_controlled ? model_.motor().prescribed_speed(s.t + s.h) : 0.0;

@@ -242,6 +242,8 @@ def test_the_event_driven_train_and_smooth_laws_are_refused_with_the_reason():
     # no halves' cone).
     smooth = dc_lossy_scene("rigid", 20.0)
     smooth["friction"] = {"law": "arctan_velocity", "mu": 0.3}
-    with pytest.raises(ValueError, match=r"nut\.preload = 20 is invalid with friction\.law = "
-                                         r"\"arctan_velocity\""):
+    with pytest.raises(ValueError, match=r"nut\.preload = 20 N is invalid with gear\.type = "
+                                         r"\"lossy\" and friction\.law = \"arctan_velocity\": the "
+                                         r"train's friction stages run on Moreau-Jean, whose step "
+                                         r"takes a preloaded nut with exact Coulomb friction only"):
         ls.Scene.from_dict(smooth).model()

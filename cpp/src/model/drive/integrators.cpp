@@ -54,7 +54,16 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
     return names;
   }();
   const friction::LawType& type = friction::law_type(friction);
-  if (preloaded) return lift_off ? event_driven_only : with_moreau;
+  // A preloaded nut: exact Coulomb on the event-driven scheme and Moreau-
+  // Jean; the smooth laws and Stribeck's curve on the event-driven scheme
+  // and (smooth laws) the ODE methods, whose driver takes the halves
+  // (drive_dynamics.cpp); lift-off on the event-driven scheme.
+  if (preloaded) {
+    const bool coulomb = type.time_stepping && friction == "coulomb";
+    if (lift_off) return coulomb || type.time_stepping ? event_driven_only : smooth;
+    if (type.time_stepping) return coulomb ? with_moreau : event_driven_only;
+    return smooth;
+  }
   if (type.time_stepping) {  // set-valued
     if (exact_play) return with_moreau;
     if (type.ode) return set_valued_all;
@@ -158,24 +167,38 @@ void check_theta_stable_with_springs(const DriveModel& model,
       "(below 0.5 their modes grow from step to step)");
 }
 
-// A preloaded nut runs on the event-driven scheme and, without lift-off, on
-// Moreau-Jean (moreau_preload.cpp): the element's own reason first (the
-// list of integrators leaves it out).
+// A preloaded nut runs on the event-driven scheme; with exact Coulomb and
+// without lift-off on Moreau-Jean (moreau_preload.cpp); with a smooth law
+// on the ODE methods too (drive_dynamics.cpp): the element's own reason
+// first (the list of integrators leaves it out).
 void check_preload_integrator(const DriveModel& model, const std::string& integrator) {
   const DriveParameters& p = model.parameters();
-  if (const elements::PreloadedNut* nut = model.preloaded_nut();
-      nut && integrator != "event_driven" && (integrator != "moreau" || nut->lift_off))
+  const elements::PreloadedNut* nut = model.preloaded_nut();
+  if (!nut || integrator == "event_driven") return;
+  const friction::Law& law = model.law();
+  const bool set_valued = law.resolution() == friction::Resolution::set_valued;
+  const bool coulomb = set_valued && law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
+                       law.slip_mu(1.0) == law.mu();
+  if (integrator != "moreau" && !set_valued) return;  // (the law's own list decides)
+  if (integrator == "moreau" && nut->lift_off)
     throw InvalidArgument(
-        "integrator = \"" + integrator + "\" is invalid with nut.preload = " +
-        format_value(p.nut_preload) + " N" +
-        (nut->lift_off
-             ? " and backlash.contact = \"" + backlash_contact_name(p.backlash) +
-                   "\": a preloaded nut that lifts off (penalty play on a flexible concept) "
-                   "runs on the event-driven scheme only (integrator = \"event_driven\"); "
-                   "Moreau-Jean's step has no velocity-level model of half B on its own "
-                   "flank beside the penalty flank"
-             : ": a preloaded nut runs with exact Coulomb friction on the event-driven "
-               "scheme or Moreau-Jean (integrator = \"event_driven\" or \"moreau\")"));
+        "integrator = \"moreau\" is invalid with nut.preload = " + format_value(p.nut_preload) +
+        " N and backlash.contact = \"" + backlash_contact_name(p.backlash) +
+        "\": a preloaded nut that lifts off (penalty play on a flexible concept) runs on the "
+        "event-driven scheme only (integrator = \"event_driven\"); Moreau-Jean's step has no "
+        "velocity-level model of half B on its own flank beside the penalty flank");
+  if (integrator == "moreau" && coulomb) return;
+  throw InvalidArgument(
+      "integrator = \"" + integrator + "\" is invalid with nut.preload = " +
+      format_value(p.nut_preload) + " N and friction.law = \"" + p.friction + "\"" +
+      (integrator == "moreau"
+           ? ": Moreau-Jean's step takes a preloaded nut with exact Coulomb friction only (the "
+             "halves' impulse cone at mu'); the other laws run on the event-driven scheme "
+             "(integrator = \"event_driven\")"
+           : ": a preloaded nut with a set-valued law runs on the event-driven scheme" +
+                 std::string(coulomb ? " or Moreau-Jean (integrator = \"event_driven\" or "
+                                       "\"moreau\")"
+                                     : " (integrator = \"event_driven\")")));
 }
 
 }  // namespace

@@ -563,6 +563,12 @@ double preload_mu_static(const DriveElements& e) {
   return e.thread->law().mu_static() * e.thread->flank_factor();
 }
 
+// Exact Coulomb (one coefficient, or mu_static above mu), no viscous term.
+bool exact_coulomb(const friction::Law& law) {
+  return law.resolution() == friction::Resolution::set_valued && law.viscous() == 0.0 &&
+         law.slip_mu(0.0) == law.mu() && law.slip_mu(1.0) == law.mu();
+}
+
 // Whether the halves can move apart: lift-off (preloaded_nut.hpp), half A,
 // the nut body, on its penalty flank.
 bool preload_lifts_off(const DriveParameters& p) {
@@ -591,21 +597,35 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
         "step takes a preloaded nut without lift-off only (no play, exact play closed by the "
         "preload, or the rigid concept); use backlash.contact = \"exact\" or \"none\", "
         "nut.preload = 0, or gear.type = \"ideal\" and motor.friction_torque = 0");
+  // (The stages' Moreau-Jean step takes the halves with exact Coulomb only.)
+  if ((stage || p.motor_friction_torque > 0.0) && !exact_coulomb(e.thread->law()))
+    throw InvalidArgument(
+        "nut.preload = " + format_value(p.nut_preload) + " N is invalid with " +
+        (stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+               : "motor.friction_torque = " + format_value(p.motor_friction_torque) + " N m") +
+        " and friction.law = \"" + p.friction + "\": the train's friction stages run on "
+        "Moreau-Jean, whose step takes a preloaded nut with exact Coulomb friction only; use "
+        "friction.law = \"coulomb\", nut.preload = 0, or gear.type = \"ideal\" and "
+        "motor.friction_torque = 0");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
       "without play, with exact play (closed by the preload) or with penalty flanks "
       "(backlash.contact = \"bistop\" or \"cubic\"), "
-      "with exact Coulomb friction (friction.law = \"coulomb\", mu_static >= mu) and "
-      "initial.state = \"relaxed\"";
-  // Exact Coulomb, with one coefficient or with mu_static above mu (the
-  // halves stick at mu_static', slip at mu': preloaded_nut.hpp).
+      "with the friction laws \"coulomb\", \"stribeck\", \"arctan_velocity\" and \"lugre\" "
+      "and initial.state = \"relaxed\"";
+  // Each half's flank takes the law (docs/physics/preloaded_nut.md,
+  // "Friction laws"): exact Coulomb with one coefficient or mu_static above
+  // mu (the halves stick at mu_static', slip at mu': preloaded_nut.hpp),
+  // Stribeck's curve, a velocity law, LuGre's bristles (one deflection for
+  // both halves: they slip together). Eq. (3.15) not: its coefficient
+  // follows the slip acceleration, which half B's given force would enter
+  // (a fixed point the driver does not solve with the halves).
   const friction::Law& law = e.thread->law();
-  const bool coulomb = law.resolution() == friction::Resolution::set_valued &&
-                       law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
-                       law.slip_mu(1.0) == law.mu() && law.mu_static() >= law.mu();
-  if (!coulomb)
-    throw InvalidArgument(preload + "with friction.law = \"" + p.friction + "\"" + supported);
+  if (law.resolution() == friction::Resolution::acceleration)
+    throw InvalidArgument(preload + "with friction.law = \"" + p.friction + "\"" + supported +
+                          " (eq. (3.15)'s coefficient follows the slip acceleration, which "
+                          "half B's own flank force enters: not solved with the halves)");
   if (p.initial_state == InitialState::equilibrium)
     throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
                           " (on the rigid concept the relaxed start at rest is the same state)");

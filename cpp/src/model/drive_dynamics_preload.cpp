@@ -1,0 +1,41 @@
+// DriveDynamics (model/drive_dynamics.hpp): a preloaded nut's half B at
+// the friction law's coefficient (docs/physics/preloaded_nut.md, "Friction
+// laws"; elements/preloaded_nut.hpp, PreloadedNut::normal_at). Each half's
+// flank takes the law at the common slip gamma_T; half B's axial balance
+// gives its normal force N_B = side S / (cos(a) - side kappa' sin(a)) at the
+// mode's coefficient kappa' (friction_factor's), its friction
+// -kappa' |N_B|: a given force of the mode in solve.
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/drive_dynamics.hpp"
+
+namespace leadscrew::model {
+
+// Whether a preloaded nut's half B takes the law's coefficient kappa' in
+// the mode `spec` (docs/physics/preloaded_nut.md, "Friction laws"): a
+// velocity law's or LuGre's bristles' (every mode with friction but stick),
+// Stribeck's curve in slip. Exact Coulomb's slip keeps the element's
+// constant forces N_B^s, T_B^s (bit for bit as before the laws).
+bool DriveDynamics::preload_at_kappa(const ModeSpec& spec) const noexcept {
+  return spec.friction == FrictionMode::regularized_velocity ||
+         spec.friction == FrictionMode::bristle ||
+         (spec.friction == FrictionMode::slip && !one_slip_mu_);
+}
+
+// Half B's signed coefficient kappa' in the mode `spec` (friction_factor's)
+// at the state set; a SimulationError where half B would lock against its
+// own spring (cos(a) - side kappa' sin(a) <= 0: LuGre's bristle damping can
+// carry kappa' beyond mu_static' for a moment).
+double DriveDynamics::half_b_coefficient(const elements::PreloadedNut& nut,
+                                         const ModeSpec& spec) const {
+  const double kappa = friction_factor(spec, 0.0);
+  if (nut.half_b_locks(kappa))
+    throw SimulationError(t_,
+                          "the preloaded nut's half B locks against its own spring: the law's "
+                          "friction coefficient kappa' = " + format_value(kappa) +
+                              " times tan(lead angle) reaches 1 on its flank",
+                          "lower friction.mu (or LuGre's sigma1) or the lead");
+  return kappa;
+}
+
+}  // namespace leadscrew::model

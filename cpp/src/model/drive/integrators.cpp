@@ -55,14 +55,15 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
   }();
   const friction::LawType& type = friction::law_type(friction);
   // A preloaded nut: exact Coulomb on the event-driven scheme and Moreau-
-  // Jean; the smooth laws and Stribeck's curve on the event-driven scheme
-  // and (smooth laws) the ODE methods, whose driver takes the halves
-  // (drive_dynamics.cpp); lift-off on the event-driven scheme.
+  // Jean, Stribeck's curve on the event-driven scheme, the smooth laws on
+  // the event-driven scheme, the ODE methods (their driver takes the halves:
+  // drive_dynamics.cpp) and Moreau-Jean (moreau_smooth_friction.cpp); with
+  // lift-off the event-driven scheme (and the ODE methods: smooth laws).
   if (preloaded) {
     const bool coulomb = type.time_stepping && friction == "coulomb";
-    if (lift_off) return coulomb || type.time_stepping ? event_driven_only : smooth;
+    if (lift_off) return type.time_stepping ? event_driven_only : smooth;
     if (type.time_stepping) return coulomb ? with_moreau : event_driven_only;
-    return smooth;
+    return smooth_with_moreau;
   }
   if (type.time_stepping) {  // set-valued
     if (exact_play) return with_moreau;
@@ -187,13 +188,15 @@ void check_preload_integrator(const DriveModel& model, const std::string& integr
         "\": a preloaded nut that lifts off (penalty play on a flexible concept) runs on the "
         "event-driven scheme only (integrator = \"event_driven\"); Moreau-Jean's step has no "
         "velocity-level model of half B on its own flank beside the penalty flank");
-  if (integrator == "moreau" && coulomb) return;
+  if (integrator == "moreau" && (coulomb || !set_valued)) return;
   throw InvalidArgument(
       "integrator = \"" + integrator + "\" is invalid with nut.preload = " +
       format_value(p.nut_preload) + " N and friction.law = \"" + p.friction + "\"" +
       (integrator == "moreau"
-           ? ": Moreau-Jean's step takes a preloaded nut with exact Coulomb friction only (the "
-             "halves' impulse cone at mu'); the other laws run on the event-driven scheme "
+           ? ": Moreau-Jean's step takes a preloaded nut with exact Coulomb friction (the "
+             "halves' impulse cone at mu') or a smooth law (\"arctan_velocity\", \"lugre\"), "
+             "not Stribeck's curve (its slip coefficient at the step's start speed and its "
+             "viscous impulse are not in the halves' cone); it runs on the event-driven scheme "
              "(integrator = \"event_driven\")"
            : ": a preloaded nut with a set-valued law runs on the event-driven scheme" +
                  std::string(coulomb ? " or Moreau-Jean (integrator = \"event_driven\" or "

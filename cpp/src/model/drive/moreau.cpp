@@ -36,6 +36,7 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
   iteration_.directions(model.play_gradient(), model.tangent_direction());
   bristle_state_ = layout_.find_state("bristle_share");
   bristle_channel_ = layout_.find_channel("bristle_deflection");
+  preload_channel_ = layout_.find_channel("preload_force");
   bristle_range_ = model.law().bristle_range();
 }
 
@@ -471,6 +472,12 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (bristle_state_ >= 0) {  // LuGre's deflection and the energy its bristles store
     state.values[bristle_channel_] = y[bristle_state_] * bristle_range_;
     state.elastic += y[bristle_state_ + 1];
+  }
+  if (preload_channel_ >= 0) {  // (a preloaded nut with a smooth law, of the last step)
+    const double normal_a = last_.normal - last_.preload_normal;
+    state.values[preload_channel_] = model_.preloaded_nut()->preload;
+    state.values[preload_channel_ + 1] = normal_a;
+    state.values[preload_channel_ + 2] = std::abs(normal_a) + std::abs(last_.preload_normal);
   }
   double applied = dynamics_.applied_torque();
   // The elements' channels, of the last step (a DC motor's armature), and

@@ -74,6 +74,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     // The rotor's friction impulse Q = P_c + Lambda (the motor's friction and
     // the stage's loss) on the rotor's coordinate, against +phi_r [N m s].
     double train = 0.0;
+    // A preloaded nut with a smooth law: half B's normal impulse, part of
+    // `normal` (moreau_smooth_friction.cpp); 0 otherwise.
+    double preload_normal = 0.0;
   };
 
   // The energy a step from y to y_next creates: what the stored energy
@@ -221,6 +224,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // LuGre's bristles (-1: another law): z / bristle_range in y, then the
   // energy they store; the deflection's channel.
   int bristle_state_ = -1, bristle_channel_ = -1;
+  // A preloaded nut's channels (with a smooth law: hybrid_preloaded_nut.cpp's
+  // declaration; -1: not declared): preload_force, its first.
+  int preload_channel_ = -1;
   double bristle_range_ = 0.0;
   double bristle_z0_ = 0.0;  // z at the step's start [m] (step())
   CoordinateVector q_, v_, free_;

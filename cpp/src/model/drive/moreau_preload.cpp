@@ -71,7 +71,11 @@ void DriveMoreau::check_half_a_bearing(const StepState& s) const {
   if (!nut || !nut->closes_exact_play) return;
   const double slip = model_.tangent_direction().dot(v_);
   const int sign = s.stick || slip == 0.0 ? 0 : slip > 0.0 ? 1 : -1;
-  const double bearing = nut->half_a_bearing(sign, s.impulses.normal / s.h);
+  // (A smooth law: half B at the step's own N_B, moreau_smooth_friction.cpp.)
+  const double bearing =
+      model_.law().resolution() != friction::Resolution::set_valued
+          ? -nut->side * (s.impulses.normal - s.impulses.preload_normal) / s.h
+          : nut->half_a_bearing(sign, s.impulses.normal / s.h);
   if (bearing >= 0.0) return;
   throw SimulationError(
       s.t + s.h,

@@ -240,7 +240,11 @@ void DriveMoreau::book_step(StepState& s, double* y_next) {
     friction_excess_ += std::max(0.0, -(1.0 - theta) * s.impulses.friction * (slip - slip0));
   }
   if (bristle_state_ >= 0)
-    book_bristles(h, y, y_next, slip, s.contact ? s.impulses.normal : 0.0);
+    // (A preloaded nut's halves: |P_N,A| + |P_N,B|, both flanks' bristles.)
+    book_bristles(h, y, y_next, slip,
+                  !s.contact ? 0.0
+                             : std::abs(s.impulses.normal - s.impulses.preload_normal) +
+                                   std::abs(s.impulses.preload_normal));
   play_rate_ = std::max({play_rate_, std::abs(s.play_rate0),
                          std::abs(model_.play_gradient().dot(v_))});
   book_losses(s, v_theta, y_next);
@@ -302,6 +306,7 @@ void DriveMoreau::report_step(const StepState& s) {
     if (stop_active_[k]) last_stop_force_ -= exact[k].side * s.impulses.stop[k] / s.h;
   last_.normal = s.impulses.normal / s.h;
   last_.friction = s.impulses.friction / s.h;
+  last_.preload_normal = s.impulses.preload_normal / s.h;
   last_.motor_torque =
       p_.speed_controlled ? model_.gear().rotor_torque(s.impulses.rotor / s.h) : 0.0;
   last_.stick = s.contact && s.stick;

@@ -563,12 +563,6 @@ double preload_mu_static(const DriveElements& e) {
   return e.thread->law().mu_static() * e.thread->flank_factor();
 }
 
-// Exact Coulomb (one coefficient, or mu_static above mu), no viscous term.
-bool exact_coulomb(const friction::Law& law) {
-  return law.resolution() == friction::Resolution::set_valued && law.viscous() == 0.0 &&
-         law.slip_mu(0.0) == law.mu() && law.slip_mu(1.0) == law.mu();
-}
-
 // Whether the halves can move apart: lift-off (preloaded_nut.hpp), half A,
 // the nut body, on its penalty flank.
 bool preload_lifts_off(const DriveParameters& p) {
@@ -597,16 +591,6 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
         "step takes a preloaded nut without lift-off only (no play, exact play closed by the "
         "preload, or the rigid concept); use backlash.contact = \"exact\" or \"none\", "
         "nut.preload = 0, or gear.type = \"ideal\" and motor.friction_torque = 0");
-  // (The stages' Moreau-Jean step takes the halves with exact Coulomb only.)
-  if ((stage || p.motor_friction_torque > 0.0) && !exact_coulomb(e.thread->law()))
-    throw InvalidArgument(
-        "nut.preload = " + format_value(p.nut_preload) + " N is invalid with " +
-        (stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-               : "motor.friction_torque = " + format_value(p.motor_friction_torque) + " N m") +
-        " and friction.law = \"" + p.friction + "\": the train's friction stages run on "
-        "Moreau-Jean, whose step takes a preloaded nut with exact Coulomb friction only; use "
-        "friction.law = \"coulomb\", nut.preload = 0, or gear.type = \"ideal\" and "
-        "motor.friction_torque = 0");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "

@@ -61,7 +61,7 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
   // lift-off the event-driven scheme (and the ODE methods: smooth laws).
   if (preloaded) {
     const bool coulomb = type.time_stepping && friction == "coulomb";
-    if (lift_off) return type.time_stepping ? event_driven_only : smooth;
+    if (lift_off) return coulomb ? with_moreau : type.time_stepping ? event_driven_only : smooth;
     if (type.time_stepping) return coulomb ? with_moreau : event_driven_only;
     return smooth_with_moreau;
   }
@@ -123,8 +123,14 @@ const std::vector<std::string>& train_integrators(const std::string& obstacle) {
 const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   // The train's stages: whether the event-driven scheme runs them needs the
   // built model (the thread's Painleve regime, from the masses).
-  if (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm)
-    return drive::model_integrators(DriveModel(p));
+  if (p.motor_friction_torque > 0.0 || p.gear == GearType::lossy || p.gear == GearType::worm) {
+    // (A lift-off nut's model carries the assembled nut's play, beyond the
+    // play's half: initial.play_position is ignored with it, 0 here.)
+    if (!preload_lifts_off(p)) return drive::model_integrators(DriveModel(p));
+    DriveParameters assembled = p;
+    assembled.play_position = 0.0;
+    return drive::model_integrators(DriveModel(assembled));
+  }
   if (stops_need_moreau(p)) return moreau_only();
   // (The law's type, from its defaults: every law's parameters have one.)
   return integrators_for(p.friction, friction::make_law(p.friction, {})->resolution(),
@@ -181,13 +187,14 @@ void check_preload_integrator(const DriveModel& model, const std::string& integr
   const bool coulomb = set_valued && law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
                        law.slip_mu(1.0) == law.mu();
   if (integrator != "moreau" && !set_valued) return;  // (the law's own list decides)
-  if (integrator == "moreau" && nut->lift_off)
+  if (integrator == "moreau" && nut->lift_off && !coulomb)
     throw InvalidArgument(
         "integrator = \"moreau\" is invalid with nut.preload = " + format_value(p.nut_preload) +
-        " N and backlash.contact = \"" + backlash_contact_name(p.backlash) +
-        "\": a preloaded nut that lifts off (penalty play on a flexible concept) runs on the "
-        "event-driven scheme only (integrator = \"event_driven\"); Moreau-Jean's step has no "
-        "velocity-level model of half B on its own flank beside the penalty flank");
+        " N, backlash.contact = \"" + backlash_contact_name(p.backlash) +
+        "\" and friction.law = \"" + p.friction + "\": Moreau-Jean's step takes a preloaded "
+        "nut that lifts off (penalty play on a flexible concept) with exact Coulomb friction "
+        "only (its halves' modes, moreau_lift_off.cpp); the smooth laws run it on the "
+        "event-driven scheme (integrator = \"event_driven\")");
   if (integrator == "moreau" && (coulomb || !set_valued)) return;
   throw InvalidArgument(
       "integrator = \"" + integrator + "\" is invalid with nut.preload = " +

@@ -3,6 +3,7 @@
 // cpp/src/model.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -171,6 +172,34 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
                                   double c, double d, double alpha, double beta, bool prescribed,
                                   bool slip_zero, double motor0, double motor1,
                                   double normal_target, double rotor_target, bool& stick);
+  // A preloaded nut that lifts off (moreau_lift_off.cpp): half B's spring
+  // over the step, the discrete gradient G of V = S^2 / (2 k_p) along the
+  // play linearised at the step's end estimate e1k (as PenaltyFlank's), and
+  // the step's friction modes (stick, slip +-) each a linear step of its own.
+  struct HalfBSpring {
+    double e0 = 0.0, e1k = 0.0, secant = 0.0, slope = 0.0;
+    double low = -std::numeric_limits<double>::infinity();
+    double high = std::numeric_limits<double>::infinity();
+    void linearise(const elements::PreloadedNut& nut, double end);
+    double gradient(double end) const noexcept { return secant + slope * (end - e1k); }
+  };
+  double half_b_factor(const elements::PreloadedNut& nut, int m) const;
+  Impulses lift_off_step(const elements::PreloadedNut& nut, int m, double h, double theta,
+                         const CoordinateVector& v0, double normal_target, double rotor_target,
+                         double tangential);
+  double half_b_spring(const elements::PreloadedNut& nut, double h, double theta,
+                       const CoordinateVector& v0, const CoordinateVector& v1,
+                       bool clamped) const;
+  struct LiftOffMaps {
+    double c = 0.0, d = 0.0, beta = 0.0, alpha = 0.0, s0 = 0.0, sigma = 0.0;
+  };
+  LiftOffMaps lift_off_maps(const elements::PreloadedNut& nut, int m, double h, double theta,
+                            const CoordinateVector& v0, double normal_target,
+                            double rotor_target);
+  Impulses solve_lift_off_thread(double t, double h, double theta, const CoordinateVector& v0,
+                                 double normal_target, double rotor_target, bool& stick);
+  bool update_half_b(double h, double theta, const CoordinateVector& v0,
+                     const Impulses& impulses);
   // Exact play closed by the preload: SimulationError where half A's normal
   // force on its flank is negative at the step's end.
   void check_half_a_bearing(const StepState& s) const;
@@ -227,6 +256,13 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // A preloaded nut's channels (with a smooth law: hybrid_preloaded_nut.cpp's
   // declaration; -1: not declared): preload_force, its first.
   int preload_channel_ = -1;
+  // Lift-off (moreau_lift_off.cpp): whether the model's nut lifts off, half
+  // B's spring over the step, the pass's right-hand side without it, half
+  // B's friction impulse and spring force of the last step.
+  bool lift_off_ = false;
+  HalfBSpring half_b_;
+  CoordinateVector pass_rhs_;
+  double half_b_friction_ = 0.0, half_b_spring_ = 0.0;
   double bristle_range_ = 0.0;
   double bristle_z0_ = 0.0;  // z at the step's start [m] (step())
   CoordinateVector q_, v_, free_;

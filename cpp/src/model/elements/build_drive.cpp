@@ -477,8 +477,8 @@ void check_train_friction(const DriveParameters& p, const DriveElements& e) {
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
                           ": a torque cannot drive the thread (mu' >= cot(lead angle)), so its "
                           "holding torques at rest form no interval");
-  // (A preloaded nut that lifts off: check_preloaded_nut refuses the stages
-  // first; without lift-off the stages take it on Moreau-Jean.)
+  // (A preloaded nut: the stages take it on Moreau-Jean, with lift-off too:
+  // moreau_lift_off.cpp.)
   // Penalty end stops are one more axial force on the train (TrainSolver,
   // and Moreau-Jean's); exact ones where the load is a body of its own
   // (elements/end_stops.cpp), on Moreau-Jean.
@@ -576,21 +576,6 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
   if (p.nut_preload == 0.0) return false;
-  // The train's friction stages run on Moreau-Jean, which takes the
-  // preloaded nut without lift-off (moreau_preload.cpp); a nut that lifts
-  // off runs on the event-driven scheme only, which takes no stage with it
-  // (checked first: no other rule of the nut's is worth meeting before this one).
-  const bool stage = has_friction_stage(p);
-  if ((stage || p.motor_friction_torque > 0.0) && preload_lifts_off(p))
-    throw InvalidArgument(
-        "nut.preload = " + format_value(p.nut_preload) + " N is invalid with " +
-        (stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-               : "motor.friction_torque = " + format_value(p.motor_friction_torque) + " N m") +
-        " and backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" on concept = \"" +
-        concept_name(p.concept) + "\": the train's friction stages run on Moreau-Jean, whose "
-        "step takes a preloaded nut without lift-off only (no play, exact play closed by the "
-        "preload, or the rigid concept); use backlash.contact = \"exact\" or \"none\", "
-        "nut.preload = 0, or gear.type = \"ideal\" and motor.friction_torque = 0");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
   const std::string supported =
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "

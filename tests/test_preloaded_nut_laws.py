@@ -240,3 +240,49 @@ def test_refused_with_the_reason():
         ls.simulate(stribeck, 0.01, integrator="cvode_bdf")
     assert ls._core.drive_integrators(smooth.model().parameters)[-2:] == ["event_driven",
                                                                           "moreau"]
+
+
+def holding(torque, preload, concept, **changes):
+    """The thesis drive at rest in its static equilibrium under a drive
+    torque and 50 N on half A's flank."""
+    return thesis_scene(concept=concept, nut={"preload": preload, **changes.pop("nut", {})},
+                        initial={"state": "equilibrium"},
+                        loads={"drive_torque": -torque, "axial_force": -50.0}, **changes)
+
+
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut", "flexible"])
+def test_the_static_equilibrium_with_a_preload(concept):
+    # The halves' spring is internal: the equilibrium's deflections and net
+    # forces are the plain nut's (bit for bit where the plain nut holds);
+    # its cone is the halves', mu' (|N - N_B^s| + |N_B^s|), so a torque the
+    # plain nut cannot hold is held at rest (the run stays stuck there).
+    plain = ls.simulate(ls.Scene.from_dict(holding(0.05, 0.0, concept)), 0.02)
+    preloaded = ls.simulate(ls.Scene.from_dict(holding(0.05, 100.0, concept)), 0.02)
+    assert preloaded["u_load"][0] == plain["u_load"][0]
+    for channel in ("normal_force", "friction_force", "elastic"):  # (the stuck row's solve)
+        assert preloaded[channel][0] == pytest.approx(plain[channel][0], rel=1e-14, abs=1e-300)
+    with pytest.raises(ls.NoEquilibriumError):
+        ls.simulate(ls.Scene.from_dict(holding(0.4, 0.0, concept)), 0.02)
+    held = ls.simulate(ls.Scene.from_dict(holding(0.4, 100.0, concept)), 0.02)
+    assert np.all(held["stick"] == 1.0)
+    # (stuck: the load stays at its equilibrium to the integrator's round-off)
+    assert np.ptp(held["u_load"]) <= 1e-9 * abs(held["u_load"][0]) + 1e-18
+    s = ls.Scene.from_dict(holding(0.4, 100.0, concept))
+    alpha = s.thread.lead_angle
+    mu = reference.effective_mu(0.3, s.thread.flank_angle)
+    normal, friction = held["normal_force"][0], held["friction_force"][0]
+    # (the edge the friction heads for: half B's normal force there)
+    side = -np.sign(normal)
+    edge = -np.sign(friction)
+    half_b = side * 100.0 / (math.cos(alpha) - edge * side * mu * math.sin(alpha))
+    plain_cone = mu * abs(normal)
+    assert plain_cone < abs(friction) <= mu * (abs(normal - half_b) + abs(half_b))
+
+
+def test_the_equilibrium_with_lift_off_is_refused():
+    scene = holding(0.05, 50.0, "flexible_nut", nut={"preload_stiffness": 1e6},
+                    backlash={"axial": 1e-4, "contact": "bistop"})
+    with pytest.raises(ValueError, match=r"nut\.preload = 50 is invalid with initial\.state = "
+                                         r"\"equilibrium\" and backlash\.contact = \"bistop\": a "
+                                         r"preloaded nut that lifts off starts assembled"):
+        ls.Scene.from_dict(scene).model()

@@ -581,8 +581,7 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
       ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
       "without play, with exact play (closed by the preload) or with penalty flanks "
       "(backlash.contact = \"bistop\" or \"cubic\"), "
-      "with the friction laws \"coulomb\", \"stribeck\", \"arctan_velocity\" and \"lugre\" "
-      "and initial.state = \"relaxed\"";
+      "with the friction laws \"coulomb\", \"stribeck\", \"arctan_velocity\" and \"lugre\"";
   // Each half's flank takes the law (docs/physics/preloaded_nut.md,
   // "Friction laws"): exact Coulomb with one coefficient or mu_static above
   // mu (the halves stick at mu_static', slip at mu': preloaded_nut.hpp),
@@ -595,9 +594,15 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
     throw InvalidArgument(preload + "with friction.law = \"" + p.friction + "\"" + supported +
                           " (eq. (3.15)'s coefficient follows the slip acceleration, which "
                           "half B's own flank force enters: not solved with the halves)");
-  if (p.initial_state == InitialState::equilibrium)
-    throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
-                          " (on the rigid concept the relaxed start at rest is the same state)");
+  // The static equilibrium holds the halves' net forces (their spring is
+  // internal; the cone the halves', drive_equilibrium.cpp); with lift-off the
+  // assembled nut (half A pressed in by the preload) is the start.
+  if (p.initial_state == InitialState::equilibrium && preload_lifts_off(p))
+    throw InvalidArgument(preload + "with initial.state = \"equilibrium\" and backlash.contact "
+                          "= \"" + backlash_contact_name(p.backlash) + "\": a preloaded nut that "
+                          "lifts off starts assembled, half A pressed into its flank by the "
+                          "preload (the equilibrium's nut sits where the loads put it); use "
+                          "initial.state = \"relaxed\"");
   check_carried_preload(p, e, p.concept != Concept::rigid && p.backlash != BacklashContact::none &&
                                   p.backlash != BacklashContact::exact);
   const double mu = preload_mu(e), mu_static = preload_mu_static(e);

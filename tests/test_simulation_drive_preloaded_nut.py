@@ -198,8 +198,6 @@ def test_energy_account_closes_and_friction_never_pushes():
      r"nut\.preload = -1\.0 is invalid: must be a finite number >= 0"),
     ({"nut": {"preload_stiffness": -1.0}},
      r"nut\.preload_stiffness = -1\.0 is invalid: must be a finite number >= 0"),
-    ({"friction": {"law": "arctan_acceleration", "mu": 0.3}},
-     r"nut\.preload = 10 is invalid with friction\.law = \"arctan_acceleration\""),
 ])
 def test_invalid_inputs_name_the_key(changes, message):
     scene = preload_scene(0.3, 10.0)

@@ -259,6 +259,9 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
   }
 }
 
+// (the bisection's resolution of kappa', relative to mu')
+constexpr double kEpsilonMu = std::numeric_limits<double>::epsilon();
+
 ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   const elements::Motor& motor = model_.motor();
   const int n = model_.coordinate_count();
@@ -284,7 +287,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   const bool preload_half =
       nut && normal_multiplier && spec.friction == FrictionMode::slip && !kappa_half;
   const bool smooth_half = kappa_half && normal_multiplier;
-  const double half_b_kappa = kappa_half ? half_b_coefficient(*nut, spec) : 0.0;
+  double half_b_kappa = kappa_half ? half_b_coefficient(*nut, spec) : 0.0;  // (eq. 3.15: below)
   // A lift-off nut on penalty flanks: half B a given force in every mode,
   // the spring's along grad(e) (its slip force in slip).
   const bool lift_off_half = nut && nut->lift_off && spec.contact == ThreadContact::penalty;
@@ -404,6 +407,34 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     base.given_tangential = decision.friction_force;
     solution = solve(base);
     if (nut) solution.preload_normal = nut->normal(nut->edge_of(solution.friction_force));
+    return solution;
+  }
+  if (smooth_half && spec.friction == FrictionMode::regularized_acceleration) {
+    // Eq. (3.15) on a preloaded nut's halves: at a given coefficient kappa'
+    // the mode is linear (half B's force at kappa', half A's column), its
+    // slip acceleration x(kappa'); the law's kappa' = kappa(x(kappa')) is
+    // the root of g = kappa' - kappa(x) on [-mu', mu'] (|kappa| < mu': g
+    // changes sign there), located by bisection to round-off.
+    if (painleve_possible_)
+      throw SimulationError(t_, "eq. (3.15) with a preloaded nut in the Painleve regime (mu' "
+                                "|G_NT| >= G_NN) is not solved: its friction force need not be "
+                                "unique there",
+                            "use friction.law = \"arctan_velocity\" or \"coulomb\"");
+    auto g = [&](double kappa) {
+      half_b_kappa = kappa;
+      evaluate(kappa, spec.given_tangential, solution);
+      if (!solution.regular) return std::numeric_limits<double>::quiet_NaN();
+      return kappa - friction_factor(spec, solution.slip_acceleration);
+    };
+    const double mu = model_.effective_mu();
+    double low = -mu, high = mu;
+    for (int iteration = 0; iteration < 200 && high - low > 4.0 * kEpsilonMu * mu; ++iteration) {
+      const double middle = 0.5 * (low + high);
+      const double value = g(middle);
+      if (!(value == value)) return solution;  // (singular: not regular)
+      (value < 0.0 ? low : high) = middle;
+    }
+    g(0.5 * (low + high));
     return solution;
   }
   if (spec.friction == FrictionMode::regularized_acceleration &&

@@ -13,12 +13,14 @@ namespace leadscrew::model {
 
 // Whether a preloaded nut's half B takes the law's coefficient kappa' in
 // the mode `spec` (docs/physics/preloaded_nut.md, "Friction laws"): a
-// velocity law's or LuGre's bristles' (every mode with friction but stick),
+// velocity law's, eq. (3.15)'s or LuGre's bristles' (every mode with
+// friction but stick),
 // Stribeck's curve in slip. Exact Coulomb's slip keeps the element's
 // constant forces N_B^s, T_B^s (bit for bit as before the laws).
 bool DriveDynamics::preload_at_kappa(const ModeSpec& spec) const noexcept {
   return spec.friction == FrictionMode::regularized_velocity ||
          spec.friction == FrictionMode::bristle ||
+         spec.friction == FrictionMode::regularized_acceleration ||
          (spec.friction == FrictionMode::slip && !one_slip_mu_);
 }
 
@@ -28,6 +30,7 @@ bool DriveDynamics::preload_at_kappa(const ModeSpec& spec) const noexcept {
 // carry kappa' beyond mu_static' for a moment).
 double DriveDynamics::half_b_coefficient(const elements::PreloadedNut& nut,
                                          const ModeSpec& spec) const {
+  // (eq. 3.15's at zero slip acceleration: solve takes its own)
   const double kappa = friction_factor(spec, 0.0);
   if (nut.half_b_locks(kappa))
     throw SimulationError(t_,

@@ -63,7 +63,7 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
     const bool coulomb = type.time_stepping && friction == "coulomb";
     if (lift_off) return coulomb ? with_moreau : type.time_stepping ? event_driven_only : smooth;
     if (type.time_stepping) return coulomb ? with_moreau : event_driven_only;
-    return smooth_with_moreau;
+    return resolution != friction::Resolution::acceleration ? smooth_with_moreau : smooth;
   }
   if (type.time_stepping) {  // set-valued
     if (exact_play) return with_moreau;

@@ -62,7 +62,7 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
   if (preloaded) {
     const bool coulomb = type.time_stepping && friction == "coulomb";
     if (lift_off) return coulomb ? with_moreau : type.time_stepping ? event_driven_only : smooth;
-    if (type.time_stepping) return coulomb ? with_moreau : event_driven_only;
+    if (type.time_stepping) return with_moreau;  // (Stribeck's too: moreau_preload.cpp)
     return resolution != friction::Resolution::acceleration ? smooth_with_moreau : smooth;
   }
   if (type.time_stepping) {  // set-valued
@@ -193,22 +193,15 @@ void check_preload_integrator(const DriveModel& model, const std::string& integr
         " N, backlash.contact = \"" + backlash_contact_name(p.backlash) +
         "\" and friction.law = \"" + p.friction + "\": Moreau-Jean's step takes a preloaded "
         "nut that lifts off (penalty play on a flexible concept) with exact Coulomb friction "
-        "only (its halves' modes, moreau_lift_off.cpp); the smooth laws run it on the "
+        "only (its halves' modes, moreau_lift_off.cpp); the other laws run it on the "
         "event-driven scheme (integrator = \"event_driven\")");
-  if (integrator == "moreau" && (coulomb || !set_valued)) return;
+  if (integrator == "moreau") return;  // (lift-off with a law but exact Coulomb: above)
+  // An ODE method with a set-valued law (its regularization has no halves).
   throw InvalidArgument(
       "integrator = \"" + integrator + "\" is invalid with nut.preload = " +
-      format_value(p.nut_preload) + " N and friction.law = \"" + p.friction + "\"" +
-      (integrator == "moreau"
-           ? ": Moreau-Jean's step takes a preloaded nut with exact Coulomb friction (the "
-             "halves' impulse cone at mu') or a smooth law (\"arctan_velocity\", \"lugre\"), "
-             "not Stribeck's curve (its slip coefficient at the step's start speed and its "
-             "viscous impulse are not in the halves' cone); it runs on the event-driven scheme "
-             "(integrator = \"event_driven\")"
-           : ": a preloaded nut with a set-valued law runs on the event-driven scheme" +
-                 std::string(coulomb ? " or Moreau-Jean (integrator = \"event_driven\" or "
-                                       "\"moreau\")"
-                                     : " (integrator = \"event_driven\")")));
+      format_value(p.nut_preload) + " N and friction.law = \"" + p.friction +
+      "\": a preloaded nut with a set-valued law runs on the event-driven scheme or "
+      "Moreau-Jean (integrator = \"event_driven\" or \"moreau\")");
 }
 
 }  // namespace

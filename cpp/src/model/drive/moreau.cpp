@@ -351,10 +351,18 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   const double motor1 = rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
   // A preloaded nut (without lift-off: the thread's row): its halves' cone
   // (moreau_preload.cpp).
-  if (const elements::PreloadedNut* nut = model_.preloaded_nut(); nut && row)
-    return solve_preloaded_thread(*nut, t, h, c, d, alpha, beta, prescribed,
+  // (Stribeck's curve: the halves slip at the law's coefficient at the
+  // step's start speed, as the plain thread's; the viscous impulse on top.)
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut(); nut && row) {
+    const bool curve = law.slip_mu(0.0) != law.mu() || law.slip_mu(1.0) != law.mu();
+    const elements::PreloadedNut slipping =
+        curve ? nut->with_mu(law.slip_mu(std::abs(model_.tangent_direction().dot(v0))) *
+                             model_.flank_factor())
+              : *nut;
+    return solve_preloaded_thread(slipping, t, h, c, d, alpha, beta, prescribed,
                                   std::abs(c) <= slip_noise, motor0, motor1, normal_target,
-                                  rotor_target, stick);
+                                  rotor_target, {viscous_step, viscous_c, viscous_scale}, stick);
+  }
   double lcp_mu = model_.effective_mu();
   const friction::FlankLcpResult stick_step =
       prescribed
@@ -489,7 +497,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
     state.values[preload_channel_ + 2] =
         lift_off_ && last_.stick
             ? nut.sticking().split_flank_normal(normal_a, half_b_spring_, last_.friction)
-            : std::abs(normal_a) + std::abs(last_.preload_normal);
+        : last_.stick ? nut.sticking().flank_normal(last_.normal, last_.friction)
+                      : std::abs(normal_a) + std::abs(last_.preload_normal);
   }
   double applied = dynamics_.applied_torque();
   // The elements' channels, of the last step (a DC motor's armature), and

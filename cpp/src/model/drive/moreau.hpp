@@ -168,10 +168,16 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // false where the flank's normal impulse pulls.
   // The preloaded nut's friction impulse of the step (moreau_preload.cpp):
   // the element's cone at the step's impulses decides stick and slip.
+  // The law's viscous term over the step (solve_thread): h c, the unscaled
+  // slip c and the scale 1 / (1 + h c d).
+  struct ViscousStep {
+    double step = 0.0, c = 0.0, scale = 1.0;
+  };
   Impulses solve_preloaded_thread(const elements::PreloadedNut& nut, double t, double h,
                                   double c, double d, double alpha, double beta, bool prescribed,
                                   bool slip_zero, double motor0, double motor1,
-                                  double normal_target, double rotor_target, bool& stick);
+                                  double normal_target, double rotor_target,
+                                  const ViscousStep& viscous, bool& stick);
   // A preloaded nut that lifts off (moreau_lift_off.cpp): half B's spring
   // over the step, the discrete gradient G of V = S^2 / (2 k_p) along the
   // play linearised at the step's end estimate e1k (as PenaltyFlank's), and

@@ -276,7 +276,7 @@ SCHEMA: Dict[str, Any] = {
                          "load presses at t = 0 carries the load plus P, the other P; both slip "
                          "together, so the torque to raise a load F is r_m [(F + P) "
                          "tan(alpha + rho') + P tan(rho' - alpha)]. Each half's flank takes the "
-                         "friction law (every law; 'arctan_acceleration' without lift-off), "
+                         "friction law (every law), "
                          "on the integrators the law runs on (Moreau-Jean: every law but "
                          "'arctan_acceleration', with lift-off 'coulomb' only), initial.state "
                          "'equilibrium' without lift-off; on concept 'rigid' (there it closes a "

@@ -259,9 +259,6 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
   }
 }
 
-// (the bisection's resolution of kappa', relative to mu')
-constexpr double kEpsilonMu = std::numeric_limits<double>::epsilon();
-
 ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   const elements::Motor& motor = model_.motor();
   const int n = model_.coordinate_count();
@@ -292,16 +289,19 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   // the spring's along grad(e) (its slip force in slip).
   const bool lift_off_half = nut && nut->lift_off && spec.contact == ThreadContact::penalty;
   const bool lift_off_slip = lift_off_half && spec.friction == FrictionMode::slip && !kappa_half;
-  const double lift_off_normal =
-      !lift_off_half  ? 0.0
-      : kappa_half    ? nut->normal_at(half_b_kappa, preload_spring_)
-      : lift_off_slip ? nut->normal(spec.slip_sign, preload_spring_)
-                      : nut->side * preload_spring_ / nut->cos_lead;
-  const double lift_off_friction =
-      !lift_off_half  ? 0.0
-      : kappa_half    ? nut->friction_at(half_b_kappa, preload_spring_)
-      : lift_off_slip ? nut->split_friction(spec.slip_sign, preload_spring_)
-                      : 0.0;
+  // (at half_b_kappa when evaluated: eq. (3.15)'s moves, below)
+  double lift_off_normal = 0.0, lift_off_friction = 0.0;
+  auto lift_off_forces = [&] {
+    lift_off_normal = !lift_off_half  ? 0.0
+                      : kappa_half    ? nut->normal_at(half_b_kappa, preload_spring_)
+                      : lift_off_slip ? nut->normal(spec.slip_sign, preload_spring_)
+                                      : nut->side * preload_spring_ / nut->cos_lead;
+    lift_off_friction = !lift_off_half  ? 0.0
+                        : kappa_half    ? nut->friction_at(half_b_kappa, preload_spring_)
+                        : lift_off_slip ? nut->split_friction(spec.slip_sign, preload_spring_)
+                                        : 0.0;
+  };
+  lift_off_forces();
   auto evaluate = [&](double kappa, double given_tangential, ModeSolution& out) {
     CoordinateVector f = forces_;
     f += (given_tangential + viscous) * tangent;
@@ -409,32 +409,18 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     if (nut) solution.preload_normal = nut->normal(nut->edge_of(solution.friction_force));
     return solution;
   }
-  if (smooth_half && spec.friction == FrictionMode::regularized_acceleration) {
-    // Eq. (3.15) on a preloaded nut's halves: at a given coefficient kappa'
-    // the mode is linear (half B's force at kappa', half A's column), its
-    // slip acceleration x(kappa'); the law's kappa' = kappa(x(kappa')) is
-    // the root of g = kappa' - kappa(x) on [-mu', mu'] (|kappa| < mu': g
-    // changes sign there), located by bisection to round-off.
-    if (painleve_possible_)
-      throw SimulationError(t_, "eq. (3.15) with a preloaded nut in the Painleve regime (mu' "
-                                "|G_NT| >= G_NN) is not solved: its friction force need not be "
-                                "unique there",
-                            "use friction.law = \"arctan_velocity\" or \"coulomb\"");
-    auto g = [&](double kappa) {
+  if ((smooth_half || (lift_off_half && kappa_half)) &&
+      spec.friction == FrictionMode::regularized_acceleration) {
+    // Eq. (3.15) on a preloaded nut's halves (preloaded_acceleration_law):
+    // the mode at a given coefficient kappa', its slip acceleration.
+    auto at = [&](double kappa) {
       half_b_kappa = kappa;
+      lift_off_forces();
       evaluate(kappa, spec.given_tangential, solution);
-      if (!solution.regular) return std::numeric_limits<double>::quiet_NaN();
-      return kappa - friction_factor(spec, solution.slip_acceleration);
+      return solution.regular ? solution.slip_acceleration
+                              : std::numeric_limits<double>::quiet_NaN();
     };
-    const double mu = model_.effective_mu();
-    double low = -mu, high = mu;
-    for (int iteration = 0; iteration < 200 && high - low > 4.0 * kEpsilonMu * mu; ++iteration) {
-      const double middle = 0.5 * (low + high);
-      const double value = g(middle);
-      if (!(value == value)) return solution;  // (singular: not regular)
-      (value < 0.0 ? low : high) = middle;
-    }
-    g(0.5 * (low + high));
+    at(preloaded_acceleration_law(spec, smooth_half, at));
     return solution;
   }
   if (spec.friction == FrictionMode::regularized_acceleration &&

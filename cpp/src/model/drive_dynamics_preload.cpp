@@ -5,6 +5,9 @@
 // gives its normal force N_B = side S / (cos(a) - side kappa' sin(a)) at the
 // mode's coefficient kappa' (friction_factor's), its friction
 // -kappa' |N_B|: a given force of the mode in solve.
+#include <functional>
+#include <limits>
+
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
@@ -39,6 +42,36 @@ double DriveDynamics::half_b_coefficient(const elements::PreloadedNut& nut,
                               " times tan(lead angle) reaches 1 on its flank",
                           "lower friction.mu (or LuGre's sigma1) or the lead");
   return kappa;
+}
+
+// Eq. (3.15) on a preloaded nut's halves: at a given coefficient kappa' the
+// mode is linear (half B's force at kappa', half A's column or penalty
+// flank), its slip acceleration x(kappa') (`slip_acceleration_at`, NaN where
+// singular); the law's kappa' = kappa(x(kappa')) is the root of g = kappa' -
+// kappa(x) on [-mu', mu'] (|kappa| < mu': g changes sign there; half B
+// cannot lock, cos(a) - mu' sin(a) > 0 being checked up front), located by
+// bisection to round-off. On the thread without play (`multiplier`) the
+// Painleve regime raises (its friction force need not be unique); with
+// lift-off half A's force is the penalty flank's, given.
+double DriveDynamics::preloaded_acceleration_law(
+    const ModeSpec& spec, bool multiplier,
+    const std::function<double(double)>& slip_acceleration_at) const {
+  if (multiplier && painleve_possible_)
+    throw SimulationError(t_, "eq. (3.15) with a preloaded nut in the Painleve regime (mu' "
+                              "|G_NT| >= G_NN) is not solved: its friction force need not be "
+                              "unique there",
+                          "use friction.law = \"arctan_velocity\" or \"coulomb\"");
+  const double mu = model_.effective_mu();
+  double low = -mu, high = mu;
+  for (int iteration = 0;
+       iteration < 200 && high - low > 4.0 * std::numeric_limits<double>::epsilon() * mu;
+       ++iteration) {
+    const double middle = 0.5 * (low + high);
+    const double x = slip_acceleration_at(middle);
+    if (!(x == x)) return middle;  // (singular: the solve says so, not regular)
+    (middle - friction_factor(spec, x) < 0.0 ? low : high) = middle;
+  }
+  return 0.5 * (low + high);
 }
 
 }  // namespace leadscrew::model

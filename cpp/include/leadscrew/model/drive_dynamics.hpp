@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -259,6 +260,9 @@ class DriveDynamics {
   // A preloaded nut's half B at the law's coefficient (drive_dynamics.cpp).
   bool preload_at_kappa(const ModeSpec& spec) const noexcept;
   double half_b_coefficient(const elements::PreloadedNut& nut, const ModeSpec& spec) const;
+  double preloaded_acceleration_law(const ModeSpec& spec, bool multiplier,
+                                    const std::function<double(double)>& slip_acceleration_at)
+      const;
 
   // Painleve (dynamic jamming) report of a slip mode: the effective Delassus
   // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN. With a regularized law

@@ -577,26 +577,13 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
   if (p.nut_preload == 0.0) return false;
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
-  const std::string supported =
-      ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
-      "without play, with exact play (closed by the preload) or with penalty flanks "
-      "(backlash.contact = \"bistop\" or \"cubic\"), "
-      "with every friction law (\"arctan_acceleration\" without lift-off)";
   // Each half's flank takes the law (docs/physics/preloaded_nut.md,
   // "Friction laws"): exact Coulomb with one coefficient or mu_static above
   // mu (the halves stick at mu_static', slip at mu': preloaded_nut.hpp),
   // Stribeck's curve, a velocity law, LuGre's bristles (one deflection for
-  // both halves: they slip together), eq. (3.15) without lift-off (its
-  // coefficient a fixed point of the mode, drive_dynamics.cpp). With
-  // lift-off eq. (3.15) not: half B's force would enter beside the penalty
-  // flank's at a coefficient of the slip acceleration it changes.
+  // both halves: they slip together), eq. (3.15) (its coefficient a fixed
+  // point of the mode, drive_dynamics.cpp): no rule of the law's here.
   const friction::Law& law = e.thread->law();
-  if (law.resolution() == friction::Resolution::acceleration && preload_lifts_off(p))
-    throw InvalidArgument(preload + "with friction.law = \"" + p.friction +
-                          "\" and backlash.contact = \"" + backlash_contact_name(p.backlash) +
-                          "\"" + supported + " (eq. (3.15)'s coefficient follows the slip "
-                          "acceleration, which half B's own flank force beside the penalty "
-                          "flank's enters: not solved with the halves)");
   // The static equilibrium holds the halves' net forces (their spring is
   // internal; the cone the halves', drive_equilibrium.cpp); with lift-off the
   // assembled nut (half A pressed in by the preload) is the start.

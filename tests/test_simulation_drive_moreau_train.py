@@ -297,7 +297,7 @@ def test_the_flexible_seat_adjusters_refusals_offer_moreau_jean_alone():
 
 
 @pytest.mark.parametrize("stage", ["worm", "friction_torque"])
-def test_a_preloaded_nut_with_a_train_stage_runs_on_moreau_and_lift_off_is_refused(stage):
+def test_a_preloaded_nut_with_a_train_stage_runs_on_moreau_with_and_without_lift_off(stage):
     # (A new user's review: a worm and a preloaded nut were refused in two
     # rounds, first for friction.mu_static, then for the worm. The stages
     # now take a preloaded nut without lift-off on Moreau-Jean, the default:
@@ -314,16 +314,16 @@ def test_a_preloaded_nut_with_a_train_stage_runs_on_moreau_and_lift_off_is_refus
     assert result.t[-1] == 0.05
     assert result["friction_loss"][-1] > 0.0
     assert_checked(result, scene, dt, 0.05)
-    # A nut that lifts off (penalty play) runs on the event-driven scheme
-    # only, which takes no stage: refused naming both.
+    # A nut that lifts off (penalty play) runs with the stage on Moreau-Jean
+    # too (moreau_lift_off.cpp; issue 32): its account and checks hold.
     scene["backlash"] = {"axial": 1e-4, "contact": "bistop", "stiffness": 1e8, "exponent": 1.0}
     scene["nut"]["preload_stiffness"] = 1e6
-    with pytest.raises(ValueError) as info:
-        ls.Scene.from_dict(scene).model()
-    assert str(info.value).startswith(
-        f'nut.preload = 500 N is invalid with {what} and backlash.contact = "bistop" on '
-        'concept = "flexible": the train\'s friction stages run on Moreau-Jean, whose step '
-        "takes a preloaded nut without lift-off only")
+    scene.get("initial", {}).pop("play_position", None)  # (the assembled nut: ignored)
+    result = ls.simulate(ls.Scene.from_dict(scene), 0.05, dt=dt)
+    assert result.integrator == "moreau"
+    assert result.t[-1] == 0.05 and what
+    assert np.ptp(result["preload_force"]) > 0.0  # (the spring works)
+    assert_checked(result, scene, dt, 0.05)
 
 
 # Issue 31, reproduction 4: a rigid drive without play whose thread is in the

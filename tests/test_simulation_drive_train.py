@@ -236,12 +236,8 @@ REFUSED = [
     (dict(friction={"law": "arctan_acceleration", "mu": 0.3}), LOSSY,
      'friction.law = "arctan_acceleration": the train\'s stages run on Moreau-Jean, whose '
      "velocity-level step has no slip acceleration"),
-    # (A preloaded nut without lift-off runs with the stages on Moreau-Jean:
-    # below and tests/test_moreau_preloaded_nut.py; one that lifts off is
-    # the event-driven scheme's alone, which takes no stage.)
-    (dict(concept="flexible_nut", nut={"preload": 20.0, "preload_stiffness": 1e6},
-          backlash={"axial": 1e-4, "contact": "bistop", "stiffness": 1e9, "exponent": 1.0}),
-     LOSSY, "nut.preload"),
+    # (A preloaded nut runs with the stages on Moreau-Jean, with lift-off
+    # too: tests/test_moreau_preloaded_nut.py, test_simulation_drive_moreau_train.py.)
     # (Penalty end stops run with the stages now; exact ones are refused on
     # the rigid concept: tests/test_simulation_drive_train_stops.py.)
     (dict(initial={"state": "equilibrium"}), LOSSY, "initial.state"),

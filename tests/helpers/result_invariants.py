@@ -403,7 +403,10 @@ def check_result(result: Any, scene: dict, options: dict) -> Dict[str, dict]:
             f"{short[i]:.3g} N, bound {floor:.3g} N)")
     elif regularized:
         k_v = float(friction_section["k_v"])
-        expected = (-2 / math.pi * curve * np.arctan(k_v * slip) * np.abs(normal)
+        # (A preloaded nut: both halves' flanks take the law, the channel
+        # flank_normal = |N_A| + |N_B| in place of |normal_force|.)
+        law_normal = ch["flank_normal"] if "flank_normal" in ch else np.abs(normal)
+        expected = (-2 / math.pi * curve * np.arctan(k_v * slip) * law_normal
                     - touching * viscous * slip)
         error = np.where(pointwise, np.abs(force - expected), -np.inf)
         i = int(np.argmax(error))

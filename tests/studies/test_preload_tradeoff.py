@@ -115,8 +115,9 @@ def test_bad_arguments(changes, arguments, match):
 def test_what_a_preloaded_nut_refuses_is_said_up_front():
     # (A review: a DC motor scene failed in every row, a mu_static in every row
     # but P = 0's; mu_static runs now: a regularized law is what is refused.)
-    with pytest.raises(ValueError, match=r"nut\.preload = 50 is invalid with "
-                                         r"friction\.law = \"arctan_velocity\""):
+    with pytest.raises(ValueError, match=r"nut\.preload = 50 N is invalid with "
+                                         r"friction\.law = \"arctan_velocity\": preload_tradeoff's "
+                                         r"closed forms .* are exact Coulomb's"):
         preload_tradeoff(scene().replace(friction={"law": "arctan_velocity", "mu": 0.1}),
                          [0.0, 50.0], progress=False)
     # A DC motor is replaced by the study's own drive (a prescribed speed

@@ -131,7 +131,12 @@ friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha
 }
 
 DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
-    : model_(model), law_(law ? law : &model.law()), plain_coulomb_(law_->plain_coulomb()) {
+    : model_(model),
+      law_(law ? law : &model.law()),
+      plain_coulomb_(law_->plain_coulomb()),
+      one_slip_mu_(law_->resolution() == friction::Resolution::set_valued &&
+                   law_->viscous() == 0.0 && law_->slip_mu(0.0) == law_->mu() &&
+                   law_->slip_mu(1.0) == law_->mu()) {
   const int n = model.coordinate_count();
   if (n > kMaxCoordinates) throw InvalidArgument("a drive model has at most 6 coordinates");
   q_ = CoordinateVector::Zero(n);
@@ -309,22 +314,38 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   // A preloaded nut slipping: its preload half is a given flank force (N_B^s,
   // T_B^s) of the slip's direction, the multiplier half A's normal force.
   const elements::PreloadedNut* nut = model_.preloaded_nut();
-  const bool preload_half = nut && normal_multiplier && spec.friction == FrictionMode::slip;
+  // Half B at the law's coefficient kappa' (a smooth law, or Stribeck's
+  // curve in slip): its given force N_B(kappa') W_N + T_B(kappa') W_T.
+  const bool kappa_half = nut && preload_at_kappa(spec);
+  const bool preload_half =
+      nut && normal_multiplier && spec.friction == FrictionMode::slip && !kappa_half;
+  const bool smooth_half = kappa_half && normal_multiplier;
+  double half_b_kappa = kappa_half ? half_b_coefficient(*nut, spec) : 0.0;  // (eq. 3.15: below)
   // A lift-off nut on penalty flanks: half B a given force in every mode,
   // the spring's along grad(e) (its slip force in slip).
   const bool lift_off_half = nut && nut->lift_off && spec.contact == ThreadContact::penalty;
-  const bool lift_off_slip = lift_off_half && spec.friction == FrictionMode::slip;
-  const double lift_off_normal =
-      !lift_off_half ? 0.0
-      : lift_off_slip ? nut->normal(spec.slip_sign, preload_spring_)
-                      : nut->side * preload_spring_ / nut->cos_lead;
-  const double lift_off_friction =
-      lift_off_slip ? nut->split_friction(spec.slip_sign, preload_spring_) : 0.0;
+  const bool lift_off_slip = lift_off_half && spec.friction == FrictionMode::slip && !kappa_half;
+  // (at half_b_kappa when evaluated: eq. (3.15)'s moves, below)
+  double lift_off_normal = 0.0, lift_off_friction = 0.0;
+  auto lift_off_forces = [&] {
+    lift_off_normal = !lift_off_half  ? 0.0
+                      : kappa_half    ? nut->normal_at(half_b_kappa, preload_spring_)
+                      : lift_off_slip ? nut->normal(spec.slip_sign, preload_spring_)
+                                      : nut->side * preload_spring_ / nut->cos_lead;
+    lift_off_friction = !lift_off_half  ? 0.0
+                        : kappa_half    ? nut->friction_at(half_b_kappa, preload_spring_)
+                        : lift_off_slip ? nut->split_friction(spec.slip_sign, preload_spring_)
+                                        : 0.0;
+  };
+  lift_off_forces();
   auto evaluate = [&](double kappa, double given_tangential, ModeSolution& out) {
     CoordinateVector f = forces_;
     f += (given_tangential + viscous) * tangent;
     if (preload_half)
       f += nut->normal(spec.slip_sign) * normal + nut->friction(spec.slip_sign) * tangent;
+    if (smooth_half)
+      f += nut->normal_at(half_b_kappa, nut->preload) * normal +
+           nut->friction_at(half_b_kappa, nut->preload) * tangent;
     if (lift_off_half) f += lift_off_normal * normal + lift_off_friction * tangent;
     double normal_force = 0.0;
     if (spec.contact == ThreadContact::penalty) {
@@ -380,8 +401,15 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       out.normal_force += out.preload_normal;
       out.friction_force += nut->friction(spec.slip_sign);
     }
+    if (smooth_half) {
+      out.preload_normal = nut->normal_at(half_b_kappa, nut->preload);
+      out.preload_friction = nut->friction_at(half_b_kappa, nut->preload);
+      out.normal_force += out.preload_normal;
+      out.friction_force += out.preload_friction;
+    }
     if (lift_off_half) {
       out.preload_normal = lift_off_normal;
+      if (kappa_half) out.preload_friction = lift_off_friction;
       out.normal_force += lift_off_normal;
       out.friction_force += lift_off_friction;
     }
@@ -415,6 +443,20 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     base.given_tangential = decision.friction_force;
     solution = solve(base);
     if (nut) solution.preload_normal = nut->normal(nut->edge_of(solution.friction_force));
+    return solution;
+  }
+  if ((smooth_half || (lift_off_half && kappa_half)) &&
+      spec.friction == FrictionMode::regularized_acceleration) {
+    // Eq. (3.15) on a preloaded nut's halves (preloaded_acceleration_law):
+    // the mode at a given coefficient kappa', its slip acceleration.
+    auto at = [&](double kappa) {
+      half_b_kappa = kappa;
+      lift_off_forces();
+      evaluate(kappa, spec.given_tangential, solution);
+      return solution.regular ? solution.slip_acceleration
+                              : std::numeric_limits<double>::quiet_NaN();
+    };
+    at(preloaded_acceleration_law(spec, smooth_half, at));
     return solution;
   }
   if (spec.friction == FrictionMode::regularized_acceleration &&

@@ -227,7 +227,13 @@ void check_holds(const DriveModel& model, const DriveDynamics& dynamics, const B
   // Stick: the friction force inside the static cone (mu_static's: a law
   // with a static coefficient holds up to it), to its round-off.
   const double mu = model.effective_mu_static();
-  const double cone = mu * std::abs(b.normal_force);
+  double cone = mu * std::abs(b.normal_force);
+  // A preloaded nut (without lift-off): the halves' cone at mu_static', half
+  // B at the edge the friction force heads for (elements/preloaded_nut.hpp:
+  // its spring is internal, the balance the plain nut's).
+  if (const elements::PreloadedNut* nut = model.preloaded_nut())
+    cone = nut->sticking().bound(elements::PreloadedNut::edge_of(b.friction_force),
+                                 b.normal_force);
   if (std::abs(b.friction_force) > cone + 1e-12 * (std::abs(b.friction_force) + cone))
     throw NoEquilibrium(
         "initial.state = \"equilibrium\" is invalid for the loads at t = 0 (" +

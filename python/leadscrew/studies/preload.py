@@ -383,16 +383,24 @@ def preload_tradeoff(
     # What a preloaded nut refuses (a lossy or worm stage, the law, the
     # start, ...), said once, up front, rather than in every row but P = 0's.
     if preloads.max() > 0.0:
-        # The core runs a lossy or worm stage with a preload (on Moreau-Jean),
-        # but this study's closed forms (the efficiency, the holding band)
-        # are the thread's behind an ideal stage.
-        gear = scene.to_dict().get("gear") or {}
-        if gear.get("type", "ideal") != "ideal":
+        # The core runs a lossy or worm stage with a preload (on Moreau-Jean)
+        # and every law but eq. (3.15), but this study's closed forms (the
+        # efficiency at mu', the holding band) are exact Coulomb's on the
+        # thread behind an ideal stage.
+        data = scene.to_dict()
+        gear = (data.get("gear") or {}).get("type", "ideal")
+        law = (data.get("friction") or {}).get("law", "coulomb")
+        refused = (("gear.type", gear, "the thread's behind an ideal stage", "ideal", "on Moreau-Jean")
+                   if gear != "ideal" else
+                   ("friction.law", law, "exact Coulomb's", "coulomb", "with its law")
+                   if law != "coulomb" else None)
+        if refused:
+            key, value, whose, valid, how = refused
             raise ValueError(
-                f"nut.preload = {float(preloads.max()):g} N is invalid with gear.type = "
-                f"\"{gear['type']}\": preload_tradeoff's closed forms (the efficiency, the "
-                "holding band) are the thread's behind an ideal stage; use nut.preload = 0, or "
-                "gear.type = \"ideal\" (simulate runs the scene itself on Moreau-Jean)")
+                f"nut.preload = {float(preloads.max()):g} N is invalid with {key} = \"{value}\": "
+                f"preload_tradeoff's closed forms (the efficiency, the holding band) are {whose}; "
+                f"use nut.preload = 0, or {key} = \"{valid}\" (simulate runs the scene itself "
+                f"{how})")
         largest = scene.replace(nut={"preload": float(preloads.max())})
         if _closes_the_play(scene, float(preloads.max())):
             largest = largest.replace(backlash=None)

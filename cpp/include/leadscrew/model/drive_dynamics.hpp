@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -69,6 +70,9 @@ struct ModeSolution {
   // A preloaded nut (elements/preloaded_nut.hpp): its preload half's normal
   // force in the mode (part of normal_force, the net), 0 without one.
   double preload_normal = 0.0;
+  // Its friction force where the half takes the law's coefficient kappa'
+  // (DriveDynamics::preload_at_kappa; part of friction_force), else 0.
+  double preload_friction = 0.0;
   // A closed exact stop's force on the load along +u (ModeSpec::held_load).
   double stop_force = 0.0;
   // The normal force of the half that carries the load (normal_force
@@ -253,6 +257,12 @@ class DriveDynamics {
   double axial_force() const noexcept { return axial_force_; }
   double kinetic_energy() const;
   double friction_factor(const ModeSpec& spec, double slip_acceleration) const;
+  // A preloaded nut's half B at the law's coefficient (drive_dynamics.cpp).
+  bool preload_at_kappa(const ModeSpec& spec) const noexcept;
+  double half_b_coefficient(const elements::PreloadedNut& nut, const ModeSpec& spec) const;
+  double preloaded_acceleration_law(const ModeSpec& spec, bool multiplier,
+                                    const std::function<double(double)>& slip_acceleration_at)
+      const;
 
   // Painleve (dynamic jamming) report of a slip mode: the effective Delassus
   // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN. With a regularized law
@@ -297,6 +307,10 @@ class DriveDynamics {
   const DriveModel& model_;
   const friction::Law* law_;
   bool plain_coulomb_;
+  // The law's slip coefficient is mu at every slip speed (Coulomb, with or
+  // without mu_static): a preloaded nut's half B in slip at the element's
+  // mu' (PreloadedNut::normal); otherwise at the law's kappa' (normal_at).
+  bool one_slip_mu_;
   double bristle_ = 0.0;
   // The model's elements' data: their states (a copy of y's), slots, modes.
   struct ElementSlot {

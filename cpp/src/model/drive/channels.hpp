@@ -32,6 +32,8 @@ std::vector<std::string> drive_channel_names(const StateLayout& layout);
 struct ContactForces {
   double normal = 0.0, friction = 0.0, motor_torque = 0.0;
   bool stick = false;
+  // A preloaded nut's half B's normal force (part of normal; 0 without one).
+  double preload_normal = 0.0;
 };
 
 // The state of an output row besides the thread and motor forces.

@@ -97,7 +97,13 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
     // negative: LuGre is passive only for small sigma1).
     const double z = dynamics.bristle();  // y[bristle] * bristle_range (set)
     const double rate = dynamics.law().bristle_rate(dynamics.slip_velocity(), z);
-    const double stored = std::abs(s.normal_force) * model.flank_factor() *
+    // (A preloaded nut: both halves' flanks carry bristles of the one
+    // deflection z, both slipping at gamma_T: |N_A| + |N_B| in place of |N|.)
+    const double flank_normal =
+        model.preloaded_nut()
+            ? std::abs(s.normal_force - s.preload_normal) + std::abs(s.preload_normal)
+            : std::abs(s.normal_force);
+    const double stored = flank_normal * model.flank_factor() *
                           dynamics.law().storing_power(dynamics.slip_velocity(), z);
     ydot[bristle] = rate / h_.bristle_range_;
     ydot[bristle + 1] = stored;
@@ -106,11 +112,15 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
   // A lift-off nut's half B slipping on its own flank: its friction works on
   // its slip gamma_T - sin(a) e', not on gamma_T (preloaded_nut.hpp).
   if (const elements::PreloadedNut* nut = model.preloaded_nut();
-      nut && nut->lift_off && h_.mode_.friction == FrictionMode::slip &&
-      h_.mode_.contact == ThreadContact::penalty)
-    energy[kFrictionLoss] += nut->sin_lead *
-                             nut->split_friction(h_.mode_.slip_sign, dynamics.preload_spring_force()) *
-                             dynamics.play_rate();
+      nut && nut->lift_off && h_.mode_.contact == ThreadContact::penalty) {
+    if (dynamics.preload_at_kappa(h_.spec(1)))  // (a smooth law's, Stribeck's: the solve's)
+      energy[kFrictionLoss] += nut->sin_lead * s.preload_friction * dynamics.play_rate();
+    else if (h_.mode_.friction == FrictionMode::slip)
+      energy[kFrictionLoss] +=
+          nut->sin_lead *
+          nut->split_friction(h_.mode_.slip_sign, dynamics.preload_spring_force()) *
+          dynamics.play_rate();
+  }
   energy[kDampingLoss] = dynamics.damping_power();
   energy[kContactLoss] = dynamics.contact_loss_power();
   if (speed_train_) {  // the stages' losses (each >= 0), the motor's work beside
@@ -132,6 +142,7 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   const ModeSolution s = h_.on_the_law(h_.solve_current());
   forces.normal = s.normal_force;
   forces.friction = s.friction_force;
+  forces.preload_normal = s.preload_normal;
   forces.motor_torque = h_.model_.gear().rotor_torque(speed_train_torque(s));
   ChannelState state = channel_state(h_.dynamics_);
   if (motor_friction_state_ >= 0)

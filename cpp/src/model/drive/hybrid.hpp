@@ -193,7 +193,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // force on its own flank in the current mode at the net normal force (the
   // root g1, >= 0 while it bears), and the SimulationError where it lifts off.
   const elements::PreloadedNut* closing_nut() const;
-  double half_a_bearing(double normal_force) const;
+  double half_a_bearing(double normal_force, double preload_normal) const;
   [[noreturn]] void half_a_lifts_off(double t) const;
   // The train's friction stages (TrainSolver): stick or slip at zero slip by
   // the breakaway test; the stage's power flow reversing in slip (the root

@@ -52,7 +52,7 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
       if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
         g[1] = flank_change_root(s.normal_force - s.preload_normal);
       // Half A lifting off into the closed exact play: an error at its root.
-      if (closing) g[1] = half_a_bearing(s.normal_force);
+      if (closing) g[1] = half_a_bearing(s.normal_force, s.preload_normal);
       if (train_ && train_->has_stage() && mode_.friction == FrictionMode::slip)
         g[2] = stage_reversal_root(train_->stage_torque());
       if (watch_fold()) {
@@ -261,7 +261,10 @@ void DriveHybrid::start_mode(double t, const double* y) {
   // A mode of a preloaded nut closing exact play that starts with half A
   // pulling on its flank (half B's force changes with the mode): it lifts
   // off here.
-  if (closing_nut() && half_a_bearing(solve_current().normal_force) < 0.0) half_a_lifts_off(t);
+  if (closing_nut()) {
+    const ModeSolution s = solve_current();
+    if (half_a_bearing(s.normal_force, s.preload_normal) < 0.0) half_a_lifts_off(t);
+  }
 }
 
 // A stick's slip position (the stick's start's, start_mode) and a closed

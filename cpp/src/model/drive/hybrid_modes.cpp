@@ -245,7 +245,12 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
         return;
       }
     }
-    const friction::FlankLcpResult r = decide(*nut);
+    // (The slip's direction at the law's coefficient at the slip's start:
+    // mu' for Coulomb, Stribeck's mu(0+)'.)
+    const friction::FlankLcpResult r =
+        dynamics_.plain_coulomb() || dynamics_.law().slip_mu(0.0) == dynamics_.law().mu()
+            ? decide(*nut)
+            : decide(nut->with_mu(dynamics_.law().slip_mu(0.0) * model_.flank_factor()));
     ++lcp_solves_;
     if (!r.consistent)
       jam(lift_off ? "the preloaded nut's friction has no slip acceleration to decide by"

@@ -23,16 +23,26 @@ namespace {
 // Its channels (the declaration's, in this order).
 enum Channel { kPreloadForce, kNormalForceA, kFlankNormal };
 
+// Whether the halves take a law whose slip coefficient is not one number
+// (a smooth law, Stribeck's curve, the ODE methods' regularization): half
+// B's normal force follows the law's coefficient kappa', which the net
+// forces alone do not give, so the element reports |N_A| + |N_B| as a
+// channel (as with lift-off).
+bool law_channels(const friction::Law& law) {
+  return !(law.resolution() == friction::Resolution::set_valued && law.viscous() == 0.0 &&
+           law.slip_mu(0.0) == law.mu() && law.slip_mu(1.0) == law.mu());
+}
+
 void declare(const DriveModel& model, const friction::Law& law, Declaration& d) {
-  (void)law;
   const elements::PreloadedNut* nut = model.preloaded_nut();
   if (!nut) return;
-  if (nut->lift_off) {
+  if (nut->lift_off || law_channels(law)) {
     // Its channel |N_A| + |N_B| is the normal force the friction multiplies
     // (half A's force is the penalty flank's, the spring's changes with the
-    // play); its spring's rate bounds the elastic energy's gradient.
+    // play; half B's follows the law's coefficient); with lift-off its
+    // spring's rate bounds the elastic energy's gradient.
     d.channels = preloaded_nut_kind().catalog;
-    d.stiffness = nut->stiffness;
+    if (nut->lift_off) d.stiffness = nut->stiffness;
   } else {
     // With mu_static above mu the cone's bound in stick is the element's at
     // mu_static' (half B's edge state at mu_static'): where the row does
@@ -50,9 +60,9 @@ void declare(const DriveModel& model, const friction::Law& law, Declaration& d) 
   }
 }
 
-class LiftOffNutElement final : public DriveHybrid::Element {
+class NutChannelsElement final : public DriveHybrid::Element {
  public:
-  LiftOffNutElement(DriveHybrid& hybrid, const elements::PreloadedNut& nut)
+  NutChannelsElement(DriveHybrid& hybrid, const elements::PreloadedNut& nut)
       : Element(hybrid), nut_(nut) {}
 
   int root_count() const override { return 0; }
@@ -69,23 +79,44 @@ class LiftOffNutElement final : public DriveHybrid::Element {
   }
 
   // Its spring, half A's normal force and both halves' (the normal force
-  // mu' multiplies, half B at its slip's or the stick force's edge).
+  // the law's coefficient multiplies; in stick half B at the edge the stick
+  // force heads for, at mu_static').
   void output(double t, const double* y, const ContactForces& forces,
               ChannelState& state) const override {
     (void)t;
     (void)y;
+    if (first_channel() < 0) return;  // (no channels declared: exact Coulomb, no lift-off)
     double* values = state.values.data() + first_channel();
+    if (!nut_.lift_off) {
+      const double normal_a = forces.normal - forces.preload_normal;
+      values[kPreloadForce] = nut_.preload;
+      values[kNormalForceA] = normal_a;
+      values[kFlankNormal] = mode().friction == FrictionMode::stick
+                                 ? nut_.sticking().flank_normal(forces.normal, forces.friction)
+                                 : std::abs(normal_a) + std::abs(forces.preload_normal);
+      return;
+    }
     const double preload = dynamics().preload_spring_force();
     const double normal_a = dynamics().penalty_normal_force();
     values[kPreloadForce] = preload;
     values[kNormalForceA] = normal_a;
     values[kFlankNormal] =
-        mode().friction == FrictionMode::slip
+        mode().friction == FrictionMode::stick
+            ? nut_.sticking().split_flank_normal(normal_a, preload, forces.friction)
+        : mode().friction == FrictionMode::slip && !at_kappa()
             ? std::abs(normal_a) + std::abs(nut_.normal(mode().slip_sign, preload))
-            : nut_.sticking().split_flank_normal(normal_a, preload, forces.friction);
+            : std::abs(normal_a) + std::abs(forces.preload_normal);
   }
 
  private:
+  // Whether half B takes the law's coefficient in the current mode
+  // (DriveDynamics::preload_at_kappa).
+  bool at_kappa() const {
+    ModeSpec spec;
+    spec.friction = mode().friction;
+    return dynamics().preload_at_kappa(spec);
+  }
+
   const elements::PreloadedNut& nut_;
 };
 
@@ -97,9 +128,13 @@ const elements::PreloadedNut* DriveHybrid::closing_nut() const {
                                                                                    : nullptr;
 }
 
-double DriveHybrid::half_a_bearing(double normal_force) const {
+double DriveHybrid::half_a_bearing(double normal_force, double preload_normal) const {
+  const elements::PreloadedNut& nut = *model_.preloaded_nut();
+  // Half B at the law's coefficient (a smooth law, Stribeck's slip): the
+  // mode's own N_B, its preload_normal.
+  if (dynamics_.preload_at_kappa(spec(1))) return -nut.side * (normal_force - preload_normal);
   const int s = mode_.friction == FrictionMode::slip ? mode_.slip_sign : 0;
-  return model_.preloaded_nut()->half_a_bearing(s, normal_force);
+  return nut.half_a_bearing(s, normal_force);
 }
 
 void DriveHybrid::half_a_lifts_off(double t) const {
@@ -122,11 +157,13 @@ const ElementKind& preloaded_nut_kind() {
   return kind;
 }
 
+// (Its channels are declared with lift-off or a law of law_channels: the
+// element writes them where it has a slot.)
 std::unique_ptr<DriveHybrid::Element> make_preloaded_nut_element(DriveHybrid& hybrid,
                                                                  const DriveModel& model) {
   const elements::PreloadedNut* nut = model.preloaded_nut();
-  if (!nut || !nut->lift_off) return nullptr;
-  return std::make_unique<LiftOffNutElement>(hybrid, *nut);
+  if (!nut) return nullptr;
+  return std::make_unique<NutChannelsElement>(hybrid, *nut);
 }
 
 }  // namespace leadscrew::model::drive

@@ -54,7 +54,17 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
     return names;
   }();
   const friction::LawType& type = friction::law_type(friction);
-  if (preloaded) return lift_off ? event_driven_only : with_moreau;
+  // A preloaded nut: exact Coulomb on the event-driven scheme and Moreau-
+  // Jean, Stribeck's curve on the event-driven scheme, the smooth laws on
+  // the event-driven scheme, the ODE methods (their driver takes the halves:
+  // drive_dynamics.cpp) and Moreau-Jean (moreau_smooth_friction.cpp); with
+  // lift-off the event-driven scheme (and the ODE methods: smooth laws).
+  if (preloaded) {
+    const bool coulomb = type.time_stepping && friction == "coulomb";
+    if (lift_off) return coulomb ? with_moreau : type.time_stepping ? event_driven_only : smooth;
+    if (type.time_stepping) return with_moreau;  // (Stribeck's too: moreau_preload.cpp)
+    return resolution != friction::Resolution::acceleration ? smooth_with_moreau : smooth;
+  }
   if (type.time_stepping) {  // set-valued
     if (exact_play) return with_moreau;
     if (type.ode) return set_valued_all;
@@ -134,7 +144,14 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   // The train's stages with a torque or DC motor: whether the event-driven
   // scheme runs them needs the built model (the thread's Painleve regime,
   // from the masses).
-  if (stages && !p.speed_controlled) return drive::model_integrators(DriveModel(p));
+  if (stages && !p.speed_controlled) {
+    // (A lift-off nut's model carries the assembled nut's play, beyond the
+    // play's half: initial.play_position is ignored with it, 0 here.)
+    if (!preload_lifts_off(p)) return drive::model_integrators(DriveModel(p));
+    DriveParameters assembled = p;
+    assembled.play_position = 0.0;
+    return drive::model_integrators(DriveModel(assembled));
+  }
   if (stops_need_moreau(p)) return moreau_only();
   // (The law's type, from its defaults: every law's parameters have one.)
   const friction::Resolution resolution = friction::make_law(p.friction, {})->resolution();
@@ -187,24 +204,34 @@ void check_theta_stable_with_springs(const DriveModel& model,
       "(below 0.5 their modes grow from step to step)");
 }
 
-// A preloaded nut runs on the event-driven scheme and, without lift-off, on
-// Moreau-Jean (moreau_preload.cpp): the element's own reason first (the
-// list of integrators leaves it out).
+// A preloaded nut runs on the event-driven scheme; with exact Coulomb and
+// without lift-off on Moreau-Jean (moreau_preload.cpp); with a smooth law
+// on the ODE methods too (drive_dynamics.cpp): the element's own reason
+// first (the list of integrators leaves it out).
 void check_preload_integrator(const DriveModel& model, const std::string& integrator) {
   const DriveParameters& p = model.parameters();
-  if (const elements::PreloadedNut* nut = model.preloaded_nut();
-      nut && integrator != "event_driven" && (integrator != "moreau" || nut->lift_off))
+  const elements::PreloadedNut* nut = model.preloaded_nut();
+  if (!nut || integrator == "event_driven") return;
+  const friction::Law& law = model.law();
+  const bool set_valued = law.resolution() == friction::Resolution::set_valued;
+  const bool coulomb = set_valued && law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
+                       law.slip_mu(1.0) == law.mu();
+  if (integrator != "moreau" && !set_valued) return;  // (the law's own list decides)
+  if (integrator == "moreau" && nut->lift_off && !coulomb)
     throw InvalidArgument(
-        "integrator = \"" + integrator + "\" is invalid with nut.preload = " +
-        format_value(p.nut_preload) + " N" +
-        (nut->lift_off
-             ? " and backlash.contact = \"" + backlash_contact_name(p.backlash) +
-                   "\": a preloaded nut that lifts off (penalty play on a flexible concept) "
-                   "runs on the event-driven scheme only (integrator = \"event_driven\"); "
-                   "Moreau-Jean's step has no velocity-level model of half B on its own "
-                   "flank beside the penalty flank"
-             : ": a preloaded nut runs with exact Coulomb friction on the event-driven "
-               "scheme or Moreau-Jean (integrator = \"event_driven\" or \"moreau\")"));
+        "integrator = \"moreau\" is invalid with nut.preload = " + format_value(p.nut_preload) +
+        " N, backlash.contact = \"" + backlash_contact_name(p.backlash) +
+        "\" and friction.law = \"" + p.friction + "\": Moreau-Jean's step takes a preloaded "
+        "nut that lifts off (penalty play on a flexible concept) with exact Coulomb friction "
+        "only (its halves' modes, moreau_lift_off.cpp); the other laws run it on the "
+        "event-driven scheme (integrator = \"event_driven\")");
+  if (integrator == "moreau") return;  // (lift-off with a law but exact Coulomb: above)
+  // An ODE method with a set-valued law (its regularization has no halves).
+  throw InvalidArgument(
+      "integrator = \"" + integrator + "\" is invalid with nut.preload = " +
+      format_value(p.nut_preload) + " N and friction.law = \"" + p.friction +
+      "\": a preloaded nut with a set-valued law runs on the event-driven scheme or "
+      "Moreau-Jean (integrator = \"event_driven\" or \"moreau\")");
 }
 
 }  // namespace

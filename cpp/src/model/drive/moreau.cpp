@@ -36,6 +36,8 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
   iteration_.directions(model.play_gradient(), model.tangent_direction());
   bristle_state_ = layout_.find_state("bristle_share");
   bristle_channel_ = layout_.find_channel("bristle_deflection");
+  preload_channel_ = layout_.find_channel("preload_force");
+  lift_off_ = model.preloaded_nut() != nullptr && model.preloaded_nut()->lift_off;
   bristle_range_ = model.law().bristle_range();
 }
 
@@ -252,6 +254,11 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                                                 bool& contact, bool& stick) {
   Impulses impulses;
   stick = false;
+  // A preloaded nut that lifts off: its halves' modes (moreau_lift_off.cpp).
+  if (lift_off_) {
+    contact = true;
+    return solve_lift_off_thread(t, h, theta, v0, normal_target, rotor_target, stick);
+  }
   // The flank's sign, or both (no allocation: this runs every step).
   const int sigmas[2] = {sigma_fixed != 0 ? sigma_fixed : 1, -1};
   const int sigma_count = sigma_fixed != 0 ? 1 : 2;
@@ -344,10 +351,18 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   const double motor1 = rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
   // A preloaded nut (without lift-off: the thread's row): its halves' cone
   // (moreau_preload.cpp).
-  if (const elements::PreloadedNut* nut = model_.preloaded_nut(); nut && row)
-    return solve_preloaded_thread(*nut, t, h, c, d, alpha, beta, prescribed,
+  // (Stribeck's curve: the halves slip at the law's coefficient at the
+  // step's start speed, as the plain thread's; the viscous impulse on top.)
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut(); nut && row) {
+    const bool curve = law.slip_mu(0.0) != law.mu() || law.slip_mu(1.0) != law.mu();
+    const elements::PreloadedNut slipping =
+        curve ? nut->with_mu(law.slip_mu(std::abs(model_.tangent_direction().dot(v0))) *
+                             model_.flank_factor())
+              : *nut;
+    return solve_preloaded_thread(slipping, t, h, c, d, alpha, beta, prescribed,
                                   std::abs(c) <= slip_noise, motor0, motor1, normal_target,
-                                  rotor_target, stick);
+                                  rotor_target, {viscous_step, viscous_c, viscous_scale}, stick);
+  }
   double lcp_mu = model_.effective_mu();
   const friction::FlankLcpResult stick_step =
       prescribed
@@ -471,6 +486,19 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (bristle_state_ >= 0) {  // LuGre's deflection and the energy its bristles store
     state.values[bristle_channel_] = y[bristle_state_] * bristle_range_;
     state.elastic += y[bristle_state_ + 1];
+  }
+  if (preload_channel_ >= 0) {  // (a preloaded nut: a smooth law or lift-off, the last step's)
+    const elements::PreloadedNut& nut = *model_.preloaded_nut();
+    const double normal_a = last_.normal - last_.preload_normal;
+    state.values[preload_channel_] = lift_off_ ? dynamics_.preload_spring_force() : nut.preload;
+    state.values[preload_channel_ + 1] = normal_a;
+    // (stuck with lift-off: half B at the edge the friction heads for, at
+    // mu_static', as the event-driven scheme's)
+    state.values[preload_channel_ + 2] =
+        lift_off_ && last_.stick
+            ? nut.sticking().split_flank_normal(normal_a, half_b_spring_, last_.friction)
+        : last_.stick ? nut.sticking().flank_normal(last_.normal, last_.friction)
+                      : std::abs(normal_a) + std::abs(last_.preload_normal);
   }
   double applied = dynamics_.applied_torque();
   // The elements' channels, of the last step (a DC motor's armature), and

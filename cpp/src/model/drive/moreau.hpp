@@ -3,6 +3,7 @@
 // cpp/src/model.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -75,6 +76,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     // The rotor's friction impulse Q = P_c + Lambda (the motor's friction and
     // the stage's loss) on the rotor's coordinate, against +phi_r [N m s].
     double train = 0.0;
+    // A preloaded nut with a smooth law: half B's normal impulse, part of
+    // `normal` (moreau_smooth_friction.cpp); 0 otherwise.
+    double preload_normal = 0.0;
   };
 
   // The energy a step from y to y_next creates: what the stored energy
@@ -165,10 +169,44 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // false where the flank's normal impulse pulls.
   // The preloaded nut's friction impulse of the step (moreau_preload.cpp):
   // the element's cone at the step's impulses decides stick and slip.
+  // The law's viscous term over the step (solve_thread): h c, the unscaled
+  // slip c and the scale 1 / (1 + h c d).
+  struct ViscousStep {
+    double step = 0.0, c = 0.0, scale = 1.0;
+  };
   Impulses solve_preloaded_thread(const elements::PreloadedNut& nut, double t, double h,
                                   double c, double d, double alpha, double beta, bool prescribed,
                                   bool slip_zero, double motor0, double motor1,
-                                  double normal_target, double rotor_target, bool& stick);
+                                  double normal_target, double rotor_target,
+                                  const ViscousStep& viscous, bool& stick);
+  // A preloaded nut that lifts off (moreau_lift_off.cpp): half B's spring
+  // over the step, the discrete gradient G of V = S^2 / (2 k_p) along the
+  // play linearised at the step's end estimate e1k (as PenaltyFlank's), and
+  // the step's friction modes (stick, slip +-) each a linear step of its own.
+  struct HalfBSpring {
+    double e0 = 0.0, e1k = 0.0, secant = 0.0, slope = 0.0;
+    double low = -std::numeric_limits<double>::infinity();
+    double high = std::numeric_limits<double>::infinity();
+    void linearise(const elements::PreloadedNut& nut, double end);
+    double gradient(double end) const noexcept { return secant + slope * (end - e1k); }
+  };
+  double half_b_factor(const elements::PreloadedNut& nut, int m) const;
+  Impulses lift_off_step(const elements::PreloadedNut& nut, int m, double h, double theta,
+                         const CoordinateVector& v0, double normal_target, double rotor_target,
+                         double tangential);
+  double half_b_spring(const elements::PreloadedNut& nut, double h, double theta,
+                       const CoordinateVector& v0, const CoordinateVector& v1,
+                       bool clamped) const;
+  struct LiftOffMaps {
+    double c = 0.0, d = 0.0, beta = 0.0, alpha = 0.0, s0 = 0.0, sigma = 0.0;
+  };
+  LiftOffMaps lift_off_maps(const elements::PreloadedNut& nut, int m, double h, double theta,
+                            const CoordinateVector& v0, double normal_target,
+                            double rotor_target);
+  Impulses solve_lift_off_thread(double t, double h, double theta, const CoordinateVector& v0,
+                                 double normal_target, double rotor_target, bool& stick);
+  bool update_half_b(double h, double theta, const CoordinateVector& v0,
+                     const Impulses& impulses);
   // Exact play closed by the preload: SimulationError where half A's normal
   // force on its flank is negative at the step's end.
   void check_half_a_bearing(const StepState& s) const;
@@ -225,6 +263,16 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // LuGre's bristles (-1: another law): z / bristle_range in y, then the
   // energy they store; the deflection's channel.
   int bristle_state_ = -1, bristle_channel_ = -1;
+  // A preloaded nut's channels (with a smooth law: hybrid_preloaded_nut.cpp's
+  // declaration; -1: not declared): preload_force, its first.
+  int preload_channel_ = -1;
+  // Lift-off (moreau_lift_off.cpp): whether the model's nut lifts off, half
+  // B's spring over the step, the pass's right-hand side without it, half
+  // B's friction impulse and spring force of the last step.
+  bool lift_off_ = false;
+  HalfBSpring half_b_;
+  CoordinateVector pass_rhs_;
+  double half_b_friction_ = 0.0, half_b_spring_ = 0.0;
   double bristle_range_ = 0.0;
   double bristle_z0_ = 0.0;  // z at the step's start [m] (step())
   CoordinateVector q_, v_, free_;

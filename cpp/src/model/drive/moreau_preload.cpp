@@ -33,7 +33,7 @@ namespace leadscrew::model::drive {
 DriveMoreau::Impulses DriveMoreau::solve_preloaded_thread(
     const elements::PreloadedNut& nut, double t, double h, double c, double d, double alpha,
     double beta, bool prescribed, bool slip_zero, double motor0, double motor1,
-    double normal_target, double rotor_target, bool& stick) {
+    double normal_target, double rotor_target, const ViscousStep& viscous, bool& stick) {
   // The element at the step's impulses: half B's impulse over the step is
   // its force's times h (N_B^s and T_B^s are linear in P).
   elements::PreloadedNut step_nut = nut;
@@ -54,9 +54,16 @@ DriveMoreau::Impulses DriveMoreau::solve_preloaded_thread(
                               format_value(nut.mu * std::abs(alpha)) + "); " +
                               dynamics_.jamming_report(),
                        "reduce the friction or change the inertia ratio");
-  Impulses impulses = solve(true, normal_target, rotor_target, r.friction_force);
-  impulses.friction = r.friction_force;
+  // The viscous impulse on top of the cone's (Stribeck's viscous term; zero
+  // where stuck), as the plain thread's.
+  double friction = r.friction_force;
+  if (viscous.step > 0.0) friction = (friction - viscous.step * viscous.c) * viscous.scale;
+  Impulses impulses = solve(true, normal_target, rotor_target, friction);
+  impulses.friction = friction;
   stick = r.slip_acceleration == 0.0;
+  // Half B's normal impulse in slip (the channels' |N_A| + |N_B|; in stick
+  // the channels take half B at the edge the friction heads for).
+  if (!stick) impulses.preload_normal = step_nut.normal(r.slip_acceleration > 0.0 ? 1 : -1);
   return impulses;
 }
 
@@ -71,7 +78,11 @@ void DriveMoreau::check_half_a_bearing(const StepState& s) const {
   if (!nut || !nut->closes_exact_play) return;
   const double slip = model_.tangent_direction().dot(v_);
   const int sign = s.stick || slip == 0.0 ? 0 : slip > 0.0 ? 1 : -1;
-  const double bearing = nut->half_a_bearing(sign, s.impulses.normal / s.h);
+  // (A smooth law: half B at the step's own N_B, moreau_smooth_friction.cpp.)
+  const double bearing =
+      model_.law().resolution() != friction::Resolution::set_valued
+          ? -nut->side * (s.impulses.normal - s.impulses.preload_normal) / s.h
+          : nut->half_a_bearing(sign, s.impulses.normal / s.h);
   if (bearing >= 0.0) return;
   throw SimulationError(
       s.t + s.h,

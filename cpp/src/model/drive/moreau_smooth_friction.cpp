@@ -99,9 +99,24 @@ DriveMoreau::Impulses DriveMoreau::solve_smooth_thread(double t, double h, doubl
     const double n = beta + alpha * p;
     return sigma_fixed != 0 ? std::max(sigma_fixed * n, 0.0) : std::abs(n);
   };
+  // A preloaded nut (the thread's row): both halves' flanks take the law at
+  // the step's end slip, half B's impulse h N_B(kappa) (its axial balance,
+  // PreloadedNut::normal_at) inside the net P_N: |P_N - h N_B| + h |N_B|.
+  const elements::PreloadedNut* nut = row ? model_.preloaded_nut() : nullptr;
+  auto half_b = [&](double kappa) {
+    if (nut->half_b_locks(kappa))
+      throw SimulationError(t, "the preloaded nut's half B locks against its own spring in the "
+                               "Moreau-Jean step: the law's friction coefficient kappa' = " +
+                                   format_value(kappa) + " times tan(lead angle) reaches 1",
+                            "lower friction.mu (or LuGre's sigma1) or the lead");
+    return h * nut->normal_at(kappa, nut->preload);
+  };
   auto f = [&](double p) {
     const double slip = c + d * p;
-    return p + smooth_coefficient(slip, h) * normal_size(p) + viscous_step * slip;
+    const double kappa = smooth_coefficient(slip, h);
+    if (!nut) return p + kappa * normal_size(p) + viscous_step * slip;
+    const double b = half_b(kappa), n = beta + alpha * p;
+    return p + kappa * (std::abs(n - b) + std::abs(b)) + viscous_step * slip;
   };
   // The bracket, from P = 0 outward (F rises with slope >= 1 - kappa_max
   // |alpha| > 0: a few doublings of F(0)'s size).
@@ -132,6 +147,7 @@ DriveMoreau::Impulses DriveMoreau::solve_smooth_thread(double t, double h, doubl
   Impulses impulses = solve(row, normal_target, rotor_target, friction);
   if (!row) impulses.normal = flank_impulse(h, theta, v0, impulses.velocity);
   impulses.friction = friction;
+  if (nut) impulses.preload_normal = half_b(smooth_coefficient(c + d * friction, h));
   return impulses;
 }
 

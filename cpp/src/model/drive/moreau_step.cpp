@@ -64,6 +64,11 @@ void DriveMoreau::plan_contacts(StepState& s, double restitution) {
     flank_.start(thread, s.play0);
     flank_.linearise(thread, s.play0 + s.h * s.play_rate0);
   }
+  if (lift_off_) {  // (half B's spring: moreau_lift_off.cpp)
+    half_b_ = HalfBSpring{};
+    half_b_.e0 = s.play0;
+    half_b_.linearise(*model_.preloaded_nut(), s.play0 + s.h * s.play_rate0);
+  }
   s.rotor_target = p_.speed_controlled ? model_.motor().prescribed_speed(s.t + s.h) : 0.0;
 }
 
@@ -114,8 +119,8 @@ void DriveMoreau::solve_step(StepState& s) {
   CoordinateVector rhs_base;
   bool assembled[kMaxStops] = {false, false};
   for (int pass = 0;; ++pass) {
-    if (penalty) {  // (the flank's friction contact: where it pushes)
-      s.contact_at_start = flank_.active();
+    if (penalty) {  // (the flank's friction contact: where it pushes; half B's always)
+      s.contact_at_start = flank_.active() || lift_off_;
       s.sigma_fixed = -flank_.side;
     }
     // Iteration matrix and free velocity.
@@ -135,6 +140,7 @@ void DriveMoreau::solve_step(StepState& s) {
              thread.play_gradient();
     }
     free_ = iteration_.solve(rhs);
+    if (lift_off_) pass_rhs_ = rhs;
     if (model_.train_friction() != nullptr) {
       s.impulses = solve_train(t, h, theta, v0, s.normal_target, s.rotor_target, s.sigma_fixed,
                                s.balance, s.contact_at_start, s.contact, s.stick, s.rotor_mode);
@@ -152,6 +158,7 @@ void DriveMoreau::solve_step(StepState& s) {
     ++stop_passes;
     // (Newton on the flank's force: quadratic, a few passes; capped.)
     if (penalty && pass < 100 && update_flank(h, theta, v0, s.impulses)) again = true;
+    if (lift_off_ && pass < 100 && update_half_b(h, theta, v0, s.impulses)) again = true;
     if (!again) break;
   }
 }
@@ -192,6 +199,7 @@ void DriveMoreau::finish_velocities(StepState& s) {
     s.impulses.normal = 0.0, s.impulses.friction = 0.0;
   if (model_.thread_pair().penalty()) {
     s.impulses.normal = flank_impulse(s.h, s.theta, s.v0, v_);
+    if (lift_off_) s.impulses.normal += s.impulses.preload_normal;  // (half B's)
     if (!s.contact) s.impulses.friction = 0.0;
   }  check_half_a_bearing(s);  // (exact play closed by a preloaded nut)
 }
@@ -240,9 +248,18 @@ void DriveMoreau::book_step(StepState& s, double* y_next) {
     // (ResultCheckSpec::step_friction_excess)
     const double slip0 = model_.tangent_direction().dot(s.v0);
     friction_excess_ += std::max(0.0, -(1.0 - theta) * s.impulses.friction * (slip - slip0));
+    // A lift-off nut's half B slips on its own flank at gamma_T - sin(a) e'
+    // (moreau_lift_off.cpp): its friction's loss on that slip.
+    if (lift_off_)
+      energy[kFrictionLoss] +=
+          model_.preloaded_nut()->sin_lead * half_b_friction_ * model_.play_gradient().dot(v_);
   }
   if (bristle_state_ >= 0)
-    book_bristles(h, y, y_next, slip, s.contact ? s.impulses.normal : 0.0);
+    // (A preloaded nut's halves: |P_N,A| + |P_N,B|, both flanks' bristles.)
+    book_bristles(h, y, y_next, slip,
+                  !s.contact ? 0.0
+                             : std::abs(s.impulses.normal - s.impulses.preload_normal) +
+                                   std::abs(s.impulses.preload_normal));
   play_rate_ = std::max({play_rate_, std::abs(s.play_rate0),
                          std::abs(model_.play_gradient().dot(v_))});
   book_losses(s, v_theta, y_next);
@@ -304,6 +321,7 @@ void DriveMoreau::report_step(const StepState& s) {
     if (stop_active_[k]) last_stop_force_ -= exact[k].side * s.impulses.stop[k] / s.h;
   last_.normal = s.impulses.normal / s.h;
   last_.friction = s.impulses.friction / s.h;
+  last_.preload_normal = s.impulses.preload_normal / s.h;
   last_.motor_torque =
       p_.speed_controlled ? model_.gear().rotor_torque(s.impulses.rotor / s.h) : 0.0;
   last_.stick = s.contact && s.stick;

@@ -479,8 +479,8 @@ void check_train_friction(const DriveParameters& p, const DriveElements& e) {
     throw InvalidArgument(what + " is invalid with friction.mu = " + format_value(p.mu) +
                           ": a torque cannot drive the thread (mu' >= cot(lead angle)), so its "
                           "holding torques at rest form no interval");
-  // (A preloaded nut that lifts off: check_preloaded_nut refuses the stages
-  // first; without lift-off the stages take it on Moreau-Jean.)
+  // (A preloaded nut: the stages take it on Moreau-Jean, with lift-off too:
+  // moreau_lift_off.cpp.)
   // Penalty end stops are one more axial force on the train (TrainSolver,
   // and Moreau-Jean's); exact ones where the load is a body of its own
   // (elements/end_stops.cpp), on Moreau-Jean.
@@ -582,43 +582,23 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
   require_nonnegative("nut.preload", p.nut_preload);
   require_nonnegative("nut.preload_stiffness", p.nut_preload_stiffness);
   if (p.nut_preload == 0.0) return false;
-  // The train's friction stages run on Moreau-Jean, which takes the
-  // preloaded nut without lift-off (moreau_preload.cpp); a nut that lifts
-  // off runs on the event-driven scheme only, which takes no stage with it
-  // (checked first: no other rule of the nut's is worth meeting before this one).
-  // (Behind a prescribed rotor speed the event-driven scheme runs the stages
-  // with the lift-off too: they change the motor's torque alone.)
-  const bool stage = has_friction_stage(p);
-  if ((stage || p.motor_friction_torque > 0.0) && preload_lifts_off(p) && !p.speed_controlled)
-    throw InvalidArgument(
-        "nut.preload = " + format_value(p.nut_preload) + " N is invalid with " +
-        (stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-               : "motor.friction_torque = " + format_value(p.motor_friction_torque) + " N m") +
-        " and backlash.contact = \"" + backlash_contact_name(p.backlash) + "\" on concept = \"" +
-        concept_name(p.concept) + "\": the train's friction stages run on Moreau-Jean, whose "
-        "step takes a preloaded nut without lift-off only (no play, exact play closed by the "
-        "preload, or the rigid concept), and the event-driven scheme runs them with a "
-        "torque or DC motor on the rigid concept without play only; use backlash.contact = "
-        "\"exact\" or \"none\", nut.preload = 0, gear.type = \"ideal\" and "
-        "motor.friction_torque = 0, or a prescribed rotor speed (loads.drive_speed)");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
-  const std::string supported =
-      ": a preloaded nut is supported on the rigid concept, and on the flexible concepts "
-      "without play, with exact play (closed by the preload) or with penalty flanks "
-      "(backlash.contact = \"bistop\" or \"cubic\"), "
-      "with exact Coulomb friction (friction.law = \"coulomb\", mu_static >= mu) and "
-      "initial.state = \"relaxed\"";
-  // Exact Coulomb, with one coefficient or with mu_static above mu (the
-  // halves stick at mu_static', slip at mu': preloaded_nut.hpp).
+  // Each half's flank takes the law (docs/physics/preloaded_nut.md,
+  // "Friction laws"): exact Coulomb with one coefficient or mu_static above
+  // mu (the halves stick at mu_static', slip at mu': preloaded_nut.hpp),
+  // Stribeck's curve, a velocity law, LuGre's bristles (one deflection for
+  // both halves: they slip together), eq. (3.15) (its coefficient a fixed
+  // point of the mode, drive_dynamics.cpp): no rule of the law's here.
   const friction::Law& law = e.thread->law();
-  const bool coulomb = law.resolution() == friction::Resolution::set_valued &&
-                       law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
-                       law.slip_mu(1.0) == law.mu() && law.mu_static() >= law.mu();
-  if (!coulomb)
-    throw InvalidArgument(preload + "with friction.law = \"" + p.friction + "\"" + supported);
-  if (p.initial_state == InitialState::equilibrium)
-    throw InvalidArgument(preload + "with initial.state = \"equilibrium\"" + supported +
-                          " (on the rigid concept the relaxed start at rest is the same state)");
+  // The static equilibrium holds the halves' net forces (their spring is
+  // internal; the cone the halves', drive_equilibrium.cpp); with lift-off the
+  // assembled nut (half A pressed in by the preload) is the start.
+  if (p.initial_state == InitialState::equilibrium && preload_lifts_off(p))
+    throw InvalidArgument(preload + "with initial.state = \"equilibrium\" and backlash.contact "
+                          "= \"" + backlash_contact_name(p.backlash) + "\": a preloaded nut that "
+                          "lifts off starts assembled, half A pressed into its flank by the "
+                          "preload (the equilibrium's nut sits where the loads put it); use "
+                          "initial.state = \"relaxed\"");
   check_carried_preload(p, e, p.concept != Concept::rigid && p.backlash != BacklashContact::none &&
                                   p.backlash != BacklashContact::exact);
   const double mu = preload_mu(e), mu_static = preload_mu_static(e);

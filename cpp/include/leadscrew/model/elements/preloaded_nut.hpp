@@ -58,6 +58,29 @@ struct PreloadedNut {
     return side * preload / (cos_lead - s * side * mu * sin_lead);
   }
   double friction(int s) const noexcept { return -s * mu * std::abs(normal(s)); }
+  // Half B's normal and friction force at the signed friction coefficient
+  // kappa' (its friction -kappa' |N_B|) and the spring force S [N]: a smooth
+  // law's (arctan_velocity, LuGre's bristles, Stribeck's curve in slip),
+  // each half's flank taking the law at the common slip. From B's axial
+  // balance cos(a) N_B + sin(a) T_B = side S: N_B = side S / (cos(a) - side
+  // kappa' sin(a)); kappa' = s mu' is normal(s). Needs cos(a) - side kappa'
+  // sin(a) > 0 (else half B locks against its spring: half_b_locks).
+  double normal_at(double kappa, double spring) const noexcept {
+    return side * spring / (cos_lead - side * kappa * sin_lead);
+  }
+  double friction_at(double kappa, double spring) const noexcept {
+    return -kappa * std::abs(normal_at(kappa, spring));
+  }
+  bool half_b_locks(double kappa) const noexcept {
+    return !(cos_lead - side * kappa * sin_lead > 0.0);
+  }
+  // The element with the kinetic coefficient mu' (Stribeck's curve at the
+  // slip's start, mu(0+)').
+  PreloadedNut with_mu(double kinetic_mu) const noexcept {
+    PreloadedNut at = *this;
+    at.mu = kinetic_mu;
+    return at;
+  }
   // The friction bound b_s(N) in the direction s at the net normal force N.
   double bound(int s, double normal_force) const noexcept {
     const double b = normal(s);

@@ -96,6 +96,8 @@ friction::FlankLcpResult solve_flank_lcp_scaled(double c, double d, double alpha
 
 DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
     : model_(model), law_(law ? law : &model.law()), plain_coulomb_(law_->plain_coulomb()) {
+  if (has_transverse_slip(model.parameters()))
+    transverse_ = &model.parameters().transverse_slip_velocity;
   const int n = model.coordinate_count();
   if (n > kMaxCoordinates) throw InvalidArgument("a drive model has at most 6 coordinates");
   q_ = CoordinateVector::Zero(n);
@@ -177,6 +179,7 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   t_ = t;
   q_ = q;
   v_ = v;
+  if (transverse_) transverse_slip_ = (*transverse_)(t);
   forces_.setZero();
   elastic_ = 0.0;
   damping_power_ = 0.0;
@@ -244,6 +247,7 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
       return spec.slip_sign * (plain_coulomb_ ? model_.effective_mu()
                                                      : law_->slip_mu(std::abs(slip_)) * factor);
     case FrictionMode::regularized_velocity:
+      if (transverse_) return cone_coefficient(slip_, transverse_slip_);
       return law_->velocity_coefficient(slip_) * factor;
     case FrictionMode::regularized_acceleration:
       return law_->acceleration_coefficient(slip_acceleration) * factor;

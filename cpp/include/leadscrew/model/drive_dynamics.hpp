@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -254,6 +255,28 @@ class DriveDynamics {
   double kinetic_energy() const;
   double friction_factor(const ModeSpec& spec, double slip_acceleration) const;
 
+  // The flank's 2-D friction cone (a transverse slip w, issue 34;
+  // docs/physics/transverse_slip.md): transverse() says the run has one
+  // (loads.transverse_slip_velocity), transverse_slip() is w at the state
+  // last set (set_state takes w(t)).
+  // The cone's helix coefficient mu' gamma / |(gamma, w)| rides on the
+  // normal force as a velocity law's kappa (FrictionMode::
+  // regularized_velocity): smooth in gamma wherever w != 0.
+  bool transverse() const noexcept { return transverse_ != nullptr; }
+  double transverse_slip() const noexcept { return transverse_slip_; }
+  double cone_coefficient(double slip, double w) const noexcept {
+    const double speed = std::hypot(slip, w);
+    return speed > 0.0 ? model_.effective_mu() * (slip / speed) : 0.0;
+  }
+  // The transverse friction along +w (the friction channel's sign: against
+  // the slip) at a flank normal force N and helix slip gamma [N].
+  double transverse_friction(double normal_force, double slip) const noexcept {
+    const double speed = std::hypot(slip, transverse_slip_);
+    return speed > 0.0
+               ? -model_.effective_mu() * std::abs(normal_force) * (transverse_slip_ / speed)
+               : 0.0;
+  }
+
   // Painleve (dynamic jamming) report of a slip mode: the effective Delassus
   // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN. With a regularized law
   // (regularized_factor >= 0: the friction factor kappa = (2/pi) mu' |atan(.)|
@@ -298,6 +321,8 @@ class DriveDynamics {
   const friction::Law* law_;
   bool plain_coulomb_;
   double bristle_ = 0.0;
+  const Excitation* transverse_ = nullptr;  // w(t) (nullptr: no transverse slip)
+  double transverse_slip_ = 0.0;
   // The model's elements' data: their states (a copy of y's), slots, modes.
   struct ElementSlot {
     int first = 0, count = 0, offset = 0;  // in y; how many; in element_states_

@@ -2,6 +2,7 @@
 // on the velocity level, the restitution that creates no energy, and the
 // check that a step resolves the drive's stiffness.
 #include "moreau.hpp"
+#include "transverse_slip.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -37,6 +38,7 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
   bristle_state_ = layout_.find_state("bristle_share");
   bristle_channel_ = layout_.find_channel("bristle_deflection");
   bristle_range_ = model.law().bristle_range();
+  transverse_state_ = layout_.find_state("transverse_work");
 }
 
 void DriveMoreau::initialize(double t, const double* y) {
@@ -284,7 +286,12 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
   // a stuck step (gamma+ = 0) has no viscous impulse.
   const friction::Law& law = dynamics_.law();
-  if (law.resolution() != friction::Resolution::set_valued)  // (no stick: a smooth law)
+  // A transverse slip's cone: where w+ != 0 the helix friction is smooth
+  // in the slip (no stick), the exact cone's root (moreau_smooth_friction.cpp);
+  // where w+ = 0 the 1-D Coulomb step below.
+  if (transverse_state_ >= 0) transverse_next_ = p_.transverse_slip_velocity(t + h);
+  if (law.resolution() != friction::Resolution::set_valued ||
+      (transverse_state_ >= 0 && transverse_next_ != 0.0))  // (no stick: a smooth law)
     return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,
                                alpha, beta, contact);
   const double viscous_step = law.viscous() * h;
@@ -441,6 +448,7 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
     for (const int k : {motor_friction_state_, gear_state_})
       if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
     if (bristle_state_ >= 0) stored += state[bristle_state_ + 1];  // (LuGre's bristles)
+    if (transverse_state_ >= 0) stored -= state[transverse_state_];  // (the cone's work)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -472,6 +480,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
     state.values[bristle_channel_] = y[bristle_state_] * bristle_range_;
     state.elastic += y[bristle_state_ + 1];
   }
+  if (transverse_state_ >= 0)
+    write_transverse_channels(layout_, dynamics_, last_transverse_, y, state);
   double applied = dynamics_.applied_torque();
   // The elements' channels, of the last step (a DC motor's armature), and
   // their torque on the rotor (Element::step_output, step_drive_torque).

@@ -183,6 +183,11 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // they store, taken from the friction loss (moreau_smooth_friction.cpp).
   void book_bristles(double h, const double* y, double* y_next, double slip,
                      double normal_impulse);
+  // The cone's transverse impulse over the step at w+ (on the cone from
+  // the helix impulse): its loss, the excitation's work that balances it,
+  // the row's force (moreau_smooth_friction.cpp).
+  void book_transverse(double h, const double* y, double* y_next, double friction_impulse,
+                       double normal_impulse);
   // A speed-controlled rotor with the train's friction: the step without
   // the rotor's friction row, then the motor's friction and the stage's
   // loss from the impulse the stage passes on (moreau_speed_train.cpp).
@@ -225,6 +230,12 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // LuGre's bristles (-1: another law): z / bristle_range in y, then the
   // energy they store; the deflection's channel.
   int bristle_state_ = -1, bristle_channel_ = -1;
+  // A transverse slip's cone (transverse_slip.cpp): w at the step's end,
+  // the excitation's work integral in y (-1: none) and the last step's
+  // transverse friction [N] (the friction channel's sign).
+  double transverse_next_ = 0.0;
+  int transverse_state_ = -1;
+  double last_transverse_ = 0.0;
   double bristle_range_ = 0.0;
   double bristle_z0_ = 0.0;  // z at the step's start [m] (step())
   CoordinateVector q_, v_, free_;

@@ -247,7 +247,9 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
       return spec.slip_sign * (plain_coulomb_ ? model_.effective_mu()
                                                      : law_->slip_mu(std::abs(slip_)) * factor);
     case FrictionMode::regularized_velocity:
-      if (transverse_) return cone_coefficient(slip_, transverse_slip_);
+      if (transverse_)
+        return cone_coefficient(slip_, transverse_slip_,
+                                cone_mu(std::hypot(slip_, transverse_slip_)));
       return law_->velocity_coefficient(slip_) * factor;
     case FrictionMode::regularized_acceleration:
       return law_->acceleration_coefficient(slip_acceleration) * factor;

@@ -258,23 +258,27 @@ class DriveDynamics {
   // The flank's 2-D friction cone (a transverse slip w, issue 34;
   // docs/physics/transverse_slip.md): transverse() says the run has one
   // (loads.transverse_slip_velocity), transverse_slip() is w at the state
-  // last set (set_state takes w(t)).
-  // The cone's helix coefficient mu' gamma / |(gamma, w)| rides on the
-  // normal force as a velocity law's kappa (FrictionMode::
-  // regularized_velocity): smooth in gamma wherever w != 0.
+  // last set (set_state takes w(t)). In slip the friction is
+  // (mu'(s) |N| + viscous s) (gamma, w) / s, s = |(gamma, w)|, mu'(s) the
+  // law's coefficient at the slip speed (Stribeck's curve; exact Coulomb's
+  // mu'): its helix coefficient mu'(s) gamma / s rides on the normal force
+  // as a velocity law's kappa (FrictionMode::regularized_velocity), smooth in
+  // gamma wherever w != 0; the viscous term is the mode's own.
   bool transverse() const noexcept { return transverse_ != nullptr; }
   double transverse_slip() const noexcept { return transverse_slip_; }
-  double cone_coefficient(double slip, double w) const noexcept {
+  double cone_mu(double speed) const { return law_->slip_mu(speed) * model_.flank_factor(); }
+  // mu gamma / |(gamma, w)| at a coefficient mu (0 at the apex).
+  static double cone_coefficient(double slip, double w, double mu) noexcept {
     const double speed = std::hypot(slip, w);
-    return speed > 0.0 ? model_.effective_mu() * (slip / speed) : 0.0;
+    return speed > 0.0 ? mu * (slip / speed) : 0.0;
   }
   // The transverse friction along +w (the friction channel's sign: against
   // the slip) at a flank normal force N and helix slip gamma [N].
-  double transverse_friction(double normal_force, double slip) const noexcept {
+  double transverse_friction(double normal_force, double slip) const {
     const double speed = std::hypot(slip, transverse_slip_);
-    return speed > 0.0
-               ? -model_.effective_mu() * std::abs(normal_force) * (transverse_slip_ / speed)
-               : 0.0;
+    if (!(speed > 0.0)) return 0.0;
+    return -(cone_mu(speed) * std::abs(normal_force) + law_->viscous() * speed) *
+           (transverse_slip_ / speed);
   }
 
   // Painleve (dynamic jamming) report of a slip mode: the effective Delassus

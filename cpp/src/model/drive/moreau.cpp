@@ -289,7 +289,11 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // A transverse slip's cone: where w+ != 0 the helix friction is smooth
   // in the slip (no stick), the exact cone's root (moreau_smooth_friction.cpp);
   // where w+ = 0 the 1-D Coulomb step below.
-  if (transverse_state_ >= 0) transverse_next_ = p_.transverse_slip_velocity(t + h);
+  if (transverse_state_ >= 0) {
+    transverse_next_ = p_.transverse_slip_velocity(t + h);
+    transverse_mu_ = dynamics_.cone_mu(std::hypot(model_.tangent_direction().dot(v0),
+                                                  p_.transverse_slip_velocity(t)));
+  }
   if (law.resolution() != friction::Resolution::set_valued ||
       (transverse_state_ >= 0 && transverse_next_ != 0.0))  // (no stick: a smooth law)
     return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,

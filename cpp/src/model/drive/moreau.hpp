@@ -187,7 +187,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // the helix impulse): its loss, the excitation's work that balances it,
   // the row's force (moreau_smooth_friction.cpp).
   void book_transverse(double h, const double* y, double* y_next, double friction_impulse,
-                       double normal_impulse);
+                       double normal_impulse, double slip);
   // A speed-controlled rotor with the train's friction: the step without
   // the rotor's friction row, then the motor's friction and the stage's
   // loss from the impulse the stage passes on (moreau_speed_train.cpp).
@@ -233,7 +233,10 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // A transverse slip's cone (transverse_slip.cpp): w at the step's end,
   // the excitation's work integral in y (-1: none) and the last step's
   // transverse friction [N] (the friction channel's sign).
-  double transverse_next_ = 0.0;
+  // w at the step's end, the cone's coefficient mu'(s0) at the step's
+  // start slip speed s0 = |(gamma, w)| (Stribeck's curve explicit, as the
+  // 1-D step's),
+  double transverse_next_ = 0.0, transverse_mu_ = 0.0;
   int transverse_state_ = -1;
   double last_transverse_ = 0.0;
   double bristle_range_ = 0.0;

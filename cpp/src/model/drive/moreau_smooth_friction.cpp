@@ -74,9 +74,12 @@ double bracketed_root(const F& f, double low, double f_low, double high, double 
 
 double DriveMoreau::smooth_coefficient(double slip, double h) const {
   // The transverse slip's cone at the step's end slip (gamma+, w+): the
-  // helix component mu' gamma+ / |(gamma+, w+)|, strictly increasing in
-  // gamma+ and below mu' (one root, found to round-off: the exact cone).
-  if (transverse_state_ >= 0) return dynamics_.cone_coefficient(slip, transverse_next_);
+  // helix component mu' gamma+ / |(gamma+, w+)| (mu' Stribeck's at the
+  // step's start slip speed), strictly increasing in gamma+ and below mu'
+  // (one root, found to round-off: the exact cone; the viscous term is
+  // the smooth step's own, implicit).
+  if (transverse_state_ >= 0)
+    return DriveDynamics::cone_coefficient(slip, transverse_next_, transverse_mu_);
   const friction::Law& law = model_.law();
   const double factor = model_.flank_factor();
   if (law.resolution() == friction::Resolution::bristle)
@@ -158,19 +161,22 @@ void DriveMoreau::book_bristles(double h, const double* y, double* y_next, doubl
 }
 
 void DriveMoreau::book_transverse(double h, const double* y, double* y_next,
-                                  double friction_impulse, double normal_impulse) {
-  // The transverse impulse against w+, put on the cone from the root's
-  // helix impulse P_T: |(P_T, P_w)| = mu' |P_N| to round-off (from
-  // w+ / |(gamma+, w+)| with the step's recomputed gamma+, whose round-off
-  // is of the size of w+ at its zeros, it left the cone by 1 %). The
+                                  double friction_impulse, double normal_impulse, double slip) {
+  // The transverse impulse against w+: its cone part put on the cone from
+  // the root's helix impulse, |(P_T + h c gamma+, P_w + h c w+)| =
+  // mu'(s0) |P_N| to round-off (from w+ / |(gamma+, w+)| with the step's
+  // recomputed gamma+, whose round-off is of the size of w+ at its zeros,
+  // it left the cone by 1 %), and the viscous impulse -h c w+. The
   // excitation that moves the nut across does the work -P_w w+ >= 0, which
   // the friction loses. (w+ = 0: the 1-D step, no transverse impulse.)
   double impulse = 0.0;
   if (transverse_next_ != 0.0) {
-    const double bound = model_.effective_mu() * std::abs(normal_impulse);
-    impulse = -std::copysign(
-        std::sqrt(std::max(0.0, (bound - friction_impulse) * (bound + friction_impulse))),
-        transverse_next_);
+    const double viscous_step = dynamics_.law().viscous() * h;
+    const double bound = transverse_mu_ * std::abs(normal_impulse);
+    const double cone = friction_impulse + viscous_step * slip;
+    impulse = -std::copysign(std::sqrt(std::max(0.0, (bound - cone) * (bound + cone))),
+                             transverse_next_) -
+              viscous_step * transverse_next_;
   }
   const double loss = -impulse * transverse_next_;
   y_next[transverse_state_] = y[transverse_state_] + loss;

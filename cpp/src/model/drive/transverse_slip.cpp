@@ -1,6 +1,7 @@
 // The nut's transverse slip on the flank (loads.transverse_slip_velocity,
 // issue 34; docs/physics/transverse_slip.md): the flank's friction is the
-// isotropic Coulomb cone on the slip (gamma, w), gamma the helix slip and w
+// isotropic cone on the slip (gamma, w) (exact Coulomb, Stribeck's curve on
+// the slip speed |(gamma, w)|), gamma the helix slip and w
 // the prescribed slip across it. Its declaration (the excitation's work on
 // the transverse slip, a work integral in y; the channels w, the transverse
 // friction and that work), the refusal of what is not implemented, and the
@@ -141,7 +142,8 @@ void check_transverse_slip(const DriveModel& model, const std::string& integrato
       "the flank's 2-D friction cone is implemented for concept = \"rigid\" without play "
       "(backlash.contact = \"none\"), a drive torque (no DC motor, speed control, gear stage, "
       "motor friction, preloaded nut, end stops or base excitation), friction.law = "
-      "\"coulomb\" (mu, mu_static), integrator = \"event_driven\" or \"moreau\" "
+      "\"coulomb\" (mu, mu_static) or \"stribeck\" (its curve on the 2-D slip speed, the "
+      "viscous term along the slip), integrator = \"event_driven\" or \"moreau\" "
       "(docs/physics/transverse_slip.md)";
   std::string obstacle;
   if (p.concept != Concept::rigid)
@@ -159,9 +161,7 @@ void check_transverse_slip(const DriveModel& model, const std::string& integrato
   else if (!model.elements().elements.empty() || !model.elements().forces.empty() ||
            !model.elements().exact_stops.empty())
     obstacle = "an element besides the thread (end stops, a base excitation)";
-  else if (model.law().resolution() != friction::Resolution::set_valued ||
-           model.law().viscous() != 0.0 || model.law().slip_mu(0.0) != model.law().mu() ||
-           model.law().slip_mu(1.0) != model.law().mu())
+  else if (model.law().resolution() != friction::Resolution::set_valued)
     obstacle = "friction.law = \"" + p.friction + "\"";
   else if (integrator != "event_driven" && integrator != "moreau")
     obstacle = "integrator = \"" + integrator + "\"";

@@ -359,8 +359,8 @@ SCHEMA: Dict[str, Any] = {
         "transverse_slip_velocity": Field(
             "the nut's transverse slip on the flank, across the helix (an excitation: the "
             "flank's friction becomes the isotropic Coulomb cone on the slip (helix, "
-            "transverse); concept 'rigid' without play, friction.law 'coulomb' or 'stribeck', "
-            "event_driven or moreau; docs/physics/transverse_slip.md; absent: none)", "m/s", OPTIONAL,
+            "transverse); no play, friction.law 'coulomb' or 'stribeck', concept 'rigid' on "
+            "event_driven or moreau, the flexible concepts on moreau; docs/physics/transverse_slip.md; absent: none)", "m/s", OPTIONAL,
             kind="load"),
     },
     # (Absent: no motor element; loads.drive_torque or loads.drive_speed drive the rotor.)

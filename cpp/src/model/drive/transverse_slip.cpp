@@ -8,8 +8,8 @@
 // event-driven driver's element (driver_element.hpp): a root at every zero
 // of w, where the integrator restarts (no step straddles the cone's apex,
 // where the slip vector vanishes for an instant), and the transverse
-// friction's loss, mu' |N| w^2 / |(gamma, w)|, which the excitation's work
-// balances. The helix component mu' |N| gamma / |(gamma, w)| is
+// friction's loss, (mu'(s) |N| + c s) w^2 / s, s = |(gamma, w)|, which the
+// excitation's work balances. The helix coefficient mu'(s) gamma / s is
 // DriveDynamics' (cone_coefficient): a smooth function of the slip that
 // rides on the normal force as a velocity law's kappa does
 // (FrictionMode::regularized_velocity). Moreau-Jean's step takes the exact

@@ -1,7 +1,8 @@
 """The thread under transverse flank slip (issue 34, item 3): the closed form's
 input, the flank's stick-force ratio q (tests/helpers/transverse_slip_reference.py),
-against the package's thread model; the drive's 2-D flank cone is not
-implemented, and loads.transverse_slip_velocity is refused by name."""
+against the package's thread model; the drive's 2-D flank cone
+(tests/test_transverse_slip_drive.py) is refused by name where not
+implemented."""
 
 import math
 
@@ -48,8 +49,17 @@ def test_free_rotor_ratio_is_tan_alpha_over_mu(thread, mu):
             -math.sin(thread.lead_angle) * helix, rel=1e-12)
 
 
-def test_transverse_slip_on_a_drive_is_refused_by_name():
+def test_transverse_slip_on_a_flexible_drive_is_refused_by_name():
+    """The drive's cone runs on the rigid concept, and without play on the
+    flexible ones on Moreau-Jean (tests/test_transverse_slip_drive.py); the
+    shipped flexible scene with play on the event-driven scheme is refused
+    naming the key, the obstacle and what is supported."""
     scene = ls.scenes.load("position_holding")
-    with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is not "
-                                         r"supported: the thread's 2-D friction cone"):
-        scene.replace(loads={"transverse_slip_velocity": ls.Sine(1e-3, 60.0)})
+    scene = scene.replace(loads={"transverse_slip_velocity": ls.Sine(1e-3, 60.0)})
+    with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is invalid "
+                                         r"with concept = \"flexible\" and integrator = "
+                                         r"\"event_driven\" .*: the flank's 2-D friction cone "
+                                         r"is implemented without play"):
+        ls.simulate(scene, 0.01, integrator="event_driven")
+    with pytest.raises(ValueError, match=r"is invalid with backlash.contact = \"bistop\""):
+        ls.simulate(scene, 0.01, integrator="moreau")

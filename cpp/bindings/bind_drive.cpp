@@ -433,6 +433,12 @@ void bind_drive(py::module_& m) {
           [](const DriveParameters& p) { return p.base_angular_acceleration; },
           [](DriveParameters& p, py::handle v) {
             p.base_angular_acceleration = to_excitation(v, "loads.base_angular_acceleration");
+          })
+      .def_property(
+          "transverse_slip_velocity",
+          [](const DriveParameters& p) { return p.transverse_slip_velocity; },
+          [](DriveParameters& p, py::handle v) {
+            p.transverse_slip_velocity = to_excitation(v, "loads.transverse_slip_velocity");
           });
   for (const model::ScalarField& field : model::scalar_fields())
     parameters.def_readwrite(field.name, field.member);

@@ -84,13 +84,7 @@ def _refuse_none(path: str, f: Field) -> None:
 
 # Keys of planned physics not implemented yet: refused with what is
 # supported instead, not as unknown keys.
-_NOT_IMPLEMENTED = {
-    "loads.transverse_slip_velocity": (
-        "the thread's 2-D friction cone (the nut's transverse slip on the flank, issue 34) is "
-        "not implemented for any drive concept; the friction block has it "
-        "(FrictionBlock(..., transverse_velocity=...), exact Coulomb, event_driven and moreau; "
-        "docs/physics/transverse_slip.md)"),
-}
+_NOT_IMPLEMENTED: Dict[str, str] = {}
 
 
 def _validate_section(path: str, schema: Dict[str, Field], given: Dict[str, Any]) -> Dict[str, Any]:

@@ -275,7 +275,7 @@ def _core_parameters(data: Dict[str, Any],
     p.speed_controlled = given == "drive_speed"
     for key in (given, "axial_force"):
         setattr(p, key, _make_excitation(loads.get(key, _DEFAULT_DRIVE_TORQUE), key))
-    for key in ("base_acceleration", "base_angular_acceleration"):
+    for key in ("base_acceleration", "base_angular_acceleration", "transverse_slip_velocity"):
         if key in loads:
             setattr(p, key, _make_excitation(loads[key], key))
     motor = data.get("motor")

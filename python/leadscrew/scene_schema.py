@@ -357,6 +357,12 @@ SCHEMA: Dict[str, Any] = {
                                            "rotating body feels -J alpha (not with a gear "
                                            "stage; absent: at rest)", "rad/s^2", OPTIONAL,
                                            kind="load"),
+        "transverse_slip_velocity": Field(
+            "the nut's transverse slip on the flank, across the helix (an excitation: the "
+            "flank's friction becomes the isotropic Coulomb cone on the slip (helix, "
+            "transverse); no play, friction.law 'coulomb' or 'stribeck', concept 'rigid' on "
+            "event_driven or moreau, the flexible concepts on moreau; docs/physics/transverse_slip.md; absent: none)", "m/s", OPTIONAL,
+            kind="load"),
     },
     # (Absent: no motor element; loads.drive_torque or loads.drive_speed drive the rotor.)
     "motor": {

@@ -46,7 +46,8 @@ import math
 import numpy as np
 
 __all__ = ["creep_speed", "mean_creep_speed_sine", "inertia_number", "thread_flank_ratio",
-           "thread_load_creep_speed", "stribeck_mean_creep_speed_sine"]
+           "thread_load_creep_speed", "thread_load_creep_speed_driven",
+           "thread_inertia_number", "stribeck_mean_creep_speed_sine"]
 
 
 def creep_speed(force: float, mu: float, normal_force: float, transverse: float) -> float:
@@ -113,6 +114,41 @@ def thread_load_creep_speed(force: float, lead_angle: float, effective_mu: float
         raise ValueError(f"q = {q} must be < 1: the thread is not self-locking")
     helix = abs(transverse) * q / math.sqrt(1.0 - q * q)
     return math.copysign(math.sin(lead_angle) * helix, force)
+
+
+def thread_load_creep_speed_driven(torque: float, force: float, lead_angle: float,
+                                   mean_radius: float, effective_mu: float, transverse: float,
+                                   hand: int = 1) -> float:
+    """Quasi-static creep of the load [m/s] of a thread under a drive torque M
+    and an axial force F at transverse flank slip w, the loads inside the cone
+    (q < 1, thread_flank_ratio).
+
+    The helix slip takes the stick force's direction, gamma = sign(T~_st) |w|
+    q / sqrt(1 - q^2), and the load follows it: u_load = -h p phi with
+    gamma = rho phi', p = rho sin(alpha), so v_load = -h sin(alpha) gamma.
+    With M = 0 this is thread_load_creep_speed.
+    """
+    q = thread_flank_ratio(torque, force, lead_angle, mean_radius, effective_mu, hand)
+    if not q < 1.0:
+        raise ValueError(f"q = {q} must be < 1: the loads leave the cone, the thread slides")
+    tangential = torque / mean_radius * math.cos(lead_angle) - hand * force * math.sin(lead_angle)
+    helix = math.copysign(abs(transverse) * q / math.sqrt(1.0 - q * q), tangential)
+    return -hand * math.sin(lead_angle) * helix
+
+
+def thread_inertia_number(rotor_inertia: float, load_mass: float, torque: float, force: float,
+                          lead_angle: float, mean_radius: float, effective_mu: float,
+                          amplitude: float, omega: float, hand: int = 1) -> float:
+    """The block's inertia number for the rigid thread: m_h W omega / (mu' |N~_st|
+    (1 - q^2)^(3/2)), with the drive's inertia reduced to the helix slip,
+    m_h = (J + m p^2) / rho^2 (gamma = rho phi', rho = r / cos(alpha),
+    p = r tan(alpha) the load's travel per radian)."""
+    q = thread_flank_ratio(torque, force, lead_angle, mean_radius, effective_mu, hand)
+    rho = mean_radius / math.cos(lead_angle)
+    p = mean_radius * math.tan(lead_angle)
+    helix_mass = (rotor_inertia + load_mass * p * p) / (rho * rho)
+    normal = abs(force * math.cos(lead_angle) + hand * torque / mean_radius * math.sin(lead_angle))
+    return helix_mass * amplitude * omega / (effective_mu * normal * (1.0 - q * q) ** 1.5)
 
 
 def _stribeck_creep_speed(force, normal_force, curve, viscous, transverse):

@@ -289,6 +289,8 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
     write_load(out, "base_angular_acceleration", p.base_angular_acceleration, "rad/s^2");
   }
   write_load(out, "motor_voltage", p.motor_voltage, "V");
+  if (has_transverse_slip(p))
+    write_load(out, "transverse_slip_velocity", p.transverse_slip_velocity, "m/s");
   const integrate::IntegratorOptions& o = options.integrator_options;
   out << "\n[options]\nintegrator = " << quoted(options.integrator)
       << "\nsmooth_integrator = " << quoted(options.smooth_integrator)
@@ -403,7 +405,8 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
   }
   if (const toml::table* t = r.table(root, "", "loads")) {
     r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force", "motor_voltage",
-                           "base_acceleration", "base_angular_acceleration"});
+                           "base_acceleration", "base_angular_acceleration",
+                           "transverse_slip_velocity"});
     if (const toml::table* l = r.table(*t, "loads.", "motor_voltage"))
       p.motor_voltage = r.load(*l, "loads.motor_voltage.");
     if (const toml::table* l = r.table(*t, "loads.", "drive_torque"))
@@ -416,6 +419,8 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
       p.base_acceleration = r.load(*l, "loads.base_acceleration.");
     if (const toml::table* l = r.table(*t, "loads.", "base_angular_acceleration"))
       p.base_angular_acceleration = r.load(*l, "loads.base_angular_acceleration.");
+    if (const toml::table* l = r.table(*t, "loads.", "transverse_slip_velocity"))
+      p.transverse_slip_velocity = r.load(*l, "loads.transverse_slip_velocity.");
   }
   if (const toml::table* t = r.table(root, "", "options")) {
     const std::string at = "options.";

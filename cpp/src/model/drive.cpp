@@ -94,6 +94,14 @@ const std::vector<std::string>& gear_type_names() {
   return names;
 }
 
+bool has_transverse_slip(const DriveParameters& p) {
+  // (zero at all times: a constant 0, or a sine of no amplitude and offset)
+  const Excitation::Definition d = p.transverse_slip_velocity.definition();
+  if (d.kind == "constant") return d.parameters.at(0) != 0.0;
+  if (d.kind == "sine") return d.parameters.at(0) != 0.0 || d.parameters.at(3) != 0.0;
+  return true;
+}
+
 std::string concept_name(Concept c) { return concept_names()[static_cast<int>(c)]; }
 std::string drive_name(DrivenPart d) { return drive_names()[static_cast<int>(d)]; }
 std::string support_name(ScrewSupport s) { return support_names()[static_cast<int>(s)]; }

@@ -137,6 +137,8 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
       one_slip_mu_(law_->resolution() == friction::Resolution::set_valued &&
                    law_->viscous() == 0.0 && law_->slip_mu(0.0) == law_->mu() &&
                    law_->slip_mu(1.0) == law_->mu()) {
+  if (has_transverse_slip(model.parameters()))
+    transverse_ = &model.parameters().transverse_slip_velocity;
   const int n = model.coordinate_count();
   if (n > kMaxCoordinates) throw InvalidArgument("a drive model has at most 6 coordinates");
   q_ = CoordinateVector::Zero(n);
@@ -218,6 +220,7 @@ void DriveDynamics::set_state(double t, const CoordinateVector& q, const Coordin
   t_ = t;
   q_ = q;
   v_ = v;
+  if (transverse_) transverse_slip_ = (*transverse_)(t);
   forces_.setZero();
   elastic_ = 0.0;
   damping_power_ = 0.0;
@@ -285,6 +288,9 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
       return spec.slip_sign * (plain_coulomb_ ? model_.effective_mu()
                                                      : law_->slip_mu(std::abs(slip_)) * factor);
     case FrictionMode::regularized_velocity:
+      if (transverse_)
+        return cone_coefficient(slip_, transverse_slip_,
+                                cone_mu(std::hypot(slip_, transverse_slip_)));
       return law_->velocity_coefficient(slip_) * factor;
     case FrictionMode::regularized_acceleration:
       return law_->acceleration_coefficient(slip_acceleration) * factor;

@@ -11,6 +11,7 @@
 #include "drive/moreau.hpp"
 #include "drive/run_setup.hpp"
 #include "drive/state_layout.hpp"
+#include "leadscrew/core/errors.hpp"
 #include "leadscrew/friction/law.hpp"
 #include "leadscrew/integrate/event_driven.hpp"
 #include "leadscrew/integrate/moreau.hpp"
@@ -64,8 +65,21 @@ integrate::SimulationResult simulate(const DriveModel& model,
                      options.integrator_options);
   const integrate::EventDrivenOptions driver =
       drive::event_driven_options(model, law, integrator, options);
-  integrate::SimulationResult result =
-      integrate::simulate_event_driven(system, 0.0, y0, options.output, driver);
+  integrate::SimulationResult result;
+  try {
+    result = integrate::simulate_event_driven(system, 0.0, y0, options.output, driver);
+  } catch (const SimulationError& e) {
+    // A transverse slip's cone is stiff where |w| is small against the
+    // drive's inertia (the helix friction's slope mu' |N| / |w|): the
+    // explicit pair's steps collapse (RK_STIFF, RK_TOO_MUCH_WORK). That
+    // regime is Moreau-Jean's, not CVODE's, which the generic hint names
+    // (it missed the block's cone creep by 37-110 %: friction_block.cpp).
+    if (!has_transverse_slip(p) || e.reason().rfind("RK_", 0) != 0) throw;
+    throw SimulationError(e.time(), e.reason(),
+                          "the transverse slip's friction cone is stiff where |w| is small "
+                          "against the drive's inertia (its helix slope mu' |N| / |w|); use "
+                          "integrator = \"moreau\" (docs/physics/transverse_slip.md)");
+  }
   result.integrator = integrator;
   result.friction = p.friction;
   check_drive_result(model, law, options, false, result);

@@ -122,6 +122,11 @@ struct DriveParameters {
   // [rad/s^2]; a constant 0 (the default) is none.
   Excitation base_acceleration;
   Excitation base_angular_acceleration;
+  // The nut's transverse slip on the flank, across the helix (issue 34;
+  // docs/physics/transverse_slip.md) [m/s]: the flank's friction is the
+  // isotropic cone on the slip (gamma, w); a constant 0 (the default) is
+  // none, and the 1-D thread runs unchanged.
+  Excitation transverse_slip_velocity;
   // A DC motor (elements/dc_motor.hpp; scene section `motor`) drives the
   // rotor instead of drive_torque or drive_speed.
   bool dc_motor = false;
@@ -289,5 +294,10 @@ ScrewSupport parse_support(const std::string& name);
 BacklashContact parse_backlash_contact(const std::string& name);  // "none" allowed
 InitialState parse_initial_state(const std::string& name);
 GearType parse_gear_type(const std::string& name);  // "none" allowed
+
+// The scene gives the nut a transverse slip on the flank
+// (loads.transverse_slip_velocity other than the constant 0): the flank's
+// 2-D friction cone (docs/physics/transverse_slip.md).
+bool has_transverse_slip(const DriveParameters& p);
 
 }  // namespace leadscrew::model

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <functional>
 #include <utility>
 #include <vector>
@@ -264,6 +265,32 @@ class DriveDynamics {
                                     const std::function<double(double)>& slip_acceleration_at)
       const;
 
+  // The flank's 2-D friction cone (a transverse slip w, issue 34;
+  // docs/physics/transverse_slip.md): transverse() says the run has one
+  // (loads.transverse_slip_velocity), transverse_slip() is w at the state
+  // last set (set_state takes w(t)). In slip the friction is
+  // (mu'(s) |N| + viscous s) (gamma, w) / s, s = |(gamma, w)|, mu'(s) the
+  // law's coefficient at the slip speed (Stribeck's curve; exact Coulomb's
+  // mu'): its helix coefficient mu'(s) gamma / s rides on the normal force
+  // as a velocity law's kappa (FrictionMode::regularized_velocity), smooth in
+  // gamma wherever w != 0; the viscous term is the mode's own.
+  bool transverse() const noexcept { return transverse_ != nullptr; }
+  double transverse_slip() const noexcept { return transverse_slip_; }
+  double cone_mu(double speed) const { return law_->slip_mu(speed) * model_.flank_factor(); }
+  // mu gamma / |(gamma, w)| at a coefficient mu (0 at the apex).
+  static double cone_coefficient(double slip, double w, double mu) noexcept {
+    const double speed = std::hypot(slip, w);
+    return speed > 0.0 ? mu * (slip / speed) : 0.0;
+  }
+  // The transverse friction along +w (the friction channel's sign: against
+  // the slip) at a flank normal force N and helix slip gamma [N].
+  double transverse_friction(double normal_force, double slip) const {
+    const double speed = std::hypot(slip, transverse_slip_);
+    if (!(speed > 0.0)) return 0.0;
+    return -(cone_mu(speed) * std::abs(normal_force) + law_->viscous() * speed) *
+           (transverse_slip_ / speed);
+  }
+
   // Painleve (dynamic jamming) report of a slip mode: the effective Delassus
   // terms G_NN, G_NT and whether mu' |G_NT| >= G_NN. With a regularized law
   // (regularized_factor >= 0: the friction factor kappa = (2/pi) mu' |atan(.)|
@@ -312,6 +339,8 @@ class DriveDynamics {
   // mu' (PreloadedNut::normal); otherwise at the law's kappa' (normal_at).
   bool one_slip_mu_;
   double bristle_ = 0.0;
+  const Excitation* transverse_ = nullptr;  // w(t) (nullptr: no transverse slip)
+  double transverse_slip_ = 0.0;
   // The model's elements' data: their states (a copy of y's), slots, modes.
   struct ElementSlot {
     int first = 0, count = 0, offset = 0;  // in y; how many; in element_states_

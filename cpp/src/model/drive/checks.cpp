@@ -44,6 +44,12 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
     for (const ChannelSpec& c : *list) account(c, false);
   for (const Declaration& d : declarations)
     for (const ChannelSpec& c : d.channels) account(c, true);
+  // A transverse slip's cone: the friction checks take the 2-D vectors
+  // (|lambda| against mu' |N|, lambda . (gamma, w) >= 0).
+  if (has_transverse_slip(p)) {
+    spec.transverse_slip = "transverse_velocity";
+    spec.transverse_friction = "transverse_friction";
+  }
   spec.t_end = options.output.t_end;
   spec.law = &law;
   spec.coefficient_scale = model.flank_factor();

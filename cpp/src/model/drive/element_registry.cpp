@@ -19,7 +19,8 @@
   E(end_stops)                            \
   E(preloaded_nut)                        \
   D(train_friction)                       \
-  M(base_excitation)
+  M(base_excitation)                      \
+  E(transverse_slip)
 
 namespace leadscrew::model::drive {
 

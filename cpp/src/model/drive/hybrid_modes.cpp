@@ -129,7 +129,12 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
     return;
   }
   const friction::Resolution resolution = dynamics_.law().resolution();
-  const bool regularized = resolution != friction::Resolution::set_valued;
+  // A transverse slip's cone (transverse_slip.cpp): the helix friction
+  // mu' gamma / |(gamma, w)| is a smooth function of the slip, a velocity
+  // law's factor (DriveDynamics::cone_coefficient); the event-driven scheme
+  // takes w held at zero nowhere (check_transverse_slip).
+  const bool regularized =
+      resolution != friction::Resolution::set_valued || dynamics_.transverse();
   // A regularized law's friction on a penalty flank follows its penetration
   // (zero where it has none): no contact mode to track.
   // (A lift-off nut's half B bears on its flank in open play too: friction.)
@@ -146,7 +151,8 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
     return;
   }
   if (regularized) {
-    mode_.friction = resolution == friction::Resolution::velocity ? FrictionMode::regularized_velocity
+    mode_.friction = resolution == friction::Resolution::velocity || dynamics_.transverse()
+                         ? FrictionMode::regularized_velocity
                      : resolution == friction::Resolution::acceleration
                          ? FrictionMode::regularized_acceleration
                          : FrictionMode::bristle;

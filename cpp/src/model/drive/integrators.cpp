@@ -2,6 +2,7 @@
 // contact), the checks of simulate()'s options, and the options each scheme
 // runs with.
 #include "integrators.hpp"
+#include "transverse_slip.hpp"
 
 #include <algorithm>
 
@@ -302,6 +303,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                               train->event_driven_obstacle + ")")));
   }
   check_bristles_on_moreau(model, integrator);
+  drive::check_transverse_slip(model, integrator, options.output.t_end);
   if (integrator == "moreau" &&
       model.law().resolution() == friction::Resolution::acceleration)
     throw InvalidArgument(

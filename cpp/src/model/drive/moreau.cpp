@@ -2,6 +2,7 @@
 // on the velocity level, the restitution that creates no energy, and the
 // check that a step resolves the drive's stiffness.
 #include "moreau.hpp"
+#include "transverse_slip.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +40,7 @@ DriveMoreau::DriveMoreau(const DriveModel& model)
   preload_channel_ = layout_.find_channel("preload_force");
   lift_off_ = model.preloaded_nut() != nullptr && model.preloaded_nut()->lift_off;
   bristle_range_ = model.law().bristle_range();
+  transverse_state_ = layout_.find_state("transverse_work");
 }
 
 void DriveMoreau::initialize(double t, const double* y) {
@@ -291,7 +293,16 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
   // a stuck step (gamma+ = 0) has no viscous impulse.
   const friction::Law& law = dynamics_.law();
-  if (law.resolution() != friction::Resolution::set_valued)  // (no stick: a smooth law)
+  // A transverse slip's cone: where w+ != 0 the helix friction is smooth
+  // in the slip (no stick), the exact cone's root (moreau_smooth_friction.cpp);
+  // where w+ = 0 the 1-D Coulomb step below.
+  if (transverse_state_ >= 0) {
+    transverse_next_ = p_.transverse_slip_velocity(t + h);
+    transverse_mu_ = dynamics_.cone_mu(std::hypot(model_.tangent_direction().dot(v0),
+                                                  p_.transverse_slip_velocity(t)));
+  }
+  if (law.resolution() != friction::Resolution::set_valued ||
+      (transverse_state_ >= 0 && transverse_next_ != 0.0))  // (no stick: a smooth law)
     return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,
                                alpha, beta, contact);
   const double viscous_step = law.viscous() * h;
@@ -456,6 +467,7 @@ DriveMoreau::StepAccount DriveMoreau::energy_created(double t, double h, const d
     for (const int k : {motor_friction_state_, gear_state_})
       if (k >= 0) stored += state[k];  // (the train's losses, with the losses)
     if (bristle_state_ >= 0) stored += state[bristle_state_ + 1];  // (LuGre's bristles)
+    if (transverse_state_ >= 0) stored -= state[transverse_state_];  // (the cone's work)
     double balance = stored;
     largest = std::max(largest, std::abs(stored));
     for (int e = 0; e < kEnergyCount; ++e) {
@@ -500,6 +512,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
         : last_.stick ? nut.sticking().flank_normal(last_.normal, last_.friction)
                       : std::abs(normal_a) + std::abs(last_.preload_normal);
   }
+  if (transverse_state_ >= 0)
+    write_transverse_channels(layout_, dynamics_, last_transverse_, y, state);
   double applied = dynamics_.applied_torque();
   // The elements' channels, of the last step (a DC motor's armature), and
   // their torque on the rotor (Element::step_output, step_drive_torque).

@@ -221,6 +221,11 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // they store, taken from the friction loss (moreau_smooth_friction.cpp).
   void book_bristles(double h, const double* y, double* y_next, double slip,
                      double normal_impulse);
+  // The cone's transverse impulse over the step at w+ (on the cone from
+  // the helix impulse): its loss, the excitation's work that balances it,
+  // the row's force (moreau_smooth_friction.cpp).
+  void book_transverse(double h, const double* y, double* y_next, double friction_impulse,
+                       double normal_impulse, double slip);
   // A speed-controlled rotor with the train's friction: the step without
   // the rotor's friction row, then the motor's friction and the stage's
   // loss from the impulse the stage passes on (moreau_speed_train.cpp).
@@ -273,6 +278,14 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   HalfBSpring half_b_;
   CoordinateVector pass_rhs_;
   double half_b_friction_ = 0.0, half_b_spring_ = 0.0;
+  // A transverse slip's cone (transverse_slip.cpp): w at the step's end,
+  // the excitation's work integral in y (-1: none) and the last step's
+  // transverse friction [N] (the friction channel's sign).
+  // The cone's coefficient mu'(s0) at the step's start slip speed
+  // s0 = |(gamma, w)| (Stribeck's curve explicit, as the 1-D step's).
+  double transverse_next_ = 0.0, transverse_mu_ = 0.0;
+  int transverse_state_ = -1;
+  double last_transverse_ = 0.0;
   double bristle_range_ = 0.0;
   double bristle_z0_ = 0.0;  // z at the step's start [m] (step())
   CoordinateVector q_, v_, free_;

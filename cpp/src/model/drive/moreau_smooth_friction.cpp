@@ -1,5 +1,6 @@
 // DriveMoreau (moreau.hpp): the smooth thread laws on Moreau-Jean, the
-// velocity laws (arctan_velocity) and LuGre's bristles
+// velocity laws (arctan_velocity), LuGre's bristles and a transverse slip's
+// 2-D Coulomb cone (transverse_slip.cpp)
 // (docs/physics/drive_models.md, "Moreau-Jean with the smooth laws").
 //
 // The friction impulse of the step is the law's at the step's end slip,
@@ -24,6 +25,7 @@
 // check_step and solve_thread hold below 1 outside the Painleve regime):
 // exactly one root, bracketed from P = 0 outward and found by the
 // Illinois variant of regula falsi to round-off.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -71,6 +73,13 @@ double bracketed_root(const F& f, double low, double f_low, double high, double 
 }  // namespace
 
 double DriveMoreau::smooth_coefficient(double slip, double h) const {
+  // The transverse slip's cone at the step's end slip (gamma+, w+): the
+  // helix component mu' gamma+ / |(gamma+, w+)| (mu' Stribeck's at the
+  // step's start slip speed), strictly increasing in gamma+ and below mu'
+  // (one root, found to round-off: the exact cone; the viscous term is
+  // the smooth step's own, implicit).
+  if (transverse_state_ >= 0)
+    return DriveDynamics::cone_coefficient(slip, transverse_next_, transverse_mu_);
   const friction::Law& law = model_.law();
   const double factor = model_.flank_factor();
   if (law.resolution() == friction::Resolution::bristle)
@@ -165,6 +174,30 @@ void DriveMoreau::book_bristles(double h, const double* y, double* y_next, doubl
                         0.5 * law.bristle_stiffness() * (z1 * z1 - bristle_z0_ * bristle_z0_);
   y_next[bristle_state_ + 1] = y[bristle_state_ + 1] + stored;
   y_next[layout_.energy_offset() + kFrictionLoss] -= stored;
+}
+
+void DriveMoreau::book_transverse(double h, const double* y, double* y_next,
+                                  double friction_impulse, double normal_impulse, double slip) {
+  // The transverse impulse against w+: its cone part put on the cone from
+  // the root's helix impulse, |(P_T + h c gamma+, P_w + h c w+)| =
+  // mu'(s0) |P_N| to round-off (from w+ / |(gamma+, w+)| with the step's
+  // recomputed gamma+, whose round-off is of the size of w+ at its zeros,
+  // it left the cone by 1 %), and the viscous impulse -h c w+. The
+  // excitation that moves the nut across does the work -P_w w+ >= 0, which
+  // the friction loses. (w+ = 0: the 1-D step, no transverse impulse.)
+  double impulse = 0.0;
+  if (transverse_next_ != 0.0) {
+    const double viscous_step = dynamics_.law().viscous() * h;
+    const double bound = transverse_mu_ * std::abs(normal_impulse);
+    const double cone = friction_impulse + viscous_step * slip;
+    impulse = -std::copysign(std::sqrt(std::max(0.0, (bound - cone) * (bound + cone))),
+                             transverse_next_) -
+              viscous_step * transverse_next_;
+  }
+  const double loss = -impulse * transverse_next_;
+  y_next[transverse_state_] = y[transverse_state_] + loss;
+  y_next[layout_.energy_offset() + kFrictionLoss] += loss;
+  last_transverse_ = impulse / h;
 }
 
 }  // namespace leadscrew::model::drive

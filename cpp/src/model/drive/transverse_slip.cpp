@@ -1,0 +1,186 @@
+// The nut's transverse slip on the flank (loads.transverse_slip_velocity,
+// issue 34; docs/physics/transverse_slip.md): the flank's friction is the
+// isotropic cone on the slip (gamma, w) (exact Coulomb, Stribeck's curve on
+// the slip speed |(gamma, w)|), gamma the helix slip and w
+// the prescribed slip across it. Its declaration (the excitation's work on
+// the transverse slip, a work integral in y; the channels w, the transverse
+// friction and that work), the refusal of what is not implemented, and the
+// event-driven driver's element (driver_element.hpp): a root at every zero
+// of w, where the integrator restarts (no step straddles the cone's apex,
+// where the slip vector vanishes for an instant), and the transverse
+// friction's loss, (mu'(s) |N| + c s) w^2 / s, s = |(gamma, w)|, which the
+// excitation's work balances. The helix coefficient mu'(s) gamma / s is
+// DriveDynamics' (cone_coefficient): a smooth function of the slip that
+// rides on the normal force as a velocity law's kappa does
+// (FrictionMode::regularized_velocity). Moreau-Jean's step takes the exact
+// cone in moreau_smooth_friction.cpp.
+#include <cmath>
+
+#include "driver_element.hpp"
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
+#include "transverse_slip.hpp"
+
+namespace leadscrew::model::drive {
+
+const ElementKind& transverse_slip_kind();
+
+namespace {
+
+// Its channels (the declaration's, in this order).
+enum Channel { kTransverseVelocity, kTransverseFriction, kWorkTransverse };
+
+void declare(const DriveModel& model, const friction::Law& law, Declaration& d) {
+  (void)law;
+  if (!has_transverse_slip(model.parameters())) return;
+  d.states = {"transverse_work"};
+  d.channels = transverse_slip_kind().catalog;
+}
+
+class TransverseSlipElement final : public DriveHybrid::Element {
+ public:
+  TransverseSlipElement(DriveHybrid& hybrid, const Excitation& w)
+      : Element(hybrid), w_(w) {}
+
+  int root_count() const override { return 1; }
+  void roots(double t, double* g) const override { g[0] = w_(t); }
+  void root_directions(int* directions) const override { directions[0] = 0; }
+  // A zero of w: the slip vector turns across the cone's apex; the
+  // integrator restarts there, nothing else changes.
+  Event handle(double t, double* y, const int* root_info) override {
+    (void)t, (void)y, (void)root_info;
+    return {};
+  }
+
+  void rates(double t, const double* y, double* ydot, double* energy) const override {
+    (void)t, (void)y;
+    const double w = dynamics().transverse_slip();
+    const double loss =
+        -dynamics().transverse_friction(solve_current().normal_force, dynamics().slip_velocity()) *
+        w;
+    ydot[first_state()] = loss;  // the excitation's work on the transverse slip
+    energy[kFrictionLoss] += loss;
+  }
+
+  void output(double t, const double* y, const ContactForces& forces,
+              ChannelState& state) const override {
+    (void)t;
+    double* values = state.values.data() + first_channel();
+    values[kTransverseVelocity] = dynamics().transverse_slip();
+    values[kTransverseFriction] =
+        dynamics().transverse_friction(forces.normal, dynamics().slip_velocity());
+    values[kWorkTransverse] = y[first_state()];
+  }
+
+ private:
+  const Excitation& w_;
+};
+
+}  // namespace
+
+const ElementKind& transverse_slip_kind() {
+  static const ElementKind kind{"transverse_slip",
+                                {{"transverse_velocity", "m/s", Role::none},
+                                 {"transverse_friction", "N", Role::none},
+                                 {"work_transverse", "J", Role::work}},
+                                &declare};
+  return kind;
+}
+
+std::unique_ptr<DriveHybrid::Element> make_transverse_slip_element(DriveHybrid& hybrid,
+                                                                   const DriveModel& model) {
+  if (!has_transverse_slip(model.parameters())) return nullptr;
+  return std::make_unique<TransverseSlipElement>(hybrid,
+                                                 model.parameters().transverse_slip_velocity);
+}
+
+void write_transverse_channels(const StateLayout& layout, const DriveDynamics& dynamics,
+                               double transverse_friction, const double* y,
+                               ChannelState& state) {
+  const int channel = layout.find_channel("transverse_velocity");
+  if (channel < 0) return;
+  state.values[channel + kTransverseVelocity] = dynamics.transverse_slip();
+  state.values[channel + kTransverseFriction] = transverse_friction;
+  state.values[channel + kWorkTransverse] = y[layout.find_state("transverse_work")];
+}
+
+namespace {
+
+// Where the excitation is held at zero over an interval (a table's segment
+// between two zero knots, or its zero end), or cannot be known (a
+// callable): the event-driven cone would need the 1-D modes there.
+std::string held_at_zero_reason(const Excitation& w, double t_end) {
+  const Excitation::Definition d = w.definition();
+  if (d.kind == "sine" || d.kind == "constant") return "";
+  if (d.kind != "table")
+    return "a " + d.kind + " excitation, whose intervals held at zero (where the cone's "
+           "stick with mu_static applies) the event-driven scheme cannot know ahead";
+  const std::vector<double>& times = d.times;
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const bool zero = d.values[k] == 0.0;
+    const bool held_before = k == 0 && zero && times[k] > 0.0;
+    const bool held_after = k + 1 == times.size() && zero && times[k] < t_end;
+    const bool held_between = k + 1 < times.size() && zero && d.values[k + 1] == 0.0 &&
+                              times[k] < t_end && times[k + 1] > 0.0;
+    if (held_before || held_after || held_between)
+      return "a table held at zero from t = " + format_value(held_before ? 0.0 : times[k]) +
+             " s (where the cone's stick with mu_static applies: not implemented on the "
+             "drive's event-driven scheme)";
+  }
+  return "";
+}
+
+}  // namespace
+
+void check_transverse_slip(const DriveModel& model, const std::string& integrator,
+                           double t_end) {
+  const DriveParameters& p = model.parameters();
+  if (!has_transverse_slip(p)) return;
+  const std::string key =
+      "loads.transverse_slip_velocity = " + p.transverse_slip_velocity.describe();
+  const std::string supported =
+      "the flank's 2-D friction cone is implemented without play (backlash.contact = "
+      "\"none\"), with a drive torque (no DC motor, speed control, gear stage, motor "
+      "friction, preloaded nut, end stops or base excitation), friction.law = \"coulomb\" "
+      "(mu, mu_static) or \"stribeck\" (its curve on the 2-D slip speed, the viscous term "
+      "along the slip), on concept = \"rigid\" with integrator = \"event_driven\" or "
+      "\"moreau\" and on the flexible concepts with integrator = \"moreau\" "
+      "(docs/physics/transverse_slip.md)";
+  std::string obstacle;
+  if (p.concept != Concept::rigid && integrator != "moreau")
+    obstacle = "concept = \"" + concept_name(p.concept) + "\" and integrator = \"" +
+               integrator + "\" (not implemented: the flexible drives' event-driven "
+               "integrator is CVODE, which missed the friction block's cone creep by 37-110 % at "
+               "its restarts at the cone's apex)";
+  else if (p.backlash != BacklashContact::none)
+    obstacle = "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\"";
+  else if (p.dc_motor)
+    obstacle = "a DC motor";
+  else if (p.speed_controlled)
+    obstacle = "loads.drive_speed (a prescribed rotor speed)";
+  else if (model.train_friction() || p.gear != GearType::none)
+    obstacle = "gear.type = \"" + gear_type_name(p.gear) + "\" or motor.friction_torque";
+  else if (model.preloaded_nut())
+    obstacle = "a preloaded nut";
+  else if (!model.elements().elements.empty() || !model.elements().end_stops().empty() ||
+           !model.elements().exact_stops.empty())
+    obstacle = "an element besides the thread and the concept's springs (end stops, a base "
+               "excitation)";
+  else if (model.law().resolution() != friction::Resolution::set_valued)
+    obstacle = "friction.law = \"" + p.friction + "\"";
+  else if (integrator != "event_driven" && integrator != "moreau")
+    obstacle = "integrator = \"" + integrator + "\"";
+  else if (DriveDynamics(model).painleve_possible())
+    obstacle = "the thread in the Painleve regime";
+  if (!obstacle.empty())
+    throw InvalidArgument(key + " is invalid with " + obstacle + ": " + supported);
+  if (integrator == "event_driven") {
+    const std::string held = held_at_zero_reason(p.transverse_slip_velocity, t_end);
+    if (!held.empty())
+      throw InvalidArgument(key + " is invalid on integrator = \"event_driven\" with " + held +
+                            "; use integrator = \"moreau\", whose step takes the 1-D "
+                            "Coulomb step where w is zero");
+  }
+}
+
+}  // namespace leadscrew::model::drive

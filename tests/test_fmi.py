@@ -15,6 +15,7 @@ import pytest
 
 import leadscrew as ls
 from leadscrew import cli
+from helpers.scenes import thesis_scene
 
 import fmpy
 from fmpy.validation import validate_fmu
@@ -397,6 +398,61 @@ def test_a_dc_motor_scene_has_the_voltage_input_and_the_current_output(tmp_path)
                                output=["u_load", "omega_drive", "motor_current", "drive_torque"])
     reference = ls.simulate(scene, t_end, t_eval=result["time"])
     for channel in ("u_load", "omega_drive", "motor_current", "drive_torque"):
+        expected = np.asarray(reference[channel])
+        scale = max(np.max(np.abs(expected)), 1e-12)
+        assert np.max(np.abs(result[channel] - expected)) <= 1e-4 * scale, channel
+
+
+# The DC motor's co-simulation variables besides the drive's own, as they
+# were while its parameters were fields of DriveParameters (44a48c8): its
+# section (elements/dc_motor.cpp) declares them now; name, causality, unit
+# and value reference stay.
+DC_MOTOR_VARIABLES = [
+    ("motor_voltage", "input", "V", 1),
+    ("motor_current", "output", "A", 18),
+    ("drive_torque", "output", "N.m", 19),
+    ("copper_loss", "output", "J", 20),
+    ("magnetic_energy", "output", "J", 21),
+    ("motor_resistance", "parameter", "Ohm", 210),
+    ("motor_inductance", "parameter", "H", 211),
+    ("motor_torque_constant", "parameter", "N.m/A", 212),
+    ("motor_back_emf_constant", "parameter", "V.s/rad", 213),
+    ("motor_current_limit", "parameter", "A", 214),
+]
+
+
+def test_the_dc_motor_variables_keep_their_names_units_and_references():
+    """The motor's input, outputs and parameters, from its element section,
+    are those it had before; a torque-driven drive has none of them."""
+    from leadscrew import _core
+    from test_simulation_drive_dc_motor import motor_scene
+
+    motor = ls.Scene.from_dict(motor_scene(voltage=3.0, current_limit=2.0))
+    table = {v["name"]: v for v in _core.cosim_variables(motor.model().parameters)}
+    for name, kind, unit, reference in DC_MOTOR_VARIABLES:
+        assert (table[name]["kind"], table[name]["unit"], table[name]["reference"]) == \
+            (kind, unit, reference), name
+    assert table["motor_voltage"]["start"] == 3.0 and table["motor_current_limit"]["start"] == 2.0
+    torque = ls.Scene.from_dict(thesis_scene())
+    names = {v["name"] for v in _core.cosim_variables(torque.model().parameters)}
+    assert "drive_torque" in names
+    assert not names & {name for name, *_ in DC_MOTOR_VARIABLES if name != "drive_torque"}
+
+
+def test_a_dc_motor_parameter_set_in_the_fmu_runs_as_the_scene_with_it(tmp_path):
+    """motor_resistance set as the FMU's parameter (its section's number,
+    set_cosim_parameter) runs as the scene with that resistance."""
+    from test_simulation_drive_dc_motor import motor_scene
+
+    path = ls.fmi.export_fmu(ls.Scene.from_dict(motor_scene(voltage=3.0)),
+                             tmp_path / "motor.fmu")
+    t_end = 0.02
+    result = fmpy.simulate_fmu(path, stop_time=t_end, step_size=H, output_interval=H,
+                               start_values={"motor_resistance": 4.0},
+                               output=["omega_drive", "motor_current"])
+    reference = ls.simulate(ls.Scene.from_dict(motor_scene(voltage=3.0, resistance=4.0)), t_end,
+                            t_eval=result["time"])
+    for channel in ("omega_drive", "motor_current"):
         expected = np.asarray(reference[channel])
         scale = max(np.max(np.abs(expected)), 1e-12)
         assert np.max(np.abs(result[channel] - expected)) <= 1e-4 * scale, channel

@@ -298,6 +298,7 @@ void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& p
       []() {
         py::list sections;
         for (const model::SectionType& type : model::element_section_types()) {
+          if (type.scene != nullptr) continue;  // (its fields in another scene section)
           py::list fields;
           for (const model::SectionField& f : type.fields) fields.append(field_entry(f));
           py::dict section;
@@ -327,7 +328,7 @@ void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& p
       [](const DriveParameters& p) {
         py::dict out;
         for (const auto& [name, section] : p.sections) {
-          if (!section.present) continue;
+          if (!section.present || model::element_section_type(name).scene != nullptr) continue;
           py::dict values;
           for (const auto& [key, value] : section.numbers) values[py::str(key)] = value;
           for (const auto& [key, value] : section.choices) values[py::str(key)] = value;
@@ -336,15 +337,19 @@ void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& p
         return out;
       },
       [](DriveParameters& p, const py::dict& sections) {
+        // (A section carried in another scene section, by its attributes,
+        // stays: the DC motor's.)
         model::ElementSections out;
+        for (const auto& [name, section] : p.sections)
+          if (model::element_section_type(name).scene != nullptr) out[name] = section;
         for (const auto& [name, values] : sections) {
           const model::SectionType& type = model::element_section_type(py::str(name));
           out[type.name] = to_section(type, py::cast<py::dict>(values));
         }
         p.sections = std::move(out);
       },
-      "the elements' sections present (element_section.hpp), by name: the values given by key "
-      "(a scene's section as is; the rest take their defaults)");
+      "the elements' scene sections present (element_section.hpp), by name: the values given "
+      "by key (a scene's section as is; the rest take their defaults)");
   for (const model::SectionType& type : model::element_section_types()) {
     const model::SectionType* t = &type;
     if (type.flag != nullptr)
@@ -370,6 +375,19 @@ void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& p
           [t, index](const DriveParameters& p) { return model::section_number(p, *t, index); },
           [t, index](DriveParameters& p, double v) { model::set_section_number(p, *t, index, v); },
           f.doc);
+    }
+    for (std::size_t i = 0; i < type.inputs.size(); ++i) {
+      const int index = static_cast<int>(i);
+      const std::string path = type.key_path(type.inputs[i].key);
+      parameters.def_property(
+          type.inputs[i].name,
+          [t, index](const DriveParameters& p) -> Excitation {
+            return model::section_input(p, *t, index);
+          },
+          [t, index, path](DriveParameters& p, py::handle v) {
+            model::set_section_input(p, *t, index, to_excitation(v, path));
+          },
+          type.inputs[i].doc);
     }
   }
 }
@@ -418,9 +436,6 @@ void bind_drive(py::module_& m) {
           "drive_speed", [](const DriveParameters& p) { return p.drive_speed; },
           [](DriveParameters& p, py::handle v) { p.drive_speed = to_excitation(v, "loads.drive_speed"); })
       .def_property(
-          "motor_voltage", [](const DriveParameters& p) { return p.motor_voltage; },
-          [](DriveParameters& p, py::handle v) { p.motor_voltage = to_excitation(v, "motor.voltage"); })
-      .def_property(
           "axial_force", [](const DriveParameters& p) { return p.axial_force; },
           [](DriveParameters& p, py::handle v) { p.axial_force = to_excitation(v, "loads.axial_force"); })
       .def_property(
@@ -443,7 +458,6 @@ void bind_drive(py::module_& m) {
   for (const model::ScalarField& field : model::scalar_fields())
     parameters.def_readwrite(field.name, field.member);
   parameters.def_readwrite("speed_controlled", &DriveParameters::speed_controlled);
-  parameters.def_readwrite("dc_motor", &DriveParameters::dc_motor);
   parameters.def_property(
       "gear", [](const DriveParameters& p) { return model::gear_type_name(p.gear); },
       [](DriveParameters& p, const std::string& v) { p.gear = model::parse_gear_type(v); },

@@ -256,7 +256,6 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
       << "\nbacklash = " << quoted(backlash_contact_name(p.backlash))
       << "\ninitial_state = " << quoted(initial_state_name(p.initial_state))
       << "\nspeed_controlled = " << (p.speed_controlled ? "true" : "false")
-      << "\ndc_motor = " << (p.dc_motor ? "true" : "false")
       << "\ngear = " << quoted(gear_type_name(p.gear));
   // The elements' sections (element_section.hpp): each one's presence here,
   // its numbers in [parameters] by their attributes.
@@ -288,7 +287,11 @@ std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptio
     write_load(out, "base_acceleration", p.base_acceleration, "m/s^2");
     write_load(out, "base_angular_acceleration", p.base_angular_acceleration, "rad/s^2");
   }
-  write_load(out, "motor_voltage", p.motor_voltage, "V");
+  // The elements' inputs (a DC motor's voltage), given or not.
+  for (const SectionType& type : element_section_types())
+    for (std::size_t i = 0; i < type.inputs.size(); ++i)
+      write_load(out, type.inputs[i].name, section_input(p, type, static_cast<int>(i)),
+                 type.inputs[i].unit);
   if (has_transverse_slip(p))
     write_load(out, "transverse_slip_velocity", p.transverse_slip_velocity, "m/s");
   const integrate::IntegratorOptions& o = options.integrator_options;
@@ -329,7 +332,7 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
   if (const toml::table* t = r.table(root, "", "drive")) {
     const std::string at = "drive.";
     std::set<std::string> names = {"concept", "drive", "support", "backlash", "initial_state",
-                                   "speed_controlled", "dc_motor", "gear"};
+                                   "speed_controlled", "gear"};
     for (const SectionType& type : element_section_types()) {
       const std::string name = type.presence_attribute();
       names.insert(name);
@@ -349,7 +352,6 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.choice(*t, at, "initial_state",
              [&](const std::string& v) { p.initial_state = parse_initial_state(v); });
     r.flag(*t, at, "speed_controlled", p.speed_controlled);
-    r.flag(*t, at, "dc_motor", p.dc_motor);
     r.choice(*t, at, "gear", [&](const std::string& v) { p.gear = parse_gear_type(v); });
   }
   if (const toml::table* t = r.table(root, "", "thread")) {
@@ -404,11 +406,18 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
     r.known(*t, "parameters.", names);
   }
   if (const toml::table* t = r.table(root, "", "loads")) {
-    r.known(*t, "loads.", {"drive_torque", "drive_speed", "axial_force", "motor_voltage",
-                           "base_acceleration", "base_angular_acceleration",
-                           "transverse_slip_velocity"});
-    if (const toml::table* l = r.table(*t, "loads.", "motor_voltage"))
-      p.motor_voltage = r.load(*l, "loads.motor_voltage.");
+    std::set<std::string> names = {"drive_torque", "drive_speed", "axial_force",
+                                   "base_acceleration", "base_angular_acceleration",
+                                   "transverse_slip_velocity"};
+    for (const SectionType& type : element_section_types())
+      for (const SectionInput& input : type.inputs) names.insert(input.name);
+    r.known(*t, "loads.", names);
+    for (const SectionType& type : element_section_types())
+      for (std::size_t i = 0; i < type.inputs.size(); ++i) {
+        const std::string name = type.inputs[i].name;
+        if (const toml::table* l = r.table(*t, "loads.", name))
+          set_section_input(p, type, static_cast<int>(i), r.load(*l, "loads." + name + "."));
+      }
     if (const toml::table* l = r.table(*t, "loads.", "drive_torque"))
       p.drive_torque = r.load(*l, "loads.drive_torque.");
     if (const toml::table* l = r.table(*t, "loads.", "drive_speed"))

@@ -28,14 +28,16 @@ const Output kOutputList[] = {
     {"stick", "", "the thread sticks"},
     {"friction_loss", "J", "the work friction dissipated since the start"},
 };
-// With a DC motor, and where the torque is no input (a DC motor, a
-// speed-controlled drive): after the outputs above.
-const Output kMotorOutput = {"motor_current", "A", "the DC motor's armature current"};
+// Where an element drives the rotor (a DC motor) its output
+// (RotorDrive::output), and where the torque is no input (such an element,
+// a speed-controlled drive) the torque: after the outputs above.
 const Output kTorqueOutput = {"drive_torque", "N.m",
                               "the motor's torque on the rotor about +x (what the motor supplies)"};
 
 // The drive's parameters an FMU exposes, and the drives that have them.
-enum class Has { every_drive, flexible_drive, dc_motor };
+// (Then the elements' sections' numbers that are co-simulation parameters,
+// SectionField::fmi_unit, where the section is present: section_parameters.)
+enum class Has { every_drive, flexible_drive };
 struct Body {
   const char* name;
   const char* unit;
@@ -54,12 +56,6 @@ const Body kBodyList[] = {
      "the screw's torsional stiffness (0: from its geometry)"},
     {"nut_axial_stiffness", "N/m", Has::flexible_drive, "the nut's axial stiffness"},
     {"nut_torsional_stiffness", "N.m/rad", Has::flexible_drive, "the nut's torsional stiffness"},
-    {"motor_resistance", "Ohm", Has::dc_motor, "the DC motor's armature resistance"},
-    {"motor_inductance", "H", Has::dc_motor, "the DC motor's armature inductance (0: quasi-static)"},
-    {"motor_torque_constant", "N.m/A", Has::dc_motor, "the DC motor's torque constant"},
-    {"motor_back_emf_constant", "V.s/rad", Has::dc_motor,
-     "the DC motor's back-EMF constant (< 0: the torque constant)"},
-    {"motor_current_limit", "A", Has::dc_motor, "the driver's current limit (0: none)"},
 };
 
 double DriveParameters::*field(const char* name) {
@@ -72,12 +68,29 @@ bool shown(const DriveParameters& p, const Body& body) {
   switch (body.has) {
     case Has::flexible_drive:
       return p.concept != Concept::rigid;
-    case Has::dc_motor:
-      return p.dc_motor;
     default:
       return true;
   }
 }
+
+// The elements' sections' co-simulation parameters, in the registry's
+// order, after the body list's references.
+struct SectionParameter {
+  const SectionType* type;
+  int field;
+};
+const std::vector<SectionParameter>& section_parameters() {
+  static const std::vector<SectionParameter> list = [] {
+    std::vector<SectionParameter> out;
+    for (const SectionType& type : element_section_types())
+      for (std::size_t i = 0; i < type.fields.size(); ++i)
+        if (type.fields[i].fmi_unit != nullptr) out.push_back({&type, static_cast<int>(i)});
+    return out;
+  }();
+  return list;
+}
+constexpr unsigned kSectionParameters =
+    kBodyParameters + static_cast<unsigned>(std::size(kBodyList));
 
 // The law's parameters by key with its defaults filled, in its order.
 friction::LawValues law_values(const DriveParameters& p) {
@@ -124,10 +137,12 @@ void add_element_outputs(const DriveParameters& p, std::vector<CosimVariable>& o
 std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
   using Kind = CosimVariable::Kind;
   std::vector<CosimVariable> out;
-  if (p.dc_motor)
-    out.push_back({"motor_voltage", kInputs, Kind::input, false, "V", p.motor_voltage(0.0),
-                   "the DC motor driver's voltage, held over a step"});
-  else if (p.speed_controlled)
+  const SectionType* driver = rotor_drive_section(p);
+  if (driver != nullptr) {
+    const SectionInput& input = driver->inputs.front();  // (the rotor's drive)
+    out.push_back({input.name, kInputs, Kind::input, false, input.fmi_unit,
+                   section_input(p, *driver, 0)(0.0), input.doc});
+  } else if (p.speed_controlled)
     out.push_back({"drive_speed", kInputs, Kind::input, false, "rad/s", p.drive_speed(0.0),
                    "the rotor's prescribed speed about +x: a new value is reached by a linear "
                    "ramp over the next step, then held"});
@@ -141,10 +156,10 @@ std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
     const bool boolean = std::string(o.name) == "stick";
     out.push_back({o.name, reference++, Kind::output, boolean, o.unit, 0.0, o.description});
   }
-  if (p.dc_motor)
-    out.push_back({kMotorOutput.name, reference, Kind::output, false, kMotorOutput.unit, 0.0,
-                   kMotorOutput.description});
-  if (p.dc_motor || p.speed_controlled)
+  if (driver != nullptr)
+    out.push_back({driver->rotor_drive->output, reference, Kind::output, false,
+                   driver->rotor_drive->output_unit, 0.0, driver->rotor_drive->output_doc});
+  if (driver != nullptr || p.speed_controlled)
     out.push_back({kTorqueOutput.name, reference + 1, Kind::output, false, kTorqueOutput.unit, 0.0,
                    kTorqueOutput.description});
   add_element_outputs(p, out);
@@ -159,6 +174,14 @@ std::vector<CosimVariable> cosim_variables(const DriveParameters& p) {
     if (!shown(p, body)) continue;
     out.push_back({body.name, kBodyParameters + static_cast<unsigned>(i), Kind::parameter, false,
                    body.unit, p.*field(body.name), body.description});
+  }
+  const std::vector<SectionParameter>& sections = section_parameters();
+  for (std::size_t i = 0; i < sections.size(); ++i) {
+    const SectionType& type = *sections[i].type;
+    if (find_section(p, type.name) == nullptr) continue;
+    const SectionField& f = type.fields[static_cast<std::size_t>(sections[i].field)];
+    out.push_back({f.attribute, kSectionParameters + static_cast<unsigned>(i), Kind::parameter,
+                   false, f.fmi_unit, section_number(p, type, sections[i].field), f.fmi_doc});
   }
   return out;
 }
@@ -191,6 +214,14 @@ void set_cosim_parameter(DriveParameters& p, unsigned reference, double value) {
     const Body& body = kBodyList[reference - kBodyParameters];
     if (shown(p, body)) {
       p.*field(body.name) = value;
+      return;
+    }
+  }
+  const std::vector<SectionParameter>& sections = section_parameters();
+  if (reference >= kSectionParameters && reference - kSectionParameters < sections.size()) {
+    const SectionParameter& at = sections[reference - kSectionParameters];
+    if (find_section(p, at.type->name) != nullptr) {
+      set_section_number(p, *at.type, at.field, value);
       return;
     }
   }

@@ -77,6 +77,24 @@ const std::vector<SectionAttribute>& section_attributes() {
   return attributes;
 }
 
+// An override against the elements that drive the rotor in place of the
+// loads (element_section.hpp, RotorDrive): the loads drive_torque and
+// drive_speed are unused with one, its fields (by its prefix) without it.
+void check_rotor_drive_override(const std::string& entry, const std::string& name,
+                                const DriveParameters& base) {
+  const SectionType* present = rotor_drive_section(base);
+  if (present != nullptr && (name == "drive_torque" || name == "drive_speed"))
+    throw InvalidArgument(entry + " = \"" + name + "\" is invalid for a drive with " +
+                          present->rotor_drive->what +
+                          ": the motor drives the rotor; vary its " +
+                          present->rotor_drive->prefix + "* fields instead");
+  for (const SectionType& type : element_section_types())
+    if (type.rotor_drive != nullptr && &type != present &&
+        name.rfind(type.rotor_drive->prefix, 0) == 0)
+      throw InvalidArgument(entry + " = \"" + name + "\" is invalid for a drive without " +
+                            type.rotor_drive->absent);
+}
+
 }  // namespace
 
 std::string case_failure_name(CaseFailure failure) {
@@ -103,16 +121,9 @@ DriveParameterOverrides::DriveParameterOverrides(const std::vector<std::string>&
         names.begin() + static_cast<std::ptrdiff_t>(k))
       throw InvalidArgument(entry + " = \"" + names[k] +
                             "\" is invalid: must not repeat an earlier entry");
-    // A DC motor drives the rotor instead of either load; its fields mean
-    // nothing without one.
-    const bool motor_field = names[k].rfind("motor_", 0) == 0;
-    if (base.dc_motor && (names[k] == "drive_torque" || names[k] == "drive_speed"))
-      throw InvalidArgument(entry + " = \"" + names[k] +
-                            "\" is invalid for a drive with a DC motor (motor.type = \"dc\"): "
-                            "the motor drives the rotor; vary its motor_* fields instead");
-    if (!base.dc_motor && motor_field)
-      throw InvalidArgument(entry + " = \"" + names[k] +
-                            "\" is invalid for a drive without a DC motor (no motor section)");
+    // An element that drives the rotor (a DC motor) does so instead of
+    // either load; its fields mean nothing without it.
+    check_rotor_drive_override(entry, names[k], base);
     // The motor is either torque-driven or speed-controlled (the Scene's
     // loads.drive_torque / loads.drive_speed): the other load is unused.
     if ((names[k] == "drive_speed" && !base.speed_controlled) ||

@@ -51,6 +51,10 @@ std::string quoted_list(const std::vector<std::string>& names) {
 
 DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions options)
     : parameters_(std::move(parameters)), current_(parameters_), options_(std::move(options)) {
+  if (const SectionType* type = rotor_drive_section(parameters_)) {
+    for (const SectionInput& input : type->inputs) element_inputs_.emplace_back(input.name);
+    element_inputs_.emplace_back("axial_force");
+  }
   // The output request is the stepper's own; simulate()'s checks of the
   // options need a run length, which a stepper does not have.
   options_.output = integrate::OutputRequest{};
@@ -135,8 +139,7 @@ double DriveStepper::time() const noexcept { return run_->time(); }
 const std::vector<std::string>& DriveStepper::input_names() const {
   static const std::vector<std::string> torque = {"drive_torque", "axial_force"};
   static const std::vector<std::string> speed = {"drive_speed", "axial_force"};
-  static const std::vector<std::string> voltage = {"motor_voltage", "axial_force"};
-  if (parameters_.dc_motor) return voltage;
+  if (!element_inputs_.empty()) return element_inputs_;
   return parameters_.speed_controlled ? speed : torque;
 }
 
@@ -147,14 +150,15 @@ double DriveStepper::input(const std::string& name) const {
                           quoted_list(names));
   const double t = time();
   if (name == "axial_force") return current_.axial_force(t);
-  if (name == "motor_voltage") return current_.motor_voltage(t);
+  if (const Excitation* own = find_section_input(current_, name))
+    return (*own)(t);
   if (name == "drive_speed") return speed_pending_ ? speed_target_ : current_.drive_speed(t);
   return current_.drive_torque(t);
 }
 
 Excitation& DriveStepper::load_of(const std::string& name) {
   if (name == "axial_force") return current_.axial_force;
-  if (name == "motor_voltage") return current_.motor_voltage;
+  if (Excitation* own = find_section_input(current_, name)) return *own;
   return current_.drive_torque;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
@@ -47,6 +48,13 @@ SectionField SectionField::named(const char* name) const {
 SectionField SectionField::described(const char* text) const {
   SectionField f = *this;
   f.default_doc = text;
+  return f;
+}
+
+SectionField SectionField::cosim(const char* unit, const char* doc) const {
+  SectionField f = *this;
+  f.fmi_unit = unit;
+  f.fmi_doc = doc;
   return f;
 }
 
@@ -236,11 +244,12 @@ void check_section_ranges(const Section& s) {
   }
 }
 
-void build_element_sections(const DriveParameters& p, elements::DriveElements& e) {
+void build_element_sections(const DriveParameters& p, elements::DriveElements& e,
+                            SectionType::Stage stage) {
   const MessageStyle core;
   for (const SectionType& type : element_section_types()) {
     const ElementSection* given = find_section(p, type.name);
-    if (given == nullptr) continue;
+    if (given == nullptr || type.stage != stage) continue;
     const Section s(type, *given);
     check_section_ranges(s);
     if (type.check) type.check(s, p, core);
@@ -305,6 +314,61 @@ void set_section_presence(DriveParameters& p, const SectionType& type, const std
       return;
     }
   s.choices.emplace_back(f.key, value);
+}
+
+const Excitation& section_input(const DriveParameters& p, const SectionType& type, int input) {
+  static const Excitation none;
+  const char* name = type.inputs[static_cast<std::size_t>(input)].name;
+  const auto it = p.sections.find(type.name);
+  if (it != p.sections.end())
+    for (const auto& [key, value] : it->second.inputs)
+      if (key == name) return value;
+  return none;
+}
+
+void set_section_input(DriveParameters& p, const SectionType& type, int input, Excitation value) {
+  const char* name = type.inputs[static_cast<std::size_t>(input)].name;
+  ElementSection& s = entry(p, type);
+  for (auto& [key, v] : s.inputs)
+    if (key == name) {
+      v = std::move(value);
+      return;
+    }
+  s.inputs.emplace_back(name, std::move(value));
+}
+
+const SectionType* rotor_drive_section(const DriveParameters& p) {
+  for (const SectionType& type : element_section_types())
+    if (type.rotor_drive != nullptr && find_section(p, type.name) != nullptr) return &type;
+  return nullptr;
+}
+
+const Excitation& rotor_drive(const DriveParameters& p) {
+  if (const SectionType* type = rotor_drive_section(p)) return section_input(p, *type, 0);
+  return p.speed_controlled ? p.drive_speed : p.drive_torque;
+}
+
+const Excitation* find_section_input(const DriveParameters& p, const std::string& name) {
+  for (const SectionType& type : element_section_types()) {
+    if (find_section(p, type.name) == nullptr) continue;
+    for (std::size_t i = 0; i < type.inputs.size(); ++i)
+      if (name == type.inputs[i].name) return &section_input(p, type, static_cast<int>(i));
+  }
+  return nullptr;
+}
+
+Excitation* find_section_input(DriveParameters& p, const std::string& name) {
+  for (const SectionType& type : element_section_types()) {
+    if (find_section(p, type.name) == nullptr) continue;
+    for (std::size_t i = 0; i < type.inputs.size(); ++i)
+      if (name == type.inputs[i].name) {
+        set_section_input(p, type, static_cast<int>(i),
+                          section_input(p, type, static_cast<int>(i)));  // (an entry)
+        for (auto& [key, value] : p.sections[type.name].inputs)
+          if (key == name) return &value;
+      }
+  }
+  return nullptr;
 }
 
 }  // namespace leadscrew::model

@@ -9,13 +9,14 @@
 //   format = "leadscrew-core-spec"
 //   version = 1
 //   [drive]       concept, drive, support, backlash, initial_state, speed_controlled,
-//                 dc_motor, gear, and each element section's presence
-//                 (element_section.hpp: end_stops = "none" / "penalty" / "exact")
+//                 gear, and each element section's presence (element_section.hpp:
+//                 end_stops = "none" / "penalty" / "exact", dc_motor = true / false)
 //   [thread]      pitch, mean_diameter, starts, flank_angle, hand
 //   [friction]    law, and [friction.values]: the law's other parameters by key
 //   [parameters]  every scalar field of DriveParameters by name (scalar_fields()),
 //                 then each element section's numbers by attribute (end_stop_lower, ...)
-//   [loads.drive_torque], [loads.drive_speed], [loads.axial_force]:
+//   [loads.drive_torque], [loads.drive_speed], [loads.axial_force], the
+//                 elements' inputs by name ([loads.motor_voltage]; SectionInput):
 //                 type = "constant" (value), "sine" (amplitude, omega, phase,
 //                 offset) or "table" (times, values)
 //   [options]     integrator, smooth_integrator, rtol, atol, max_steps,

@@ -23,14 +23,18 @@ struct CosimVariable {
   std::string description;
 };
 
-// The drive's variables: inputs drive_torque (a torque-controlled drive) and
-// axial_force; outputs u_load, v_load, phi_drive, omega_drive,
-// normal_force, friction_force, stick (boolean), friction_loss, a DC
-// motor's current and the torque where it is no input, then every channel
-// the drive's elements declare (stop_force, ...); parameters
-// the friction law's (mu, k_v, mu_static, ...), the masses and inertias and,
-// for a flexible concept, the springs' stiffness overrides (0: from the
-// geometry) and a penalty flank's contact stiffness.
+// The drive's variables: inputs drive_torque (a torque-controlled drive;
+// drive_speed a speed-controlled one; the first input of an element that
+// drives the rotor, element_section.hpp's RotorDrive: a DC motor's
+// motor_voltage) and axial_force; outputs u_load, v_load, phi_drive,
+// omega_drive, normal_force, friction_force, stick (boolean),
+// friction_loss, the rotor-driving element's output (a DC motor's
+// current) and the torque where it is no input, then every channel the
+// drive's elements declare (stop_force, ...); parameters the friction
+// law's (mu, k_v, mu_static, ...), the masses and inertias and, for a
+// flexible concept, the springs' stiffness overrides (0: from the
+// geometry), then the present sections' numbers marked as co-simulation
+// parameters (SectionField::cosim: a DC motor's constants).
 std::vector<CosimVariable> cosim_variables(const DriveParameters& parameters);
 
 // Sets the parameter with value reference `reference` (InvalidArgument if

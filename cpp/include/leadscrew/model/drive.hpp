@@ -127,15 +127,9 @@ struct DriveParameters {
   // isotropic cone on the slip (gamma, w); a constant 0 (the default) is
   // none, and the 1-D thread runs unchanged.
   Excitation transverse_slip_velocity;
-  // A DC motor (elements/dc_motor.hpp; scene section `motor`) drives the
-  // rotor instead of drive_torque or drive_speed.
-  bool dc_motor = false;
-  Excitation motor_voltage;             // U(t) [V]
-  double motor_resistance = 1.0;        // R [Ohm]
-  double motor_inductance = 0.0;        // L [H]; 0: quasi-static
-  double motor_torque_constant = 0.0;   // k_t [N m/A]
-  double motor_back_emf_constant = -1.0;  // k_e [V s/rad]; < 0: k_t
-  double motor_current_limit = 0.0;     // i_max [A]; 0: none
+  // An element that drives the rotor instead of drive_torque or
+  // drive_speed (a DC motor) has a section of its own in `sections`, its
+  // input (the voltage) there (element_section.hpp: RotorDrive).
   // The motor's own Coulomb friction on the rotor (motor.friction_torque;
   // elements/train_friction.hpp) [N m]; 0: none. Torque-controlled or DC
   // motor on the rigid drive without play.
@@ -165,7 +159,7 @@ struct DriveParameters {
   double nut_preload_stiffness = 0.0;
 
   // The elements' own sections by name (element_section.hpp: the end stops,
-  // ...): present or not, and their values as given. Their builders read
+  // the DC motor, ...): present or not, and their values and inputs as given. Their builders read
   // them once, when the model is built.
   ElementSections sections;
 

@@ -87,6 +87,9 @@ class DriveStepper {
   Excitation& load_of(const std::string& name);
 
   DriveParameters parameters_;  // as given
+  // An element's inputs in place of the drive's (a DC motor's voltage;
+  // element_section.hpp, RotorDrive), with "axial_force"; empty: none.
+  std::vector<std::string> element_inputs_;
   DriveParameters current_;     // with the inputs held since
   DriveSimulationOptions options_;
   std::string integrator_;

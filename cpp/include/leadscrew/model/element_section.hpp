@@ -2,7 +2,9 @@
 // section's name, its fields (key, SI unit, default or required, range, doc
 // line; a choice field with its names), its rules across fields and
 // sections (a check function), how it builds the element into a model and,
-// where it has one, its part in the driver (its channels). The registry
+// where it has one, its part in the driver (its channels), its inputs
+// (excitations of time: a DC motor's voltage) and its part as the rotor's
+// drive (RotorDrive). The registry
 // (cpp/src/model/elements/section_registry.cpp) lists the sections, one line
 // each; from there everything follows: the Python scene schema's section and
 // describe_schema() (python/leadscrew/scene_schema.py reads
@@ -24,6 +26,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "leadscrew/excitation/excitation.hpp"
 
 namespace leadscrew::model {
 
@@ -59,6 +63,10 @@ struct SectionField {
   // override and a key of the core spec's [parameters]; a choice's: the
   // section's presence (its names and "none": no such section).
   const char* attribute = nullptr;
+  // A number's co-simulation parameter (an FMU's, model/cosim.hpp): its unit
+  // in FMI's names ("N.m/A") and its description; nullptr: not one.
+  const char* fmi_unit = nullptr;
+  const char* fmi_doc = "";
 
   // Declaration helpers: number("k", "N/m", "doc").required().above(0.0).named("x").
   SectionField required(double absent = 0.0) const;
@@ -70,6 +78,33 @@ struct SectionField {
   SectionField below(double hi) const { return range(low, hi, low_open, true); }
   SectionField named(const char* name) const;
   SectionField described(const char* text) const;
+  SectionField cosim(const char* unit, const char* doc) const;
+};
+
+// An input of a section's element: an excitation of time it reads (a DC
+// motor's voltage), given in the scene under the section's `key`, carried
+// in ElementSection::inputs by `name` (its Python attribute, the core
+// spec's [loads] key, the stepper's and the FMU's input).
+struct SectionInput {
+  const char* name = "";
+  const char* key = "";
+  const char* unit = "";      // SI, as leadscrew.units writes it
+  const char* fmi_unit = "";  // in FMI's names
+  const char* doc = "";       // the FMU input's description
+};
+
+// An element that drives the rotor in place of loads.drive_torque and
+// loads.drive_speed (a DC motor): its section's first input is the
+// rotor's drive (the stepper's, the batch's and the FMU's input in their
+// place; the loads the drivers' breakpoints and step hints take).
+struct RotorDrive {
+  const char* what = "";    // in messages: "a DC motor (motor.type = \"dc\")"
+  const char* absent = "";  // where the drive has none: "a DC motor (no motor section)"
+  const char* prefix = "";  // a batch override's name starting with it needs the section
+  // The FMU output it adds before drive_torque (its name, FMI unit, description).
+  const char* output = "";
+  const char* output_unit = "";
+  const char* output_doc = "";
 };
 
 SectionField number(const char* key, const char* unit, const char* doc);
@@ -81,6 +116,7 @@ struct ElementSection {
   bool present = false;
   std::vector<std::pair<std::string, double>> numbers;
   std::vector<std::pair<std::string, std::string>> choices;
+  std::vector<std::pair<std::string, Excitation>> inputs;  // by SectionInput::name
 };
 using ElementSections = std::map<std::string, ElementSection>;
 
@@ -105,6 +141,18 @@ struct SectionType {
   // Its presence as a bool attribute of DriveParameters (and a key of the core
   // spec's [drive]) where no choice field carries it (nullptr: a choice does).
   const char* flag = nullptr;
+  // The scene section that carries its keys where the Python scene schema
+  // declares that one (the DC motor's: `motor`, type = "dc"): the key
+  // paths' prefix; such a section is no scene section of its own
+  // (_core.element_sections() and DriveParameters.sections leave it out,
+  // its attributes carry it). nullptr: its own name.
+  const char* scene = nullptr;
+  // When it is built: with the motor (before the load and the other
+  // elements: an element that drives the rotor), or after the others.
+  enum class Stage { motor, elements };
+  Stage stage = Stage::elements;
+  std::vector<SectionInput> inputs;
+  const RotorDrive* rotor_drive = nullptr;  // nullptr: it drives no rotor
   // Its rules across fields and sections, after each field's range (raise
   // InvalidArgument naming the key path, the value and what is allowed).
   void (*check)(const Section& s, const DriveParameters& p, const MessageStyle& style) = nullptr;
@@ -117,6 +165,10 @@ struct SectionType {
   int field_index(const std::string& key) const;  // -1: none
   // The presence attribute's name (the flag, or the choice's attribute).
   std::string presence_attribute() const;
+  // A key's path in the scene ("end_stops.upper", "motor.resistance").
+  std::string key_path(const char* key) const {
+    return std::string(scene != nullptr ? scene : name) + "." + key;
+  }
 };
 
 // A present section's complete values: the given ones and the defaults.
@@ -131,7 +183,7 @@ class Section {
   bool supplied(const char* key) const;
   double number(const char* key) const;
   const std::string& choice(const char* key) const;
-  std::string path(const char* key) const { return std::string(type_->name) + "." + key; }
+  std::string path(const char* key) const { return type_->key_path(key); }
 
  private:
   const SectionType* type_;
@@ -153,8 +205,10 @@ const SectionType& element_section_type(const std::string& name);
 const ElementSection* find_section(const DriveParameters& p, const char* name);
 // Each field's value checked against its range (the core's messages).
 void check_section_ranges(const Section& s);
-// Builds every present section's element into e: ranges, check, build.
-void build_element_sections(const DriveParameters& p, elements::DriveElements& e);
+// Builds every present section's element of the stage into e: ranges,
+// check, build.
+void build_element_sections(const DriveParameters& p, elements::DriveElements& e,
+                            SectionType::Stage stage = SectionType::Stage::elements);
 // The Scene's check of one section (its ranges are the scene's): the
 // type's check with the Scene's messages.
 void check_element_section(const std::string& name, const ElementSection& given,
@@ -168,5 +222,18 @@ double section_number(const DriveParameters& p, const SectionType& type, int fie
 void set_section_number(DriveParameters& p, const SectionType& type, int field, double value);
 std::string section_presence(const DriveParameters& p, const SectionType& type);
 void set_section_presence(DriveParameters& p, const SectionType& type, const std::string& value);
+// An input's excitation (absent: a constant 0), set.
+const Excitation& section_input(const DriveParameters& p, const SectionType& type, int input);
+void set_section_input(DriveParameters& p, const SectionType& type, int input, Excitation value);
+
+// The present section whose element drives the rotor (nullptr: none: the
+// loads drive_torque or drive_speed do).
+const SectionType* rotor_drive_section(const DriveParameters& p);
+// The excitation that drives the rotor: that section's first input, else
+// loads.drive_speed (speed-controlled) or loads.drive_torque.
+const Excitation& rotor_drive(const DriveParameters& p);
+// The present sections' input named `name` (nullptr: none).
+const Excitation* find_section_input(const DriveParameters& p, const std::string& name);
+Excitation* find_section_input(DriveParameters& p, const std::string& name);
 
 }  // namespace leadscrew::model

@@ -8,18 +8,23 @@
 //   M(name)  an element of the model behind the element interface
 //            (model/element.hpp): its file declares name_kind() and builds
 //            it; the drivers take it through the interface alone
+//   S(name)  as M, its parameters and inputs in a section of its own
+//            (element_section.hpp; SectionType name_section(), in its
+//            file): the sections' registry lists it after its own
+//            (model_element_sections()); its kind is listed here
 // The elements' sections (element_section.hpp) add their kinds after these,
 // from their own registry (section_registry.cpp): an element with a section
 // of its own needs no line here.
 #include "driver_element.hpp"
+#include "leadscrew/model/element_section.hpp"
 
-#define LEADSCREW_DRIVE_ELEMENTS(D, E, M) \
-  D(lugre_bristles)                       \
-  M(dc_motor)                             \
-  E(end_stops)                            \
-  E(preloaded_nut)                        \
-  D(train_friction)                       \
-  M(base_excitation)                      \
+#define LEADSCREW_DRIVE_ELEMENTS(D, E, M, S) \
+  D(lugre_bristles)                          \
+  S(dc_motor)                                \
+  E(end_stops)                               \
+  E(preloaded_nut)                           \
+  D(train_friction)                          \
+  M(base_excitation)                         \
   E(transverse_slip)
 
 namespace leadscrew::model::drive {
@@ -28,9 +33,30 @@ namespace leadscrew::model::drive {
 #define LEADSCREW_DECLARE_EVENTS(name) \
   LEADSCREW_DECLARE_KIND(name)         \
   std::unique_ptr<DriveHybrid::Element> make_##name##_element(DriveHybrid&, const DriveModel&);
-LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_DECLARE_KIND, LEADSCREW_DECLARE_EVENTS, LEADSCREW_DECLARE_KIND)
+LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_DECLARE_KIND, LEADSCREW_DECLARE_EVENTS, LEADSCREW_DECLARE_KIND,
+                         LEADSCREW_DECLARE_KIND)
 #undef LEADSCREW_DECLARE_EVENTS
 #undef LEADSCREW_DECLARE_KIND
+
+}  // namespace leadscrew::model::drive
+
+namespace leadscrew::model {
+#define LEADSCREW_NO_SECTION(name)
+#define LEADSCREW_DECLARE_SECTION(name) SectionType name##_section();
+LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_NO_SECTION, LEADSCREW_NO_SECTION, LEADSCREW_NO_SECTION,
+                         LEADSCREW_DECLARE_SECTION)
+#undef LEADSCREW_DECLARE_SECTION
+}  // namespace leadscrew::model
+
+namespace leadscrew::model::drive {
+
+std::vector<SectionType> model_element_sections() {
+#define LEADSCREW_SECTION(name) name##_section(),
+  return {LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_NO_SECTION, LEADSCREW_NO_SECTION,
+                                   LEADSCREW_NO_SECTION, LEADSCREW_SECTION)};
+#undef LEADSCREW_SECTION
+}
+#undef LEADSCREW_NO_SECTION
 
 const std::vector<const ElementKind*>& element_kinds() {
 #define LEADSCREW_KIND(name) &name##_kind(),
@@ -41,7 +67,8 @@ const std::vector<const ElementKind*>& element_kinds() {
   // where one was added since).
   const std::vector<SectionType>& types = element_section_types();
   if (kinds.empty() || sections != types.size()) {
-    kinds = {LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_KIND, LEADSCREW_KIND, LEADSCREW_KIND)};
+    kinds = {LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_KIND, LEADSCREW_KIND, LEADSCREW_KIND,
+                                      LEADSCREW_KIND)};
     for (const SectionType& type : types)
       if (type.kind != nullptr) kinds.push_back(&type.kind());
     sections = types.size();
@@ -56,7 +83,8 @@ const std::vector<ElementFactory>& element_factories() {
 #define LEADSCREW_MODEL(name) \
   [](DriveHybrid& hybrid, const DriveModel& model) { return make_model_element(hybrid, model, #name); },
   static const std::vector<ElementFactory> factories = {
-      LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_NO_EVENTS, LEADSCREW_EVENTS, LEADSCREW_MODEL)};
+      LEADSCREW_DRIVE_ELEMENTS(LEADSCREW_NO_EVENTS, LEADSCREW_EVENTS, LEADSCREW_MODEL,
+                               LEADSCREW_MODEL)};
 #undef LEADSCREW_MODEL
 #undef LEADSCREW_EVENTS
 #undef LEADSCREW_NO_EVENTS

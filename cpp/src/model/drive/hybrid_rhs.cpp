@@ -69,9 +69,7 @@ void DriveHybrid::channels(double t, const double* y, double* out) {
 
 std::vector<double> DriveHybrid::breakpoints() const {
   std::vector<double> times = p_.axial_force.breakpoints();
-  const Excitation& drive = p_.dc_motor           ? p_.motor_voltage
-                            : p_.speed_controlled ? p_.drive_speed
-                                                  : p_.drive_torque;
+  const Excitation& drive = rotor_drive(p_);  // (a DC motor's voltage, the speed, the torque)
   times.insert(times.end(), drive.breakpoints().begin(), drive.breakpoints().end());
   for (const Excitation* base : {&p_.base_acceleration, &p_.base_angular_acceleration})
     times.insert(times.end(), base->breakpoints().begin(), base->breakpoints().end());
@@ -79,9 +77,7 @@ std::vector<double> DriveHybrid::breakpoints() const {
 }
 
 double DriveHybrid::max_step_hint() const {
-  const Excitation& drive = p_.dc_motor           ? p_.motor_voltage
-                            : p_.speed_controlled ? p_.drive_speed
-                                                  : p_.drive_torque;
+  const Excitation& drive = rotor_drive(p_);  // (a DC motor's voltage, the speed, the torque)
   return integrate::max_step_from_time_scales(
       {drive.time_scale(), p_.axial_force.time_scale(), p_.base_acceleration.time_scale(),
        p_.base_angular_acceleration.time_scale()});

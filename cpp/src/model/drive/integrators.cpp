@@ -340,10 +340,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   if (integrator == "moreau") {  // what simulate_moreau checks, from t = 0
     integrate::check_moreau_options(options.output.t_end, drive::moreau_options(options));
     check_step_resolves_loads(options.dt, options.output.t_end,
-                              {p.dc_motor           ? &p.motor_voltage
-                               : p.speed_controlled ? &p.drive_speed
-                                                    : &p.drive_torque,
-                               &p.axial_force, &p.base_acceleration,
+                              {&rotor_drive(p), &p.axial_force, &p.base_acceleration,
                                &p.base_angular_acceleration});
     check_theta_stable_with_springs(model, options);
     return;

@@ -19,6 +19,7 @@
 #include "driver_element.hpp"
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/model/element_section.hpp"
 #include "transverse_slip.hpp"
 
 namespace leadscrew::model::drive {
@@ -154,7 +155,7 @@ void check_transverse_slip(const DriveModel& model, const std::string& integrato
                "its restarts at the cone's apex)";
   else if (p.backlash != BacklashContact::none)
     obstacle = "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\"";
-  else if (p.dc_motor)
+  else if (rotor_drive_section(p))
     obstacle = "a DC motor";
   else if (p.speed_controlled)
     obstacle = "loads.drive_speed (a prescribed rotor speed)";

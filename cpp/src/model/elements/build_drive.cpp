@@ -306,90 +306,6 @@ void build_spring_damping(const DriveParameters& p, DriveElements& e) {
   }
 }
 
-// The DC motor's own time constants, its rotor alone (before a gear): the
-// mechanical J R / (k_t k_e) (the back-EMF's damping of the rotor) and the
-// electrical L / R. The fastest motors built have about 1 ms and 1 us
-// (coreless micro motors); a thousand times below, the values are a unit's
-// mistake, and the run would grind through ever shorter steps to a solver
-// failure that names no input (a torque constant of 1e6 N m/A: 9 s to
-// CV_TOO_MUCH_WORK on the seat adjuster; 1e3, 3e-12 s: 5.6 s to the same).
-// Issue 19's review.
-constexpr double kShortestMechanicalTimeConstant = 1e-6;  // [s]
-constexpr double kShortestElectricalTimeConstant = 1e-9;  // [s]
-
-// k_e: motor.back_emf_constant, or k_t where it is not given (< 0).
-double back_emf_constant(const DriveParameters& p) {
-  return p.motor_back_emf_constant < 0.0 ? p.motor_torque_constant : p.motor_back_emf_constant;
-}
-
-void check_dc_motor_time_constants(const DriveParameters& p) {
-  const double mechanical =
-      p.rotor_inertia * p.motor_resistance / (p.motor_torque_constant * back_emf_constant(p));
-  if (!(mechanical >= kShortestMechanicalTimeConstant))
-    throw InvalidArgument(
-        "motor.torque_constant = " + format_value(p.motor_torque_constant) +
-        (p.motor_back_emf_constant < 0.0
-             ? std::string()
-             : ", motor.back_emf_constant = " + format_value(p.motor_back_emf_constant)) +
-        ", motor.resistance = " + format_value(p.motor_resistance) + " and rotor.inertia = " +
-        format_value(p.rotor_inertia) +
-        " are invalid together: with them the DC motor's mechanical time constant "
-        "rotor.inertia * motor.resistance / (motor.torque_constant * "
-        "motor.back_emf_constant) comes to " +
-        format_value(mechanical) + " s: must be at least " +
-        format_value(kShortestMechanicalTimeConstant) +
-        " s (the fastest motors built have about 1e-3 s: check the units)");
-  const double inductance = p.motor_inductance, resistance = p.motor_resistance;
-  if (inductance > 0.0 && !(inductance / resistance >= kShortestElectricalTimeConstant))
-    throw InvalidArgument("motor.inductance = " + format_value(inductance) +
-                          " and motor.resistance = " + format_value(resistance) +
-                          " are invalid together: with them the DC motor's electrical time "
-                          "constant "
-                          "motor.inductance / motor.resistance comes to " +
-                          format_value(inductance / resistance) + " s: must be at least " +
-                          format_value(kShortestElectricalTimeConstant) +
-                          " s (the fastest motors built have about 1e-6 s), or 0 (the "
-                          "quasi-static limit, exact: no current dynamics)");
-}
-
-// The DC motor (motor.type = "dc"): the rotor's only drive, started from
-// rest in its current, with plausible constants.
-void check_dc_motor(const DriveParameters& p) {
-  if (p.speed_controlled)
-    throw InvalidArgument("loads.drive_speed is invalid with motor.type = \"dc\": give "
-                          "either the DC motor or loads.drive_speed (or loads.drive_torque), "
-                          "not both");
-  const Excitation::Definition torque = p.drive_torque.definition();
-  if (!(torque.kind == "constant" && torque.parameters.at(0) == 0.0))
-    throw InvalidArgument("loads.drive_torque = " + p.drive_torque.describe() +
-                          " is invalid with motor.type = \"dc\": give either the DC motor "
-                          "or loads.drive_torque, not both");
-  require_positive("motor.resistance", p.motor_resistance);
-  require_nonnegative("motor.inductance", p.motor_inductance);
-  require_positive("motor.torque_constant", p.motor_torque_constant);
-  if (!(p.motor_back_emf_constant < 0.0))
-    require_positive("motor.back_emf_constant", p.motor_back_emf_constant);
-  require_nonnegative("motor.current_limit", p.motor_current_limit);
-  check_dc_motor_time_constants(p);
-}
-
-// The DC motor drives the rotor alone (the torque-controlled Motor applies 0).
-void build_dc_motor(const DriveParameters& p, int rotor, const Gear& gear, DriveElements& e) {
-  DcMotor m;
-  m.rotor = rotor;
-  m.voltage = p.motor_voltage;
-  m.resistance = p.motor_resistance;
-  m.inductance = p.motor_inductance;
-  m.torque_constant = p.motor_torque_constant;
-  m.back_emf_constant = back_emf_constant(p);
-  m.current_limit = p.motor_current_limit;
-  // Behind a gear: the motor as its coordinate sees it (gear.hpp).
-  m.torque_constant = gear.driven_torque(m.torque_constant);
-  m.back_emf_constant = gear.driven_torque(m.back_emf_constant);
-  e.motor.torque = Excitation();
-  e.elements.push_back(dc_motor_element(m, p.motor_torque_constant, back_emf_constant(p)));
-}
-
 // The train's friction stages (train_friction.hpp): the motor's Coulomb
 // friction and a lossy or worm stage, checked here alone (one rule, one
 // place; the scene only converts). They run on the rigid drive without play
@@ -687,10 +603,8 @@ DriveElements build_drive_elements(DriveParameters& p) {
   build_spring_damping(p, e);
   e.thread.emplace(p, law, at.contact, e.coordinate_count());
   e.motor = Motor{at.rotor, p.speed_controlled, p.drive_torque, p.drive_speed, gear};
-  if (p.dc_motor) {
-    check_dc_motor(p);
-    build_dc_motor(p, at.rotor, gear, e);
-  }
+  // The sections whose element drives the rotor (a DC motor), with the motor.
+  build_element_sections(p, e, SectionType::Stage::motor);
   e.load = AxialLoad{at.load, p.axial_force};
   build_base_excitation(p, e);
   if (check_preloaded_nut(p, e)) {

@@ -9,7 +9,9 @@
 // armature integrated exactly over the step, DcMotor::armature_step; the
 // step taken again with the current held at the limit, then saturated),
 // its channels and its result checks (driver_voltage, motor_torque,
-// armature). One line in the registry (drive/element_registry.cpp).
+// armature); its section (its parameters, their rules, its input the
+// voltage, its FMU variables: dc_motor_section). One line in the registry
+// (drive/element_registry.cpp, S(dc_motor)).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,9 +20,12 @@
 #include "../check_rows.hpp"
 #include "../drive/declaration.hpp"
 #include "../drive/state_layout.hpp"
+#include "leadscrew/core/errors.hpp"
+#include "leadscrew/core/validate.hpp"
 #include "leadscrew/integrate/simulation_result.hpp"
 #include "leadscrew/model/drive_simulation.hpp"
 #include "leadscrew/model/element.hpp"
+#include "leadscrew/model/element_section.hpp"
 #include "leadscrew/model/elements/dc_motor.hpp"
 
 namespace leadscrew::model {
@@ -421,6 +426,115 @@ void declare(const DriveModel& model, const friction::Law& law, drive::Declarati
   drive::declare_model_element(model, "dc_motor", d);
 }
 
+// ---- Its section: the scene's `motor` section with type = "dc" (the
+// Python scene schema declares that section, the motor's friction torque
+// in it, and hands these fields over as DriveParameters' attributes).
+
+// The DC motor's own time constants, its rotor alone (before a gear): the
+// mechanical J R / (k_t k_e) (the back-EMF's damping of the rotor) and the
+// electrical L / R. The fastest motors built have about 1 ms and 1 us
+// (coreless micro motors); a thousand times below, the values are a unit's
+// mistake, and the run would grind through ever shorter steps to a solver
+// failure that names no input (a torque constant of 1e6 N m/A: 9 s to
+// CV_TOO_MUCH_WORK on the seat adjuster; 1e3, 3e-12 s: 5.6 s to the same).
+// Issue 19's review.
+constexpr double kShortestMechanicalTimeConstant = 1e-6;  // [s]
+constexpr double kShortestElectricalTimeConstant = 1e-9;  // [s]
+
+// Its constants as the section gives them (motor.*; the scene's `motor`
+// section, type = "dc").
+struct Constants {
+  double resistance, inductance, torque_constant, back_emf_given, current_limit;
+  explicit Constants(const Section& s)
+      : resistance(s.number("resistance")),
+        inductance(s.number("inductance")),
+        torque_constant(s.number("torque_constant")),
+        back_emf_given(s.number("back_emf_constant")),
+        current_limit(s.number("current_limit")) {}
+  // k_e: motor.back_emf_constant, or k_t where it is not given (< 0).
+  double back_emf_constant() const {
+    return back_emf_given < 0.0 ? torque_constant : back_emf_given;
+  }
+};
+
+void check_time_constants(const Constants& m, const DriveParameters& p) {
+  const double mechanical =
+      p.rotor_inertia * m.resistance / (m.torque_constant * m.back_emf_constant());
+  if (!(mechanical >= kShortestMechanicalTimeConstant))
+    throw InvalidArgument(
+        "motor.torque_constant = " + format_value(m.torque_constant) +
+        (m.back_emf_given < 0.0
+             ? std::string()
+             : ", motor.back_emf_constant = " + format_value(m.back_emf_given)) +
+        ", motor.resistance = " + format_value(m.resistance) + " and rotor.inertia = " +
+        format_value(p.rotor_inertia) +
+        " are invalid together: with them the DC motor's mechanical time constant "
+        "rotor.inertia * motor.resistance / (motor.torque_constant * "
+        "motor.back_emf_constant) comes to " +
+        format_value(mechanical) + " s: must be at least " +
+        format_value(kShortestMechanicalTimeConstant) +
+        " s (the fastest motors built have about 1e-3 s: check the units)");
+  const double inductance = m.inductance, resistance = m.resistance;
+  if (inductance > 0.0 && !(inductance / resistance >= kShortestElectricalTimeConstant))
+    throw InvalidArgument("motor.inductance = " + format_value(inductance) +
+                          " and motor.resistance = " + format_value(resistance) +
+                          " are invalid together: with them the DC motor's electrical time "
+                          "constant "
+                          "motor.inductance / motor.resistance comes to " +
+                          format_value(inductance / resistance) + " s: must be at least " +
+                          format_value(kShortestElectricalTimeConstant) +
+                          " s (the fastest motors built have about 1e-6 s), or 0 (the "
+                          "quasi-static limit, exact: no current dynamics)");
+}
+
+// The DC motor (motor.type = "dc"): the rotor's only drive, started from
+// rest in its current, with plausible constants.
+void check(const Section& s, const DriveParameters& p, const MessageStyle& style) {
+  (void)style;  // (its section is the scene's motor section: the core's messages)
+  if (p.speed_controlled)
+    throw InvalidArgument("loads.drive_speed is invalid with motor.type = \"dc\": give "
+                          "either the DC motor or loads.drive_speed (or loads.drive_torque), "
+                          "not both");
+  const Excitation::Definition torque = p.drive_torque.definition();
+  if (!(torque.kind == "constant" && torque.parameters.at(0) == 0.0))
+    throw InvalidArgument("loads.drive_torque = " + p.drive_torque.describe() +
+                          " is invalid with motor.type = \"dc\": give either the DC motor "
+                          "or loads.drive_torque, not both");
+  const Constants m(s);
+  require_positive("motor.resistance", m.resistance);
+  require_nonnegative("motor.inductance", m.inductance);
+  require_positive("motor.torque_constant", m.torque_constant);
+  if (!(m.back_emf_given < 0.0))
+    require_positive("motor.back_emf_constant", m.back_emf_given);
+  require_nonnegative("motor.current_limit", m.current_limit);
+  check_time_constants(m, p);
+}
+
+// The DC motor drives the rotor alone (the torque-controlled Motor applies
+// 0); built with the motor (SectionType::Stage::motor): its coordinate and
+// gear are set.
+void build(const Section& s, const DriveParameters& p, elements::DriveElements& e) {
+  const Constants c(s);
+  DcMotor m;
+  m.rotor = e.motor.rotor;
+  m.voltage = section_input(p, s.type(), 0);
+  m.resistance = c.resistance;
+  m.inductance = c.inductance;
+  m.torque_constant = c.torque_constant;
+  m.back_emf_constant = c.back_emf_constant();
+  m.current_limit = c.current_limit;
+  // Behind a gear: the motor as its coordinate sees it (gear.hpp).
+  m.torque_constant = e.motor.gear.driven_torque(m.torque_constant);
+  m.back_emf_constant = e.motor.gear.driven_torque(m.back_emf_constant);
+  e.motor.torque = Excitation();
+  e.elements.push_back(elements::dc_motor_element(m, c.torque_constant, c.back_emf_constant()));
+}
+
+// Its part as the rotor's drive: in the batch's messages, its FMU output.
+const RotorDrive kRotorDrive = {
+    "a DC motor (motor.type = \"dc\")", "a DC motor (no motor section)", "motor_",
+    "motor_current", "A", "the DC motor's armature current"};
+
 }  // namespace
 
 namespace drive {
@@ -434,6 +548,40 @@ const ElementKind& dc_motor_kind() {
   return kind;
 }
 }  // namespace drive
+
+// Its section (element_section.hpp): the fields of the scene's motor
+// section, type = "dc", by their attributes (motor_resistance, ...; the
+// Python scene checks their ranges and hands them over), their rules
+// (check), the voltage its input, the rotor's drive.
+SectionType dc_motor_section() {
+  SectionType type;
+  type.name = "dc_motor";
+  type.doc = "(Absent: no DC motor; the loads drive_torque or drive_speed drive the rotor.)";
+  type.fields = {
+      number("resistance", "Ohm", "the armature's resistance R").defaults(1.0)
+          .named("motor_resistance").cosim("Ohm", "the DC motor's armature resistance"),
+      number("inductance", "H", "the armature's inductance L (0: quasi-static)").defaults(0.0)
+          .named("motor_inductance")
+          .cosim("H", "the DC motor's armature inductance (0: quasi-static)"),
+      number("torque_constant", "N*m/A", "the torque constant k_t").defaults(0.0)
+          .named("motor_torque_constant").cosim("N.m/A", "the DC motor's torque constant"),
+      number("back_emf_constant", "V*s/rad", "the back-EMF constant k_e (< 0: k_t)")
+          .defaults(-1.0)
+          .named("motor_back_emf_constant")
+          .cosim("V.s/rad", "the DC motor's back-EMF constant (< 0: the torque constant)"),
+      number("current_limit", "A", "the driver's current limit (0: none)").defaults(0.0)
+          .named("motor_current_limit").cosim("A", "the driver's current limit (0: none)"),
+  };
+  type.flag = "dc_motor";
+  type.scene = "motor";
+  type.stage = SectionType::Stage::motor;
+  type.inputs = {{"motor_voltage", "voltage", "V", "V",
+                  "the DC motor driver's voltage, held over a step"}};
+  type.rotor_drive = &kRotorDrive;
+  type.check = &check;
+  type.build = &build;
+  return type;
+}
 
 namespace elements {
 std::shared_ptr<const Element> dc_motor_element(const DcMotor& dc, double rotor_torque_constant,

@@ -1,7 +1,9 @@
 // The elements' scene sections, one line each: X(name) for a section
 // declared by `SectionType name_section()` in its element's file
-// (element_section.hpp; cpp/src/model/elements/name.cpp). The order is the
-// scene schema's and the core spec's.
+// (element_section.hpp; cpp/src/model/elements/name.cpp), then the
+// sections of the model's elements behind the element interface, from
+// their registry's lines (drive/element_registry.cpp, S(name)). The order
+// is the scene schema's and the core spec's.
 #include <string>
 #include <utility>
 
@@ -17,10 +19,18 @@ namespace leadscrew::model {
 LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_DECLARE_SECTION)
 #undef LEADSCREW_DECLARE_SECTION
 
+namespace drive {
+std::vector<SectionType> model_element_sections();
+}
+
 namespace {
 std::vector<SectionType>& registered_sections() {
 #define LEADSCREW_LIST_SECTION(name) name##_section(),
-  static std::vector<SectionType> types = {LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_LIST_SECTION)};
+  static std::vector<SectionType> types = [] {
+    std::vector<SectionType> own = {LEADSCREW_ELEMENT_SECTIONS(LEADSCREW_LIST_SECTION)};
+    for (SectionType& type : drive::model_element_sections()) own.push_back(std::move(type));
+    return own;
+  }();
 #undef LEADSCREW_LIST_SECTION
   return types;
 }

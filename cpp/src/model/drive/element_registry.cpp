@@ -18,7 +18,7 @@
   M(dc_motor)                             \
   E(end_stops)                            \
   E(preloaded_nut)                        \
-  D(train_friction)                       \
+  E(train_friction)                       \
   M(base_excitation)
 
 namespace leadscrew::model::drive {

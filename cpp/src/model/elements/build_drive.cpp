@@ -517,7 +517,9 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   // Where the event-driven scheme took the stages in issue 32 (a prescribed
   // rotor speed, a static coefficient on the thread), Moreau-Jean stays the
   // default: the results of before are unchanged.
-  f.moreau_default = p.speed_controlled || !e.thread->law().plain_coulomb();
+  // (And off the rigid concept without play: the rotor's friction contact.)
+  f.moreau_default = p.speed_controlled || !e.thread->law().plain_coulomb() ||
+                     p.concept != Concept::rigid;
   e.train_friction = f;
 }
 
@@ -598,7 +600,7 @@ bool check_preloaded_nut(const DriveParameters& p, const DriveElements& e) {
         concept_name(p.concept) + "\": the train's friction stages run on Moreau-Jean, whose "
         "step takes a preloaded nut without lift-off only (no play, exact play closed by the "
         "preload, or the rigid concept), and the event-driven scheme runs them with a "
-        "torque or DC motor on the rigid concept without play only; use backlash.contact = "
+        "torque or DC motor without a preloaded nut only; use backlash.contact = "
         "\"exact\" or \"none\", nut.preload = 0, gear.type = \"ideal\" and "
         "motor.friction_torque = 0, or a prescribed rotor speed (loads.drive_speed)");
   const std::string preload = "nut.preload = " + format_value(p.nut_preload) + " is invalid ";
@@ -741,9 +743,16 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // alone, not the motion: the constrained solve runs every drive
   // (ConstrainedSolver books their losses).
   if (p.speed_controlled) return "";
-  if (p.concept != Concept::rigid) return "concept = \"" + concept_name(p.concept) + "\"";
+  // Off the rigid concept the rotor's friction contact runs them on the
+  // constrained solve (hybrid_rotor_contact.cpp): without play, Coulomb
+  // with one coefficient on the thread. (Penalty play is not: a free
+  // flight's stall found no consistent rotor mode in issue 32's tests.)
+  const bool rigid_train = p.concept == Concept::rigid;
   if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
     return "backlash.axial = " + format_value(p.clearance) + " (play)";
+  if (!rigid_train && !law.plain_coulomb())
+    return "friction.law = \"" + p.friction + "\" with mu_static (off the rigid concept "
+           "without play)";
   // (TrainSolver's closed forms are the plain thread's: no preload's hooks.)
   if (p.nut_preload > 0.0) return "nut.preload = " + format_value(p.nut_preload) + " N";
   // (Coulomb with a static coefficient runs: TrainSolver's slip takes the

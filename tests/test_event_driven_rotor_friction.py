@@ -1,14 +1,14 @@
 """The event-driven scheme with the train's friction stages and a torque or
-DC motor on the flexible concepts without play (issue 32, "fill the
-matrix": the rotor's friction contact,
+DC motor on the flexible concepts without play and with penalty play
+(bistop, cubic; issue 32, "fill the matrix": the rotor's friction contact,
 cpp/src/model/drive/hybrid_rotor_contact.cpp; docs/physics/gear.md, "The
 event-driven rotor contact"): lossy and worm stages and the motor's
 friction, against Moreau-Jean (its losses converge
 to the event-driven scheme's at first order in dt), the closed forms of a
 lossy stage's steady state (T_screw / (n eta) driving, eta_b T_screw / n
 back-driven), of a self-locking worm's hold and breakaway and of the
-motor's friction; the stage's Painleve case raises JammingError; play
-stays refused by name. Every run
+motor's friction; the stage's Painleve case raises JammingError; exact
+play stays refused by name. Every run
 passes its own checks and the independent invariants
 (helpers/result_invariants.py: the account closes, friction never works
 positively, the losses never fall)."""
@@ -57,6 +57,9 @@ COMBINATIONS = {
     "flexible-worm-friction": scene("flexible", WORM, torque=0.02,
                                     motor={"friction_torque": 3e-3}),
     "flexible-worm-sine": scene("flexible", WORM),
+    "nut-lossy-bistop": scene(backlash=BISTOP),
+    "flexible-worm-cubic": scene("flexible", WORM, backlash=CUBIC),
+    "rigid-lossy-bistop": scene("rigid", backlash=BISTOP),
     "nut-lossy-dc": scene(motor={**DC, "friction_torque": 2e-3}),
 }
 
@@ -173,12 +176,12 @@ def test_the_motors_friction_holds_a_torque_below_it(share, starts):
     assert (result["motor_friction_loss"][-1] > 0.0) == starts
 
 
-@settings(max_examples=12, deadline=None)
+@settings(max_examples=20, deadline=None)
 @given(efficiency=st.floats(0.3, 1.0), backdrive=st.floats(-0.5, 1.0),
        friction_torque=st.sampled_from([0.0, 1e-3, 5e-3]),
-       force=st.floats(-30.0, 30.0))
+       force=st.floats(-30.0, 30.0), play=st.sampled_from([None, "bistop"]))
 def test_random_lossy_trains_on_flexible_nut_keep_the_invariants(
-        efficiency, backdrive, friction_torque, force):
+        efficiency, backdrive, friction_torque, force, play):
     """Random lossy stages, motor frictions and loads on flexible_nut: every
     run keeps its checks and the invariants, or the stage's Painleve case
     raises JammingError (a self-locking stage back-driven with eta_b J_s + R
@@ -186,7 +189,7 @@ def test_random_lossy_trains_on_flexible_nut_keep_the_invariants(
     gear = {"type": "lossy", "ratio": 4.0, "efficiency": efficiency,
             "efficiency_backdrive": min(backdrive, efficiency)}
     d = scene(gear=gear, motor={"friction_torque": friction_torque} if friction_torque else None,
-              loads={"axial_force": force})
+              loads={"axial_force": force}, backlash=BISTOP if play else None)
     try:
         checked(d, 0.05, integrator="event_driven")
     except ls.JammingError as error:
@@ -203,16 +206,13 @@ def test_the_stages_painleve_case_raises_jamming_error():
         ls.simulate(s, 0.2, integrator="event_driven")
 
 
-@pytest.mark.parametrize("concept, play", [("flexible_nut", BISTOP), ("flexible", CUBIC),
-                                           ("rigid", BISTOP),
-                                           ("flexible_nut", {"axial": 1e-4, "contact": "exact"})])
-def test_play_and_mu_static_stay_refused_on_the_event_driven_scheme(concept, play):
-    """What the rotor's contact does not take stays refused by name: play
-    (exact or penalty: a free flight's stall found no consistent rotor mode
-    on penalty play, issue 32), a static coefficient off the rigid concept."""
-    d = scene(concept, backlash=play)
-    with pytest.raises(ValueError, match=r"here backlash\.axial = 0\.0001 \(play\); use "
-                                         r"integrator = \"moreau\""):
+@pytest.mark.parametrize("concept", ["flexible_nut", "flexible", "rigid"])
+def test_exact_play_and_mu_static_stay_refused_on_the_event_driven_scheme(concept):
+    """What the rotor's contact does not take stays refused by name: exact
+    play, a static coefficient off the rigid concept without play."""
+    d = scene(concept, backlash={"axial": 1e-4, "contact": "exact"})
+    with pytest.raises(ValueError, match=r'here backlash\.contact = "exact" \(exact play\); '
+                                         r'use integrator = "moreau"'):
         ls.simulate(ls.Scene.from_dict(d), 0.01, integrator="event_driven")
     assert ls.simulate(ls.Scene.from_dict(d), 0.01).integrator == "moreau"
     static = scene(concept, friction={"law": "coulomb", "mu": 0.2, "mu_static": 0.3})

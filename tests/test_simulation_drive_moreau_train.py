@@ -259,7 +259,7 @@ def test_the_flexible_seat_adjuster_runs_with_its_worm():
 
 
 def test_what_still_cannot_run_is_refused_naming_the_integrator_that_runs_it():
-    # (Play: the event-driven rotor contact does not take it, issue 32.)
+    # (Exact play: the event-driven rotor contact does not take it, issue 32.)
     d = dc_scene(SELF_LOCKING_WORM, 2e-3, concept="flexible")
     d["backlash"] = {"axial": 1e-4, "contact": "exact"}
     scene = ls.Scene.from_dict(d)
@@ -271,11 +271,12 @@ def test_what_still_cannot_run_is_refused_naming_the_integrator_that_runs_it():
         'arctan_acceleration)')
     # (Only Moreau-Jean runs this scene: no other integrator is offered.)
     assert str(info.value).endswith('; this scene runs on Moreau-Jean only (here '
-                                    'backlash.axial = 0.0001 (play))')
+                                    'backlash.contact = "exact" (exact play))')
     assert "event_driven" not in str(info.value)
     with pytest.raises(ValueError) as info:
         ls.simulate(scene, 0.01, integrator="event_driven")
-    assert 'here backlash.axial = 0.0001 (play); use integrator = "moreau"' in str(info.value)
+    assert 'here backlash.contact = "exact" (exact play); use integrator = "moreau"' in str(
+        info.value)
 
 
 def test_the_flexible_seat_adjusters_refusals_offer_moreau_jean_alone():

@@ -263,11 +263,11 @@ def test_a_stage_elsewhere_is_refused_naming_the_key(changes, gear, message):
 # thread, the stages run on Moreau-Jean alone (its default there):
 # tests/test_simulation_drive_moreau_train.py.
 MOREAU_ONLY = [
-    # (issue 32: the flexible concepts without play run with the rotor's
-    # friction contact, tests/test_event_driven_rotor_friction.py; play and
-    # mu_static there do not)
-    (dict(concept="flexible_nut", backlash={"axial": 1e-5, "contact": "bistop"}), LOSSY,
-     "here backlash.axial = 1e-05 (play)"),
+    # (issue 32: the flexible concepts and penalty play run with the rotor's
+    # friction contact, tests/test_event_driven_rotor_friction.py; exact play
+    # and mu_static there do not)
+    (dict(concept="flexible_nut", backlash={"axial": 1e-5, "contact": "exact"}), LOSSY,
+     'here backlash.contact = "exact" (exact play)'),
     (dict(concept="flexible", friction={"law": "coulomb", "mu": 0.2, "mu_static": 0.3}), WORM,
      'here friction.law = "coulomb" with mu_static (off the rigid concept without play)'),
     # (issue 32: a static coefficient runs, tests/test_event_driven_train_stages.py;
@@ -302,7 +302,7 @@ def test_motor_friction_elsewhere_is_refused_naming_the_key():
     scene["loads"].pop("drive_torque")
     with pytest.raises(ValueError, match=r"integrator = \"event_driven\" is invalid with "
                                          r"motor\.friction_torque = 0\.001: .* here backlash\."
-                                         r"axial = 1e-05 \(play\); use "
+                                         r"contact = \"exact\" \(exact play\); use "
                                          r"integrator = \"moreau\""):
         ls.simulate(ls.Scene.from_dict(scene), 0.01, integrator="event_driven")
     speed = thesis_scene(loads={"drive_speed": 1.0})

@@ -224,7 +224,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   // Whether the solution s fits the rotor's mode; the mode chosen anew
   // (at rest: stick first, then the slips, each with the thread's
   // decision; leave_stick: a stick's margin fell through zero).
-  bool rotor_consistent(const ModeSolution& s) const;
+  bool rotor_consistent(const ModeSolution& s, bool at_rest) const;
   // The thread's Painleve test (DriveDynamics::painleve_possible) with the
   // rotor's inertia its mode's row gives (held: none on the thread).
   bool rotor_painleve_possible() const;

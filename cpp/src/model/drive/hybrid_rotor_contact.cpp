@@ -88,11 +88,13 @@ double DriveHybrid::thread_torque_scale(const ModeSolution& s) const {
          std::abs(s.friction_force * model_.tangent_direction()[r]);
 }
 
-bool DriveHybrid::rotor_consistent(const ModeSolution& s) const {
+bool DriveHybrid::rotor_consistent(const ModeSolution& s, bool at_rest) const {
   if (!s.regular) return false;
   const int r = model_.rotor();
   const double other = thread_torque_scale(s);
-  const double moving = rotor_mode_.slip != 0 ? v_[r] : 0.0;
+  // (At rest a slip takes the acceleration's sign: the thread's decision
+  // may have left the rotor's speed at a round-off of either sign.)
+  const double moving = rotor_mode_.slip != 0 && !at_rest ? v_[r] : 0.0;
   return rotor_balance().consistent(*rotor_train_, rotor_mode_, s.acceleration[r],
                                     s.rotor_friction, other, moving);
 }
@@ -123,7 +125,7 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
       if (mode_.contact != ThreadContact::open)
         decide_friction(t, y, mode_.friction == FrictionMode::stick, 0);
       const ModeSolution s = solve_current();
-      if (candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s)) {
+      if (candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s, at_rest)) {
         rotor_mode_.breakaway = false;  // (in slip the kinetic efficiencies)
         start_flow_root(s);
         return;

@@ -519,7 +519,7 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   // default: the results of before are unchanged.
   // (And off the rigid concept without play: the rotor's friction contact.)
   f.moreau_default = p.speed_controlled || !e.thread->law().plain_coulomb() ||
-                     p.concept != Concept::rigid;
+                     p.concept != Concept::rigid || p.backlash != BacklashContact::none;
   e.train_friction = f;
 }
 
@@ -743,13 +743,12 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // alone, not the motion: the constrained solve runs every drive
   // (ConstrainedSolver books their losses).
   if (p.speed_controlled) return "";
-  // Off the rigid concept the rotor's friction contact runs them on the
-  // constrained solve (hybrid_rotor_contact.cpp): without play, Coulomb
-  // with one coefficient on the thread. (Penalty play is not: a free
-  // flight's stall found no consistent rotor mode in issue 32's tests.)
-  const bool rigid_train = p.concept == Concept::rigid;
-  if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
-    return "backlash.axial = " + format_value(p.clearance) + " (play)";
+  // Off the rigid concept without play the rotor's friction contact runs
+  // them on the constrained solve (hybrid_rotor_contact.cpp): no play or
+  // penalty play, Coulomb with one coefficient on the thread.
+  const bool rigid_train = p.concept == Concept::rigid && p.backlash == BacklashContact::none;
+  if (p.backlash == BacklashContact::exact)
+    return "backlash.contact = \"exact\" (exact play)";
   if (!rigid_train && !law.plain_coulomb())
     return "friction.law = \"" + p.friction + "\" with mu_static (off the rigid concept "
            "without play)";

@@ -205,8 +205,11 @@ def test_schema_says_which_schemes_run_the_trains_friction_stages():
                 "'moreau') runs them on every concept and play with every thread law but "
                 "'arctan_acceleration' (a preloaded nut without lift-off), the event-driven "
                 "scheme on the rigid concept without play with friction.law = 'coulomb' "
-                "(mu_static too) outside the thread's Painleve regime and without a load spring; "
-                "where only Moreau-Jean fits, and with mu_static, it is the default. Behind a prescribed rotor speed "
+                "(mu_static too) outside the thread's Painleve regime and without a load spring, "
+                "and on the flexible concepts and penalty play ('bistop', 'cubic') with "
+                "friction.law = 'coulomb' without mu_static (no preloaded nut, no exact end "
+                "stop); where only Moreau-Jean fits, with mu_static, and off the rigid concept "
+                "without play, it is the default. Behind a prescribed rotor speed "
                 "(loads.drive_speed) the event-driven scheme runs them on every concept and play "
                 "with every law, and Moreau-Jean, the default, where it runs the scene") in line, key
         assert "no end stops" not in line, key

@@ -259,8 +259,13 @@ def test_a_stage_elsewhere_is_refused_naming_the_key(changes, gear, message):
 # thread, the stages run on Moreau-Jean alone (its default there):
 # tests/test_simulation_drive_moreau_train.py.
 MOREAU_ONLY = [
-    (dict(concept="flexible_nut"), LOSSY, 'here concept = "flexible_nut"'),
-    (dict(backlash={"axial": 1e-5}), WORM, "here backlash.axial = 1e-05 (play)"),
+    # (issue 32: the flexible concepts and penalty play run with the rotor's
+    # friction contact, tests/test_event_driven_rotor_friction.py; exact play
+    # and mu_static there do not)
+    (dict(concept="flexible_nut", backlash={"axial": 1e-5, "contact": "exact"}), LOSSY,
+     'here backlash.contact = "exact" (exact play)'),
+    (dict(concept="flexible", friction={"law": "coulomb", "mu": 0.2, "mu_static": 0.3}), WORM,
+     'here friction.law = "coulomb" with mu_static (off the rigid concept without play)'),
     # (issue 32: a static coefficient runs, tests/test_event_driven_train_stages.py;
     # Stribeck's slip coefficient follows the slip speed)
     (dict(friction={"law": "stribeck", "mu": 0.12, "mu_static": 0.15}), WORM,
@@ -280,18 +285,21 @@ def test_the_event_driven_scheme_refuses_a_stage_elsewhere_naming_moreau(changes
     text = str(info.value)
     assert text.startswith(f'integrator = "event_driven" is invalid with gear.type = '
                            f'"{gear["type"]}": the event-driven scheme runs the train\'s '
-                           "friction stages on the rigid concept without play")
+                           "friction stages with a torque or DC motor on the rigid concept "
+                           "without play")
     assert message in text and 'use integrator = "moreau"' in text
     assert ls.simulate(scene, 0.05).integrator == "moreau"  # the default
 
 
 def test_motor_friction_elsewhere_is_refused_naming_the_key():
     scene = thesis_scene(concept="flexible_nut", loads={"axial_force": F},
-                         motor={**DC_MOTOR, "friction_torque": 1e-3})
+                         motor={**DC_MOTOR, "friction_torque": 1e-3},
+                         backlash={"axial": 1e-5, "contact": "exact"})
     scene["loads"].pop("drive_torque")
     with pytest.raises(ValueError, match=r"integrator = \"event_driven\" is invalid with "
-                                         r"motor\.friction_torque = 0\.001: .* here concept = "
-                                         r"\"flexible_nut\"; use integrator = \"moreau\""):
+                                         r"motor\.friction_torque = 0\.001: .* here backlash\."
+                                         r"contact = \"exact\" \(exact play\); use "
+                                         r"integrator = \"moreau\""):
         ls.simulate(ls.Scene.from_dict(scene), 0.01, integrator="event_driven")
     speed = thesis_scene(loads={"drive_speed": 1.0})
     speed["loads"].pop("drive_torque")

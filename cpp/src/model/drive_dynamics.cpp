@@ -344,8 +344,25 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
                                         : 0.0;
   };
   lift_off_forces();
+  // The rotor's friction contact (ModeSpec::rotor): a row of its own where
+  // it fixes the rotor's acceleration, else eliminated into the rotor's
+  // inverse mass and force (a self-locking stage back-driven: negative).
+  const int rotor = model_.rotor();
+  const bool rotor_fixed = spec.rotor.active && spec.rotor.a_q == 0.0;
+  const bool rotor_eliminated = spec.rotor.active && spec.rotor.a_q != 0.0;
+  CoordinateVector inverse_mass = inverse_mass_;
+  if (rotor_eliminated) {
+    const double effective = spec.rotor.a_q / inverse_mass_[rotor] - spec.rotor.a_w;
+    if (!(std::abs(effective) > 1e-12 * std::abs(spec.rotor.a_q / inverse_mass_[rotor]))) {
+      ModeSolution singular;
+      singular.regular = false;  // (the stage's Painleve case, k J_s + R = 0)
+      return singular;
+    }
+    inverse_mass[rotor] = spec.rotor.a_q / effective;
+  }
   auto evaluate = [&](double kappa, double given_tangential, ModeSolution& out) {
     CoordinateVector f = forces_;
+    if (rotor_eliminated) f[rotor] -= spec.rotor.r / spec.rotor.a_q;
     f += (given_tangential + viscous) * tangent;
     if (preload_half)
       f += nut->normal(spec.slip_sign) * normal + nut->friction(spec.slip_sign) * tangent;
@@ -360,7 +377,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       if (!stick) f -= kappa * std::abs(normal_force) * tangent;
     }
     const int nc = (normal_multiplier ? 1 : 0) + (stick ? 1 : 0) + motor.constraint_count() +
-                   (spec.held_load >= 0 ? 1 : 0);
+                   (spec.held_load >= 0 ? 1 : 0) + (rotor_fixed ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
     ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
     SmallVector r = SmallVector::Zero(nc);
@@ -388,8 +405,15 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
       B(spec.held_load, stop_row) = 1.0;
       C(stop_row, spec.held_load) = 1.0;
     }
+    int friction_row = -1;
+    if (rotor_fixed) {
+      friction_row = row++;
+      B(rotor, friction_row) = -1.0;
+      C(friction_row, rotor) = spec.rotor.a_w;
+      r[friction_row] = spec.rotor.r;
+    }
     SmallVector lambda;
-    out.regular = solve_constrained(inverse_mass_, f, B, C, r, out.acceleration, lambda);
+    out.regular = solve_constrained(inverse_mass, f, B, C, r, out.acceleration, lambda);
     if (!out.regular) return;
     if (normal_multiplier) normal_force = lambda[normal_row];
     out.normal_force = normal_force;
@@ -421,6 +445,11 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     }
     out.motor_torque = motor.speed_controlled ? lambda[rotor_row] : applied_torque_;
     out.stop_force = stop_row >= 0 ? lambda[stop_row] : 0.0;
+    out.rotor_friction =
+        rotor_fixed ? lambda[friction_row]
+        : rotor_eliminated
+            ? (spec.rotor.r - spec.rotor.a_w * out.acceleration[rotor]) / spec.rotor.a_q
+            : 0.0;
     out.slip_acceleration = tangent.dot(out.acceleration);
   };
 
@@ -666,10 +695,12 @@ void DriveDynamics::project_zero_slip(const ModeSpec& spec, CoordinateVector& v)
   const int n = model_.coordinate_count();
   const bool normal_row =
       spec.contact == ThreadContact::bilateral || spec.contact == ThreadContact::closed;
-  const int nc = 1 + (normal_row ? 1 : 0) + motor.constraint_count();
+  const bool rotor_held = spec.rotor.active && spec.rotor.a_q == 0.0 && spec.rotor.r == 0.0;
+  const int nc = 1 + (normal_row ? 1 : 0) + motor.constraint_count() + (rotor_held ? 1 : 0);
   ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
   SmallVector target = SmallVector::Zero(nc);  // the velocity constraints after the projection
   int row = 0;
+  if (rotor_held) C(row++, model_.rotor()) = 1.0;  // a stuck rotor: phi_r' = 0
   C.row(row++) = model_.tangent_direction().transpose();  // zero slip
   // The thread without play and a closed flank have zero normal velocity
   // (the constraint; a closed flank's is set so when it closes).
@@ -704,10 +735,12 @@ bool DriveDynamics::project_held(const HeldContact& held, CoordinateVector& q,
   const elements::Motor& motor = model_.motor();
   const elements::ThreadPair& thread = model_.thread_pair();
   const int n = model_.coordinate_count();
-  const int nc = (held.normal ? 1 : 0) + (held.stick ? 1 : 0) + motor.constraint_count();
+  const int nc = (held.normal ? 1 : 0) + (held.stick ? 1 : 0) + motor.constraint_count() +
+                 (held.rotor ? 1 : 0);
   ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
   SmallVector on_q = SmallVector::Zero(nc);  // the rows' change of q; of v: -C v
   int row = 0;
+  if (held.rotor) C(row++, model_.rotor()) = 1.0;  // its position kept, its speed 0
   if (held.normal) {
     C.row(row) = thread.play_gradient().transpose();
     on_q[row++] = held.play - thread.play(q);

@@ -56,6 +56,17 @@ struct ModeSpec {
   // row of its own, its multiplier the stop's force (ModeSolution::
   // stop_force); -1: none (docs/physics/end_stops.md, "The rigid drive").
   int held_load = -1;
+  // The rotor's friction contact (the train's stages with a torque or DC
+  // motor on a drive TrainSolver does not take): a row a_w phi_r'' + a_q Q
+  // = r on the rotor's coordinate, Q its torque along -e_rotor (the motor's
+  // friction and the stage's loss; moreau_contacts::RotorBalance::row at
+  // the rate level, docs/physics/gear.md). a_q = 0: the row fixes the
+  // rotor's acceleration (stick, eta_b = 0), else Q is eliminated: the
+  // rotor's inverse mass a_q / (a_q M_r - a_w) and force f_r - r / a_q.
+  struct RotorRow {
+    bool active = false;
+    double a_w = 0.0, a_q = 0.0, r = 0.0;
+  } rotor;
 };
 
 struct ModeSolution {
@@ -76,6 +87,8 @@ struct ModeSolution {
   double preload_friction = 0.0;
   // A closed exact stop's force on the load along +u (ModeSpec::held_load).
   double stop_force = 0.0;
+  // The rotor's friction torque Q along -e_rotor (ModeSpec::rotor).
+  double rotor_friction = 0.0;
   // The normal force of the half that carries the load (normal_force
   // without one): its sign is the bilateral thread's flank side.
   double loaded_normal() const noexcept { return normal_force - preload_normal; }
@@ -211,6 +224,7 @@ class DriveDynamics {
     double play = 0.0;           // e on the normal constraint [m]
     bool stick = false;
     double slip_position = 0.0;  // W_T . q [m]
+    bool rotor = false;          // the rotor's stuck friction contact holds phi_r' = 0
   };
   // The least change of q and of v (each in the kinetic metric) that puts
   // them onto the held constraints (docs/physics/drive_models.md, "Held

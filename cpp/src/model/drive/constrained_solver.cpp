@@ -130,6 +130,20 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
       ydot[motor_friction_state_] = speed_train_->motor_friction_bound() * std::abs(v[r]);
     if (gear_state_ >= 0) ydot[gear_state_] = speed_train_->stage_loss(transmitted * v[r]);
   }
+  if (const elements::TrainFriction* train = h_.rotor_train_) {
+    // The rotor's friction contact (hybrid_rotor_contact.cpp): in slip the
+    // motor's friction B |w| and the stage's (k - 1) tau_b w (>= 0: flow s
+    // tau_b >= 0), Q w in all; in stick nothing moves.
+    const int r = model.rotor();
+    const moreau_contacts::RotorMode& mode = h_.rotor_mode_;
+    const bool slip = mode.slip != 0;
+    if (motor_friction_state_ >= 0)
+      ydot[motor_friction_state_] = slip ? train->motor_friction_bound() * std::abs(v[r]) : 0.0;
+    if (gear_state_ >= 0)
+      ydot[gear_state_] = slip ? (train->torque_ratio(mode.flow, mode.breakaway) - 1.0) *
+                                     h_.rotor_stage_torque(s) * v[r]
+                               : 0.0;
+  }
   for (const std::unique_ptr<Element>& element : h_.elements_) element->rates(t, y, ydot, energy);
 }
 
@@ -145,7 +159,7 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   forces.preload_normal = s.preload_normal;
   forces.motor_torque = h_.model_.gear().rotor_torque(speed_train_torque(s));
   ChannelState state = channel_state(h_.dynamics_);
-  if (motor_friction_state_ >= 0)
+  if (motor_friction_state_ >= 0 && motor_friction_channel_ >= 0)
     state.values[motor_friction_channel_] = y[motor_friction_state_];
   if (gear_state_ >= 0) state.values[gear_channel_] = y[gear_state_];
   const int bristle = bristle_state_;
@@ -182,7 +196,7 @@ bool DriveHybrid::ConstrainedSolver::project(double t, const double* y, double* 
   const StateLayout& layout = h_.layout_;
   std::fill(correction, correction + layout.size(), 0.0);
   const DriveDynamics::HeldContact held = h_.held_contact();
-  if (!held.stick) return false;
+  if (!held.stick && !held.rotor) return false;
   CoordinateVector q, v;
   layout.expand(t, y, q, v);
   // Left alone: a drive at rest (every speed within atol; corrections of

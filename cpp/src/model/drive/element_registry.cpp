@@ -23,7 +23,7 @@
   S(dc_motor)                                \
   E(end_stops)                               \
   E(preloaded_nut)                           \
-  D(train_friction)                          \
+  E(train_friction)                          \
   M(base_excitation)                         \
   E(transverse_slip)
 

@@ -26,6 +26,9 @@
 //                          impacts, closed contacts and force
 //   hybrid_preloaded_nut.cpp  a lift-off preloaded nut's channels; the guard of
 //                             half A with exact play closed by the preload
+//   hybrid_rotor_contact.cpp  the rotor's friction contact (the train's stages
+//                             with a torque or DC motor on the flexible
+//                             concepts): its mode, roots and decisions
 //   element_registry.cpp   the elements' registry (declaration.hpp)
 #pragma once
 
@@ -42,6 +45,7 @@
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/drive_dynamics.hpp"
 #include "leadscrew/model/drive_rigid.hpp"
+#include "moreau_contacts.hpp"
 #include "modes.hpp"
 #include "state_layout.hpp"
 
@@ -118,6 +122,12 @@ class DriveHybrid final : public integrate::HybridSystem {
   // driver_element.hpp: an element with events of its own (a DC motor's
   // current limit, the end stops), held in elements_.
   class Element;
+  // The rigid train solver (TrainSolver) runs the train's stages with a
+  // torque or DC motor (the rigid concept without play); elsewhere the
+  // rotor's friction contact does (make_rotor_contact).
+  static bool train_solver_applies(const DriveModel& model);
+  static std::unique_ptr<Element> make_rotor_contact(DriveHybrid& hybrid,
+                                                     const elements::TrainFriction& train);
 
  private:
   // Expands y at t into q_, v_ and the dynamics' state (every right-hand
@@ -167,6 +177,7 @@ class DriveHybrid final : public integrate::HybridSystem {
     s.friction = mode_.contact == ThreadContact::open ? FrictionMode::none : mode_.friction;
     s.slip_sign = mode_.slip_sign;
     s.held_load = held_load_;
+    if (rotor_train_) s.rotor = rotor_row();
     return s;
   }
 
@@ -200,6 +211,34 @@ class DriveHybrid final : public integrate::HybridSystem {
   // of its torque on the driven part, as flank_change_root's).
   void decide_train(double t, double* y, bool at_zero_slip, int hint);
   double stage_reversal_root(double stage_torque);
+
+  // hybrid_rotor_contact.cpp: the rotor's friction contact (the motor's
+  // Coulomb friction and a lossy or worm stage with a torque or DC motor on
+  // a drive TrainSolver does not take): its mode feeds every solve
+  // (ModeSpec::rotor), an element of its own watches its roots.
+  class RotorContact;
+  // The rotor's balance at the state set (rate form: U on the coordinate,
+  // R, B) and its mode's row.
+  moreau_contacts::RotorBalance rotor_balance() const;
+  ModeSpec::RotorRow rotor_row() const;
+  // Whether the solution s fits the rotor's mode; the mode chosen anew
+  // (at rest: stick first, then the slips, each with the thread's
+  // decision; leave_stick: a stick's margin fell through zero).
+  bool rotor_consistent(const ModeSolution& s, bool at_rest) const;
+  // The thread's Painleve test (DriveDynamics::painleve_possible) with the
+  // rotor's inertia its mode's row gives (held: none on the thread).
+  bool rotor_painleve_possible() const;
+  void decide_rotor(double t, double* y, bool leave_stick, bool stalled);
+  // After the thread's mode changed: the rotor's decided anew where the
+  // new mode does not fit it.
+  void settle_rotor(double t, double* y);
+  bool stick_at_edge(const ModeSolution& s);
+  void start_flow_root(const ModeSolution& s);
+  bool flow_at_edge(const ModeSolution& s);
+  double thread_torque_scale(const ModeSolution& s) const;
+  // The rotor's friction torque Q and the stage's torque on the driven part
+  // tau_b in the solution s (the stages' losses' rates: Q phi_r' in all).
+  double rotor_stage_torque(const ModeSolution& s) const;
 
   // hybrid_impacts.cpp
   // The direction in which an impact and put_back_inside move the
@@ -286,6 +325,11 @@ class DriveHybrid final : public integrate::HybridSystem {
   std::vector<std::unique_ptr<Element>> elements_;
   int root_count_ = kThreadRoots;
   TrainSolver* train_ = nullptr;  // solver_, where the model has friction stages
+  // The rotor's friction contact (RotorContact; nullptr: none) and its mode.
+  const elements::TrainFriction* rotor_train_ = nullptr;
+  moreau_contacts::RotorMode rotor_mode_;
+  double rotor_margin_offset_ = 0.0;
+  double rotor_flow_offset_ = 0.0;    // the flow root's at a slip's start where below 0  // a stick's margin at its start where below 0 (settle_rotor)
   std::unique_ptr<ModeSolver> solver_;  // last: it refers to the fields above
 };
 

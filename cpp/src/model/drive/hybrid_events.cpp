@@ -157,6 +157,7 @@ void DriveHybrid::select_initial_mode(double t, double* y) {
       mode_.friction = FrictionMode::none;
     }
   }
+  if (rotor_train_) decide_rotor(t, y, false, false);  // (with the thread's decision at each mode)
   note_flight_start(t, y);
   start_normal_side();
   for (const std::unique_ptr<Element>& element : elements_) element->start(t, y);
@@ -207,6 +208,7 @@ std::string DriveHybrid::handle_event(double t, double* y, const std::vector<int
   std::string kind = change_mode(t, y, root_info);
   if (!elements_kind.empty()) kind = kind.empty() ? elements_kind : elements_kind + ", " + kind;
   for (const std::unique_ptr<Element>& element : elements_) element->after_mode_change(t, y);
+  if (rotor_train_) settle_rotor(t, y);  // the thread's new mode may end the rotor's
   note_flight_start(t, y);
   start_mode(t, y);
   // A stick whose cone margin never left zero was no stick phase: the thread
@@ -274,6 +276,7 @@ void DriveHybrid::start_mode(double t, const double* y) {
 // that coordinate out of the stick's correction.
 DriveDynamics::HeldContact DriveHybrid::held_contact() const {
   DriveDynamics::HeldContact held;
+  held.rotor = rotor_train_ && rotor_mode_.slip == 0;  // a stuck rotor holds phi_r' = 0
   held.stick = mode_.friction == FrictionMode::stick && !slip_prescribed_now();
   if (!held.stick) return held;
   held.slip_position = stick_position_;

@@ -30,8 +30,10 @@ ModeSolution DriveHybrid::solve_current() {
     last_unique_time_ = std::max(last_unique_time_, dynamics_.time());
     return s;
   }
-  if (mode_.contact == ThreadContact::bilateral && friction_on_normal &&
-      !dynamics_.painleve_possible()) {
+  // (The rotor's friction contact changes the rotor's inertia on the
+  // thread, a self-locking stage's to a negative one: its own test.)
+  const bool painleve = rotor_train_ ? rotor_painleve_possible() : dynamics_.painleve_possible();
+  if (mode_.contact == ThreadContact::bilateral && friction_on_normal && !painleve) {
     // At most one sign can be consistent: try the last one first.
     for (int attempt = 0; attempt < 2; ++attempt) {
       const ModeSolution s = dynamics_.solve(spec(sigma_guess_));

@@ -283,10 +283,12 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
     throw InvalidArgument(
         "integrator = \"" + integrator + "\" is invalid with " + what +
         (integrator == "event_driven"
-             ? ": the event-driven scheme runs the train's friction stages on the rigid concept "
-               "without play with Coulomb friction on the thread (friction.law = \"coulomb\", "
-               "mu_static too) and a torque or DC motor only (every contact slipping with one "
-               "speed), and behind a prescribed "
+             ? ": the event-driven scheme runs the train's friction stages with a torque or "
+               "DC motor on the rigid concept without play with Coulomb friction on the thread "
+               "(friction.law = \"coulomb\", mu_static too), and on the flexible concepts "
+               "and penalty play (backlash.contact \"bistop\" or \"cubic\") with "
+               "friction.law = \"coulomb\" without mu_static (the rotor's friction contact), "
+               "without a preloaded nut or an exact end stop; and behind a prescribed "
                "rotor speed (loads.drive_speed) on every concept and play with every law, "
                "here " + train->event_driven_obstacle +
                    "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
@@ -297,8 +299,8 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
              : ": the train's friction stages run on Moreau-Jean (integrator = \"moreau\", "
                "every thread law but arctan_acceleration)" +
                    (train->event_driven_obstacle.empty()
-                        ? std::string(" and, on the rigid concept without play, the "
-                                      "event-driven scheme (integrator = \"event_driven\")")
+                        ? std::string(" and, without exact play, the event-driven scheme "
+                                      "(integrator = \"event_driven\")")
                         : "; this scene runs on Moreau-Jean only (here " +
                               train->event_driven_obstacle + ")")));
   }

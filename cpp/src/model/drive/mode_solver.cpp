@@ -13,10 +13,18 @@ namespace leadscrew::model::drive {
 // specialisation is a ModeSolver of its own and one line here, ahead of the
 // general one. The rigid solver has no states or rates but the rotor's: it
 // takes no element with events (DriveHybrid::Element; built before this).
+// The rigid concept without play: every contact slips with the one speed.
+bool DriveHybrid::train_solver_applies(const DriveModel& model) {
+  return model.parameters().concept == Concept::rigid && model.thread_pair().bilateral();
+}
+
 std::unique_ptr<DriveHybrid::ModeSolver> DriveHybrid::make_mode_solver(DriveHybrid& hybrid) {
   // (Behind a prescribed rotor speed the stages change the motor's torque
   // alone: the constrained solve, which books their losses.)
-  if (hybrid.model_.train_friction() && !hybrid.model_.motor().speed_controlled) {
+  // (A torque or DC motor elsewhere: the rotor's friction contact, an element
+  // on the constrained solve, hybrid_rotor_contact.cpp.)
+  if (hybrid.model_.train_friction() && !hybrid.model_.motor().speed_controlled &&
+      train_solver_applies(hybrid.model_)) {
     // The parameters' checks (build_drive_elements) admit the friction
     // stages where this holds but for the thread's Painleve regime.
     if (!RigidDriveModes::applies_to_thread(hybrid.model_, hybrid.dynamics_))

@@ -70,20 +70,40 @@ struct RotorBalance {
   // (1 / eta_s - 1) P_b. `other`: the other impulses' size on the rotor's
   // coordinate (the thread's), for the round-off: a flow's sign within it
   // is either (a thread in free flight transmits nothing).
+  // (The event-driven scheme's rate form: w the rotor's acceleration, and
+  // `moving` its speed where it is not at rest, whose sign a slip takes.)
   bool consistent(const elements::TrainFriction& train, const RotorMode& mode, double w, double q,
-                  double other) const noexcept {
+                  double other, double moving = 0.0) const noexcept {
     const double transmitted = at(mode.slip == 0 ? 0.0 : w) - q;  // P_b
     const double slack = 64.0 * std::numeric_limits<double>::epsilon() *
                          (std::abs(q) + std::abs(transmitted) + friction + std::abs(h0) +
                           std::abs(inertia * w0) + std::abs(inertia * w) + other);
     if (mode.slip != 0) {
-      if (!(mode.slip * w > 0.0)) return false;
+      if (!(mode.slip * (moving != 0.0 ? moving : w) > 0.0)) return false;
       return !train.stage || mode.flow * mode.slip * transmitted >= -slack;
     }
+    double low = 0.0, high = 0.0;
+    static_set(train, transmitted, low, high);
+    return q >= low - slack && q <= high + slack;
+  }
+
+  // A stick's static set of Q where the stage passes P_b: the motor's
+  // friction in [-B, B] and the stage's loss between (eta_b,s - 1) P_b and
+  // (1 / eta_s - 1) P_b.
+  void static_set(const elements::TrainFriction& train, double transmitted, double& low,
+                  double& high) const noexcept {
     const double forward = (train.torque_ratio(1, true) - 1.0) * transmitted;
     const double backward = (train.torque_ratio(-1, true) - 1.0) * transmitted;
-    return q >= std::min(forward, backward) - friction - slack &&
-           q <= std::max(forward, backward) + friction + slack;
+    low = std::min(forward, backward) - friction;
+    high = std::max(forward, backward) + friction;
+  }
+
+  // A stuck rotor's margin (w = 0, Q its holding torque): >= 0 while Q
+  // lies in the static set (the event-driven scheme's root).
+  double stick_margin(const elements::TrainFriction& train, double q) const noexcept {
+    double low = 0.0, high = 0.0;
+    static_set(train, at(0.0) - q, low, high);
+    return std::min(q - low, high - q);
   }
 };
 

@@ -433,7 +433,9 @@ void build_train_friction(const DriveParameters& p, DriveElements& e) {
   // Where the event-driven scheme took the stages in issue 32 (a prescribed
   // rotor speed, a static coefficient on the thread), Moreau-Jean stays the
   // default: the results of before are unchanged.
-  f.moreau_default = p.speed_controlled || !e.thread->law().plain_coulomb();
+  // (And off the rigid concept without play: the rotor's friction contact.)
+  f.moreau_default = p.speed_controlled || !e.thread->law().plain_coulomb() ||
+                     p.concept != Concept::rigid || p.backlash != BacklashContact::none;
   e.train_friction = f;
 }
 
@@ -635,9 +637,15 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // alone, not the motion: the constrained solve runs every drive
   // (ConstrainedSolver books their losses).
   if (p.speed_controlled) return "";
-  if (p.concept != Concept::rigid) return "concept = \"" + concept_name(p.concept) + "\"";
-  if (p.clearance > 0.0 || p.backlash != BacklashContact::none)
-    return "backlash.axial = " + format_value(p.clearance) + " (play)";
+  // Off the rigid concept without play the rotor's friction contact runs
+  // them on the constrained solve (hybrid_rotor_contact.cpp): no play or
+  // penalty play, Coulomb with one coefficient on the thread.
+  const bool rigid_train = p.concept == Concept::rigid && p.backlash == BacklashContact::none;
+  if (p.backlash == BacklashContact::exact)
+    return "backlash.contact = \"exact\" (exact play)";
+  if (!rigid_train && !law.plain_coulomb())
+    return "friction.law = \"" + p.friction + "\" with mu_static (off the rigid concept "
+           "without play)";
   // (TrainSolver's closed forms are the plain thread's: no preload's hooks.)
   if (p.nut_preload > 0.0) return "nut.preload = " + format_value(p.nut_preload) + " N";
   // (Coulomb with a static coefficient runs: TrainSolver's slip takes the

@@ -84,8 +84,9 @@ DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions op
                          " with " + train->event_driven_obstacle + " runs on nothing else"
                    : std::string()) +
             "; FMU export and the C API do not offer Moreau-Jean: they take a scene the "
-            "event-driven scheme runs, a rigid one without play with plain Coulomb friction "
-            "(e.g. the shipped scene \"seat_adjuster_worm\")");
+            "event-driven scheme runs (the train's stages with plain Coulomb friction "
+            "without play or with penalty play, e.g. the shipped scene "
+            "\"seat_adjuster_worm\"; docs/physics/gear.md)");
       }
       throw InvalidArgument("integrator = \"moreau\" is invalid for FMU export and the C API, "
                             "which do not offer Moreau-Jean time stepping: leave integrator out "

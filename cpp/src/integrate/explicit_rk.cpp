@@ -24,19 +24,9 @@ constexpr double growth_limit = 10.0;
 constexpr float pi_beta = 0.04f;
 constexpr int rejection_limit = 100;  // consecutive error-test failures
 constexpr int nonfinite_limit = 64;   // non-finite stage values since the last (re)start
-constexpr int root_iterations = 60;
-// The first step after a (re)start samples the dense output here for sign
-// changes of root functions that started on their surface (hidden_crossing);
-// 1/16 catches an excursion off the surface of a sixteenth of the step.
-constexpr double hidden_samples[] = {0.0625, 0.25, 0.5, 0.75};
+// Retries of the first step after a (re)start up to a hidden crossing
+// (hidden_crossing, explicit_rk_roots.cpp).
 constexpr int hidden_retry_limit = 8;
-// |g| at the start below this fraction of |g| at the step end: the start
-// value is at the level of the function's round-off, its sign unreliable.
-constexpr double surface_fraction = 1e-6;
-
-// Sign change of a root function from g0 (start of the interval) to g1: g0
-// exactly 0 means inactive (a restart on the switching surface).
-bool crosses(double g0, double g1) { return (g0 < 0.0 && g1 >= 0.0) || (g0 > 0.0 && g1 <= 0.0); }
 }  // namespace
 
 void hermite_dense_weights(double theta, const ButcherTableau& tableau, double* w,
@@ -389,35 +379,10 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
   // rejects one (at most rejection_limit in a row, nonfinite_limit in all).
   for (;;) {
     poll_monitor(t_);
-    if (stats_.steps >= options_.max_steps)
-      fail("RK_TOO_MUCH_WORK",
-           "the total number of internal steps reached max_steps = " +
-               std::to_string(options_.max_steps),
-           "increase max_steps or check whether the solution blows up; if the step size "
-           "collapsed the problem may be stiff: use cvode_bdf (smooth_integrator = \"cvode_bdf\" "
-           "inside integrator = \"event_driven\")");
-    if (!first_stage_valid_) {
-      system_->rhs(t_, y_, f_current_);
-      ++stats_.rhs_evaluations;
-      if (!all_finite(f_current_, n_))
-        fail("RK_RHSFUNC_FAIL", "the right-hand side returned a non-finite value (NaN or inf) "
-                                "at the current state",
-             "check the model at this state");
-      first_stage_valid_ = true;
-    }
-    std::copy_n(f_current_, n_, k_);
-    step_available_ = false;  // k_ is about to be overwritten
-    if (h_ <= 0.0) h_ = fixed ? options_.fixed_step : initial_step();
-    double h = fixed ? options_.fixed_step : h_;
-    if (options_.max_step > 0.0) h = std::min(h, options_.max_step);
-    const double wanted = h;
-    // Land exactly on t_out; stretch by up to 1 % rather than leave a sliver.
-    const bool to_end = t_ + 1.01 * h >= t_out;
-    if (to_end) h = t_out - t_;
-    if (h <= 4.0 * eps * std::fabs(t_))
-      fail("RK_ERR_FAILURE", "the step size fell to the roundoff level of t",
-           "the solution is probably singular or discontinuous here (a blow-up, or a switch "
-           "that should be an event with a root function)");
+    prepare_first_stage();
+    double wanted = 0.0;
+    bool to_end = false;
+    const double h = next_step_size(t_out, fixed, wanted, to_end);
 
     double error_square = 0.0;
     const StepOutcome outcome = attempt(h, &error_square);
@@ -425,65 +390,15 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
     // a step-size factor and costs half of double exp/log.
     const float log_error = 0.5f * std::log(static_cast<float>(std::max(error_square, 1e-20)));
     if (outcome != StepOutcome::accepted) {
-      ++stats_.error_test_failures;
-      if (outcome == StepOutcome::nonfinite) {
-        if (fixed || ++nonfinite_count_ >= nonfinite_limit) {
-          if (outside_) std::rethrow_exception(std::exchange(outside_, nullptr));
-          fail("RK_RHSFUNC_FAIL",
-               "the right-hand side returned a non-finite value (NaN or inf) " +
-                   std::to_string(nonfinite_count_ + (fixed ? 1 : 0)) +
-                   " times, also with reduced step sizes",
-               "check the model: it is undefined (NaN/inf) near this state");
-        }
-        h_ = 0.25 * h;
-      } else {
-        if (++rejections > rejection_limit)
-          fail("RK_ERR_FAILURE",
-               "the local error test failed " + std::to_string(rejection_limit) + " times in a row",
-               "the solution is probably singular or discontinuous here");
-        h_ = h * std::max(shrink_limit,
-                          safety * static_cast<double>(std::exp(-exponent * log_error)));
-      }
+      reject_step(outcome, h, fixed, exponent, log_error, rejections);
       continue;
     }
-
-    // Accepted, unless a root function that started on its switching surface
-    // crossed it and came back inside the step (see hidden_crossing).
-    std::copy_n(y_, n_, y_start_);
-    t_step_ = t_;
-    h_step_ = h;
-    step_available_ = true;
     const double t_new = to_end ? t_out : t_ + h;
-    if (m_ > 0) {
-      roots_at(t_new, y_new_, g_end_);
-      if (probe_step_ && hidden_retries < hidden_retry_limit) {
-        const double theta = hidden_crossing();
-        if (theta > 0.0) {
-          // Retry up to the sample: its end then shows the sign change.
-          ++hidden_retries;
-          h_ = theta * h;
-          step_available_ = false;
-          continue;
-        }
-      }
-      probe_step_ = false;
-    }
-    ++stats_.steps;
+    if (!accept_step(h, t_new, hidden_retries)) continue;
     if (!fixed && options_.stop_when_stiff && stiffness_.due() &&
         stiffness_.stiff_after(tableau_, stats_.steps, n_, k_, f_end_))
       stop_if_stiff(h, t_new, t_out);
-    if (!fixed) {
-      // PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.
-      double factor = safety * static_cast<double>(std::exp(
-                                   -(exponent - 0.75f * pi_beta) * log_error +
-                                   pi_beta * log_error_old_));
-      factor = std::min(growth_limit, std::max(shrink_limit, factor));
-      if (rejections > 0) factor = std::min(factor, 1.0);
-      log_error_old_ = std::max(log_error, std::log(1e-4f));
-      h_ = h * factor;
-      // A step shortened to land on t_out says little about the next one.
-      if (to_end) h_ = std::max(h_, wanted);
-    }
+    if (!fixed) control_step_size(h, exponent, log_error, rejections, to_end, wanted);
     rejections = 0;
     outside_ = nullptr;  // (got past it)
     t_end_ = t_new;
@@ -506,6 +421,113 @@ AdvanceResult ExplicitRungeKutta::advance(double t_out, Eigen::Ref<Eigen::Vector
       return {t_, AdvanceStatus::reached};
     }
   }
+}
+
+// Before a step: the budget of max_steps, and the first stage f(t_, y_)
+// (f_current_) where it is not known, copied into k_.
+void ExplicitRungeKutta::prepare_first_stage() {
+  if (stats_.steps >= options_.max_steps)
+    fail("RK_TOO_MUCH_WORK",
+         "the total number of internal steps reached max_steps = " +
+             std::to_string(options_.max_steps),
+         "increase max_steps or check whether the solution blows up; if the step size "
+         "collapsed the problem may be stiff: use cvode_bdf (smooth_integrator = \"cvode_bdf\" "
+         "inside integrator = \"event_driven\")");
+  if (!first_stage_valid_) {
+    system_->rhs(t_, y_, f_current_);
+    ++stats_.rhs_evaluations;
+    if (!all_finite(f_current_, n_))
+      fail("RK_RHSFUNC_FAIL", "the right-hand side returned a non-finite value (NaN or inf) "
+                              "at the current state",
+           "check the model at this state");
+    first_stage_valid_ = true;
+  }
+  std::copy_n(f_current_, n_, k_);
+  step_available_ = false;  // k_ is about to be overwritten
+}
+
+// The size of the next step: the controller's (or the fixed one), at most
+// max_step (wanted), landing exactly on t_out (to_end) where that stretches
+// it by up to 1 % rather than leave a sliver.
+double ExplicitRungeKutta::next_step_size(double t_out, bool fixed, double& wanted,
+                                          bool& to_end) {
+  if (h_ <= 0.0) h_ = fixed ? options_.fixed_step : initial_step();
+  double h = fixed ? options_.fixed_step : h_;
+  if (options_.max_step > 0.0) h = std::min(h, options_.max_step);
+  wanted = h;
+  to_end = t_ + 1.01 * h >= t_out;
+  if (to_end) h = t_out - t_;
+  if (h <= 4.0 * eps * std::fabs(t_))
+    fail("RK_ERR_FAILURE", "the step size fell to the roundoff level of t",
+         "the solution is probably singular or discontinuous here (a blow-up, or a switch "
+         "that should be an event with a root function)");
+  return h;
+}
+
+// A rejected step of size h: a quarter of it after non-finite stages, the
+// controller's shrink after a failed error test; bounded in a row and in all.
+void ExplicitRungeKutta::reject_step(StepOutcome outcome, double h, bool fixed, float exponent,
+                                     float log_error, int& rejections) {
+  ++stats_.error_test_failures;
+  if (outcome == StepOutcome::nonfinite) {
+    if (fixed || ++nonfinite_count_ >= nonfinite_limit) {
+      if (outside_) std::rethrow_exception(std::exchange(outside_, nullptr));
+      fail("RK_RHSFUNC_FAIL",
+           "the right-hand side returned a non-finite value (NaN or inf) " +
+               std::to_string(nonfinite_count_ + (fixed ? 1 : 0)) +
+               " times, also with reduced step sizes",
+           "check the model: it is undefined (NaN/inf) near this state");
+    }
+    h_ = 0.25 * h;
+  } else {
+    if (++rejections > rejection_limit)
+      fail("RK_ERR_FAILURE",
+           "the local error test failed " + std::to_string(rejection_limit) + " times in a row",
+           "the solution is probably singular or discontinuous here");
+    h_ = h * std::max(shrink_limit,
+                      safety * static_cast<double>(std::exp(-exponent * log_error)));
+  }
+}
+
+// A step of size h that passed the error test, ending at t_new: accepted
+// (the dense output's step, the root functions at its end), unless a root
+// function that started on its surface crossed it and came back inside the
+// step (hidden_crossing): false, h_ set to retry up to the sample.
+bool ExplicitRungeKutta::accept_step(double h, double t_new, int& hidden_retries) {
+  std::copy_n(y_, n_, y_start_);
+  t_step_ = t_;
+  h_step_ = h;
+  step_available_ = true;
+  if (m_ > 0) {
+    roots_at(t_new, y_new_, g_end_);
+    if (probe_step_ && hidden_retries < hidden_retry_limit) {
+      const double theta = hidden_crossing();
+      if (theta > 0.0) {
+        // Retry up to the sample: its end then shows the sign change.
+        ++hidden_retries;
+        h_ = theta * h;
+        step_available_ = false;
+        return false;
+      }
+    }
+    probe_step_ = false;
+  }
+  ++stats_.steps;
+  return true;
+}
+
+// PI control: h_new = h * safety * err^-(1/(q+1) - 0.75 beta) * err_old^beta.
+void ExplicitRungeKutta::control_step_size(double h, float exponent, float log_error,
+                                           int rejections, bool to_end, double wanted) {
+  double factor = safety * static_cast<double>(std::exp(-(exponent - 0.75f * pi_beta) *
+                                                            log_error +
+                                                        pi_beta * log_error_old_));
+  factor = std::min(growth_limit, std::max(shrink_limit, factor));
+  if (rejections > 0) factor = std::min(factor, 1.0);
+  log_error_old_ = std::max(log_error, std::log(1e-4f));
+  h_ = h * factor;
+  // A step shortened to land on t_out says little about the next one.
+  if (to_end) h_ = std::max(h_, wanted);
 }
 
 // The problem looked stiff for kStiffSteps tested steps in a row (its step
@@ -536,251 +558,6 @@ void ExplicitRungeKutta::stop_if_stiff(double h, double t, double t_out) const {
        "use an implicit method, whose step stiffness does not limit: cvode_bdf (simulate's "
        "integrator, or smooth_integrator inside integrator = \"event_driven\"; solve_ode's "
        "method)");
-}
-
-double ExplicitRungeKutta::hidden_crossing() {
-  // A root function whose value at the start of the step is 0 (inactive) or
-  // at the level of its round-off (|g| tiny against its value at the step
-  // end) has no reliable sign there. After an event that is typical: a gap
-  // that closed to rounding error on either side, a normal force that just
-  // fell to zero; RootGuard (event_driven.cpp) maps exact zeros to +-1e-200.
-  // Such a function can leave its surface and come back within one step (a
-  // nut that lifts off a flank and hits it again), and with the same sign at
-  // both ends of the step the crossing back is missed: the nut passes through
-  // the flank. Small first steps hide this (CVODE, ARKODE), the step size
-  // kept across restarts does not. So the first step after a (re)start looks
-  // inside for the sign opposite to the one at its end; found at theta, the
-  // step is retried up to theta, whose end then shows the sign change (a
-  // function that started at exactly 0 then starts the next step with the
-  // sign it took, as activate_zero_roots would have given it).
-  auto on_surface = [&](int i) {
-    const double g0 = g_start_[i], g1 = g_end_[i];
-    if (g1 == 0.0) return false;
-    if (g0 == 0.0) return true;
-    return (g0 > 0.0) == (g1 > 0.0) && std::fabs(g0) <= surface_fraction * std::fabs(g1);
-  };
-  bool any = false;
-  for (int i = 0; i < m_ && !any; ++i) any = on_surface(i);
-  if (!any) return 0.0;
-  for (const double theta : hidden_samples) {
-    interpolate(theta, y_trial_);
-    roots_at(t_step_ + theta * h_step_, y_trial_, g_trial_);
-    for (int i = 0; i < m_; ++i)
-      if (on_surface(i) && g_trial_[i] != 0.0 && (g_trial_[i] > 0.0) != (g_end_[i] > 0.0))
-        return theta;
-  }
-  return 0.0;
-}
-
-void ExplicitRungeKutta::locate_root() {
-  const double t_n = t_step_;
-  const double h = h_step_;
-  const double tolerance = 4.0 * eps * std::max(std::fabs(t_n + h), h);
-
-  // The bracket [lo, hi] (offsets from t_n) with all root functions at its
-  // ends; a function counts if it was active at t_n and changes sign in it.
-  double lo = 0.0, hi = h;
-  // Illinois: the value kept at an end is halved when that end is kept twice.
-  double scale_lo = 1.0, scale_hi = 1.0;
-  int last_side = 0;
-  auto crossing = [&](int i, const double* g_a, const double* g_b) {
-    return g_start_[i] != 0.0 && crosses(g_a[i], g_b[i]);
-  };
-  auto reset_bracket = [&] {
-    std::copy_n(g_start_, m_, g_lo_);
-    std::copy_n(g_end_, m_, g_hi_);
-    lo = 0.0;
-    hi = h;
-    scale_lo = scale_hi = 1.0;
-    last_side = 0;
-  };
-  // The earliest secant root among the bracketed functions, and which one.
-  auto earliest_secant = [&](int* which) {
-    double best = hi;
-    *which = -1;
-    for (int i = 0; i < m_; ++i) {
-      if (!crossing(i, g_lo_, g_hi_)) continue;
-      const double a = scale_lo * g_lo_[i], b = scale_hi * g_hi_[i];
-      const double estimate = (b == a) ? 0.5 * (lo + hi) : lo - a * (hi - lo) / (b - a);
-      if (*which < 0 || estimate < best) {
-        best = estimate;
-        *which = i;
-      }
-    }
-    return best;
-  };
-  // Moves one end of the bracket to tau (values in g_trial_); true if hi moved.
-  auto update_bracket = [&](double tau) {
-    bool left = false;
-    for (int i = 0; i < m_ && !left; ++i) left = crossing(i, g_lo_, g_trial_);
-    if (left) {
-      hi = tau;
-      std::swap(g_hi_, g_trial_);
-      scale_hi = 1.0;
-      scale_lo = last_side == 1 ? 0.5 * scale_lo : 1.0;
-      last_side = 1;
-    } else {
-      lo = tau;
-      std::swap(g_lo_, g_trial_);
-      scale_lo = 1.0;
-      scale_hi = last_side == -1 ? 0.5 * scale_hi : 1.0;
-      last_side = -1;
-    }
-    return left;
-  };
-  auto clamp = [&](double tau) {
-    return std::min(hi - 0.5 * tolerance, std::max(lo + 0.5 * tolerance, tau));
-  };
-
-  // 1. On the dense output (no rhs calls): Illinois until the bracket is
-  // below 1e-6 of the step; the exact stage takes over from its secant
-  // root. (Down to 1e-10 of the step, as before, Illinois took three to
-  // four more evaluations per root and Newton on the exact continuation
-  // none fewer: the same rhs evaluations and event times in the block and
-  // rigid benchmarks; 15k of the block's 416k instructions in its event
-  // loop, 47k of the rigid drive's 1,168k; issue 17's benchmark.)
-  reset_bracket();
-  int active = -1;
-  const double dense_tolerance = std::max(tolerance, 1e-6 * h);
-  // A secant that lands on an end of the bracket moves a tenth of it inside
-  // (as CVODE's root finder does). A function that starts on its surface
-  // starts at +-1e-200 (RootGuard, event_driven.cpp): against its value at
-  // the other end the secant stays at that end, the bracket shrank by half a
-  // tolerance per iteration, and Illinois's halving needs some 600 of them
-  // to make up 190 orders of magnitude; with 60 the step's end was taken for
-  // the root (a rigid nut's flight off a flank and back within one step:
-  // the impact 1.3 ms late, 0.27 um inside the flank).
-  auto inside = [&](double tau) {
-    const double width = hi - lo;
-    const double fraction = width > 5.0 * dense_tolerance ? 0.1 : 0.5 * dense_tolerance / width;
-    if (tau - lo < 0.5 * dense_tolerance) return lo + fraction * width;
-    if (hi - tau < 0.5 * dense_tolerance) return hi - fraction * width;
-    return tau;
-  };
-  for (int iteration = 0; iteration < root_iterations && hi - lo > dense_tolerance;
-       ++iteration) {
-    const double tau = clamp(inside(earliest_secant(&active)));
-    interpolate(tau / h, y_trial_);
-    roots_at(t_n + tau, y_trial_, g_trial_);
-    update_bracket(tau);
-  }
-  const double tau_dense = earliest_secant(&active);
-  // Its slope there, by central differences on the dense output.
-  double slope = 0.0;
-  {
-    const double delta = std::max(1e-7 * h, 16.0 * tolerance);
-    const double a = std::max(0.0, tau_dense - delta), b = std::min(h, tau_dense + delta);
-    interpolate(a / h, y_trial_);
-    roots_at(t_n + a, y_trial_, g_trial_);
-    const double g_a = g_trial_[active];
-    interpolate(b / h, y_trial_);
-    roots_at(t_n + b, y_trial_, g_trial_);
-    slope = (g_trial_[active] - g_a) / (b - a);
-  }
-
-  // 2. On the exact continuation phi(tau) = g(t_n + tau, Phi_tau(y_n)):
-  // Newton from the dense root (slope from the dense output, then secants
-  // through the last two exact values), aimed a tolerance past the root so
-  // that it lands where g has changed sign; done when such a point is within
-  // two tolerances of Newton's root. Kept inside the bracket, Illinois when
-  // Newton leaves it, is for another function, or takes too long. Usually
-  // two evaluations of phi.
-  // Safeguard: where an iteration does not halve the bracket twice in a row
-  // (a function that starts on its surface at +-1e-200 pins the secant to
-  // that end, and the bracket shrank by half a tolerance per iteration: a
-  // slip that reversed 7 ns into a 0.28 ms step was located at the step's
-  // end, and friction did positive work for the whole step), the next point
-  // is the dense bracket's far end widened by its width, then bisection: the
-  // bracket then halves at least every other iteration, and the loop's
-  // bound (far above the ~2 log2(h / tolerance) this needs) is never reached
-  // with a bracket wider than the tolerance (checked: an error, never an
-  // event at the wrong time). A Newton step whose correction at least halves
-  // is progress although the bracket stays wide (Newton approaches from one
-  // side, the far end does not move): counted as a stall, it was cut off by
-  // bisection after two steps, and each slip->stick of a rigid drive took
-  // some 13 evaluations of phi (9 stages each) instead of 3 or 4.
-  const double dense_far = hi + std::max(hi - lo, tolerance);
-  bool dense_far_tried = false;
-  reset_bracket();
-  std::copy_n(y_new_, n_, y_);    // the state at hi
-  std::copy_n(k_, n_, k_trial_);  // stage 1: f(t_n, y_n)
-  double tau = tau_dense;
-  double previous_tau = -1.0, previous_g = 0.0;
-  constexpr int newton_iterations = 8;
-  constexpr int exact_iterations = 400;
-  int stalled = 0;
-  double last_width = hi - lo;
-  double last_correction = std::numeric_limits<double>::infinity();
-  bool converged = false;
-  for (int iteration = 0; iteration < exact_iterations && hi - lo > tolerance; ++iteration) {
-    tau = clamp(tau);
-    if (!stages(t_n, y_start_, tau, k_trial_, y_trial_))
-      fail("RK_RHSFUNC_FAIL",
-           "the right-hand side returned a non-finite value (NaN or inf) while locating a root",
-           "check the model near the event");
-    roots_at(t_n + tau, y_trial_, g_trial_);
-    const double g_tau = g_trial_[active];
-    const bool hi_moved = update_bracket(tau);
-    if (hi_moved) std::copy_n(y_trial_, n_, y_);
-    int earliest = -1;
-    double next = earliest_secant(&earliest);
-    if (earliest < 0) break;  // not reached: the bracket always holds a crossing
-    bool newton_progress = false;
-    if (earliest == active && iteration < newton_iterations) {
-      const double local_slope = previous_tau >= 0.0 && tau != previous_tau
-                                     ? (g_tau - previous_g) / (tau - previous_tau)
-                                     : slope;
-      if (local_slope != 0.0 && std::isfinite(local_slope)) {
-        const double correction = -g_tau / local_slope;
-        if (hi_moved && std::fabs(correction) <= 2.0 * tolerance) {  // converged
-          converged = true;
-          break;
-        }
-        const double newton = tau + correction + tolerance;
-        if (newton > lo && newton < hi) {
-          next = newton;
-          newton_progress = std::fabs(correction) <= 0.5 * last_correction;
-        }
-        last_correction = std::fabs(correction);
-      }
-    }
-    previous_tau = tau;
-    previous_g = g_tau;
-    if (earliest != active) previous_tau = -1.0;  // that secant would mix two functions
-    active = earliest;
-    const double width = hi - lo;
-    stalled = width > 0.5 * last_width && !newton_progress ? stalled + 1 : 0;
-    last_width = width;
-    if (stalled >= 2) {
-      next = !dense_far_tried && dense_far > lo && dense_far < hi ? dense_far : 0.5 * (lo + hi);
-      dense_far_tried = true;
-      stalled = 0;
-      previous_tau = -1.0;  // a secant through the last point would pull back to the end
-    }
-    tau = next;
-  }
-  if (!converged && hi - lo > tolerance)
-    fail("RK_ROOT_FAIL",
-         "an event could not be located: the bracket of its root function is still " +
-             std::to_string(hi - lo) + " s wide",
-         "tighten rtol and atol, and please report the scene");
-
-  // The root: the bracket end where g has changed sign (or is 0).
-  for (int i = 0; i < m_; ++i)
-    root_info_[i] = crossing(i, g_lo_, g_hi_) ? (g_start_[i] < 0.0 ? 1 : -1) : 0;
-  if (hi == h) {
-    t_ = t_end_;  // exactly t_out when the step landed on it
-    std::copy_n(f_end_, n_, f_current_);
-    first_stage_valid_ = true;
-  } else {
-    t_ = t_n + hi;
-    first_stage_valid_ = false;
-  }
-  std::copy_n(g_hi_, m_, g_start_);
-  // A function that landed exactly on 0 at the root must not stay inactive
-  // if the integration continues without a restart.
-  activate_zero_roots();
-  probe_step_ = true;
 }
 
 }  // namespace leadscrew::integrate

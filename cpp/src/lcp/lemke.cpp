@@ -368,34 +368,13 @@ class Tableau {
   TableauMemory<N> m_;
 };
 
-// Lemke's method on the tableau of TableauMemory<N>, then the verification.
+// Lemke's pivoting on the tableau from the covering vector's start to a
+// complementary basis (z0 leaves: solved), a ray, or max_pivots; pivots
+// counts them, the start's one included.
 template <int N>
-Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detail::VectorRef& z,
-                 detail::VectorRef& w, const Options& options, Workspace& workspace) {
-  const int n = detail::size_of<N>(static_cast<int>(q.size()));
-  // Pre-check, part of the method: with q >= 0 the covering vector's first
-  // ratio test would bring z0 in at level max(-q) <= 0, i.e. z = 0 is the
-  // answer before any pivot (Siconos' lcp_lexicolemke checks the same). A NaN
-  // fails the comparison and goes to the pivoting, whose verification
-  // rejects it.
-  bool q_nonnegative = true;
-  for (int i = 0; i < n; ++i) q_nonnegative &= q[i] >= 0.0;
-  if (q_nonnegative) {
-    if constexpr (N > 0) {
-      return detail::verify_values<N>(M, q, detail::FixedVector<N>::Zero(), z.data(), w.data(),
-                                      Status::solved, 0, options.tol);
-    } else {
-      for (int i = 0; i < n; ++i) z[i] = 0.0;
-      return detail::verify<N>(M, q, z, w, Status::solved, 0, options.tol);
-    }
-  }
-  const int max_pivots =
-      options.max_iter > 0 ? options.max_iter : detail::default_lemke_pivots(n);
-
-  if constexpr (N == 0) workspace.reserve(n);
-  Tableau<N> tableau(workspace, n);
+Status lemke_pivots(Tableau<N>& tableau, const detail::MatrixCRef& M,
+                    const detail::VectorCRef& q, int n, int max_pivots, int& pivots) {
   const int artificial = tableau.artificial();
-
   // z0 enters at the lexicographic minimum of (q_i, e_i) / d_i, which makes
   // every row of [rhs, B^-1] lexicographically positive (ties in q: the
   // largest index, whose unit row e_i is the smallest).
@@ -409,7 +388,7 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
   }
   tableau.start(M, q, r);
   int leaving = r;  // w_r
-  int pivots = 1;
+  pivots = 1;
   Status status = Status::max_iterations;
   while (true) {
     if (leaving == artificial) {
@@ -427,7 +406,17 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
     leaving = tableau.pivot(r, column);
     ++pivots;
   }
+  return status;
+}
 
+// z of the basis Lemke ended on, verified against the original data;
+// refined and, failing that, polished where a complementary basis's
+// rounded values miss tol.
+template <int N>
+Result verified_lemke_solution(Tableau<N>& tableau, const detail::MatrixCRef& M,
+                               const detail::VectorCRef& q, detail::VectorRef& z,
+                               detail::VectorRef& w, const Options& options,
+                               Workspace& workspace, int n, Status status, int pivots) {
   double* value = tableau.value();
   tableau.bring_current(n + 1);
   Result result;
@@ -466,6 +455,37 @@ Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detai
     }
   }
   return result;
+}
+
+// Lemke's method on the tableau of TableauMemory<N>, then the verification.
+template <int N>
+Result run_lemke(const detail::MatrixCRef& M, const detail::VectorCRef& q, detail::VectorRef& z,
+                 detail::VectorRef& w, const Options& options, Workspace& workspace) {
+  const int n = detail::size_of<N>(static_cast<int>(q.size()));
+  // Pre-check, part of the method: with q >= 0 the covering vector's first
+  // ratio test would bring z0 in at level max(-q) <= 0, i.e. z = 0 is the
+  // answer before any pivot (Siconos' lcp_lexicolemke checks the same). A NaN
+  // fails the comparison and goes to the pivoting, whose verification
+  // rejects it.
+  bool q_nonnegative = true;
+  for (int i = 0; i < n; ++i) q_nonnegative &= q[i] >= 0.0;
+  if (q_nonnegative) {
+    if constexpr (N > 0) {
+      return detail::verify_values<N>(M, q, detail::FixedVector<N>::Zero(), z.data(), w.data(),
+                                      Status::solved, 0, options.tol);
+    } else {
+      for (int i = 0; i < n; ++i) z[i] = 0.0;
+      return detail::verify<N>(M, q, z, w, Status::solved, 0, options.tol);
+    }
+  }
+  const int max_pivots =
+      options.max_iter > 0 ? options.max_iter : detail::default_lemke_pivots(n);
+
+  if constexpr (N == 0) workspace.reserve(n);
+  Tableau<N> tableau(workspace, n);
+  int pivots = 0;
+  const Status status = lemke_pivots<N>(tableau, M, q, n, max_pivots, pivots);
+  return verified_lemke_solution<N>(tableau, M, q, z, w, options, workspace, n, status, pivots);
 }
 
 }  // namespace

@@ -140,8 +140,29 @@ class ExplicitRungeKutta final : public Integrator {
   // side opposite to its sign at the step end (crossed twice), 0 if none.
   double hidden_crossing();
   // After an accepted step with a sign change of some root function between
-  // g_start_ and g_end_: locates the earliest root; y_ and t_ move there.
+  // g_start_ and g_end_: locates the earliest root; y_ and t_ move there
+  // (explicit_rk_roots.cpp: on the dense output, then on the step's exact
+  // continuation, in a RootBracket).
   void locate_root();
+  struct RootBracket;
+  double dense_root(RootBracket& bracket, int& active, double& slope);
+  void exact_root(RootBracket& bracket, double tau_dense, int active, double slope);
+  void settle_at_root(const RootBracket& bracket);
+  // Sign change of a root function from g0 (start of the interval) to g1: g0
+  // exactly 0 means inactive (a restart on the switching surface).
+  static bool crosses(double g0, double g1) noexcept {
+    return (g0 < 0.0 && g1 >= 0.0) || (g0 > 0.0 && g1 <= 0.0);
+  }
+  // advance's parts: the step budget and first stage, the next step's
+  // size, a rejected step, an accepted one (false: retried up to a hidden
+  // crossing), the PI controller's next step size.
+  void prepare_first_stage();
+  double next_step_size(double t_out, bool fixed, double& wanted, bool& to_end);
+  void reject_step(StepOutcome outcome, double h, bool fixed, float exponent, float log_error,
+                   int& rejections);
+  bool accept_step(double h, double t_new, int& hidden_retries);
+  void control_step_size(double h, float exponent, float log_error, int rejections,
+                         bool to_end, double wanted);
   // Raises RK_STIFF where a stiff problem cannot get from t to t_out
   // within max_steps.
   void stop_if_stiff(double h, double t, double t_out) const;

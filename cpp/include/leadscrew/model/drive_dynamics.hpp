@@ -272,7 +272,7 @@ class DriveDynamics {
   double axial_force() const noexcept { return axial_force_; }
   double kinetic_energy() const;
   double friction_factor(const ModeSpec& spec, double slip_acceleration) const;
-  // A preloaded nut's half B at the law's coefficient (drive_dynamics.cpp).
+  // A preloaded nut's half B at the law's coefficient (drive_dynamics_preload.cpp).
   bool preload_at_kappa(const ModeSpec& spec) const noexcept;
   double half_b_coefficient(const elements::PreloadedNut& nut, const ModeSpec& spec) const;
   double preloaded_acceleration_law(const ModeSpec& spec, bool multiplier,
@@ -340,6 +340,32 @@ class DriveDynamics {
   friction::FlankLcpResult prescribed_slip_decision(const ModeSpec& base, int sigma);
 
  private:
+  // solve's parts (drive_dynamics_solve.cpp). A mode's rows and given forces
+  // besides the multipliers: the law's viscous term and a preloaded nut's
+  // half B (its coefficient half_b_kappa moves with eq. (3.15)).
+  struct ModeForces {
+    const elements::PreloadedNut* nut = nullptr;
+    bool normal_multiplier = false, stick = false;
+    bool kappa_half = false, preload_half = false, smooth_half = false;
+    bool lift_off_half = false, lift_off_slip = false;
+    double viscous = 0.0;
+    double half_b_kappa = 0.0, lift_off_normal = 0.0, lift_off_friction = 0.0;
+    // The rotor's friction contact (ModeSpec::rotor): a row of its own
+    // where it fixes the rotor's acceleration, else eliminated into the
+    // rotor's inverse mass and force; singular: the stage's Painleve case.
+    bool rotor_fixed = false, rotor_eliminated = false, rotor_singular = false;
+    CoordinateVector inverse_mass;
+  };
+  ModeForces mode_forces(const ModeSpec& spec) const;
+  void set_lift_off_forces(const ModeSpec& spec, ModeForces& m) const;
+  CoordinateVector mode_applied_forces(const ModeSpec& spec, const ModeForces& m, double kappa,
+                                       double given_tangential, double& normal_force) const;
+  void evaluate_mode(const ModeSpec& spec, const ModeForces& m, double kappa,
+                     double given_tangential, ModeSolution& out);
+  void set_thread_forces(const ModeSpec& spec, const ModeForces& m, double kappa,
+                         double given_tangential, double normal_force, double stick_force,
+                         ModeSolution& out) const;
+  ModeSolution solve_acceleration_by_newton(const ModeSpec& spec, const ModeForces& m);
   ModeSolution solve_acceleration_law(const ModeSpec& spec);
   // The elements' forces at the state set: element_forces_ (their sum but
   // a motor's on the rotor) and element_drive_torque_.

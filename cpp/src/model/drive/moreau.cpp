@@ -254,16 +254,12 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                                                 const CoordinateVector& v0, double normal_target,
                                                 double rotor_target, int sigma_fixed,
                                                 bool& contact, bool& stick) {
-  Impulses impulses;
   stick = false;
   // A preloaded nut that lifts off: its halves' modes (moreau_lift_off.cpp).
   if (lift_off_) {
     contact = true;
     return solve_lift_off_thread(t, h, theta, v0, normal_target, rotor_target, stick);
   }
-  // The flank's sign, or both (no allocation: this runs every step).
-  const int sigmas[2] = {sigma_fixed != 0 ? sigma_fixed : 1, -1};
-  const int sigma_count = sigma_fixed != 0 ? 1 : 2;
   // (A penalty flank: no constraint row, its normal impulse the force's.)
   const bool row = !model_.thread_pair().penalty();
   const Impulses without = solve(row, normal_target, rotor_target, 0.0);
@@ -283,15 +279,10 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                           "(its stiffness bounds the force), or a flexible concept");
   if (row && stops_fix_every_velocity())
     return stop_holds(without, unit, normal_target, rotor_target, stick);
-  double c = model_.tangent_direction().dot(without.velocity);
-  double d = model_.tangent_direction().dot(unit.velocity) - c;
-  double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);
-  double alpha = (row ? unit.normal : flank_impulse(h, theta, v0, unit.velocity)) - beta;
-  // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
-  // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
-  // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
-  // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
-  // a stuck step (gamma+ = 0) has no viscous impulse.
+  const double c = model_.tangent_direction().dot(without.velocity);
+  const double d = model_.tangent_direction().dot(unit.velocity) - c;
+  const double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);
+  const double alpha = (row ? unit.normal : flank_impulse(h, theta, v0, unit.velocity)) - beta;
   const friction::Law& law = dynamics_.law();
   // A transverse slip's cone: where w+ != 0 the helix friction is smooth
   // in the slip (no stick), the exact cone's root (moreau_smooth_friction.cpp);
@@ -305,6 +296,28 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
       (transverse_state_ >= 0 && transverse_next_ != 0.0))  // (no stick: a smooth law)
     return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,
                                alpha, beta, contact);
+  return solve_coulomb_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, row,
+                              without, unit, {c, d, alpha, beta}, contact, stick);
+}
+
+// The set-valued (Coulomb) step of the thread: the implicit viscous term's
+// scaling of the flank LCP, the slip a constraint prescribes, a preloaded
+// nut's halves, else the flank's friction impulse (coulomb_flank_impulse)
+// and the step's impulses at it (coulomb_step_impulses).
+DriveMoreau::Impulses DriveMoreau::solve_coulomb_thread(
+    double t, double h, double theta, const CoordinateVector& v0, double normal_target,
+    double rotor_target, int sigma_fixed, bool row, const Impulses& without,
+    const Impulses& unit, FlankMaps maps, bool& contact, bool& stick) {
+  double& c = maps.c;
+  double& d = maps.d;
+  double& alpha = maps.alpha;
+  double& beta = maps.beta;
+  const friction::Law& law = dynamics_.law();
+  // The law's viscous term, implicit: P_T = P_C - h viscous gamma+ with
+  // P_C in the cone. With gamma+ = c + d P_T and the normal impulse
+  // beta + alpha P_T, P_C solves the flank LCP of c, d, beta, alpha
+  // scaled by s = 1 / (1 + h viscous d) (beta less alpha h viscous c s);
+  // a stuck step (gamma+ = 0) has no viscous impulse.
   const double viscous_step = law.viscous() * h;
   const double viscous_scale = 1.0 / (1.0 + viscous_step * d);
   const double viscous_c = c;
@@ -325,41 +338,7 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                           "dt = " + format_value(h) + " s is too long for the stiffness of "
                           "this drive here: " + step_too_long(theta, alpha),
                           "use dt < " + format_value(resolving_step(h, theta)) + " s");
-  int found = 0;
-  friction::FlankLcpResult chosen;
-  // The motor (DriveDynamics::slip_prescribed) or the rotor's stuck
-  // contact (below) prescribes every velocity: the step's slip velocity c
-  // decides, friction cannot change it.
-
-  // One coefficient: the LCP decides stick and slip. A static one
-  // above the kinetic one: stick where the impulse that sticks lies in
-  // mu_static''s cone, else the LCP at the slip's coefficient at the
-  // step's start speed (Stribeck's curve, explicit in the speed).
-  // (In the Painleve regime the LCP may find no impulse where the stick
-  // holds: a stick that is admissible is taken then too.)
-  // The rotor's friction row where it fixes the rotor's speed (a stuck
-  // rotor; a stage of eta_b = 0 back-driven) may, with the thread's and the
-  // stops' rows, fix every velocity (the rigid drive without play): the
-  // slip is prescribed then, as by a speed-controlled motor, and of the
-  // friction impulses the thread's cone admits the one is taken that leaves
-  // the rotor's contact the least |Q| (the split between serial friction
-  // contacts that stick together is statically indeterminate).
-  int fixed = (row ? 1 : 0) + (p_.speed_controlled ? 1 : 0) +
-              (rotor_row_ && rotor_.fixes_speed() ? 1 : 0);
-  for (int k = 0; k < kMaxStops; ++k) fixed += stop_active_[k] ? 1 : 0;
-  const bool rotor_prescribes = rotor_row_ && rotor_.fixes_speed() &&
-                                fixed >= model_.coordinate_count();
-  // (A penalty flank is no constraint: it prescribes no slip.)
-  const bool prescribed = (row && dynamics_.slip_prescribed()) || rotor_prescribes;
-  // (c's round-off: of the velocities, and where the rotor's contact holds
-  // a drive at rest, of the loads' velocity increments h f / m, free_.)
-  const double slip_noise =
-      64.0 * std::numeric_limits<double>::epsilon() *
-      (model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum() +
-       (rotor_prescribes ? model_.tangent_direction().cwiseProduct(free_).cwiseAbs().sum()
-                         : 0.0));
-  const double motor0 = rotor_prescribes ? without.train : without.rotor;
-  const double motor1 = rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
+  const SlipPrescription slip = slip_prescription(row, without, unit);
   // A preloaded nut (without lift-off: the thread's row): its halves' cone
   // (moreau_preload.cpp).
   // (Stribeck's curve: the halves slip at the law's coefficient at the
@@ -370,13 +349,72 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
         curve ? nut->with_mu(law.slip_mu(std::abs(model_.tangent_direction().dot(v0))) *
                              model_.flank_factor())
               : *nut;
-    return solve_preloaded_thread(slipping, t, h, c, d, alpha, beta, prescribed,
-                                  std::abs(c) <= slip_noise, motor0, motor1, normal_target,
-                                  rotor_target, {viscous_step, viscous_c, viscous_scale}, stick);
+    return solve_preloaded_thread(slipping, t, h, c, d, alpha, beta, slip.prescribed,
+                                  std::abs(c) <= slip.noise, slip.motor0, slip.motor1,
+                                  normal_target, rotor_target,
+                                  {viscous_step, viscous_c, viscous_scale}, stick);
   }
+  friction::FlankLcpResult chosen;
+  int found = coulomb_flank_impulse(v0, maps, sigma_fixed, row, slip, chosen);
+  // The viscous impulse on top of the cone's (zero where stuck).
+  if (viscous_step > 0.0 && found > 0)
+    chosen.friction_force = (chosen.friction_force - viscous_step * viscous_c) * viscous_scale;
+  return coulomb_step_impulses(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, row,
+                               found, chosen, pushing, contact, stick);
+}
+
+// The motor (DriveDynamics::slip_prescribed) or the rotor's stuck
+// contact (below) prescribes every velocity: the step's slip velocity c
+// decides, friction cannot change it.
+// The rotor's friction row where it fixes the rotor's speed (a stuck
+// rotor; a stage of eta_b = 0 back-driven) may, with the thread's and the
+// stops' rows, fix every velocity (the rigid drive without play): the
+// slip is prescribed then, as by a speed-controlled motor, and of the
+// friction impulses the thread's cone admits the one is taken that leaves
+// the rotor's contact the least |Q| (the split between serial friction
+// contacts that stick together is statically indeterminate).
+DriveMoreau::SlipPrescription DriveMoreau::slip_prescription(bool row, const Impulses& without,
+                                                             const Impulses& unit) const {
+  SlipPrescription slip;
+  int fixed = (row ? 1 : 0) + (p_.speed_controlled ? 1 : 0) +
+              (rotor_row_ && rotor_.fixes_speed() ? 1 : 0);
+  for (int k = 0; k < kMaxStops; ++k) fixed += stop_active_[k] ? 1 : 0;
+  slip.rotor_prescribes = rotor_row_ && rotor_.fixes_speed() &&
+                          fixed >= model_.coordinate_count();
+  // (A penalty flank is no constraint: it prescribes no slip.)
+  slip.prescribed = (row && dynamics_.slip_prescribed()) || slip.rotor_prescribes;
+  // (c's round-off: of the velocities, and where the rotor's contact holds
+  // a drive at rest, of the loads' velocity increments h f / m, free_.)
+  slip.noise =
+      64.0 * std::numeric_limits<double>::epsilon() *
+      (model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum() +
+       (slip.rotor_prescribes ? model_.tangent_direction().cwiseProduct(free_).cwiseAbs().sum()
+                              : 0.0));
+  slip.motor0 = slip.rotor_prescribes ? without.train : without.rotor;
+  slip.motor1 =
+      slip.rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
+  return slip;
+}
+
+// The flank's friction impulse of a Coulomb step (the cone's part; chosen)
+// and how many are consistent (found; 0: none). One coefficient: the LCP
+// decides stick and slip. A static one above the kinetic one: stick where
+// the impulse that sticks lies in mu_static''s cone, else the LCP at the
+// slip's coefficient at the step's start speed (Stribeck's curve, explicit
+// in the speed). (In the Painleve regime the LCP may find no impulse where
+// the stick holds: a stick that is admissible is taken then too.)
+int DriveMoreau::coulomb_flank_impulse(const CoordinateVector& v0, const FlankMaps& maps,
+                                       int sigma_fixed, bool row, const SlipPrescription& slip,
+                                       friction::FlankLcpResult& chosen) {
+  const double c = maps.c, d = maps.d, alpha = maps.alpha, beta = maps.beta;
+  const friction::Law& law = dynamics_.law();
+  // The flank's sign, or both (no allocation: this runs every step).
+  const int sigmas[2] = {sigma_fixed != 0 ? sigma_fixed : 1, -1};
+  const int sigma_count = sigma_fixed != 0 ? 1 : 2;
+  int found = 0;
   double lcp_mu = model_.effective_mu();
   const friction::FlankLcpResult stick_step =
-      prescribed
+      slip.prescribed
           ? friction::FlankLcpResult{}
           : friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma_fixed);
   bool stuck = false;
@@ -390,14 +428,15 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   }
   for (int k = 0; k < sigma_count && !stuck; ++k) {
     const friction::FlankLcpResult r =
-        prescribed
+        slip.prescribed
             ? friction::solve_flank_prescribed_slip(
-                  c, std::abs(c) <= slip_noise, alpha, beta,
+                  c, std::abs(c) <= slip.noise, alpha, beta,
                   // (held by the rotor's stuck contact at zero slip: the
                   // static cone, as the train's static test)
-                  rotor_prescribes && std::abs(c) <= slip_noise ? model_.effective_mu_static()
-                                                                : lcp_mu,
-                  sigmas[k], motor0, motor1)
+                  slip.rotor_prescribes && std::abs(c) <= slip.noise
+                      ? model_.effective_mu_static()
+                      : lcp_mu,
+                  sigmas[k], slip.motor0, slip.motor1)
             : solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
                                      lcp_options_);
     ++lcp_solves_;
@@ -414,14 +453,23 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // of the LCP's, whose values carry its tolerance relative to |c / d| (a
   // flank force of round-off size, 7e-18 N s against 26 N s, slipped with
   // its friction outside the cone and along the slip).
-  if (!row && !prescribed && (found == 0 || chosen.slip_acceleration != 0.0)) {
+  if (!row && !slip.prescribed && (found == 0 || chosen.slip_acceleration != 0.0)) {
     const friction::FlankLcpResult edge =
         moreau_contacts::penalty_flank_slip(c, d, alpha, beta, lcp_mu, sigma_fixed);
     if (edge.consistent) chosen = edge, found = std::max(found, 1);
   }
-  // The viscous impulse on top of the cone's (zero where stuck).
-  if (viscous_step > 0.0 && found > 0)
-    chosen.friction_force = (chosen.friction_force - viscous_step * viscous_c) * viscous_scale;
+  return found;
+}
+
+// The step's impulses at the flank's friction impulse chosen (found of
+// them consistent): the flank separates, the drive jams, a pushing penalty
+// flank without a consistent friction impulse is refused, or the step's
+// impulses with the friction impulse given.
+DriveMoreau::Impulses DriveMoreau::coulomb_step_impulses(
+    double t, double h, double theta, const CoordinateVector& v0, double normal_target,
+    double rotor_target, int sigma_fixed, bool row, int found,
+    const friction::FlankLcpResult& chosen, double pushing, bool& contact, bool& stick) {
+  Impulses impulses;
   if (found == 0 && !row && sigma_fixed * pushing >= 0.0 && pushing != 0.0) {
     // (A penalty flank whose force pushes carries its friction: no
     // consistent impulse is no separation. With the viscous term the

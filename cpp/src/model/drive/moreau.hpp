@@ -163,6 +163,32 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
                         double normal_target, double rotor_target, int sigma_fixed,
                         bool& contact, bool& stick);
+  // solve_thread's parts (moreau.cpp). The flank's maps over the step: the
+  // slip velocity c + d P_T and the normal impulse beta + alpha P_T at a
+  // friction impulse P_T.
+  struct FlankMaps {
+    double c = 0.0, d = 0.0, alpha = 0.0, beta = 0.0;
+  };
+  // Whether a constraint prescribes the slip (the motor's, or the rotor's
+  // stuck contact's with every velocity fixed), c's round-off, and the
+  // rotor's (or train's) impulse map motor0 + motor1 P_T.
+  struct SlipPrescription {
+    bool prescribed = false, rotor_prescribes = false;
+    double noise = 0.0, motor0 = 0.0, motor1 = 0.0;
+  };
+  Impulses solve_coulomb_thread(double t, double h, double theta, const CoordinateVector& v0,
+                                double normal_target, double rotor_target, int sigma_fixed,
+                                bool row, const Impulses& without, const Impulses& unit,
+                                FlankMaps maps, bool& contact, bool& stick);
+  SlipPrescription slip_prescription(bool row, const Impulses& without,
+                                     const Impulses& unit) const;
+  int coulomb_flank_impulse(const CoordinateVector& v0, const FlankMaps& maps, int sigma_fixed,
+                            bool row, const SlipPrescription& slip,
+                            friction::FlankLcpResult& chosen);
+  Impulses coulomb_step_impulses(double t, double h, double theta, const CoordinateVector& v0,
+                                 double normal_target, double rotor_target, int sigma_fixed,
+                                 bool row, int found, const friction::FlankLcpResult& chosen,
+                                 double pushing, bool& contact, bool& stick);
   // A smooth law's step (moreau_smooth_friction.cpp): the friction impulse
   // P_T = -kappa(gamma+) |P_N| - h viscous gamma+ solved implicitly at the
   // step's end slip gamma+ = c + d P_T, P_N = beta + alpha P_T; contact

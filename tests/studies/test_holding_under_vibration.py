@@ -91,7 +91,8 @@ def test_a_drive_that_creeps_out_and_back_is_judged_by_its_worst_creep():
                                            "allowed_creep_rate")
     assert out_and_back.attrs["units"]["max_creep"] == "m"
     wider = study(scene, cosine, allowed_creep=1.001 * furthest, **options)
-    assert wider.attrs["summary"]["verdict"] == "holds"
+    assert wider["holds"].all()  # (frictionless: it holds nothing at rest, so undecided)
+    assert wider.attrs["summary"]["verdict"] == "undecided"
 
 
 def test_a_measured_record_is_the_same_in_every_seed():
@@ -182,14 +183,16 @@ def test_verdict_flips_at_the_allowed_creep(arctan_frame):
     scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
     options = dict(duration=0.1, seeds=[3, 7, 11], rtol=1e-8,
                    scatter={"friction.mu": ("uniform", 0.25, 0.35)})
-    above = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep=worst * 1.001, **options)
-    below = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep=worst * 0.999, **options)
-    assert above.attrs["summary"]["verdict"] == "holds" and above["holds"].all()
+    above = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep=worst * 1.001,
+                  allowed_creep_rate=worst * 1.001 / 0.1, **options)
+    below = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep=worst * 0.999,
+                  allowed_creep_rate=worst * 0.999 / 0.1, **options)
+    assert above["holds"].all()  # the arctan law holds nothing at rest: undecided
+    assert above.attrs["summary"]["verdict"] == "undecided"
     assert below.attrs["summary"]["verdict"] == "creeps"
     assert below["holds"].tolist() == [
         c <= worst * 0.999 and abs(r) <= worst * 0.999 / 0.1
         for c, r in zip(below["max_creep"], below["creep_rate"])]
-    assert below.attrs["summary"]["allowed_creep_rate"] == worst * 0.999 / 0.1
 
 
 def test_an_allowed_creep_rate_judges_a_steady_slide_within_a_short_run(arctan_frame):
@@ -200,9 +203,14 @@ def test_an_allowed_creep_rate_judges_a_steady_slide_within_a_short_run(arctan_f
     scene = rigid(law="arctan_velocity", k_v=1e3).replace(loads={"axial_force": -200.0})
     options = dict(duration=0.1, seeds=[3, 7, 11], rtol=1e-8, allowed_creep=1.0,
                    scatter={"friction.mu": ("uniform", 0.25, 0.35)})
-    far = study(scene, {**BAND, "psd": [50.0, 50.0]}, **options)
-    assert far.attrs["summary"]["verdict"] == "holds"
+    far = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep_rate=1.0 / 0.1, **options)
+    assert far.attrs["summary"]["verdict"] == "undecided"  # the arctan law holds nothing at rest
+    assert "cannot hold a load at rest" in far.attrs["summary"]["verdict_reason"]
     assert far.attrs["summary"]["allowed_creep_rate"] == 1.0 / 0.1
+    # by default the rate allowed is allowed_creep per hour, whatever the run's length
+    default = study(scene, {**BAND, "psd": [50.0, 50.0]}, **options)
+    assert default.attrs["summary"]["allowed_creep_rate"] == 1.0 / 3600.0
+    assert default["holds"].tolist() == [r <= 1.0 / 3600.0 for r in rates]
     limit = float(rates.median())
     strict = study(scene, {**BAND, "psd": [50.0, 50.0]}, allowed_creep_rate=limit, **options)
     assert strict["holds"].tolist() == [r <= limit for r in rates]
@@ -212,6 +220,49 @@ def test_an_allowed_creep_rate_judges_a_steady_slide_within_a_short_run(arctan_f
     assert strict.attrs["units"]["creep_rate"] == "m/s"
     with pytest.raises(ValueError, match=r"allowed_creep_rate = -1\.0 is invalid"):
         study(scene, allowed_creep_rate=-1.0)
+
+
+def test_a_thread_that_slips_at_rest_creeps_whatever_the_runs_length():
+    """(A new user's trial: mu 0.03, mu_static 0.04 < tan(lead angle) = 0.066
+    slides at 64 um/s, and with the default rate allowed_creep / duration the
+    study said "holds" over 0.5 s.) The default allowed rate is allowed_creep
+    per hour: the same verdict over 0.5 s as over any run; and a thread that
+    is not self-locking at rest is never said to hold."""
+    seat = ls.scenes.load("seat_adjuster_vibration").replace(
+        friction={"mu": 0.03, "mu_static": 0.04})
+    frame = holding_under_vibration(seat, 0.0, seeds=1, duration=0.5, progress=False)
+    summary = frame.attrs["summary"]
+    assert summary["allowed_creep_rate"] == pytest.approx(1e-4 / 3600.0, rel=1e-15)
+    assert frame["creep_rate"].abs().iloc[0] > 1e-5  # it slides
+    assert summary["verdict"] == "creeps" and not frame["holds"].iloc[0]
+    assert "NOT self-locking" in summary["at_rest"] and "mu_static = 0.04" in summary["at_rest"]
+    assert summary["creep_mechanism"].startswith("back-driving")
+    # allowed any rate, it still is not said to hold: the thread cannot hold at rest
+    lenient = holding_under_vibration(seat, 0.0, seeds=1, duration=0.5, progress=False,
+                                      allowed_creep=1.0, allowed_creep_rate=1.0)
+    assert lenient["holds"].iloc[0] and lenient.attrs["summary"]["verdict"] == "undecided"
+
+
+def test_a_run_too_short_to_resolve_the_allowed_rate_is_undecided():
+    """Where the travel the allowed rate gives over the fitted window is
+    within twice the creep's RMS about its trend, no verdict: the arctan
+    drive's creep oscillates; allowed a rate whose travel is below that,
+    with creep and rate allowed generously, it is undecided."""
+    scene = rigid(law="arctan_velocity", k_v=1e3)
+    probe = study(scene, {**BAND, "psd": [50.0, 50.0]}, duration=0.1, seeds=[3])
+    scatter = float(probe["creep_scatter"].iloc[0])
+    assert scatter > 0.0
+    window = 0.1 - 0.01
+    rate = max(scatter / window, 1.001 * float(probe["creep_rate"].abs().iloc[0]))
+    assert rate * window <= 2.0 * scatter  # zero-mean vibration, no load: a small trend
+    frame = study(scene.replace(friction={"law": "coulomb", "mu": 0.3}), 0.0, duration=0.1,
+                  seeds=[3])
+    assert frame.attrs["summary"]["verdict"] == "holds"  # exact: no oscillation to hide a trend
+    short = study(scene, {**BAND, "psd": [50.0, 50.0]}, duration=0.1, seeds=[3],
+                  allowed_creep=1.0, allowed_creep_rate=rate)
+    summary = short.attrs["summary"]
+    assert short["holds"].iloc[0]
+    assert summary["verdict"] == "undecided" and "too short" in summary["verdict_reason"]
 
 
 def test_a_seed_that_raises_is_a_row_counted_and_warned(monkeypatch):

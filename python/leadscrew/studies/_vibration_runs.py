@@ -30,6 +30,7 @@ from ..scene import Scene
 from ..scene_loads import _make_excitation
 from ..simulation import simulate
 from ._common import gear_ratio, in_unit
+from ._vibration_verdict import creep_scatter
 
 __all__ = ["WHERE_UNITS", "SCATTER_KEYS", "check_where", "excitation_template", "realised",
            "check_scatter", "draw_scatter", "varied_scene", "vibration_run", "thread_travel",
@@ -283,7 +284,8 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
         dict: ``creep`` [m] (the thread's travel at the end,
         :func:`thread_travel`), ``creep_rate`` [m/s] (its least-squares
         slope over t >= settle_time), ``max_creep`` [m] (max |creep| over
-        the run), ``displacement`` [m] (u_load(end) -
+        the run), ``creep_scatter`` [m] (the RMS of the creep about its
+        fitted line over t >= settle_time), ``displacement`` [m] (u_load(end) -
         u_load(0)), ``max_displacement`` [m] (max |u_load - u_load(0)|),
         ``input_rms`` (the realised input's RMS on the output times, in its
         unit), ``wall_time`` [s], ``steps``, ``events``, and the series
@@ -299,6 +301,7 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
     f, p = input_psd(load, duration, _band_top(load, points, duration))
     return {"creep": float(creep[-1]), "creep_rate": slope(t_eval[judged], creep[judged]),
             "max_creep": float(np.max(np.abs(creep))),
+            "creep_scatter": creep_scatter(t_eval[judged], creep[judged]),
             "displacement": float(u[-1]), "max_displacement": float(np.max(np.abs(u))),
             "input_rms": float(np.sqrt(np.mean(values ** 2))),
             "wall_time": float(result.stats["wall_time"]), "steps": int(result.stats["steps"]),

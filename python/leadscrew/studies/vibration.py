@@ -33,26 +33,30 @@ from ._sweep import run_cases
 from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_scatter, check_where,
                               describe, draw_scatter, excitation_template, is_random,
                               target_psd, varied_scene, vibration_run)
+from ._vibration_verdict import (RATE_HORIZON, creep_mechanism, default_allowed_rate,
+                                 static_holding, verdict)
 
 __all__ = ["holding_under_vibration", "plot_holding_under_vibration", "SCATTER_KEYS"]
 
-_MEASURES = ("creep", "creep_rate", "max_creep", "displacement", "max_displacement",
+_MEASURES = ("creep", "creep_rate", "max_creep", "creep_scatter", "displacement", "max_displacement",
              "input_rms", "wall_time", "steps", "events")
 # (the measures before the verdict's column, and after it)
-_BEFORE_HOLDS = 6
+_BEFORE_HOLDS = 7
 
 #: What a seed's verdict judges (the summary's ``judged_by``): the worst
 #: creep over the run, not the creep at the end, which a drive that creeps
 #: out and back (or oscillates) would pass.
 JUDGED_BY = ("max |creep(t)| over the run (max_creep) <= allowed_creep and the fitted rate "
-             "|creep_rate| <= allowed_creep_rate (default allowed_creep / duration)")
+             "|creep_rate| <= allowed_creep_rate (default allowed_creep per hour, whatever "
+             "the run's length); undecided where the run cannot resolve that rate or the "
+             "thread is not self-locking at rest")
 
-_UNITS = {"seed": "1", "creep": "m", "creep_rate": "m/s", "max_creep": "m", "displacement": "m",
+_UNITS = {"seed": "1", "creep": "m", "creep_rate": "m/s", "max_creep": "m", "creep_scatter": "m", "displacement": "m",
           "max_displacement": "m", "holds": "", "wall_time": "s", "steps": "1",
           "events": "1", "error": ""}
 
 _SUMMARY_UNITS = {"seeds": "1", "duration": "s", "settle_time": "s", "allowed_creep": "m",
-                  "allowed_creep_rate": "m/s",
+                  "allowed_creep_rate": "m/s", "rate_horizon": "s", "mu": "1", "mu_static": "1",
                   "creep_mean": "m", "creep_std": "m", "creep_worst": "m",
                   "creep_rate_mean": "m/s", "creep_rate_std": "m/s", "creep_rate_worst": "m/s",
                   "max_creep_worst": "m", "max_displacement_worst": "m"}
@@ -102,10 +106,11 @@ def _seed_case(case, scene, where, template, duration, settle_time, points, opti
     return vibration_run(varied, where, duration, settle_time, points, **options)
 
 
-def _summary(frame: pd.DataFrame, allowed_creep: float) -> Dict[str, Any]:
+def _summary(frame: pd.DataFrame, allowed_rate: float, window: float,
+             static) -> Dict[str, Any]:
     """Mean, sample std (ddof 1; NaN for one row) and worst (largest
     magnitude, signed) of the creep and its rate over the rows that ran,
-    and the verdict."""
+    and the verdict with its reason (:func:`_vibration_verdict.verdict`)."""
     ran = frame[frame["error"].isna()]
     out: Dict[str, Any] = {}
     for name in ("creep", "creep_rate"):
@@ -116,8 +121,8 @@ def _summary(frame: pd.DataFrame, allowed_creep: float) -> Dict[str, Any]:
                                 else math.nan)
     for name in ("max_creep", "max_displacement"):
         out[f"{name}_worst"] = float(ran[name].max()) if len(ran) else math.nan
-    out["verdict"] = ("undecided" if not len(ran) else
-                      "holds" if bool(ran["holds"].all()) else "creeps")
+    out["verdict"], out["verdict_reason"] = verdict(ran.to_dict("records"), allowed_rate,
+                                                     window, static)
     return out
 
 
@@ -165,7 +170,7 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                          "speed-controlled rotor cannot creep; give loads.drive_torque or a motor")
     duration, settle_time, points = _check_times(duration, settle_time, points)
     allowed_creep = check_positive("allowed_creep", allowed_creep, unit="m")
-    allowed_creep_rate = (allowed_creep / duration if allowed_creep_rate is None else
+    allowed_creep_rate = (default_allowed_rate(allowed_creep) if allowed_creep_rate is None else
                           check_positive("allowed_creep_rate", allowed_creep_rate, unit="m/s"))
     seeds = _check_seeds(seeds)
     scatter = check_scatter(scatter)
@@ -187,18 +192,21 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
     frame.attrs["series"] = {"t": np.linspace(0.0, duration, points).tolist(), **series,
                              "target_f": frequencies,
                              "target_psd": target_psd(first, where, frequencies)}
-    summary = _summary(frame, allowed_creep)
+    static = static_holding(first)
+    summary = _summary(frame, allowed_creep_rate, duration - settle_time, static)
     spread = "; ".join(f"{key} ~ {kind}({a:g}, {b:g})"
                        for key, (kind, a, b) in scatter.items()) or "none"
     return annotate(frame, units, study="holding_under_vibration",
                     summary_units=dict(_SUMMARY_UNITS), seeds=len(seeds), duration=duration,
                     settle_time=settle_time, allowed_creep=allowed_creep,
-                    allowed_creep_rate=allowed_creep_rate, **summary,
-                    judged_by=JUDGED_BY,
+                    allowed_creep_rate=allowed_creep_rate, rate_horizon=RATE_HORIZON,
+                    **summary, judged_by=JUDGED_BY, creep_mechanism=creep_mechanism(first),
+                    at_rest=static[1],
                     excitation=describe(template, first["loads"][where.split(".", 1)[1]]),
                     excitation_from=excitation_from, where=where,
                     random=is_random(template), scatter=spread,
-                    friction_law=first["friction"]["law"])
+                    friction_law=first["friction"]["law"], mu=float(scene["friction"]["mu"]),
+                    mu_static=scene["friction"].get("mu_static"))
 
 
 holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed, with
@@ -222,13 +230,16 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
     vibration and come back. A seed **holds** iff its worst creep over the
     run and its trend stay within what is allowed: ``max_creep`` (max
     |creep(t)| over the output times) ``<= allowed_creep`` and
-    ``|creep_rate| <= allowed_creep_rate`` (by default ``allowed_creep /
-    duration``: the trend's travel over the run; give a rate to judge a
-    drive that slides steadily but not far within a short run; the
-    summary's ``judged_by`` says so), not its creep at the end, which a
-    drive that creeps out and comes back, or oscillates, would pass; the
-    study's verdict is ``"holds"`` iff every seed that ran holds,
-    ``"creeps"`` otherwise (``"undecided"`` if none ran).
+    ``|creep_rate| <= allowed_creep_rate`` (by default ``allowed_creep`` per
+    hour, :data:`~leadscrew.studies._vibration_verdict.RATE_HORIZON`,
+    whatever the run's length), not its creep at the end, which a drive
+    that creeps out and comes back, or oscillates, would pass. The study's
+    verdict is ``"creeps"`` if a seed that ran creeps; ``"holds"`` if every
+    seed holds, the run resolves the allowed rate (its travel over the
+    fitted window above twice the creep's RMS about its trend,
+    ``creep_scatter``) and the thread is self-locking at rest with
+    mu_static; ``"undecided"`` otherwise, the summary's ``verdict_reason``
+    saying why (docs/guide/studies.md).
 
     With exact Coulomb friction (``friction.law = "coulomb"``) a
     self-locking thread does not creep under axial vibration alone: every
@@ -269,7 +280,8 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         rtol, atol: integration tolerances (default simulate's: 1e-8 and
             1e-10; not with integrator ``"moreau"``).
         allowed_creep_rate: the largest |creep_rate| a seed that holds may
-            have [m/s], > 0 (default ``allowed_creep / duration``).
+            have [m/s], > 0 (default ``allowed_creep`` / 3600 s: the allowed
+            creep per hour of vibration, independent of the run's length).
         executor: a :class:`concurrent.futures.Executor` (default: a thread
             pool over all cores); scene and cases pickle, so process pools
             and ``dask.distributed.Client(...).get_executor()`` work too.
@@ -280,7 +292,8 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         DataFrame with one row per seed: ``seed``, one column per scattered
         key (its draw), ``creep`` [m] (at the end), ``creep_rate`` [m/s]
         (least-squares slope of the creep over t >= settle_time),
-        ``max_creep`` [m] (max |creep(t)| over the run), ``displacement``
+        ``max_creep`` [m] (max |creep(t)| over the run), ``creep_scatter``
+        [m] (RMS of the creep about its fitted line), ``displacement``
         [m] (u_load(end) - u_load(0)), ``max_displacement`` [m] (max
         |u_load - u_load(0)|), ``input_rms`` (the realised input's
         RMS on the output times, in ``where``'s unit), ``holds`` (bool; None
@@ -289,11 +302,15 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         a case that raised: its numbers are NaN, its counts <NA>).
         ``attrs["units"]``; ``attrs["summary"]``:
         ``seeds``, ``duration``, ``settle_time``, ``allowed_creep``,
-        ``allowed_creep_rate``,
+        ``allowed_creep_rate``, ``rate_horizon`` [s],
         ``creep_mean``, ``creep_std`` (sample, ddof 1; NaN for one seed),
         ``creep_worst`` (largest magnitude, signed), the same of
         ``creep_rate``, ``max_creep_worst``, ``max_displacement_worst``,
-        ``verdict``, ``judged_by`` (what the verdict judges),
+        ``verdict``, ``verdict_reason``, ``judged_by`` (what the verdict
+        judges), ``at_rest`` (the self-locking test with mu_static),
+        ``creep_mechanism`` (by which mechanism the model lets this drive
+        creep), ``mu`` and ``mu_static`` (the scene's; a scatter of mu
+        keeps mu_static),
         ``excitation``, ``excitation_from``, ``where``, ``random``,
         ``scatter``, ``friction_law``, ``raised`` and ``raised_reasons`` (the
         seeds that raised, which decide nothing; a

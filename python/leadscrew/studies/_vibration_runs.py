@@ -33,7 +33,7 @@ from ._common import gear_ratio, in_unit
 from ._vibration_verdict import creep_scatter
 
 __all__ = ["WHERE_UNITS", "SCATTER_KEYS", "check_where", "excitation_template", "realised",
-           "check_scatter", "draw_scatter", "varied_scene", "vibration_run", "thread_travel",
+           "check_scatter", "draw_scatter", "check_draws", "varied_scene", "vibration_run", "thread_travel",
            "target_psd", "is_random", "describe"]
 
 #: The loads the excitation may enter, with their units.
@@ -210,6 +210,29 @@ def draw_scatter(scatter: Dict[str, Tuple[str, float, float]], seed: int) -> Dic
                              f"in {_MAX_REDRAWS} tries")
         draws[key] = value
     return draws
+
+
+def check_draws(scene: Scene, seeds: List[int], draws: List[Dict[str, float]]) -> None:
+    """Refuse a scatter of ``friction.mu`` that draws above the scene's
+    ``friction.mu_static``: the scatter keeps mu_static, which comes from the
+    scene (a scattered kinetic coefficient above its static one is no
+    friction law).
+
+    Raises:
+        ValueError: naming the seed, its draw, the scene's mu_static and the
+            remedies.
+    """
+    mu_static = scene["friction"].get("mu_static")
+    if mu_static is None:
+        return
+    for seed, drawn in zip(seeds, draws):
+        mu = drawn.get("friction.mu")
+        if mu is not None and mu > mu_static:
+            raise ValueError(
+                f"scatter['friction.mu'] drew mu = {mu:.4g} (seed {seed}) above friction.mu_static "
+                f"= {mu_static:.4g}, which comes from the scene: the scatter draws mu only and "
+                "keeps the scene's mu_static; keep the range below it, or set the scene's "
+                "friction.mu_static (above the range, or None: equal to mu)")
 
 
 def varied_scene(scene: Scene, where: str, template: Any, seed: int, duration: float,

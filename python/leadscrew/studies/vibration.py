@@ -30,7 +30,7 @@ from ._batch import check_simulate_options
 from ._common import (annotate, as_counts, as_scene, axes, check_count, check_positive,
                       numeric_or_nan, with_tolerances)
 from ._sweep import run_cases
-from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_scatter, check_where,
+from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_draws, check_scatter, check_where,
                               describe, draw_scatter, excitation_template, is_random,
                               target_psd, varied_scene, vibration_run)
 from ._vibration_verdict import (RATE_HORIZON, creep_mechanism, default_allowed_rate,
@@ -176,6 +176,7 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
     scatter = check_scatter(scatter)
     template, excitation_from = excitation_template(scene, excitation, where)
     draws = [draw_scatter(scatter, seed) for seed in seeds]
+    check_draws(scene, seeds, draws)
     # The first seed's scene checks the excitation, the scatter's keys and the
     # options once, before the cases run (naming the field).
     first = varied_scene(scene, where, template, seeds[0], duration, draws[0])
@@ -243,8 +244,12 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
 
     With exact Coulomb friction (``friction.law = "coulomb"``) a
     self-locking thread does not creep under axial vibration alone: every
-    impulse stays inside the friction cone (the transverse slip of a 2-D
-    friction cone is not modelled). A regularized law (``arctan_velocity``)
+    impulse stays inside the friction cone: "holds" follows from
+    self-locking at rest. The mechanism of real creep, the transverse slip
+    of a 2-D friction cone, runs where the scene has
+    ``loads.transverse_slip_velocity`` (docs/physics/transverse_slip.md;
+    with ``where="loads.axial_force"``); the summary's ``creep_mechanism``
+    says which the model gives the drive. A regularized law (``arctan_velocity``)
     slips at any load, at a rate set by its k_v: its creep is the
     regularization's, not the thread's (docs/guide/studies.md).
 
@@ -363,7 +368,9 @@ def plot_holding_under_vibration(frame: pd.DataFrame, ax: Optional[Any] = None):
             left.axhline(sign * allowed * 1e6, color="k", ls="--", lw=0.8)
     left.set_xlabel("time [s]")
     left.set_ylabel("creep [um]")
-    left.set_title(f"verdict: {summary.get('verdict', '?')}", fontsize="medium")
+    mechanism = str(summary.get("creep_mechanism", "?")).split(":")[0]
+    left.set_title(f"verdict: {summary.get('verdict', '?')}\ncreep mechanism: {mechanism}",
+                   fontsize="small")
     for f, psd in zip(series["psd_f"], series["psd"]):
         if f:
             right.loglog(f, psd, lw=0.6, alpha=0.6)

@@ -95,16 +95,40 @@ def test_a_drive_that_creeps_out_and_back_is_judged_by_its_worst_creep():
     assert wider.attrs["summary"]["verdict"] == "undecided"
 
 
-def test_a_measured_record_is_the_same_in_every_seed():
-    """A record has no seed: every seed runs it alike (only a scatter would
-    differ), and it has no target PSD."""
+def test_a_measured_record_runs_once_for_all_seeds():
+    """A record has no seed: every seed would run it alike (only a scatter
+    differs), so it runs once, and says so (a user's trial: two identical
+    runs, no note); it has no target PSD."""
     t = np.linspace(0.0, 0.05, 501)
     record = ls.Measured(t, 300.0 * np.sin(2 * np.pi * 60.0 * t), unit="m/s^2")
-    frame = study(rigid(mu=0.0), record, seeds=[0, 1])
-    first, second = frame.drop(columns=["seed", "wall_time"]).to_dict("records")
-    assert first == second and first["creep"] != 0.0  # frictionless: it moves
-    assert frame.attrs["summary"]["random"] is False
+    with pytest.warns(ls.StudyWarning, match="2 seeds asked, ran once: the excitation is not "
+                                             "random and nothing is scattered"):
+        frame = study(rigid(mu=0.0), record, seeds=[0, 1])
+    assert frame["seed"].tolist() == [0] and frame["creep"].iloc[0] != 0.0  # frictionless
+    summary = frame.attrs["summary"]
+    assert summary["seeds"] == 1 and summary["seeds_note"].startswith("2 seeds asked, ran once")
+    assert summary["excitation"] == "measured record, 501 samples over 0-0.05 s"
+    assert summary["random"] is False
     assert frame.attrs["series"]["target_psd"] is None
+    # with a scatter the seeds differ: each runs
+    scattered = study(rigid(), record, seeds=[0, 1],
+                      scatter={"friction.mu": ("uniform", 0.25, 0.35)})
+    assert scattered["seed"].tolist() == [0, 1] and scattered.attrs["summary"]["seeds_note"] == ""
+
+
+def test_a_measured_record_shorter_than_the_run_is_refused_unless_repeated():
+    """(A new user's trial: a 0.5 s record in a 0.8 s study was held at its
+    last value, -9.95 m/s^2, for 0.3 s without a word.) Refused, naming the
+    record's end, the duration and the remedies; repeat=True runs it."""
+    t = np.linspace(0.0, 0.03, 301)
+    values = 300.0 * np.sin(2 * np.pi * 60.0 * t)
+    with pytest.raises(ValueError, match=r"excitation at loads\.base_acceleration is invalid for "
+                                         r"duration = 0\.05 s: the measured record ends at "
+                                         r"0\.03 s.*repeat=True"):
+        study(rigid(), ls.Measured(t, values, unit="m/s^2"), seeds=1)
+    repeated = study(rigid(mu=0.0), ls.Measured(t, values, unit="m/s^2", repeat=True), seeds=1)
+    assert repeated.attrs["summary"]["excitation"].endswith(", repeated")
+    assert repeated["creep"].iloc[0] != 0.0
 
 
 def test_exact_coulomb_holds_a_self_locking_thread_and_the_arctan_law_creeps_as_one_over_k_v():

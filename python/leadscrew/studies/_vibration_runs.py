@@ -33,7 +33,7 @@ from ._common import gear_ratio, in_unit
 from ._vibration_verdict import creep_scatter
 
 __all__ = ["WHERE_UNITS", "SCATTER_KEYS", "check_where", "excitation_template", "realised",
-           "check_scatter", "draw_scatter", "check_draws", "varied_scene", "vibration_run", "thread_travel",
+           "check_scatter", "draw_scatter", "check_draws", "check_record_length", "varied_scene", "vibration_run", "thread_travel",
            "target_psd", "is_random", "describe"]
 
 #: The loads the excitation may enter, with their units.
@@ -114,6 +114,10 @@ def describe(template: Any, validated: Any) -> str:
     if isinstance(template, dict) and "profile" in template:
         return f"profile {template['profile']}"
     if isinstance(validated, dict):
+        if validated.get("type") == "measured":
+            times = validated["times"]
+            return (f"measured record, {len(times)} samples over {times[0]:g}-{times[-1]:g} s"
+                    + (", repeated" if validated.get("repeat") else ""))
         if validated.get("type") == "random":
             band = validated["frequencies"]
             return f"random, {len(band)} breakpoints {band[0]:g}-{band[-1]:g} Hz"
@@ -233,6 +237,30 @@ def check_draws(scene: Scene, seeds: List[int], draws: List[Dict[str, float]]) -
                 f"= {mu_static:.4g}, which comes from the scene: the scatter draws mu only and "
                 "keeps the scene's mu_static; keep the range below it, or set the scene's "
                 "friction.mu_static (above the range, or None: equal to mu)")
+
+
+def check_record_length(validated: Any, where: str, duration: float) -> None:
+    """Refuse a measured record (not repeated) that ends before the run: the
+    load would be held at its last value, silently.
+
+    Args:
+        validated: the scene's SI form of the load at ``where``.
+        where: the load's key path.
+        duration: the run's length [s].
+
+    Raises:
+        ValueError: naming the record's length, the duration and the remedies.
+    """
+    if not isinstance(validated, dict) or validated.get("type") != "measured" \
+            or validated.get("repeat"):
+        return
+    end = float(validated["times"][-1])
+    if end < duration:
+        raise ValueError(
+            f"excitation at {where} is invalid for duration = {duration:.4g} s: the measured "
+            f"record ends at {end:.4g} s, and after it the load would be held at its last "
+            f"value; give a duration <= {end:.4g} s, or repeat=True (Measured(..., "
+            "repeat=True), Measured.from_file(..., repeat=True)) to continue it periodically")
 
 
 def varied_scene(scene: Scene, where: str, template: Any, seed: int, duration: float,

@@ -20,17 +20,20 @@ from __future__ import annotations
 import functools
 import math
 import numbers
+import warnings
 from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 import pandas as pd
 
 from .._progress import shown
+from ..errors import StudyWarning
 from ._batch import check_simulate_options
 from ._common import (annotate, as_counts, as_scene, axes, check_count, check_positive,
                       numeric_or_nan, with_tolerances)
 from ._sweep import run_cases
-from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_draws, check_scatter, check_where,
+from ._vibration_runs import (SCATTER_KEYS, WHERE_UNITS, check_draws, check_record_length,
+                              check_scatter, check_where,
                               describe, draw_scatter, excitation_template, is_random,
                               target_psd, varied_scene, vibration_run)
 from ._vibration_verdict import (RATE_HORIZON, creep_mechanism, default_allowed_rate,
@@ -175,11 +178,15 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
     seeds = _check_seeds(seeds)
     scatter = check_scatter(scatter)
     template, excitation_from = excitation_template(scene, excitation, where)
+    asked = len(seeds)
+    if not is_random(template) and not scatter:
+        seeds = seeds[:1]  # every seed would run the same scene: run it once
     draws = [draw_scatter(scatter, seed) for seed in seeds]
     check_draws(scene, seeds, draws)
     # The first seed's scene checks the excitation, the scatter's keys and the
     # options once, before the cases run (naming the field).
     first = varied_scene(scene, where, template, seeds[0], duration, draws[0])
+    check_record_length(first["loads"][where.split(".", 1)[1]], where, duration)
     options = with_tolerances(simulate_options, rtol, atol)
     check_simulate_options(first, options, duration)
     function = functools.partial(_seed_case, scene=scene, where=where, template=template,
@@ -197,8 +204,13 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
     summary = _summary(frame, allowed_creep_rate, duration - settle_time, static)
     spread = "; ".join(f"{key} ~ {kind}({a:g}, {b:g})"
                        for key, (kind, a, b) in scatter.items()) or "none"
+    note = (f"{asked} seeds asked, ran once: the excitation is not random and nothing is "
+            "scattered, so every seed gives the same run" if asked > len(seeds) else "")
+    if note:
+        warnings.warn(f"holding_under_vibration: {note}", StudyWarning, stacklevel=2)
     return annotate(frame, units, study="holding_under_vibration",
-                    summary_units=dict(_SUMMARY_UNITS), seeds=len(seeds), duration=duration,
+                    summary_units=dict(_SUMMARY_UNITS), seeds=len(seeds), seeds_note=note,
+                    duration=duration,
                     settle_time=settle_time, allowed_creep=allowed_creep,
                     allowed_creep_rate=allowed_creep_rate, rate_horizon=RATE_HORIZON,
                     **summary, judged_by=JUDGED_BY, creep_mechanism=creep_mechanism(first),
@@ -221,7 +233,10 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
     rule of every study (:mod:`leadscrew.studies`): ``excitation`` given
     overrides, the scene's load at ``where`` is the default
     (``attrs["summary"]["excitation_from"]``: ``"arguments"`` or
-    ``"scene"``); the scene's other loads (a static axial force, a drive
+    ``"scene"``); an excitation that is not random, without a scatter,
+    runs once (every seed would give the same run; ``seeds_note`` and a
+    StudyWarning say so); a Measured record that ends before ``duration``
+    is refused unless it repeats. The scene's other loads (a static axial force, a drive
     torque, a motor at its voltage) act as they are.
 
     Creep is the load travel the thread's turning gives (signed along +x:
@@ -307,7 +322,7 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         a case that raised: its numbers are NaN, its counts <NA>).
         ``attrs["units"]``; ``attrs["summary"]``:
         ``seeds``, ``duration``, ``settle_time``, ``allowed_creep``,
-        ``allowed_creep_rate``, ``rate_horizon`` [s],
+        ``seeds_note``, ``allowed_creep_rate``, ``rate_horizon`` [s],
         ``creep_mean``, ``creep_std`` (sample, ddof 1; NaN for one seed),
         ``creep_worst`` (largest magnitude, signed), the same of
         ``creep_rate``, ``max_creep_worst``, ``max_displacement_worst``,
@@ -327,13 +342,17 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
 
     Raises:
         ValueError: invalid scene or arguments (naming the argument, the
-            value and the valid range; the excitation and scatter checked on
+            value and the valid range; a measured record shorter than the
+            run, not repeated; a scatter of mu above the scene's mu_static;
+            the excitation and scatter checked on
             the first seed's scene, the simulate options once, before the
             cases run).
         TypeError: an unknown keyword in ``simulate_options``.
 
     Warns:
         ProfileWarning: a profile not verified against its source.
+        StudyWarning: seeds that raised; several seeds run once (an
+            excitation that is not random, no scatter).
     """
 
 

@@ -386,6 +386,15 @@ def test_profile_name_warns_and_its_figure_draws_the_target():
     assert left.get_ylabel() == "creep [um]" and right.get_xscale() == "log"
     assert len(left.lines) == 1 + 2  # one seed, the allowed band
     assert "(m/s^2)^2/Hz" in right.get_ylabel()
+    # (a new user's trial: the target started at the Welch grid's ~20 Hz, not
+    # the profile's 10 Hz, and the seeds had no legend)
+    band = profile.frequencies
+    assert series["target_f"][0] == band[0] and series["target_f"][-1] == band[-1]
+    assert set(band) <= set(series["target_f"]) and series["psd_f"][0][0] > band[0]
+    target_line = right.get_lines()[-1]
+    assert target_line.get_xdata()[0] == band[0] and target_line.get_label() == "target"
+    assert [t.get_text() for t in right.get_legend().get_texts()] == ["seed 0", "target"]
+    assert [t.get_text() for t in left.get_legend().get_texts()] == ["seed 0"]
     assert left.get_title() == ("verdict: holds\n"
                                 "creep mechanism: none under axial vibration alone")
 

@@ -360,10 +360,15 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
             "psd_f": f, "psd": p}
 
 
-def target_psd(scene: Scene, where: str, frequencies: List[float]) -> Optional[List[float]]:
-    """The target PSD at ``frequencies`` of the scene's random load at
-    ``where`` (None for any other load)."""
+def target_psd(scene: Scene, where: str) -> Tuple[Optional[List[float]], Optional[List[float]]]:
+    """The target PSD of the scene's random load at ``where`` over its whole
+    band: ``(frequencies [Hz], psd)`` on 300 log-spaced lines from its first
+    to its last breakpoint and at every breakpoint (the realised input's Welch
+    grid starts at its resolution, above the band's start in a short run);
+    ``(None, None)`` for any other load."""
     load = _make_excitation(scene["loads"][where.split(".", 1)[1]])
-    if not isinstance(load, RandomVibration) or not frequencies:
-        return None
-    return load.psd_at(np.asarray(frequencies, dtype=float)).tolist()
+    if not isinstance(load, RandomVibration):
+        return None, None
+    band = np.asarray(load.frequencies, dtype=float)
+    f = np.unique(np.concatenate([np.geomspace(band[0], band[-1], _PSD_POINTS), band]))
+    return f.tolist(), load.psd_at(f).tolist()

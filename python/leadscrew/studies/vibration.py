@@ -64,6 +64,9 @@ _SUMMARY_UNITS = {"seeds": "1", "duration": "s", "settle_time": "s", "allowed_cr
                   "creep_rate_mean": "m/s", "creep_rate_std": "m/s", "creep_rate_worst": "m/s",
                   "max_creep_worst": "m", "max_displacement_worst": "m"}
 
+#: The most seeds the figure names in a legend.
+_LEGEND_SEEDS = 10
+
 #: Seeds are integers in [0, 2^53], as a RandomVibration's.
 _MAX_SEED = 2 ** 53
 
@@ -196,10 +199,9 @@ def holding_under_vibration(scene: Any, excitation: Any = None, duration: float 
                          progress=progress, description="holding_under_vibration")
     frame, series, units = _frame(seeds, draws, outcomes, list(scatter),
                                   (allowed_creep, allowed_creep_rate), WHERE_UNITS[where])
-    frequencies = next((f for f in series["psd_f"] if f), None)
+    target_f, target = target_psd(first, where)
     frame.attrs["series"] = {"t": np.linspace(0.0, duration, points).tolist(), **series,
-                             "target_f": frequencies,
-                             "target_psd": target_psd(first, where, frequencies)}
+                             "target_f": target_f, "target_psd": target}
     static = static_holding(first)
     summary = _summary(frame, allowed_creep_rate, duration - settle_time, static)
     spread = "; ".join(f"{key} ~ {kind}({a:g}, {b:g})"
@@ -337,7 +339,8 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
         :class:`~leadscrew.StudyWarning` names them). ``attrs["series"]``:
         the output times ``t``, each seed's ``creep`` series, the realised
         input's Welch PSD (``psd_f``, ``psd``) and the ``target_psd`` at
-        ``target_f`` (None for a load that is not random), which
+        ``target_f`` (the profile's whole band, its breakpoints included;
+        None for a load that is not random), which
         :func:`plot_holding_under_vibration` draws.
 
     Raises:
@@ -390,15 +393,20 @@ def plot_holding_under_vibration(frame: pd.DataFrame, ax: Optional[Any] = None):
     mechanism = str(summary.get("creep_mechanism", "?")).split(":")[0]
     left.set_title(f"verdict: {summary.get('verdict', '?')}\ncreep mechanism: {mechanism}",
                    fontsize="small")
-    for f, psd in zip(series["psd_f"], series["psd"]):
+    for seed, f, psd in zip(frame["seed"], series["psd_f"], series["psd"]):
         if f:
-            right.loglog(f, psd, lw=0.6, alpha=0.6)
+            right.loglog(f, psd, lw=0.6, alpha=0.6, label=f"seed {seed}")
     if series.get("target_psd"):
         f, target = np.asarray(series["target_f"]), np.asarray(series["target_psd"])
         band = target > 0  # the target is zero outside its band
         right.loglog(f[band], target[band], "k", lw=1.5, label="target")
         right.set_ylim(bottom=target[band].min() / 100.0)
-        right.legend(fontsize="small")
+    if len(frame) <= _LEGEND_SEEDS:  # (more seeds: a legend hides the panel)
+        for panel in (left, right):
+            if panel.get_legend_handles_labels()[0]:
+                panel.legend(fontsize="small")
+    elif series.get("target_psd"):
+        right.legend(handles=right.get_lines()[-1:], fontsize="small")
     unit = frame.attrs.get("units", {}).get("input_rms", "")
     right.set_xlabel("frequency [Hz]")
     right.set_ylabel(f"input PSD [({unit})^2/Hz]")

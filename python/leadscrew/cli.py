@@ -513,18 +513,48 @@ def _is_input_error(error: BaseException) -> bool:
             and not isinstance(error, (SimulationError, WriteError)))
 
 
-def _note(message, category, filename, lineno, file=None, line=None) -> None:
-    """A warning as the command line's one-line note on stderr (the
-    warnings module's own shows the file, the line and the source line that
-    warned, which say nothing to someone running a command): a
-    ProfileWarning as ``leadscrew: note: profile ... is not verified ...``,
-    any other with its category's name."""
+def _note_text(message, category) -> str:
+    """A warning as the command line's one-line note (the warnings module's
+    own shows the file, the line and the source line that warned, which say
+    nothing to someone running a command): a ProfileWarning as
+    ``leadscrew: note: profile ... is not verified ...``, any other with its
+    category's name."""
     from .profiles import ProfileWarning
 
     text = " ".join(str(message).split())
     if not issubclass(category, ProfileWarning):
         text = f"{category.__name__}: {text}"
-    print(f"leadscrew: note: {text}", file=sys.stderr if file is None else file)
+    return f"leadscrew: note: {text}"
+
+
+def _run_command(args) -> int:
+    """Run a command with its warnings as notes on stderr, printed when it
+    ends; dropped where it ends in an input error (exit 2: nothing ran, and a
+    note about the scene, e.g. its unverified profile, printed before the
+    error misled a user who had mistyped a profile's name).
+
+    Raises:
+        the command's exception, the notes printed first unless it is an
+        input error.
+    """
+    notes: List[str] = []
+    with warnings.catch_warnings():  # (each warning once, as a note)
+        warnings.simplefilter("default")
+        warnings.showwarning = (lambda message, category, *_, **__:
+                                notes.append(_note_text(message, category)))
+        try:
+            code = _COMMANDS[args.command](args)
+        except Exception as error:
+            if not _is_input_error(error):
+                _print_notes(notes)
+            raise
+    _print_notes(notes)
+    return code
+
+
+def _print_notes(notes: List[str]) -> None:
+    for note in notes:
+        print(note, file=sys.stderr)
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -543,10 +573,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         args = _parse(argv)
         if debug:
             return _COMMANDS[args.command](args)
-        with warnings.catch_warnings():  # (each warning once, as a note)
-            warnings.simplefilter("default")
-            warnings.showwarning = _note
-            return _COMMANDS[args.command](args)
+        return _run_command(args)
     except SystemExit as stop:  # --help
         return stop.code if isinstance(stop.code, int) else 0
     except KeyboardInterrupt:

@@ -129,3 +129,12 @@ def test_a_study_frame_plots_with_its_own_figure():
     assert ls.studies.STUDIES["efficiency_vs_mu"] is ls.studies.efficiency_vs_mu
     with pytest.raises(ValueError, match=r"attrs\['study'\] = None"):
         ls.studies.plot(pd.DataFrame({"a": [1]}))
+
+
+def test_the_time_series_draws_a_base_excitations_inertial_force():
+    """(A new user's trial: the force panel left out base_force.)"""
+    scene = ls.scenes.load("default").replace(loads={"base_acceleration": 5.0})
+    result = ls.simulate(scene, 0.02)
+    forces = {line.get_label(): line for line in result.plot().axes[2].get_lines()}
+    np.testing.assert_array_equal(forces["base inertial force"].get_ydata(),
+                                  result["base_force"])

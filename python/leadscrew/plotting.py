@@ -74,7 +74,8 @@ def _time_series(result, title: Optional[str]):
     axes[1].plot(t, result["omega_drive"], color="C1")
     axes[1].set_ylabel("rotor speed [rad/s]")
     for name, label in (("axial_force", "axial load F"), ("normal_force", "flank normal N"),
-                        ("friction_force", "flank friction T"), ("stop_force", "end stop")):
+                        ("friction_force", "flank friction T"), ("stop_force", "end stop"),
+                        ("base_force", "base inertial force")):
         if name in result:
             axes[2].plot(t, result[name], label=label)
     axes[2].set_ylabel("force [N]")
@@ -117,7 +118,8 @@ def plot_result(result, kind: str = "time_series", title: Optional[str] = None):
             of a :class:`~leadscrew.FrictionBlock`.
         kind: ``"time_series"``: the load's position (stick phases shaded)
             [mm], the rotor's speed [rad/s], the forces (axial load, flank
-            normal and friction, an end stop's) [N], the drive torque [N mm]
+            normal and friction, an end stop's, a base excitation's inertial
+            force) [N], the drive torque [N mm]
             and a DC motor's current [A] over time [s] (a block's: its
             position [mm], velocity and transverse slip [mm/s], and forces
             [N]); ``"energy"``: the

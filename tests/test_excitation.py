@@ -143,8 +143,9 @@ def test_a_callable_load_that_returns_no_number_is_named(returned):
     text = str(info.value)
     assert text.startswith("force = <function ") and "sensor" in text, text
     assert f"it returned {returned!r}, not a number [N]" in text
-    t = float(text.split("at t = ")[1].split(" s")[0])
-    assert 0.01 < t <= 0.1
+    t_text = text.split("at t = ")[1].split(" s")[0]
+    t = float(t_text)
+    assert 0.01 <= t <= 0.1 and t_text == f"{t:.4g}"  # (4 significant digits, not repr)
     from helpers.scenes import thesis_scene
 
     scene = ls.Scene.from_dict(thesis_scene(loads={"axial_force": sensor}))

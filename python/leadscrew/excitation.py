@@ -145,7 +145,7 @@ def _checked_value(name: str, function, unit: str, t: float, value: Any) -> floa
         except OverflowError:  # an int beyond a float: infinite, as the core refuses NaN
             return float("inf") if value > 0 else float("-inf")
     unit_text = f" [{unit}]" if unit else ""
-    raise ValueError(f"{name} = {function!r} is invalid: at t = {t!r} s it returned {value!r}, "
+    raise ValueError(f"{name} = {function!r} is invalid: at t = {t:.4g} s it returned {value!r}, "
                      f"not a number{unit_text} (a load function returns a float)")
 
 

@@ -36,6 +36,21 @@ def test_check_without_scene_keeps_the_thread_verdicts(capsys):
     assert f"torque to raise 100 N: {ls.raise_torque(t, 0.1, 100.0):.6g} N*m" in out
 
 
+def test_check_prints_self_locking_at_rest_with_mu_static_and_in_motion_with_mu(capsys, tmp_path):
+    """(A new user's trial: mu 0.03 with the scene's mu_static 0.15 printed
+    "self-locking: no" for a thread that static friction holds.) Both
+    coefficients' closed forms, each named."""
+    path = tmp_path / "mu003.toml"
+    shipped.load("seat_adjuster").replace(friction={"mu": 0.03, "mu_static": 0.15}).to_toml(path)
+    code, out, err = run_main(capsys, "check", str(path))
+    assert code == 0 and err == ""
+    thread = shipped.load("seat_adjuster").thread
+    assert ls.is_self_locking(thread, 0.15) and not ls.is_self_locking(thread, 0.03)
+    assert re.search(r"self-locking at rest \(mu_static = 0\.15, .*\): yes", out)
+    assert re.search(r"self-locking in motion \(mu = 0\.03\b.*\): no", out)
+    assert "holds under pure axial load" not in out
+
+
 @pytest.mark.parametrize("name", ["default", "thesis_table_5_1", "position_holding",
                                   "seat_adjuster", "seat_adjuster_worm",
                                   "seat_adjuster_worm_flexible"])

@@ -27,9 +27,28 @@ def test_result_plot_refuses_what_it_cannot_draw():
     with pytest.raises(ValueError, match="kind = 'phase' is invalid: must be one of "
                                          "time_series, energy"):
         result.plot("phase")
+
+
+def test_a_friction_blocks_result_plots_its_position_velocity_and_forces():
+    """(A new user's trial: r.plot() refused every FrictionBlock result, "no
+    channel 'u_load'".) The block's figure draws its channels; with a
+    transverse slip also w and the friction across; its result exports with
+    the units (to_frame, units)."""
     block = ls.simulate(ls.FrictionBlock(mass=1.0, mu=0.3, g=10.0, force=ls.Sine(6.0, 6.0)), 0.1)
-    with pytest.raises(ValueError, match="has no channel 'u_load'"):
-        block.plot()
+    figure = block.plot(title="block")
+    assert [ax.get_ylabel() for ax in figure.axes[:3]] == [
+        "block position u [mm]", "velocity [mm/s]", "force [N]"]
+    np.testing.assert_array_equal(figure.axes[0].get_lines()[0].get_ydata(), block["u"] * 1e3)
+    assert block.plot("energy").axes[1].get_ylabel() == "energy residual [J]"
+    slipping = ls.simulate(ls.FrictionBlock(mass=1.0, mu=0.3, force=1.0,
+                                            transverse_velocity=ls.Sine(1e-3, 10.0)), 0.2)
+    velocity = slipping.plot().axes[1].get_lines()
+    np.testing.assert_array_equal(velocity[1].get_ydata(),
+                                  slipping["transverse_velocity"] * 1e3)
+    units = slipping.units()
+    assert units["transverse_velocity"] == "m/s" and units["transverse_friction"] == "N"
+    assert units["work_transverse"] == "J"
+    assert list(slipping.to_frame().columns) == ["t", *slipping.keys()]
 
 
 def test_figure_titles_say_what_runs_not_the_scenes_repr(tmp_path, capsys, monkeypatch):
@@ -110,3 +129,12 @@ def test_a_study_frame_plots_with_its_own_figure():
     assert ls.studies.STUDIES["efficiency_vs_mu"] is ls.studies.efficiency_vs_mu
     with pytest.raises(ValueError, match=r"attrs\['study'\] = None"):
         ls.studies.plot(pd.DataFrame({"a": [1]}))
+
+
+def test_the_time_series_draws_a_base_excitations_inertial_force():
+    """(A new user's trial: the force panel left out base_force.)"""
+    scene = ls.scenes.load("default").replace(loads={"base_acceleration": 5.0})
+    result = ls.simulate(scene, 0.02)
+    forces = {line.get_label(): line for line in result.plot().axes[2].get_lines()}
+    np.testing.assert_array_equal(forces["base inertial force"].get_ydata(),
+                                  result["base_force"])

@@ -3,6 +3,8 @@
 import pathlib
 import re
 
+import pytest
+
 README = pathlib.Path(__file__).resolve().parents[1] / "README.md"
 TOUR = README.parent / "docs" / "guide" / "tour.md"
 STUDIES = README.parent / "docs" / "guide" / "studies.md"
@@ -34,6 +36,11 @@ def test_the_studies_guides_example_runs_with_its_scatter():
         summary = namespace[name].attrs["summary"]
         assert summary["raised"] == 0 and summary["verdict"] == "holds", (name, summary)
     assert namespace["preloaded"]["nut.preload"].between(500.0, 1000.0).all()
+    # (a new user's trial: the arctan example lacked mu_static=None and its
+    # verdict said "holds" where the text said it creeps)
+    crept = namespace["crept"]
+    assert crept.attrs["summary"]["verdict"] == "creeps"
+    assert crept["creep"].iloc[0] == pytest.approx(-1.34e-7, rel=5e-3)
 
 
 def test_readme_is_short():

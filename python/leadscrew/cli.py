@@ -70,8 +70,25 @@ def _rigid_equivalent(scene) -> Tuple[float, float]:
 # --- check ----------------------------------------------------------------------
 
 
-def _thread_verdicts(t, mu: float, flank_angle: float, hand: str = "right") -> List[str]:
-    """The closed-form verdicts on a thread, as lines of text."""
+def _self_locking_lines(t, mu: float, mu_static: Optional[float]) -> List[str]:
+    """Self-locking at rest (with mu_static, the stick limit) and in motion
+    (with mu): a thread whose static friction holds the load may still run
+    down once moving."""
+    def answer(value: float) -> str:
+        return "yes" if _thread.is_self_locking(t, value) else "no"
+
+    if mu_static is None or mu_static == mu:
+        return [f"self-locking (holds under pure axial load): {answer(mu)}"]
+    return [f"self-locking at rest (mu_static = {mu_static:g}, mu_static' = "
+            f"{t.effective_mu(mu_static):.6g}): {answer(mu_static)}",
+            f"self-locking in motion (mu = {mu:g}; a slipping thread keeps slipping "
+            f"under the load if no): {answer(mu)}"]
+
+
+def _thread_verdicts(t, mu: float, flank_angle: float, hand: str = "right",
+                     mu_static: Optional[float] = None) -> List[str]:
+    """The closed-form verdicts on a thread, as lines of text (mu_static:
+    the scene's static coefficient, None where it equals mu)."""
     tan_a = math.tan(t.lead_angle)
     return [
         f"thread: lead {t.lead * 1e3:.4g} mm, mean diameter {t.mean_diameter * 1e3:.4g} mm, "
@@ -79,8 +96,7 @@ def _thread_verdicts(t, mu: float, flank_angle: float, hand: str = "right") -> L
         f"{math.degrees(flank_angle):g} deg, {hand}-hand",
         f"friction: mu = {mu:g}, mu' = {t.effective_mu(mu):.6g}; "
         f"bounds tan(alpha) = {tan_a:.6g} < mu' < cot(alpha) = {1.0 / tan_a:.6g}",
-        "self-locking (holds under pure axial load): "
-        f"{'yes' if _thread.is_self_locking(t, mu) else 'no'}",
+        *_self_locking_lines(t, mu, mu_static),
         f"drivable by a pure torque:                 {'yes' if _thread.is_drivable(t, mu) else 'no'}",
         f"efficiency forward {_thread.efficiency(t, mu):.6g}, "
         f"back-driving {_thread.efficiency(t, mu, backdrive=True):.6g}",
@@ -221,7 +237,7 @@ def _scene_report(name: str, scene) -> List[str]:
         lines.append("run options ([simulation], simulate's defaults for this scene): "
                      + ", ".join(f"{key} = {value!r}" for key, value in d["simulation"].items()))
     lines += _thread_verdicts(scene.thread, d["friction"]["mu"], d["thread"]["flank_angle"],
-                              d["thread"]["hand"])
+                              d["thread"]["hand"], d["friction"].get("mu_static"))
     lines += _drive_train_report(scene, d)
     J, m = _rigid_equivalent(scene)
     rotating, translating = (("rotor + screw", "nut + load") if d["drive"] == "screw"
@@ -497,18 +513,48 @@ def _is_input_error(error: BaseException) -> bool:
             and not isinstance(error, (SimulationError, WriteError)))
 
 
-def _note(message, category, filename, lineno, file=None, line=None) -> None:
-    """A warning as the command line's one-line note on stderr (the
-    warnings module's own shows the file, the line and the source line that
-    warned, which say nothing to someone running a command): a
-    ProfileWarning as ``leadscrew: note: profile ... is not verified ...``,
-    any other with its category's name."""
+def _note_text(message, category) -> str:
+    """A warning as the command line's one-line note (the warnings module's
+    own shows the file, the line and the source line that warned, which say
+    nothing to someone running a command): a ProfileWarning as
+    ``leadscrew: note: profile ... is not verified ...``, any other with its
+    category's name."""
     from .profiles import ProfileWarning
 
     text = " ".join(str(message).split())
     if not issubclass(category, ProfileWarning):
         text = f"{category.__name__}: {text}"
-    print(f"leadscrew: note: {text}", file=sys.stderr if file is None else file)
+    return f"leadscrew: note: {text}"
+
+
+def _run_command(args) -> int:
+    """Run a command with its warnings as notes on stderr, printed when it
+    ends; dropped where it ends in an input error (exit 2: nothing ran, and a
+    note about the scene, e.g. its unverified profile, printed before the
+    error misled a user who had mistyped a profile's name).
+
+    Raises:
+        the command's exception, the notes printed first unless it is an
+        input error.
+    """
+    notes: List[str] = []
+    with warnings.catch_warnings():  # (each warning once, as a note)
+        warnings.simplefilter("default")
+        warnings.showwarning = (lambda message, category, *_, **__:
+                                notes.append(_note_text(message, category)))
+        try:
+            code = _COMMANDS[args.command](args)
+        except Exception as error:
+            if not _is_input_error(error):
+                _print_notes(notes)
+            raise
+    _print_notes(notes)
+    return code
+
+
+def _print_notes(notes: List[str]) -> None:
+    for note in notes:
+        print(note, file=sys.stderr)
 
 
 def main(argv: Optional[List[str]] = None) -> int:
@@ -527,10 +573,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         args = _parse(argv)
         if debug:
             return _COMMANDS[args.command](args)
-        with warnings.catch_warnings():  # (each warning once, as a note)
-            warnings.simplefilter("default")
-            warnings.showwarning = _note
-            return _COMMANDS[args.command](args)
+        return _run_command(args)
     except SystemExit as stop:  # --help
         return stop.code if isinstance(stop.code, int) else 0
     except KeyboardInterrupt:

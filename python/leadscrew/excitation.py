@@ -42,9 +42,11 @@ Excitation = _core.Excitation
 Number = Union[float, str]
 
 #: The units a load's values may have: those of the loads it drives (the
-#: accelerations: a base excitation's, ``loads.base_acceleration`` and
-#: ``loads.base_angular_acceleration``).
-LOAD_UNITS = ("N", "N*m", "rad/s", "V", "m/s^2", "rad/s^2")
+#: velocity: a transverse slip's, ``loads.transverse_slip_velocity`` and
+#: ``FrictionBlock(transverse_velocity=...)``; the accelerations: a base
+#: excitation's, ``loads.base_acceleration`` and
+#: ``loads.base_angular_acceleration``). The key a load drives checks its unit.
+LOAD_UNITS = ("N", "N*m", "rad/s", "V", "m/s", "m/s^2", "rad/s^2")
 
 
 def _load_values(named: Sequence[Tuple[str, Any]]) -> Tuple[List[float], str]:
@@ -143,7 +145,7 @@ def _checked_value(name: str, function, unit: str, t: float, value: Any) -> floa
         except OverflowError:  # an int beyond a float: infinite, as the core refuses NaN
             return float("inf") if value > 0 else float("-inf")
     unit_text = f" [{unit}]" if unit else ""
-    raise ValueError(f"{name} = {function!r} is invalid: at t = {t!r} s it returned {value!r}, "
+    raise ValueError(f"{name} = {function!r} is invalid: at t = {t:.4g} s it returned {value!r}, "
                      f"not a number{unit_text} (a load function returns a float)")
 
 

@@ -14,8 +14,8 @@ derivative: the integrators need no restart at the knots
   its unit, scaled, held at its end values or repeated periodically.
 
 Their values take the units of the loads (:data:`leadscrew.excitation.LOAD_UNITS`):
-a force, a torque, an angular velocity, a voltage, an acceleration (m/s^2) or
-an angular acceleration (rad/s^2).
+a force, a torque, an angular velocity, a voltage, a velocity (m/s: a
+transverse slip's), an acceleration (m/s^2) or an angular acceleration (rad/s^2).
 """
 
 from __future__ import annotations

@@ -62,7 +62,7 @@ def _event_list(events) -> list:
 
 
 def _simulation_error(time: float, reason: str, hint: str) -> SimulationError:
-    error = SimulationError(f"at t = {time!r} s: {reason} (hint: {hint})")
+    error = SimulationError(f"at t = {time:.4g} s: {reason} (hint: {hint})")
     error.time = time
     error.reason = reason
     return error

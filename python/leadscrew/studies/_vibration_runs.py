@@ -30,9 +30,10 @@ from ..scene import Scene
 from ..scene_loads import _make_excitation
 from ..simulation import simulate
 from ._common import gear_ratio, in_unit
+from ._vibration_verdict import creep_scatter
 
 __all__ = ["WHERE_UNITS", "SCATTER_KEYS", "check_where", "excitation_template", "realised",
-           "check_scatter", "draw_scatter", "varied_scene", "vibration_run", "thread_travel",
+           "check_scatter", "draw_scatter", "check_draws", "check_record_length", "varied_scene", "vibration_run", "thread_travel",
            "target_psd", "is_random", "describe"]
 
 #: The loads the excitation may enter, with their units.
@@ -113,6 +114,10 @@ def describe(template: Any, validated: Any) -> str:
     if isinstance(template, dict) and "profile" in template:
         return f"profile {template['profile']}"
     if isinstance(validated, dict):
+        if validated.get("type") == "measured":
+            times = validated["times"]
+            return (f"measured record, {len(times)} samples over {times[0]:g}-{times[-1]:g} s"
+                    + (", repeated" if validated.get("repeat") else ""))
         if validated.get("type") == "random":
             band = validated["frequencies"]
             return f"random, {len(band)} breakpoints {band[0]:g}-{band[-1]:g} Hz"
@@ -211,6 +216,53 @@ def draw_scatter(scatter: Dict[str, Tuple[str, float, float]], seed: int) -> Dic
     return draws
 
 
+def check_draws(scene: Scene, seeds: List[int], draws: List[Dict[str, float]]) -> None:
+    """Refuse a scatter of ``friction.mu`` that draws above the scene's
+    ``friction.mu_static``: the scatter keeps mu_static, which comes from the
+    scene (a scattered kinetic coefficient above its static one is no
+    friction law).
+
+    Raises:
+        ValueError: naming the seed, its draw, the scene's mu_static and the
+            remedies.
+    """
+    mu_static = scene["friction"].get("mu_static")
+    if mu_static is None:
+        return
+    for seed, drawn in zip(seeds, draws):
+        mu = drawn.get("friction.mu")
+        if mu is not None and mu > mu_static:
+            raise ValueError(
+                f"scatter['friction.mu'] drew mu = {mu:.4g} (seed {seed}) above friction.mu_static "
+                f"= {mu_static:.4g}, which comes from the scene: the scatter draws mu only and "
+                "keeps the scene's mu_static; keep the range below it, or set the scene's "
+                "friction.mu_static (above the range, or None: equal to mu)")
+
+
+def check_record_length(validated: Any, where: str, duration: float) -> None:
+    """Refuse a measured record (not repeated) that ends before the run: the
+    load would be held at its last value, silently.
+
+    Args:
+        validated: the scene's SI form of the load at ``where``.
+        where: the load's key path.
+        duration: the run's length [s].
+
+    Raises:
+        ValueError: naming the record's length, the duration and the remedies.
+    """
+    if not isinstance(validated, dict) or validated.get("type") != "measured" \
+            or validated.get("repeat"):
+        return
+    end = float(validated["times"][-1])
+    if end < duration:
+        raise ValueError(
+            f"excitation at {where} is invalid for duration = {duration:.4g} s: the measured "
+            f"record ends at {end:.4g} s, and after it the load would be held at its last "
+            f"value; give a duration <= {end:.4g} s, or repeat=True (Measured(..., "
+            "repeat=True), Measured.from_file(..., repeat=True)) to continue it periodically")
+
+
 def varied_scene(scene: Scene, where: str, template: Any, seed: int, duration: float,
                  draws: Dict[str, float]) -> Scene:
     """The scene of one seed: its excitation at ``where`` and its drawn
@@ -283,7 +335,8 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
         dict: ``creep`` [m] (the thread's travel at the end,
         :func:`thread_travel`), ``creep_rate`` [m/s] (its least-squares
         slope over t >= settle_time), ``max_creep`` [m] (max |creep| over
-        the run), ``displacement`` [m] (u_load(end) -
+        the run), ``creep_scatter`` [m] (the RMS of the creep about its
+        fitted line over t >= settle_time), ``displacement`` [m] (u_load(end) -
         u_load(0)), ``max_displacement`` [m] (max |u_load - u_load(0)|),
         ``input_rms`` (the realised input's RMS on the output times, in its
         unit), ``wall_time`` [s], ``steps``, ``events``, and the series
@@ -299,6 +352,7 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
     f, p = input_psd(load, duration, _band_top(load, points, duration))
     return {"creep": float(creep[-1]), "creep_rate": slope(t_eval[judged], creep[judged]),
             "max_creep": float(np.max(np.abs(creep))),
+            "creep_scatter": creep_scatter(t_eval[judged], creep[judged]),
             "displacement": float(u[-1]), "max_displacement": float(np.max(np.abs(u))),
             "input_rms": float(np.sqrt(np.mean(values ** 2))),
             "wall_time": float(result.stats["wall_time"]), "steps": int(result.stats["steps"]),
@@ -306,10 +360,15 @@ def vibration_run(scene: Scene, where: str, duration: float, settle_time: float,
             "psd_f": f, "psd": p}
 
 
-def target_psd(scene: Scene, where: str, frequencies: List[float]) -> Optional[List[float]]:
-    """The target PSD at ``frequencies`` of the scene's random load at
-    ``where`` (None for any other load)."""
+def target_psd(scene: Scene, where: str) -> Tuple[Optional[List[float]], Optional[List[float]]]:
+    """The target PSD of the scene's random load at ``where`` over its whole
+    band: ``(frequencies [Hz], psd)`` on 300 log-spaced lines from its first
+    to its last breakpoint and at every breakpoint (the realised input's Welch
+    grid starts at its resolution, above the band's start in a short run);
+    ``(None, None)`` for any other load."""
     load = _make_excitation(scene["loads"][where.split(".", 1)[1]])
-    if not isinstance(load, RandomVibration) or not frequencies:
-        return None
-    return load.psd_at(np.asarray(frequencies, dtype=float)).tolist()
+    if not isinstance(load, RandomVibration):
+        return None, None
+    band = np.asarray(load.frequencies, dtype=float)
+    f = np.unique(np.concatenate([np.geomspace(band[0], band[-1], _PSD_POINTS), band]))
+    return f.tolist(), load.psd_at(f).tolist()

@@ -7,12 +7,16 @@ friction, against Moreau-Jean (its losses converge
 to the event-driven scheme's at first order in dt), the closed forms of a
 lossy stage's steady state (T_screw / (n eta) driving, eta_b T_screw / n
 back-driven), of a self-locking worm's hold and breakaway and of the
-motor's friction; the stage's Painleve case raises JammingError; exact
-play stays refused by name. Every run
+motor's friction; with arctan_velocity on the thread (every concept
+without play, the rigid one's on the rotor contact too) against Moreau-Jean
+and the steady slip's closed form at the law's coefficient; the stage's
+Painleve case raises JammingError; exact play, Stribeck, LuGre and
+mu_static off the rigid concept stay refused by name. Every run
 passes its own checks and the independent invariants
 (helpers/result_invariants.py: the account closes, friction never works
 positively, the losses never fall)."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -35,6 +39,7 @@ CUBIC = {"axial": 1e-4, "contact": "cubic", "stiffness": 1e12}
 DC = {"type": "dc", "voltage": {"type": "sine", "amplitude": 6.0, "omega": 40.0},
       "resistance": 1.0, "inductance": 5e-4, "torque_constant": 0.03}
 DEFAULT_FLANK = math.radians(40.0)
+ARCTAN = {"law": "arctan_velocity", "mu": 0.3, "k_v": 1e4}
 
 
 def scene(concept="flexible_nut", gear=LOSSY, torque=None, motor=None, **changes):
@@ -61,6 +66,15 @@ COMBINATIONS = {
     "flexible-worm-cubic": scene("flexible", WORM, backlash=CUBIC),
     "rigid-lossy-bistop": scene("rigid", backlash=BISTOP),
     "nut-lossy-dc": scene(motor={**DC, "friction_torque": 2e-3}),
+    # arctan_velocity on the thread (a force of the state, no thread modes;
+    # on the rigid concept without play the rotor contact, not TrainSolver)
+    "nut-lossy-arctan": scene(friction=ARCTAN),
+    "flexible-worm-arctan-friction": scene("flexible", WORM, torque=0.02, friction=ARCTAN,
+                                           motor={"friction_torque": 3e-3}),
+    "rigid-lossy-arctan": scene("rigid", friction=ARCTAN),
+    "rigid-worm-arctan-dc": scene("rigid", WORM, friction=ARCTAN,
+                                  motor={**DC, "friction_torque": 2e-3}),
+    "nut-lossy-arctan-bistop": scene(friction=ARCTAN, backlash=BISTOP),
 }
 
 
@@ -206,17 +220,81 @@ def test_the_stages_painleve_case_raises_jamming_error():
         ls.simulate(s, 0.2, integrator="event_driven")
 
 
+@pytest.mark.parametrize("concept, k_v", [("flexible_nut", 10.0), ("flexible", 30.0),
+                                          ("rigid", 10.0)])
+def test_arctan_velocity_takes_its_coefficient_at_the_steady_slip_speed(concept, k_v):
+    """The DC motor's steady raise through the lossy stage with
+    arctan_velocity on the thread: the rotor's torque is T_screw / (n eta)
+    with the thread's coefficient mu (2/pi) atan(k_v |gamma|) at the run's
+    steady slip speed gamma (train_reference's closed form on the rigid
+    drive of that coefficient)."""
+    d = dc_steady_scene(concept, 10.0, 3.0)
+    d["friction"] = {"law": "arctan_velocity", "mu": 0.05, "k_v": k_v}
+    result = checked(d, 1.0, integrator="event_driven")
+    assert result.integrator == "event_driven"
+    gamma = result["slip_velocity"][-1]
+    assert result["slip_velocity"][-2] == pytest.approx(gamma, rel=1e-9)  # (steady)
+    mu = 0.05 * 2.0 / math.pi * math.atan(k_v * abs(gamma))
+    assert 0.2 * 0.05 < mu < 0.9 * 0.05  # (the speed matters)
+    rigid = ls.Scene.from_dict(dc_steady_scene("rigid", 10.0, 3.0))
+    drive = dataclasses.replace(dc_motor_reference.rigid_drive(rigid.to_dict(), rigid.derived()),
+                                mu=mu)
+    torque = reference.steady_rotor_torque(drive, LOSSY["ratio"], 10.0, 1, 0.0,
+                                           LOSSY["efficiency"], LOSSY["efficiency_backdrive"])
+    assert result["omega_drive"][-1] > 0.0
+    assert result["drive_torque"][-1] == pytest.approx(torque, rel=1e-6)
+
+
+@settings(max_examples=15, deadline=None)
+@given(concept=st.sampled_from(["flexible_nut", "flexible", "rigid"]),
+       efficiency=st.floats(0.3, 1.0), backdrive=st.floats(-0.5, 1.0),
+       friction_torque=st.sampled_from([0.0, 2e-3]), force=st.floats(-30.0, 30.0),
+       k_v=st.sampled_from([10.0, 1e3, 1e5]))
+def test_random_lossy_trains_with_arctan_velocity_keep_the_invariants(
+        concept, efficiency, backdrive, friction_torque, force, k_v):
+    """Random lossy stages, motor frictions, loads and arctan_velocity's
+    k_v on every concept without play: every run keeps its checks and the
+    invariants, or the stage's Painleve case raises JammingError."""
+    gear = {"type": "lossy", "ratio": 4.0, "efficiency": efficiency,
+            "efficiency_backdrive": min(backdrive, efficiency)}
+    d = scene(concept, gear, friction={"law": "arctan_velocity", "mu": 0.2, "k_v": k_v},
+              motor={"friction_torque": friction_torque} if friction_torque else None,
+              loads={"axial_force": force})
+    try:
+        checked(d, 0.05, integrator="event_driven")
+    except ls.JammingError as error:
+        assert "Painleve case" in str(error)
+
+
+def test_a_lossless_stage_runs_arctan_velocity_as_the_ideal_gear():
+    """eta = eta_b = 1, no motor friction: the rotor contact's drive (an
+    element on the constrained solve) is the ideal gear's (none), on the
+    rigid concept too, to the integrators' tolerance."""
+    lossless = {"type": "lossy", "ratio": 4.0, "efficiency": 1.0, "efficiency_backdrive": 1.0}
+    for concept in ("flexible_nut", "rigid"):
+        runs = [checked(scene(concept, gear, friction=ARCTAN), 0.1, integrator="event_driven",
+                        rtol=1e-10, atol=1e-12)
+                for gear in (lossless, {"type": "ideal", "ratio": 4.0})]
+        assert runs[0]["friction_loss"][-1] == pytest.approx(runs[1]["friction_loss"][-1],
+                                                             rel=1e-6)
+        assert runs[0]["gear_loss"][-1] == pytest.approx(0.0, abs=1e-9)
+
+
 @pytest.mark.parametrize("concept", ["flexible_nut", "flexible", "rigid"])
 def test_exact_play_and_mu_static_stay_refused_on_the_event_driven_scheme(concept):
     """What the rotor's contact does not take stays refused by name: exact
-    play, a static coefficient off the rigid concept without play."""
+    play, a static coefficient (Coulomb's or Stribeck's) off the rigid
+    concept without play, Stribeck and LuGre on it."""
     d = scene(concept, backlash={"axial": 1e-4, "contact": "exact"})
     with pytest.raises(ValueError, match=r'here backlash\.contact = "exact" \(exact play\); '
                                          r'use integrator = "moreau"'):
         ls.simulate(ls.Scene.from_dict(d), 0.01, integrator="event_driven")
     assert ls.simulate(ls.Scene.from_dict(d), 0.01).integrator == "moreau"
-    static = scene(concept, friction={"law": "coulomb", "mu": 0.2, "mu_static": 0.3})
-    if concept == "rigid":
-        return  # (the rigid concept without play runs mu_static: the train solver)
-    with pytest.raises(ValueError, match="mu_static"):
-        ls.simulate(ls.Scene.from_dict(static), 0.01, integrator="event_driven")
+    for friction in ({"law": "coulomb", "mu": 0.2, "mu_static": 0.3},
+                     {"law": "stribeck", "mu": 0.2, "mu_static": 0.3},
+                     {"law": "lugre", "mu": 0.3, "sigma0": 1e3}):
+        static = scene(concept, friction=friction)
+        if concept == "rigid" and friction["law"] == "coulomb":
+            continue  # (the rigid concept without play runs mu_static: the train solver)
+        with pytest.raises(ValueError, match=f'here friction.law = "{friction["law"]}"'):
+            ls.simulate(ls.Scene.from_dict(static), 0.01, integrator="event_driven")

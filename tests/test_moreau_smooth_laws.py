@@ -167,13 +167,15 @@ def test_a_prescribed_speed_with_the_motors_friction_and_a_worm_on_the_flexible_
 
 
 def test_a_worm_with_a_smooth_law_on_the_flexible_concept_closes_its_account():
-    # The default integrator is Moreau-Jean (the event-driven scheme runs
-    # the stages with exact Coulomb on the rigid drive alone) at its
-    # default dt; the losses never fall, the account closes.
+    # The default integrator is Moreau-Jean (it ran the scene before the
+    # event-driven rotor contact took arctan_velocity,
+    # tests/test_event_driven_rotor_friction.py) at its default dt; the
+    # losses never fall, the account closes.
     scene = thesis_scene(concept="flexible", gear=WORM, friction=ARCTAN,
                          motor={"friction_torque": 1e-3},
                          loads={"drive_torque": 0.03, "axial_force": -20.0})
-    assert ls._core.drive_integrators(ls.Scene.from_dict(scene).model().parameters) == ["moreau"]
+    assert ls._core.drive_integrators(ls.Scene.from_dict(scene).model().parameters) == [
+        "moreau", "event_driven"]
     result = checked(scene, 0.2)
     assert result.integrator == "moreau"
     assert result["gear_loss"][-1] > 0.0 and result["friction_loss"][-1] > 0.0
@@ -201,12 +203,18 @@ def test_lugre_where_a_row_holds_the_slip_is_refused_on_moreau_jean(changes, nam
     assert str(info.value).startswith(f'friction.law = "lugre" is invalid with {named}')
 
 
-def test_a_smooth_law_on_the_rigid_stage_refuses_an_explicit_event_driven_run():
-    scene = ls.Scene.from_dict(thesis_scene(gear=LOSSY, friction=ARCTAN))
+def test_stribeck_on_the_rigid_stage_refuses_an_explicit_event_driven_run():
+    # (arctan_velocity runs there: the rotor contact, its default Moreau-Jean;
+    # tests/test_event_driven_rotor_friction.py)
+    stribeck = {"law": "stribeck", "mu": 0.2, "mu_static": 0.3}
+    scene = ls.Scene.from_dict(thesis_scene(gear=LOSSY, friction=stribeck))
     with pytest.raises(ValueError) as info:
         ls.simulate(scene, 0.01, integrator="event_driven")
-    assert 'here friction.law = "arctan_velocity"; use integrator = "moreau"' in str(info.value)
+    assert 'here friction.law = "stribeck"; use integrator = "moreau"' in str(info.value)
     assert ls.simulate(scene, 0.01).integrator == "moreau"
+    smooth = ls.Scene.from_dict(thesis_scene(gear=LOSSY, friction=ARCTAN))
+    assert ls.simulate(smooth, 0.01).integrator == "moreau"
+    assert ls.simulate(smooth, 0.01, integrator="event_driven").integrator == "event_driven"
 
 
 @pytest.mark.parametrize("gear", [None, LOSSY])

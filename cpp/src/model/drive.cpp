@@ -148,7 +148,7 @@ DriveModel::DriveModel(DriveParameters parameters)
   // one, Moreau-Jean is the scene's default (drive::model_integrators).
   if (e_.train_friction && e_.train_friction->event_driven_obstacle.empty() &&
       !p_.speed_controlled && p_.concept == Concept::rigid &&
-      p_.backlash == BacklashContact::none)
+      p_.backlash == BacklashContact::none && p_.friction == "coulomb")
     e_.train_friction->event_driven_obstacle =
         RigidDriveModes::train_obstacle(*this, DriveDynamics(*this));
   place_stops_at_equilibrium();

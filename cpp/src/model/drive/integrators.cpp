@@ -285,9 +285,10 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
         (integrator == "event_driven"
              ? ": the event-driven scheme runs the train's friction stages with a torque or "
                "DC motor on the rigid concept without play with Coulomb friction on the thread "
-               "(friction.law = \"coulomb\", mu_static too), and on the flexible concepts "
-               "and penalty play (backlash.contact \"bistop\" or \"cubic\") with "
-               "friction.law = \"coulomb\" without mu_static (the rotor's friction contact), "
+               "(friction.law = \"coulomb\", mu_static too) or \"arctan_velocity\", and on "
+               "the flexible concepts and penalty play (backlash.contact \"bistop\" or "
+               "\"cubic\") with friction.law = \"coulomb\" without mu_static or "
+               "\"arctan_velocity\" (the rotor's friction contact), "
                "without a preloaded nut or an exact end stop; and behind a prescribed "
                "rotor speed (loads.drive_speed) on every concept and play with every law, "
                "here " + train->event_driven_obstacle +

@@ -14,8 +14,14 @@ namespace leadscrew::model::drive {
 // general one. The rigid solver has no states or rates but the rotor's: it
 // takes no element with events (DriveHybrid::Element; built before this).
 // The rigid concept without play: every contact slips with the one speed.
+// TrainSolver's closed forms take Coulomb's one kinetic coefficient (its
+// stick test mu_static); arctan_velocity (the one other law the
+// event-driven scheme runs with the stages there: train_event_driven_obstacle)
+// takes the rotor's friction contact on the constrained solve, as off the
+// rigid concept (hybrid_rotor_contact.cpp).
 bool DriveHybrid::train_solver_applies(const DriveModel& model) {
-  return model.parameters().concept == Concept::rigid && model.thread_pair().bilateral();
+  return model.parameters().concept == Concept::rigid && model.thread_pair().bilateral() &&
+         model.parameters().friction == "coulomb";
 }
 
 std::unique_ptr<DriveHybrid::ModeSolver> DriveHybrid::make_mode_solver(DriveHybrid& hybrid) {

@@ -629,28 +629,37 @@ DriveElements build_drive_elements(DriveParameters& p) {
 }
 
 // Why the event-driven scheme cannot run the train's friction stages of p
-// ("" where it can): its TrainSolver takes the rigid drive without play,
-// whose contacts all slip with one speed, with plain Coulomb friction on
-// the thread.
+// ("" where it can): its TrainSolver takes the rigid drive without play
+// with Coulomb friction on the thread, the rotor's friction contact the
+// rest it runs (docs/physics/gear.md, "The event-driven rotor contact").
 std::string train_event_driven_obstacle(const DriveParameters& p, const friction::Law& law) {
   // Behind a prescribed rotor speed the stages change the motor's torque
   // alone, not the motion: the constrained solve runs every drive
   // (ConstrainedSolver books their losses).
   if (p.speed_controlled) return "";
-  // Off the rigid concept without play the rotor's friction contact runs
-  // them on the constrained solve (hybrid_rotor_contact.cpp): no play or
-  // penalty play, Coulomb with one coefficient on the thread.
-  const bool rigid_train = p.concept == Concept::rigid && p.backlash == BacklashContact::none;
+  // The rotor's friction contact (hybrid_rotor_contact.cpp) runs them on
+  // the constrained solve with the thread's own law where TrainSolver does
+  // not (off the rigid concept without play; arctan_velocity on it,
+  // DriveHybrid::train_solver_applies): no play or penalty play, exact
+  // Coulomb with one coefficient or arctan_velocity (a force of the state,
+  // no thread modes), each checked against Moreau-Jean. (Not yet: Stribeck
+  // and mu_static there, whose Moreau-Jean reference is irregular in dt at
+  // 1e-4 relative, with an ideal gear too, so not validated; LuGre, which
+  // Moreau-Jean does not run beside the rotor's contact; on the rigid
+  // concept without play TrainSolver's closed forms take Coulomb alone.)
   if (p.backlash == BacklashContact::exact)
     return "backlash.contact = \"exact\" (exact play)";
-  if (!rigid_train && !law.plain_coulomb())
-    return "friction.law = \"" + p.friction + "\" with mu_static (off the rigid concept "
-           "without play)";
-  // (TrainSolver's closed forms are the plain thread's: no preload's hooks.)
+  const bool rigid_train = p.concept == Concept::rigid && p.backlash == BacklashContact::none;
+  const bool rotor_contact_law = law.plain_coulomb() || p.friction == "arctan_velocity";
+  if (!rigid_train && !rotor_contact_law)
+    return "friction.law = \"" + p.friction + "\"" +
+           (p.friction == "coulomb" ? " with mu_static (off the rigid concept without play)"
+                                    : "");
+  if (rigid_train && p.friction != "coulomb" && p.friction != "arctan_velocity")
+    return "friction.law = \"" + p.friction + "\"";
+  // (The rotor contact has no preload's hooks, TrainSolver's closed forms
+  // are the plain thread's.)
   if (p.nut_preload > 0.0) return "nut.preload = " + format_value(p.nut_preload) + " N";
-  // (Coulomb with a static coefficient runs: TrainSolver's slip takes the
-  // one kinetic coefficient, its stick test mu_static.)
-  if (p.friction != "coulomb") return "friction.law = \"" + p.friction + "\"";
   // (The closed exact stop holds the drive through the thread's row,
   // DriveDynamics::solve; TrainSolver's closed forms do not take it.)
   if (const ElementSection* stops = find_section(p, "end_stops"))

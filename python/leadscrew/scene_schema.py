@@ -70,8 +70,10 @@ _GEAR_TYPES = ("ideal", "lossy", "worm")
 _TRAIN_STAGE_RULE = (
     "initial.state = 'relaxed'; end stops, every play (backlash.contact 'exact', 'bistop' or "
     "'cubic') and a preloaded nut are allowed. With a torque (loads.drive_torque) or a DC "
-    "motor Moreau-Jean (integrator = 'moreau') runs them on every concept and play with every "
-    "thread law but 'arctan_acceleration' (a preloaded nut without lift-off), the "
+    "motor Moreau-Jean (integrator = 'moreau') runs them on every concept and play with "
+    "'coulomb', 'stribeck' and 'arctan_velocity' on the thread ('lugre' only where no row of "
+    "the step holds the slip: no exact stop holding the load, no rotor friction contact; "
+    "a preloaded nut also lifting off with 'coulomb'), the "
     "event-driven scheme on the rigid concept without play with friction.law = 'coulomb' "
     "(mu_static too) outside the thread's Painleve regime and without a load spring or "
     "'arctan_velocity', and on the flexible concepts and penalty play ('bistop', 'cubic') "

@@ -197,6 +197,19 @@ class DriveHybrid final : public integrate::HybridSystem {
   ModeSolution on_the_law(const ModeSolution& own);
   void open_if_pulling();
   void decide_friction(double t, double* y, bool at_zero_slip, int hint);
+  // decide_friction's parts at zero slip (hybrid_modes.cpp): the flank
+  // LCP's data, slip acceleration c + d lambda_T and normal force
+  // beta + alpha lambda_T, and the normal-force signs to try.
+  struct ZeroSlipLcp {
+    double c = 0.0, d = 0.0, alpha = 0.0, beta = 0.0;
+    int sigmas[2] = {1, -1};
+    int sigma_count = 2;
+  };
+  void decide_at_zero_slip(double t, double* y, int hint, const elements::PreloadedNut* lift_off);
+  void decide_prescribed_slip(const ModeSpec& base);
+  void decide_preloaded_nut(const elements::PreloadedNut& nut, const ZeroSlipLcp& lcp, int hint,
+                            const elements::PreloadedNut* lift_off);
+  void decide_flank_lcp(const ZeroSlipLcp& lcp, int hint);
   void start_normal_side();
   double flank_change_root(double normal_force);
   // A preloaded nut closing exact play (hybrid_preloaded_nut.cpp): the nut

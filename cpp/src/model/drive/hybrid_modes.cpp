@@ -168,6 +168,14 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
     open_if_pulling();  // raises JammingError if no normal-force sign is consistent
     return;
   }
+  decide_at_zero_slip(t, y, hint, lift_off);
+}
+
+// Stick or slip at zero slip (a set-valued law on a bearing flank): a stop
+// holding the rigid drive, the motor's prescribed slip, or the flank LCP at
+// the velocities projected onto exactly zero slip.
+void DriveHybrid::decide_at_zero_slip(double t, double* y, int hint,
+                                      const elements::PreloadedNut* lift_off) {
   ModeSpec base = spec(1);
   base.friction = FrictionMode::none;
   if (held_load_ >= 0 && (mode_.contact == ThreadContact::bilateral ||
@@ -182,21 +190,7 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
     return;
   }
   if (slip_prescribed_now()) {
-    // The motor prescribes every velocity: its slip acceleration decides
-    // (no projection: the velocities are the motor's).
-    const friction::FlankLcpResult r = dynamics_.prescribed_slip_decision(
-        base, mode_.contact == ThreadContact::closed ? mode_.flank : 0);
-    ++lcp_solves_;
-    if (!r.consistent && mode_.contact == ThreadContact::closed) {
-      mode_.contact = ThreadContact::open;  // the flank cannot push: it opens
-      mode_.friction = FrictionMode::none;
-      mode_.slip_sign = 0;
-      return;
-    }
-    if (!r.consistent)
-      jam("the prescribed motion needs a flank normal force of neither sign");
-    mode_.friction = r.slip_acceleration == 0.0 ? FrictionMode::stick : FrictionMode::slip;
-    mode_.slip_sign = sign_of(r.slip_acceleration);
+    decide_prescribed_slip(base);
     return;
   }
   // Zero slip: project the velocities onto exactly zero slip (the root is
@@ -210,21 +204,22 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   if (!without.regular || !unit.regular)
     throw SimulationError(t, "the constraint equations of the drive are singular",
                           "check masses, inertias and the thread geometry");
-  const double c = without.slip_acceleration;
-  const double d = unit.slip_acceleration - c;
-  double alpha = 0.0, beta = dynamics_.penalty_normal_force();
+  // The slip acceleration c + d lambda_T and the normal force
+  // beta + alpha lambda_T, affine in the tangential force.
+  ZeroSlipLcp lcp;
+  lcp.c = without.slip_acceleration;
+  lcp.d = unit.slip_acceleration - lcp.c;
+  lcp.beta = dynamics_.penalty_normal_force();
   // The normal-force signs to try: the penalty force's, the closed flank's, or both.
-  int sigmas[2] = {1, -1};
-  int sigma_count = 2;
   if (mode_.contact == ThreadContact::penalty) {
-    sigmas[0] = beta >= 0.0 ? 1 : -1;
-    sigma_count = 1;
+    lcp.sigmas[0] = lcp.beta >= 0.0 ? 1 : -1;
+    lcp.sigma_count = 1;
   } else {
-    beta = without.normal_force;
-    alpha = unit.normal_force - beta;
+    lcp.beta = without.normal_force;
+    lcp.alpha = unit.normal_force - lcp.beta;
     if (mode_.contact == ThreadContact::closed) {
-      sigmas[0] = mode_.flank;
-      sigma_count = 1;
+      lcp.sigmas[0] = mode_.flank;
+      lcp.sigma_count = 1;
     }
   }
   // One coefficient: the thesis's LCP decides stick and slip at once. A
@@ -233,45 +228,75 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   // flank's side); otherwise the LCP at the slip's coefficient at zero
   // speed, mu(0+)', gives the slip's direction (no stick: it is not
   // admissible even with the larger coefficient).
-  if (const elements::PreloadedNut* nut = model_.preloaded_nut()) {
-    // The preloaded nut: the LCP's decision by its three cases (its bound
-    // depends on the slip's direction; preloaded_nut.hpp). Lift-off: half
-    // A's normal force is the penalty flanks' (given), the edges constants.
-    // With mu_static above mu: stick where the element at mu_static' sticks
-    // (the two-step test), else the slip's direction at mu'.
-    auto decide = [&](const elements::PreloadedNut& at) {
-      return lift_off ? at.decide_split(c, d, dynamics_.penalty_normal_force(),
-                                        dynamics_.preload_spring_force())
-                      : at.decide(c, d, alpha, beta);
-    };
-    if (nut->two_coefficients() && hint == 0) {
-      const friction::FlankLcpResult rest = decide(nut->sticking());
-      ++lcp_solves_;
-      if (rest.consistent && rest.slip_acceleration == 0.0) {
-        mode_.friction = FrictionMode::stick;
-        mode_.slip_sign = 0;
-        return;
-      }
-    }
-    // (The slip's direction at the law's coefficient at the slip's start:
-    // mu' for Coulomb, Stribeck's mu(0+)'.)
-    const friction::FlankLcpResult r =
-        dynamics_.plain_coulomb() || dynamics_.law().slip_mu(0.0) == dynamics_.law().mu()
-            ? decide(*nut)
-            : decide(nut->with_mu(dynamics_.law().slip_mu(0.0) * model_.flank_factor()));
-    ++lcp_solves_;
-    if (!r.consistent)
-      jam(lift_off ? "the preloaded nut's friction has no slip acceleration to decide by"
-                   : "the preloaded nut's friction has no unique edge (Painleve regime)");
-    const int direction = sign_of(r.slip_acceleration);
-    mode_.friction = direction == 0 && hint == 0 ? FrictionMode::stick : FrictionMode::slip;
-    mode_.slip_sign = mode_.friction == FrictionMode::stick ? 0 : direction != 0 ? direction : hint;
+  if (const elements::PreloadedNut* nut = model_.preloaded_nut())
+    decide_preloaded_nut(*nut, lcp, hint, lift_off);
+  else
+    decide_flank_lcp(lcp, hint);
+}
+
+// The motor prescribes every velocity: its slip acceleration decides (no
+// projection: the velocities are the motor's).
+void DriveHybrid::decide_prescribed_slip(const ModeSpec& base) {
+  const friction::FlankLcpResult r = dynamics_.prescribed_slip_decision(
+      base, mode_.contact == ThreadContact::closed ? mode_.flank : 0);
+  ++lcp_solves_;
+  if (!r.consistent && mode_.contact == ThreadContact::closed) {
+    mode_.contact = ThreadContact::open;  // the flank cannot push: it opens
+    mode_.friction = FrictionMode::none;
+    mode_.slip_sign = 0;
     return;
   }
+  if (!r.consistent)
+    jam("the prescribed motion needs a flank normal force of neither sign");
+  mode_.friction = r.slip_acceleration == 0.0 ? FrictionMode::stick : FrictionMode::slip;
+  mode_.slip_sign = sign_of(r.slip_acceleration);
+}
+
+// The preloaded nut: the LCP's decision by its three cases (its bound
+// depends on the slip's direction; preloaded_nut.hpp). Lift-off: half A's
+// normal force is the penalty flanks' (given), the edges constants. With
+// mu_static above mu: stick where the element at mu_static' sticks (the
+// two-step test), else the slip's direction at mu'.
+void DriveHybrid::decide_preloaded_nut(const elements::PreloadedNut& nut, const ZeroSlipLcp& lcp,
+                                       int hint, const elements::PreloadedNut* lift_off) {
+  auto decide = [&](const elements::PreloadedNut& at) {
+    return lift_off ? at.decide_split(lcp.c, lcp.d, dynamics_.penalty_normal_force(),
+                                      dynamics_.preload_spring_force())
+                    : at.decide(lcp.c, lcp.d, lcp.alpha, lcp.beta);
+  };
+  if (nut.two_coefficients() && hint == 0) {
+    const friction::FlankLcpResult rest = decide(nut.sticking());
+    ++lcp_solves_;
+    if (rest.consistent && rest.slip_acceleration == 0.0) {
+      mode_.friction = FrictionMode::stick;
+      mode_.slip_sign = 0;
+      return;
+    }
+  }
+  // (The slip's direction at the law's coefficient at the slip's start:
+  // mu' for Coulomb, Stribeck's mu(0+)'.)
+  const friction::FlankLcpResult r =
+      dynamics_.plain_coulomb() || dynamics_.law().slip_mu(0.0) == dynamics_.law().mu()
+          ? decide(nut)
+          : decide(nut.with_mu(dynamics_.law().slip_mu(0.0) * model_.flank_factor()));
+  ++lcp_solves_;
+  if (!r.consistent)
+    jam(lift_off ? "the preloaded nut's friction has no slip acceleration to decide by"
+                 : "the preloaded nut's friction has no unique edge (Painleve regime)");
+  const int direction = sign_of(r.slip_acceleration);
+  mode_.friction = direction == 0 && hint == 0 ? FrictionMode::stick : FrictionMode::slip;
+  mode_.slip_sign = mode_.friction == FrictionMode::stick ? 0 : direction != 0 ? direction : hint;
+}
+
+// The thread's flank LCP at zero slip for each normal-force sign to try:
+// the one consistent mode, else stick where it is admissible, the flank
+// opening, or a jam.
+void DriveHybrid::decide_flank_lcp(const ZeroSlipLcp& lcp, int hint) {
+  const double c = lcp.c, d = lcp.d, alpha = lcp.alpha, beta = lcp.beta;
   const friction::Law& law = dynamics_.law();
   double lcp_mu = model_.effective_mu();
   const int stick_side = mode_.contact == ThreadContact::closed ? mode_.flank
-                         : mode_.contact == ThreadContact::penalty ? sigmas[0]
+                         : mode_.contact == ThreadContact::penalty ? lcp.sigmas[0]
                                                                    : 0;
   const bool stick_admissible =
       hint == 0 && friction::flank_stick(c, d, alpha, beta, stick_mu(), stick_side).consistent;
@@ -286,9 +311,9 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   int found = 0;
   bool ambiguous = false;
   Mode chosen = mode_;
-  for (int k = 0; k < sigma_count; ++k) {
+  for (int k = 0; k < lcp.sigma_count; ++k) {
     const friction::FlankLcpResult r =
-        solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, sigmas[k], lcp_workspace_,
+        solve_flank_lcp_scaled(c, d, alpha, beta, lcp_mu, lcp.sigmas[k], lcp_workspace_,
                                lcp_options_);
     ++lcp_solves_;
     if (!r.consistent) continue;

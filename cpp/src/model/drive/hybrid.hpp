@@ -160,6 +160,11 @@ class DriveHybrid final : public integrate::HybridSystem {
   // position, with the thread's normal one on its flank's play.
   DriveDynamics::HeldContact held_contact() const;
   std::string change_mode(double t, double* y, const std::vector<int>& root_info);
+  // change_mode's parts (hybrid_events.cpp): a free flight reaching a
+  // flank (true where the play bounces off), and a touch below resolution
+  // undone.
+  bool end_flight(double t, double* y, int flank, bool& touch, bool& zero_slip, std::string& kind);
+  void undo_touch(double t, double* y, const Mode& before, int bounced_before);
 
   // hybrid_load_roots.cpp
   bool load_driven() const;

@@ -303,6 +303,52 @@ void DriveHybrid::project(double t, const double* y, double* correction) {
   solver_->project(t, y, correction);
 }
 
+// The free flight reaches the flank `flank` (+1 lower, -1 upper): an impact,
+// or a touch below resolution (the play reaches the flank without
+// approaching it, or so slowly against a free flight that pulls it back
+// that it would go less than kPlasticHeight of the clearance beyond,
+// rate^2 / (2 |e''|)), whose state is saved for undo_touch. Returns true
+// where the play bounces off the flank (still open: the event is over).
+bool DriveHybrid::end_flight(double t, double* y, int flank, bool& touch, bool& zero_slip,
+                             std::string& kind) {
+  const double rate = dynamics_.play_rate();
+  touch = flank * rate >= 0.0;
+  if (!touch) {
+    const double acceleration = free_flight_play_acceleration();
+    touch = flank * acceleration > 0.0 &&
+            rate * rate <= 2.0 * flank * acceleration * kPlasticHeight * p_.clearance;
+  }
+  if (touch) {
+    std::copy(y, y + size(), saved_state_.begin());
+    saved_impact_loss_ = impact_loss_;
+  }
+  zero_slip = flank_impact(t, y, flank);
+  kind = "impact on the " + std::string(flank > 0 ? "lower" : "upper") + " flank";
+  if (mode_.contact == ThreadContact::open) {
+    bounced_from_ = flank;
+    layout_.compress(q_, v_, y);
+    return true;
+  }
+  bounced_from_ = 0;
+  return false;
+}
+
+// A touch below resolution of a flank that cannot push: no contact,
+// nothing changes (y is left as it was). This is the integrator's noise
+// at the flank just left: a flank opens when its normal force falls
+// through zero, so the play leaves it at third order in time, and a
+// multistep method's first steps after the restart (CVODE) can show it
+// a round-off beyond the flank, even approaching it at a round-off rate.
+// That round-off goes back inside (put_back_inside): left beyond the
+// flank, it would start the flight on the crossed side of its root.
+void DriveHybrid::undo_touch(double t, double* y, const Mode& before, int bounced_before) {
+  mode_ = before;
+  bounced_from_ = bounced_before;
+  std::copy(saved_state_.begin(), saved_state_.end(), y);
+  impact_loss_ = saved_impact_loss_;
+  put_back_inside(t, y);
+}
+
 // handle_event without the planning of the next mode's load-driven roots.
 std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>& root_info) {
   set(t, y);
@@ -326,29 +372,7 @@ std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>
   const int bounced_before = bounced_from_;
   if (mode_.contact == ThreadContact::open && (root_info[2] > 0 || root_info[3] < 0)) {
     const int flank = root_info[2] > 0 ? -1 : 1;
-    // A touch below resolution: the play reaches the flank without
-    // approaching it, or so slowly against a free flight that pulls it
-    // back that it would go less than kPlasticHeight of the clearance
-    // beyond (rate^2 / (2 |e''|)).
-    const double rate = dynamics_.play_rate();
-    touch = flank * rate >= 0.0;
-    if (!touch) {
-      const double acceleration = free_flight_play_acceleration();
-      touch = flank * acceleration > 0.0 &&
-              rate * rate <= 2.0 * flank * acceleration * kPlasticHeight * p_.clearance;
-    }
-    if (touch) {
-      std::copy(y, y + size(), saved_state_.begin());
-      saved_impact_loss_ = impact_loss_;
-    }
-    zero_slip = flank_impact(t, y, flank);
-    kind = "impact on the " + std::string(flank > 0 ? "lower" : "upper") + " flank";
-    if (mode_.contact == ThreadContact::open) {
-      bounced_from_ = flank;
-      layout_.compress(q_, v_, y);
-      return kind;
-    }
-    bounced_from_ = 0;
+    if (end_flight(t, y, flank, touch, zero_slip, kind)) return kind;
   } else if (mode_.contact == ThreadContact::open && root_info[1] != 0) {
     bounced_from_ = 0;  // the apex: the flight now only comes back
     layout_.compress(q_, v_, y);
@@ -385,19 +409,7 @@ std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>
   slip_noise_event_ = root_info[0] != 0 && before.friction == FrictionMode::slip &&
                       mode_ == before;
   if (touch && mode_.contact == ThreadContact::open) {
-    // A touch below resolution of a flank that cannot push: no contact,
-    // nothing changes (y is left as it was). This is the integrator's noise
-    // at the flank just left: a flank opens when its normal force falls
-    // through zero, so the play leaves it at third order in time, and a
-    // multistep method's first steps after the restart (CVODE) can show it
-    // a round-off beyond the flank, even approaching it at a round-off rate.
-    // That round-off goes back inside (put_back_inside): left beyond the
-    // flank, it would start the flight on the crossed side of its root.
-    mode_ = before;
-    bounced_from_ = bounced_before;
-    std::copy(saved_state_.begin(), saved_state_.end(), y);
-    impact_loss_ = saved_impact_loss_;
-    put_back_inside(t, y);
+    undo_touch(t, y, before, bounced_before);
     return "";
   }
   layout_.compress(q_, v_, y);

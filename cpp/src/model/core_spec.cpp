@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #define TOML_HEADER_ONLY 1
 #define TOML_ENABLE_FORMATTERS 0
@@ -243,6 +244,137 @@ class Reader {
   std::string source_;
 };
 
+// [drive]: the concept, the drive, support, backlash contact, initial state,
+// gear and each element section's presence.
+void read_drive_section(const Reader& r, const toml::table& t, DriveParameters& p) {
+  const std::string at = "drive.";
+  std::set<std::string> names = {"concept", "drive", "support", "backlash", "initial_state",
+                                 "speed_controlled", "gear"};
+  for (const SectionType& type : element_section_types()) {
+    const std::string name = type.presence_attribute();
+    names.insert(name);
+    if (type.flag != nullptr) {
+      bool present = false;
+      if (r.flag(t, at, name, present)) set_section_presence(p, type, present ? "true" : "false");
+    } else {
+      r.choice(t, at, name, [&](const std::string& v) { set_section_presence(p, type, v); });
+    }
+  }
+  r.known(t, at, names);
+  r.choice(t, at, "concept", [&](const std::string& v) { p.concept = parse_concept(v); });
+  r.choice(t, at, "drive", [&](const std::string& v) { p.drive = parse_drive(v); });
+  r.choice(t, at, "support", [&](const std::string& v) { p.support = parse_support(v); });
+  r.choice(t, at, "backlash",
+           [&](const std::string& v) { p.backlash = parse_backlash_contact(v); });
+  r.choice(t, at, "initial_state",
+           [&](const std::string& v) { p.initial_state = parse_initial_state(v); });
+  r.flag(t, at, "speed_controlled", p.speed_controlled);
+  r.choice(t, at, "gear", [&](const std::string& v) { p.gear = parse_gear_type(v); });
+}
+
+// [thread]: the thread's geometry (pitch, mean diameter, starts, included
+// flank angle, hand), checked as a whole by Thread.
+void read_thread_section(const Reader& r, const toml::table& t, DriveParameters& p) {
+  const std::string at = "thread.";
+  r.known(t, at, {"pitch", "mean_diameter", "starts", "flank_angle", "hand"});
+  double pitch = p.thread.pitch(), diameter = p.thread.mean_diameter();
+  double flank = p.thread.flank_angle();
+  long starts = p.thread.starts();
+  Hand hand = p.thread.hand();
+  r.real(t, at, "pitch", pitch);
+  r.real(t, at, "mean_diameter", diameter);
+  r.whole(t, at, "starts", starts);
+  r.real(t, at, "flank_angle", flank);
+  r.choice(t, at, "hand", [&](const std::string& v) { hand = parse_hand(v); });
+  try {
+    p.thread = Thread(pitch, diameter, static_cast<int>(starts), flank, hand);
+  } catch (const InvalidArgument& e) {
+    r.fail("thread", std::string("is invalid: ") + e.what());
+  }
+}
+
+// [friction]: the friction law's name and its values.
+void read_friction_section(const Reader& r, const toml::table& t, DriveParameters& p) {
+  const std::string at = "friction.";
+  r.known(t, at, {"law", "values"});
+  r.choice(t, at, "law", [&](const std::string& v) {
+    friction::law_type(v);  // raises for an unknown law
+    p.friction = v;
+  });
+  if (const toml::table* values = r.table(t, at, "values")) {
+    p.friction_values.clear();
+    for (const auto& [key, node] : *values) {
+      double value = 0.0;
+      r.real(*values, at + "values.", std::string(key.str()), value);
+      p.friction_values.emplace_back(std::string(key.str()), value);
+    }
+  }
+}
+
+// [parameters]: the drive's scalar numbers and the element sections' numbers.
+void read_parameters_section(const Reader& r, const toml::table& t, DriveParameters& p) {
+  std::set<std::string> names;
+  for (const ScalarField& field : scalar_fields()) {
+    names.insert(field.name);
+    r.real(t, "parameters.", field.name, p.*(field.member));
+  }
+  for (const SectionType& type : element_section_types())
+    for (std::size_t i = 0; i < type.fields.size(); ++i) {
+      const SectionField& f = type.fields[i];
+      if (f.kind != SectionField::Kind::number || f.attribute == nullptr) continue;
+      names.insert(f.attribute);
+      double value = 0.0;
+      if (r.real(t, "parameters.", f.attribute, value))
+        set_section_number(p, type, static_cast<int>(i), value);
+    }
+  r.known(t, "parameters.", names);
+}
+
+// [loads]: the excitations (drive torque or speed, axial force, the housing's
+// vibration, transverse slip, the elements' inputs such as a motor's voltage).
+void read_loads_section(const Reader& r, const toml::table& t, DriveParameters& p) {
+  // The drive's own loads by their keys (the elements' inputs join them).
+  const std::pair<const char*, Excitation DriveParameters::*> drive_loads[] = {
+      {"drive_torque", &DriveParameters::drive_torque},
+      {"drive_speed", &DriveParameters::drive_speed},
+      {"axial_force", &DriveParameters::axial_force},
+      {"base_acceleration", &DriveParameters::base_acceleration},
+      {"base_angular_acceleration", &DriveParameters::base_angular_acceleration},
+      {"transverse_slip_velocity", &DriveParameters::transverse_slip_velocity}};
+  std::set<std::string> names;
+  for (const auto& load : drive_loads) names.insert(load.first);
+  for (const SectionType& type : element_section_types())
+    for (const SectionInput& input : type.inputs) names.insert(input.name);
+  r.known(t, "loads.", names);
+  for (const SectionType& type : element_section_types())
+    for (std::size_t i = 0; i < type.inputs.size(); ++i) {
+      const std::string name = type.inputs[i].name;
+      if (const toml::table* l = r.table(t, "loads.", name))
+        set_section_input(p, type, static_cast<int>(i), r.load(*l, "loads." + name + "."));
+    }
+  for (const auto& [name, member] : drive_loads)
+    if (const toml::table* l = r.table(t, "loads.", name))
+      p.*member = r.load(*l, "loads." + std::string(name) + ".");
+}
+
+// [options]: the integrators, tolerances, step and event limits.
+void read_options_section(const Reader& r, const toml::table& t, DriveSimulationOptions& o) {
+  const std::string at = "options.";
+  r.known(t, at, {"integrator", "smooth_integrator", "rtol", "atol", "max_steps",
+                  "max_events", "max_step", "first_step", "max_order", "bounce_threshold"});
+  r.text(t, at, "integrator", o.integrator);
+  r.text(t, at, "smooth_integrator", o.smooth_integrator);
+  r.real(t, at, "rtol", o.integrator_options.rtol);
+  r.real(t, at, "atol", o.integrator_options.atol);
+  r.whole(t, at, "max_steps", o.integrator_options.max_steps);
+  r.whole(t, at, "max_events", o.max_events);
+  r.real(t, at, "max_step", o.integrator_options.max_step);
+  r.real(t, at, "first_step", o.integrator_options.first_step);
+  long order = 0;
+  if (r.whole(t, at, "max_order", order)) o.integrator_options.max_order = static_cast<int>(order);
+  r.real(t, at, "bounce_threshold", o.bounce_threshold);
+}
+
 }  // namespace
 
 std::string write_core_spec(const DriveParameters& p, const DriveSimulationOptions& options) {
@@ -329,125 +461,13 @@ CoreSpec read_core_spec(const std::string& text, const std::string& source) {
 
   CoreSpec spec;
   DriveParameters& p = spec.parameters;
-  if (const toml::table* t = r.table(root, "", "drive")) {
-    const std::string at = "drive.";
-    std::set<std::string> names = {"concept", "drive", "support", "backlash", "initial_state",
-                                   "speed_controlled", "gear"};
-    for (const SectionType& type : element_section_types()) {
-      const std::string name = type.presence_attribute();
-      names.insert(name);
-      if (type.flag != nullptr) {
-        bool present = false;
-        if (r.flag(*t, at, name, present)) set_section_presence(p, type, present ? "true" : "false");
-      } else {
-        r.choice(*t, at, name, [&](const std::string& v) { set_section_presence(p, type, v); });
-      }
-    }
-    r.known(*t, at, names);
-    r.choice(*t, at, "concept", [&](const std::string& v) { p.concept = parse_concept(v); });
-    r.choice(*t, at, "drive", [&](const std::string& v) { p.drive = parse_drive(v); });
-    r.choice(*t, at, "support", [&](const std::string& v) { p.support = parse_support(v); });
-    r.choice(*t, at, "backlash",
-             [&](const std::string& v) { p.backlash = parse_backlash_contact(v); });
-    r.choice(*t, at, "initial_state",
-             [&](const std::string& v) { p.initial_state = parse_initial_state(v); });
-    r.flag(*t, at, "speed_controlled", p.speed_controlled);
-    r.choice(*t, at, "gear", [&](const std::string& v) { p.gear = parse_gear_type(v); });
-  }
-  if (const toml::table* t = r.table(root, "", "thread")) {
-    const std::string at = "thread.";
-    r.known(*t, at, {"pitch", "mean_diameter", "starts", "flank_angle", "hand"});
-    double pitch = p.thread.pitch(), diameter = p.thread.mean_diameter();
-    double flank = p.thread.flank_angle();
-    long starts = p.thread.starts();
-    Hand hand = p.thread.hand();
-    r.real(*t, at, "pitch", pitch);
-    r.real(*t, at, "mean_diameter", diameter);
-    r.whole(*t, at, "starts", starts);
-    r.real(*t, at, "flank_angle", flank);
-    r.choice(*t, at, "hand", [&](const std::string& v) { hand = parse_hand(v); });
-    try {
-      p.thread = Thread(pitch, diameter, static_cast<int>(starts), flank, hand);
-    } catch (const InvalidArgument& e) {
-      r.fail("thread", std::string("is invalid: ") + e.what());
-    }
-  }
-  if (const toml::table* t = r.table(root, "", "friction")) {
-    const std::string at = "friction.";
-    r.known(*t, at, {"law", "values"});
-    r.choice(*t, at, "law", [&](const std::string& v) {
-      friction::law_type(v);  // raises for an unknown law
-      p.friction = v;
-    });
-    if (const toml::table* values = r.table(*t, at, "values")) {
-      p.friction_values.clear();
-      for (const auto& [key, node] : *values) {
-        double value = 0.0;
-        r.real(*values, at + "values.", std::string(key.str()), value);
-        p.friction_values.emplace_back(std::string(key.str()), value);
-      }
-    }
-  }
-  if (const toml::table* t = r.table(root, "", "parameters")) {
-    std::set<std::string> names;
-    for (const ScalarField& field : scalar_fields()) {
-      names.insert(field.name);
-      r.real(*t, "parameters.", field.name, p.*(field.member));
-    }
-    for (const SectionType& type : element_section_types())
-      for (std::size_t i = 0; i < type.fields.size(); ++i) {
-        const SectionField& f = type.fields[i];
-        if (f.kind != SectionField::Kind::number || f.attribute == nullptr) continue;
-        names.insert(f.attribute);
-        double value = 0.0;
-        if (r.real(*t, "parameters.", f.attribute, value))
-          set_section_number(p, type, static_cast<int>(i), value);
-      }
-    r.known(*t, "parameters.", names);
-  }
-  if (const toml::table* t = r.table(root, "", "loads")) {
-    std::set<std::string> names = {"drive_torque", "drive_speed", "axial_force",
-                                   "base_acceleration", "base_angular_acceleration",
-                                   "transverse_slip_velocity"};
-    for (const SectionType& type : element_section_types())
-      for (const SectionInput& input : type.inputs) names.insert(input.name);
-    r.known(*t, "loads.", names);
-    for (const SectionType& type : element_section_types())
-      for (std::size_t i = 0; i < type.inputs.size(); ++i) {
-        const std::string name = type.inputs[i].name;
-        if (const toml::table* l = r.table(*t, "loads.", name))
-          set_section_input(p, type, static_cast<int>(i), r.load(*l, "loads." + name + "."));
-      }
-    if (const toml::table* l = r.table(*t, "loads.", "drive_torque"))
-      p.drive_torque = r.load(*l, "loads.drive_torque.");
-    if (const toml::table* l = r.table(*t, "loads.", "drive_speed"))
-      p.drive_speed = r.load(*l, "loads.drive_speed.");
-    if (const toml::table* l = r.table(*t, "loads.", "axial_force"))
-      p.axial_force = r.load(*l, "loads.axial_force.");
-    if (const toml::table* l = r.table(*t, "loads.", "base_acceleration"))
-      p.base_acceleration = r.load(*l, "loads.base_acceleration.");
-    if (const toml::table* l = r.table(*t, "loads.", "base_angular_acceleration"))
-      p.base_angular_acceleration = r.load(*l, "loads.base_angular_acceleration.");
-    if (const toml::table* l = r.table(*t, "loads.", "transverse_slip_velocity"))
-      p.transverse_slip_velocity = r.load(*l, "loads.transverse_slip_velocity.");
-  }
-  if (const toml::table* t = r.table(root, "", "options")) {
-    const std::string at = "options.";
-    DriveSimulationOptions& o = spec.options;
-    r.known(*t, at, {"integrator", "smooth_integrator", "rtol", "atol", "max_steps",
-                     "max_events", "max_step", "first_step", "max_order", "bounce_threshold"});
-    r.text(*t, at, "integrator", o.integrator);
-    r.text(*t, at, "smooth_integrator", o.smooth_integrator);
-    r.real(*t, at, "rtol", o.integrator_options.rtol);
-    r.real(*t, at, "atol", o.integrator_options.atol);
-    r.whole(*t, at, "max_steps", o.integrator_options.max_steps);
-    r.whole(*t, at, "max_events", o.max_events);
-    r.real(*t, at, "max_step", o.integrator_options.max_step);
-    r.real(*t, at, "first_step", o.integrator_options.first_step);
-    long order = 0;
-    if (r.whole(*t, at, "max_order", order)) o.integrator_options.max_order = static_cast<int>(order);
-    r.real(*t, at, "bounce_threshold", o.bounce_threshold);
-  }
+  if (const toml::table* t = r.table(root, "", "drive")) read_drive_section(r, *t, p);
+  if (const toml::table* t = r.table(root, "", "thread")) read_thread_section(r, *t, p);
+  if (const toml::table* t = r.table(root, "", "friction")) read_friction_section(r, *t, p);
+  if (const toml::table* t = r.table(root, "", "parameters")) read_parameters_section(r, *t, p);
+  if (const toml::table* t = r.table(root, "", "loads")) read_loads_section(r, *t, p);
+  if (const toml::table* t = r.table(root, "", "options"))
+    read_options_section(r, *t, spec.options);
   return spec;
 }
 

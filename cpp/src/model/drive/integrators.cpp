@@ -268,45 +268,54 @@ void check_bristles_on_moreau(const DriveModel& model, const std::string& integr
                               : "end_stops.contact = \"penalty\""));
 }
 
-void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
+namespace {
+
+// The train's friction stages (a lossy or worm gear stage, the motor's
+// friction torque) run on Moreau-Jean and, within its reach
+// (train_event_driven_obstacle), the event-driven scheme: any other
+// integrator is refused, saying where the stages run.
+void check_train_integrator(const DriveModel& model, const std::string& integrator) {
+  const elements::TrainFriction* train = model.train_friction();
+  if (!train || integrator == "moreau" ||
+      (integrator == "event_driven" && train->event_driven_obstacle.empty()))
+    return;
   const DriveParameters& p = model.parameters();
-  const std::vector<std::string>& allowed = drive::model_integrators(model);
-  const std::string& integrator = drive::chosen_integrator(model, options);
-  // The elements' own reasons first (the list below leaves them out).
-  check_preload_integrator(model, integrator);
-  if (const elements::TrainFriction* train = model.train_friction();
-      train && integrator != "moreau" &&
-      (integrator != "event_driven" || !train->event_driven_obstacle.empty())) {
-    const std::string what = train->stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-                                          : "motor.friction_torque = " +
-                                                format_value(p.motor_friction_torque);
-    throw InvalidArgument(
-        "integrator = \"" + integrator + "\" is invalid with " + what +
-        (integrator == "event_driven"
-             ? ": the event-driven scheme runs the train's friction stages with a torque or "
-               "DC motor on the rigid concept without play with Coulomb friction on the thread "
-               "(friction.law = \"coulomb\", mu_static too) or \"arctan_velocity\", and on "
-               "the flexible concepts and penalty play (backlash.contact \"bistop\" or "
-               "\"cubic\") with friction.law = \"coulomb\" without mu_static or "
-               "\"arctan_velocity\" (the rotor's friction contact), "
-               "without a preloaded nut or an exact end stop; and behind a prescribed "
-               "rotor speed (loads.drive_speed) on every concept and play with every law, "
-               "here " + train->event_driven_obstacle +
-                   "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
-             : p.speed_controlled
-             ? ": behind a prescribed rotor speed the train's friction stages run on the "
-               "event-driven scheme (integrator = \"event_driven\") and, but with "
-               "arctan_acceleration or lugre, Moreau-Jean (integrator = \"moreau\")"
-             : ": the train's friction stages run on Moreau-Jean (integrator = \"moreau\", "
-               "every thread law but arctan_acceleration)" +
-                   (train->event_driven_obstacle.empty()
-                        ? std::string(" and, without exact play, the event-driven scheme "
-                                      "(integrator = \"event_driven\")")
-                        : "; this scene runs on Moreau-Jean only (here " +
-                              train->event_driven_obstacle + ")")));
-  }
-  check_bristles_on_moreau(model, integrator);
-  drive::check_transverse_slip(model, integrator, options.output.t_end);
+  const std::string what = train->stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+                                        : "motor.friction_torque = " +
+                                              format_value(p.motor_friction_torque);
+  throw InvalidArgument(
+      "integrator = \"" + integrator + "\" is invalid with " + what +
+      (integrator == "event_driven"
+           ? ": the event-driven scheme runs the train's friction stages with a torque or "
+             "DC motor on the rigid concept without play with Coulomb friction on the thread "
+             "(friction.law = \"coulomb\", mu_static too) or \"arctan_velocity\", and on "
+             "the flexible concepts and penalty play (backlash.contact \"bistop\" or "
+             "\"cubic\") with friction.law = \"coulomb\" without mu_static or "
+             "\"arctan_velocity\" (the rotor's friction contact), "
+             "without a preloaded nut or an exact end stop; and behind a prescribed "
+             "rotor speed (loads.drive_speed) on every concept and play with every law, "
+             "here " + train->event_driven_obstacle +
+                 "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
+           : p.speed_controlled
+           ? ": behind a prescribed rotor speed the train's friction stages run on the "
+             "event-driven scheme (integrator = \"event_driven\") and, but with "
+             "arctan_acceleration or lugre, Moreau-Jean (integrator = \"moreau\")"
+           : ": the train's friction stages run on Moreau-Jean (integrator = \"moreau\", "
+             "every thread law but arctan_acceleration)" +
+                 (train->event_driven_obstacle.empty()
+                      ? std::string(" and, without exact play, the event-driven scheme "
+                                    "(integrator = \"event_driven\")")
+                      : "; this scene runs on Moreau-Jean only (here " +
+                            train->event_driven_obstacle + ")")));
+}
+
+// The integrator against the scene's physics: eq. (3.15)'s slip
+// acceleration (not on Moreau-Jean's velocity-level step), the double
+// impact of exact play and an exact stop on one part (Moreau-Jean only),
+// and the integrators that run the play and the law (model_integrators).
+void check_integrator_takes_scene(const DriveModel& model, const std::string& integrator,
+                                  const std::vector<std::string>& allowed) {
+  const DriveParameters& p = model.parameters();
   if (integrator == "moreau" &&
       model.law().resolution() == friction::Resolution::acceleration)
     throw InvalidArgument(
@@ -331,6 +340,43 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
                         : std::string()) +
                        "friction.law = \"" + p.friction + "\"" +
                        (find_section(p, "end_stops") ? " and end_stops" : ""));
+}
+
+// The options of the ODE method of the smooth phases (an ODE integrator, or
+// the one between the event-driven scheme's events): tolerances, the
+// slip's resolution, the method and its limits.
+void check_ode_options(const DriveModel& model, const std::string& integrator,
+                       const DriveSimulationOptions& options) {
+  check_meaningful_tolerances(options.integrator_options, options.output.t_end);
+  drive::check_slip_resolved(model, integrator, options);
+  if (!options.smooth_integrator.empty())
+    require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
+  // What make_integrator checks as the smooth phases start, the method's
+  // own limits included (max_order of a one-step method, CVODE's orders).
+  integrate::validate_options(options.integrator_options);
+  const std::string method = drive::ode_method(model, integrator, options);
+  try {
+    integrate::check_method_limits(method, options.integrator_options);
+  } catch (const InvalidArgument& e) {
+    if (method == integrator || !options.smooth_integrator.empty()) throw;  // the user named it
+    // The default method between events: say which it is.
+    throw InvalidArgument(std::string(e.what()) + "; integrator \"event_driven\" runs \"" +
+                          method + "\" between events here (smooth_integrator chooses another)");
+  }
+}
+
+}  // namespace
+
+void check_simulation_options(const DriveModel& model, const DriveSimulationOptions& options) {
+  const DriveParameters& p = model.parameters();
+  const std::vector<std::string>& allowed = drive::model_integrators(model);
+  const std::string& integrator = drive::chosen_integrator(model, options);
+  // The elements' own reasons first (the list below leaves them out).
+  check_preload_integrator(model, integrator);
+  check_train_integrator(model, integrator);
+  check_bristles_on_moreau(model, integrator);
+  drive::check_transverse_slip(model, integrator, options.output.t_end);
+  check_integrator_takes_scene(model, integrator, allowed);
   require_nonnegative("bounce_threshold", options.bounce_threshold);
   integrate::validate_output_request(options.output, 0.0);
   if (options.max_events < 0)
@@ -348,22 +394,7 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
     check_theta_stable_with_springs(model, options);
     return;
   }
-  check_meaningful_tolerances(options.integrator_options, options.output.t_end);
-  drive::check_slip_resolved(model, integrator, options);
-  if (!options.smooth_integrator.empty())
-    require_choice("smooth_integrator", options.smooth_integrator, integrate::integrator_names());
-  // What make_integrator checks as the smooth phases start, the method's
-  // own limits included (max_order of a one-step method, CVODE's orders).
-  integrate::validate_options(options.integrator_options);
-  const std::string method = drive::ode_method(model, integrator, options);
-  try {
-    integrate::check_method_limits(method, options.integrator_options);
-  } catch (const InvalidArgument& e) {
-    if (method == integrator || !options.smooth_integrator.empty()) throw;  // the user named it
-    // The default method between events: say which it is.
-    throw InvalidArgument(std::string(e.what()) + "; integrator \"event_driven\" runs \"" +
-                          method + "\" between events here (smooth_integrator chooses another)");
-  }
+  check_ode_options(model, integrator, options);
 }
 
 namespace drive {

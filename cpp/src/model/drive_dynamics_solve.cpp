@@ -82,13 +82,14 @@ DriveDynamics::ModeForces DriveDynamics::mode_forces(const ModeSpec& spec) const
   const int rotor = model_.rotor();
   m.rotor_fixed = spec.rotor.active && spec.rotor.a_q == 0.0;
   m.rotor_eliminated = spec.rotor.active && spec.rotor.a_q != 0.0;
-  m.inverse_mass = inverse_mass_;
   if (m.rotor_eliminated) {
     const double effective = spec.rotor.a_q / inverse_mass_[rotor] - spec.rotor.a_w;
     if (!(std::abs(effective) > 1e-12 * std::abs(spec.rotor.a_q / inverse_mass_[rotor])))
       m.rotor_singular = true;  // (the stage's Painleve case, k J_s + R = 0)
-    else
-      m.inverse_mass[rotor] = spec.rotor.a_q / effective;
+    else {
+      m.eliminated_inverse_mass = inverse_mass_;
+      m.eliminated_inverse_mass[rotor] = spec.rotor.a_q / effective;
+    }
   }
   return m;
 }
@@ -184,7 +185,8 @@ void DriveDynamics::evaluate_mode(const ModeSpec& spec, const ModeForces& m, dou
     r[friction_row] = spec.rotor.r;
   }
   SmallVector lambda;
-  out.regular = solve_constrained(m.inverse_mass, f, B, C, r, out.acceleration, lambda);
+  out.regular = solve_constrained(m.rotor_eliminated ? m.eliminated_inverse_mass : inverse_mass_,
+                                  f, B, C, r, out.acceleration, lambda);
   if (!out.regular) return;
   if (m.normal_multiplier) normal_force = lambda[normal_row];
   const double stick_force = m.stick ? lambda[stick_row] : 0.0;

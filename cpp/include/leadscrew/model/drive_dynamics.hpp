@@ -354,7 +354,10 @@ class DriveDynamics {
     // where it fixes the rotor's acceleration, else eliminated into the
     // rotor's inverse mass and force; singular: the stage's Painleve case.
     bool rotor_fixed = false, rotor_eliminated = false, rotor_singular = false;
-    CoordinateVector inverse_mass;
+    // The inverse mass with the rotor's eliminated (set with
+    // rotor_eliminated only: every other mode solves with inverse_mass_,
+    // no copy of it per solve).
+    CoordinateVector eliminated_inverse_mass;
   };
   ModeForces mode_forces(const ModeSpec& spec) const;
   void set_lift_off_forces(const ModeSpec& spec, ModeForces& m) const;

@@ -73,7 +73,6 @@ void def_drive_call(py::module_& m, const char* name, Body body, const char* doc
 // (model/drive_geometry.hpp).
 void bind_drive_geometry(py::module_& m) {
   using model::DriveGeometry;
-  using model::DerivedQuantities;
   py::class_<DriveGeometry> geometry(
       m, "DriveGeometry",
       "The scene's geometric and material inputs (SI), named <section>_<key> after its key "
@@ -120,7 +119,11 @@ void bind_drive_geometry(py::module_& m) {
   LEADSCREW_FIELD(overrides_nut_axial_stiffness);
   LEADSCREW_FIELD(overrides_nut_torsional_stiffness);
 #undef LEADSCREW_FIELD
+}
 
+// DerivedQuantities and the queries about them and the scene's inputs.
+void bind_derived_quantities(py::module_& m) {
+  using model::DerivedQuantities;
   auto as_dict = [](const std::vector<std::pair<std::string, double>>& values) {
     py::dict out;
     for (const auto& [key, value] : values) out[py::str(key)] = value;
@@ -168,6 +171,10 @@ void bind_drive_geometry(py::module_& m) {
         return out;
       },
       "The derived quantities with their texts, units, ranges and overrides, in order.");
+}
+
+// The rules a scene's inputs must satisfy, for the Scene's checks.
+void bind_scene_rules(py::module_& m) {
   m.def(
       "derived_quantity_problem",
       [](const std::string& key, double value) -> py::object {
@@ -291,7 +298,8 @@ py::dict field_entry(const model::SectionField& f) {
   return entry;
 }
 
-void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& parameters) {
+// The registry as dicts and the Scene's check of one section.
+void bind_section_queries(py::module_& m) {
   using model::DriveParameters;
   m.def(
       "element_sections",
@@ -323,6 +331,56 @@ void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& p
       "The Scene's check of the section `name` (its values checked field by field, with "
       "their defaults) across its fields and the sections `context` gives (concept, drive, "
       "initial_state, ...): ValueError naming the key path, the value and what is allowed.");
+}
+
+// One section's attributes on DriveParameters: its presence (a flag or a
+// choice), its numbers and its inputs.
+void bind_section_attributes(py::class_<model::DriveParameters>& parameters,
+                             const model::SectionType* t) {
+  using model::DriveParameters;
+  const model::SectionType& type = *t;
+  if (type.flag != nullptr)
+    parameters.def_property(
+        type.flag,
+        [t](const DriveParameters& p) { return model::find_section(p, t->name) != nullptr; },
+        [t](DriveParameters& p, bool present) {
+          model::set_section_presence(p, *t, present ? "true" : "false");
+        },
+        "True if the model has the section");
+  else
+    parameters.def_property(
+        type.presence_attribute().c_str(),
+        [t](const DriveParameters& p) { return model::section_presence(p, *t); },
+        [t](DriveParameters& p, const std::string& v) { model::set_section_presence(p, *t, v); },
+        "the section's choice ('none': no such section)");
+  for (std::size_t i = 0; i < type.fields.size(); ++i) {
+    const model::SectionField& f = type.fields[i];
+    if (f.kind != model::SectionField::Kind::number || f.attribute == nullptr) continue;
+    const int index = static_cast<int>(i);
+    parameters.def_property(
+        f.attribute,
+        [t, index](const DriveParameters& p) { return model::section_number(p, *t, index); },
+        [t, index](DriveParameters& p, double v) { model::set_section_number(p, *t, index, v); },
+        f.doc);
+  }
+  for (std::size_t i = 0; i < type.inputs.size(); ++i) {
+    const int index = static_cast<int>(i);
+    const std::string path = type.key_path(type.inputs[i].key);
+    parameters.def_property(
+        type.inputs[i].name,
+        [t, index](const DriveParameters& p) -> Excitation {
+          return model::section_input(p, *t, index);
+        },
+        [t, index, path](DriveParameters& p, py::handle v) {
+          model::set_section_input(p, *t, index, to_excitation(v, path));
+        },
+        type.inputs[i].doc);
+  }
+}
+
+void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& parameters) {
+  using model::DriveParameters;
+  bind_section_queries(m);
   parameters.def_property(
       "sections",
       [](const DriveParameters& p) {
@@ -350,51 +408,15 @@ void bind_element_sections(py::module_& m, py::class_<model::DriveParameters>& p
       },
       "the elements' scene sections present (element_section.hpp), by name: the values given "
       "by key (a scene's section as is; the rest take their defaults)");
-  for (const model::SectionType& type : model::element_section_types()) {
-    const model::SectionType* t = &type;
-    if (type.flag != nullptr)
-      parameters.def_property(
-          type.flag,
-          [t](const DriveParameters& p) { return model::find_section(p, t->name) != nullptr; },
-          [t](DriveParameters& p, bool present) {
-            model::set_section_presence(p, *t, present ? "true" : "false");
-          },
-          "True if the model has the section");
-    else
-      parameters.def_property(
-          type.presence_attribute().c_str(),
-          [t](const DriveParameters& p) { return model::section_presence(p, *t); },
-          [t](DriveParameters& p, const std::string& v) { model::set_section_presence(p, *t, v); },
-          "the section's choice ('none': no such section)");
-    for (std::size_t i = 0; i < type.fields.size(); ++i) {
-      const model::SectionField& f = type.fields[i];
-      if (f.kind != model::SectionField::Kind::number || f.attribute == nullptr) continue;
-      const int index = static_cast<int>(i);
-      parameters.def_property(
-          f.attribute,
-          [t, index](const DriveParameters& p) { return model::section_number(p, *t, index); },
-          [t, index](DriveParameters& p, double v) { model::set_section_number(p, *t, index, v); },
-          f.doc);
-    }
-    for (std::size_t i = 0; i < type.inputs.size(); ++i) {
-      const int index = static_cast<int>(i);
-      const std::string path = type.key_path(type.inputs[i].key);
-      parameters.def_property(
-          type.inputs[i].name,
-          [t, index](const DriveParameters& p) -> Excitation {
-            return model::section_input(p, *t, index);
-          },
-          [t, index, path](DriveParameters& p, py::handle v) {
-            model::set_section_input(p, *t, index, to_excitation(v, path));
-          },
-          type.inputs[i].doc);
-    }
-  }
+  for (const model::SectionType& type : model::element_section_types())
+    bind_section_attributes(parameters, &type);
 }
 
 }  // namespace
 
-void bind_drive(py::module_& m) {
+namespace {
+
+void bind_drive_parameters(py::module_& m) {
   using model::DriveParameters;
   py::class_<DriveParameters> parameters(m, "DriveParameters",
                                          "Resolved drive parameters (SI); built by leadscrew.Scene.");
@@ -467,7 +489,12 @@ void bind_drive(py::module_& m) {
       "gear_flank_angle)");
   bind_element_sections(m, parameters);
   bind_drive_geometry(m);
+  bind_derived_quantities(m);
+  bind_scene_rules(m);
+}
 
+void bind_drive_model(py::module_& m) {
+  using model::DriveParameters;
   py::class_<model::DriveModel>(m, "DriveModel", "An assembled drive (immutable).")
       .def(py::init<DriveParameters>(), py::arg("parameters"))
       .def_property_readonly("coordinate_names", &model::DriveModel::coordinate_names)
@@ -531,7 +558,9 @@ void bind_drive(py::module_& m) {
           "iterations (Newton's). NoEquilibriumError where the loads at t = 0 have no static "
           "equilibrium.")
       .def_property_readonly("parameters", &model::DriveModel::parameters);
+}
 
+void bind_drive_queries(py::module_& m) {
   m.def("drive_integrators", &model::drive_integrators, py::arg("parameters"));
   m.def(
       "drive_channel_units",
@@ -563,7 +592,10 @@ void bind_drive(py::module_& m) {
          const py::object&) { model::check_simulation_options(drive, options); },
       "The checks simulate_drive makes of these options before it integrates, without "
       "simulating: ValueError naming the option, its value and the valid range.");
+}
 
+void bind_core_spec(py::module_& m) {
+  using model::DriveParameters;
   m.def(
       "write_core_spec",
       [](const DriveParameters& parameters, const std::string& integrator,
@@ -625,7 +657,9 @@ void bind_drive(py::module_& m) {
       py::arg("parameters"),
       "The variables the FMU shows of the drive (model/cosim.hpp): dicts with name, "
       "reference, kind (input, output, parameter), boolean, unit, start, description.");
+}
 
+void bind_drive_stepper(py::module_& m) {
   py::class_<model::DriveStepper>(
       m, "DriveStepper",
       "A drive advanced piece by piece with its inputs held over each piece "
@@ -677,7 +711,10 @@ void bind_drive(py::module_& m) {
           [](const model::DriveStepper& s) { return stats_dict(s.stats()); },
           "Counts so far, as Result.stats (wall_time 0).")
       .def("reset", &model::DriveStepper::reset, "Back to t = 0 and the drive's own loads.");
+}
 
+void bind_drive_batch(py::module_& m) {
+  using model::DriveParameters;
   py::class_<model::DriveBatchResult>(m, "DriveBatchResult",
                                       "What DriveBatch.run gives: samples and failures.")
       .def_property_readonly(
@@ -748,6 +785,18 @@ void bind_drive(py::module_& m) {
           "failed case sets its row's failure and message. workers: threads that share the "
           "rows, >= 1 (capped at the row count; 1: the calling thread only); the result is "
           "the same for every count. ValueError for a wrong width or workers < 1.");
+}
+
+}  // namespace
+
+// The drive's classes and functions, in the order their signatures name them.
+void bind_drive(py::module_& m) {
+  bind_drive_parameters(m);
+  bind_drive_model(m);
+  bind_drive_queries(m);
+  bind_core_spec(m);
+  bind_drive_stepper(m);
+  bind_drive_batch(m);
 }
 
 }  // namespace leadscrew::bindings

@@ -90,32 +90,9 @@ py::dict stats_dict(const IntegratorStats& s) {
   d["restarts"] = s.restarts;
   return d;
 }
-}  // namespace
 
-void bind_integrate(py::module_& m) {
-  py::module_ sub = m.def_submodule("integrate", "ODE integrators of the core");
-
-  py::class_<OdeSystem>(sub, "OdeSystem", "An ODE y' = f(t, y) with root functions g(t, y).")
-      .def_property_readonly("size", &OdeSystem::size)
-      .def_property_readonly("root_count", &OdeSystem::root_count)
-      .def_property_readonly("quadrature_count", &OdeSystem::quadrature_count);
-
-  py::class_<PythonOdeSystem, OdeSystem>(sub, "PythonOdeSystem", R"doc(
-ODE system from Python callables.
-
-Args:
-    fun: f(t, y) -> array of `size` values.
-    size: number of states, >= 1.
-    events: g(t, y) -> array of `root_count` values, or None.
-    root_count: number of root functions, >= 0.
-    quadrature_count: number of trailing states fun does not depend on
-        (integrals of the others); CVODE leaves them out of its Newton
-        matrix. 0 <= quadrature_count < size.
-)doc")
-      .def(py::init<py::function, int, py::object, int, int>(), py::arg("fun"), py::arg("size"),
-           py::arg("events") = py::none(), py::arg("root_count") = 0,
-           py::arg("quadrature_count") = 0);
-
+// The integrator made by make_integrator, driven from Python.
+void bind_integrator_class(py::module_& sub) {
   py::class_<BoundIntegrator>(sub, "Integrator", R"doc(
 An ODE integrator (make it with make_integrator).
 
@@ -178,7 +155,10 @@ returns (t, root_found, y).
       .def_property_readonly("stats", [](const BoundIntegrator& self) {
         return stats_dict(self.integrator->stats());
       });
+}
 
+// make_integrator and the integrators' names.
+void bind_make_integrator(py::module_& sub) {
   sub.def(
       "make_integrator",
       [](const std::string& method, double rtol, double atol, double max_step, double first_step,
@@ -195,6 +175,35 @@ returns (t, root_found, y).
       "Make an integrator by name (see integrator_names). Raises ValueError for an unknown "
       "name or an invalid option.");
   sub.def("integrator_names", &integrate::integrator_names, "Names of the integrators.");
+}
+
+}  // namespace
+
+void bind_integrate(py::module_& m) {
+  py::module_ sub = m.def_submodule("integrate", "ODE integrators of the core");
+
+  py::class_<OdeSystem>(sub, "OdeSystem", "An ODE y' = f(t, y) with root functions g(t, y).")
+      .def_property_readonly("size", &OdeSystem::size)
+      .def_property_readonly("root_count", &OdeSystem::root_count)
+      .def_property_readonly("quadrature_count", &OdeSystem::quadrature_count);
+
+  py::class_<PythonOdeSystem, OdeSystem>(sub, "PythonOdeSystem", R"doc(
+ODE system from Python callables.
+
+Args:
+    fun: f(t, y) -> array of `size` values.
+    size: number of states, >= 1.
+    events: g(t, y) -> array of `root_count` values, or None.
+    root_count: number of root functions, >= 0.
+    quadrature_count: number of trailing states fun does not depend on
+        (integrals of the others); CVODE leaves them out of its Newton
+        matrix. 0 <= quadrature_count < size.
+)doc")
+      .def(py::init<py::function, int, py::object, int, int>(), py::arg("fun"), py::arg("size"),
+           py::arg("events") = py::none(), py::arg("root_count") = 0,
+           py::arg("quadrature_count") = 0);
+  bind_integrator_class(sub);
+  bind_make_integrator(sub);
 }
 
 }  // namespace leadscrew::bindings

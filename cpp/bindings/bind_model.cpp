@@ -34,7 +34,6 @@ py::dict stats_dict(const integrate::SimulationStats& s) {
 
 namespace {
 
-
 // channels as one (n_channels, n_points) array
 py::array_t<double> channel_matrix(const integrate::SimulationResult& r) {
   const py::ssize_t rows = static_cast<py::ssize_t>(r.channel_count());
@@ -60,56 +59,10 @@ integrate::IntegratorOptions integrator_options(double rtol, double atol, long m
   return options;
 }
 
-void bind_model(py::module_& m) {
-  py::class_<integrate::SimulationResult>(m, "SimulationResult")
-      .def_property_readonly("time",
-                             [](const integrate::SimulationResult& r) {
-                               return py::array_t<double>(r.time.size(), r.time.data());
-                             })
-      .def_property_readonly("point_count", &integrate::SimulationResult::point_count,
-                             "The rows (time points), without converting them.")
-      .def_property_readonly("channel_names",
-                             [](const integrate::SimulationResult& r) { return r.channel_names; })
-      .def_property_readonly("channels", &channel_matrix)
-      .def(
-          "channel",
-          [](const integrate::SimulationResult& r, const std::string& name) -> py::object {
-            const int k = r.channel_index(name);
-            if (k < 0) return py::none();
-            py::array_t<double> out(static_cast<py::ssize_t>(r.point_count()));
-            r.copy_channel(static_cast<std::size_t>(k), out.mutable_data());
-            return out;
-          },
-          py::arg("name"), "One channel as a new array, or None if there is no such channel.")
-      .def_property_readonly("events",
-                             [](const integrate::SimulationResult& r) {
-                               py::list events;
-                               for (const auto& e : r.events)
-                                 events.append(py::make_tuple(e.time, e.kind));
-                               return events;
-                             })
-      .def_property_readonly("stats", [](const integrate::SimulationResult& r) {
-        return stats_dict(r.stats);
-      })
-      .def_readonly("integrator", &integrate::SimulationResult::integrator)
-      .def_readonly("friction", &integrate::SimulationResult::friction)
-      .def_property_readonly("checks", [](const integrate::SimulationResult& r) {
-        py::dict out;
-        for (const auto& c : r.checks) {
-          py::dict entry;
-          entry["what"] = c.what;
-          entry["applies"] = c.applies;
-          entry["passed"] = c.passed;
-          entry["value"] = c.value;
-          entry["bound"] = c.bound;
-          entry["margin"] = c.bound - c.value;
-          entry["time"] = c.time;
-          entry["unit"] = c.unit;
-          out[py::str(c.name)] = entry;
-        }
-        return out;
-      });
+namespace {
 
+// The friction block and its integrators (model/friction_block.hpp).
+void bind_friction_block(py::module_& m) {
   py::class_<model::FrictionBlock>(m, "FrictionBlock")
       .def(py::init([](double mass, double mu, double g, py::handle force, double u0, double v0,
                        std::optional<double> mu_static, double stiffness, double pull_speed,
@@ -171,6 +124,60 @@ void bind_model(py::module_& m) {
       py::arg("t_eval"), py::arg("max_steps"), py::arg("max_events"), py::arg("max_step"),
       py::arg("first_step"), py::arg("max_order"), py::arg("check") = true,
       py::arg("progress") = py::none());
+}
+
+}  // namespace
+
+void bind_model(py::module_& m) {
+  py::class_<integrate::SimulationResult>(m, "SimulationResult")
+      .def_property_readonly("time",
+                             [](const integrate::SimulationResult& r) {
+                               return py::array_t<double>(r.time.size(), r.time.data());
+                             })
+      .def_property_readonly("point_count", &integrate::SimulationResult::point_count,
+                             "The rows (time points), without converting them.")
+      .def_property_readonly("channel_names",
+                             [](const integrate::SimulationResult& r) { return r.channel_names; })
+      .def_property_readonly("channels", &channel_matrix)
+      .def(
+          "channel",
+          [](const integrate::SimulationResult& r, const std::string& name) -> py::object {
+            const int k = r.channel_index(name);
+            if (k < 0) return py::none();
+            py::array_t<double> out(static_cast<py::ssize_t>(r.point_count()));
+            r.copy_channel(static_cast<std::size_t>(k), out.mutable_data());
+            return out;
+          },
+          py::arg("name"), "One channel as a new array, or None if there is no such channel.")
+      .def_property_readonly("events",
+                             [](const integrate::SimulationResult& r) {
+                               py::list events;
+                               for (const auto& e : r.events)
+                                 events.append(py::make_tuple(e.time, e.kind));
+                               return events;
+                             })
+      .def_property_readonly("stats", [](const integrate::SimulationResult& r) {
+        return stats_dict(r.stats);
+      })
+      .def_readonly("integrator", &integrate::SimulationResult::integrator)
+      .def_readonly("friction", &integrate::SimulationResult::friction)
+      .def_property_readonly("checks", [](const integrate::SimulationResult& r) {
+        py::dict out;
+        for (const auto& c : r.checks) {
+          py::dict entry;
+          entry["what"] = c.what;
+          entry["applies"] = c.applies;
+          entry["passed"] = c.passed;
+          entry["value"] = c.value;
+          entry["bound"] = c.bound;
+          entry["margin"] = c.bound - c.value;
+          entry["time"] = c.time;
+          entry["unit"] = c.unit;
+          out[py::str(c.name)] = entry;
+        }
+        return out;
+      });
+  bind_friction_block(m);
 }
 
 }  // namespace leadscrew::bindings

@@ -11,6 +11,47 @@ namespace py = pybind11;
 
 namespace leadscrew::bindings {
 
+namespace {
+
+// The thread's closed forms (thread/thread.hpp): torques, efficiency, self-locking.
+void bind_thread_functions(py::module_& m) {
+  m.def("raise_torque", &raise_torque, py::arg("thread"), py::arg("mu"), py::arg("load"),
+        py::arg("collar_mu") = 0.0, py::arg("collar_diameter") = 0.0);
+  m.def("lower_torque", &lower_torque, py::arg("thread"), py::arg("mu"), py::arg("load"),
+        py::arg("collar_mu") = 0.0, py::arg("collar_diameter") = 0.0);
+  m.def("efficiency", &efficiency, py::arg("thread"), py::arg("mu"),
+        py::arg("collar_mu") = 0.0, py::arg("collar_diameter") = 0.0,
+        py::arg("backdrive") = false);
+  m.def("is_self_locking", &is_self_locking, py::arg("thread"), py::arg("mu"));
+  m.def("is_drivable", &is_drivable, py::arg("thread"), py::arg("mu"));
+  // Elementwise over an array of mu (the closed-form columns of a sweep: one
+  // call instead of one per value); the thread by value, as py::vectorize
+  // passes its non-vectorized arguments.
+  m.def("efficiency_array",
+        py::vectorize([](Thread thread, double mu) { return efficiency(thread, mu); }),
+        py::arg("thread"), py::arg("mu"),
+        "efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); "
+        "ValueError for a negative or non-finite m.");
+  m.def("preloaded_efficiency_array",
+        py::vectorize([](Thread thread, double mu, double load, double preload) {
+          return model::elements::preloaded_efficiency(
+              thread.lead_angle(), thread.effective_mu(require_nonnegative("mu", mu)),
+              require_nonnegative("load", load), require_nonnegative("preload", preload));
+        }),
+        py::arg("thread"), py::arg("mu"), py::arg("load"), py::arg("preload"),
+        "The steady raising efficiency of the rigid drive with a preloaded nut, F tan a / "
+        "[(F + P) tan(a + rho') + P tan(rho' - a)] [1], elementwise over mu [1], load F [N] "
+        "and preload P [N] (docs/physics/preloaded_nut.md); ValueError for a negative or "
+        "non-finite value.");
+  m.def("is_drivable_array",
+        py::vectorize([](Thread thread, double mu) { return is_drivable(thread, mu); }),
+        py::arg("thread"), py::arg("mu"),
+        "is_drivable(thread, m) for each m of the array mu [1]; ValueError for a negative "
+        "or non-finite m.");
+}
+
+}  // namespace
+
 void bind_thread(py::module_& m) {
   py::class_<Thread>(m, "Thread", R"doc(
 Thread geometry of a power screw (immutable).
@@ -63,40 +104,7 @@ Raises:
             return Thread(s[0].cast<double>(), s[1].cast<double>(), s[2].cast<int>(),
                           s[3].cast<double>(), parse_hand(s[4].cast<std::string>()));
           }));
-
-  m.def("raise_torque", &raise_torque, py::arg("thread"), py::arg("mu"), py::arg("load"),
-        py::arg("collar_mu") = 0.0, py::arg("collar_diameter") = 0.0);
-  m.def("lower_torque", &lower_torque, py::arg("thread"), py::arg("mu"), py::arg("load"),
-        py::arg("collar_mu") = 0.0, py::arg("collar_diameter") = 0.0);
-  m.def("efficiency", &efficiency, py::arg("thread"), py::arg("mu"),
-        py::arg("collar_mu") = 0.0, py::arg("collar_diameter") = 0.0,
-        py::arg("backdrive") = false);
-  m.def("is_self_locking", &is_self_locking, py::arg("thread"), py::arg("mu"));
-  m.def("is_drivable", &is_drivable, py::arg("thread"), py::arg("mu"));
-  // Elementwise over an array of mu (the closed-form columns of a sweep: one
-  // call instead of one per value); the thread by value, as py::vectorize
-  // passes its non-vectorized arguments.
-  m.def("efficiency_array",
-        py::vectorize([](Thread thread, double mu) { return efficiency(thread, mu); }),
-        py::arg("thread"), py::arg("mu"),
-        "efficiency(thread, m) [1] for each m of the array mu [1] (forward, no collar); "
-        "ValueError for a negative or non-finite m.");
-  m.def("preloaded_efficiency_array",
-        py::vectorize([](Thread thread, double mu, double load, double preload) {
-          return model::elements::preloaded_efficiency(
-              thread.lead_angle(), thread.effective_mu(require_nonnegative("mu", mu)),
-              require_nonnegative("load", load), require_nonnegative("preload", preload));
-        }),
-        py::arg("thread"), py::arg("mu"), py::arg("load"), py::arg("preload"),
-        "The steady raising efficiency of the rigid drive with a preloaded nut, F tan a / "
-        "[(F + P) tan(a + rho') + P tan(rho' - a)] [1], elementwise over mu [1], load F [N] "
-        "and preload P [N] (docs/physics/preloaded_nut.md); ValueError for a negative or "
-        "non-finite value.");
-  m.def("is_drivable_array",
-        py::vectorize([](Thread thread, double mu) { return is_drivable(thread, mu); }),
-        py::arg("thread"), py::arg("mu"),
-        "is_drivable(thread, m) for each m of the array mu [1]; ValueError for a negative "
-        "or non-finite m.");
+  bind_thread_functions(m);
 }
 
 }  // namespace leadscrew::bindings

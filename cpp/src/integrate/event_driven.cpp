@@ -116,6 +116,31 @@ void EventDrivenRun::restart(HybridSystem& system) {
   attach(system);
 }
 
+// Whether a root the integrator stopped at is an event: its direction is the
+// one the system watches for (a root crossed the other way is not).
+bool EventDrivenRun::counts_as_event(const std::vector<int>& info) {
+  system_->root_directions(directions_.data());
+  for (std::size_t i = 0; i < info.size() && i < directions_.size(); ++i)
+    if (info[i] != 0 && (directions_[i] == 0 || directions_[i] == info[i])) return true;
+  return false;
+}
+
+// The system handles the event at t_ (a new mode, an impact); the integrator
+// restarts there. The count is bounded by max_events.
+void EventDrivenRun::handle_root(SimulationResult& result) {
+  const std::string kind = system_->handle_event(t_, y_.data(), integrator_->root_info());
+  if (!kind.empty()) {
+    result.events.push_back({t_, kind});
+    if (++events_ > options_.max_events)
+      throw SimulationError(t_,
+                            "more than max_events = " + std::to_string(options_.max_events) +
+                                " events",
+                            "events accumulate (Zeno behaviour or chattering); use "
+                            "integrator=\"moreau\" or raise max_events");
+  }
+  integrator_->reinitialize(t_, y_);
+}
+
 void EventDrivenRun::advance(const OutputRequest& output, SimulationResult& result) {
   validate_output_request(output, t_);
   HybridSystem& system = *system_;
@@ -124,12 +149,6 @@ void EventDrivenRun::advance(const OutputRequest& output, SimulationResult& resu
   auto record = [&](double t) {
     system.channels(t, y_.data(), values.data());
     result.append(t, values.data());
-  };
-  auto counts_as_event = [&](const std::vector<int>& info) {
-    system.root_directions(directions_.data());
-    for (std::size_t i = 0; i < info.size() && i < directions_.size(); ++i)
-      if (info[i] != 0 && (directions_[i] == 0 || directions_[i] == info[i])) return true;
-    return false;
   };
 
   const std::vector<double> breaks = breakpoints_inside(system, t_, output.t_end);
@@ -181,17 +200,7 @@ void EventDrivenRun::advance(const OutputRequest& output, SimulationResult& resu
       if (every_step) record(t_);  // the value just before the event
       else
         record_due_eval_points(t_);
-      const std::string kind = system.handle_event(t_, y_.data(), integrator.root_info());
-      if (!kind.empty()) {
-        result.events.push_back({t_, kind});
-        if (++events_ > options_.max_events)
-          throw SimulationError(t_,
-                                "more than max_events = " + std::to_string(options_.max_events) +
-                                    " events",
-                                "events accumulate (Zeno behaviour or chattering); use "
-                                "integrator=\"moreau\" or raise max_events");
-      }
-      integrator.reinitialize(t_, y_);
+      handle_root(result);
       if (every_step) record(t_);  // and just after it
       continue;
     }

@@ -100,6 +100,8 @@ class EventDrivenRun {
  private:
   class Guard;
   void attach(HybridSystem& system);
+  bool counts_as_event(const std::vector<int>& info);
+  void handle_root(SimulationResult& result);
 
   HybridSystem* system_;
   EventDrivenOptions options_;

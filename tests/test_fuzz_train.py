@@ -46,7 +46,13 @@ def test_train_generator_is_deterministic_and_covers_the_elements():
                         ("preload", {"none", "preload"}),
                         ("integrator", {"default", "event_driven", "moreau"})]:
         assert {c["tags"][tag] for c in drawn} == values, tag
-    assert not any(c["hostile"] for c in drawn)
+    # The only hostile input: a required preload_stiffness left out.
+    hostile = [h for c in drawn for h in c["hostile"]]
+    assert hostile and {h["path"] for h in hostile} == {"nut.preload_stiffness"}
+    for c in drawn:
+        if c["hostile"]:
+            assert c["scene"]["concept"] != "rigid" and "backlash" in c["scene"]
+            assert "preload_stiffness" not in c["scene"]["nut"]
     case = drawn[11]
     assert json.dumps(make_train_case(case["seed"]), sort_keys=True) == json.dumps(
         case, sort_keys=True)

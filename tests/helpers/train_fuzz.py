@@ -24,7 +24,10 @@ test's: exactly one of a result that passes its checks, a ``ValueError``
 naming a key or option the case set (a refused combination names one of
 its keys), a ``SimulationError`` or a ``JammingError``; never another
 exception, a crash, a hang or a non-finite number. The cases have no
-hostile values (:mod:`helpers.scene_fuzz` draws those).
+hostile values (:mod:`helpers.scene_fuzz` draws those) but one: a preloaded
+nut with play on a flexible concept left without ``preload_stiffness``,
+which that concept requires there (marked hostile: the refusal answers an
+input that breaks a documented rule, not a missing combination).
 
 A case has the layout of :func:`helpers.scene_fuzz.make_case`'s (``seed``,
 ``scene``, ``options``, ``hostile`` (empty), ``tags``: concept, law,
@@ -108,12 +111,17 @@ def _stops(r, scene: dict) -> str:
     return kind
 
 
-def _preload(r, scene: dict) -> str:
+def _preload(r, scene: dict, hostile: list) -> str:
     if not r.chance(0.3):
         return "none"
     scene["nut"]["preload"] = r.log_uniform(1.0, 2000.0)
     if scene["concept"] != "rigid" and r.chance(0.8):
         scene["nut"]["preload_stiffness"] = r.log_uniform(1e5, 1e9)
+    elif scene["concept"] != "rigid" and "backlash" in scene:
+        # With play on a flexible concept the spring's rate is required (the
+        # spring carries the load beyond lift-off; nut.preload_stiffness's
+        # doc): a scene without it breaks the input's rule, not a combination.
+        hostile.append({"path": "nut.preload_stiffness", "kind": "missing where required"})
     return "preload"
 
 
@@ -160,10 +168,12 @@ def make_train_case(case_seed: int) -> dict:
     tags = {"concept": concept, "drive": scene.get("drive", "screw"), "law": friction["law"],
             "contact": backlash["contact"] if backlash else "none",
             "motor": _motor(r, scene, t_end), "gear": _gear(r, scene),
-            "stops": _stops(r, scene), "preload": _preload(r, scene)}
+            "stops": _stops(r, scene)}
+    hostile: List[dict] = []
+    tags["preload"] = _preload(r, scene, hostile)
     options = _options(r, t_end)
     tags["integrator"] = options.get("integrator") or "default"
-    return {"seed": case_seed, "scene": scene, "options": options, "hostile": [],
+    return {"seed": case_seed, "scene": scene, "options": options, "hostile": hostile,
             "tags": tags}
 
 

@@ -275,6 +275,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // Exact play: a step planned with the flank open whose result ends beyond
   // it takes the flank's contact (moreau_flanks.cpp); true where it did.
   bool exact_flank_closes(StepState& s) const;
+  // The target W_N v+ of an exact flank the step holds closed, its sigma
+  // set (moreau_flanks.cpp): 0, or W_N v_theta = 0 where the start separates.
+  double held_flank_target(const StepState& s) const;
   // The end stops' active sets of the step from its result: true where
   // they changed (the step is solved again).
   bool update_stops(double h, double theta, const CoordinateVector& v0, const Impulses& impulses,

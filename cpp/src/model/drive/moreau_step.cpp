@@ -56,7 +56,8 @@ void DriveMoreau::plan_contacts(StepState& s, double restitution) {
     // velocity step after step, and with friction and the springs the
     // account created energy (up to 1e3 of the work).
     const bool closing = std::abs(s.play0) < half;
-    s.normal_target = closing ? -restitution * model_.normal_direction().dot(s.v0) : 0.0;
+    s.normal_target = closing ? -restitution * model_.normal_direction().dot(s.v0)
+                              : held_flank_target(s);
     s.restituting = s.contact_at_start && closing && restitution > 0.0;
   }
   const elements::ThreadPair& thread = model_.thread_pair();

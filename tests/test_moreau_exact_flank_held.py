@@ -6,7 +6,8 @@ step: energy the account's residual showed created. A flexible nut whose
 stiff axial mode rings at the step's frequency (theta = 1/2 does not damp
 it) met its flank that way step after step: drive-train fuzz case 9717
 (seed 20261127) created 1.5e4 J at dt / 4 of a run whose work was 1 J, and
-its reduction below ran the nut off the screw.
+its reduction below ran the nut off the screw. An exact end stop held the
+same way (DriveMoreau::held_stop_target) created energy too.
 
 The reduced scene: a nut-driven flexible nut at a constant prescribed speed
 against a constant axial force, inside its exact play. Frictionless, the
@@ -74,3 +75,21 @@ def test_the_ringing_nut_converges_to_the_event_driven_run():
               / reference for dt in (6.8e-5, 6.8e-6, 1.7e-6)]
     assert errors[0] > errors[1] > errors[2]
     assert errors[0] < 0.5 and errors[1] < 0.2 and errors[2] < 0.05
+
+
+@pytest.mark.parametrize("speed", [0.03, -0.03])
+def test_no_step_creates_energy_at_a_frictionless_exact_stop(speed):
+    # The same at an exact end stop (DriveMoreau::held_stop_target): the
+    # flexible screw ringing at the step's frequency pressed the load onto
+    # its stop from a separating start; before, one step created 9.7e-7 J,
+    # 2.2e-3 of the run's work. The flexible concept's screw changes its
+    # stiffness with the nut's position within the step (the account's term
+    # S, eq. 4.24), which the nut's travel of 1e-9 m per step keeps below
+    # 1e-7 of the flow (2.4e-8 measured): the bound 1e-6.
+    scene = dict(ringing_nut(0.0), concept="flexible",
+                 end_stops={"contact": "exact", "lower": -2e-6})
+    scene["loads"] = dict(scene["loads"], drive_speed=speed)
+    result = checked(scene, integrator="moreau", dt=6.8e-5)
+    assert result["stop_force"].max() > 0.0  # (the load bears on its stop)
+    flow = np.abs(result["work_axial"]).max()
+    assert -np.diff(result["energy_residual"]).min() <= 1e-6 * flow

@@ -90,9 +90,10 @@ void DriveMoreau::plan_stops(StepState& s) {
     engaged_[k] = stops[k].penetration(u0) > 0.0 || stops[k].penetration(u0 + h * du0) > 0.0;
   for (std::size_t k = 0; k < exact.size(); ++k) {
     stop_active_[k] = exact[k].gap(u0 + h * du0) <= 0.0;
-    stop_target_[k] = exact[k].gap(u0) > 0.0
+    stop_closing_[k] = exact[k].gap(u0) > 0.0;
+    stop_target_[k] = stop_closing_[k]
                           ? stop_share_ * exact[k].side * exact[k].restitution * du0
-                          : 0.0;
+                          : held_stop_target(exact[k].side, du0, s.theta);
   }
   stop_restituting_ = restitution_through_thread();
   if (const elements::TrainFriction* train = model_.train_friction()) {

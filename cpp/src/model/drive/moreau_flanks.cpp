@@ -24,7 +24,8 @@ namespace leadscrew::model::drive {
 // ends beyond a flank, |e0 + h grad e . v_theta| > c / 2, is a step that
 // closes it: taken again with its contact (the LCP's normal impulse pushes
 // or the flank separates, as on a step the prediction closes). Its target is
-// W_N v+ = 0, without Newton's restitution: the step's forces, not the
+// W_N v+ = 0 (W_N v_theta = 0 where the start separates: held_flank_target),
+// without Newton's restitution: the step's forces, not the
 // start's velocity, close the flank (the approach at the start is below the
 // clearance left over h), and so the step ends at most h (1 - theta) e'0
 // short of the flank and holds there while loaded; a restitution there

@@ -51,7 +51,8 @@ void DriveMoreau::plan_contacts(StepState& s, double restitution) {
     }
     // Newton's restitution where this step closes the flank (the play
     // inside the clearance at its start); a flank already closed stays so
-    // (target 0), as in the event-driven scheme an impact happens once:
+    // (target 0, or W_N v_theta = 0 where the start separates:
+    // held_flank_target), as in the event-driven scheme an impact happens once:
     // restitution at every step of a persistent contact flipped its normal
     // velocity step after step, and with friction and the springs the
     // account created energy (up to 1e3 of the work).

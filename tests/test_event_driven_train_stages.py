@@ -19,6 +19,7 @@ from hypothesis import given, settings, strategies as st
 
 import leadscrew as ls
 from helpers.gear_reference import lossy_rotor_torque
+from helpers.train_reference import worm_efficiencies
 from helpers.result_invariants import checked_run as checked
 from helpers.scenes import thesis_scene
 
@@ -204,6 +205,33 @@ def test_a_preloaded_nut_that_lifts_off_runs_with_the_stages_behind_a_prescribed
     result = checked(scene, 0.1, rtol=1e-10)
     assert result.integrator == "event_driven" and result["gear_loss"][-1] > 0.0
     assert result["motor_friction_loss"][-1] == pytest.approx(1e-3 * 20.0 * 0.1, rel=1e-9)
+
+
+@pytest.mark.parametrize("gear", [LOSSY, WORM])
+def test_a_preloaded_nut_without_channels_leaves_the_stages_loss_its_own(gear):
+    # (Fuzz case 334 of the drive-train run at seed 20261127, reduced.) A
+    # preloaded nut without lift-off and with exact Coulomb declares no
+    # channels of its own; its element took the next element's first channel
+    # as its own and wrote the preload there: the stage's gear_loss read the
+    # preload's 150 N as 150 J from t = 0 on, and the account failed
+    # energy_balance by exactly that. At a constant rotor speed the driving
+    # stage loses (1 - eta) of the power the rotor puts in (lossy: eta its
+    # efficiency; worm: eta = tan(gamma) / tan(gamma + rho), rho =
+    # atan(mu / cos(beta_w / 2)) at its default included flank angle of
+    # 40 degrees), from 0.
+    scene = speed_scene(gear, 20.0, -50.0, nut={"preload": 150.0},
+                        friction={"law": "coulomb", "mu": 0.1})
+    result = checked(scene, 0.05, integrator="event_driven")
+    assert result["gear_loss"][0] == 0.0
+    if gear["type"] == "lossy":
+        eta = gear["efficiency"]
+    else:
+        eta, _ = worm_efficiencies(gear["lead_angle"], gear["mu"], math.radians(40.0))
+    late = result.t > 0.01
+    power_in = (result["drive_torque"] * result["omega_drive"])[late]
+    assert np.all(power_in > 0.0)  # (the stage drives)
+    rate = np.diff(result["gear_loss"][late]) / np.diff(result.t[late])
+    np.testing.assert_allclose(rate, (1.0 - eta) * power_in[1:], rtol=1e-7)
 
 
 def test_a_torque_driven_flexible_train_still_names_its_obstacle():

@@ -50,6 +50,7 @@ class ModelElement final : public DriveHybrid::Element {
     (void)t;
     (void)y;
     (void)forces;
+    if (first_channel() < 0) return;  // (it declared none)
     element_.output(state(), mode(), channels.values.data() + first_channel());
   }
   bool forces_from_loads_alone() const override { return element_.forces_from_loads_alone(); }

@@ -275,6 +275,13 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // Exact play: a step planned with the flank open whose result ends beyond
   // it takes the flank's contact (moreau_flanks.cpp); true where it did.
   bool exact_flank_closes(StepState& s) const;
+  // The target W_N v+ of an exact flank the step holds closed, its sigma
+  // set (moreau_flanks.cpp): 0, or W_N v_theta = 0 where the start separates.
+  double held_flank_target(const StepState& s) const;
+  // The same of an exact end stop the step holds (its gap closed at the
+  // start; moreau_stops.cpp): the row's target -side u'+ at the load's
+  // start velocity du0.
+  double held_stop_target(int side, double du0, double theta) const;
   // The end stops' active sets of the step from its result: true where
   // they changed (the step is solved again).
   bool update_stops(double h, double theta, const CoordinateVector& v0, const Impulses& impulses,
@@ -322,6 +329,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   bool engaged_[kMaxStops] = {false, false};
   bool stop_active_[kMaxStops] = {false, false};
   double stop_target_[kMaxStops] = {0.0, 0.0};
+  // Whether the step closes the stop (its gap open at the start: Newton's
+  // target); a held one's target is 0, or held_stop_target's.
+  bool stop_closing_[kMaxStops] = {false, false};
   // The share of the exact stops' restitution the step takes (1; less
   // where a rebound through the frictional thread would create energy:
   // limit_stop_restitution), and whether the step is such a rebound.

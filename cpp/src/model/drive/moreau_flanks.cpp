@@ -24,7 +24,8 @@ namespace leadscrew::model::drive {
 // ends beyond a flank, |e0 + h grad e . v_theta| > c / 2, is a step that
 // closes it: taken again with its contact (the LCP's normal impulse pushes
 // or the flank separates, as on a step the prediction closes). Its target is
-// W_N v+ = 0, without Newton's restitution: the step's forces, not the
+// W_N v+ = 0 (W_N v_theta = 0 where the start separates: held_flank_target),
+// without Newton's restitution: the step's forces, not the
 // start's velocity, close the flank (the approach at the start is below the
 // clearance left over h), and so the step ends at most h (1 - theta) e'0
 // short of the flank and holds there while loaded; a restitution there
@@ -43,9 +44,31 @@ bool DriveMoreau::exact_flank_closes(StepState& s) const {
   if (!(std::abs(end) > half)) return false;
   s.contact_at_start = true;
   s.sigma_fixed = end > 0.0 ? -1 : 1;
-  s.normal_target = 0.0;
+  s.normal_target = held_flank_target(s);
   s.restituting = false;
   return true;
+}
+
+// The target of an exact flank the step holds (not the one Newton's
+// restitution closes): W_N v+ = 0, or, where the flank separates at the
+// step's start (sigma W_N v0 > 0), W_N v_theta = 0. The step's account
+// books the normal impulse's work P_N W_N v_theta (result_checks.md,
+// "Moreau-Jean time stepping": the residual's term -P_N g_N,theta); at
+// W_N v+ = 0 that is P_N (1 - theta) W_N v0, which creates energy where
+// the start separates and the step's forces press the flank (sigma P_N >
+// 0): the play beyond the flank or the nut's stiff mode ringing at the
+// step's frequency (theta = 1/2 does not damp it) turned it back into the
+// flank within the step, and one stuck step of a self-locking flexible nut
+// created 0.49 J, 1.5e4 J over the run at dt / 4 (drive-train fuzz case
+// 9717, seed 20261127). At W_N v_theta = 0 the flank's term is zero (the
+// LCP's complementarity: P_N = 0 or g_N,theta = 0) and the play moves no
+// further into the flank over the step (q1 = q0 + h v_theta); an
+// approaching start keeps W_N v+ = 0, whose term P_N (1 - theta) W_N v0
+// dissipates. (theta = 0: v_theta = v0, which no impulse changes.)
+double DriveMoreau::held_flank_target(const StepState& s) const {
+  const double normal_rate = model_.normal_direction().dot(s.v0);
+  if (!(s.sigma_fixed * normal_rate > 0.0) || !(s.theta > 0.0)) return 0.0;
+  return -(1.0 - s.theta) / s.theta * normal_rate;
 }
 
 double DriveMoreau::flank_impulse(double h, double theta, const CoordinateVector& v0,

@@ -51,12 +51,14 @@ void DriveMoreau::plan_contacts(StepState& s, double restitution) {
     }
     // Newton's restitution where this step closes the flank (the play
     // inside the clearance at its start); a flank already closed stays so
-    // (target 0), as in the event-driven scheme an impact happens once:
+    // (target 0, or W_N v_theta = 0 where the start separates:
+    // held_flank_target), as in the event-driven scheme an impact happens once:
     // restitution at every step of a persistent contact flipped its normal
     // velocity step after step, and with friction and the springs the
     // account created energy (up to 1e3 of the work).
     const bool closing = std::abs(s.play0) < half;
-    s.normal_target = closing ? -restitution * model_.normal_direction().dot(s.v0) : 0.0;
+    s.normal_target = closing ? -restitution * model_.normal_direction().dot(s.v0)
+                              : held_flank_target(s);
     s.restituting = s.contact_at_start && closing && restitution > 0.0;
   }
   const elements::ThreadPair& thread = model_.thread_pair();
@@ -89,9 +91,10 @@ void DriveMoreau::plan_stops(StepState& s) {
     engaged_[k] = stops[k].penetration(u0) > 0.0 || stops[k].penetration(u0 + h * du0) > 0.0;
   for (std::size_t k = 0; k < exact.size(); ++k) {
     stop_active_[k] = exact[k].gap(u0 + h * du0) <= 0.0;
-    stop_target_[k] = exact[k].gap(u0) > 0.0
+    stop_closing_[k] = exact[k].gap(u0) > 0.0;
+    stop_target_[k] = stop_closing_[k]
                           ? stop_share_ * exact[k].side * exact[k].restitution * du0
-                          : 0.0;
+                          : held_stop_target(exact[k].side, du0, s.theta);
   }
   stop_restituting_ = restitution_through_thread();
   if (const elements::TrainFriction* train = model_.train_friction()) {

@@ -39,7 +39,12 @@ class StateLayout {
     int channel = 0;
     for (Declaration& d : declarations_) {
       d.first_state = state;
-      d.first_channel = channel;
+      // (-1 where it declares none: a declaration of a bound alone, as a
+      // preloaded nut's flank_normal without lift-off, numbered as the next
+      // element's first channel, had the nut write its preload into that
+      // element's channel: a worm stage's gear_loss read the preload in
+      // newtons as joules, failing energy_balance by exactly it.)
+      d.first_channel = d.channels.empty() ? -1 : channel;
       state += static_cast<int>(d.states.size());
       channel += static_cast<int>(d.channels.size());
     }

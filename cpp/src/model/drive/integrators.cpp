@@ -124,17 +124,19 @@ const std::vector<std::string>& train_integrators(const elements::TrainFriction&
 // The stages behind a prescribed rotor speed: the event-driven scheme runs
 // every drive it runs without them (`without`: the scene's list without
 // the stages; the stages change the motor's torque alone), Moreau-Jean
-// where it runs the drive and the stages (not LuGre's bristles beside the
-// rotor's contact: check_bristles_on_moreau), and stays the default there,
-// as before the event-driven scheme took them (issue 32: results unchanged;
-// rtol and atol choose the event-driven scheme, _option_rules.py).
+// where it runs the drive, and stays the default there, as before the
+// event-driven scheme took them (issue 32: results unchanged; rtol and atol
+// choose the event-driven scheme, _option_rules.py). LuGre's bristles,
+// which Moreau-Jean took beside the rotor's contact later (the held rows'
+// bristles: moreau_held_bristles.cpp), keep the event-driven scheme their
+// default (the default's results unchanged).
 const std::vector<std::string>& speed_train_integrators(const std::vector<std::string>& without,
                                                         friction::Resolution resolution) {
   static const std::vector<std::string> moreau_first = {"moreau", "event_driven"};
+  static const std::vector<std::string> event_driven_first = {"event_driven", "moreau"};
   static const std::vector<std::string> event_driven = {"event_driven"};
-  const bool moreau = std::find(without.begin(), without.end(), "moreau") != without.end() &&
-                      resolution != friction::Resolution::bristle;
-  return moreau ? moreau_first : event_driven;
+  if (std::find(without.begin(), without.end(), "moreau") == without.end()) return event_driven;
+  return resolution == friction::Resolution::bristle ? event_driven_first : moreau_first;
 }
 
 }  // namespace
@@ -236,37 +238,6 @@ void check_preload_integrator(const DriveModel& model, const std::string& integr
 }
 
 }  // namespace
-
-// LuGre on Moreau-Jean where the step's solve holds the slip by a row of
-// its own (an exact end stop that holds the load, the train's rotor
-// contact: the motor's friction, a lossy or worm stage): the bristles'
-// force at the held slip is a function of their state, which those rows do
-// not take yet (they book the friction the set-valued rule gives, 0 or the
-// cone's), so their rows reported a friction off LuGre's law (six of 10,000
-// drive trains: 57 N where the law gives it, 0 reported). Refused until the
-// rows take the law's force.
-void check_bristles_on_moreau(const DriveModel& model, const std::string& integrator) {
-  if (integrator != "moreau" || model.law().resolution() != friction::Resolution::bristle) return;
-  const DriveParameters& p = model.parameters();
-  std::string with;
-  if (const elements::TrainFriction* train = model.train_friction())
-    with = train->stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-                        : "motor.friction_torque = " + format_value(p.motor_friction_torque);
-  else if (!model.elements().exact_stops.empty() &&
-           (p.concept == Concept::rigid ||
-            (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut)))
-    // (where the load is rigid in the thread: the stop holds the slip)
-    with = "end_stops.contact = \"exact\" on concept = \"" + concept_name(p.concept) +
-           "\" and drive = \"" + drive_name(p.drive) + "\"";
-  if (with.empty()) return;
-  throw InvalidArgument(
-      "friction.law = \"lugre\" is invalid with " + with +
-      " on Moreau-Jean (integrator = \"moreau\"): the step's rows that hold the slip (an exact "
-      "stop holding the load, the rotor's friction contact) do not take the bristles' force yet; "
-      "use friction.law = \"arctan_velocity\" or \"coulomb\", or " +
-      (model.train_friction() ? "gear.type = \"ideal\" and motor.friction_torque = 0"
-                              : "end_stops.contact = \"penalty\""));
-}
 
 namespace {
 
@@ -374,7 +345,6 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   // The elements' own reasons first (the list below leaves them out).
   check_preload_integrator(model, integrator);
   check_train_integrator(model, integrator);
-  check_bristles_on_moreau(model, integrator);
   drive::check_transverse_slip(model, integrator, options.output.t_end);
   check_integrator_takes_scene(model, integrator, allowed);
   require_nonnegative("bounce_threshold", options.bounce_threshold);

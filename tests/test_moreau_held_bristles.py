@@ -1,7 +1,7 @@
 """LuGre's bristles on Moreau-Jean where a row of the step holds the slip
 (issue 32, "fill the matrix"; docs/physics/end_stops.md, "LuGre at a closed
-stop"; docs/physics/gear.md, "The smooth thread laws and a prescribed rotor
-speed"): an exact stop holding the rigid drive and the train's rotor
+stop"; docs/physics/gear.md, "LuGre's bristles beside the rotor's
+contact"): an exact stop holding the rigid drive and the train's rotor
 contact. Held, the bristles keep their deflection z and their force
 sigma0 z |N|' is part of the balance the rows solve: a drive torque M
 pressing the rigid drive into its stop after a slide (z = mu / sigma0, the
@@ -175,3 +175,4 @@ def test_behind_a_prescribed_speed_moreau_jean_converges_to_the_event_driven_los
                   - exact["gear_loss"][-1]) for dt in dts]
     assert np.polyfit(np.log(dts), np.log(errors), 1)[0] > 0.9, errors
     assert errors[-1] < 1e-3 * exact["gear_loss"][-1]
+

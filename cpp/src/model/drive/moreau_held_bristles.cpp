@@ -1,7 +1,9 @@
 // DriveMoreau (moreau.hpp): LuGre's bristles where an exact end stop's row
 // and the thread's fix every velocity of the Moreau-Jean step (the rigid
-// drive at its stop, a nut-driven flexible nut's load on its stop;
-// docs/physics/end_stops.md, "LuGre at a closed stop").
+// drive at its stop, a nut-driven flexible nut's load on its stop, without
+// play: exact play there is refused with the smooth laws,
+// elements/end_stops.cpp; docs/physics/end_stops.md, "LuGre at a closed
+// stop").
 //
 // With every velocity fixed the thread's slip gamma+ = c is the rows' (0
 // where the stop holds, Newton's rebound's slip where it throws the load
@@ -82,8 +84,12 @@ bool DriveMoreau::stop_holds_bristles(double h, int sigma_fixed, const Impulses&
     double c = attempt == 0 ? tangent.dot(without.velocity) : 0.0;
     const bool held = std::abs(c) <= noise || targets_zero;
     if (held) c = 0.0;  // (its round-off: z+ = z0 exactly)
-    const double friction = held_friction(smooth_coefficient(c, h), viscous * c, alpha, beta,
-                                          sigma_fixed);
+    const double kappa = smooth_coefficient(c, h);
+    // (A rebound through a thread self-locking at the held rows, |kappa
+    // alpha| >= 1, is not taken: the stop's target 0, as stop_holds'.)
+    const double friction = held || std::abs(kappa * alpha) < 1.0
+                                ? held_friction(kappa, viscous * c, alpha, beta, sigma_fixed)
+                                : std::numeric_limits<double>::quiet_NaN();
     if (std::isnan(friction)) {
       if (held) return false;
       for (int k = 0; k < kMaxStops; ++k)
@@ -122,11 +128,12 @@ DriveMoreau::Impulses DriveMoreau::bristles_at_held_stop(
   // step is consistent.)
   for (std::size_t k = 0; k < exact.size(); ++k)
     if (let_go[k] && exact[k].side * impulses.velocity[exact[k].coordinate] > 0.0)
-      throw JammingError(t, "no friction impulse of LuGre's bristles agrees with the thread's "
-                            "normal impulse where the exact end stop holds the load, and the "
-                            "step without the stop runs into it (dt = " + format_value(h) +
-                                " s); " + dynamics_.jamming_report(),
-                         "reduce the friction (LuGre's sigma0, sigma1) or the lead angle");
+      throw JammingError(t, "no friction impulse of friction.law = \"" + p_.friction +
+                                "\" agrees with the thread's normal impulse where the exact "
+                                "end stop holds the load, and the step without the stop runs "
+                                "into it (dt = " + format_value(h) + " s); " +
+                                dynamics_.jamming_report(),
+                         "reduce the friction or the lead angle");
   return impulses;
 }
 

@@ -204,7 +204,7 @@ def test_schema_says_which_schemes_run_the_trains_friction_stages():
         assert ("With a torque (loads.drive_torque) or a DC motor Moreau-Jean (integrator = "
                 "'moreau') runs them on every concept and play with 'coulomb', 'stribeck', "
                 "'arctan_velocity' and 'lugre' on the thread (a preloaded nut also lifting "
-                "off with 'coulomb'), the event-driven "
+                "off with 'coulomb' or 'stribeck' without viscous), the event-driven "
                 "scheme on the rigid concept without play with friction.law = 'coulomb' "
                 "(mu_static too) outside the thread's Painleve regime and without a load spring "
                 "or 'arctan_velocity', and on the flexible concepts and penalty play ('bistop', "

@@ -20,9 +20,10 @@ namespace {
 
 // The integrators that fit the friction law `friction` on a thread pair with
 // exact flanks, or penalty flanks or no play (the same list); a preloaded nut
-// (exact Coulomb) runs on the event-driven scheme and, without lift-off, on
-// Moreau-Jean (moreau_preload.cpp; its lift-off, half B's own flank beside
-// the penalty flank, has no velocity-level step yet). End stops run on every
+// runs on the event-driven scheme and on Moreau-Jean (moreau_preload.cpp;
+// its lift-off, half B's own flank beside the penalty flank, with Coulomb
+// friction, exact or on Stribeck's curve, without a viscous term:
+// moreau_lift_off.cpp, check_preload_integrator). End stops run on every
 // scheme the thread pair admits (Moreau-Jean: moreau.hpp).
 const std::vector<std::string>& integrators_for(const std::string& friction,
                                                 friction::Resolution resolution, bool exact_play,
@@ -55,14 +56,15 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
     return names;
   }();
   const friction::LawType& type = friction::law_type(friction);
-  // A preloaded nut: exact Coulomb on the event-driven scheme and Moreau-
-  // Jean, Stribeck's curve on the event-driven scheme, the smooth laws on
-  // the event-driven scheme, the ODE methods (their driver takes the halves:
-  // drive_dynamics.cpp) and Moreau-Jean (moreau_smooth_friction.cpp); with
-  // lift-off the event-driven scheme (and the ODE methods: smooth laws).
+  // A preloaded nut: the set-valued laws on the event-driven scheme and
+  // Moreau-Jean, the smooth laws on the event-driven scheme, the ODE
+  // methods (their driver takes the halves: drive_dynamics.cpp) and
+  // Moreau-Jean (moreau_smooth_friction.cpp); with lift-off the smooth laws
+  // on the event-driven scheme and the ODE methods.
   if (preloaded) {
-    const bool coulomb = type.time_stepping && friction == "coulomb";
-    if (lift_off) return coulomb ? with_moreau : type.time_stepping ? event_driven_only : smooth;
+    // (lift-off: the set-valued laws, exact Coulomb and Stribeck's curve
+    // without a viscous term, on Moreau-Jean: check_preload_integrator)
+    if (lift_off) return type.time_stepping ? with_moreau : smooth;
     if (type.time_stepping) return with_moreau;  // (Stribeck's too: moreau_preload.cpp)
     return resolution != friction::Resolution::acceleration ? smooth_with_moreau : smooth;
   }
@@ -207,27 +209,28 @@ void check_theta_stable_with_springs(const DriveModel& model,
       "(below 0.5 their modes grow from step to step)");
 }
 
-// A preloaded nut runs on the event-driven scheme; with exact Coulomb and
-// without lift-off on Moreau-Jean (moreau_preload.cpp); with a smooth law
-// on the ODE methods too (drive_dynamics.cpp): the element's own reason
-// first (the list of integrators leaves it out).
+// A preloaded nut runs on the event-driven scheme; with a set-valued law on
+// Moreau-Jean (moreau_preload.cpp; lifting off without a viscous term:
+// moreau_lift_off.cpp); with a smooth law on the ODE methods too
+// (drive_dynamics.cpp): the element's own reason first (the list of
+// integrators leaves it out).
 void check_preload_integrator(const DriveModel& model, const std::string& integrator) {
   const DriveParameters& p = model.parameters();
   const elements::PreloadedNut* nut = model.preloaded_nut();
   if (!nut || integrator == "event_driven") return;
   const friction::Law& law = model.law();
   const bool set_valued = law.resolution() == friction::Resolution::set_valued;
-  const bool coulomb = set_valued && law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
-                       law.slip_mu(1.0) == law.mu();
   if (integrator != "moreau" && !set_valued) return;  // (the law's own list decides)
-  if (integrator == "moreau" && nut->lift_off && !coulomb)
+  if (integrator == "moreau" && nut->lift_off && !(set_valued && law.viscous() == 0.0))
     throw InvalidArgument(
         "integrator = \"moreau\" is invalid with nut.preload = " + format_value(p.nut_preload) +
         " N, backlash.contact = \"" + backlash_contact_name(p.backlash) +
-        "\" and friction.law = \"" + p.friction + "\": Moreau-Jean's step takes a preloaded "
-        "nut that lifts off (penalty play on a flexible concept) with exact Coulomb friction "
-        "only (its halves' modes, moreau_lift_off.cpp); the other laws run it on the "
-        "event-driven scheme (integrator = \"event_driven\")");
+        "\" and friction.law = \"" + p.friction + "\"" +
+        (set_valued ? " with friction.viscous = " + format_value(law.viscous()) : "") +
+        ": Moreau-Jean's step takes a preloaded nut that lifts off (penalty play on a "
+        "flexible concept) with Coulomb friction (exact, or on Stribeck's curve) without a "
+        "viscous term only (its halves' modes, moreau_lift_off.cpp); the other laws run it on "
+        "the event-driven scheme (integrator = \"event_driven\")");
   if (integrator == "moreau") return;  // (lift-off with a law but exact Coulomb: above)
   // An ODE method with a set-valued law (its regularization has no halves).
   throw InvalidArgument(

@@ -244,6 +244,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
                             double rotor_target);
   Impulses solve_lift_off_thread(double t, double h, double theta, const CoordinateVector& v0,
                                  double normal_target, double rotor_target, bool& stick);
+  elements::PreloadedNut lift_off_slipping(const CoordinateVector& v0) const;
   bool update_half_b(double h, double theta, const CoordinateVector& v0,
                      const Impulses& impulses);
   // Exact play closed by the preload: SimulationError where half A's normal

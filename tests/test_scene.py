@@ -202,10 +202,9 @@ def test_schema_says_which_schemes_run_the_trains_friction_stages():
         # (Penalty flanks run with the stages on Moreau-Jean now; issue 32:
         # behind a prescribed rotor speed on the event-driven scheme too.)
         assert ("With a torque (loads.drive_torque) or a DC motor Moreau-Jean (integrator = "
-                "'moreau') runs them on every concept and play with 'coulomb', 'stribeck' and "
-                "'arctan_velocity' on the thread ('lugre' only where no row of the step holds "
-                "the slip: no exact stop holding the load, no rotor friction contact; a "
-                "preloaded nut also lifting off with 'coulomb'), the event-driven "
+                "'moreau') runs them on every concept and play with 'coulomb', 'stribeck', "
+                "'arctan_velocity' and 'lugre' on the thread (a preloaded nut also lifting "
+                "off with 'coulomb' or 'stribeck' without viscous), the event-driven "
                 "scheme on the rigid concept without play with friction.law = 'coulomb' "
                 "(mu_static too) outside the thread's Painleve regime and without a load spring "
                 "or 'arctan_velocity', and on the flexible concepts and penalty play ('bistop', "

@@ -20,9 +20,10 @@ namespace {
 
 // The integrators that fit the friction law `friction` on a thread pair with
 // exact flanks, or penalty flanks or no play (the same list); a preloaded nut
-// (exact Coulomb) runs on the event-driven scheme and, without lift-off, on
-// Moreau-Jean (moreau_preload.cpp; its lift-off, half B's own flank beside
-// the penalty flank, has no velocity-level step yet). End stops run on every
+// runs on the event-driven scheme and on Moreau-Jean (moreau_preload.cpp;
+// its lift-off, half B's own flank beside the penalty flank, with Coulomb
+// friction, exact or on Stribeck's curve, without a viscous term:
+// moreau_lift_off.cpp, check_preload_integrator). End stops run on every
 // scheme the thread pair admits (Moreau-Jean: moreau.hpp).
 const std::vector<std::string>& integrators_for(const std::string& friction,
                                                 friction::Resolution resolution, bool exact_play,
@@ -55,14 +56,15 @@ const std::vector<std::string>& integrators_for(const std::string& friction,
     return names;
   }();
   const friction::LawType& type = friction::law_type(friction);
-  // A preloaded nut: exact Coulomb on the event-driven scheme and Moreau-
-  // Jean, Stribeck's curve on the event-driven scheme, the smooth laws on
-  // the event-driven scheme, the ODE methods (their driver takes the halves:
-  // drive_dynamics.cpp) and Moreau-Jean (moreau_smooth_friction.cpp); with
-  // lift-off the event-driven scheme (and the ODE methods: smooth laws).
+  // A preloaded nut: the set-valued laws on the event-driven scheme and
+  // Moreau-Jean, the smooth laws on the event-driven scheme, the ODE
+  // methods (their driver takes the halves: drive_dynamics.cpp) and
+  // Moreau-Jean (moreau_smooth_friction.cpp); with lift-off the smooth laws
+  // on the event-driven scheme and the ODE methods.
   if (preloaded) {
-    const bool coulomb = type.time_stepping && friction == "coulomb";
-    if (lift_off) return coulomb ? with_moreau : type.time_stepping ? event_driven_only : smooth;
+    // (lift-off: the set-valued laws, exact Coulomb and Stribeck's curve
+    // without a viscous term, on Moreau-Jean: check_preload_integrator)
+    if (lift_off) return type.time_stepping ? with_moreau : smooth;
     if (type.time_stepping) return with_moreau;  // (Stribeck's too: moreau_preload.cpp)
     return resolution != friction::Resolution::acceleration ? smooth_with_moreau : smooth;
   }
@@ -124,17 +126,19 @@ const std::vector<std::string>& train_integrators(const elements::TrainFriction&
 // The stages behind a prescribed rotor speed: the event-driven scheme runs
 // every drive it runs without them (`without`: the scene's list without
 // the stages; the stages change the motor's torque alone), Moreau-Jean
-// where it runs the drive and the stages (not LuGre's bristles beside the
-// rotor's contact: check_bristles_on_moreau), and stays the default there,
-// as before the event-driven scheme took them (issue 32: results unchanged;
-// rtol and atol choose the event-driven scheme, _option_rules.py).
+// where it runs the drive, and stays the default there, as before the
+// event-driven scheme took them (issue 32: results unchanged; rtol and atol
+// choose the event-driven scheme, _option_rules.py). LuGre's bristles,
+// which Moreau-Jean took beside the rotor's contact later (the held rows'
+// bristles: moreau_held_bristles.cpp), keep the event-driven scheme their
+// default (the default's results unchanged).
 const std::vector<std::string>& speed_train_integrators(const std::vector<std::string>& without,
                                                         friction::Resolution resolution) {
   static const std::vector<std::string> moreau_first = {"moreau", "event_driven"};
+  static const std::vector<std::string> event_driven_first = {"event_driven", "moreau"};
   static const std::vector<std::string> event_driven = {"event_driven"};
-  const bool moreau = std::find(without.begin(), without.end(), "moreau") != without.end() &&
-                      resolution != friction::Resolution::bristle;
-  return moreau ? moreau_first : event_driven;
+  if (std::find(without.begin(), without.end(), "moreau") == without.end()) return event_driven;
+  return resolution == friction::Resolution::bristle ? event_driven_first : moreau_first;
 }
 
 }  // namespace
@@ -205,27 +209,28 @@ void check_theta_stable_with_springs(const DriveModel& model,
       "(below 0.5 their modes grow from step to step)");
 }
 
-// A preloaded nut runs on the event-driven scheme; with exact Coulomb and
-// without lift-off on Moreau-Jean (moreau_preload.cpp); with a smooth law
-// on the ODE methods too (drive_dynamics.cpp): the element's own reason
-// first (the list of integrators leaves it out).
+// A preloaded nut runs on the event-driven scheme; with a set-valued law on
+// Moreau-Jean (moreau_preload.cpp; lifting off without a viscous term:
+// moreau_lift_off.cpp); with a smooth law on the ODE methods too
+// (drive_dynamics.cpp): the element's own reason first (the list of
+// integrators leaves it out).
 void check_preload_integrator(const DriveModel& model, const std::string& integrator) {
   const DriveParameters& p = model.parameters();
   const elements::PreloadedNut* nut = model.preloaded_nut();
   if (!nut || integrator == "event_driven") return;
   const friction::Law& law = model.law();
   const bool set_valued = law.resolution() == friction::Resolution::set_valued;
-  const bool coulomb = set_valued && law.viscous() == 0.0 && law.slip_mu(0.0) == law.mu() &&
-                       law.slip_mu(1.0) == law.mu();
   if (integrator != "moreau" && !set_valued) return;  // (the law's own list decides)
-  if (integrator == "moreau" && nut->lift_off && !coulomb)
+  if (integrator == "moreau" && nut->lift_off && !(set_valued && law.viscous() == 0.0))
     throw InvalidArgument(
         "integrator = \"moreau\" is invalid with nut.preload = " + format_value(p.nut_preload) +
         " N, backlash.contact = \"" + backlash_contact_name(p.backlash) +
-        "\" and friction.law = \"" + p.friction + "\": Moreau-Jean's step takes a preloaded "
-        "nut that lifts off (penalty play on a flexible concept) with exact Coulomb friction "
-        "only (its halves' modes, moreau_lift_off.cpp); the other laws run it on the "
-        "event-driven scheme (integrator = \"event_driven\")");
+        "\" and friction.law = \"" + p.friction + "\"" +
+        (set_valued ? " with friction.viscous = " + format_value(law.viscous()) : "") +
+        ": Moreau-Jean's step takes a preloaded nut that lifts off (penalty play on a "
+        "flexible concept) with Coulomb friction (exact, or on Stribeck's curve) without a "
+        "viscous term only (its halves' modes, moreau_lift_off.cpp); the other laws run it on "
+        "the event-driven scheme (integrator = \"event_driven\")");
   if (integrator == "moreau") return;  // (lift-off with a law but exact Coulomb: above)
   // An ODE method with a set-valued law (its regularization has no halves).
   throw InvalidArgument(
@@ -236,37 +241,6 @@ void check_preload_integrator(const DriveModel& model, const std::string& integr
 }
 
 }  // namespace
-
-// LuGre on Moreau-Jean where the step's solve holds the slip by a row of
-// its own (an exact end stop that holds the load, the train's rotor
-// contact: the motor's friction, a lossy or worm stage): the bristles'
-// force at the held slip is a function of their state, which those rows do
-// not take yet (they book the friction the set-valued rule gives, 0 or the
-// cone's), so their rows reported a friction off LuGre's law (six of 10,000
-// drive trains: 57 N where the law gives it, 0 reported). Refused until the
-// rows take the law's force.
-void check_bristles_on_moreau(const DriveModel& model, const std::string& integrator) {
-  if (integrator != "moreau" || model.law().resolution() != friction::Resolution::bristle) return;
-  const DriveParameters& p = model.parameters();
-  std::string with;
-  if (const elements::TrainFriction* train = model.train_friction())
-    with = train->stage ? "gear.type = \"" + gear_type_name(p.gear) + "\""
-                        : "motor.friction_torque = " + format_value(p.motor_friction_torque);
-  else if (!model.elements().exact_stops.empty() &&
-           (p.concept == Concept::rigid ||
-            (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut)))
-    // (where the load is rigid in the thread: the stop holds the slip)
-    with = "end_stops.contact = \"exact\" on concept = \"" + concept_name(p.concept) +
-           "\" and drive = \"" + drive_name(p.drive) + "\"";
-  if (with.empty()) return;
-  throw InvalidArgument(
-      "friction.law = \"lugre\" is invalid with " + with +
-      " on Moreau-Jean (integrator = \"moreau\"): the step's rows that hold the slip (an exact "
-      "stop holding the load, the rotor's friction contact) do not take the bristles' force yet; "
-      "use friction.law = \"arctan_velocity\" or \"coulomb\", or " +
-      (model.train_friction() ? "gear.type = \"ideal\" and motor.friction_torque = 0"
-                              : "end_stops.contact = \"penalty\""));
-}
 
 namespace {
 
@@ -374,7 +348,6 @@ void check_simulation_options(const DriveModel& model, const DriveSimulationOpti
   // The elements' own reasons first (the list below leaves them out).
   check_preload_integrator(model, integrator);
   check_train_integrator(model, integrator);
-  check_bristles_on_moreau(model, integrator);
   drive::check_transverse_slip(model, integrator, options.output.t_end);
   check_integrator_takes_scene(model, integrator, allowed);
   require_nonnegative("bounce_threshold", options.bounce_threshold);

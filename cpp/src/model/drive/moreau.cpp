@@ -277,8 +277,12 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                              "both fix the drive's one degree of freedom, an infinite impulse",
                           "use a drive torque or a DC motor, end_stops.contact = \"penalty\" "
                           "(its stiffness bounds the force), or a flexible concept");
-  if (row && stops_fix_every_velocity())
-    return stop_holds(without, unit, normal_target, rotor_target, stick);
+  if (row && stops_fix_every_velocity()) {
+    if (dynamics_.law().resolution() != friction::Resolution::bristle)
+      return stop_holds(without, unit, normal_target, rotor_target, stick);
+    return bristles_at_held_stop(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
+                                 without, unit, contact, stick);
+  }
   const double c = model_.tangent_direction().dot(without.velocity);
   const double d = model_.tangent_direction().dot(unit.velocity) - c;
   const double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);

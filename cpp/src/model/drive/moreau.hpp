@@ -160,6 +160,19 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
                               double excess, double play_rate);
   Impulses stop_holds(const Impulses& without, const Impulses& unit, double normal_target,
                       double rotor_target, bool& stick);
+  // LuGre's bristles at an exact stop whose row and the thread's fix every
+  // velocity (moreau_held_bristles.cpp): the law's friction at the rows'
+  // slip and the bristles' implicit Euler step, the stop carrying the rest;
+  // false where no friction agrees with the rows (the stop lets go).
+  bool stop_holds_bristles(double h, int sigma_fixed, const Impulses& without,
+                           const Impulses& unit, double normal_target, double rotor_target,
+                           Impulses& impulses, bool& stick);
+  // The step there: stop_holds_bristles, else the step without the stops
+  // (solve_thread), a JammingError where that step moves into a stop.
+  Impulses bristles_at_held_stop(double t, double h, double theta, const CoordinateVector& v0,
+                                 double normal_target, double rotor_target, int sigma_fixed,
+                                 const Impulses& without, const Impulses& unit, bool& contact,
+                                 bool& stick);
   Impulses solve_thread(double t, double h, double theta, const CoordinateVector& v0,
                         double normal_target, double rotor_target, int sigma_fixed,
                         bool& contact, bool& stick);
@@ -231,6 +244,7 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
                             double rotor_target);
   Impulses solve_lift_off_thread(double t, double h, double theta, const CoordinateVector& v0,
                                  double normal_target, double rotor_target, bool& stick);
+  elements::PreloadedNut lift_off_slipping(const CoordinateVector& v0) const;
   bool update_half_b(double h, double theta, const CoordinateVector& v0,
                      const Impulses& impulses);
   // Exact play closed by the preload: SimulationError where half A's normal

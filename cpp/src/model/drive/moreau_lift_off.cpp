@@ -3,7 +3,8 @@
 // preloaded_nut.md, "Lift-off on Moreau-Jean"): half A is the nut body on
 // its penalty flank (moreau_flanks.cpp), half B a massless half on its own
 // rigid flank, sprung against the body by S(e) = max(0, P + k_p (closing -
-// side e)), exact Coulomb friction on both (one friction mode of the slip).
+// side e)), Coulomb friction on both (one friction mode of the slip; with
+// Stribeck's curve its coefficient at the step's start speed).
 //
 // Half B's force over the step is the event-driven scheme's at the spring's
 // step value S: in stick side S grad(e) (its friction in the stick
@@ -25,6 +26,7 @@
 
 #include "leadscrew/core/errors.hpp"
 #include "leadscrew/core/validate.hpp"
+#include "leadscrew/friction/law.hpp"
 #include "moreau.hpp"
 
 namespace leadscrew::model::drive {
@@ -100,14 +102,18 @@ DriveMoreau::Impulses DriveMoreau::solve_lift_off_thread(double t, double h, dou
                                                          const CoordinateVector& v0,
                                                          double normal_target,
                                                          double rotor_target, bool& stick) {
-  const elements::PreloadedNut& nut = *model_.preloaded_nut();
+  // Stribeck's curve (without a viscous term: check_preload_integrator):
+  // the halves slip at the curve's coefficient at the step's start speed,
+  // explicit, as the nut without lift-off (moreau_preload.cpp) and the
+  // plain thread; they stick at mu_static'.
+  const elements::PreloadedNut nut = lift_off_slipping(v0);
   auto maps = [&](int m) {
     return lift_off_maps(nut, m, h, theta, v0, normal_target, rotor_target);
   };
   using Maps = LiftOffMaps;
   // Stick at the halves' cone at mu_static' (the two-step test's first):
   // gamma+ = 0 at P = -c / d inside both edges at the step's impulses.
-  const elements::PreloadedNut rest = nut.sticking();
+  const elements::PreloadedNut rest = model_.preloaded_nut()->sticking();
   auto sticks = [&](const Maps& k, double& p) {
     if (!(k.d > 0.0)) return false;
     p = -k.c / k.d;
@@ -164,6 +170,16 @@ DriveMoreau::Impulses DriveMoreau::solve_lift_off_thread(double t, double h, dou
   half_b_spring_ = spring;
   stick = stuck;
   return impulses;
+}
+
+// The nut's element in slip over the step from v0: the model's, or with
+// Stribeck's curve its coefficient at the start's slip speed.
+elements::PreloadedNut DriveMoreau::lift_off_slipping(const CoordinateVector& v0) const {
+  const elements::PreloadedNut& nut = *model_.preloaded_nut();
+  const friction::Law& law = dynamics_.law();
+  if (law.slip_mu(0.0) == law.mu() && law.slip_mu(1.0) == law.mu()) return nut;
+  return nut.with_mu(law.slip_mu(std::abs(model_.tangent_direction().dot(v0))) *
+                     model_.flank_factor());
 }
 
 // Half B's spring linearised again at the step's end (Newton, with the

@@ -150,6 +150,20 @@ DriveMoreau::Impulses DriveMoreau::solve_smooth_thread(double t, double h, doubl
   }
   // A flank whose normal impulse would pull separates (no friction).
   if (sigma_fixed != 0 && !(sigma_fixed * (beta + alpha * friction) > 0.0)) {
+    // (A penalty flank whose force pushes without the friction is no
+    // separation: its force is the step's end state's, which then pushes
+    // with no friction booked beside it. The law's friction, its viscous
+    // term on wherever the flank carries a force, pulls the flank open;
+    // without it the flank pushes: no impulse of the step is consistent,
+    // as the Coulomb step's (coulomb_step_impulses). solve_train tries the
+    // rotor's next mode.)
+    if (!row && sigma_fixed * beta > 0.0)
+      throw SimulationError(t, "no friction impulse of the Moreau-Jean step is consistent with "
+                               "the penalty flank: friction.law = \"" + p_.friction +
+                               "\" at the step's end slip pulls the flank open, without it the "
+                               "flank pushes (its normal impulse " + format_value(beta) +
+                               " N s, dt = " + format_value(h) + " s)",
+                            "shorten dt, or lower the law's viscous coefficient");
     contact = false;
     return Impulses{};
   }

@@ -83,6 +83,12 @@ CASES = {
             return scene, 1.0, {"integrator": "cvode_bdf", "rtol": 1e-6, "atol": 1e-6,
                                 "t_eval": [i / 200 for i in range(201)]}
     """,
+    "position holding on flexible_nut, Moreau-Jean (dt 3e-5, 0.5 s)": """
+        import leadscrew as ls
+        def case():
+            scene = ls.scenes.load("position_holding").replace(concept="flexible_nut")
+            return scene, 0.5, {"integrator": "moreau", "dt": 3e-5, "t_eval": [0.0, 0.5]}
+    """,
 }
 
 WORKER = textwrap.dedent("""

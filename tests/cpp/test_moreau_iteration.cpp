@@ -1,11 +1,14 @@
 // Moreau-Jean's iteration matrix (cpp/src/model/drive/moreau_iteration.hpp):
 // W = W0 + s g g^T solved on W0's kept factors by Sherman-Morrison, on
-// random symmetric positive definite W0 of 2 to 6 coordinates, s up to 1e4
+// random symmetric positive definite W0 of 1 to 6 coordinates, s up to 1e4
 // times W0's norm (the flank dominating W): the residual of W y = x within
 // 1e-12 of |W| |y| + |x| (the Cholesky factorization of W itself reaches
 // about 1e-15; the worst case here 1.5e-13); with s = 0 the solves are
-// W0's bit for bit; W0 is factorized again only where it changed. Prints `PASS <label> (<count>)` per check, or `FAIL <label>:
-// ...` and exits 1.
+// W0's bit for bit, with s > 0 bit for bit the Eigen expressions the
+// fixed-size kernels replaced (LLT's solves, y -= z (scale g^T y)); W0 is
+// factorized again only where it changed. The step's dot products
+// (lane_dot, lane_abs_dot, theta_dot) are Eigen's bit for bit. Prints
+// `PASS <label> (<count>)` per check, or `FAIL <label>: ...` and exits 1.
 #include <Eigen/Cholesky>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +18,9 @@
 
 using leadscrew::model::CoordinateVector;
 using leadscrew::model::drive::IterationMatrix;
+using leadscrew::model::drive::lane_abs_dot;
+using leadscrew::model::drive::lane_dot;
+using leadscrew::model::drive::theta_dot;
 using Square = IterationMatrix::Square;
 
 namespace {
@@ -37,9 +43,9 @@ int main() {
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   int cases = 0;
   double worst_rank_one = 0.0, worst_plain = 0.0;
-  bool kept = true, refactorized = true;
-  for (int trial = 0; trial < 500; ++trial) {
-    const int n = 2 + trial % 5;
+  bool kept = true, refactorized = true, eigen_order = true;
+  for (int trial = 0; trial < 600; ++trial) {
+    const int n = 1 + trial % 6;
     Square a(n, n);
     for (int i = 0; i < n; ++i)
       for (int j = 0; j < n; ++j) a(i, j) = uniform(random);
@@ -69,6 +75,15 @@ int main() {
       worst_plain = std::max(worst_plain, same ? 0.0 : (ours - theirs).norm());
     } else {
       worst_rank_one = std::max(worst_rank_one, residual);
+      // (the expressions before the fixed-size kernels, on Eigen's LLT of W0)
+      const Eigen::LLT<Square> base(w0);
+      const CoordinateVector z = base.solve(CoordinateVector(g));
+      const double scale = s / (1.0 + s * CoordinateVector(g).dot(z));
+      CoordinateVector y = base.solve(x), tangent_w = base.solve(CoordinateVector(t));
+      const CoordinateVector gc = g;
+      y.noalias() -= z * (scale * (gc.transpose() * y));
+      tangent_w -= (scale * gc.dot(tangent_w)) * z;
+      eigen_order = eigen_order && y == ours && tangent_w == tangent;
     }
     // The same W0 again: no factorization; another s: none either.
     iteration.set(w0, 0.5 * s);
@@ -80,10 +95,28 @@ int main() {
     refactorized = refactorized && iteration.factorizations() == 2;
     ++cases;
   }
+  // The dot products against Eigen's, n = 1 to 6, entries of mixed scales.
+  int dots = 0;
+  bool dots_same = true;
+  for (int trial = 0; trial < 6000; ++trial) {
+    const int n = 1 + trial % 6;
+    Eigen::VectorXd g(n);
+    CoordinateVector v0(n), v1(n);
+    for (int i = 0; i < n; ++i)
+      g[i] = uniform(random), v0[i] = std::pow(10.0, 6.0 * uniform(random)) * uniform(random),
+      v1[i] = uniform(random);
+    const double theta = trial % 2 == 0 ? 0.5 : 0.5 + 0.5 * std::abs(uniform(random));
+    dots_same = dots_same && lane_dot(g, v0) == g.dot(v0) &&
+                lane_abs_dot(g, v1) == g.cwiseProduct(v1).cwiseAbs().sum() &&
+                theta_dot(g, v0, v1, theta) == g.dot((1.0 - theta) * v0 + theta * v1);
+    ++dots;
+  }
   report("rank-one solves: residual of W y = x below 1e-12", cases,
          worst_rank_one < 1e-12, worst_rank_one);
   report("without the rank-one term: W0's solves bit for bit", cases, worst_plain == 0.0,
          worst_plain);
+  report("rank-one solves: Eigen's expressions bit for bit", cases, eigen_order, 0.0);
+  report("the step's dot products: Eigen's bit for bit", dots, dots_same, 0.0);
   report("the same W0: its factors kept", cases, kept, 0.0);
   report("W0 changed by an ulp: factorized again", cases, refactorized, 0.0);
   std::printf(failures == 0 ? "OK\n" : "FAILED\n");

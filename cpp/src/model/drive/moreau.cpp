@@ -283,8 +283,8 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
     return bristles_at_held_stop(t, h, theta, v0, normal_target, rotor_target, sigma_fixed,
                                  without, unit, contact, stick);
   }
-  const double c = model_.tangent_direction().dot(without.velocity);
-  const double d = model_.tangent_direction().dot(unit.velocity) - c;
+  const double c = lane_dot(model_.tangent_direction(), without.velocity);
+  const double d = lane_dot(model_.tangent_direction(), unit.velocity) - c;
   const double beta = row ? without.normal : flank_impulse(h, theta, v0, without.velocity);
   const double alpha = (row ? unit.normal : flank_impulse(h, theta, v0, unit.velocity)) - beta;
   const friction::Law& law = dynamics_.law();
@@ -391,9 +391,8 @@ DriveMoreau::SlipPrescription DriveMoreau::slip_prescription(bool row, const Imp
   // a drive at rest, of the loads' velocity increments h f / m, free_.)
   slip.noise =
       64.0 * std::numeric_limits<double>::epsilon() *
-      (model_.tangent_direction().cwiseProduct(without.velocity).cwiseAbs().sum() +
-       (slip.rotor_prescribes ? model_.tangent_direction().cwiseProduct(free_).cwiseAbs().sum()
-                              : 0.0));
+      (lane_abs_dot(model_.tangent_direction(), without.velocity) +
+       (slip.rotor_prescribes ? lane_abs_dot(model_.tangent_direction(), free_) : 0.0));
   slip.motor0 = slip.rotor_prescribes ? without.train : without.rotor;
   slip.motor1 =
       slip.rotor_prescribes ? unit.train - without.train : unit.rotor - without.rotor;
@@ -610,8 +609,16 @@ void DriveMoreau::assemble(double h, double theta, Square& stiffness, Square& da
       stiffness(stops[k].coordinate, stops[k].coordinate) += stops[k].stiffness;
       damping(stops[k].coordinate, stops[k].coordinate) += stops[k].damping;
     }
-  Square iteration = theta * h * damping + theta * theta * h * h * stiffness;
-  iteration.diagonal() += model_.mass();
+  // theta h C + theta^2 h^2 K + M entry by entry, as Eigen's expression
+  // (theta * h * damping + theta * theta * h * h * stiffness, then the
+  // diagonal) rounds it, without its runtime-sized evaluation.
+  const double damping_factor = theta * h, stiffness_factor = theta * theta * h * h;
+  Square iteration(n, n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      iteration(i, j) = damping_factor * damping(i, j) + stiffness_factor * stiffness(i, j);
+  const Eigen::VectorXd& mass = model_.mass();
+  for (int i = 0; i < n; ++i) iteration(i, i) += mass[i];
   if (elements && !model_.elements().elements.empty()) iteration.diagonal() -= element_slope_;
   iteration_.set(iteration, flank_coefficient(h, theta));
 }

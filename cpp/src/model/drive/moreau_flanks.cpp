@@ -74,7 +74,7 @@ double DriveMoreau::held_flank_target(const StepState& s) const {
 double DriveMoreau::flank_impulse(double h, double theta, const CoordinateVector& v0,
                                   const CoordinateVector& v1) const {
   const elements::ThreadPair& thread = model_.thread_pair();
-  const double rate = thread.play_gradient().dot((1.0 - theta) * v0 + theta * v1);
+  const double rate = theta_dot(thread.play_gradient(), v0, v1, theta);
   // (generalized force -F grad e = (-F / cos(a)) W_N)
   return -h * flank_.force(flank_.e0 + h * rate, rate) / thread.cos_lead();
 }
@@ -86,7 +86,7 @@ double DriveMoreau::flank_impulse(double h, double theta, const CoordinateVector
 bool DriveMoreau::update_flank(double h, double theta, const CoordinateVector& v0,
                                const Impulses& impulses) {
   const elements::ThreadPair& thread = model_.thread_pair();
-  const double rate = thread.play_gradient().dot((1.0 - theta) * v0 + theta * impulses.velocity);
+  const double rate = theta_dot(thread.play_gradient(), v0, impulses.velocity, theta);
   const double end = flank_.e0 + h * rate;
   if (flank_.released) {
     // (Without a force the step runs into a flank, U(e1) > U(e0): its

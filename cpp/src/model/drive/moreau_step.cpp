@@ -136,7 +136,7 @@ void DriveMoreau::solve_step(StepState& s) {
     CoordinateVector rhs = rhs_base;
     // A penalty flank's force over the step, its part at v+ in W (assemble).
     if (penalty && flank_.active()) {
-      const double g0 = thread.play_gradient().dot(v0);
+      const double g0 = lane_dot(thread.play_gradient(), v0);
       rhs -= h *
              (flank_.secant + flank_.slope * (flank_.e0 + h * (1.0 - theta) * g0 - flank_.e1k) +
               flank_.damping * (1.0 - theta) * g0) *
@@ -241,7 +241,7 @@ void DriveMoreau::book_step(StepState& s, double* y_next) {
   }
   energy[kWorkAxial] +=
       p_.axial_force(t + theta * h) * (q_[model_.load()] - q0[model_.load()]);
-  const double slip = model_.tangent_direction().dot(v_);
+  const double slip = lane_dot(model_.tangent_direction(), v_);
   // A sticking step (the LCP's stick basis) ends at zero slip exactly; its
   // computed slip is the round-off of terms of h f / m (1e-17 m/s against
   // 4 m/s of a stuck drive's step), which would book a round-off loss of
@@ -249,7 +249,7 @@ void DriveMoreau::book_step(StepState& s, double* y_next) {
   if (!(s.contact && s.stick)) {
     energy[kFrictionLoss] += -s.impulses.friction * slip;
     // (ResultCheckSpec::step_friction_excess)
-    const double slip0 = model_.tangent_direction().dot(s.v0);
+    const double slip0 = lane_dot(model_.tangent_direction(), s.v0);
     friction_excess_ += std::max(0.0, -(1.0 - theta) * s.impulses.friction * (slip - slip0));
     // A lift-off nut's half B slips on its own flank at gamma_T - sin(a) e'
     // (moreau_lift_off.cpp): its friction's loss on that slip.
@@ -267,7 +267,7 @@ void DriveMoreau::book_step(StepState& s, double* y_next) {
     book_transverse(h, y, y_next, s.contact ? s.impulses.friction : 0.0,
                     s.contact ? s.impulses.normal : 0.0, slip);
   play_rate_ = std::max({play_rate_, std::abs(s.play_rate0),
-                         std::abs(model_.play_gradient().dot(v_))});
+                         std::abs(lane_dot(model_.play_gradient(), v_))});
   book_losses(s, v_theta, y_next);
 }
 
@@ -296,7 +296,7 @@ void DriveMoreau::book_losses(StepState& s, const CoordinateVector& v_theta, dou
   const elements::ThreadPair& thread = model_.thread_pair();
   if (thread.penalty())
     energy[kContactLoss] += flank_.loss(thread, thread.play(q_),
-                                        thread.play_gradient().dot(v_theta), h);
+                                        lane_dot(thread.play_gradient(), v_theta), h);
   if (model_.train_friction() == nullptr) return;
   // The rotor's friction impulse Q = P_c + Lambda on -e_rotor: in a slip
   // the motor's friction P_c = s B and the stage's loss Lambda = Q - P_c

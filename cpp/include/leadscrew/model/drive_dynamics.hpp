@@ -315,7 +315,10 @@ class DriveDynamics {
   // the slip) at a flank normal force N and helix slip gamma [N].
   // With LuGre's bristles -(|N|' (sigma0 z_w + sigma1 z_w') + viscous w),
   // z_w' at the state's slip.
+  // A penalty flank that does not touch carries none (its viscous term
+  // neither: the helix's, mode_forces).
   double transverse_friction(double normal_force, double slip) const {
+    if (model_.thread_pair().penalty() && penalty_.normal_force == 0.0) return 0.0;
     if (law_->resolution() == friction::Resolution::bristle)
       return -((law_->bristle_stiffness() * transverse_bristle_ +
                 law_->bristle_damping() * transverse_bristle_rate()) *

@@ -250,8 +250,8 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // The cone's transverse impulse over the step at w+ (on the cone from
   // the helix impulse): its loss, the excitation's work that balances it,
   // the row's force (moreau_smooth_friction.cpp).
-  void book_transverse(double h, const double* y, double* y_next, double friction_impulse,
-                       double normal_impulse, double slip);
+  void book_transverse(double h, const double* y, double* y_next, bool contact,
+                       double friction_impulse, double normal_impulse, double slip);
   // A speed-controlled rotor with the train's friction: the step without
   // the rotor's friction row, then the motor's friction and the stage's
   // loss from the impulse the stage passes on (moreau_speed_train.cpp).

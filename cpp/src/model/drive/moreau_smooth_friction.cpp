@@ -176,7 +176,7 @@ void DriveMoreau::book_bristles(double h, const double* y, double* y_next, doubl
   y_next[layout_.energy_offset() + kFrictionLoss] -= stored;
 }
 
-void DriveMoreau::book_transverse(double h, const double* y, double* y_next,
+void DriveMoreau::book_transverse(double h, const double* y, double* y_next, bool contact,
                                   double friction_impulse, double normal_impulse, double slip) {
   // The transverse impulse against w+: its cone part put on the cone from
   // the root's helix impulse, |(P_T + h c gamma+, P_w + h c w+)| =
@@ -184,9 +184,10 @@ void DriveMoreau::book_transverse(double h, const double* y, double* y_next,
   // recomputed gamma+, whose round-off is of the size of w+ at its zeros,
   // it left the cone by 1 %), and the viscous impulse -h c w+. The
   // excitation that moves the nut across does the work -P_w w+ >= 0, which
-  // the friction loses. (w+ = 0: the 1-D step, no transverse impulse.)
+  // the friction loses. (w+ = 0: the 1-D step, no transverse impulse; a
+  // penalty flank out of contact: none, its viscous impulse neither.)
   double impulse = 0.0;
-  if (transverse_next_ != 0.0) {
+  if (transverse_next_ != 0.0 && contact) {
     const double viscous_step = dynamics_.law().viscous() * h;
     const double bound = transverse_mu_ * std::abs(normal_impulse);
     const double cone = friction_impulse + viscous_step * slip;

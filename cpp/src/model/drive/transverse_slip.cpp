@@ -158,19 +158,26 @@ std::string law_obstacle(const DriveModel& model, const std::string& integrator)
   return "";
 }
 
-// What else the drive carries that the cone does not take yet (play, the
-// rotor's drives but a torque, the train's stages, a preloaded nut, the
-// elements, the Painleve regime). Empty: none.
-std::string drive_obstacle(const DriveModel& model) {
+// What else the drive carries that the cone does not take yet (exact play
+// but on Moreau-Jean, whose step takes the flank's impacts with the cone; a
+// prescribed rotor speed, the train's stages, a preloaded nut, the elements
+// but a DC motor, the Painleve regime). Penalty play is a smooth normal
+// force (its friction none where the flank does not touch:
+// DriveDynamics::transverse_friction, DriveMoreau::book_transverse).
+// Empty: none.
+std::string drive_obstacle(const DriveModel& model, const std::string& integrator) {
   const DriveParameters& p = model.parameters();
-  if (p.backlash != BacklashContact::none)
-    return "backlash.contact = \"" + backlash_contact_name(p.backlash) + "\"";
-  if (rotor_drive_section(p)) return "a DC motor";
+  if (p.backlash == BacklashContact::exact && integrator != "moreau")
+    return "backlash.contact = \"exact\" and integrator = \"" + integrator +
+           "\" (the flank's impacts with the cone: Moreau-Jean's step takes them)";
   if (p.speed_controlled) return "loads.drive_speed (a prescribed rotor speed)";
   if (model.train_friction() || p.gear != GearType::none)
     return "gear.type = \"" + gear_type_name(p.gear) + "\" or motor.friction_torque";
   if (model.preloaded_nut()) return "a preloaded nut";
-  if (!model.elements().elements.empty() || !model.elements().end_stops().empty() ||
+  // (A DC motor is the rotor's drive: its torque is a given force of the
+  // step, as a drive torque is.)
+  const std::size_t motors = rotor_drive_section(p) ? 1 : 0;
+  if (model.elements().elements.size() > motors || !model.elements().end_stops().empty() ||
       !model.elements().exact_stops.empty())
     return "an element besides the thread and the concept's springs (end stops, a base "
            "excitation)";
@@ -187,17 +194,18 @@ void check_transverse_slip(const DriveModel& model, const std::string& integrato
   const std::string key =
       "loads.transverse_slip_velocity = " + p.transverse_slip_velocity.describe();
   const std::string supported =
-      "the flank's 2-D friction cone is implemented without play (backlash.contact = "
-      "\"none\"), with a drive torque (no DC motor, speed control, gear stage, motor "
-      "friction, preloaded nut, end stops or base excitation), friction.law = \"coulomb\" "
-      "(mu, mu_static) or \"stribeck\" (its curve on the 2-D slip speed, the viscous term "
-      "along the slip), on concept = \"rigid\" with integrator = \"event_driven\" or "
-      "\"moreau\" and on the flexible concepts with integrator = \"moreau\"; "
-      "friction.law = \"lugre\" (2-D bristles) on every concept with integrator = "
-      "\"event_driven\" or an ODE method such as \"cvode_bdf\" "
+      "the flank's 2-D friction cone is implemented without play and with penalty play "
+      "(backlash.contact = \"none\", \"bistop\" or \"cubic\"; \"exact\" on "
+      "integrator = \"moreau\"), with a drive torque or a DC motor (no speed control, gear "
+      "stage, motor friction, preloaded nut, end stops or base excitation), friction.law = "
+      "\"coulomb\" (mu, mu_static) or \"stribeck\" (its curve on the 2-D slip speed, the "
+      "viscous term along the slip), on concept = \"rigid\" with integrator = "
+      "\"event_driven\" or \"moreau\" and on the flexible concepts with integrator = "
+      "\"moreau\"; friction.law = \"lugre\" (2-D bristles) on every concept with "
+      "integrator = \"event_driven\" or an ODE method such as \"cvode_bdf\" "
       "(docs/physics/transverse_slip.md)";
   std::string obstacle = law_obstacle(model, integrator);
-  if (obstacle.empty()) obstacle = drive_obstacle(model);
+  if (obstacle.empty()) obstacle = drive_obstacle(model, integrator);
   if (!obstacle.empty())
     throw InvalidArgument(key + " is invalid with " + obstacle + ": " + supported);
   // (LuGre's bristles have no stick: a w held at zero is a slip like any.)

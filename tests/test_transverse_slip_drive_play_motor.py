@@ -238,12 +238,13 @@ def test_dc_motor_with_lugre_on_cvode(concept):
     ({"gear": {"type": "lossy", "ratio": 3.0, "efficiency": 0.7, "efficiency_backdrive": 0.4}},
      "moreau", r"gear.type = \"lossy\""),
     ({"nut": {"preload": 50.0, "preload_stiffness": 1e7}}, "moreau", r"a preloaded nut"),
-    ({"end_stops": {"upper": 2e-4, "contact": "penalty", "stiffness": 1e7}}, "moreau",
-     r"an element besides the thread"),
+    ({"loads": {"drive_speed": 10.0, "drive_torque": None}}, "moreau",
+     r"loads.drive_speed \(a prescribed rotor speed\)"),
 ])
 def test_what_stays_refused(changes, integrator, match):
     """Exact play on the event-driven scheme, the train's stages, a
-    preloaded nut and end stops stay refused by name, saying what runs."""
+    preloaded nut and a prescribed rotor speed stay refused by name, saying
+    what runs (exact end stops: test_transverse_slip_drive_elements.py)."""
     s = scene(ls.Sine(0.01, 100.0)).replace(**changes)
     with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is invalid with "
                                          + match + r".*\"bistop\" or \"cubic\".*DC motor"):

@@ -60,6 +60,8 @@ void DriveMoreau::step(double t, double h, double theta, const double* y, double
   for (std::size_t k = 0; k < modes_at_start_.size(); ++k)
     modes_at_start_[k] = dynamics_.element_mode(k);
   if (bristle_state_ >= 0) bristle_z0_ = y[bristle_state_] * bristle_range_;
+  if (bristle_state_ >= 0 && transverse_state_ >= 0)  // (lugre_bristles_kind's third state)
+    bristle_w0_ = y[bristle_state_ + 2] * bristle_range_;
   stop_share_ = 1.0;
   if (!take_step(t, h, theta, y, y_next, p_.restitution)) {
     if (stop_restituting_) limit_stop_restitution(t, h, theta, y, y_next, excess, play_rate);
@@ -546,6 +548,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (bristle_state_ >= 0) {  // LuGre's deflection and the energy its bristles store
     state.values[bristle_channel_] = y[bristle_state_] * bristle_range_;
     state.elastic += y[bristle_state_ + 1];
+    if (transverse_state_ >= 0)
+      state.values[bristle_channel_ + 1] = y[bristle_state_ + 2] * bristle_range_;
   }
   if (preload_channel_ >= 0) {  // (a preloaded nut: a smooth law or lift-off, the last step's)
     const elements::PreloadedNut& nut = *model_.preloaded_nut();

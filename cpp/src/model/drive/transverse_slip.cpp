@@ -141,11 +141,7 @@ std::string held_at_zero_reason(const Excitation& w, double t_end) {
 std::string law_obstacle(const DriveModel& model, const std::string& integrator) {
   const DriveParameters& p = model.parameters();
   const friction::Resolution resolution = model.law().resolution();
-  if (resolution == friction::Resolution::bristle)
-    return integrator == "moreau"
-               ? "friction.law = \"lugre\" and integrator = \"moreau\" (Moreau-Jean's step "
-                 "takes the 1-D bristles only)"
-               : "";
+  if (resolution == friction::Resolution::bristle) return "";
   if (resolution != friction::Resolution::set_valued)
     return "friction.law = \"" + p.friction + "\"";
   if (p.concept != Concept::rigid && integrator != "moreau")
@@ -206,7 +202,7 @@ void check_transverse_slip(const DriveModel& model, const std::string& integrato
       "the slip), on concept = \"rigid\" with integrator = "
       "\"event_driven\" or \"moreau\" and on the flexible concepts with integrator = "
       "\"moreau\"; friction.law = \"lugre\" (2-D bristles) on every concept with "
-      "integrator = \"event_driven\" or an ODE method such as \"cvode_bdf\" "
+      "integrator = \"event_driven\", an ODE method such as \"cvode_bdf\" or \"moreau\" "
       "(docs/physics/transverse_slip.md)";
   std::string obstacle = law_obstacle(model, integrator);
   if (obstacle.empty()) obstacle = drive_obstacle(model, integrator);

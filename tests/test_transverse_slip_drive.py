@@ -301,8 +301,9 @@ def test_refused_integrators_and_event_driven_zero_holds():
     """An ODE method is refused; the event-driven scheme refuses a w held at
     zero over an interval (a table) and a callable, naming Moreau-Jean."""
     s = scene(ls.Sine(0.01, 100.0))
-    with pytest.raises(ValueError, match=r"invalid with integrator = \"cvode_bdf\""):
-        ls.simulate(s, 0.01, integrator="cvode_bdf")
+    for concept in ("rigid", "flexible"):  # (the integrator named, not the concept)
+        with pytest.raises(ValueError, match=r"invalid with integrator = \"cvode_bdf\""):
+            ls.simulate(s.replace(concept=concept), 0.01, integrator="cvode_bdf")
     held = scene(ls.Table([0.0, 0.1, 0.2], [0.0, 0.0, 0.01]))
     with pytest.raises(ValueError, match=r"held at zero from t = 0 s.*integrator = \"moreau\""):
         ls.simulate(held, 0.3, integrator="event_driven")

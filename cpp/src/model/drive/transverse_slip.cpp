@@ -156,7 +156,8 @@ std::string law_obstacle(const DriveModel& model, const std::string& integrator)
 
 // What else the drive carries that the cone does not take yet (exact play
 // but on Moreau-Jean, whose step takes the flank's impacts with the cone;
-// the train's stages, a preloaded nut, the elements
+// the train's friction stages (an ideal gear is a transmission), a
+// preloaded nut, the elements
 // but a DC motor, a base excitation and a load spring, exact end stops, the
 // Painleve regime; penalty end stops are force elements, smooth in the
 // state). Penalty play is a smooth normal force (its friction none where
@@ -167,7 +168,7 @@ std::string drive_obstacle(const DriveModel& model, const std::string& integrato
   if (p.backlash == BacklashContact::exact && integrator != "moreau")
     return "backlash.contact = \"exact\" and integrator = \"" + integrator +
            "\" (the flank's impacts with the cone: Moreau-Jean's step takes them)";
-  if (model.train_friction() || p.gear != GearType::none)
+  if (model.train_friction())
     return "gear.type = \"" + gear_type_name(p.gear) + "\" or motor.friction_torque";
   if (model.preloaded_nut()) return "a preloaded nut";
   // (A DC motor is the rotor's drive, a base excitation the housing's
@@ -196,8 +197,9 @@ void check_transverse_slip(const DriveModel& model, const std::string& integrato
       "the flank's 2-D friction cone is implemented without play and with penalty play "
       "(backlash.contact = \"none\", \"bistop\" or \"cubic\"; \"exact\" on "
       "integrator = \"moreau\"), with a drive torque, a DC motor or a prescribed rotor "
-      "speed, a base excitation, a load spring and penalty end stops (no gear stage, motor "
-      "friction, preloaded nut or exact end stops), friction.law = \"coulomb\" (mu, "
+      "speed, an ideal gear, a base excitation, a load spring and penalty end stops (no lossy "
+      "or worm gear stage, motor friction, preloaded nut or exact end stops), friction.law = "
+      "\"coulomb\" (mu, "
       "mu_static) or \"stribeck\" (its curve on the 2-D slip speed, the viscous term along "
       "the slip), on concept = \"rigid\" with integrator = "
       "\"event_driven\" or \"moreau\" and on the flexible concepts with integrator = "

@@ -133,32 +133,44 @@ def test_a_load_spring_takes_the_load_where_it_balances(concept, integrator):
 EXACT_STOP = {"lower": -8e-5, "contact": "exact"}
 
 
-@pytest.mark.parametrize("concept", ["flexible_nut", "flexible"])
+STOP_DRIVES = [("rigid", "screw"), ("flexible_nut", "screw"), ("flexible_nut", "nut"),
+               ("flexible", "screw")]
+
+
+@pytest.mark.parametrize("concept, drive", STOP_DRIVES)
 @pytest.mark.parametrize("restitution", [0.0, 0.5])
-def test_an_exact_end_stop_ends_the_creep_on_moreau(concept, restitution):
-    """An exact stop 80 um below (Moreau-Jean, the load not rigid in the
-    thread): the load creeps at the closed form until it (measured 4.7e-5,
-    5.0e-5), then rests on it (within 1e-3 of the face: the springs'
-    give, measured up to 4e-4; no travel over the last 0.2 s)."""
-    s = scene(transverse(), concept=concept).replace(
+def test_an_exact_end_stop_ends_the_creep_on_moreau(concept, drive, restitution):
+    """An exact stop 80 um below (Moreau-Jean): the load creeps at the
+    closed form until it (measured 2.9e-5..5.0e-5), then rests on it (within
+    1e-3 of the face: the springs' give, measured up to 4e-4; no travel over
+    the last 0.2 s). Where the load is rigid in the thread (the rigid drive,
+    the nut-driven flexible nut) the stop's row holds the thread's slip. (The
+    nut-driven flexible nut settles from its relaxed start over 0.5 s,
+    without a stop too: 4.5 % over 0.05-0.25 s, 2e-5 over 0.5-1 s; its
+    creep is not measured before the stop.)"""
+    s = scene(transverse(), concept=concept, drive=drive).replace(
         end_stops=dict(EXACT_STOP, restitution=restitution))
     r = ls.simulate(s, 1.0, integrator="moreau", **step_options("moreau"))
-    assert window_speed(r, 0.1, 0.3) == pytest.approx(closed_form(AMPLITUDE), rel=1e-2)
+    if drive == "screw":
+        assert window_speed(r, 0.1, 0.3) == pytest.approx(closed_form(AMPLITUDE), rel=1e-2)
     assert r["u_load"][-1] == pytest.approx(EXACT_STOP["lower"], rel=1e-3)
     assert abs(window_speed(r, 0.8, 1.0)) < 1e-3 * abs(closed_form(AMPLITUDE))
     assert all(check["passed"] for check in r.checks.values())
 
 
-@pytest.mark.parametrize("concept", ["flexible_nut", "flexible"])
-def test_pressed_into_an_exact_stop_the_cone_lies_along_the_transverse_slip(concept):
+@pytest.mark.parametrize("concept, drive", STOP_DRIVES)
+def test_pressed_into_an_exact_stop_the_cone_lies_along_the_transverse_slip(concept, drive):
     """A torque of 0.05 N m drives the load into the stop: the thread no
     longer slips along the helix (gamma -> 0, 9e-12 m/s), so the cone's
     whole bound lies along w, |T_w| = mu' |N| (measured to 3e-16), its helix
     component vanishes (measured 4e-10 |N|), and the stop carries the
     frictionless thread's force |F| + 2 pi M / lead (no friction in the
-    helix: 178.54 N, to 1e-6)."""
+    helix: 178.54 N, to 1e-6). On the rigid drive the stop's row holds the
+    slip: the step's rule (the stop carries what it can, stop_holds) takes
+    the cone's direction at the prescribed slip, not the 1-D thread's (with
+    which a torque into the stop made the friction work positively)."""
     torque = 0.05
-    s = scene(transverse(), concept=concept, torque=torque).replace(
+    s = scene(transverse(), concept=concept, drive=drive, torque=torque).replace(
         end_stops=dict(EXACT_STOP, restitution=0.5))
     r = ls.simulate(s, 1.0, integrator="moreau", **step_options("moreau"))
     late = (r["t"] > 0.8) & (np.abs(r["transverse_velocity"]) > 1e-9 * AMPLITUDE)
@@ -173,19 +185,17 @@ def test_pressed_into_an_exact_stop_the_cone_lies_along_the_transverse_slip(conc
 
 
 def test_what_stays_refused_beside_the_elements():
-    """Exact end stops where the load is rigid in the thread (the rigid
-    concept, the nut-driven flexible nut: the stop's row holds the thread's
-    slip with the 1-D friction rule, and a torque pressing the load into the
-    stop made the friction work positively), and CVODE named between the
-    event-driven scheme's events with a set-valued cone (its restarts at the
-    cone's apex missed the block's creep by 37-110 %; the Verner pair runs by
-    default, beside force elements too), are refused by name."""
-    for changes in ({}, {"concept": "flexible_nut", "drive": "nut"}):
-        stopped = scene(transverse()).replace(
-            end_stops={"upper": 2e-4, "contact": "exact", "restitution": 0.3}, **changes)
-        with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is invalid "
-                                             r"with end_stops\.contact = \"exact\" on concept"):
-            ls.simulate(stopped, 0.01, integrator="moreau", dt=1e-4)
+    """Exact end stops off Moreau-Jean (the event-driven scheme's stop modes
+    are not written for the cone), and CVODE named between the event-driven
+    scheme's events with a set-valued cone (its restarts at the cone's apex
+    missed the block's creep by 37-110 %; the Verner pair runs by default,
+    beside force elements too), are refused by name."""
+    stopped = scene(transverse()).replace(
+        end_stops={"upper": 2e-4, "contact": "exact", "restitution": 0.3})
+    with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is invalid "
+                                         r"with end_stops\.contact = \"exact\" and integrator "
+                                         r"= \"event_driven\""):
+        ls.simulate(stopped, 0.01, integrator="event_driven")
     with pytest.raises(ValueError, match=r"is invalid with smooth_integrator = \"cvode_bdf\".*"
                                          r"\"rk_verner6\""):
         ls.simulate(scene(transverse()), 0.01, integrator="event_driven",

@@ -279,6 +279,13 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                              "both fix the drive's one degree of freedom, an infinite impulse",
                           "use a drive torque or a DC motor, end_stops.contact = \"penalty\" "
                           "(its stiffness bounds the force), or a flexible concept");
+  // A transverse slip's w at the step's end and its cone's coefficient at
+  // the step's start slip speed (the stop's hold and the smooth step take them).
+  if (transverse_state_ >= 0) {
+    transverse_next_ = p_.transverse_slip_velocity(t + h);
+    transverse_mu_ = dynamics_.cone_mu(std::hypot(model_.tangent_direction().dot(v0),
+                                                  p_.transverse_slip_velocity(t)));
+  }
   if (row && stops_fix_every_velocity())
     return stop_holds(without, unit, normal_target, rotor_target, stick);
   const double c = model_.tangent_direction().dot(without.velocity);
@@ -289,11 +296,6 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // A transverse slip's cone: where w+ != 0 the helix friction is smooth
   // in the slip (no stick), the exact cone's root (moreau_smooth_friction.cpp);
   // where w+ = 0 the 1-D Coulomb step below.
-  if (transverse_state_ >= 0) {
-    transverse_next_ = p_.transverse_slip_velocity(t + h);
-    transverse_mu_ = dynamics_.cone_mu(std::hypot(model_.tangent_direction().dot(v0),
-                                                  p_.transverse_slip_velocity(t)));
-  }
   if (law.resolution() != friction::Resolution::set_valued ||
       (transverse_state_ >= 0 && transverse_next_ != 0.0))  // (no stick: a smooth law)
     return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,

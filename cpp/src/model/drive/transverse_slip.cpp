@@ -180,20 +180,12 @@ std::string drive_obstacle(const DriveModel& model, const std::string& integrato
       return "an element besides the thread, the concept's springs, a DC motor, a base "
              "excitation and a load spring (" + name + ")";
   }
-  // Exact stops on Moreau-Jean where the load is not rigid in the thread:
-  // where it is (the rigid concept, the nut-driven flexible nut) the stop's
-  // row holds the thread's slip, and that row's friction is the 1-D rule's
-  // (stop_holds), not the cone's (a torque pressing the load into the stop
-  // made the friction work positively).
-  const bool load_in_thread =
-      p.concept == Concept::rigid ||
-      (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut);
-  if (!model.elements().exact_stops.empty() && (integrator != "moreau" || load_in_thread))
-    return "end_stops.contact = \"exact\"" +
-           (load_in_thread ? " on concept = \"" + concept_name(p.concept) + "\" and drive = \"" +
-                                 drive_name(p.drive) + "\" (the stop's row holds the thread's "
-                                 "slip with the 1-D friction rule)"
-                           : " and integrator = \"" + integrator + "\"");
+  // Exact stops on Moreau-Jean (where the load is rigid in the thread the
+  // stop's row holds the thread's slip: stop_holds takes the cone's
+  // direction at the prescribed slip); the event-driven scheme's stop modes
+  // are not written for the cone.
+  if (!model.elements().exact_stops.empty() && integrator != "moreau")
+    return "end_stops.contact = \"exact\" and integrator = \"" + integrator + "\"";
   if (DriveDynamics(model).painleve_possible()) return "the thread in the Painleve regime";
   return "";
 }
@@ -211,8 +203,8 @@ void check_transverse_slip(const DriveModel& model, const std::string& integrato
       "(backlash.contact = \"none\", \"bistop\" or \"cubic\"; \"exact\" on "
       "integrator = \"moreau\"), with a drive torque, a DC motor or a prescribed rotor "
       "speed, an ideal gear, a base excitation, a load spring and penalty end stops (exact "
-      "ones on integrator = \"moreau\" where the load is not rigid in the thread; no lossy "
-      "or worm gear stage, motor friction or preloaded nut), friction.law = "
+      "ones on integrator = \"moreau\"; no lossy or worm gear stage, motor friction or "
+      "preloaded nut), friction.law = "
       "\"coulomb\" (mu, "
       "mu_static) or \"stribeck\" (its curve on the 2-D slip speed, the viscous term along "
       "the slip), on concept = \"rigid\" with integrator = "

@@ -187,6 +187,19 @@ STRIBECK = {"law": "stribeck", "mu": 0.3, "mu_static": 0.4, "stribeck_velocity":
             "stribeck_exponent": 2.0, "viscous": 200.0}
 
 
+def stribeck_closed_form(amplitude):
+    """The mean load creep under W sin(omega t) with STRIBECK's law: the
+    helix balance solved at each w and averaged by quadrature, times
+    sin(alpha), along F."""
+    th = thread()
+    cos = math.cos(th.flank_angle / 2.0)
+    helix = stribeck_mean_creep_speed_sine(
+        abs(FORCE) * math.sin(th.lead_angle), abs(FORCE) * math.cos(th.lead_angle),
+        STRIBECK["mu"] / cos, STRIBECK["mu_static"] / cos, STRIBECK["stribeck_velocity"],
+        STRIBECK["stribeck_exponent"], STRIBECK["viscous"], amplitude)
+    return math.copysign(math.sin(th.lead_angle) * helix, FORCE)
+
+
 @pytest.mark.parametrize("scheme", SCHEMES)
 @pytest.mark.parametrize("amplitude", [0.01, 0.03])
 def test_stribeck_creeps_at_the_quasi_static_balance(scheme, amplitude):
@@ -196,13 +209,7 @@ def test_stribeck_creeps_at_the_quasi_static_balance(scheme, amplitude):
     period by quadrature (the block's reference with r -> the thread's stick
     forces), the load creeps at sin(alpha) times it, to 1 %; slower than
     exact Coulomb's at mu (the curve is above mu at these speeds)."""
-    th = thread()
-    cos = math.cos(th.flank_angle / 2.0)
-    helix = stribeck_mean_creep_speed_sine(
-        abs(FORCE) * math.sin(th.lead_angle), abs(FORCE) * math.cos(th.lead_angle),
-        STRIBECK["mu"] / cos, STRIBECK["mu_static"] / cos, STRIBECK["stribeck_velocity"],
-        STRIBECK["stribeck_exponent"], STRIBECK["viscous"], amplitude)
-    expected = math.copysign(math.sin(th.lead_angle) * helix, FORCE)
+    expected = stribeck_closed_form(amplitude)
     assert inertia_number(amplitude, 20.0) <= 0.1
     r = run(amplitude, 20.0, scheme, friction=STRIBECK)
     assert mean_speed(r) == pytest.approx(expected, rel=1e-2)
@@ -275,12 +282,14 @@ def test_flexible_concepts_creep_at_the_closed_form_on_moreau(concept, amplitude
 @pytest.mark.parametrize("changes, match", [
     ({"concept": "flexible_nut"}, r"concept = \"flexible_nut\" and integrator = "
                                   r"\"event_driven\""),
-    ({"friction": {"law": "lugre", "mu": 0.3}}, r"friction.law = \"lugre\""),
+    ({"friction": {"law": "arctan_acceleration", "mu": 0.3}},
+     r"friction.law = \"arctan_acceleration\""),
     ({"friction": {"law": "arctan_velocity", "mu": 0.3}}, r"friction.law = \"arctan_velocity\""),
     ({"backlash": {"axial": 1e-4, "contact": "exact"}}, r"backlash.contact = \"exact\""),
 ])
 def test_refused_where_not_implemented(changes, match):
-    """The flexible concepts on the event-driven scheme, other laws and play
+    """The flexible concepts on the event-driven scheme (but LuGre's:
+    tests/test_transverse_slip_drive_lugre.py), the regularized laws and play
     are refused by name: the key, the obstacle and what is supported."""
     s = scene(ls.Sine(0.01, 100.0)).replace(**changes)
     with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is invalid "
@@ -292,8 +301,9 @@ def test_refused_integrators_and_event_driven_zero_holds():
     """An ODE method is refused; the event-driven scheme refuses a w held at
     zero over an interval (a table) and a callable, naming Moreau-Jean."""
     s = scene(ls.Sine(0.01, 100.0))
-    with pytest.raises(ValueError, match=r"invalid with integrator = \"cvode_bdf\""):
-        ls.simulate(s, 0.01, integrator="cvode_bdf")
+    for concept in ("rigid", "flexible"):  # (the integrator named, not the concept)
+        with pytest.raises(ValueError, match=r"invalid with integrator = \"cvode_bdf\""):
+            ls.simulate(s.replace(concept=concept), 0.01, integrator="cvode_bdf")
     held = scene(ls.Table([0.0, 0.1, 0.2], [0.0, 0.0, 0.01]))
     with pytest.raises(ValueError, match=r"held at zero from t = 0 s.*integrator = \"moreau\""):
         ls.simulate(held, 0.3, integrator="event_driven")

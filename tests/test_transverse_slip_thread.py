@@ -50,10 +50,11 @@ def test_free_rotor_ratio_is_tan_alpha_over_mu(thread, mu):
 
 
 def test_transverse_slip_on_a_flexible_drive_is_refused_by_name():
-    """The drive's cone runs on the rigid concept, and without play on the
-    flexible ones on Moreau-Jean (tests/test_transverse_slip_drive.py); the
-    shipped flexible scene with play on the event-driven scheme is refused
-    naming the key, the obstacle and what is supported."""
+    """The drive's cone runs on the rigid concept, and on the flexible ones
+    on Moreau-Jean (tests/test_transverse_slip_drive.py, its play:
+    test_transverse_slip_drive_play_motor.py); the shipped flexible scene
+    with play on the event-driven scheme is refused naming the key, the
+    obstacle and what is supported, as is a gear stage on Moreau-Jean."""
     scene = ls.scenes.load("position_holding")
     scene = scene.replace(loads={"transverse_slip_velocity": ls.Sine(1e-3, 60.0)})
     with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is invalid "
@@ -61,5 +62,7 @@ def test_transverse_slip_on_a_flexible_drive_is_refused_by_name():
                                          r"\"event_driven\" .*: the flank's 2-D friction cone "
                                          r"is implemented without play"):
         ls.simulate(scene, 0.01, integrator="event_driven")
-    with pytest.raises(ValueError, match=r"is invalid with backlash.contact = \"bistop\""):
-        ls.simulate(scene, 0.01, integrator="moreau")
+    staged = scene.replace(gear={"type": "lossy", "ratio": 3.0, "efficiency": 0.7,
+                                 "efficiency_backdrive": 0.4})
+    with pytest.raises(ValueError, match=r"is invalid with gear.type = \"lossy\""):
+        ls.simulate(staged, 0.01, integrator="moreau")

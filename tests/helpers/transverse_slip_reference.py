@@ -47,7 +47,8 @@ import numpy as np
 
 __all__ = ["creep_speed", "mean_creep_speed_sine", "inertia_number", "thread_flank_ratio",
            "thread_load_creep_speed", "thread_load_creep_speed_driven",
-           "thread_inertia_number", "stribeck_mean_creep_speed_sine"]
+           "thread_inertia_number", "stribeck_mean_creep_speed_sine",
+           "thread_dc_motor_mean_creep_speed_sine"]
 
 
 def creep_speed(force: float, mu: float, normal_force: float, transverse: float) -> float:
@@ -193,3 +194,59 @@ def stribeck_mean_creep_speed_sine(force, normal_force, mu, mu_static, stribeck_
         total += weight * _stribeck_creep_speed(force, normal_force, curve, viscous,
                                                 amplitude * math.sin(theta))
     return total * 0.25 * math.pi / (0.5 * math.pi)
+
+
+def _dc_motor_helix_slip(force, lead_angle, mean_radius, effective_mu, hand, voltage,
+                         resistance, torque_constant, transverse):
+    """The quasi-static helix slip gamma [m/s] of a thread driven by a DC
+    motor without inductance at transverse slip w: the helix balance
+    T~_st(M) = mu' |N~_st(M)| gamma / |(gamma, w)| with the motor's torque
+    M = k (V - k phi') / R at the rotor speed phi' = gamma / rho the slip
+    itself moves (rho = r / cos(alpha)), by bisection. The balance falls
+    with gamma (the motor's torque falls, the friction's helix component
+    rises); checked on a grid, as the Stribeck balance is."""
+    rho = mean_radius / math.cos(lead_angle)
+
+    def balance(gamma):
+        torque = torque_constant * (voltage - torque_constant * gamma / rho) / resistance
+        normal = -(force * math.cos(lead_angle)
+                   + hand * torque / mean_radius * math.sin(lead_angle))
+        tangential = (torque / mean_radius * math.cos(lead_angle)
+                      - hand * force * math.sin(lead_angle))
+        return tangential - effective_mu * abs(normal) * gamma / math.hypot(gamma, transverse)
+
+    low, high = -1.0, 1.0
+    while balance(low) < 0.0:
+        low *= 2.0
+    while balance(high) > 0.0:
+        high *= 2.0
+    grid = [balance(low + (high - low) * k / 400) for k in range(401)]
+    if any(b > a for a, b in zip(grid, grid[1:])):
+        raise ValueError("the quasi-static balance is not monotonic: no unique creep speed")
+    for _ in range(200):
+        mid = 0.5 * (low + high)
+        if balance(mid) > 0.0:
+            low = mid
+        else:
+            high = mid
+    return 0.5 * (low + high)
+
+
+def thread_dc_motor_mean_creep_speed_sine(force, lead_angle, mean_radius, effective_mu, hand,
+                                          voltage, resistance, torque_constant, amplitude):
+    """Mean quasi-static creep of the load [m/s] under w = W sin(omega t) of
+    a thread whose rotor a DC motor drives (no inductance: the current
+    follows the voltage and the back-EMF at once, i = (V - k phi') / R):
+    the helix slip solved at each w (_dc_motor_helix_slip) and averaged over
+    a quarter period by 64-point Gauss-Legendre (it depends on |w| alone);
+    the load follows it, v_load = -h sin(alpha) gamma. At V = 0 the motor
+    is a brake (M = -k^2 phi' / R), and as k -> 0 this is the free rotor's
+    thread_load_creep_speed."""
+    nodes, weights = np.polynomial.legendre.leggauss(64)
+    total = 0.0
+    for x, weight in zip(nodes, weights):  # theta in (0, pi/2)
+        theta = 0.25 * math.pi * (x + 1.0)
+        total += weight * _dc_motor_helix_slip(force, lead_angle, mean_radius, effective_mu,
+                                               hand, voltage, resistance, torque_constant,
+                                               amplitude * math.sin(theta))
+    return -hand * math.sin(lead_angle) * total * 0.5

@@ -224,6 +224,17 @@ double DriveDynamics::contact_energy() const noexcept {
   return energy;
 }
 
+double DriveDynamics::bristle_rate() const {
+  if (!transverse_) return law_->bristle_rate(slip_, bristle_);
+  return planar_bristle_rate(slip_, bristle_);
+}
+
+double DriveDynamics::bristle_storing_power() const {
+  if (!transverse_) return law_->storing_power(slip_, bristle_);
+  return law_->bristle_stiffness() *
+         (bristle_ * bristle_rate() + transverse_bristle_ * transverse_bristle_rate());
+}
+
 double DriveDynamics::kinetic_energy() const {
   return 0.5 * v_.dot(model_.mass().cwiseProduct(v_));
 }

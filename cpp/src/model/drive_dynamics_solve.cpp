@@ -38,6 +38,10 @@ double DriveDynamics::friction_factor(const ModeSpec& spec, double slip_accelera
     case FrictionMode::regularized_acceleration:
       return law_->acceleration_coefficient(slip_acceleration) * factor;
     case FrictionMode::bristle:
+      // (A transverse slip's bristles relax at the 2-D slip speed.)
+      if (transverse_)
+        return (law_->bristle_stiffness() * bristle_ + law_->bristle_damping() * bristle_rate()) *
+               factor;
       return law_->bristle_coefficient(slip_, bristle_) * factor;
     default:
       return 0.0;

@@ -264,8 +264,8 @@ holding_under_vibration.__doc__ = """Creep of a drive under vibration, per seed,
     impulse stays inside the friction cone: "holds" follows from
     self-locking at rest. The mechanism of real creep, the transverse slip
     of a 2-D friction cone, runs where the scene has
-    ``loads.transverse_slip_velocity`` (docs/physics/transverse_slip.md;
-    with ``where="loads.axial_force"``); the summary's ``creep_mechanism``
+    ``loads.transverse_slip_velocity`` (docs/physics/transverse_slip.md; at
+    the housing or ``where="loads.axial_force"``); the summary's ``creep_mechanism``
     says which the model gives the drive. A regularized law (``arctan_velocity``)
     slips at any load, at a rate set by its k_v: its creep is the
     regularization's, not the thread's (docs/guide/studies.md).

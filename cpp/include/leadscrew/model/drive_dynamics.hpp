@@ -163,6 +163,21 @@ class DriveDynamics {
   // LuGre's bristle deflection z at the state last set (its own state).
   void set_bristle(double z) noexcept { bristle_ = z; }
   double bristle() const noexcept { return bristle_; }
+  // LuGre's bristles on the flank's 2-D cone (a transverse slip w): the
+  // deflection is the vector (z, z_w) on the slip (gamma, w), relaxing at
+  // the slip speed s = |(gamma, w)| (the friction block's
+  // cone_bristle_block.cpp; docs/physics/transverse_slip.md):
+  //   z' = gamma - sigma0 s z / mu(s),   z_w' = w - sigma0 s z_w / mu(s).
+  // Without a transverse slip bristle_rate() is the law's 1-D rate.
+  void set_transverse_bristle(double z) noexcept { transverse_bristle_ = z; }
+  double transverse_bristle() const noexcept { return transverse_bristle_; }
+  double bristle_rate() const;
+  double transverse_bristle_rate() const {
+    return planar_bristle_rate(transverse_slip_, transverse_bristle_);
+  }
+  // The power the bristles store per unit flank normal force [m/s],
+  // sigma0 z . z' (the law's storing_power without a transverse slip).
+  double bristle_storing_power() const;
   // The bristles' energy |N|' sigma0 z^2 / 2 at a flank normal force N.
   double bristle_energy(double normal_force) const noexcept {
     return 0.5 * std::abs(normal_force) * model_.flank_factor() * law_->bristle_stiffness() *
@@ -298,7 +313,17 @@ class DriveDynamics {
   }
   // The transverse friction along +w (the friction channel's sign: against
   // the slip) at a flank normal force N and helix slip gamma [N].
+  // With LuGre's bristles -(|N|' (sigma0 z_w + sigma1 z_w') + viscous w),
+  // z_w' at the state's slip.
+  // A penalty flank that does not touch carries none (its viscous term
+  // neither: the helix's, mode_forces).
   double transverse_friction(double normal_force, double slip) const {
+    if (model_.thread_pair().penalty() && penalty_.normal_force == 0.0) return 0.0;
+    if (law_->resolution() == friction::Resolution::bristle)
+      return -((law_->bristle_stiffness() * transverse_bristle_ +
+                law_->bristle_damping() * transverse_bristle_rate()) *
+                   model_.flank_factor() * std::abs(normal_force) +
+               law_->viscous() * transverse_slip_);
     const double speed = std::hypot(slip, transverse_slip_);
     if (!(speed > 0.0)) return 0.0;
     return -(cone_mu(speed) * std::abs(normal_force) + law_->viscous() * speed) *
@@ -381,7 +406,12 @@ class DriveDynamics {
   // without mu_static): a preloaded nut's half B in slip at the element's
   // mu' (PreloadedNut::normal); otherwise at the law's kappa' (normal_at).
   bool one_slip_mu_;
-  double bristle_ = 0.0;
+  double bristle_ = 0.0, transverse_bristle_ = 0.0;
+  // A planar bristle component's rate at the state's slip speed |(gamma, w)|.
+  double planar_bristle_rate(double slip_component, double z) const {
+    const double speed = std::hypot(slip_, transverse_slip_);
+    return slip_component - law_->bristle_stiffness() * speed * z / law_->slip_mu(speed);
+  }
   const Excitation* transverse_ = nullptr;  // w(t) (nullptr: no transverse slip)
   double transverse_slip_ = 0.0;
   // The model's elements' data: their states (a copy of y's), slots, modes.

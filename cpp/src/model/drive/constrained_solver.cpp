@@ -18,18 +18,25 @@ namespace {
 // LuGre's bristles (the friction law's, friction/laws/lugre.cpp): the
 // deflection z and its stored energy, states of their own; the deflection a
 // channel (their energy is the elastic channel's).
+// On a transverse slip's 2-D cone (transverse_slip.cpp) the deflection is
+// a vector: its transverse component a state and a channel besides.
 void declare_bristles(const DriveModel& model, const friction::Law& law, Declaration& d) {
-  (void)model;
   d.states = law.state_names();  // (the law's own: LuGre's bristles)
   if (d.states.empty()) return;
-  d.channels = lugre_bristles_kind().catalog;
+  const std::vector<ChannelSpec>& catalog = lugre_bristles_kind().catalog;
+  d.channels = {catalog[0]};
+  if (!has_transverse_slip(model.parameters())) return;
+  d.states.push_back("bristle_share_transverse");
+  d.channels.push_back(catalog[1]);
 }
 
 }  // namespace
 
 const ElementKind& lugre_bristles_kind() {
   static const ElementKind kind{
-      "lugre_bristles", {{"bristle_deflection", "m", Role::none}}, &declare_bristles};
+      "lugre_bristles",
+      {{"bristle_deflection", "m", Role::none}, {"bristle_deflection_transverse", "m", Role::none}},
+      &declare_bristles};
   return kind;
 }
 
@@ -95,18 +102,20 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
     // deflected bristle. What remains, |N|' (sigma0^2 |gamma| z^2 / mu(|gamma|)
     // + sigma1 z' gamma) + viscous gamma^2, is the loss (sigma1 z' gamma can be
     // negative: LuGre is passive only for small sigma1).
-    const double z = dynamics.bristle();  // y[bristle] * bristle_range (set)
-    const double rate = dynamics.law().bristle_rate(dynamics.slip_velocity(), z);
+    // (A transverse slip: the vector's components relax at |(gamma, w)|,
+    // both store; the transverse one's state follows the energy's.)
+    const double rate = dynamics.bristle_rate();
     // (A preloaded nut: both halves' flanks carry bristles of the one
     // deflection z, both slipping at gamma_T: |N_A| + |N_B| in place of |N|.)
     const double flank_normal =
         model.preloaded_nut()
             ? std::abs(s.normal_force - s.preload_normal) + std::abs(s.preload_normal)
             : std::abs(s.normal_force);
-    const double stored = flank_normal * model.flank_factor() *
-                          dynamics.law().storing_power(dynamics.slip_velocity(), z);
+    const double stored = flank_normal * model.flank_factor() * dynamics.bristle_storing_power();
     ydot[bristle] = rate / h_.bristle_range_;
     ydot[bristle + 1] = stored;
+    if (dynamics.transverse())
+      ydot[bristle + 2] = dynamics.transverse_bristle_rate() / h_.bristle_range_;
     energy[kFrictionLoss] -= stored;
   }
   // A lift-off nut's half B slipping on its own flank: its friction works on
@@ -165,6 +174,8 @@ ChannelState DriveHybrid::ConstrainedSolver::output(double t, const double* y,
   const int bristle = bristle_state_;
   if (bristle >= 0) {
     state.values[bristle_channel_] = h_.dynamics_.bristle();  // z (set)
+    if (h_.dynamics_.transverse())
+      state.values[bristle_channel_ + 1] = h_.dynamics_.transverse_bristle();
     state.elastic += y[bristle + 1];  // the bristles' stored energy
   }
   // Stick holds the slip velocity at zero; the state carries the integrator's

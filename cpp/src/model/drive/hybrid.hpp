@@ -136,7 +136,12 @@ class DriveHybrid final : public integrate::HybridSystem {
     layout_.expand(t, y, q_, v_);
     dynamics_.set_element_states(y);
     dynamics_.set_state(t, q_, v_);
-    if (bristle_state_ >= 0) dynamics_.set_bristle(y[bristle_state_] * bristle_range_);
+    if (bristle_state_ >= 0) {
+      dynamics_.set_bristle(y[bristle_state_] * bristle_range_);
+      // (a transverse slip's: after the bristles' energy, lugre_bristles_kind)
+      if (dynamics_.transverse())
+        dynamics_.set_transverse_bristle(y[bristle_state_ + 2] * bristle_range_);
+    }
   }
 
   // mode_solver.hpp: the current mode at a state y (the constrained solve,

@@ -134,7 +134,8 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
   // A transverse slip's cone (transverse_slip.cpp): the helix friction
   // mu' gamma / |(gamma, w)| is a smooth function of the slip, a velocity
   // law's factor (DriveDynamics::cone_coefficient); the event-driven scheme
-  // takes w held at zero nowhere (check_transverse_slip).
+  // takes w held at zero nowhere with it (check_transverse_slip). LuGre's
+  // bristles stay the bristle mode (2-D: DriveDynamics::bristle_rate).
   const bool regularized =
       resolution != friction::Resolution::set_valued || dynamics_.transverse();
   // A regularized law's friction on a penalty flank follows its penetration
@@ -153,7 +154,10 @@ void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hi
     return;
   }
   if (regularized) {
-    mode_.friction = resolution == friction::Resolution::velocity || dynamics_.transverse()
+    // (A set-valued law's cone is the velocity law's factor; LuGre's
+    // bristles stay bristles, 2-D on a transverse slip.)
+    mode_.friction = resolution == friction::Resolution::velocity ||
+                             resolution == friction::Resolution::set_valued
                          ? FrictionMode::regularized_velocity
                      : resolution == friction::Resolution::acceleration
                          ? FrictionMode::regularized_acceleration

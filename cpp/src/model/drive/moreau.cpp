@@ -60,6 +60,8 @@ void DriveMoreau::step(double t, double h, double theta, const double* y, double
   for (std::size_t k = 0; k < modes_at_start_.size(); ++k)
     modes_at_start_[k] = dynamics_.element_mode(k);
   if (bristle_state_ >= 0) bristle_z0_ = y[bristle_state_] * bristle_range_;
+  if (bristle_state_ >= 0 && transverse_state_ >= 0)  // (lugre_bristles_kind's third state)
+    bristle_w0_ = y[bristle_state_ + 2] * bristle_range_;
   stop_share_ = 1.0;
   if (!take_step(t, h, theta, y, y_next, p_.restitution)) {
     if (stop_restituting_) limit_stop_restitution(t, h, theta, y, y_next, excess, play_rate);
@@ -277,6 +279,13 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
                              "both fix the drive's one degree of freedom, an infinite impulse",
                           "use a drive torque or a DC motor, end_stops.contact = \"penalty\" "
                           "(its stiffness bounds the force), or a flexible concept");
+  // A transverse slip's w at the step's end and its cone's coefficient at
+  // the step's start slip speed (the stop's hold and the smooth step take them).
+  if (transverse_state_ >= 0) {
+    transverse_next_ = p_.transverse_slip_velocity(t + h);
+    transverse_mu_ = dynamics_.cone_mu(std::hypot(model_.tangent_direction().dot(v0),
+                                                  p_.transverse_slip_velocity(t)));
+  }
   if (row && stops_fix_every_velocity()) {
     if (dynamics_.law().resolution() != friction::Resolution::bristle)
       return stop_holds(without, unit, normal_target, rotor_target, stick);
@@ -291,11 +300,6 @@ DriveMoreau::Impulses DriveMoreau::solve_thread(double t, double h, double theta
   // A transverse slip's cone: where w+ != 0 the helix friction is smooth
   // in the slip (no stick), the exact cone's root (moreau_smooth_friction.cpp);
   // where w+ = 0 the 1-D Coulomb step below.
-  if (transverse_state_ >= 0) {
-    transverse_next_ = p_.transverse_slip_velocity(t + h);
-    transverse_mu_ = dynamics_.cone_mu(std::hypot(model_.tangent_direction().dot(v0),
-                                                  p_.transverse_slip_velocity(t)));
-  }
   if (law.resolution() != friction::Resolution::set_valued ||
       (transverse_state_ >= 0 && transverse_next_ != 0.0))  // (no stick: a smooth law)
     return solve_smooth_thread(t, h, theta, v0, normal_target, rotor_target, sigma_fixed, c, d,
@@ -549,6 +553,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   if (bristle_state_ >= 0) {  // LuGre's deflection and the energy its bristles store
     state.values[bristle_channel_] = y[bristle_state_] * bristle_range_;
     state.elastic += y[bristle_state_ + 1];
+    if (transverse_state_ >= 0)
+      state.values[bristle_channel_ + 1] = y[bristle_state_ + 2] * bristle_range_;
   }
   if (preload_channel_ >= 0) {  // (a preloaded nut: a smooth law or lift-off, the last step's)
     const elements::PreloadedNut& nut = *model_.preloaded_nut();

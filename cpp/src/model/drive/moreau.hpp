@@ -261,11 +261,13 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   // they store, taken from the friction loss (moreau_smooth_friction.cpp).
   void book_bristles(double h, const double* y, double* y_next, double slip,
                      double normal_impulse);
+  void book_planar_bristles(double h, const double* y, double* y_next, double slip,
+                            double normal_impulse);
   // The cone's transverse impulse over the step at w+ (on the cone from
   // the helix impulse): its loss, the excitation's work that balances it,
   // the row's force (moreau_smooth_friction.cpp).
-  void book_transverse(double h, const double* y, double* y_next, double friction_impulse,
-                       double normal_impulse, double slip);
+  void book_transverse(double h, const double* y, double* y_next, bool contact,
+                       double friction_impulse, double normal_impulse, double slip);
   // A speed-controlled rotor with the train's friction: the step without
   // the rotor's friction row, then the motor's friction and the stage's
   // loss from the impulse the stage passes on (moreau_speed_train.cpp).
@@ -335,6 +337,10 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   double last_transverse_ = 0.0;
   double bristle_range_ = 0.0;
   double bristle_z0_ = 0.0;  // z at the step's start [m] (step())
+  // A transverse slip's 2-D bristles: z_w at the step's start [m], and the
+  // transverse coefficient sigma0 z_w+ + sigma1 z_w+' (times the flank
+  // factor) of the step's end (book_planar_bristles).
+  double bristle_w0_ = 0.0, transverse_bristle_coefficient_ = 0.0;
   CoordinateVector q_, v_, free_;
   IterationMatrix iteration_;  // W, factorized while it holds (moreau_iteration.hpp)
   ContactForces last_;

@@ -44,6 +44,23 @@ double bristle_step(const friction::Law& law, double z0, double g, double h) {
   return (z0 + h * g) / (1.0 + h * law.bristle_stiffness() * speed / law.slip_mu(speed));
 }
 
+// A component of LuGre's 2-D bristles on a transverse slip's cone (the
+// event-driven scheme's DriveDynamics::bristle_rate) after the implicit
+// Euler step: its slip component g relaxing at the step's end slip speed
+// |(gamma+, w+)|, which keeps |(z, z_w)| <= max(mu, mu_static) / sigma0.
+double planar_bristle_step(const friction::Law& law, double z0, double g, double speed,
+                           double h) {
+  return (z0 + h * g) / (1.0 + h * law.bristle_stiffness() * speed / law.slip_mu(speed));
+}
+
+// The bristles' coefficient sigma0 z+ + sigma1 z+' at the step's end, z+'
+// the law's rate there (= (z+ - z0) / h).
+double planar_bristle_coefficient(const friction::Law& law, double z1, double g, double speed) {
+  return law.bristle_stiffness() * z1 +
+         law.bristle_damping() *
+             (g - law.bristle_stiffness() * speed * z1 / law.slip_mu(speed));
+}
+
 // The root of f between low and high (f(low) < 0 < f(high)): the Illinois
 // variant of regula falsi, to the interval's round-off.
 template <class F>
@@ -78,10 +95,15 @@ double DriveMoreau::smooth_coefficient(double slip, double h) const {
   // step's start slip speed), strictly increasing in gamma+ and below mu'
   // (one root, found to round-off: the exact cone; the viscous term is
   // the smooth step's own, implicit).
-  if (transverse_state_ >= 0)
-    return DriveDynamics::cone_coefficient(slip, transverse_next_, transverse_mu_);
   const friction::Law& law = model_.law();
   const double factor = model_.flank_factor();
+  if (transverse_state_ >= 0 && law.resolution() == friction::Resolution::bristle) {
+    const double speed = std::hypot(slip, transverse_next_);
+    const double z1 = planar_bristle_step(law, bristle_z0_, slip, speed, h);
+    return planar_bristle_coefficient(law, z1, slip, speed) * factor;
+  }
+  if (transverse_state_ >= 0)
+    return DriveDynamics::cone_coefficient(slip, transverse_next_, transverse_mu_);
   if (law.resolution() == friction::Resolution::bristle)
     return law.bristle_coefficient(slip, bristle_step(law, bristle_z0_, slip, h)) * factor;
   return law.velocity_coefficient(slip) * factor;
@@ -177,6 +199,10 @@ DriveMoreau::Impulses DriveMoreau::solve_smooth_thread(double t, double h, doubl
 void DriveMoreau::book_bristles(double h, const double* y, double* y_next, double slip,
                                 double normal_impulse) {
   const friction::Law& law = model_.law();
+  if (transverse_state_ >= 0) {
+    book_planar_bristles(h, y, y_next, slip, normal_impulse);
+    return;
+  }
   const double z1 = bristle_step(law, bristle_z0_, slip, h);
   y_next[bristle_state_] = z1 / bristle_range_;
   // The energy the bristles store over the step, |N| sigma0 (z+^2 - z0^2)
@@ -190,7 +216,27 @@ void DriveMoreau::book_bristles(double h, const double* y, double* y_next, doubl
   y_next[layout_.energy_offset() + kFrictionLoss] -= stored;
 }
 
-void DriveMoreau::book_transverse(double h, const double* y, double* y_next,
+// The 2-D bristles of a transverse slip's cone: both components' implicit
+// Euler step at |(gamma+, w+)|, the energy both store (as book_bristles'),
+// and the transverse component's coefficient for book_transverse.
+void DriveMoreau::book_planar_bristles(double h, const double* y, double* y_next, double slip,
+                                       double normal_impulse) {
+  const friction::Law& law = model_.law();
+  const double speed = std::hypot(slip, transverse_next_);
+  const double z1 = planar_bristle_step(law, bristle_z0_, slip, speed, h);
+  const double w1 = planar_bristle_step(law, bristle_w0_, transverse_next_, speed, h);
+  y_next[bristle_state_] = z1 / bristle_range_;
+  y_next[bristle_state_ + 2] = w1 / bristle_range_;
+  transverse_bristle_coefficient_ =
+      planar_bristle_coefficient(law, w1, transverse_next_, speed) * model_.flank_factor();
+  const double stored = std::abs(normal_impulse) / h * model_.flank_factor() * 0.5 *
+                        law.bristle_stiffness() *
+                        (z1 * z1 - bristle_z0_ * bristle_z0_ + w1 * w1 - bristle_w0_ * bristle_w0_);
+  y_next[bristle_state_ + 1] = y[bristle_state_ + 1] + stored;
+  y_next[layout_.energy_offset() + kFrictionLoss] -= stored;
+}
+
+void DriveMoreau::book_transverse(double h, const double* y, double* y_next, bool contact,
                                   double friction_impulse, double normal_impulse, double slip) {
   // The transverse impulse against w+: its cone part put on the cone from
   // the root's helix impulse, |(P_T + h c gamma+, P_w + h c w+)| =
@@ -198,9 +244,14 @@ void DriveMoreau::book_transverse(double h, const double* y, double* y_next,
   // recomputed gamma+, whose round-off is of the size of w+ at its zeros,
   // it left the cone by 1 %), and the viscous impulse -h c w+. The
   // excitation that moves the nut across does the work -P_w w+ >= 0, which
-  // the friction loses. (w+ = 0: the 1-D step, no transverse impulse.)
+  // the friction loses. (w+ = 0: the 1-D step, no transverse impulse; a
+  // penalty flank out of contact: none, its viscous impulse neither.)
   double impulse = 0.0;
-  if (transverse_next_ != 0.0) {
+  if (bristle_state_ >= 0) {  // LuGre's: the transverse bristles' force (book_planar_bristles)
+    if (contact)
+      impulse = -(transverse_bristle_coefficient_ * std::abs(normal_impulse) +
+                  dynamics_.law().viscous() * h * transverse_next_);
+  } else if (transverse_next_ != 0.0 && contact) {
     const double viscous_step = dynamics_.law().viscous() * h;
     const double bound = transverse_mu_ * std::abs(normal_impulse);
     const double cone = friction_impulse + viscous_step * slip;

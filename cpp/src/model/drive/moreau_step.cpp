@@ -264,8 +264,7 @@ void DriveMoreau::book_step(StepState& s, double* y_next) {
                              : std::abs(s.impulses.normal - s.impulses.preload_normal) +
                                    std::abs(s.impulses.preload_normal));
   if (transverse_state_ >= 0)
-    book_transverse(h, y, y_next, s.contact ? s.impulses.friction : 0.0,
-                    s.contact ? s.impulses.normal : 0.0, slip);
+    book_transverse(h, y, y_next, s.contact, s.impulses.friction, s.impulses.normal, slip);
   play_rate_ = std::max({play_rate_, std::abs(s.play_rate0),
                          std::abs(lane_dot(model_.play_gradient(), v_))});
   book_losses(s, v_theta, y_next);

@@ -41,7 +41,12 @@ DriveMoreau::Impulses DriveMoreau::stop_holds(const Impulses& without, const Imp
     stick = true;
     return held;
   }
-  const double mu = model_.effective_mu();
+  // (A transverse slip's cone at the prescribed slip (c, w+): its helix
+  // component mu'(s0) |c| / |(c, w+)|, the cone's direction, whose
+  // transverse rest book_transverse puts on the cone; transverse_slip.cpp.)
+  const double mu = transverse_state_ >= 0 && transverse_next_ != 0.0
+                        ? transverse_mu_ * std::abs(c) / std::hypot(c, transverse_next_)
+                        : model_.effective_mu();
   const double beta = without.normal, alpha = unit.normal - without.normal;
   const int s = c > 0.0 ? 1 : -1;
   for (const int sigma : {1, -1}) {

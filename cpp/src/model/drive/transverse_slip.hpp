@@ -16,9 +16,10 @@ namespace leadscrew::model::drive {
 // obstacle and what is supported) a transverse slip where the 2-D cone is
 // not implemented: other concepts, elements, laws and integrators, and on
 // the event-driven scheme a w held at zero over an interval (a table) or
-// unknown ahead (a callable). Nothing without a transverse slip.
+// unknown ahead (a callable), and a set-valued cone's smooth phases on
+// CVODE (smooth_integrator). Nothing without a transverse slip.
 void check_transverse_slip(const DriveModel& model, const std::string& integrator,
-                           double t_end);
+                           const std::string& smooth_integrator, double t_end);
 
 // Moreau-Jean's output row: the declared channels (w at the state set, the
 // transverse friction given, the work integral of y); nothing without them.

@@ -200,3 +200,21 @@ def test_what_stays_refused_beside_the_elements():
                                          r"\"rk_verner6\""):
         ls.simulate(scene(transverse()), 0.01, integrator="event_driven",
                     smooth_integrator="cvode_bdf")
+
+
+@pytest.mark.parametrize("concept", ["rigid", "flexible_nut"])
+def test_lugre_cone_beside_an_exact_stop_is_refused(concept):
+    """Where an exact stop's row holds the slip on Moreau-Jean, the step takes
+    LuGre's 1-D bristles (moreau_held_bristles.cpp), not the cone's two
+    components: the cone with LuGre beside exact stops is refused by name."""
+    lugre = {"law": "lugre", "mu": 0.3, "sigma0": 1e6}
+    stopped = scene(transverse(), friction=lugre, concept=concept).replace(
+        end_stops={"upper": 2e-4, "contact": "exact", "restitution": 0.3})
+    with pytest.raises(ValueError, match=r"loads\.transverse_slip_velocity = .* is invalid "
+                                         r"with end_stops\.contact = \"exact\" and friction\.law "
+                                         r"= \"lugre\""):
+        ls.simulate(stopped, 0.01, integrator="moreau", dt=1e-5)
+    # Without the stop the same cone runs (and passes its checks).
+    result = ls.simulate(scene(transverse(), friction=lugre, concept=concept), 0.002,
+                         integrator="moreau", dt=1e-5)
+    assert all(check["passed"] for check in result.checks.values())

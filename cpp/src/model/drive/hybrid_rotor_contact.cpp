@@ -113,6 +113,7 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
     layout_.compress(q_, v_, y);
     set(t, y);
   }
+  if (at_rest) rest_held_drive(t, y);  // (hybrid_rotor_stops.cpp)
   const Mode thread = mode_;
   std::string failure;
   for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
@@ -125,7 +126,9 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
       if (mode_.contact != ThreadContact::open)
         decide_friction(t, y, mode_.friction == FrictionMode::stick, 0);
       const ModeSolution s = solve_current();
-      if (candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s, at_rest)) {
+      // (A closed exact stop must push in the mode: hybrid_rotor_stops.cpp.)
+      if ((candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s, at_rest)) &&
+          held_stop_presses(s)) {
         rotor_mode_.breakaway = false;  // (in slip the kinetic efficiencies)
         start_flow_root(s);
         return;
@@ -142,9 +145,16 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
     mode_ = thread;
     if (mode_.contact != ThreadContact::open)
       decide_friction(t, y, mode_.friction == FrictionMode::stick, 0);
-    if (stick_at_edge(solve_current())) return;
+    const ModeSolution s = solve_current();
+    if (stick_at_edge(s) && held_stop_presses(s)) return;
   }
   mode_ = thread;
+  if (held_load_ >= 0) {
+    // No mode has the closed stop push: it opens, the modes tried again.
+    release_held_load();
+    decide_rotor(t, y, leave_stick, stalled);
+    return;
+  }
   // The stage's Painleve case: back-driven, a self-locking stage's k < 0
   // leaves the rotor's coordinate the inertia (k J_s + R) / k, none or a
   // negative one for k J_s + R <= 0.
@@ -180,7 +190,8 @@ void DriveHybrid::start_flow_root(const ModeSolution& s) {
 void DriveHybrid::settle_rotor(double t, double* y) {
   set(t, y);
   const ModeSolution s = solve_current();
-  if (rotor_mode_.slip == 0 ? stick_at_edge(s) : flow_at_edge(s)) return;
+  if ((rotor_mode_.slip == 0 ? stick_at_edge(s) : flow_at_edge(s)) && held_stop_presses(s))
+    return;
   decide_rotor(t, y, rotor_mode_.slip == 0, false);
 }
 

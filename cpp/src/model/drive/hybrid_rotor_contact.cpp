@@ -39,6 +39,8 @@ namespace {
 // A stuck rotor's static margin this far (relative to the torques) below
 // zero is its edge's round-off (settle_rotor).
 constexpr double kRotorEdge = 1e-9;
+// A stage's torque ratio k below this is no torque on the rotor (rotor_row).
+constexpr double kNegligibleRatio = 1e-12;
 }  // namespace
 
 moreau_contacts::RotorBalance DriveHybrid::rotor_balance() const {
@@ -56,6 +58,17 @@ ModeSpec::RotorRow DriveHybrid::rotor_row() const {
   out.a_w = row.a_w;
   out.a_q = row.a_q;
   out.r = row.r;
+  if (row.a_q != 0.0 && std::abs(row.a_q) < kNegligibleRatio) {
+    // A back-driven stage of |eta_b| below kNegligibleRatio passes the
+    // rotor no torque to round-off: eta_b = 0's row, which fixes w' (the
+    // eliminated form's force U / k swamped the thread's forces: with a
+    // preloaded nut eta_b = 1e-20 jammed, 1e-100 ran CVODE out of steps;
+    // 1e-12 and 0 ran).
+    const moreau_contacts::RotorBalance balance = rotor_balance();
+    out.a_w = -(balance.inertia - balance.h1);
+    out.a_q = 0.0;
+    out.r = rotor_mode_.slip * balance.friction - (balance.inertia * balance.w0 + balance.h0);
+  }
   return out;
 }
 

@@ -269,6 +269,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   // A held load's drive whose every speed is below the integrator's
   // resolution is at rest: its speeds set to exactly zero.
   void rest_held_drive(double t, double* y);
+  // A preloaded nut's half B's torques on the rotor's coordinate in s (0:
+  // none): the round-off's scale they add to thread_torque_scale.
+  double preload_torque_scale(const ModeSolution& s) const;
   bool rotor_impulse_consistent(const moreau_contacts::RotorMode& mode, double dw,
                                 bool at_rest) const;
 

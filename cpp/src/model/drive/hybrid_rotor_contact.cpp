@@ -97,8 +97,10 @@ bool DriveHybrid::rotor_painleve_possible() const {
 // scale of Q beside the rotor's own torques).
 double DriveHybrid::thread_torque_scale(const ModeSolution& s) const {
   const int r = model_.rotor();
+  // (A preloaded nut's halves: their forces, of the preload's size, cancel
+  // to the net ones; their round-off is the preload's, hybrid_rotor_stops.cpp.)
   return std::abs(s.normal_force * model_.normal_direction()[r]) +
-         std::abs(s.friction_force * model_.tangent_direction()[r]);
+         std::abs(s.friction_force * model_.tangent_direction()[r]) + preload_torque_scale(s);
 }
 
 bool DriveHybrid::rotor_consistent(const ModeSolution& s, bool at_rest) const {

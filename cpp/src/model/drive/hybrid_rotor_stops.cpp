@@ -25,6 +25,7 @@
 // rotor's speed reaches zero (EndStopsElement::tied_impact), so each phase
 // has one mode; the stage's loss in the impact is part of the kinetic
 // energy's drop (impact_loss), which never rises.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -60,6 +61,19 @@ void DriveHybrid::rest_held_drive(double t, double* y) {
   v_.setZero();
   layout_.compress(q_, v_, y);
   set(t, y);
+}
+
+// Half B's normal force (preload_normal) and the preload's friction at the
+// slip's coefficient bound it: both halves bear about the preload and cancel
+// to the net force, so their round-off (1e-18 N m at rest under zero loads
+// with arctan_velocity) is the preload's, not the net force's.
+double DriveHybrid::preload_torque_scale(const ModeSolution& s) const {
+  const elements::PreloadedNut* nut = model_.preloaded_nut();
+  if (!nut) return 0.0;
+  const int r = model_.rotor();
+  const double normal = std::max(std::abs(s.preload_normal), nut->preload / nut->cos_lead);
+  return normal * (std::abs(model_.normal_direction()[r]) +
+                   nut->mu * std::abs(model_.tangent_direction()[r]));
 }
 
 bool DriveHybrid::rotor_impulse_consistent(const moreau_contacts::RotorMode& mode, double dw,

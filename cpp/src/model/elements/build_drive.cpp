@@ -678,13 +678,6 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
                  "and the rotor stuck the thread's friction and the rotor's share the holding "
                  "torque in a statically indeterminate split)";
   }
-  // arctan_velocity's half B (at the law's coefficient) beside the rotor's
-  // contact: no rotor mode was consistent at rest (the drive at rest under
-  // zero loads jammed at t = 0 where Moreau-Jean runs it; a fuzz case).
-  if (p.nut_preload > 0.0 && p.friction != "coulomb")
-    return "nut.preload = " + format_value(p.nut_preload) + " N with friction.law = \"" +
-           p.friction + "\" (the preloaded nut's half B at the law's coefficient beside the "
-           "rotor's friction contact has no consistent mode at rest yet)";
   return given_base_excitation(p);
 }
 

@@ -255,6 +255,20 @@ def test_a_preloaded_nut_at_rest_starts_where_the_halves_round_off_cancels():
     assert stepped["gear_loss"][-1] == pytest.approx(exact["gear_loss"][-1], rel=1e-3)
 
 
+def test_a_preloaded_nut_leaves_the_stages_loss_channels_alone():
+    """A preloaded nut with exact Coulomb and no lift-off declares no
+    channels; its element wrote the preload and half A's normal force into
+    the next declaration's slots, the train's motor_friction_loss (50 N
+    reported as 50 J) and gear_loss (negative), behind a prescribed rotor
+    speed too. The motor's friction loss is T_c times the rotor's angle."""
+    d = scene(nut={"preload": 50.0}, loads={"drive_speed": 20.0, "axial_force": -10.0})
+    d["loads"].pop("drive_torque")
+    result = checked(d, 0.05, integrator="event_driven")
+    assert result["motor_friction_loss"][-1] == pytest.approx(T_C * 20.0 * 0.05, rel=1e-9)
+    assert result["gear_loss"][-1] > 0.0
+    assert "preload_force" not in result.channels
+
+
 def test_moreau_jean_stays_the_default_and_rtol_chooses_the_event_driven_scheme():
     """Moreau-Jean ran these scenes before: it stays their default (results
     unchanged); rtol chooses the event-driven scheme."""

@@ -5,7 +5,8 @@ clamp against the closed form (the motor's stall torque, or its current
 limit's, through the stage and the thread:
 tests/helpers/end_stop_reference.py's train_clamp_force); switched off at
 the stop, the self-locking train holds the clamp; the energy account closes;
-stops out of reach change nothing; exact stops stay refused."""
+stops out of reach change nothing; exact stops stay refused on the rigid
+concept (tests/test_event_driven_stages_elements.py runs them off it)."""
 
 import math
 

@@ -94,6 +94,9 @@ class DriveHybrid::Element {
     (void)forces;
     (void)state;
   }
+  // The driver opened the exact stop it holds the load at (no mode of the
+  // rotor's friction contact has it push: hybrid_rotor_stops.cpp).
+  virtual void release_hold() {}
   // Its forces depend on the loads alone (not on its own state): the
   // rigid drive's load-driven roots (hybrid_load_roots.cpp) may plan ahead.
   virtual bool forces_from_loads_alone() const { return true; }
@@ -140,6 +143,14 @@ class DriveHybrid::Element {
   }
   ModeSpec spec(int sigma) const { return h_.spec(sigma); }
   double stick_mu() const { return h_.stick_mu(); }
+  // The rotor's friction contact (nullptr: none), its mode, and whether a
+  // mode fits an impulse's rotor speed change dw (hybrid_rotor_stops.cpp).
+  const elements::TrainFriction* rotor_train() const { return h_.rotor_train_; }
+  moreau_contacts::RotorMode& rotor_mode() { return h_.rotor_mode_; }
+  bool rotor_impulse_consistent(const moreau_contacts::RotorMode& mode, double dw,
+                                bool at_rest) const {
+    return h_.rotor_impulse_consistent(mode, dw, at_rest);
+  }
   // Dynamic jamming (the Painleve regime) at the state set: JammingError.
   [[noreturn]] void jam(const std::string& what) const { h_.jam(what); }
 

@@ -29,6 +29,8 @@
 //   hybrid_rotor_contact.cpp  the rotor's friction contact (the train's stages
 //                             with a torque or DC motor on the flexible
 //                             concepts): its mode, roots and decisions
+//   hybrid_rotor_stops.cpp    the rotor's contact beside a closed exact stop
+//                             and in a stop's impact through the thread
 //   element_registry.cpp   the elements' registry (declaration.hpp)
 #pragma once
 
@@ -262,6 +264,21 @@ class DriveHybrid final : public integrate::HybridSystem {
   // The rotor's friction torque Q and the stage's torque on the driven part
   // tau_b in the solution s (the stages' losses' rates: Q phi_r' in all).
   double rotor_stage_torque(const ModeSolution& s) const;
+  // hybrid_rotor_stops.cpp: the rotor's contact beside a closed exact stop
+  // (its reaction a sign of the mode's decision: the stop pushes in s; the
+  // stop opened where no mode has it push) and in a stop's impact through
+  // the thread (a rotor's mode per impulse: dw the rotor's speed change per
+  // unit impulse of the stop).
+  bool held_stop_presses(const ModeSolution& s) const;
+  void release_held_load();
+  // A held load's drive whose every speed is below the integrator's
+  // resolution is at rest: its speeds set to exactly zero.
+  void rest_held_drive(double t, double* y);
+  // A preloaded nut's half B's torques on the rotor's coordinate in s (0:
+  // none): the round-off's scale they add to thread_torque_scale.
+  double preload_torque_scale(const ModeSolution& s) const;
+  bool rotor_impulse_consistent(const moreau_contacts::RotorMode& mode, double dw,
+                                bool at_rest) const;
 
   // hybrid_impacts.cpp
   // The direction in which an impact and put_back_inside move the

@@ -169,6 +169,8 @@ class EndStopsElement final : public DriveHybrid::Element {
     return {kind, true};
   }
 
+  void release_hold() override { closed_.assign(exact_.size(), 0); }
+
   // A closed exact stop holds the load: its position's and velocity's rates 0.
   void rates(double t, const double* y, double* ydot, double* energy) const override {
     (void)t;
@@ -246,6 +248,10 @@ class EndStopsElement final : public DriveHybrid::Element {
   Phase phase(const CoordinateVector& unit, const CoordinateVector& zero, double slip,
               double slip_noise) const;
   Phase slipping(int slip_sign, const CoordinateVector& unit, const CoordinateVector& zero) const;
+  // The phase with the rotor's friction contact: its mode per impulse
+  // (hybrid_rotor_stops.cpp) chosen with the thread's phase.
+  Phase rotor_phase(const CoordinateVector& unit, const CoordinateVector& zero, double slip,
+                    double slip_noise);
 
   const std::vector<elements::EndStop>& stops_;
   const std::vector<elements::ExactEndStop>& exact_;
@@ -326,6 +332,36 @@ EndStopsElement::Phase EndStopsElement::phase(const CoordinateVector& unit,
   return slipping(friction > 0.0 ? -1 : 1, unit, zero);
 }
 
+// The phase at the current velocities with the rotor's friction contact:
+// the rotor's modes in decide_rotor's order (at rest stick, the slips, the
+// slips at breakaway; moving its slip's), each with the thread's phase, the
+// first whose rotor speed change fits the impulse kept
+// (DriveHybrid::rotor_impulse_consistent).
+EndStopsElement::Phase EndStopsElement::rotor_phase(const CoordinateVector& unit,
+                                                    const CoordinateVector& zero, double slip,
+                                                    double slip_noise) {
+  const int r = model().rotor();
+  const double w = v()[r];
+  const bool at_rest =
+      std::abs(w) <= 64.0 * std::numeric_limits<double>::epsilon() * v().cwiseAbs().sum();
+  std::string failure;
+  for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
+    if (!rotor_train()->stage && candidate.flow < 0) continue;
+    if (candidate.slip == 0 && !at_rest) continue;
+    if (!at_rest && (candidate.breakaway || candidate.slip != (w > 0.0 ? 1 : -1))) continue;
+    rotor_mode() = candidate;
+    try {
+      const Phase p = phase(unit, zero, slip, slip_noise);
+      if (rotor_impulse_consistent(candidate, p.dv[r], at_rest)) return p;
+    } catch (const SimulationError& e) {  // (that mode's thread phase jams)
+      if (failure.empty()) failure = e.what();
+    }
+  }
+  jam("the end stop's impact through the thread admits no consistent stick/slip state of the "
+      "rotor's friction contact (the motor's friction, the gear stage)" +
+      (failure.empty() ? std::string() : " (" + failure + ")"));
+}
+
 // An impact on a load that a constraint ties to other coordinates (the
 // rigid drive; the nut-driven flexible nut's screw): the stop's impulse P
 // on the load passes through the frictional thread, piecewise linear in P
@@ -362,9 +398,13 @@ bool EndStopsElement::tied_impact(double t, double* y, const elements::ExactEndS
   const double resolution = 1024.0 * std::numeric_limits<double>::epsilon() * approach;
   const bool friction = spec(1).friction != FrictionMode::none;
   bool held = false;
+  const moreau_contacts::RotorMode rotor_before =
+      rotor_train() ? rotor_mode() : moreau_contacts::RotorMode{};
+  const int rotor = model().rotor();
   for (int segment = 0; segment < 16 && vn > target; ++segment) {
     const double slip = tangent.dot(vel);
-    const Phase p = phase(unit, zero, slip, noise);
+    const Phase p = rotor_train() ? rotor_phase(unit, zero, slip, noise)
+                                  : phase(unit, zero, slip, noise);
     const double dvn = stop.side * p.dv[load_];
     if (p.stuck && !(dvn < 0.0) && vn <= resolution) {
       held = true;  // the stuck thread holds the load at the face
@@ -377,6 +417,8 @@ bool EndStopsElement::tied_impact(double t, double* y, const elements::ExactEndS
     const double ds = tangent.dot(p.dv);
     if (friction && !p.stuck && std::abs(slip) > noise && slip * ds < 0.0)
       dp = std::min(dp, -slip / ds);  // the slip ends: the next phase
+    if (rotor_train() && rotor_mode().slip != 0 && vel[rotor] * p.dv[rotor] < 0.0)
+      dp = std::min(dp, -vel[rotor] / p.dv[rotor]);  // the rotor stops: the next phase
     vel += dp * p.dv;
     vn = stop.side * vel[load_];
   }
@@ -390,6 +432,9 @@ bool EndStopsElement::tied_impact(double t, double* y, const elements::ExactEndS
     // The held load fixes every velocity (the rigid drive): all at rest.
     if (2 + model().motor().constraint_count() >= n) vel.setZero();
   }
+  // (The rotor's mode after the impact: the driver's settle_rotor, from
+  // the mode before it.)
+  if (rotor_train()) rotor_mode() = rotor_before;
   const double after = 0.5 * vel.cwiseProduct(mass).dot(vel);
   if (after > kinetic * (1.0 + 1e-12))
     throw SimulationError(t, "the end stop's impact through the frictional thread would create "

@@ -85,7 +85,11 @@ class NutChannelsElement final : public DriveHybrid::Element {
               ChannelState& state) const override {
     (void)t;
     (void)y;
-    if (first_channel() < 0) return;  // (no channels declared: exact Coulomb, no lift-off)
+    // (No channels declared: exact Coulomb, no lift-off. Its declaration's
+    // slot then is the next element's first channel, the train's
+    // motor_friction_loss, which the nut's preload overwrote beside a
+    // rotor's friction contact.)
+    if (first_channel() < 0 || !(nut_.lift_off || law_channels(dynamics().law()))) return;
     double* values = state.values.data() + first_channel();
     if (!nut_.lift_off) {
       const double normal_a = forces.normal - forces.preload_normal;

@@ -39,6 +39,8 @@ namespace {
 // A stuck rotor's static margin this far (relative to the torques) below
 // zero is its edge's round-off (settle_rotor).
 constexpr double kRotorEdge = 1e-9;
+// A stage's torque ratio k below this is no torque on the rotor (rotor_row).
+constexpr double kNegligibleRatio = 1e-12;
 }  // namespace
 
 moreau_contacts::RotorBalance DriveHybrid::rotor_balance() const {
@@ -56,6 +58,17 @@ ModeSpec::RotorRow DriveHybrid::rotor_row() const {
   out.a_w = row.a_w;
   out.a_q = row.a_q;
   out.r = row.r;
+  if (row.a_q != 0.0 && std::abs(row.a_q) < kNegligibleRatio) {
+    // A back-driven stage of |eta_b| below kNegligibleRatio passes the
+    // rotor no torque to round-off: eta_b = 0's row, which fixes w' (the
+    // eliminated form's force U / k swamped the thread's forces: with a
+    // preloaded nut eta_b = 1e-20 jammed, 1e-100 ran CVODE out of steps;
+    // 1e-12 and 0 ran).
+    const moreau_contacts::RotorBalance balance = rotor_balance();
+    out.a_w = -(balance.inertia - balance.h1);
+    out.a_q = 0.0;
+    out.r = rotor_mode_.slip * balance.friction - (balance.inertia * balance.w0 + balance.h0);
+  }
   return out;
 }
 
@@ -84,8 +97,10 @@ bool DriveHybrid::rotor_painleve_possible() const {
 // scale of Q beside the rotor's own torques).
 double DriveHybrid::thread_torque_scale(const ModeSolution& s) const {
   const int r = model_.rotor();
+  // (A preloaded nut's halves: their forces, of the preload's size, cancel
+  // to the net ones; their round-off is the preload's, hybrid_rotor_stops.cpp.)
   return std::abs(s.normal_force * model_.normal_direction()[r]) +
-         std::abs(s.friction_force * model_.tangent_direction()[r]);
+         std::abs(s.friction_force * model_.tangent_direction()[r]) + preload_torque_scale(s);
 }
 
 bool DriveHybrid::rotor_consistent(const ModeSolution& s, bool at_rest) const {
@@ -113,6 +128,7 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
     layout_.compress(q_, v_, y);
     set(t, y);
   }
+  if (at_rest) rest_held_drive(t, y);  // (hybrid_rotor_stops.cpp)
   const Mode thread = mode_;
   std::string failure;
   for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
@@ -125,7 +141,9 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
       if (mode_.contact != ThreadContact::open)
         decide_friction(t, y, mode_.friction == FrictionMode::stick, 0);
       const ModeSolution s = solve_current();
-      if (candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s, at_rest)) {
+      // (A closed exact stop must push in the mode: hybrid_rotor_stops.cpp.)
+      if ((candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s, at_rest)) &&
+          held_stop_presses(s)) {
         rotor_mode_.breakaway = false;  // (in slip the kinetic efficiencies)
         start_flow_root(s);
         return;
@@ -142,9 +160,16 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
     mode_ = thread;
     if (mode_.contact != ThreadContact::open)
       decide_friction(t, y, mode_.friction == FrictionMode::stick, 0);
-    if (stick_at_edge(solve_current())) return;
+    const ModeSolution s = solve_current();
+    if (stick_at_edge(s) && held_stop_presses(s)) return;
   }
   mode_ = thread;
+  if (held_load_ >= 0) {
+    // No mode has the closed stop push: it opens, the modes tried again.
+    release_held_load();
+    decide_rotor(t, y, leave_stick, stalled);
+    return;
+  }
   // The stage's Painleve case: back-driven, a self-locking stage's k < 0
   // leaves the rotor's coordinate the inertia (k J_s + R) / k, none or a
   // negative one for k J_s + R <= 0.
@@ -180,7 +205,8 @@ void DriveHybrid::start_flow_root(const ModeSolution& s) {
 void DriveHybrid::settle_rotor(double t, double* y) {
   set(t, y);
   const ModeSolution s = solve_current();
-  if (rotor_mode_.slip == 0 ? stick_at_edge(s) : flow_at_edge(s)) return;
+  if ((rotor_mode_.slip == 0 ? stick_at_edge(s) : flow_at_edge(s)) && held_stop_presses(s))
+    return;
   decide_rotor(t, y, rotor_mode_.slip == 0, false);
 }
 

@@ -265,8 +265,9 @@ void check_train_integrator(const DriveModel& model, const std::string& integrat
              "(friction.law = \"coulomb\", mu_static too) or \"arctan_velocity\", and on "
              "the flexible concepts and penalty play (backlash.contact \"bistop\" or "
              "\"cubic\") with friction.law = \"coulomb\" without mu_static or "
-             "\"arctan_velocity\" (the rotor's friction contact), "
-             "without a preloaded nut or an exact end stop; and behind a prescribed "
+             "\"arctan_velocity\" (the rotor's friction contact), there with exact "
+             "end stops and a preloaded nut too but not on the rigid concept; and behind a "
+             "prescribed "
              "rotor speed (loads.drive_speed) on every concept and play with every law, "
              "here " + train->event_driven_obstacle +
                  "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"

@@ -657,14 +657,27 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
                                     : "");
   if (rigid_train && p.friction != "coulomb" && p.friction != "arctan_velocity")
     return "friction.law = \"" + p.friction + "\"";
-  // (The rotor contact has no preload's hooks, TrainSolver's closed forms
-  // are the plain thread's.)
-  if (p.nut_preload > 0.0) return "nut.preload = " + format_value(p.nut_preload) + " N";
-  // (The closed exact stop holds the drive through the thread's row,
-  // DriveDynamics::solve; TrainSolver's closed forms do not take it.)
-  if (const ElementSection* stops = find_section(p, "end_stops"))
-    for (const auto& [key, value] : stops->choices)
-      if (key == "contact" && value == "exact") return "end_stops.contact = \"exact\"";
+  // A preloaded nut and exact end stops: the rotor's friction contact on
+  // the flexible concepts (hybrid_rotor_stops.cpp). Not on the rigid
+  // concept, whose two coordinates a held load and a stuck rotor fix
+  // already: the thread's stick row is dependent on them, the split of the
+  // holding torque between the thread's friction and the rotor's
+  // statically indeterminate, which the rotor's contact does not resolve
+  // (its solve is singular) and TrainSolver's closed forms do not take; a
+  // preloaded nut's stick edge there is not resolved with the rotor's
+  // contact either (no consistent edge at the start).
+  if (p.concept == Concept::rigid) {
+    if (p.nut_preload > 0.0)
+      return "nut.preload = " + format_value(p.nut_preload) +
+             " N on concept = \"rigid\" (the preloaded nut's stick edge with the rotor's "
+             "friction contact is not resolved there)";
+    if (const ElementSection* stops = find_section(p, "end_stops"))
+      for (const auto& [key, value] : stops->choices)
+        if (key == "contact" && value == "exact")
+          return "end_stops.contact = \"exact\" on concept = \"rigid\" (with the load held "
+                 "and the rotor stuck the thread's friction and the rotor's share the holding "
+                 "torque in a statically indeterminate split)";
+  }
   return given_base_excitation(p);
 }
 

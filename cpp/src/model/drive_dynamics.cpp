@@ -305,7 +305,7 @@ bool DriveDynamics::project_held(const HeldContact& held, CoordinateVector& q,
 
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
                            Impulses& impulses, lcp::Workspace& workspace,
-                           const lcp::Options& options) {
+                           const lcp::Options& options, const ModeSpec::RotorRow& rotor_contact) {
   const bool speed_controlled = model_.motor().speed_controlled;
   const int n = model_.coordinate_count();
   const Eigen::VectorXd& normal = model_.normal_direction();
@@ -314,9 +314,24 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   // controlled) with Newton's law W_N (v + dv) = -e W_N v. The post-impact
   // slip velocity and both impulses are affine in P_T: two solves give the
   // maps, and the flank LCP on the impulse level decides stick or slip.
-  double rotor_impulse = 0.0;
+  double rotor_impulse = 0.0, rotor_friction = 0.0;
+  // The rotor's friction contact (gear.md, "Exact play through the rotor's
+  // contact"): its row fixes w+ (a_q = 0) or eliminates Q into the rotor's
+  // inverse mass a_q / (a_q M_r - a_w) and the given impulse
+  // -(r - a_w w-) / a_q on its coordinate, as DriveDynamics::solve's.
+  const int rotor = model_.rotor();
+  const bool rotor_fixed = rotor_contact.fixes(1.0 / inverse_mass_[rotor]);
+  const bool rotor_eliminated = rotor_contact.active && !rotor_fixed;
+  CoordinateVector rotor_inverse_mass;
+  if (rotor_eliminated) {
+    const double effective = rotor_contact.a_q / inverse_mass_[rotor] - rotor_contact.a_w;
+    if (!(std::abs(effective) > 1e-12 * std::abs(rotor_contact.a_q / inverse_mass_[rotor])))
+      return false;  // (the stage's Painleve case, k J_s + R = 0)
+    rotor_inverse_mass = inverse_mass_;
+    rotor_inverse_mass[rotor] = rotor_contact.a_q / effective;
+  }
   auto jump = [&](double given_tangential, CoordinateVector& change, double& impulse) {
-    const int nc = 1 + (speed_controlled ? 1 : 0);
+    const int nc = 1 + (speed_controlled ? 1 : 0) + (rotor_fixed ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
     ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
     SmallVector r = SmallVector::Zero(nc);
@@ -324,14 +339,27 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
     C.row(0) = normal.transpose();
     r[0] = -(1.0 + restitution) * normal.dot(v);
     if (speed_controlled) {
-      B(model_.rotor(), 1) = 1.0;
-      C(1, model_.rotor()) = 1.0;
+      B(rotor, 1) = 1.0;
+      C(1, rotor) = 1.0;
     }
-    const CoordinateVector f = given_tangential * CoordinateVector(tangent);
+    if (rotor_fixed) {
+      B(rotor, nc - 1) = -1.0;
+      C(nc - 1, rotor) = rotor_contact.a_w;
+      r[nc - 1] = rotor_contact.r - rotor_contact.a_w * v[rotor];
+    }
+    CoordinateVector f = given_tangential * CoordinateVector(tangent);
+    if (rotor_eliminated) f[rotor] -= (rotor_contact.r - rotor_contact.a_w * v[rotor]) / rotor_contact.a_q;
     SmallVector lambda;
-    if (!solve_constrained(inverse_mass_, f, B, C, r, change, lambda)) return false;
+    if (!solve_constrained(rotor_eliminated ? rotor_inverse_mass : inverse_mass_, f, B, C, r,
+                           change, lambda))
+      return false;
     impulse = lambda[0];
     rotor_impulse = speed_controlled ? lambda[1] : 0.0;
+    rotor_friction =
+        rotor_fixed        ? lambda[nc - 1]
+        : rotor_eliminated ? (rotor_contact.r - rotor_contact.a_w * (v[rotor] + change[rotor])) /
+                                 rotor_contact.a_q
+                           : 0.0;
     return true;
   };
   CoordinateVector without, unit;
@@ -378,6 +406,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   impulses.normal = impulse;
   impulses.tangential = r.friction_force;
   impulses.rotor = rotor_impulse;
+  impulses.rotor_friction = rotor_friction;
   impulses.sticks = r.slip_acceleration == 0.0;  // the new slip velocity, exactly 0 in the stick basis
   return true;
 }

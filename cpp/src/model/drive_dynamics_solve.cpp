@@ -80,8 +80,8 @@ DriveDynamics::ModeForces DriveDynamics::mode_forces(const ModeSpec& spec) const
   // it fixes the rotor's acceleration, else eliminated into the rotor's
   // inverse mass and force (a self-locking stage back-driven: negative).
   const int rotor = model_.rotor();
-  m.rotor_fixed = spec.rotor.active && spec.rotor.a_q == 0.0;
-  m.rotor_eliminated = spec.rotor.active && spec.rotor.a_q != 0.0;
+  m.rotor_fixed = spec.rotor.fixes(1.0 / inverse_mass_[rotor]);
+  m.rotor_eliminated = spec.rotor.active && !m.rotor_fixed;
   if (m.rotor_eliminated) {
     const double effective = spec.rotor.a_q / inverse_mass_[rotor] - spec.rotor.a_w;
     if (!(std::abs(effective) > 1e-12 * std::abs(spec.rotor.a_q / inverse_mass_[rotor])))

@@ -66,6 +66,13 @@ struct ModeSpec {
   struct RotorRow {
     bool active = false;
     double a_w = 0.0, a_q = 0.0, r = 0.0;
+    // Whether the row fixes the acceleration of the rotor's coordinate (of
+    // inertia `mass`): a_q = 0, or a_q so small beside a_w that eliminating
+    // Q would divide by it (a stage's eta_b = 2e-311 back-driven gave r /
+    // a_q = inf: a NaN right-hand side; as eta_b = 0 to 1e-15).
+    bool fixes(double mass) const noexcept {
+      return active && std::abs(a_q) * mass <= 1e-15 * std::abs(a_w);
+    }
   } rotor;
 };
 
@@ -239,13 +246,17 @@ class DriveDynamics {
   // impact has |P_T| = mu' |P_N| exactly, so comparing the impulses would let
   // round-off decide. `rotor` is the speed-controlled motor's impulse (its
   // work at the held speed is rotor times that speed). Returns false if no
-  // consistent frictional impact exists.
+  // consistent frictional impact exists. `rotor_contact`: the rotor's
+  // friction contact's row on the impulse level (ModeSpec::RotorRow, a_w w+
+  // + a_q Q = r with Q its impulse along -e_rotor: a_q = 0 fixes w+, else
+  // Q is eliminated into the rotor's inverse mass); `rotor_friction` its Q.
   struct Impulses {
-    double normal = 0.0, tangential = 0.0, rotor = 0.0;
+    double normal = 0.0, tangential = 0.0, rotor = 0.0, rotor_friction = 0.0;
     bool sticks = false;
   };
   bool impact(int sigma, double restitution, CoordinateVector& v, Impulses& impulses,
-              lcp::Workspace& workspace, const lcp::Options& options);
+              lcp::Workspace& workspace, const lcp::Options& options,
+              const ModeSpec::RotorRow& rotor_contact = {});
 
   double time() const noexcept { return t_; }
   const CoordinateVector& q() const noexcept { return q_; }

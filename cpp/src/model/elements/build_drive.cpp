@@ -386,8 +386,9 @@ void check_train_friction(const DriveParameters& p, const DriveElements& e) {
   if (e.thread->law().resolution() == friction::Resolution::acceleration && !p.speed_controlled)
     throw InvalidArgument(
         what + " is invalid with friction.law = \"" + p.friction +
-        "\": the train's stages run on Moreau-Jean, whose velocity-level step has no slip "
-        "acceleration for eq. (3.15)'s friction (it would follow dt); use friction.law = "
+        "\": Moreau-Jean's velocity-level step has no slip acceleration for eq. (3.15)'s "
+        "friction (it would follow dt), and the event-driven scheme's rotor contact does not "
+        "take it yet; use friction.law = "
         "\"arctan_velocity\", \"lugre\", \"stribeck\" or \"coulomb\", or a prescribed rotor "
         "speed (loads.drive_speed), which the event-driven scheme runs with every law");
   const double alpha = p.thread.lead_angle();
@@ -640,22 +641,31 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // The rotor's friction contact (hybrid_rotor_contact.cpp) runs them on
   // the constrained solve with the thread's own law where TrainSolver does
   // not (off the rigid concept without play; arctan_velocity on it,
-  // DriveHybrid::train_solver_applies): no play or penalty play, exact
-  // Coulomb with one coefficient or arctan_velocity (a force of the state,
-  // no thread modes), each checked against Moreau-Jean. (Not yet: Stribeck
-  // and mu_static there, whose Moreau-Jean reference is irregular in dt at
-  // 1e-4 relative, with an ideal gear too, so not validated; LuGre, which
-  // Moreau-Jean does not run beside the rotor's contact; on the rigid
-  // concept without play TrainSolver's closed forms take Coulomb alone.)
-  if (p.backlash == BacklashContact::exact)
-    return "backlash.contact = \"exact\" (exact play)";
+  // DriveHybrid::train_solver_applies): no play, penalty play and exact
+  // play off the rigid concept, Coulomb (mu_static too), Stribeck and
+  // arctan_velocity (docs/physics/gear.md, "Exact play through the rotor's
+  // contact").
+  // Exact play: the flank's impacts through the rotor's contact
+  // (hybrid_rotor_impact.cpp) on the flexible concepts; on the rigid
+  // concept a closed flank with the rotor stuck fixes every velocity, and
+  // the split of the holding forces between the thread and the rotor's
+  // contact (Moreau-Jean's "stuck together") has no rate-level rule here.
+  if (p.backlash == BacklashContact::exact && p.concept == Concept::rigid)
+    return "backlash.contact = \"exact\" (exact play) on concept = \"rigid\" (a closed flank "
+           "with the rotor's contact stuck fixes every velocity: the holding torque's split "
+           "between the thread and the stages is statically indeterminate)";
+  // The rotor's contact takes the thread's set-valued laws (Coulomb with
+  // mu_static, Stribeck: the thread's own stick and slip decisions beside
+  // the rotor's) and arctan_velocity (eq. (3.15) check_train_friction
+  // refuses). Not LuGre (Moreau-Jean does not run its
+  // bristles beside the rotor's contact: no reference), nor Stribeck on
+  // the rigid concept without play, where the thread's stick row and the
+  // rotor's fix the one velocity together (TrainSolver's closed forms take
+  // Coulomb's one kinetic coefficient).
   const bool rigid_train = p.concept == Concept::rigid && p.backlash == BacklashContact::none;
-  const bool rotor_contact_law = law.plain_coulomb() || p.friction == "arctan_velocity";
-  if (!rigid_train && !rotor_contact_law)
-    return "friction.law = \"" + p.friction + "\"" +
-           (p.friction == "coulomb" ? " with mu_static (off the rigid concept without play)"
-                                    : "");
-  if (rigid_train && p.friction != "coulomb" && p.friction != "arctan_velocity")
+  if (law.resolution() == friction::Resolution::bristle ||
+      (rigid_train && law.resolution() == friction::Resolution::set_valued &&
+       p.friction != "coulomb"))
     return "friction.law = \"" + p.friction + "\"";
   // (The rotor contact has no preload's hooks, TrainSolver's closed forms
   // are the plain thread's.)

@@ -262,10 +262,7 @@ def test_a_stage_elsewhere_is_refused_naming_the_key(changes, gear, message):
 MOREAU_ONLY = [
     # (issue 32: the flexible concepts and penalty play run with the rotor's
     # friction contact, tests/test_event_driven_rotor_friction.py, exact play
-    # and mu_static there too, tests/test_event_driven_rotor_play.py; exact
-    # play on the rigid concept does not)
-    (dict(backlash={"axial": 1e-5, "contact": "exact"}), LOSSY,
-     'here backlash.contact = "exact" (exact play) on concept = "rigid"'),
+    # and mu_static too, tests/test_event_driven_rotor_play.py)
     # (issue 32: a static coefficient runs, tests/test_event_driven_train_stages.py;
     # Stribeck's slip coefficient follows the slip speed)
     (dict(friction={"law": "stribeck", "mu": 0.12, "mu_static": 0.15}), WORM,
@@ -292,16 +289,15 @@ def test_the_event_driven_scheme_refuses_a_stage_elsewhere_naming_moreau(changes
 
 
 def test_motor_friction_elsewhere_is_refused_naming_the_key():
-    # (Exact play on the rigid concept: the flexible concepts' runs since
+    # (Stribeck on the rigid concept without play; exact play runs since
     # issue 32, tests/test_event_driven_rotor_play.py.)
     scene = thesis_scene(loads={"axial_force": F},
                          motor={**DC_MOTOR, "friction_torque": 1e-3},
-                         backlash={"axial": 1e-5, "contact": "exact"})
+                         friction={"law": "stribeck", "mu": 0.12, "mu_static": 0.15})
     scene["loads"].pop("drive_torque")
     with pytest.raises(ValueError, match=r"integrator = \"event_driven\" is invalid with "
-                                         r"motor\.friction_torque = 0\.001: .* here backlash\."
-                                         r"contact = \"exact\" \(exact play\) on concept = "
-                                         r"\"rigid\" .*; use integrator = \"moreau\""):
+                                         r"motor\.friction_torque = 0\.001: .* here friction\."
+                                         r"law = \"stribeck\"; use integrator = \"moreau\""):
         ls.simulate(ls.Scene.from_dict(scene), 0.01, integrator="event_driven")
     speed = thesis_scene(loads={"drive_speed": 1.0})
     speed["loads"].pop("drive_torque")

@@ -112,10 +112,13 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
   // (with the largest coefficient the law reaches: a static one above mu)
   painleve_possible_ =
       law_->max_mu() * model.flank_factor() * std::abs(delassus_nt_) >= delassus_nn_;
-  if (model.motor().speed_controlled) {
-    // The slip's response to a tangential force with the flank and the rotor
-    // held: W_T . x with M x = W_T + B lambda, C x = 0. Zero (to round-off of
-    // the unconstrained W_T M^-1 W_T) when those constraints fix every velocity.
+  // The slip's response to a tangential force with the flank and the rotor
+  // held: W_T . x with M x = W_T + B lambda, C x = 0. Zero (to round-off of
+  // the unconstrained W_T M^-1 W_T) when those constraints fix every velocity:
+  // held by a speed-controlled motor, or by the rotor's stuck friction
+  // contact (the train's stages with a torque or DC motor).
+  const bool rotor_contact = model.train_friction() && !model.motor().speed_controlled;
+  if (model.motor().speed_controlled || rotor_contact) {
     const int n = model.coordinate_count();
     ColumnMatrix B = ColumnMatrix::Zero(n, 2);
     B.col(0) = normal;
@@ -125,7 +128,8 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
     SmallVector lambda;
     const CoordinateVector force = tangent;
     if (solve_constrained(inverse_mass_, force, B, C, SmallVector::Zero(2), x, lambda))
-      slip_prescribed_ = std::abs(tangent.dot(x)) <= 1e-12 * tangent.dot(w_t);
+      (rotor_contact ? rotor_fixes_slip_ : slip_prescribed_) =
+          std::abs(tangent.dot(x)) <= 1e-12 * tangent.dot(w_t);
   }
 }
 
@@ -365,21 +369,29 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   CoordinateVector without, unit;
   double beta = 0.0, unit_normal = 0.0;
   if (!jump(0.0, without, beta)) return false;
-  const double rotor_without = rotor_impulse;
+  const double rotor_without = rotor_impulse, friction_without = rotor_friction;
   if (!jump(1.0, unit, unit_normal)) return false;
   const double c = tangent.dot(v + without);
   const double d = tangent.dot(unit - without);
   const double alpha = unit_normal - beta;
   friction::FlankLcpResult r;
-  if (slip_prescribed_) {
-    // The motor and Newton's law fix the velocities after the impact: their
-    // slip c decides (friction::solve_flank_prescribed_slip on the impulses).
+  if (slip_prescribed_ || (rotor_fixed && rotor_fixes_slip_)) {
+    // The motor (or the rotor's stuck contact) and Newton's law fix the
+    // velocities after the impact: their slip c decides
+    // (friction::solve_flank_prescribed_slip on the impulses; in stick the
+    // least rotor impulse).
     const CoordinateVector after = v + without;
-    const double noise = 64.0 * std::numeric_limits<double>::epsilon() *
-                         tangent.cwiseProduct(after).cwiseAbs().sum();
+    // (Held by the rotor's stuck contact the velocities after a plastic
+    // impact are all zero: c is the round-off of the jump from v, 64 ulp of
+    // the velocities before it too.)
+    const double noise =
+        64.0 * std::numeric_limits<double>::epsilon() *
+        (tangent.cwiseProduct(after).cwiseAbs().sum() +
+         (speed_controlled ? 0.0 : tangent.cwiseProduct(v).cwiseAbs().sum()));
+    const double held0 = speed_controlled ? rotor_without : friction_without;
+    const double held1 = (speed_controlled ? rotor_impulse : rotor_friction) - held0;
     r = friction::solve_flank_prescribed_slip(c, std::abs(c) <= noise, alpha, beta,
-                                              model_.effective_mu(), sigma, rotor_without,
-                                              rotor_impulse - rotor_without);
+                                              model_.effective_mu(), sigma, held0, held1);
   } else {
     // A sticking impact where it is admissible (the law's static cone)
     // takes precedence where the law has a static coefficient above its

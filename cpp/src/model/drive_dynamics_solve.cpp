@@ -260,7 +260,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     base.given_tangential = 0.0;
     return solve(base);
   }
-  if (m.stick && slip_prescribed_ && m.normal_multiplier) {
+  if (m.stick && m.normal_multiplier && (slip_prescribed_ || (m.rotor_fixed && rotor_fixes_slip_))) {
     // The stick row would repeat the others (every velocity is fixed): the
     // friction force is statically indeterminate, chosen as
     // prescribed_slip_decision does.
@@ -474,9 +474,15 @@ friction::FlankLcpResult DriveDynamics::prescribed_slip_decision(const ModeSpec&
                                 without.normal_force, without.motor_torque,
                                 unit.motor_torque - without.motor_torque);
   if (sigma == 0) sigma = without.normal_force >= 0.0 ? 1 : -1;
+  // (Held by the rotor's stuck contact: the least |Q|, its torque.)
+  const bool by_rotor = !model_.motor().speed_controlled;
+  const double held0 = by_rotor ? without.rotor_friction : without.motor_torque;
+  const double held1 = (by_rotor ? unit.rotor_friction : unit.motor_torque) - held0;
+  // (The rotor's stuck contact holds the thread at rest: its static cone,
+  // mu_static', as Moreau-Jean's "stuck together".)
   return friction::solve_flank_prescribed_slip(
       c, std::abs(c) <= noise, unit.normal_force - without.normal_force, without.normal_force,
-      model_.effective_mu(), sigma, without.motor_torque, unit.motor_torque - without.motor_torque);
+      by_rotor ? model_.effective_mu_static() : model_.effective_mu(), sigma, held0, held1);
 }
 
 ModeSolution DriveDynamics::solve_with_forces(const ModeSpec& spec,

@@ -343,6 +343,13 @@ class DriveDynamics {
   // (friction::solve_flank_prescribed_slip decides stick or slip). A
   // property of the model, computed once.
   bool slip_prescribed() const noexcept { return slip_prescribed_; }
+  // True if the flank's constraint and the rotor's stuck friction contact
+  // (its row fixing the rotor's speed: the train's stages with a torque or
+  // DC motor) fix every velocity (the rigid concept with a closed flank):
+  // the slip is prescribed as by a speed-controlled rotor, and in stick the
+  // thread's friction force leaves the rotor's contact the least |Q|
+  // (Moreau-Jean's "stuck together", docs/physics/gear_rotor_impacts.md).
+  bool rotor_fixes_slip() const noexcept { return rotor_fixes_slip_; }
   // The flank's stick or slip at zero slip velocity where the slip is
   // prescribed (slip_prescribed), from the mode `base` without friction at
   // the state set: its slip acceleration decides, and in stick the friction
@@ -415,6 +422,7 @@ class DriveDynamics {
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;
   bool painleve_possible_ = false;
   bool slip_prescribed_ = false;
+  bool rotor_fixes_slip_ = false;
 };
 
 }  // namespace leadscrew::model

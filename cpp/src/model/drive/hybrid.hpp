@@ -196,7 +196,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   // The motor prescribes the slip (DriveDynamics::slip_prescribed) while the
   // thread's normal constraint is active.
   bool slip_prescribed_now() const {
-    return dynamics_.slip_prescribed() && (mode_.contact == ThreadContact::bilateral ||
+    const bool held = dynamics_.slip_prescribed() ||
+                      (rotor_train_ && rotor_mode_.slip == 0 && dynamics_.rotor_fixes_slip());
+    return held && (mode_.contact == ThreadContact::bilateral ||
                                            mode_.contact == ThreadContact::closed);
   }
   ModeSolution solve_current();

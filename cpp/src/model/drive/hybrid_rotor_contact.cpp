@@ -2,7 +2,7 @@
 // solve, the train's stages (the motor's Coulomb friction, a lossy or worm
 // stage: elements/train_friction.hpp) with a torque or DC motor on every
 // drive the rigid train solver (TrainSolver, one degree of freedom) does
-// not take: the flexible concepts, penalty play (docs/physics/gear.md,
+// not take: the flexible concepts, penalty and exact play (docs/physics/gear.md,
 // "The event-driven rotor contact").
 //
 // The rotor (reflected inertia R) drives the rotor's coordinate through the

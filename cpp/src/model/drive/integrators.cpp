@@ -289,9 +289,9 @@ void check_train_integrator(const DriveModel& model, const std::string& integrat
            ? ": the event-driven scheme runs the train's friction stages with a torque or "
              "DC motor on the rigid concept without play with Coulomb friction on the thread "
              "(friction.law = \"coulomb\", mu_static too) or \"arctan_velocity\", and on "
-             "the flexible concepts (no play, exact or penalty play) and with penalty play "
-             "(backlash.contact \"bistop\" or \"cubic\") with \"coulomb\" (mu_static "
-             "too), \"stribeck\" or \"arctan_velocity\" (the rotor's friction contact), "
+             "the flexible concepts and with exact or penalty play (backlash.contact "
+             "\"exact\", \"bistop\" or \"cubic\") with \"coulomb\" (mu_static too), "
+             "\"stribeck\" or \"arctan_velocity\" (the rotor's friction contact), "
              "without a preloaded nut or an exact end stop; and behind a prescribed "
              "rotor speed (loads.drive_speed) on every concept and play with every law, "
              "here " + train->event_driven_obstacle +

@@ -641,19 +641,15 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // The rotor's friction contact (hybrid_rotor_contact.cpp) runs them on
   // the constrained solve with the thread's own law where TrainSolver does
   // not (off the rigid concept without play; arctan_velocity on it,
-  // DriveHybrid::train_solver_applies): no play, penalty play and exact
-  // play off the rigid concept, Coulomb (mu_static too), Stribeck and
+  // DriveHybrid::train_solver_applies): no play, penalty and exact play,
+  // Coulomb (mu_static too), Stribeck and
   // arctan_velocity (docs/physics/gear.md, "Exact play through the rotor's
   // contact").
   // Exact play: the flank's impacts through the rotor's contact
-  // (hybrid_rotor_impact.cpp) on the flexible concepts; on the rigid
-  // concept a closed flank with the rotor stuck fixes every velocity, and
-  // the split of the holding forces between the thread and the rotor's
-  // contact (Moreau-Jean's "stuck together") has no rate-level rule here.
-  if (p.backlash == BacklashContact::exact && p.concept == Concept::rigid)
-    return "backlash.contact = \"exact\" (exact play) on concept = \"rigid\" (a closed flank "
-           "with the rotor's contact stuck fixes every velocity: the holding torque's split "
-           "between the thread and the stages is statically indeterminate)";
+  // (hybrid_rotor_impact.cpp); on the rigid concept a closed flank with the
+  // rotor stuck fixes every velocity, the thread's friction then the one
+  // that leaves the rotor's contact the least |Q| (DriveDynamics::
+  // rotor_fixes_slip, Moreau-Jean's "stuck together").
   // The rotor's contact takes the thread's set-valued laws (Coulomb with
   // mu_static, Stribeck: the thread's own stick and slip decisions beside
   // the rotor's) and arctan_velocity (eq. (3.15) check_train_friction

@@ -7,8 +7,8 @@
 // every contact slips with the one speed phi' (rotor, stage, thread), so
 // the train is one degree of freedom whose friction contacts stick and slip
 // together (DriveHybrid::TrainSolver, cpp/src/model/drive/train_solver.cpp);
-// on the flexible concepts (no play, exact or penalty play) and with
-// penalty play as the rotor's friction contact, a mode and roots of its own
+// on the flexible concepts and with exact or penalty play as the rotor's
+// friction contact, a mode and roots of its own
 // beside the thread's (DriveHybrid::RotorContact,
 // cpp/src/model/drive/hybrid_rotor_contact.cpp; a flank's impact through
 // it: hybrid_rotor_impact.cpp);

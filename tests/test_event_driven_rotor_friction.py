@@ -10,8 +10,9 @@ back-driven), of a self-locking worm's hold and breakaway and of the
 motor's friction; with arctan_velocity on the thread (every concept
 without play, the rigid one's on the rotor contact too) against Moreau-Jean
 and the steady slip's closed form at the law's coefficient; the stage's
-Painleve case raises JammingError; exact play, Stribeck, LuGre and
-mu_static off the rigid concept stay refused by name. Every run
+Painleve case raises JammingError; LuGre and Stribeck on the rigid
+concept without play stay refused by name (exact play, mu_static and
+Stribeck elsewhere: test_event_driven_rotor_play.py). Every run
 passes its own checks and the independent invariants
 (helpers/result_invariants.py: the account closes, friction never works
 positively, the losses never fall)."""
@@ -281,20 +282,16 @@ def test_a_lossless_stage_runs_arctan_velocity_as_the_ideal_gear():
 
 
 @pytest.mark.parametrize("concept", ["flexible_nut", "flexible", "rigid"])
-def test_exact_play_and_mu_static_stay_refused_on_the_event_driven_scheme(concept):
-    """What the rotor's contact does not take stays refused by name: exact
-    play, a static coefficient (Coulomb's or Stribeck's) off the rigid
-    concept without play, Stribeck and LuGre on it."""
+def test_what_the_rotor_contact_does_not_take_stays_refused_on_the_event_driven_scheme(concept):
+    """What the rotor's contact does not take stays refused by name: LuGre,
+    Stribeck on the rigid concept without play (exact play, mu_static and
+    Stribeck elsewhere run: tests/test_event_driven_rotor_play.py)."""
     d = scene(concept, backlash={"axial": 1e-4, "contact": "exact"})
-    with pytest.raises(ValueError, match=r'here backlash\.contact = "exact" \(exact play\); '
-                                         r'use integrator = "moreau"'):
-        ls.simulate(ls.Scene.from_dict(d), 0.01, integrator="event_driven")
     assert ls.simulate(ls.Scene.from_dict(d), 0.01).integrator == "moreau"
-    for friction in ({"law": "coulomb", "mu": 0.2, "mu_static": 0.3},
-                     {"law": "stribeck", "mu": 0.2, "mu_static": 0.3},
+    for friction in ({"law": "stribeck", "mu": 0.2, "mu_static": 0.3},
                      {"law": "lugre", "mu": 0.3, "sigma0": 1e3}):
         static = scene(concept, friction=friction)
-        if concept == "rigid" and friction["law"] == "coulomb":
-            continue  # (the rigid concept without play runs mu_static: the train solver)
+        if concept != "rigid" and friction["law"] == "stribeck":
+            continue  # (the rotor's contact runs it off the rigid concept without play)
         with pytest.raises(ValueError, match=f'here friction.law = "{friction["law"]}"'):
             ls.simulate(ls.Scene.from_dict(static), 0.01, integrator="event_driven")

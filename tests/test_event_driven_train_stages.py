@@ -239,15 +239,15 @@ def test_a_preloaded_nut_without_channels_leaves_the_stages_loss_its_own(gear):
 
 def test_a_torque_driven_flexible_train_still_names_its_obstacle():
     # (Issue 32: the train's stages with a torque or DC motor on the flexible
-    # concepts run on the rotor's friction contact,
-    # tests/test_event_driven_rotor_friction.py; with exact play they do not:
+    # concepts run on the rotor's friction contact, with exact play too,
+    # tests/test_event_driven_rotor_play.py; with LuGre they do not:
     # refused with its reason.)
     scene = thesis_scene(concept="flexible", gear=WORM, loads={"drive_torque": 0.03},
-                         backlash={"axial": 1e-4, "contact": "exact"})
+                         backlash={"axial": 1e-4, "contact": "exact"},
+                         friction={"law": "lugre", "mu": 0.3, "sigma0": 1e3})
     with pytest.raises(ValueError) as info:
         ls.simulate(ls.Scene.from_dict(scene), 0.01, integrator="event_driven")
-    assert ('here backlash.contact = "exact" (exact play); use integrator = "moreau"'
-            in str(info.value))
+    assert 'here friction.law = "lugre"; use integrator = "moreau"' in str(info.value)
 
 
 @settings(max_examples=12, deadline=None)

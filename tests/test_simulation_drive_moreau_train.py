@@ -259,9 +259,10 @@ def test_the_flexible_seat_adjuster_runs_with_its_worm():
 
 
 def test_what_still_cannot_run_is_refused_naming_the_integrator_that_runs_it():
-    # (Exact play: the event-driven rotor contact does not take it, issue 32.)
-    d = dc_scene(SELF_LOCKING_WORM, 2e-3, concept="flexible")
-    d["backlash"] = {"axial": 1e-4, "contact": "exact"}
+    # (Stribeck on the rigid concept without play: the event-driven scheme
+    # does not take it; exact play it does since issue 32.)
+    d = dc_scene(SELF_LOCKING_WORM, 2e-3, concept="rigid")
+    d["friction"] = {"law": "stribeck", "mu": 0.12, "mu_static": 0.15}
     scene = ls.Scene.from_dict(d)
     with pytest.raises(ValueError) as info:
         ls.simulate(scene, 0.01, integrator="cvode_bdf")
@@ -271,12 +272,11 @@ def test_what_still_cannot_run_is_refused_naming_the_integrator_that_runs_it():
         'arctan_acceleration)')
     # (Only Moreau-Jean runs this scene: no other integrator is offered.)
     assert str(info.value).endswith('; this scene runs on Moreau-Jean only (here '
-                                    'backlash.contact = "exact" (exact play))')
+                                    'friction.law = "stribeck")')
     assert "event_driven" not in str(info.value)
     with pytest.raises(ValueError) as info:
         ls.simulate(scene, 0.01, integrator="event_driven")
-    assert 'here backlash.contact = "exact" (exact play); use integrator = "moreau"' in str(
-        info.value)
+    assert 'here friction.law = "stribeck"; use integrator = "moreau"' in str(info.value)
 
 
 def test_the_flexible_seat_adjusters_refusals_offer_moreau_jean_alone():

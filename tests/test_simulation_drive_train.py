@@ -234,8 +234,9 @@ REFUSED = [
     # (Every thread law but eq. (3.15) runs with the stages on Moreau-Jean:
     # tests/test_moreau_smooth_laws.py.)
     (dict(friction={"law": "arctan_acceleration", "mu": 0.3}), LOSSY,
-     'friction.law = "arctan_acceleration": the train\'s stages run on Moreau-Jean, whose '
-     "velocity-level step has no slip acceleration"),
+     'friction.law = "arctan_acceleration": Moreau-Jean\'s velocity-level step has no slip '
+     "acceleration for eq. (3.15)'s friction (it would follow dt), and the event-driven "
+     "scheme's rotor contact does not take it yet"),
     # (A preloaded nut runs with the stages on Moreau-Jean, with lift-off
     # too: tests/test_moreau_preloaded_nut.py, test_simulation_drive_moreau_train.py.)
     # (Penalty end stops run with the stages now; exact ones are refused on
@@ -260,12 +261,8 @@ def test_a_stage_elsewhere_is_refused_naming_the_key(changes, gear, message):
 # tests/test_simulation_drive_moreau_train.py.
 MOREAU_ONLY = [
     # (issue 32: the flexible concepts and penalty play run with the rotor's
-    # friction contact, tests/test_event_driven_rotor_friction.py; exact play
-    # and mu_static there do not)
-    (dict(concept="flexible_nut", backlash={"axial": 1e-5, "contact": "exact"}), LOSSY,
-     'here backlash.contact = "exact" (exact play)'),
-    (dict(concept="flexible", friction={"law": "coulomb", "mu": 0.2, "mu_static": 0.3}), WORM,
-     'here friction.law = "coulomb" with mu_static (off the rigid concept without play)'),
+    # friction contact, tests/test_event_driven_rotor_friction.py, exact play
+    # and mu_static too, tests/test_event_driven_rotor_play.py)
     # (issue 32: a static coefficient runs, tests/test_event_driven_train_stages.py;
     # Stribeck's slip coefficient follows the slip speed)
     (dict(friction={"law": "stribeck", "mu": 0.12, "mu_static": 0.15}), WORM,
@@ -292,14 +289,15 @@ def test_the_event_driven_scheme_refuses_a_stage_elsewhere_naming_moreau(changes
 
 
 def test_motor_friction_elsewhere_is_refused_naming_the_key():
-    scene = thesis_scene(concept="flexible_nut", loads={"axial_force": F},
+    # (Stribeck on the rigid concept without play; exact play runs since
+    # issue 32, tests/test_event_driven_rotor_play.py.)
+    scene = thesis_scene(loads={"axial_force": F},
                          motor={**DC_MOTOR, "friction_torque": 1e-3},
-                         backlash={"axial": 1e-5, "contact": "exact"})
+                         friction={"law": "stribeck", "mu": 0.12, "mu_static": 0.15})
     scene["loads"].pop("drive_torque")
     with pytest.raises(ValueError, match=r"integrator = \"event_driven\" is invalid with "
-                                         r"motor\.friction_torque = 0\.001: .* here backlash\."
-                                         r"contact = \"exact\" \(exact play\); use "
-                                         r"integrator = \"moreau\""):
+                                         r"motor\.friction_torque = 0\.001: .* here friction\."
+                                         r"law = \"stribeck\"; use integrator = \"moreau\""):
         ls.simulate(ls.Scene.from_dict(scene), 0.01, integrator="event_driven")
     speed = thesis_scene(loads={"drive_speed": 1.0})
     speed["loads"].pop("drive_torque")

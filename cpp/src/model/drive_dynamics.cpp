@@ -112,10 +112,13 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
   // (with the largest coefficient the law reaches: a static one above mu)
   painleve_possible_ =
       law_->max_mu() * model.flank_factor() * std::abs(delassus_nt_) >= delassus_nn_;
-  if (model.motor().speed_controlled) {
-    // The slip's response to a tangential force with the flank and the rotor
-    // held: W_T . x with M x = W_T + B lambda, C x = 0. Zero (to round-off of
-    // the unconstrained W_T M^-1 W_T) when those constraints fix every velocity.
+  // The slip's response to a tangential force with the flank and the rotor
+  // held: W_T . x with M x = W_T + B lambda, C x = 0. Zero (to round-off of
+  // the unconstrained W_T M^-1 W_T) when those constraints fix every velocity:
+  // held by a speed-controlled motor, or by the rotor's stuck friction
+  // contact (the train's stages with a torque or DC motor).
+  const bool rotor_contact = model.train_friction() && !model.motor().speed_controlled;
+  if (model.motor().speed_controlled || rotor_contact) {
     const int n = model.coordinate_count();
     ColumnMatrix B = ColumnMatrix::Zero(n, 2);
     B.col(0) = normal;
@@ -125,7 +128,8 @@ DriveDynamics::DriveDynamics(const DriveModel& model, const friction::Law* law)
     SmallVector lambda;
     const CoordinateVector force = tangent;
     if (solve_constrained(inverse_mass_, force, B, C, SmallVector::Zero(2), x, lambda))
-      slip_prescribed_ = std::abs(tangent.dot(x)) <= 1e-12 * tangent.dot(w_t);
+      (rotor_contact ? rotor_fixes_slip_ : slip_prescribed_) =
+          std::abs(tangent.dot(x)) <= 1e-12 * tangent.dot(w_t);
   }
 }
 
@@ -316,7 +320,7 @@ bool DriveDynamics::project_held(const HeldContact& held, CoordinateVector& q,
 
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
                            Impulses& impulses, lcp::Workspace& workspace,
-                           const lcp::Options& options) {
+                           const lcp::Options& options, const ModeSpec::RotorRow& rotor_contact) {
   const bool speed_controlled = model_.motor().speed_controlled;
   const int n = model_.coordinate_count();
   const Eigen::VectorXd& normal = model_.normal_direction();
@@ -325,9 +329,24 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   // controlled) with Newton's law W_N (v + dv) = -e W_N v. The post-impact
   // slip velocity and both impulses are affine in P_T: two solves give the
   // maps, and the flank LCP on the impulse level decides stick or slip.
-  double rotor_impulse = 0.0;
+  double rotor_impulse = 0.0, rotor_friction = 0.0;
+  // The rotor's friction contact (gear.md, "Exact play through the rotor's
+  // contact"): its row fixes w+ (a_q = 0) or eliminates Q into the rotor's
+  // inverse mass a_q / (a_q M_r - a_w) and the given impulse
+  // -(r - a_w w-) / a_q on its coordinate, as DriveDynamics::solve's.
+  const int rotor = model_.rotor();
+  const bool rotor_fixed = rotor_contact.fixes(1.0 / inverse_mass_[rotor]);
+  const bool rotor_eliminated = rotor_contact.active && !rotor_fixed;
+  CoordinateVector rotor_inverse_mass;
+  if (rotor_eliminated) {
+    const double effective = rotor_contact.a_q / inverse_mass_[rotor] - rotor_contact.a_w;
+    if (!(std::abs(effective) > 1e-12 * std::abs(rotor_contact.a_q / inverse_mass_[rotor])))
+      return false;  // (the stage's Painleve case, k J_s + R = 0)
+    rotor_inverse_mass = inverse_mass_;
+    rotor_inverse_mass[rotor] = rotor_contact.a_q / effective;
+  }
   auto jump = [&](double given_tangential, CoordinateVector& change, double& impulse) {
-    const int nc = 1 + (speed_controlled ? 1 : 0);
+    const int nc = 1 + (speed_controlled ? 1 : 0) + (rotor_fixed ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
     ConstraintMatrix C = ConstraintMatrix::Zero(nc, n);
     SmallVector r = SmallVector::Zero(nc);
@@ -335,34 +354,55 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
     C.row(0) = normal.transpose();
     r[0] = -(1.0 + restitution) * normal.dot(v);
     if (speed_controlled) {
-      B(model_.rotor(), 1) = 1.0;
-      C(1, model_.rotor()) = 1.0;
+      B(rotor, 1) = 1.0;
+      C(1, rotor) = 1.0;
     }
-    const CoordinateVector f = given_tangential * CoordinateVector(tangent);
+    if (rotor_fixed) {
+      B(rotor, nc - 1) = -1.0;
+      C(nc - 1, rotor) = rotor_contact.a_w;
+      r[nc - 1] = rotor_contact.r - rotor_contact.a_w * v[rotor];
+    }
+    CoordinateVector f = given_tangential * CoordinateVector(tangent);
+    if (rotor_eliminated) f[rotor] -= (rotor_contact.r - rotor_contact.a_w * v[rotor]) / rotor_contact.a_q;
     SmallVector lambda;
-    if (!solve_constrained(inverse_mass_, f, B, C, r, change, lambda)) return false;
+    if (!solve_constrained(rotor_eliminated ? rotor_inverse_mass : inverse_mass_, f, B, C, r,
+                           change, lambda))
+      return false;
     impulse = lambda[0];
     rotor_impulse = speed_controlled ? lambda[1] : 0.0;
+    rotor_friction =
+        rotor_fixed        ? lambda[nc - 1]
+        : rotor_eliminated ? (rotor_contact.r - rotor_contact.a_w * (v[rotor] + change[rotor])) /
+                                 rotor_contact.a_q
+                           : 0.0;
     return true;
   };
   CoordinateVector without, unit;
   double beta = 0.0, unit_normal = 0.0;
   if (!jump(0.0, without, beta)) return false;
-  const double rotor_without = rotor_impulse;
+  const double rotor_without = rotor_impulse, friction_without = rotor_friction;
   if (!jump(1.0, unit, unit_normal)) return false;
   const double c = tangent.dot(v + without);
   const double d = tangent.dot(unit - without);
   const double alpha = unit_normal - beta;
   friction::FlankLcpResult r;
-  if (slip_prescribed_) {
-    // The motor and Newton's law fix the velocities after the impact: their
-    // slip c decides (friction::solve_flank_prescribed_slip on the impulses).
+  if (slip_prescribed_ || (rotor_fixed && rotor_fixes_slip_)) {
+    // The motor (or the rotor's stuck contact) and Newton's law fix the
+    // velocities after the impact: their slip c decides
+    // (friction::solve_flank_prescribed_slip on the impulses; in stick the
+    // least rotor impulse).
     const CoordinateVector after = v + without;
-    const double noise = 64.0 * std::numeric_limits<double>::epsilon() *
-                         tangent.cwiseProduct(after).cwiseAbs().sum();
+    // (Held by the rotor's stuck contact the velocities after a plastic
+    // impact are all zero: c is the round-off of the jump from v, 64 ulp of
+    // the velocities before it too.)
+    const double noise =
+        64.0 * std::numeric_limits<double>::epsilon() *
+        (tangent.cwiseProduct(after).cwiseAbs().sum() +
+         (speed_controlled ? 0.0 : tangent.cwiseProduct(v).cwiseAbs().sum()));
+    const double held0 = speed_controlled ? rotor_without : friction_without;
+    const double held1 = (speed_controlled ? rotor_impulse : rotor_friction) - held0;
     r = friction::solve_flank_prescribed_slip(c, std::abs(c) <= noise, alpha, beta,
-                                              model_.effective_mu(), sigma, rotor_without,
-                                              rotor_impulse - rotor_without);
+                                              model_.effective_mu(), sigma, held0, held1);
   } else {
     // A sticking impact where it is admissible (the law's static cone)
     // takes precedence where the law has a static coefficient above its
@@ -389,6 +429,7 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   impulses.normal = impulse;
   impulses.tangential = r.friction_force;
   impulses.rotor = rotor_impulse;
+  impulses.rotor_friction = rotor_friction;
   impulses.sticks = r.slip_acceleration == 0.0;  // the new slip velocity, exactly 0 in the stick basis
   return true;
 }

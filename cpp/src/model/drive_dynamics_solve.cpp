@@ -84,8 +84,8 @@ DriveDynamics::ModeForces DriveDynamics::mode_forces(const ModeSpec& spec) const
   // it fixes the rotor's acceleration, else eliminated into the rotor's
   // inverse mass and force (a self-locking stage back-driven: negative).
   const int rotor = model_.rotor();
-  m.rotor_fixed = spec.rotor.active && spec.rotor.a_q == 0.0;
-  m.rotor_eliminated = spec.rotor.active && spec.rotor.a_q != 0.0;
+  m.rotor_fixed = spec.rotor.fixes(1.0 / inverse_mass_[rotor]);
+  m.rotor_eliminated = spec.rotor.active && !m.rotor_fixed;
   if (m.rotor_eliminated) {
     const double effective = spec.rotor.a_q / inverse_mass_[rotor] - spec.rotor.a_w;
     if (!(std::abs(effective) > 1e-12 * std::abs(spec.rotor.a_q / inverse_mass_[rotor])))
@@ -264,7 +264,7 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
     base.given_tangential = 0.0;
     return solve(base);
   }
-  if (m.stick && slip_prescribed_ && m.normal_multiplier) {
+  if (m.stick && m.normal_multiplier && (slip_prescribed_ || (m.rotor_fixed && rotor_fixes_slip_))) {
     // The stick row would repeat the others (every velocity is fixed): the
     // friction force is statically indeterminate, chosen as
     // prescribed_slip_decision does.
@@ -478,9 +478,15 @@ friction::FlankLcpResult DriveDynamics::prescribed_slip_decision(const ModeSpec&
                                 without.normal_force, without.motor_torque,
                                 unit.motor_torque - without.motor_torque);
   if (sigma == 0) sigma = without.normal_force >= 0.0 ? 1 : -1;
+  // (Held by the rotor's stuck contact: the least |Q|, its torque.)
+  const bool by_rotor = !model_.motor().speed_controlled;
+  const double held0 = by_rotor ? without.rotor_friction : without.motor_torque;
+  const double held1 = (by_rotor ? unit.rotor_friction : unit.motor_torque) - held0;
+  // (The rotor's stuck contact holds the thread at rest: its static cone,
+  // mu_static', as Moreau-Jean's "stuck together".)
   return friction::solve_flank_prescribed_slip(
       c, std::abs(c) <= noise, unit.normal_force - without.normal_force, without.normal_force,
-      model_.effective_mu(), sigma, without.motor_torque, unit.motor_torque - without.motor_torque);
+      by_rotor ? model_.effective_mu_static() : model_.effective_mu(), sigma, held0, held1);
 }
 
 ModeSolution DriveDynamics::solve_with_forces(const ModeSpec& spec,

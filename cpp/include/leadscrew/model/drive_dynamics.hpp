@@ -66,6 +66,13 @@ struct ModeSpec {
   struct RotorRow {
     bool active = false;
     double a_w = 0.0, a_q = 0.0, r = 0.0;
+    // Whether the row fixes the acceleration of the rotor's coordinate (of
+    // inertia `mass`): a_q = 0, or a_q so small beside a_w that eliminating
+    // Q would divide by it (a stage's eta_b = 2e-311 back-driven gave r /
+    // a_q = inf: a NaN right-hand side; as eta_b = 0 to 1e-15).
+    bool fixes(double mass) const noexcept {
+      return active && std::abs(a_q) * mass <= 1e-15 * std::abs(a_w);
+    }
   } rotor;
 };
 
@@ -254,13 +261,17 @@ class DriveDynamics {
   // impact has |P_T| = mu' |P_N| exactly, so comparing the impulses would let
   // round-off decide. `rotor` is the speed-controlled motor's impulse (its
   // work at the held speed is rotor times that speed). Returns false if no
-  // consistent frictional impact exists.
+  // consistent frictional impact exists. `rotor_contact`: the rotor's
+  // friction contact's row on the impulse level (ModeSpec::RotorRow, a_w w+
+  // + a_q Q = r with Q its impulse along -e_rotor: a_q = 0 fixes w+, else
+  // Q is eliminated into the rotor's inverse mass); `rotor_friction` its Q.
   struct Impulses {
-    double normal = 0.0, tangential = 0.0, rotor = 0.0;
+    double normal = 0.0, tangential = 0.0, rotor = 0.0, rotor_friction = 0.0;
     bool sticks = false;
   };
   bool impact(int sigma, double restitution, CoordinateVector& v, Impulses& impulses,
-              lcp::Workspace& workspace, const lcp::Options& options);
+              lcp::Workspace& workspace, const lcp::Options& options,
+              const ModeSpec::RotorRow& rotor_contact = {});
 
   double time() const noexcept { return t_; }
   const CoordinateVector& q() const noexcept { return q_; }
@@ -357,6 +368,13 @@ class DriveDynamics {
   // (friction::solve_flank_prescribed_slip decides stick or slip). A
   // property of the model, computed once.
   bool slip_prescribed() const noexcept { return slip_prescribed_; }
+  // True if the flank's constraint and the rotor's stuck friction contact
+  // (its row fixing the rotor's speed: the train's stages with a torque or
+  // DC motor) fix every velocity (the rigid concept with a closed flank):
+  // the slip is prescribed as by a speed-controlled rotor, and in stick the
+  // thread's friction force leaves the rotor's contact the least |Q|
+  // (Moreau-Jean's "stuck together", docs/physics/gear_rotor_impacts.md).
+  bool rotor_fixes_slip() const noexcept { return rotor_fixes_slip_; }
   // The flank's stick or slip at zero slip velocity where the slip is
   // prescribed (slip_prescribed), from the mode `base` without friction at
   // the state set: its slip acceleration decides, and in stick the friction
@@ -434,6 +452,7 @@ class DriveDynamics {
   double delassus_nn_ = 0.0, delassus_nt_ = 0.0;
   bool painleve_possible_ = false;
   bool slip_prescribed_ = false;
+  bool rotor_fixes_slip_ = false;
 };
 
 }  // namespace leadscrew::model

@@ -31,6 +31,7 @@
 //                             concepts): its mode, roots and decisions
 //   hybrid_rotor_stops.cpp    the rotor's contact beside a closed exact stop
 //                             and in a stop's impact through the thread
+//   hybrid_rotor_impact.cpp   a flank's impact through the rotor's contact
 //   element_registry.cpp   the elements' registry (declaration.hpp)
 #pragma once
 
@@ -195,13 +196,16 @@ class DriveHybrid final : public integrate::HybridSystem {
 
   // The stick limit mu_static' of the law (mu' itself for one coefficient).
   double stick_mu() const {
-    return dynamics_.plain_coulomb() ? model_.effective_mu() : model_.effective_mu_static();
+    return dynamics_.plain_coulomb() || kinetic_stick_ ? model_.effective_mu()
+                                                       : model_.effective_mu_static();
   }
 
   // The motor prescribes the slip (DriveDynamics::slip_prescribed) while the
   // thread's normal constraint is active.
   bool slip_prescribed_now() const {
-    return dynamics_.slip_prescribed() && (mode_.contact == ThreadContact::bilateral ||
+    const bool held = dynamics_.slip_prescribed() ||
+                      (rotor_train_ && rotor_mode_.slip == 0 && dynamics_.rotor_fixes_slip());
+    return held && (mode_.contact == ThreadContact::bilateral ||
                                            mode_.contact == ThreadContact::closed);
   }
   ModeSolution solve_current();
@@ -254,6 +258,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   // rotor's inertia its mode's row gives (held: none on the thread).
   bool rotor_painleve_possible() const;
   void decide_rotor(double t, double* y, bool leave_stick, bool stalled);
+  bool try_rotor_modes(double t, double* y, bool leave_stick, bool at_rest, const Mode& thread,
+                       std::string& failure);
   // After the thread's mode changed: the rotor's decided anew where the
   // new mode does not fit it.
   void settle_rotor(double t, double* y);
@@ -279,6 +285,14 @@ class DriveHybrid final : public integrate::HybridSystem {
   double preload_torque_scale(const ModeSolution& s) const;
   bool rotor_impulse_consistent(const moreau_contacts::RotorMode& mode, double dw,
                                 bool at_rest) const;
+  // hybrid_rotor_impact.cpp: a flank's impact with the rotor's friction
+  // contact (exact play): the impulses from v_before at restitution e, the
+  // rotor's mode tried in Moreau-Jean's order on the impulse level (v_ and
+  // rotor_mode_ set; false: no consistent one); the stage's share of the
+  // impact's dissipation (Q w+ in slip, booked in gear_loss).
+  bool flank_impulses(int flank, double restitution, const CoordinateVector& v_before,
+                      DriveDynamics::Impulses& impulses);
+  double stage_impact_loss(const DriveDynamics::Impulses& impulses, double dissipated) const;
 
   // hybrid_impacts.cpp
   // The direction in which an impact and put_back_inside move the
@@ -340,6 +354,7 @@ class DriveHybrid final : public integrate::HybridSystem {
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   std::vector<double> saved_state_;  // y before a touch below resolution (handle_event)
   double saved_impact_loss_ = 0.0;   // and impact_loss_
+  moreau_contacts::RotorMode saved_rotor_mode_;  // and the rotor's mode (an impact sets it)
   double flight_start_excess_ = 0.0;  // the play beyond a flank at the start of a flight
   int normal_side_ = 0;    // sign of the bilateral normal force in this mode (0: not left zero)
   int stage_side_ = 0;     // sign of the friction stage's torque on the driven part (train_)
@@ -369,6 +384,9 @@ class DriveHybrid final : public integrate::HybridSystem {
   const elements::TrainFriction* rotor_train_ = nullptr;
   moreau_contacts::RotorMode rotor_mode_;
   double rotor_margin_offset_ = 0.0;
+  // The thread's stick test at mu' for a moment (decide_rotor: the static
+  // excess gives way where it leaves the rotor no consistent mode).
+  bool kinetic_stick_ = false;
   double rotor_flow_offset_ = 0.0;    // the flow root's at a slip's start where below 0  // a stick's margin at its start where below 0 (settle_rotor)
   std::unique_ptr<ModeSolver> solver_;  // last: it refers to the fields above
 };

@@ -321,6 +321,7 @@ bool DriveHybrid::end_flight(double t, double* y, int flank, bool& touch, bool& 
   if (touch) {
     std::copy(y, y + size(), saved_state_.begin());
     saved_impact_loss_ = impact_loss_;
+    saved_rotor_mode_ = rotor_mode_;
   }
   zero_slip = flank_impact(t, y, flank);
   kind = "impact on the " + std::string(flank > 0 ? "lower" : "upper") + " flank";
@@ -346,6 +347,7 @@ void DriveHybrid::undo_touch(double t, double* y, const Mode& before, int bounce
   bounced_from_ = bounced_before;
   std::copy(saved_state_.begin(), saved_state_.end(), y);
   impact_loss_ = saved_impact_loss_;
+  rotor_mode_ = saved_rotor_mode_;
   put_back_inside(t, y);
 }
 

@@ -66,7 +66,8 @@ void DriveHybrid::book_motor_impulse(double* y, double motor_work) const {
 DriveHybrid::PlayDirection DriveHybrid::play_direction() const {
   const Eigen::VectorXd& w = model_.play_gradient();
   CoordinateVector along = model_.mass().cwiseInverse();
-  if (p_.speed_controlled) along[model_.rotor()] = 0.0;
+  // (A stuck rotor's contact holds it too: the touch moves the rest.)
+  if (p_.speed_controlled || (rotor_train_ && rotor_mode_.slip == 0)) along[model_.rotor()] = 0.0;
   along = along.cwiseProduct(w);
   return {along, w.dot(along)};
 }
@@ -145,7 +146,8 @@ bool DriveHybrid::flank_impact(double t, double* y, int flank) {
     // weak bounce's energy went missing from the account: 5e-4 of the work
     // of a rattling nut with restitution 0.5).
     const double kinetic_open = dynamics_.kinetic_energy();
-    const double closing_work = stop_play(t, direction);
+    // (After an impact through the rotor's contact its mode may hold it.)
+    const double closing_work = stop_play(t, rotor_train_ ? play_direction() : direction);
     book_motor_impulse(y, closing_work);
     impact_loss_ += kinetic_open + closing_work - dynamics_.kinetic_energy();
     mode_.contact = ThreadContact::closed;
@@ -163,10 +165,7 @@ bool DriveHybrid::flank_impact(double t, double* y, int flank) {
   const CoordinateVector v_before = v_;
   double motor_work = 0.0;
   auto collide = [&](double e) {
-    v_ = v_before;
-    ++lcp_solves_;
-    if (!dynamics_.impact(flank, e, v_, impulses, lcp_workspace_, lcp_options_))
-      jam("no consistent frictional impact");
+    if (!flank_impulses(flank, e, v_before, impulses)) jam("no consistent frictional impact");
     motor_work = p_.speed_controlled ? impulses.rotor * v_[model_.rotor()] : 0.0;
     dynamics_.set_state(t, q_, v_);
     return kinetic_before + motor_work - dynamics_.kinetic_energy();
@@ -191,7 +190,10 @@ bool DriveHybrid::flank_impact(double t, double* y, int flank) {
   // The motor's work enters the drive's work as well as the impact's loss
   // (booked in the loss alone, 4 % of the work went missing from the account).
   book_motor_impulse(y, motor_work);
-  impact_loss_ += dissipated;
+  // (The stage's share of it through the rotor's contact: gear_loss.)
+  const double stage_share = stage_impact_loss(impulses, dissipated);
+  if (stage_share != 0.0) y[layout_.find_state("gear_loss")] += stage_share;
+  impact_loss_ += dissipated - stage_share;
   const double normal_after = dynamics_.play_rate();
   // Height of the flight the bounce would start: v^2 / (2 |e''|) with the
   // play's acceleration in free flight; see kPlasticHeight.

@@ -2,7 +2,7 @@
 // solve, the train's stages (the motor's Coulomb friction, a lossy or worm
 // stage: elements/train_friction.hpp) with a torque or DC motor on every
 // drive the rigid train solver (TrainSolver, one degree of freedom) does
-// not take: the flexible concepts, penalty play (docs/physics/gear.md,
+// not take: the flexible concepts, penalty and exact play (docs/physics/gear.md,
 // "The event-driven rotor contact").
 //
 // The rotor (reflected inertia R) drives the rotor's coordinate through the
@@ -114,6 +114,36 @@ bool DriveHybrid::rotor_consistent(const ModeSolution& s, bool at_rest) const {
                                     s.rotor_friction, other, moving);
 }
 
+// decide_rotor's trials: the rotor's modes in Moreau-Jean's order, each
+// with the thread's own decision from its mode `thread`; true where one is
+// consistent (rotor_mode_ and mode_ set), else the first failure's text.
+bool DriveHybrid::try_rotor_modes(double t, double* y, bool leave_stick, bool at_rest,
+                                  const Mode& thread, std::string& failure) {
+  const int r = model_.rotor();
+  for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
+    if (!rotor_train_->stage && candidate.flow < 0) continue;
+    if (candidate.slip == 0 && (leave_stick || !at_rest)) continue;
+    if (!at_rest && (candidate.breakaway || candidate.slip != sign_of(v_[r]))) continue;
+    rotor_mode_ = candidate;
+    mode_ = thread;
+    try {
+      if (mode_.contact != ThreadContact::open)
+        decide_friction(t, y, mode_.friction == FrictionMode::stick, 0);
+      const ModeSolution s = solve_current();
+      // (A closed exact stop must push in the mode: hybrid_rotor_stops.cpp.)
+      if ((candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s, at_rest)) &&
+          held_stop_presses(s)) {
+        rotor_mode_.breakaway = false;  // (in slip the kinetic efficiencies)
+        start_flow_root(s);
+        return true;
+      }
+    } catch (const SimulationError& e) {  // (JammingError too)
+      if (failure.empty()) failure = e.what();
+    }
+  }
+  return false;
+}
+
 // The rotor's speed at the level of its round-off is at rest: projected to
 // exactly zero (with the thread's held constraints), then the modes tried.
 void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stalled) {
@@ -131,26 +161,20 @@ void DriveHybrid::decide_rotor(double t, double* y, bool leave_stick, bool stall
   if (at_rest) rest_held_drive(t, y);  // (hybrid_rotor_stops.cpp)
   const Mode thread = mode_;
   std::string failure;
-  for (const moreau_contacts::RotorMode& candidate : moreau_contacts::kRotorModes) {
-    if (!rotor_train_->stage && candidate.flow < 0) continue;
-    if (candidate.slip == 0 && (leave_stick || !at_rest)) continue;
-    if (!at_rest && (candidate.breakaway || candidate.slip != sign_of(v_[r]))) continue;
-    rotor_mode_ = candidate;
-    mode_ = thread;
-    try {
-      if (mode_.contact != ThreadContact::open)
-        decide_friction(t, y, mode_.friction == FrictionMode::stick, 0);
-      const ModeSolution s = solve_current();
-      // (A closed exact stop must push in the mode: hybrid_rotor_stops.cpp.)
-      if ((candidate.slip == 0 ? stick_at_edge(s) : rotor_consistent(s, at_rest)) &&
-          held_stop_presses(s)) {
-        rotor_mode_.breakaway = false;  // (in slip the kinetic efficiencies)
-        start_flow_root(s);
-        return;
-      }
-    } catch (const SimulationError& e) {  // (JammingError too)
-      if (failure.empty()) failure = e.what();
-    }
+  if (try_rotor_modes(t, y, leave_stick, at_rest, thread, failure)) return;
+  // Coulomb's static coefficient above its kinetic one: at the cone's edge
+  // the thread's friction jumps from mu_static' |N| (stick) to mu' |N|
+  // (slip), and with the stage's power flow deciding on that friction
+  // neither flow may be consistent (stuck, the stage passes its torque one
+  // way; sliding, the other: 4 of 110 random trains with mu_static jammed
+  // so, never with Stribeck's continuous curve). There the static excess
+  // gives way: the thread decides at mu' (its slip at mu' is consistent
+  // where no stick at mu_static' is).
+  if (model_.effective_mu_static() > model_.effective_mu() && !kinetic_stick_) {
+    kinetic_stick_ = true;
+    const bool found = try_rotor_modes(t, y, leave_stick, at_rest, thread, failure);
+    kinetic_stick_ = false;
+    if (found) return;
   }
   if (leave_stick && at_rest) {
     // The margin's root fired on the edge's round-off, no slip starts: the

@@ -263,11 +263,11 @@ void check_train_integrator(const DriveModel& model, const std::string& integrat
            ? ": the event-driven scheme runs the train's friction stages with a torque or "
              "DC motor on the rigid concept without play with Coulomb friction on the thread "
              "(friction.law = \"coulomb\", mu_static too) or \"arctan_velocity\", and on "
-             "the flexible concepts and penalty play (backlash.contact \"bistop\" or "
-             "\"cubic\") with friction.law = \"coulomb\" without mu_static or "
-             "\"arctan_velocity\" (the rotor's friction contact), there with exact "
-             "end stops and a preloaded nut too but not on the rigid concept; and behind a "
-             "prescribed "
+             "the flexible concepts without play and with exact or penalty play (backlash."
+             "contact \"exact\", \"bistop\" or \"cubic\") with \"coulomb\" (mu_static too), "
+             "\"stribeck\" or \"arctan_velocity\" (the rotor's friction contact), there with "
+             "exact end stops and a preloaded nut too with \"coulomb\" without mu_static or "
+             "\"arctan_velocity\" and without exact play; and behind a prescribed "
              "rotor speed (loads.drive_speed) on every concept and play with every law, "
              "here " + train->event_driven_obstacle +
                  "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"
@@ -278,7 +278,7 @@ void check_train_integrator(const DriveModel& model, const std::string& integrat
            : ": the train's friction stages run on Moreau-Jean (integrator = \"moreau\", "
              "every thread law but arctan_acceleration)" +
                  (train->event_driven_obstacle.empty()
-                      ? std::string(" and, without exact play, the event-driven scheme "
+                      ? std::string(" and the event-driven scheme "
                                     "(integrator = \"event_driven\")")
                       : "; this scene runs on Moreau-Jean only (here " +
                             train->event_driven_obstacle + ")")));

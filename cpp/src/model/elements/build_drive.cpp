@@ -386,8 +386,9 @@ void check_train_friction(const DriveParameters& p, const DriveElements& e) {
   if (e.thread->law().resolution() == friction::Resolution::acceleration && !p.speed_controlled)
     throw InvalidArgument(
         what + " is invalid with friction.law = \"" + p.friction +
-        "\": the train's stages run on Moreau-Jean, whose velocity-level step has no slip "
-        "acceleration for eq. (3.15)'s friction (it would follow dt); use friction.law = "
+        "\": Moreau-Jean's velocity-level step has no slip acceleration for eq. (3.15)'s "
+        "friction (it would follow dt), and the event-driven scheme's rotor contact does not "
+        "take it yet; use friction.law = "
         "\"arctan_velocity\", \"lugre\", \"stribeck\" or \"coulomb\", or a prescribed rotor "
         "speed (loads.drive_speed), which the event-driven scheme runs with every law");
   const double alpha = p.thread.lead_angle();
@@ -640,22 +641,27 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // The rotor's friction contact (hybrid_rotor_contact.cpp) runs them on
   // the constrained solve with the thread's own law where TrainSolver does
   // not (off the rigid concept without play; arctan_velocity on it,
-  // DriveHybrid::train_solver_applies): no play or penalty play, exact
-  // Coulomb with one coefficient or arctan_velocity (a force of the state,
-  // no thread modes), each checked against Moreau-Jean. (Not yet: Stribeck
-  // and mu_static there, whose Moreau-Jean reference is irregular in dt at
-  // 1e-4 relative, with an ideal gear too, so not validated; LuGre, which
-  // Moreau-Jean does not run beside the rotor's contact; on the rigid
-  // concept without play TrainSolver's closed forms take Coulomb alone.)
-  if (p.backlash == BacklashContact::exact)
-    return "backlash.contact = \"exact\" (exact play)";
+  // DriveHybrid::train_solver_applies): no play, penalty and exact play,
+  // Coulomb (mu_static too), Stribeck and
+  // arctan_velocity (docs/physics/gear.md, "Exact play through the rotor's
+  // contact").
+  // Exact play: the flank's impacts through the rotor's contact
+  // (hybrid_rotor_impact.cpp); on the rigid concept a closed flank with the
+  // rotor stuck fixes every velocity, the thread's friction then the one
+  // that leaves the rotor's contact the least |Q| (DriveDynamics::
+  // rotor_fixes_slip, Moreau-Jean's "stuck together").
+  // The rotor's contact takes the thread's set-valued laws (Coulomb with
+  // mu_static, Stribeck: the thread's own stick and slip decisions beside
+  // the rotor's) and arctan_velocity (eq. (3.15) check_train_friction
+  // refuses). Not LuGre (Moreau-Jean does not run its
+  // bristles beside the rotor's contact: no reference), nor Stribeck on
+  // the rigid concept without play, where the thread's stick row and the
+  // rotor's fix the one velocity together (TrainSolver's closed forms take
+  // Coulomb's one kinetic coefficient).
   const bool rigid_train = p.concept == Concept::rigid && p.backlash == BacklashContact::none;
-  const bool rotor_contact_law = law.plain_coulomb() || p.friction == "arctan_velocity";
-  if (!rigid_train && !rotor_contact_law)
-    return "friction.law = \"" + p.friction + "\"" +
-           (p.friction == "coulomb" ? " with mu_static (off the rigid concept without play)"
-                                    : "");
-  if (rigid_train && p.friction != "coulomb" && p.friction != "arctan_velocity")
+  if (law.resolution() == friction::Resolution::bristle ||
+      (rigid_train && law.resolution() == friction::Resolution::set_valued &&
+       p.friction != "coulomb"))
     return "friction.law = \"" + p.friction + "\"";
   // A preloaded nut and exact end stops: the rotor's friction contact on
   // the flexible concepts (hybrid_rotor_stops.cpp). Not on the rigid
@@ -666,17 +672,34 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // (its solve is singular) and TrainSolver's closed forms do not take; a
   // preloaded nut's stick edge there is not resolved with the rotor's
   // contact either (no consistent edge at the start).
+  bool exact_stops = false;
+  if (const ElementSection* stops = find_section(p, "end_stops"))
+    for (const auto& [key, value] : stops->choices)
+      if (key == "contact" && value == "exact") exact_stops = true;
+  // Exact play's impacts (hybrid_rotor_impact.cpp), mu_static and Stribeck
+  // on the rotor's contact, and exact end stops and a preloaded nut
+  // (hybrid_rotor_stops.cpp) were each written and validated beside the
+  // rotor's contact alone, not together: refused together until they are.
+  if ((exact_stops || p.nut_preload > 0.0) &&
+      (p.backlash == BacklashContact::exact || p.friction == "stribeck" ||
+       law.mu_static() > law.mu()))
+    return std::string(exact_stops ? "end_stops.contact = \"exact\"" : "nut.preload = " +
+                       format_value(p.nut_preload) + " N") +
+           " with " +
+           (p.backlash == BacklashContact::exact
+                ? std::string("backlash.contact = \"exact\"")
+                : p.friction == "stribeck" ? std::string("friction.law = \"stribeck\"")
+                                           : std::string("friction.mu_static")) +
+           " (each runs beside the rotor's friction contact alone, not validated together)";
   if (p.concept == Concept::rigid) {
     if (p.nut_preload > 0.0)
       return "nut.preload = " + format_value(p.nut_preload) +
              " N on concept = \"rigid\" (the preloaded nut's stick edge with the rotor's "
              "friction contact is not resolved there)";
-    if (const ElementSection* stops = find_section(p, "end_stops"))
-      for (const auto& [key, value] : stops->choices)
-        if (key == "contact" && value == "exact")
-          return "end_stops.contact = \"exact\" on concept = \"rigid\" (with the load held "
-                 "and the rotor stuck the thread's friction and the rotor's share the holding "
-                 "torque in a statically indeterminate split)";
+    if (exact_stops)
+      return "end_stops.contact = \"exact\" on concept = \"rigid\" (with the load held and "
+             "the rotor stuck the thread's friction and the rotor's share the holding torque "
+             "in a statically indeterminate split)";
   }
   return given_base_excitation(p);
 }

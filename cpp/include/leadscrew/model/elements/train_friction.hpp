@@ -7,9 +7,11 @@
 // every contact slips with the one speed phi' (rotor, stage, thread), so
 // the train is one degree of freedom whose friction contacts stick and slip
 // together (DriveHybrid::TrainSolver, cpp/src/model/drive/train_solver.cpp);
-// on the flexible concepts without play as the rotor's friction contact, a
-// mode and roots of its own beside the thread's (DriveHybrid::RotorContact,
-// cpp/src/model/drive/hybrid_rotor_contact.cpp);
+// on the flexible concepts and with exact or penalty play as the rotor's
+// friction contact, a mode and roots of its own
+// beside the thread's (DriveHybrid::RotorContact,
+// cpp/src/model/drive/hybrid_rotor_contact.cpp; a flank's impact through
+// it: hybrid_rotor_impact.cpp);
 // and behind a prescribed rotor speed on every concept and play, where the
 // frictions change the motor's torque alone (friction_torque_at_speed,
 // DriveHybrid::ConstrainedSolver).

@@ -99,12 +99,14 @@ def test_a_scene_only_moreau_jean_runs_is_not_exported(tmp_path):
         # (A new user's review: the refusal spoke of "a stepper" and
         # drive_integrators() though no integrator was set.)
         message = str(info.value)
-        # (Its exact end stops are the obstacle since the event-driven rotor
-        # contact runs the stages on the flexible concepts with exact play.)
+        # (Its exact end stops beside exact play are the obstacle: the
+        # event-driven rotor contact runs each, not yet both together.)
         assert message.startswith('this scene runs only on Moreau-Jean time stepping '
                                   '(integrator = "moreau"): its gear stage (gear.type = "worm") '
-                                  'with end_stops.contact = "exact" runs on nothing '
-                                  'else; FMU export and the C API do not offer Moreau-Jean')
+                                  'with end_stops.contact = "exact" and backlash.contact = '
+                                  '"exact" (each runs beside the rotor\'s friction contact '
+                                  'alone, not validated together) runs on nothing else; FMU '
+                                  'export and the C API do not offer Moreau-Jean')
         assert 'e.g. the shipped scene "seat_adjuster_worm"' in message
         assert "stepper" not in message and "drive_integrators" not in message
         assert "seat_adjuster_worm" not in MOREAU_ONLY  # (it exports: the test below)

@@ -685,7 +685,7 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
        law.mu_static() > law.mu()))
     return std::string(exact_stops ? "end_stops.contact = \"exact\"" : "nut.preload = " +
                        format_value(p.nut_preload) + " N") +
-           " with " +
+           " and " +
            (p.backlash == BacklashContact::exact
                 ? std::string("backlash.contact = \"exact\"")
                 : p.friction == "stribeck" ? std::string("friction.law = \"stribeck\"")

@@ -105,6 +105,9 @@ void DriveDynamics::set_lift_off_forces(const ModeSpec& spec, ModeForces& m) con
                       : m.kappa_half    ? nut->normal_at(m.half_b_kappa, preload_spring_)
                       : m.lift_off_slip ? nut->normal(spec.slip_sign, preload_spring_)
                                         : nut->side * preload_spring_ / nut->cos_lead;
+  if (m.lift_off_half && !m.lift_off_slip && !m.kappa_half && spec.half_b_edge != 0)
+    m.lift_off_normal += spec.half_b_share *
+                         (nut->normal(spec.half_b_edge, preload_spring_) - m.lift_off_normal);
   m.lift_off_friction = !m.lift_off_half  ? 0.0
                         : m.kappa_half    ? nut->friction_at(m.half_b_kappa, preload_spring_)
                         : m.lift_off_slip ? nut->split_friction(spec.slip_sign, preload_spring_)

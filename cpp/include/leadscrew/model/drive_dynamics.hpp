@@ -52,6 +52,12 @@ struct ModeSpec {
   FrictionMode friction = FrictionMode::none;
   int slip_sign = 0;              // FrictionMode::slip: sign of the slip velocity
   double given_tangential = 0.0;  // an extra tangential force (builds the friction LCP)
+  // A lift-off nut in stick with half B toward slip s's edge state: its
+  // normal force side S / cos(a) + share (N_B^s(S) - side S / cos(a)) along
+  // W_N, its friction share T_B^s in the stick force (s = +-1; 0: its
+  // spring's, side S / cos(a) W_N). DriveHybrid::half_b_edge_share.
+  int half_b_edge = 0;
+  double half_b_share = 1.0;
   // A closed exact end stop holds this coordinate (the load's) at rest: a
   // row of its own, its multiplier the stop's force (ModeSolution::
   // stop_force); -1: none (docs/physics/end_stops.md, "The rigid drive").

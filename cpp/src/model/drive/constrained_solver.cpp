@@ -124,10 +124,13 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
       nut && nut->lift_off && h_.mode_.contact == ThreadContact::penalty) {
     if (dynamics.preload_at_kappa(h_.spec(1)))  // (a smooth law's, Stribeck's: the solve's)
       energy[kFrictionLoss] += nut->sin_lead * s.preload_friction * dynamics.play_rate();
-    else if (h_.mode_.friction == FrictionMode::slip)
+    else if (const int edge = h_.mode_.friction == FrictionMode::slip ? h_.mode_.slip_sign
+                                                                      : h_.mode_.half_b_edge)
+      // (in slip, and in stick with half B toward its slip's edge: its
+      // share of T_B^s on its own slip -sin(a) e')
       energy[kFrictionLoss] +=
-          nut->sin_lead *
-          nut->split_friction(h_.mode_.slip_sign, dynamics.preload_spring_force()) *
+          (h_.mode_.friction == FrictionMode::slip ? 1.0 : h_.spec(1).half_b_share) *
+          nut->sin_lead * nut->split_friction(edge, dynamics.preload_spring_force()) *
           dynamics.play_rate();
   }
   energy[kDampingLoss] = dynamics.damping_power();

@@ -35,6 +35,7 @@
 //   element_registry.cpp   the elements' registry (declaration.hpp)
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -189,6 +190,8 @@ class DriveHybrid final : public integrate::HybridSystem {
     s.sigma = mode_.contact == ThreadContact::closed ? mode_.flank : sigma;
     s.friction = mode_.contact == ThreadContact::open ? FrictionMode::none : mode_.friction;
     s.slip_sign = mode_.slip_sign;
+    s.half_b_edge = mode_.friction == FrictionMode::stick ? mode_.half_b_edge : 0;
+    s.half_b_share = std::clamp(half_b_edge_.share, 0.0, 1.0);
     s.held_load = held_load_;
     if (rotor_train_) s.rotor = rotor_row();
     return s;
@@ -226,6 +229,8 @@ class DriveHybrid final : public integrate::HybridSystem {
   void decide_preloaded_nut(const elements::PreloadedNut& nut, const ZeroSlipLcp& lcp, int hint,
                             const elements::PreloadedNut* lift_off);
   void decide_flank_lcp(const ZeroSlipLcp& lcp, int hint);
+  void stick_at_half_b_edge();
+  double half_b_edge_share();
   void start_normal_side();
   double flank_change_root(double normal_force);
   // A preloaded nut closing exact play (hybrid_preloaded_nut.cpp): the nut
@@ -350,6 +355,12 @@ class DriveHybrid final : public integrate::HybridSystem {
   bool backlash_;
   bool touching_ = false;  // a penalty flank is penetrated
   int held_load_ = -1;     // a closed exact end stop's coordinate (ModeSpec::held_load)
+  // The stick with half B toward its slip's edge (Mode::half_b_edge): the
+  // share that holds the stick force at the cone's edge (unclamped) and the
+  // roots' margins g0, g1 (half_b_edge_share).
+  struct HalfBEdge {
+    double share = 1.0, edge_margin = 0.0, spring_margin = 0.0;
+  } half_b_edge_;
   int sigma_guess_ = 1;    // last consistent sign of the bilateral normal force
   int bounced_from_ = 0;   // the flank of the last bounce until the flight's apex
   std::vector<double> saved_state_;  // y before a touch below resolution (handle_event)

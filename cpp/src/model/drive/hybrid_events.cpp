@@ -49,6 +49,10 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
         g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
         if (g[0] > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
       }
+      if (mode_.friction == FrictionMode::stick && mode_.half_b_edge != 0) {
+        g[0] = half_b_edge_.edge_margin;  // (set by forces: solve_current)
+        g[1] = half_b_edge_.spring_margin;
+      }
       if (mode_.contact == ThreadContact::bilateral && mode_.friction != FrictionMode::stick)
         g[1] = flank_change_root(s.normal_force - s.preload_normal);
       // Half A lifting off into the closed exact play: an error at its root.
@@ -105,6 +109,8 @@ void DriveHybrid::root_directions(int* directions) const {
                       : 0;
   if (mode_.contact == ThreadContact::open && bounced_from_ != 0)
     directions[1] = bounced_from_ > 0 ? -1 : 1;  // leaving the lower flank: e' falls at the apex
+  if (mode_.friction == FrictionMode::stick && mode_.half_b_edge != 0)
+    directions[1] = -1;  // half B at its spring's force sticks again
   // g2, g3: an open thread hits the upper flank rising, the lower falling;
   // a penalty contact restarts at both crossings.
   // A penalty flank is entered rising (upper) or falling (lower) and left
@@ -389,6 +395,8 @@ std::string DriveHybrid::change_mode(double t, double* y, const std::vector<int>
       // that stick needed.
       hint = train_ ? train_->exit_direction() : -sign_of(solve_current().friction_force);
     }
+  } else if (mode_.half_b_edge != 0 && root_info[1] != 0) {
+    zero_slip = true;  // the stick with half B at its spring's force admissible again
   } else if (mode_.contact == ThreadContact::bilateral && root_info[1] != 0) {
     normal_side_ = -normal_side_;
     layout_.compress(q_, v_, y);

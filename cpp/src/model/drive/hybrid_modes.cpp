@@ -13,6 +13,7 @@ namespace leadscrew::model::drive {
 // play the sign of the normal force is the one consistent with it (the
 // thesis's y+/y- procedure, section 4.3, done exactly).
 ModeSolution DriveHybrid::solve_current() {
+  if (mode_.friction == FrictionMode::stick && mode_.half_b_edge != 0) half_b_edge_share();
   const bool friction_on_normal = mode_.friction == FrictionMode::slip ||
                                   mode_.friction == FrictionMode::regularized_velocity ||
                                   mode_.friction == FrictionMode::regularized_acceleration ||
@@ -126,6 +127,7 @@ void DriveHybrid::open_if_pulling() {
 // Stick or slip: from the slip velocity, or at zero slip by the flank LCP.
 void DriveHybrid::decide_friction(double t, double* y, bool at_zero_slip, int hint) {
   (void)t;
+  mode_.half_b_edge = 0;  // (stick_at_half_b_edge sets it)
   if (train_) {
     decide_train(t, y, at_zero_slip, hint);
     return;
@@ -290,6 +292,58 @@ void DriveHybrid::decide_preloaded_nut(const elements::PreloadedNut& nut, const 
   const int direction = sign_of(r.slip_acceleration);
   mode_.friction = direction == 0 && hint == 0 ? FrictionMode::stick : FrictionMode::slip;
   mode_.slip_sign = mode_.friction == FrictionMode::stick ? 0 : direction != 0 ? direction : hint;
+  if (lift_off && mode_.friction == FrictionMode::slip) stick_at_half_b_edge();
+}
+
+// A lift-off nut leaving stick at the edge of slip s (decide_split: half B
+// at its spring's force, side S / cos(a) W_N, its friction in the stick
+// force) may find that slip, half B at its slip state N_B^s W_N + T_B^s W_T,
+// slowing at once: half B's friction's axial part presses half A's flank
+// harder. The event-driven scheme then chattered stick <-> slip s at one
+// instant (drive-train fuzz cases 794, 7173, 7812 at f59bc15: 2,000 events
+// within 1e-11 s). Stick leaves the split of its force between the halves
+// indeterminate; Moreau-Jean (moreau_lift_off.cpp) takes half B at the
+// edge where its spring's force does not stick. Here half B goes toward
+// that edge by the share that holds the stick force at the cone's edge
+// (half_b_edge_share): the limit of Moreau-Jean's steps alternating between
+// the two, continuous in time. The stick ends at share 1 (slip s is
+// consistent there, g0) or 0 (half B at its spring's force sticks, g1).
+void DriveHybrid::stick_at_half_b_edge() {
+  const int s = mode_.slip_sign;
+  if (s * dynamics_.solve(spec(1)).slip_acceleration > 0.0) return;  // the slip is consistent
+  mode_.friction = FrictionMode::stick;
+  mode_.slip_sign = 0;
+  mode_.half_b_edge = s;
+  ++lcp_solves_;
+  if (half_b_edge_share() >= 0.0) return;  // (its stick force at the edge state in the cone)
+  mode_.friction = FrictionMode::slip;  // (no stick at the edge either: the slip, whose
+  mode_.slip_sign = s;                  // check of half B's loss may fail)
+  mode_.half_b_edge = 0;
+}
+
+// The share of the stick with half B toward slip s's edge (ModeSpec::
+// half_b_share) at which its stick force, affine in the share, lies on the
+// cone's edge s, E = -s b_s (half A's normal force and the spring's are the
+// state's): (E - T_0) / (T_1 - T_0), between T_0 (half B at its spring's
+// force) beyond the edge and T_1 (at its slip state) inside. Its roots
+// without that quotient (which has a pole where the spring's force and
+// half A's vanish): g0 = b_s + s T_1 (T_1 reaches the edge: slip s is
+// consistent there) and g1 = -s T_0 - b_s (T_0 back inside). Stored in
+// half_b_edge_ (the share unclamped); returns g0.
+double DriveHybrid::half_b_edge_share() {
+  const int s = mode_.half_b_edge;
+  ModeSpec at = spec(1);
+  at.half_b_share = 0.0;
+  const double spring = dynamics_.solve(at).friction_force;
+  at.half_b_share = 1.0;
+  const double edge_state = dynamics_.solve(at).friction_force;
+  const double bound = model_.preloaded_nut()->sticking().split_bound(
+      s, dynamics_.penalty_normal_force(), dynamics_.preload_spring_force());
+  half_b_edge_.share =
+      edge_state != spring ? (-s * bound - spring) / (edge_state - spring) : 1.0;
+  half_b_edge_.edge_margin = bound + s * edge_state;
+  half_b_edge_.spring_margin = -s * spring - bound;
+  return half_b_edge_.edge_margin;
 }
 
 // The thread's flank LCP at zero slip for each normal-force sign to try:

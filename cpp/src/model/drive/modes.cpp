@@ -7,7 +7,9 @@ std::string describe(const Mode& m, bool backlash) {
   std::string friction;
   switch (m.friction) {
     case FrictionMode::stick:
-      friction = "stick";
+      friction = m.half_b_edge == 0 ? "stick"
+                 : m.half_b_edge > 0 ? "stick (half B at slip+'s edge)"
+                                     : "stick (half B at slip-'s edge)";
       break;
     case FrictionMode::slip:
       friction = m.slip_sign > 0 ? "slip+" : "slip-";

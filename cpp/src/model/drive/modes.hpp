@@ -17,9 +17,13 @@ struct Mode {
   int flank = 1;  // sign of the normal force on a closed flank: +1 lower (e = -c/2), -1 upper
   FrictionMode friction = FrictionMode::none;
   int slip_sign = 0;
+  // A lift-off nut's stick with half B at slip s's edge state (s = +-1;
+  // 0: at its spring's force), Moreau-Jean's third stick (moreau_lift_off.cpp):
+  // DriveHybrid::stick_at_half_b_edge.
+  int half_b_edge = 0;
   bool operator==(const Mode& o) const {
     return contact == o.contact && flank == o.flank && friction == o.friction &&
-           slip_sign == o.slip_sign;
+           slip_sign == o.slip_sign && half_b_edge == o.half_b_edge;
   }
 };
 

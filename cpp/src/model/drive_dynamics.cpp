@@ -318,6 +318,51 @@ bool DriveDynamics::project_held(const HeldContact& held, CoordinateVector& q,
   return true;
 }
 
+// The rotor's inverse mass with its friction contact's row eliminated
+// (a_q / (a_q M_r - a_w), as DriveDynamics::solve's); false where the
+// stage's Painleve case leaves no finite one.
+bool DriveDynamics::eliminated_rotor_inverse_mass(const ModeSpec::RotorRow& rotor_contact,
+                                                  CoordinateVector& inverse_mass) const {
+  const int rotor = model_.rotor();
+  const double effective = rotor_contact.a_q / inverse_mass_[rotor] - rotor_contact.a_w;
+  if (!(std::abs(effective) > 1e-12 * std::abs(rotor_contact.a_q / inverse_mass_[rotor])))
+    return false;
+  inverse_mass = inverse_mass_;
+  inverse_mass[rotor] = rotor_contact.a_q / effective;
+  return true;
+}
+
+// impact()'s friction impulse on the flank's line: the post-impact slip
+// c + d P_T and the normal impulse beta + alpha P_T.
+friction::FlankLcpResult DriveDynamics::impact_friction(const ImpactLine& line,
+                                                        double slip_before, int sigma,
+                                                        lcp::Workspace& workspace,
+                                                        const lcp::Options& options) const {
+  if (line.prescribed) {
+    // The motor (or the rotor's stuck contact) and Newton's law fix the
+    // velocities after the impact: their slip c decides
+    // (friction::solve_flank_prescribed_slip on the impulses; in stick the
+    // least rotor impulse).
+    return friction::solve_flank_prescribed_slip(line.c, std::abs(line.c) <= line.noise,
+                                                 line.alpha, line.beta, model_.effective_mu(),
+                                                 sigma, line.held0, line.held1);
+  }
+  // A sticking impact where it is admissible (the law's static cone)
+  // takes precedence where the law has a static coefficient above its
+  // kinetic one, and where the LCP of the flank's sign finds no impulse (the
+  // Painleve regime); otherwise the LCP at the law's coefficient at the
+  // impact's slip speed.
+  const friction::FlankLcpResult stick = friction::flank_stick(
+      line.c, line.d, line.alpha, line.beta, model_.effective_mu_static(), sigma);
+  if (!plain_coulomb_ && stick.consistent) return stick;
+  const double mu = plain_coulomb_ ? model_.effective_mu()
+                                   : law_->slip_mu(slip_before) * model_.flank_factor();
+  const friction::FlankLcpResult r =
+      solve_flank_lcp_scaled(line.c, line.d, line.alpha, line.beta, mu, sigma, workspace,
+                             options);
+  return (!r.consistent && stick.consistent) ? stick : r;
+}
+
 bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
                            Impulses& impulses, lcp::Workspace& workspace,
                            const lcp::Options& options, const ModeSpec::RotorRow& rotor_contact) {
@@ -329,22 +374,16 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   // controlled) with Newton's law W_N (v + dv) = -e W_N v. The post-impact
   // slip velocity and both impulses are affine in P_T: two solves give the
   // maps, and the flank LCP on the impulse level decides stick or slip.
-  double rotor_impulse = 0.0, rotor_friction = 0.0;
   // The rotor's friction contact (gear.md, "Exact play through the rotor's
   // contact"): its row fixes w+ (a_q = 0) or eliminates Q into the rotor's
-  // inverse mass a_q / (a_q M_r - a_w) and the given impulse
-  // -(r - a_w w-) / a_q on its coordinate, as DriveDynamics::solve's.
+  // inverse mass and the given impulse -(r - a_w w-) / a_q on its coordinate.
+  double rotor_impulse = 0.0, rotor_friction = 0.0;
   const int rotor = model_.rotor();
   const bool rotor_fixed = rotor_contact.fixes(1.0 / inverse_mass_[rotor]);
   const bool rotor_eliminated = rotor_contact.active && !rotor_fixed;
   CoordinateVector rotor_inverse_mass;
-  if (rotor_eliminated) {
-    const double effective = rotor_contact.a_q / inverse_mass_[rotor] - rotor_contact.a_w;
-    if (!(std::abs(effective) > 1e-12 * std::abs(rotor_contact.a_q / inverse_mass_[rotor])))
-      return false;  // (the stage's Painleve case, k J_s + R = 0)
-    rotor_inverse_mass = inverse_mass_;
-    rotor_inverse_mass[rotor] = rotor_contact.a_q / effective;
-  }
+  if (rotor_eliminated && !eliminated_rotor_inverse_mass(rotor_contact, rotor_inverse_mass))
+    return false;  // (the stage's Painleve case, k J_s + R = 0)
   auto jump = [&](double given_tangential, CoordinateVector& change, double& impulse) {
     const int nc = 1 + (speed_controlled ? 1 : 0) + (rotor_fixed ? 1 : 0);
     ColumnMatrix B = ColumnMatrix::Zero(n, nc);
@@ -382,55 +421,28 @@ bool DriveDynamics::impact(int sigma, double restitution, CoordinateVector& v,
   if (!jump(0.0, without, beta)) return false;
   const double rotor_without = rotor_impulse, friction_without = rotor_friction;
   if (!jump(1.0, unit, unit_normal)) return false;
-  const double c = tangent.dot(v + without);
-  const double d = tangent.dot(unit - without);
-  const double alpha = unit_normal - beta;
-  friction::FlankLcpResult r;
-  if (slip_prescribed_ || (rotor_fixed && rotor_fixes_slip_)) {
-    // The motor (or the rotor's stuck contact) and Newton's law fix the
-    // velocities after the impact: their slip c decides
-    // (friction::solve_flank_prescribed_slip on the impulses; in stick the
-    // least rotor impulse).
+  ImpactLine line{tangent.dot(v + without), tangent.dot(unit - without), unit_normal - beta,
+                  beta, slip_prescribed_ || (rotor_fixed && rotor_fixes_slip_)};
+  if (line.prescribed) {
+    // (Held by the rotor's stuck contact after a plastic impact c is the
+    // round-off of the jump from v: 64 ulp of the velocities before it too.)
     const CoordinateVector after = v + without;
-    // (Held by the rotor's stuck contact the velocities after a plastic
-    // impact are all zero: c is the round-off of the jump from v, 64 ulp of
-    // the velocities before it too.)
-    const double noise =
-        64.0 * std::numeric_limits<double>::epsilon() *
-        (tangent.cwiseProduct(after).cwiseAbs().sum() +
-         (speed_controlled ? 0.0 : tangent.cwiseProduct(v).cwiseAbs().sum()));
-    const double held0 = speed_controlled ? rotor_without : friction_without;
-    const double held1 = (speed_controlled ? rotor_impulse : rotor_friction) - held0;
-    r = friction::solve_flank_prescribed_slip(c, std::abs(c) <= noise, alpha, beta,
-                                              model_.effective_mu(), sigma, held0, held1);
-  } else {
-    // A sticking impact where it is admissible (the law's static cone)
-    // takes precedence where the law has a static coefficient above its
-    // kinetic one, and where the LCP of the flank's sign finds no impulse (the
-    // Painleve regime); otherwise the LCP at the law's coefficient at the
-    // impact's slip speed.
-    const friction::FlankLcpResult stick =
-        friction::flank_stick(c, d, alpha, beta, model_.effective_mu_static(), sigma);
-    if (!plain_coulomb_ && stick.consistent) {
-      r = stick;
-    } else {
-      const double mu = plain_coulomb_
-                            ? model_.effective_mu()
-                            : law_->slip_mu(std::abs(tangent.dot(v))) * model_.flank_factor();
-      r = solve_flank_lcp_scaled(c, d, alpha, beta, mu, sigma, workspace, options);
-      if (!r.consistent && stick.consistent) r = stick;
-    }
+    line.noise = 64.0 * std::numeric_limits<double>::epsilon() *
+                 (tangent.cwiseProduct(after).cwiseAbs().sum() +
+                  (speed_controlled ? 0.0 : tangent.cwiseProduct(v).cwiseAbs().sum()));
+    line.held0 = speed_controlled ? rotor_without : friction_without;
+    line.held1 = (speed_controlled ? rotor_impulse : rotor_friction) - line.held0;
   }
+  const friction::FlankLcpResult r =
+      impact_friction(line, std::abs(tangent.dot(v)), sigma, workspace, options);
   if (!r.consistent) return false;
   CoordinateVector change;
   double impulse = 0.0;
   if (!jump(r.friction_force, change, impulse)) return false;
   v += change;
-  impulses.normal = impulse;
-  impulses.tangential = r.friction_force;
-  impulses.rotor = rotor_impulse;
-  impulses.rotor_friction = rotor_friction;
-  impulses.sticks = r.slip_acceleration == 0.0;  // the new slip velocity, exactly 0 in the stick basis
+  // (sticks: the new slip velocity, exactly 0 in the stick basis)
+  impulses = {impulse, r.friction_force, rotor_impulse, rotor_friction,
+              r.slip_acceleration == 0.0};
   return true;
 }
 

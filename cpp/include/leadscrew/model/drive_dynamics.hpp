@@ -389,6 +389,21 @@ class DriveDynamics {
   friction::FlankLcpResult prescribed_slip_decision(const ModeSpec& base, int sigma);
 
  private:
+  // impact()'s parts: the flank's line (the post-impact slip c + d P_T, the
+  // normal impulse beta + alpha P_T; where the slip is prescribed, the held
+  // row's impulse held0 + held1 P_T and the slip's round-off noise), its
+  // friction impulse, and the rotor's inverse mass with its contact's row
+  // eliminated (false: none finite).
+  struct ImpactLine {
+    double c = 0.0, d = 0.0, alpha = 0.0, beta = 0.0;
+    bool prescribed = false;
+    double noise = 0.0, held0 = 0.0, held1 = 0.0;
+  };
+  friction::FlankLcpResult impact_friction(const ImpactLine& line, double slip_before, int sigma,
+                                           lcp::Workspace& workspace,
+                                           const lcp::Options& options) const;
+  bool eliminated_rotor_inverse_mass(const ModeSpec::RotorRow& rotor_contact,
+                                     CoordinateVector& inverse_mass) const;
   // solve's parts (drive_dynamics_solve.cpp). A mode's rows and given forces
   // besides the multipliers: the law's viscous term and a preloaded nut's
   // half B (its coefficient half_b_kappa moves with eq. (3.15)).

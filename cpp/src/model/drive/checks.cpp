@@ -14,14 +14,10 @@
 
 namespace leadscrew::model::drive {
 
-void check_drive_result(const DriveModel& model, const friction::Law& law,
-                        const DriveSimulationOptions& options, bool time_stepping,
-                        integrate::SimulationResult& result, double step_play_rate,
-                        double step_friction_excess) {
-  const DriveParameters& p = model.parameters();
-  // The elements' declarations (declaration.hpp), as the run's layout has them.
-  const std::vector<Declaration> declarations =
-      declare_elements(model, law);
+namespace {
+
+// The energy account's channels, by their roles.
+ResultCheckSpec account_spec(const std::vector<Declaration>& declarations) {
   ResultCheckSpec spec;
   // The energy account's channels, the base's then the elements' (each loss
   // an integral in y: one quadrature each), by their roles.
@@ -44,29 +40,14 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
     for (const ChannelSpec& c : *list) account(c, false);
   for (const Declaration& d : declarations)
     for (const ChannelSpec& c : d.channels) account(c, true);
-  // A transverse slip's cone: the friction checks take the 2-D vectors
-  // (|lambda| against mu' |N|, lambda . (gamma, w) >= 0).
-  if (has_transverse_slip(p)) {
-    spec.transverse_slip = "transverse_velocity";
-    spec.transverse_friction = "transverse_friction";
-  }
-  spec.t_end = options.output.t_end;
-  spec.law = &law;
-  spec.coefficient_scale = model.flank_factor();
-  // Eq. (3.15)'s law can do positive work (its friction follows the slip
-  // acceleration), and LuGre's bristles give back what they stored.
-  spec.friction_dissipates = law.resolution() != friction::Resolution::acceleration &&
-                             law.resolution() != friction::Resolution::bristle;
-  spec.clearance = model.thread_pair().exact_play() ? p.clearance : 0.0;
-  spec.time_step = time_stepping ? options.dt : 0.0;
-  spec.step_play_rate = step_play_rate;
-  spec.step_friction_excess = step_friction_excess;
-  spec.slip_resolution =
-      model.tangent_direction().cwiseAbs().sum() * options.integrator_options.atol;
-  spec.time_stepping = time_stepping;
-  spec.rtol = options.integrator_options.rtol;
-  spec.atol = options.integrator_options.atol;
-  spec.rows_are_steps = options.output.t_eval.empty();
+  return spec;
+}
+
+// The scales of the state's round-off: |p| <= sqrt(2 E m) and |k x| <=
+// sqrt(2 E k).
+void scale_spec(const DriveModel& model, const std::vector<Declaration>& declarations,
+                ResultCheckSpec& spec) {
+  const DriveParameters& p = model.parameters();
   // (An element's kinetic-like energy, a DC motor's L i^2 / 2: |L i| <= sqrt(2 E L).)
   double momentum_mass = model.mass().sum();
   for (const Declaration& d : declarations)
@@ -93,17 +74,9 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
     if (d.flank_normal) spec.flank_normal = d.flank_normal;
   }
   spec.force_factor = std::sqrt(2.0 * stiffness);
-  // (the drive torque is the rotor's: n times it acts on the driven part)
-  spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
-  spec.length_scale = p.screw_length;
-  check_result(spec, result);
-  // The elements' own checks (model/element.hpp: a DC motor's driver and
-  // armature).
-  for (const std::shared_ptr<const Element>& element : model.elements().elements)
-    element->check_result(options, time_stepping, result);
-  if (result.checks.front().passed)  // (finite: else the others are not compared)
-    result.checks.push_back(exact_stop_check(model, options, time_stepping, result));
-  if (!options.check) return;
+}
+
+void check_half_b_slip(const DriveModel& model, const integrate::SimulationResult& result) {
   // A lift-off nut's half B books its friction on its own slip gamma_T -
   // sin(a) e' with the direction of the nut's slip (one friction mode for
   // both halves, preloaded_nut.hpp): where the play's motion reverses half
@@ -123,6 +96,55 @@ void check_drive_result(const DriveModel& model, const friction::Law& law,
             "friction mode for both halves does not resolve",
             "docs/physics/preloaded_nut.md, \"Lift-off\"; a stiffer nut.preload_stiffness "
             "or a larger nut.preload keeps half A on its flank");
+}
+
+}  // namespace
+
+void check_drive_result(const DriveModel& model, const friction::Law& law,
+                        const DriveSimulationOptions& options, bool time_stepping,
+                        integrate::SimulationResult& result, double step_play_rate,
+                        double step_friction_excess) {
+  const DriveParameters& p = model.parameters();
+  // The elements' declarations (declaration.hpp), as the run's layout has them.
+  const std::vector<Declaration> declarations =
+      declare_elements(model, law);
+  ResultCheckSpec spec = account_spec(declarations);
+  // A transverse slip's cone: the friction checks take the 2-D vectors
+  // (|lambda| against mu' |N|, lambda . (gamma, w) >= 0).
+  if (has_transverse_slip(p)) {
+    spec.transverse_slip = "transverse_velocity";
+    spec.transverse_friction = "transverse_friction";
+  }
+  spec.t_end = options.output.t_end;
+  spec.law = &law;
+  spec.coefficient_scale = model.flank_factor();
+  // Eq. (3.15)'s law can do positive work (its friction follows the slip
+  // acceleration), and LuGre's bristles give back what they stored.
+  spec.friction_dissipates = law.resolution() != friction::Resolution::acceleration &&
+                             law.resolution() != friction::Resolution::bristle;
+  spec.clearance = model.thread_pair().exact_play() ? p.clearance : 0.0;
+  spec.time_step = time_stepping ? options.dt : 0.0;
+  spec.step_play_rate = step_play_rate;
+  spec.step_friction_excess = step_friction_excess;
+  spec.slip_resolution =
+      model.tangent_direction().cwiseAbs().sum() * options.integrator_options.atol;
+  spec.time_stepping = time_stepping;
+  spec.rtol = options.integrator_options.rtol;
+  spec.atol = options.integrator_options.atol;
+  spec.rows_are_steps = options.output.t_eval.empty();
+  scale_spec(model, declarations, spec);
+  // (the drive torque is the rotor's: n times it acts on the driven part)
+  spec.lever = p.thread.mean_radius() / std::abs(model.gear().ratio);
+  spec.length_scale = p.screw_length;
+  check_result(spec, result);
+  // The elements' own checks (model/element.hpp: a DC motor's driver and
+  // armature).
+  for (const std::shared_ptr<const Element>& element : model.elements().elements)
+    element->check_result(options, time_stepping, result);
+  if (result.checks.front().passed)  // (finite: else the others are not compared)
+    result.checks.push_back(exact_stop_check(model, options, time_stepping, result));
+  if (!options.check) return;
+  check_half_b_slip(model, result);
   integrate::enforce_checks(result);
 }
 

@@ -77,6 +77,35 @@ ThreadForces DriveHybrid::ConstrainedSolver::forces(double t, const double* y) {
   return {s.normal_force, s.friction_force, s.preload_normal};
 }
 
+void DriveHybrid::ConstrainedSolver::bristle_rates(const ModeSolution& s, double* ydot,
+                                                    double* energy) const {
+  const DriveDynamics& dynamics = h_.dynamics_;
+  const DriveModel& model = h_.model_;
+  const int bristle = bristle_state_;
+  // LuGre's bristles: z' of the law. Of the friction's power, the part
+  // |N|' sigma0 z z' is stored in the bristles, not lost; it is
+  // integrated (the state after z) rather than taken as |N|' sigma0 z^2
+  // / 2, which would miss the work of a changing normal force on a
+  // deflected bristle. What remains, |N|' (sigma0^2 |gamma| z^2 / mu(|gamma|)
+  // + sigma1 z' gamma) + viscous gamma^2, is the loss (sigma1 z' gamma can be
+  // negative: LuGre is passive only for small sigma1).
+  // (A transverse slip: the vector's components relax at |(gamma, w)|,
+  // both store; the transverse one's state follows the energy's.)
+  const double rate = dynamics.bristle_rate();
+  // (A preloaded nut: both halves' flanks carry bristles of the one
+  // deflection z, both slipping at gamma_T: |N_A| + |N_B| in place of |N|.)
+  const double flank_normal =
+      model.preloaded_nut()
+          ? std::abs(s.normal_force - s.preload_normal) + std::abs(s.preload_normal)
+          : std::abs(s.normal_force);
+  const double stored = flank_normal * model.flank_factor() * dynamics.bristle_storing_power();
+  ydot[bristle] = rate / h_.bristle_range_;
+  ydot[bristle + 1] = stored;
+  if (dynamics.transverse())
+    ydot[bristle + 2] = dynamics.transverse_bristle_rate() / h_.bristle_range_;
+  energy[kFrictionLoss] -= stored;
+}
+
 void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot) {
   h_.set(t, y);
   const ModeSolution s = h_.solve_current();
@@ -93,31 +122,7 @@ void DriveHybrid::ConstrainedSolver::rhs(double t, const double* y, double* ydot
   energy[kWorkAxial] = model.axial_load().power(dynamics.axial_force(), v);
   energy[kFrictionLoss] =
       h_.mode_.friction == FrictionMode::stick ? 0.0 : -s.friction_force * dynamics.slip_velocity();
-  const int bristle = bristle_state_;
-  if (bristle >= 0) {
-    // LuGre's bristles: z' of the law. Of the friction's power, the part
-    // |N|' sigma0 z z' is stored in the bristles, not lost; it is
-    // integrated (the state after z) rather than taken as |N|' sigma0 z^2
-    // / 2, which would miss the work of a changing normal force on a
-    // deflected bristle. What remains, |N|' (sigma0^2 |gamma| z^2 / mu(|gamma|)
-    // + sigma1 z' gamma) + viscous gamma^2, is the loss (sigma1 z' gamma can be
-    // negative: LuGre is passive only for small sigma1).
-    // (A transverse slip: the vector's components relax at |(gamma, w)|,
-    // both store; the transverse one's state follows the energy's.)
-    const double rate = dynamics.bristle_rate();
-    // (A preloaded nut: both halves' flanks carry bristles of the one
-    // deflection z, both slipping at gamma_T: |N_A| + |N_B| in place of |N|.)
-    const double flank_normal =
-        model.preloaded_nut()
-            ? std::abs(s.normal_force - s.preload_normal) + std::abs(s.preload_normal)
-            : std::abs(s.normal_force);
-    const double stored = flank_normal * model.flank_factor() * dynamics.bristle_storing_power();
-    ydot[bristle] = rate / h_.bristle_range_;
-    ydot[bristle + 1] = stored;
-    if (dynamics.transverse())
-      ydot[bristle + 2] = dynamics.transverse_bristle_rate() / h_.bristle_range_;
-    energy[kFrictionLoss] -= stored;
-  }
+  if (bristle_state_ >= 0) bristle_rates(s, ydot, energy);
   // A lift-off nut's half B slipping on its own flank: its friction works on
   // its slip gamma_T - sin(a) e', not on gamma_T (preloaded_nut.hpp).
   if (const elements::PreloadedNut* nut = model.preloaded_nut();

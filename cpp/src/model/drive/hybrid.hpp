@@ -55,6 +55,8 @@
 
 namespace leadscrew::model::drive {
 
+struct ThreadForces;  // (mode_solver.hpp)
+
 // A bounce whose flight would rise less than this fraction of the clearance is
 // plastic: such flights (1e-6 of a 0.1 mm play is 0.1 nm) are far below the
 // flanks' roughness, and a geometric sequence of them only costs events.
@@ -196,6 +198,9 @@ class DriveHybrid final : public integrate::HybridSystem {
     if (rotor_train_) s.rotor = rotor_row();
     return s;
   }
+
+  // hybrid_events.cpp: the root that ends a stick in the forces s.
+  double stick_root(const double* y, const ThreadForces& s);
 
   // The stick limit mu_static' of the law (mu' itself for one coefficient).
   double stick_mu() const {

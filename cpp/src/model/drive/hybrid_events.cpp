@@ -12,6 +12,29 @@
 
 namespace leadscrew::model::drive {
 
+// The root that ends a stick (>= 0 while it holds; roots' g0).
+double DriveHybrid::stick_root(const double* y, const ThreadForces& s) {
+  // The motor holds the slip at zero (the friction force stays in the cone
+  // by construction): the stick ends where the prescribed slip leaves zero,
+  // either way.
+  if (slip_prescribed_now()) return std::abs(solver_->slip_velocity(y));
+  const elements::PreloadedNut* nut = model_.preloaded_nut();
+  if (nut && nut->lift_off)
+    return nut->sticking().split_stick_margin(dynamics_.penalty_normal_force(),
+                                              dynamics_.preload_spring_force(), s.friction_force);
+  double margin;
+  if (train_) {
+    margin = train_->stick_margin();  // the static stick test
+  } else if (nut) {
+    margin = nut->sticking().stick_margin(s.normal_force, s.friction_force);
+  } else {
+    const double mu = stick_mu();
+    margin = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
+  }
+  if (margin > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
+  return margin;
+}
+
 void DriveHybrid::roots(double t, const double* y, double* g) {
   g[0] = g[1] = g[2] = g[3] = g[4] = 1.0;
   solver_->expand(t, y);
@@ -29,26 +52,7 @@ void DriveHybrid::roots(double t, const double* y, double* g) {
                              mode_.contact == ThreadContact::bilateral;
     if (need_forces) {
       const ThreadForces s = solver_->forces(t, y);
-      const double mu = stick_mu();
-      if (mode_.friction == FrictionMode::stick && slip_prescribed_now()) {
-        // The motor holds the slip at zero (the friction force stays in the
-        // cone by construction): the stick ends where the prescribed slip
-        // leaves zero, either way.
-        g[0] = std::abs(solver_->slip_velocity(y));
-      } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut() &&
-                 model_.preloaded_nut()->lift_off) {
-        g[0] = model_.preloaded_nut()->sticking().split_stick_margin(
-            dynamics_.penalty_normal_force(), dynamics_.preload_spring_force(), s.friction_force);
-      } else if (mode_.friction == FrictionMode::stick && train_) {
-        g[0] = train_->stick_margin();  // the static stick test: >= 0 while it holds
-        if (g[0] > 0.0) stick_from_zero_ = false;
-      } else if (mode_.friction == FrictionMode::stick && model_.preloaded_nut()) {
-        g[0] = model_.preloaded_nut()->sticking().stick_margin(s.normal_force, s.friction_force);
-        if (g[0] > 0.0) stick_from_zero_ = false;
-      } else if (mode_.friction == FrictionMode::stick) {
-        g[0] = (mu * s.normal_force - s.friction_force) * (mu * s.normal_force + s.friction_force);
-        if (g[0] > 0.0) stick_from_zero_ = false;  // the margin left zero into the cone
-      }
+      if (mode_.friction == FrictionMode::stick) g[0] = stick_root(y, s);
       if (mode_.friction == FrictionMode::stick && mode_.half_b_edge != 0) {
         g[0] = half_b_edge_.edge_margin;  // (set by forces: solve_current)
         g[1] = half_b_edge_.spring_margin;

@@ -91,8 +91,10 @@ class DriveHybrid::ConstrainedSolver final : public DriveHybrid::ModeSolver {
 
  private:
   // LuGre's bristles (lugre_bristles_kind): the deflection's index in y
-  // (its stored energy's follows; -1: none) and its channel's.
+  // (its stored energy's follows; -1: none) and its channel's; their rates
+  // and the friction power they store in the solution s (rhs).
   int bristle_state_, bristle_channel_;
+  void bristle_rates(const ModeSolution& s, double* ydot, double* energy) const;
   // The train's friction stages behind a prescribed rotor speed (nullptr:
   // none, or a torque-driven rotor, which TrainSolver takes): the motor's
   // torque on the rotor's coordinate in the solution s at the speed set

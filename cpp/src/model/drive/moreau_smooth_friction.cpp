@@ -87,6 +87,29 @@ double bracketed_root(const F& f, double low, double f_low, double high, double 
   return std::abs(f_low) < std::abs(f_high) ? low : high;
 }
 
+// The root of f, increasing with slope >= 1 - kappa_max |alpha| > 0, in
+// `root`: bracketed from 0 outward (a few doublings of f(0)'s size), then
+// bracketed_root. False where no bracket is found (f not finite or not
+// rising).
+template <class F>
+bool increasing_root(const F& f, double& root) {
+  const double f0 = f(0.0);
+  root = 0.0;
+  if (f0 == 0.0) return true;
+  double low = 0.0, high = 0.0, f_low = f0, f_high = f0;
+  double step = std::max(std::abs(f0), std::numeric_limits<double>::min());
+  for (int k = 0; k < 2100 && !(f_low < 0.0 && f_high > 0.0); ++k, step *= 2.0) {
+    const double x = f0 > 0.0 ? -step : step;
+    const double fx = f(x);
+    if (!std::isfinite(fx)) break;
+    (f0 > 0.0 ? low : high) = x;
+    (f0 > 0.0 ? f_low : f_high) = fx;
+  }
+  if (!(f_low < 0.0 && f_high > 0.0)) return false;
+  root = bracketed_root(f, low, f_low, high, f_high);
+  return true;
+}
+
 }  // namespace
 
 double DriveMoreau::smooth_coefficient(double slip, double h) const {
@@ -149,27 +172,12 @@ DriveMoreau::Impulses DriveMoreau::solve_smooth_thread(double t, double h, doubl
     const double b = half_b(kappa), n = beta + alpha * p;
     return p + kappa * (std::abs(n - b) + std::abs(b)) + viscous_step * slip;
   };
-  // The bracket, from P = 0 outward (F rises with slope >= 1 - kappa_max
-  // |alpha| > 0: a few doublings of F(0)'s size).
-  const double f0 = f(0.0);
-  double low = 0.0, high = 0.0, f_low = f0, f_high = f0;
-  double step = std::max(std::abs(f0), std::numeric_limits<double>::min());
-  for (int k = 0; k < 2100 && !(f_low < 0.0 && f_high > 0.0) && f0 != 0.0; ++k, step *= 2.0) {
-    const double x = f0 > 0.0 ? -step : step;
-    const double fx = f(x);
-    if (!std::isfinite(fx)) break;
-    (f0 > 0.0 ? low : high) = x;
-    (f0 > 0.0 ? f_low : f_high) = fx;
-  }
   double friction = 0.0;
-  if (f0 != 0.0) {
-    if (!(f_low < 0.0 && f_high > 0.0))
-      throw JammingError(t, "no friction impulse of the Moreau-Jean step satisfies friction.law = "
-                            "\"" + p_.friction + "\" at the step's end slip (dt = " +
-                                format_value(h) + " s); " + dynamics_.jamming_report(),
-                         "shorten dt, or reduce the friction");
-    friction = bracketed_root(f, low, f_low, high, f_high);
-  }
+  if (!increasing_root(f, friction))
+    throw JammingError(t, "no friction impulse of the Moreau-Jean step satisfies friction.law = "
+                          "\"" + p_.friction + "\" at the step's end slip (dt = " +
+                              format_value(h) + " s); " + dynamics_.jamming_report(),
+                       "shorten dt, or reduce the friction");
   // A flank whose normal impulse would pull separates (no friction).
   if (sigma_fixed != 0 && !(sigma_fixed * (beta + alpha * friction) > 0.0)) {
     // (A penalty flank whose force pushes without the friction is no

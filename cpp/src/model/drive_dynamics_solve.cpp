@@ -253,8 +253,14 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   // (docs/physics/end_stops.md, "The rigid drive at a closed stop"): the
   // stop carries what it can, the friction nothing while it holds; the
   // stop opens where its force would pull, and the thread decides then.
+  // LuGre's bristles are no such unknown: their friction is the law's at
+  // the held zero slip, -sigma0 z |N|' with z held (z' = 0), a function of
+  // the state, which the mode's normal row takes as any slip's kappa (the
+  // stop carries the rest; the Moreau-Jean step's stop_holds_bristles,
+  // end_stops.md, "LuGre at a closed stop"). (The other smooth laws' is 0
+  // at zero slip: the rule's.)
   if (spec.held_load >= 0 && m.normal_multiplier && spec.friction != FrictionMode::none &&
-      2 + model_.motor().constraint_count() >= n) {
+      spec.friction != FrictionMode::bristle && 2 + model_.motor().constraint_count() >= n) {
     ModeSpec base = spec;
     base.friction = FrictionMode::none;
     base.given_tangential = 0.0;

@@ -109,3 +109,27 @@ def test_a_held_stop_clamps_with_the_bristles_force_on_the_event_driven_scheme(f
     report = check_train(result, d, {"integrator": "event_driven", "t_eval": t_eval}, ch,
                          1e-9, 1e-12)
     assert report["friction_law"]["ok"], report["friction_law"]
+
+
+def test_a_self_locking_held_stop_takes_the_smaller_friction_as_moreau_jean():
+    # A thread self-locking at the held rows (mu' = 0.052 > tan(lead) =
+    # 0.016) pressed by a torque and an axial force: both signs of N agree
+    # with the bristles' friction. The one of the smaller |T| (Moreau-Jean's
+    # held_friction) keeps the stop pushing; the other's stop pulled, and
+    # the released load ran into it again (100,000 impacts: Zeno).
+    thread = {"pitch": 1e-3, "mean_diameter": 20e-3, "flank_angle": 0.5}
+    scene = ls.Scene.from_dict({
+        "concept": "rigid", "thread": thread,
+        "friction": {"law": "lugre", "mu": 0.05, "sigma0": 1e5, "sigma1": 0.0},
+        "load": {"mass": 0.5}, "loads": {"drive_torque": -0.05, "axial_force": 30.0},
+        "end_stops": {"upper": 1e-5, "contact": "exact"}})
+    event = ls.simulate(scene, 0.02, integrator="event_driven")
+    moreau = ls.simulate(scene, 0.02, integrator="moreau", dt=1e-5)
+    for result in (event, moreau):
+        assert [k for k, c in result.checks.items() if c["applies"] and not c["passed"]] == []
+        assert result["stop_force"][-1] < 0.0  # (held, pushing the load back)
+    assert len(event.events) == 1
+    for name in ("stop_force", "normal_force", "friction_force"):
+        assert event[name][-1] == pytest.approx(moreau[name][-1], rel=1e-8), name
+    error = law_error(event, scene.to_dict())
+    assert np.max(error) <= 1e-12 * np.max(np.abs(event["friction_force"]))

@@ -245,6 +245,31 @@ void DriveDynamics::set_thread_forces(const ModeSpec& spec, const ModeForces& m,
   }
 }
 
+// LuGre's bristles where a closed exact stop holds the rigid drive: their
+// friction is the law's at the held zero slip, -sigma0 z |N|' with z held
+// (z' = 0), a function of the state, which the mode's normal row takes as
+// any slip's kappa; the stop carries the rest (the Moreau-Jean step's
+// stop_holds_bristles, end_stops.md, "LuGre at a closed stop"). A thread
+// self-locking at the held rows (|kappa alpha| >= 1) may agree with both
+// signs of N: as Moreau-Jean's, the smaller |T| (the root that keeps the
+// frictionless rows' sign of N; the other's stop pulls, and the load,
+// released, runs into it again: Zeno). Neither: not regular (the rule's
+// T = 0 then, off the law; Moreau-Jean lets the stop go there).
+ModeSolution DriveDynamics::solve_held_bristles(const ModeSpec& spec, const ModeForces& m) {
+  ModeSolution chosen;
+  chosen.regular = false;
+  for (const int sigma : {1, -1}) {
+    ModeSpec side = spec;
+    side.sigma = sigma;
+    ModeSolution s;
+    evaluate_mode(side, m, friction_factor(side, 0.0), side.given_tangential, s);
+    if (!s.regular || !(sigma * s.normal_force >= 0.0)) continue;
+    if (!chosen.regular || std::abs(s.friction_force) < std::abs(chosen.friction_force))
+      chosen = s;
+  }
+  return chosen;
+}
+
 ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   const int n = model_.coordinate_count();
   ModeForces m = mode_forces(spec);
@@ -260,8 +285,14 @@ ModeSolution DriveDynamics::solve(const ModeSpec& spec) {
   // (docs/physics/end_stops.md, "The rigid drive at a closed stop"): the
   // stop carries what it can, the friction nothing while it holds; the
   // stop opens where its force would pull, and the thread decides then.
+  // LuGre's bristles are no such unknown (solve_held_bristles). (The other
+  // smooth laws' friction is 0 at zero slip: the rule's.)
   if (spec.held_load >= 0 && m.normal_multiplier && spec.friction != FrictionMode::none &&
       2 + model_.motor().constraint_count() >= n) {
+    if (spec.friction == FrictionMode::bristle && nut == nullptr) {
+      const ModeSolution held = solve_held_bristles(spec, m);
+      if (held.regular) return held;
+    }
     ModeSpec base = spec;
     base.friction = FrictionMode::none;
     base.given_tangential = 0.0;

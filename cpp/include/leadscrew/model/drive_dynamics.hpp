@@ -434,6 +434,9 @@ class DriveDynamics {
                          ModeSolution& out) const;
   ModeSolution solve_acceleration_by_newton(const ModeSpec& spec, const ModeForces& m);
   ModeSolution solve_acceleration_law(const ModeSpec& spec);
+  // LuGre's friction where a closed exact stop holds the rigid drive
+  // (drive_dynamics_solve.cpp); not regular where no sign of N agrees.
+  ModeSolution solve_held_bristles(const ModeSpec& spec, const ModeForces& m);
   // The elements' forces at the state set: element_forces_ (their sum but
   // a motor's on the rotor) and element_drive_torque_.
   void add_element_forces(int rotor);

@@ -545,6 +545,8 @@ void DriveMoreau::channels(double t, const double* y, double* out) {
   // account: what the work and the named losses leave over.
   ChannelState state = channel_state(dynamics_);
   if (last_.stick) state.slip_velocity = 0.0;  // the step's stick: zero slip (as above)
+  // LuGre's: the slip of the step's friction and bristles (bristle_slip)
+  if (!std::isnan(last_law_slip_)) state.slip_velocity = last_law_slip_;
   // The exact stops' force over the last step (the penalty stops' is added
   // from the row's coordinates: hybrid_end_stops.cpp's declaration).
   if (stop_channel_ >= 0) state.values[stop_channel_] = last_stop_force_;

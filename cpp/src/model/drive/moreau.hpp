@@ -79,6 +79,12 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
     // A preloaded nut with a smooth law: half B's normal impulse, part of
     // `normal` (moreau_smooth_friction.cpp); 0 otherwise.
     double preload_normal = 0.0;
+    // The slip at which a smooth law took `friction` (its root's gamma+ =
+    // c + d P_T, or a held stop's rows' c); NaN: none (set-valued, no
+    // contact). The end state's slip differs from it by the round-off of
+    // the step's solve, which LuGre's slope near zero slip amplifies
+    // (moreau_smooth_friction.cpp, "The rows' slip").
+    double law_slip = std::numeric_limits<double>::quiet_NaN();
   };
 
   // The energy a step from y to y_next creates: what the stored energy
@@ -263,6 +269,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
                      double normal_impulse);
   void book_planar_bristles(double h, const double* y, double* y_next, double slip,
                             double normal_impulse);
+  // The slip LuGre's bristles take the step at and its row reports: the
+  // law's (Impulses::law_slip), else end_slip (moreau_step.cpp).
+  double bristle_slip(const StepState& s, double end_slip) const;
   // The cone's transverse impulse over the step at w+ (on the cone from
   // the helix impulse): its loss, the excitation's work that balances it,
   // the row's force (moreau_smooth_friction.cpp).
@@ -344,6 +353,9 @@ class DriveMoreau final : public integrate::TimeSteppingSystem {
   CoordinateVector q_, v_, free_;
   IterationMatrix iteration_;  // W, factorized while it holds (moreau_iteration.hpp)
   ContactForces last_;
+  // The last step's Impulses::law_slip (NaN: none): LuGre's row reports it
+  // as its slip_velocity, the slip of its friction and its bristles.
+  double last_law_slip_ = std::numeric_limits<double>::quiet_NaN();
   // The end stops of this step: a penalty stop engaged (its k, c in W), an
   // exact one active (a constraint row), its Newton target u'+ [m/s].
   bool engaged_[kMaxStops] = {false, false};

@@ -102,6 +102,7 @@ bool DriveMoreau::stop_holds_bristles(double h, int sigma_fixed, const Impulses&
     impulses = solve(true, normal_target, rotor_target, friction);
     if (held && targets_zero) impulses.velocity.setZero();  // (their round-off)
     impulses.friction = friction;
+    impulses.law_slip = c;  // (the rows' slip: the law's, z+'s)
     stick = held;
     return true;
   }

@@ -19,6 +19,19 @@
 // coefficient at (gamma+, z+) (its z' the step's), so every row of a run
 // satisfies the law's relation.
 //
+// The rows' slip: the root's gamma+ = c + d P_T is the slip of the law's
+// friction. The end state's slip, the tangent of the velocities solved
+// at P_T, is the same slip up to the round-off of that solve, of the
+// size of c (c = 196 m/s where a wound-up flexible screw's 7e8 N meet a
+// held stop, against a slip of 1e-8 m/s: 2e-11 m/s apart), and LuGre's
+// slope near zero slip, |N|' d kappa / d gamma = |N|' (sigma0 h + sigma1)
+// (d z+ / d gamma = h there), 2.5e9 N s/m at |N| = 1.4e8 N, turns that
+// into 0.07 N of a 2.3e6 N friction, 3e-8 of it (the train fuzz's case
+// 6473): the row's friction, bristles and slip no longer satisfied the law.
+// The bristles therefore take their step at the root's slip (book_step),
+// and LuGre's row reports it as its slip (channels); the work the
+// friction does on the bodies stays -P_T times the end state's slip.
+//
 // The scalar equation F(P) = P + kappa(c + d P) |beta + alpha P|
 // + h viscous (c + d P) = 0 rises with P wherever kappa rises with the slip
 // (d >= 0) and kappa_max |alpha| < 1 (the step's coupling, which
@@ -200,6 +213,7 @@ DriveMoreau::Impulses DriveMoreau::solve_smooth_thread(double t, double h, doubl
   Impulses impulses = solve(row, normal_target, rotor_target, friction);
   if (!row) impulses.normal = flank_impulse(h, theta, v0, impulses.velocity);
   impulses.friction = friction;
+  impulses.law_slip = c + d * friction;
   if (nut) impulses.preload_normal = half_b(smooth_coefficient(c + d * friction, h));
   return impulses;
 }

@@ -6,6 +6,7 @@
 // book_step, book_losses, report_step).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "moreau.hpp"
 #include "screw_end.hpp"
@@ -258,8 +259,10 @@ void DriveMoreau::book_step(StepState& s, double* y_next) {
           model_.preloaded_nut()->sin_lead * half_b_friction_ * model_.play_gradient().dot(v_);
   }
   if (bristle_state_ >= 0)
-    // (A preloaded nut's halves: |P_N,A| + |P_N,B|, both flanks' bristles.)
-    book_bristles(h, y, y_next, slip,
+    // (A preloaded nut's halves: |P_N,A| + |P_N,B|, both flanks' bristles;
+    // the slip of the law's friction, moreau_smooth_friction.cpp, "The
+    // rows' slip".)
+    book_bristles(h, y, y_next, bristle_slip(s, slip),
                   !s.contact ? 0.0
                              : std::abs(s.impulses.normal - s.impulses.preload_normal) +
                                    std::abs(s.impulses.preload_normal));
@@ -330,6 +333,15 @@ void DriveMoreau::report_step(const StepState& s) {
   last_.motor_torque =
       p_.speed_controlled ? model_.gear().rotor_torque(s.impulses.rotor / s.h) : 0.0;
   last_.stick = s.contact && s.stick;
+  last_law_slip_ = bristle_slip(s, std::numeric_limits<double>::quiet_NaN());
+}
+
+// The slip LuGre's bristles take the step at: the law's (the slip of the
+// step's friction), else the end state's (end_slip).
+double DriveMoreau::bristle_slip(const StepState& s, double end_slip) const {
+  return bristle_state_ >= 0 && s.contact && !std::isnan(s.impulses.law_slip)
+             ? s.impulses.law_slip
+             : end_slip;
 }
 
 }  // namespace leadscrew::model::drive

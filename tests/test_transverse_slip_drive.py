@@ -310,3 +310,16 @@ def test_refused_integrators_and_event_driven_zero_holds():
     called = scene(lambda t: 0.01 * math.sin(100.0 * t))
     with pytest.raises(ValueError, match=r"callable.*integrator = \"moreau\""):
         ls.simulate(called, 0.01, integrator="event_driven")
+
+
+@pytest.mark.parametrize("changes", [{"concept": "flexible_nut"},
+                                     {"backlash": {"axial": 1e-4, "contact": "exact"}}])
+def test_the_default_scheme_is_moreau_where_only_it_takes_the_cone(changes):
+    """Where Moreau-Jean alone takes the set-valued cone (off the rigid
+    concept, exact play), it is the scene's default: a call without an
+    integrator runs (a new user's review found the default refused)."""
+    s = scene(ls.Sine(0.01, 100.0)).replace(**changes)
+    assert ls._core.drive_integrators(s.model().parameters) == ["moreau"]
+    r = ls.simulate(s, 0.01)
+    assert r.integrator == "moreau"
+    assert all(check["passed"] for check in r.checks.values())

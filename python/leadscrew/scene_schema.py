@@ -367,9 +367,14 @@ SCHEMA: Dict[str, Any] = {
                                            kind="load"),
         "transverse_slip_velocity": Field(
             "the nut's transverse slip on the flank, across the helix (an excitation: the "
-            "flank's friction becomes the isotropic Coulomb cone on the slip (helix, "
-            "transverse); no play, friction.law 'coulomb' or 'stribeck', concept 'rigid' on "
-            "event_driven or moreau, the flexible concepts on moreau; docs/physics/transverse_slip.md; absent: none)", "m/s", OPTIONAL,
+            "flank's friction becomes the isotropic cone on the slip (helix, transverse)): "
+            "friction.law 'coulomb' (mu_static too) or 'stribeck' on concept 'rigid' on "
+            "event_driven or moreau and the flexible concepts on moreau (their default), "
+            "'lugre' (2-D bristles) on every concept and scheme; without play or with penalty "
+            "play, exact play on moreau; with a torque, a DC motor or a prescribed speed, an "
+            "ideal gear, a base excitation, a load spring, end stops (exact ones on moreau, "
+            "not with 'lugre'); no lossy or worm stage, motor friction or preloaded nut "
+            "(docs/physics/transverse_slip.md; absent: none)", "m/s", OPTIONAL,
             kind="load"),
     },
     # (Absent: no motor element; loads.drive_torque or loads.drive_speed drive the rotor.)

@@ -115,6 +115,19 @@ const std::vector<std::string>& moreau_only() {
   return names;
 }
 
+// A transverse slip's set-valued cone runs on Moreau-Jean alone off the
+// rigid concept, with exact play and with exact end stops
+// (check_transverse_slip): there it is the default, not a refusal of the
+// event-driven scheme the user did not choose (a new user's review).
+bool cone_needs_moreau(const DriveParameters& p, friction::Resolution resolution) {
+  if (!has_transverse_slip(p) || resolution != friction::Resolution::set_valued) return false;
+  if (p.concept != Concept::rigid || p.backlash == BacklashContact::exact) return true;
+  if (const ElementSection* stops = find_section(p, "end_stops"))
+    for (const auto& [key, value] : stops->choices)
+      if (key == "contact" && value == "exact") return true;
+  return false;
+}
+
 const std::vector<std::string>& train_integrators(const elements::TrainFriction& train) {
   static const std::vector<std::string> both = {"event_driven", "moreau"};
   static const std::vector<std::string> moreau_first = {"moreau", "event_driven"};
@@ -160,6 +173,7 @@ const std::vector<std::string>& drive_integrators(const DriveParameters& p) {
   if (stops_need_moreau(p)) return moreau_only();
   // (The law's type, from its defaults: every law's parameters have one.)
   const friction::Resolution resolution = friction::make_law(p.friction, {})->resolution();
+  if (!stages && cone_needs_moreau(p, resolution)) return moreau_only();
   const std::vector<std::string>& without =
       integrators_for(p.friction, resolution, p.backlash == BacklashContact::exact,
                       p.nut_preload > 0.0, preload_lifts_off(p));
@@ -173,6 +187,8 @@ const std::vector<std::string>& drive::model_integrators(const DriveModel& model
   const elements::ThreadPair& thread = model.thread_pair();
   const DriveParameters& p = model.parameters();
   if (stops_need_moreau(p)) return moreau_only();
+  if (!model.train_friction() && cone_needs_moreau(p, model.law().resolution()))
+    return moreau_only();
   const elements::PreloadedNut* nut = model.preloaded_nut();
   const std::vector<std::string>& without =
       integrators_for(p.friction, model.law().resolution(), thread.exact_play(), nut != nullptr,

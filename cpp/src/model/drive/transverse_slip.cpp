@@ -172,8 +172,10 @@ std::string drive_obstacle(const DriveModel& model, const std::string& integrato
   // consistent stick/slip state at the zeros of w, and the flexible drives'
   // creep has no reference with the stage's friction in the balance yet.)
   if (model.train_friction())
-    return "gear.type = \"" + gear_type_name(p.gear) + "\" or motor.friction_torque (the "
-           "train's friction contact beside the cone is not implemented)";
+    return (p.gear == GearType::lossy || p.gear == GearType::worm
+                ? "gear.type = \"" + gear_type_name(p.gear) + "\""
+                : "motor.friction_torque = " + format_value(p.motor_friction_torque) + " N m") +
+           " (the train's friction contact beside the cone is not implemented)";
   if (model.preloaded_nut()) return "a preloaded nut";
   // (A DC motor is the rotor's drive, a base excitation the housing's
   // inertial loads, a load spring a force on the load: given forces of the

@@ -25,7 +25,7 @@ naming a key or option the case set (a refused combination names one of
 its keys), a ``SimulationError`` or a ``JammingError``; never another
 exception, a crash, a hang or a non-finite number. The cases have no
 hostile values (:mod:`helpers.scene_fuzz` draws those) but one: a preloaded
-nut with play on a flexible concept left without ``preload_stiffness``,
+nut with penalty play on a flexible concept left without ``preload_stiffness``,
 which that concept requires there (marked hostile: the refusal answers an
 input that breaks a documented rule, not a missing combination).
 
@@ -117,10 +117,13 @@ def _preload(r, scene: dict, hostile: list) -> str:
     scene["nut"]["preload"] = r.log_uniform(1.0, 2000.0)
     if scene["concept"] != "rigid" and r.chance(0.8):
         scene["nut"]["preload_stiffness"] = r.log_uniform(1e5, 1e9)
-    elif scene["concept"] != "rigid" and "backlash" in scene:
-        # With play on a flexible concept the spring's rate is required (the
-        # spring carries the load beyond lift-off; nut.preload_stiffness's
-        # doc): a scene without it breaks the input's rule, not a combination.
+    elif (scene["concept"] != "rigid"
+          and scene.get("backlash", {}).get("contact") in ("bistop", "cubic")):
+        # With penalty play on a flexible concept the spring's rate is
+        # required (the spring carries the load beyond lift-off;
+        # nut.preload_stiffness's doc): a scene without it breaks the input's
+        # rule, not a combination. (Exact play: half A's lift-off into it is
+        # an error of its own, the rate not needed.)
         hostile.append({"path": "nut.preload_stiffness", "kind": "missing where required"})
     return "preload"
 

@@ -282,8 +282,8 @@ void check_train_integrator(const DriveModel& model, const std::string& integrat
              "the flexible concepts without play and with exact or penalty play (backlash."
              "contact \"exact\", \"bistop\" or \"cubic\") with \"coulomb\" (mu_static too), "
              "\"stribeck\" or \"arctan_velocity\" (the rotor's friction contact), there with "
-             "exact end stops and a preloaded nut too with \"coulomb\" without mu_static or "
-             "\"arctan_velocity\" and without exact play; and behind a prescribed "
+             "exact end stops (without exact play) and a preloaded nut too (lifting off with "
+             "\"stribeck\" without friction.viscous); and behind a prescribed "
              "rotor speed (loads.drive_speed) on every concept and play with every law, "
              "here " + train->event_driven_obstacle +
                  "; use integrator = \"moreau\" (Moreau-Jean, every concept and play)"

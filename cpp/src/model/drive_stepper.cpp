@@ -84,9 +84,9 @@ DriveStepper::DriveStepper(DriveParameters parameters, DriveSimulationOptions op
                          " with " + train->event_driven_obstacle + " runs on nothing else"
                    : std::string()) +
             "; FMU export and the C API do not offer Moreau-Jean: they take a scene the "
-            "event-driven scheme runs (the train's stages with plain Coulomb friction "
-            "without play or with penalty play, e.g. the shipped scene "
-            "\"seat_adjuster_worm\"; docs/physics/gear.md)");
+            "event-driven scheme runs (the train's stages where the rotor's friction "
+            "contact takes them, e.g. the shipped scene \"seat_adjuster_worm\"; "
+            "docs/physics/gear.md lists where)");
       }
       throw InvalidArgument("integrator = \"moreau\" is invalid for FMU export and the C API, "
                             "which do not offer Moreau-Jean time stepping: leave integrator out "

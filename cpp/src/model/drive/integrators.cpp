@@ -103,11 +103,8 @@ bool stops_need_moreau(const DriveParameters& p) {
   const bool load_on_flank =
       p.concept == Concept::rigid ||
       (p.concept == Concept::flexible_nut && p.drive == DrivenPart::nut);
-  if (!load_on_flank || p.backlash != BacklashContact::exact) return false;
-  if (const ElementSection* stops = find_section(p, "end_stops"))
-    for (const auto& [key, value] : stops->choices)
-      if (key == "contact" && value == "exact") return true;
-  return false;
+  return load_on_flank && p.backlash == BacklashContact::exact &&
+         elements::has_exact_end_stops(p);
 }
 
 const std::vector<std::string>& moreau_only() {
@@ -121,11 +118,8 @@ const std::vector<std::string>& moreau_only() {
 // event-driven scheme the user did not choose (a new user's review).
 bool cone_needs_moreau(const DriveParameters& p, friction::Resolution resolution) {
   if (!has_transverse_slip(p) || resolution != friction::Resolution::set_valued) return false;
-  if (p.concept != Concept::rigid || p.backlash == BacklashContact::exact) return true;
-  if (const ElementSection* stops = find_section(p, "end_stops"))
-    for (const auto& [key, value] : stops->choices)
-      if (key == "contact" && value == "exact") return true;
-  return false;
+  return p.concept != Concept::rigid || p.backlash == BacklashContact::exact ||
+         elements::has_exact_end_stops(p);
 }
 
 const std::vector<std::string>& train_integrators(const elements::TrainFriction& train) {

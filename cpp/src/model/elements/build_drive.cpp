@@ -676,10 +676,7 @@ std::string train_event_driven_obstacle(const DriveParameters& p, const friction
   // (its solve is singular) and TrainSolver's closed forms do not take; a
   // preloaded nut's stick edge there is not resolved with the rotor's
   // contact either (no consistent edge at the start).
-  bool exact_stops = false;
-  if (const ElementSection* stops = find_section(p, "end_stops"))
-    for (const auto& [key, value] : stops->choices)
-      if (key == "contact" && value == "exact") exact_stops = true;
+  const bool exact_stops = has_exact_end_stops(p);
   // Exact end stops beside exact play's impacts: not validated together (a
   // clamp at the stop, seat_adjuster_worm_flexible, fails its friction-cone
   // check at rtol 1e-6 and 1e-8: docs/physics/gear.md).

@@ -9,6 +9,7 @@
 #include "leadscrew/friction/law.hpp"
 #include "leadscrew/model/drive.hpp"
 #include "leadscrew/model/element_section.hpp"
+#include "leadscrew/model/elements/drive_elements.hpp"
 
 namespace leadscrew::model {
 
@@ -148,5 +149,16 @@ SectionType end_stops_section() {
   type.build = &build;
   return type;
 }
+
+namespace elements {
+
+bool has_exact_end_stops(const DriveParameters& p) {
+  if (const ElementSection* stops = find_section(p, "end_stops"))
+    for (const auto& [key, value] : stops->choices)
+      if (key == "contact" && value == "exact") return true;
+  return false;
+}
+
+}  // namespace elements
 
 }  // namespace leadscrew::model

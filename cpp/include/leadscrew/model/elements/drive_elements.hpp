@@ -132,6 +132,9 @@ void build_base_excitation(const DriveParameters& p, DriveElements& e);
 // The first base excitation p gives, as "loads.<key> = <load>"; "" for none.
 std::string given_base_excitation(const DriveParameters& p);
 
+// Whether p has end stops of contact "exact" (elements/end_stops.cpp).
+bool has_exact_end_stops(const DriveParameters& p);
+
 // Why the event-driven scheme cannot run the train's friction stages of p
 // (the concept, play, a thread law beyond plain Coulomb's; "" where it
 // can): they run there on Moreau-Jean only (drive/integrators.cpp).
